@@ -1,0 +1,28 @@
+#pragma once
+
+#include "geometry/shape.h"
+
+namespace candela {
+
+// 000 §5.6.1: the geometric test with early exits. uv: u = longitude / 2π about +z from +x,
+// v = 1 - polar angle / π (0 at the -z pole, 1 at the +z pole).
+class Sphere final : public Shape {
+ public:
+  Sphere(const Vec3& center, double radius);
+
+  bool intersect(const Ray& ray, SurfaceHit& hit) const override;
+  bool occluded(const Ray& ray) const override;
+  Bounds3 bounds() const override;
+  std::string_view type_name() const override { return "sphere"; }
+
+  const Vec3& center() const { return center_; }
+  double radius() const { return radius_; }
+
+ private:
+  // The hit distance or a negative value for none.
+  double nearest_t(const Ray& ray) const;
+  Vec3 center_;
+  double radius_;
+};
+
+}  // namespace candela

@@ -1,0 +1,20 @@
+#pragma once
+
+#include "math/vector.h"
+
+namespace candela {
+
+// What a shape reports about a ray hit (SPEC §4: distance, position, geometric and shading
+// normal, uv, dpdu/dpdv).
+struct SurfaceHit {
+  double t = 0;
+  Vec3 position;
+  Vec3 geometric_normal;  // unit; outward for closed shapes, the declared side for open ones
+  Vec3 shading_normal;    // unit; interpolated normals for smooth meshes, else geometric
+  Vec2 uv;
+  Vec3 dpdu;
+  Vec3 dpdv;
+  Vec3 object_position;  // the hit in the shape's own coordinates (solid textures)
+};
+
+}  // namespace candela

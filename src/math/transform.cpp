@@ -1,0 +1,91 @@
+#include "math/transform.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "math/constants.h"
+
+namespace candela {
+
+Transform Transform::from_matrix(const Eigen::Matrix4d& matrix) {
+  if (!matrix.allFinite()) throw std::invalid_argument("matrix has non-finite entries");
+  if (matrix(3, 0) != 0 || matrix(3, 1) != 0 || matrix(3, 2) != 0 || matrix(3, 3) != 1)
+    throw std::invalid_argument("matrix must be affine (last row 0 0 0 1)");
+  const double determinant = matrix.topLeftCorner<3, 3>().determinant();
+  if (!(std::fabs(determinant) > 1e-12)) throw std::invalid_argument("matrix is singular");
+  return Transform(matrix, matrix.inverse());
+}
+
+Transform Transform::translate(const Vec3& offset) {
+  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+  m(0, 3) = offset.x;
+  m(1, 3) = offset.y;
+  m(2, 3) = offset.z;
+  Eigen::Matrix4d inverse = Eigen::Matrix4d::Identity();
+  inverse(0, 3) = -offset.x;
+  inverse(1, 3) = -offset.y;
+  inverse(2, 3) = -offset.z;
+  return Transform(m, inverse);
+}
+
+Transform Transform::scale(const Vec3& factors) {
+  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+  m(0, 0) = factors.x;
+  m(1, 1) = factors.y;
+  m(2, 2) = factors.z;
+  return from_matrix(m);
+}
+
+Transform Transform::rotate(double angle_degrees, const Vec3& axis) {
+  const double axis_length = length(axis);
+  if (!(axis_length > 0)) throw std::invalid_argument("rotation axis must be non-zero");
+  const Eigen::Vector3d a(axis.x / axis_length, axis.y / axis_length, axis.z / axis_length);
+  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+  m.topLeftCorner<3, 3>() =
+      Eigen::AngleAxisd(degrees_to_radians(angle_degrees), a).toRotationMatrix();
+  Eigen::Matrix4d inverse = Eigen::Matrix4d::Identity();
+  inverse.topLeftCorner<3, 3>() = m.topLeftCorner<3, 3>().transpose();
+  return Transform(m, inverse);
+}
+
+Transform Transform::operator*(const Transform& other) const {
+  return Transform(matrix_ * other.matrix_, other.inverse_ * inverse_);
+}
+
+Transform Transform::inverse() const { return Transform(inverse_, matrix_); }
+
+bool Transform::is_identity() const { return matrix_ == Eigen::Matrix4d::Identity(); }
+
+Vec3 Transform::point(const Vec3& p) const {
+  const auto& m = matrix_;
+  return {m(0, 0) * p.x + m(0, 1) * p.y + m(0, 2) * p.z + m(0, 3),
+          m(1, 0) * p.x + m(1, 1) * p.y + m(1, 2) * p.z + m(1, 3),
+          m(2, 0) * p.x + m(2, 1) * p.y + m(2, 2) * p.z + m(2, 3)};
+}
+
+Vec3 Transform::vector(const Vec3& v) const {
+  const auto& m = matrix_;
+  return {m(0, 0) * v.x + m(0, 1) * v.y + m(0, 2) * v.z,
+          m(1, 0) * v.x + m(1, 1) * v.y + m(1, 2) * v.z,
+          m(2, 0) * v.x + m(2, 1) * v.y + m(2, 2) * v.z};
+}
+
+Vec3 Transform::normal(const Vec3& n) const {
+  const auto& inv = inverse_;  // (M^-1)^T n
+  return {inv(0, 0) * n.x + inv(1, 0) * n.y + inv(2, 0) * n.z,
+          inv(0, 1) * n.x + inv(1, 1) * n.y + inv(2, 1) * n.z,
+          inv(0, 2) * n.x + inv(1, 2) * n.y + inv(2, 2) * n.z};
+}
+
+Bounds3 Transform::bounds(const Bounds3& b) const {
+  Bounds3 result;
+  if (b.empty()) return result;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3 p{(corner & 1) ? b.upper.x : b.lower.x, (corner & 2) ? b.upper.y : b.lower.y,
+                 (corner & 4) ? b.upper.z : b.lower.z};
+    result.extend(point(p));
+  }
+  return result;
+}
+
+}  // namespace candela
