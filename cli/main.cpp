@@ -1,1 +1,25 @@
-int main() { return 0; }
+// candela: one executable, thin sub-commands over the core library (SPEC "Product surface").
+#include <exception>
+#include <iostream>
+
+#include "commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"Candela: global illumination renderer and lighting simulator"};
+  app.require_subcommand(1);
+  std::function<int()> run;
+  candela::cli::add_render_command(app, run);
+  candela::cli::add_info_command(app, run);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+  try {
+    return run();
+  } catch (const std::exception& e) {
+    candela::cli::print_error(e.what());
+    return 1;
+  }
+}

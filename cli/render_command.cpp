@@ -1,0 +1,172 @@
+// candela render [SCENE] [-o FILE] [--method M] [--threads N] [--seed S] [--set k=v]...
+//                [--stats FILE.json] [--quiet] [--crop x0,y0,x1,y1] [--pixel X,Y]
+#include <fmt/format.h>
+#include <tbb/global_control.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+
+#include "commands.h"
+#include "integrators/method_registry.h"
+#include "integrators/ray_tracing_method.h"
+#include "io/image_writer.h"
+#include "scene_options.h"
+#include "util/atomic_file.h"
+#include "util/error.h"
+
+namespace candela::cli {
+
+namespace {
+
+struct RenderOptions {
+  SceneOptions scene;
+  std::string output;
+  std::string method;
+  int threads = 0;
+  std::optional<uint64_t> seed;
+  std::string stats_path;
+  bool quiet = false;
+  std::vector<int> crop;
+  std::vector<int> pixel;
+};
+
+class BadArgument : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+PixelRect region_of(const RenderOptions& options, const Camera& camera) {
+  PixelRect region{0, 0, camera.width(), camera.height()};
+  if (options.crop.empty()) return region;
+  if (options.crop.size() != 4) throw BadArgument("--crop expects x0,y0,x1,y1");
+  region = {options.crop[0], options.crop[1], options.crop[2], options.crop[3]};
+  if (region.x0 < 0 || region.y0 < 0 || region.x1 > camera.width() || region.y1 > camera.height() ||
+      region.x0 >= region.x1 || region.y0 >= region.y1)
+    throw BadArgument(fmt::format("--crop {},{},{},{} must satisfy 0 <= x0 < x1 <= {} and 0 <= y0 < y1 <= {}",
+                                  region.x0, region.y0, region.x1, region.y1, camera.width(), camera.height()));
+  return region;
+}
+
+std::string default_output(const RenderOptions& options) {
+  if (options.scene.scene_path.empty()) return "candela-default.png";
+  return std::filesystem::path(options.scene.scene_path).stem().string() + ".png";
+}
+
+int run_render(RenderOptions& options) {
+  Stopwatch total;
+  RunStatistics statistics;
+  if (options.output.empty()) options.output = default_output(options);
+  ImageFormat format;
+  if (!image_format_for_path(options.output, format))
+    throw BadArgument("-o " + options.output + ": unsupported extension (expected .png, .exr or .pfm)");
+  if (options.threads < 0) throw BadArgument("--threads must be >= 1");
+  std::optional<tbb::global_control> thread_limit;
+  if (options.threads > 0)
+    thread_limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(options.threads));
+  statistics.threads = static_cast<int>(
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+
+  Stopwatch load_timer;
+  std::unique_ptr<Scene> scene = options.scene.load();
+  statistics.add_phase("load", load_timer.seconds());
+  for (const auto& warning : scene->warnings) std::cerr << "candela: warning: " << warning << "\n";
+  if (!options.method.empty()) {
+    scene->render.method = options.method;
+    scene->render.method_location = {"--method", 0, 0, {}};
+  }
+  if (options.seed) scene->render.seed = *options.seed;
+  const MethodEntry* entry = find_method(scene->render.method);
+  if (!entry) {
+    SourceLocation where = scene->render.method_location;
+    if (where.file.empty()) where = {scene->source, 0, 0, "render.method"};
+    throw InputError(where, "unknown method \"" + scene->render.method + "\" (expected one of: " +
+                                method_names() + ")");
+  }
+  const std::unique_ptr<Method> method = entry->create();
+  const Camera& camera = *scene->camera;
+
+  if (!options.pixel.empty()) {
+    if (options.pixel.size() != 2 || options.pixel[0] < 0 || options.pixel[1] < 0 ||
+        options.pixel[0] >= camera.width() || options.pixel[1] >= camera.height())
+      throw BadArgument(fmt::format("--pixel X,Y must lie in the {}x{} image", camera.width(), camera.height()));
+    const auto* tracer = dynamic_cast<const RayTracingMethod*>(method.get());
+    if (!tracer) throw BadArgument("--pixel needs a ray-tracing method (local or whitted)");
+    Color radiance;
+    const RayTree tree = tracer->pixel_ray_tree(*scene, options.pixel[0], options.pixel[1], radiance);
+    std::cout << fmt::format("pixel ({}, {}) with method {}: radiance [{:.6g}, {:.6g}, {:.6g}]\n",
+                             options.pixel[0], options.pixel[1], method->name(), radiance.r, radiance.g,
+                             radiance.b)
+              << tree.to_text();
+    return 0;
+  }
+
+  const PixelRect region = region_of(options, camera);
+  Film film(region.width(), region.height());
+  Stopwatch render_timer;
+  method->render(*scene, {region, options.quiet}, film, statistics);
+  statistics.add_phase("render", render_timer.seconds());
+
+  Stopwatch write_timer;
+  write_image(film, options.output, scene->display);
+  statistics.add_phase("write", write_timer.seconds());
+
+  statistics.extra["scene"] = scene->source;
+  statistics.extra["method"] = std::string(method->name());
+  statistics.extra["output"] = options.output;
+  statistics.extra["image"] = {{"width", film.width()}, {"height", film.height()}};
+  statistics.extra["primitives"] = scene->primitives.size();
+  statistics.extra["seed"] = scene->render.seed;
+  if (!options.quiet)
+    std::cerr << fmt::format("candela: wrote {} ({}x{}, {})\n", options.output, film.width(), film.height(),
+                             method->name())
+              << statistics.summary();
+  if (!options.stats_path.empty()) {
+    const std::string text = statistics.to_json().dump(2) + "\n";
+    write_atomically(options.stats_path, [&](const std::string& temporary) {
+      std::ofstream out(temporary);
+      out << text;
+      out.close();
+      if (!out) throw std::runtime_error("cannot write " + options.stats_path);
+    });
+  }
+  return 0;
+}
+
+}  // namespace
+
+void print_error(const std::string& message) { std::cerr << "candela: error: " << message << "\n"; }
+
+void add_render_command(CLI::App& app, std::function<int()>& run) {
+  auto options = std::make_shared<RenderOptions>();
+  CLI::App* command = app.add_subcommand("render", "Render a scene (the built-in default scene without SCENE)");
+  command->add_option("scene", options->scene.scene_path, "Scene file (candela/1 JSON)");
+  command->add_option("-o,--output", options->output, "Output image: .png (sRGB 8-bit), .exr or .pfm (linear float)");
+  command->add_option("--method", options->method, "Rendering method: " + method_names());
+  command->add_option("--threads", options->threads, "Worker threads (default: all cores)");
+  command->add_option("--seed", options->seed, "Random seed (default: render.seed)");
+  command->add_option("--set", options->scene.overrides, "Override a scene setting: key=value, e.g. camera.width=640")
+      ->take_all();
+  command->add_option("--stats", options->stats_path, "Write run statistics as JSON");
+  command->add_flag("-q,--quiet", options->quiet, "No progress and no summary");
+  command->add_option("--crop", options->crop, "Render only pixels x0,y0 (inclusive) to x1,y1 (exclusive)")
+      ->delimiter(',')->expected(4);
+  command->add_option("--pixel", options->pixel, "Print the ray tree of pixel X,Y instead of rendering")
+      ->delimiter(',')->expected(2);
+  command->callback([options, &run]() {
+    run = [options]() {
+      try {
+        return run_render(*options);
+      } catch (const InputError& e) {
+        print_error(e.what());
+        return 2;
+      } catch (const BadArgument& e) {
+        print_error(e.what());
+        return 2;
+      }
+    };
+  });
+}
+
+}  // namespace candela::cli

@@ -1,0 +1,33 @@
+#include "camera/perspective_camera.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "math/constants.h"
+
+namespace candela {
+
+PerspectiveCamera::PerspectiveCamera(const Vec3& eye, const Vec3& target, const Vec3& up,
+                                     double horizontal_fov_degrees, int width, int height)
+    : Camera(width, height), eye_(eye) {
+  const Vec3 gaze = target - eye;
+  if (!(length(gaze) > 0)) throw std::invalid_argument("target must differ from eye");
+  gaze_ = normalize(gaze);
+  const Vec3 x_axis = cross(gaze_, up);  // X = G × U
+  if (!(length(x_axis) > 1e-12 * length(up))) throw std::invalid_argument("up is parallel to the view direction");
+  const Vec3 x_unit = normalize(x_axis);
+  const Vec3 y_unit = cross(x_unit, gaze_);  // Y = X × G
+  const double tan_theta = std::tan(degrees_to_radians(horizontal_fov_degrees) / 2);
+  const double tan_phi = tan_theta * height / width;
+  half_width_ = x_unit * tan_theta;
+  half_height_ = y_unit * tan_phi;
+}
+
+Ray PerspectiveCamera::generate_ray(double x, double y) const {
+  const double x_view = x / width();
+  const double y_view = 1.0 - y / height();  // image rows run downward, the view plane's y up
+  const Vec3 direction = gaze_ + half_width_ * (2 * x_view - 1) + half_height_ * (2 * y_view - 1);
+  return Ray{eye_, normalize(direction)};
+}
+
+}  // namespace candela

@@ -1,0 +1,70 @@
+#include "geometry/disc.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "math/constants.h"
+
+namespace candela {
+
+Disc::Disc(const Vec3& center, const Vec3& normal, double radius, double inner_radius)
+    : center_(center), radius_(radius), inner_radius_(inner_radius) {
+  if (!is_finite(center)) throw std::invalid_argument("center must be finite");
+  const double normal_length = length(normal);
+  if (!(normal_length > 0) || !std::isfinite(normal_length))
+    throw std::invalid_argument("normal must be non-zero");
+  if (!(radius > 0) || !std::isfinite(radius)) throw std::invalid_argument("radius must be > 0");
+  if (!(inner_radius >= 0) || !(inner_radius < radius))
+    throw std::invalid_argument("inner_radius must be >= 0 and < radius");
+  normal_ = normal / normal_length;
+  orthonormal_basis(normal_, u_axis_, v_axis_);
+}
+
+double Disc::nearest_t(const Ray& ray) const {
+  // The plane of the disc (000 eq. 5-13), then the distance from the centre.
+  const double denominator = dot(normal_, ray.direction);
+  if (denominator == 0) return kInfinity;
+  const double t = dot(normal_, center_ - ray.origin) / denominator;
+  if (!(t > ray.t_min && t < ray.t_max)) return kInfinity;
+  const Vec3 offset = ray.at(t) - center_;
+  const double x = dot(offset, u_axis_), y = dot(offset, v_axis_);
+  const double r_squared = x * x + y * y;
+  if (r_squared > radius_ * radius_ || r_squared < inner_radius_ * inner_radius_) return kInfinity;
+  return t;
+}
+
+bool Disc::intersect(const Ray& ray, SurfaceHit& hit) const {
+  const double t = nearest_t(ray);
+  if (t == kInfinity) return false;
+  hit.t = t;
+  hit.position = ray.at(t);
+  hit.geometric_normal = normal_;
+  hit.shading_normal = normal_;
+  hit.object_position = hit.position;
+  const Vec3 offset = hit.position - center_;
+  const double x = dot(offset, u_axis_), y = dot(offset, v_axis_);
+  const double r = std::sqrt(x * x + y * y);
+  double phi = std::atan2(y, x);
+  if (phi < 0) phi += 2 * kPi;
+  const double width = radius_ - inner_radius_;
+  hit.uv = {phi / (2 * kPi), std::clamp((radius_ - r) / width, 0.0, 1.0)};
+  // dp/du = 2π (-y, x); dp/dv = -(radius - inner) (x, y) / r, the inward radial direction
+  // (taken along the first axis at the centre).
+  hit.dpdu = (v_axis_ * x - u_axis_ * y) * (2 * kPi);
+  const Vec3 outward = r > 0 ? (u_axis_ * x + v_axis_ * y) / r : u_axis_;
+  hit.dpdv = outward * -width;
+  return true;
+}
+
+bool Disc::occluded(const Ray& ray) const { return nearest_t(ray) < kInfinity; }
+
+Bounds3 Disc::bounds() const { return disc_bounds(center_, normal_, radius_); }
+
+Bounds3 disc_bounds(const Vec3& center, const Vec3& unit_normal, double radius) {
+  Vec3 extent;
+  for (int axis = 0; axis < 3; ++axis)
+    extent[axis] = radius * std::sqrt(std::max(0.0, 1.0 - unit_normal[axis] * unit_normal[axis]));
+  return {center - extent, center + extent};
+}
+
+}  // namespace candela

@@ -1,0 +1,46 @@
+#pragma once
+
+#include "geometry/shape.h"
+
+namespace candela {
+
+// A torus about center: the circle of major_radius R perpendicular to axis (normalised),
+// swept by a disc of minor_radius r. Both radii must be > 0; r >= R (a spindle torus, as
+// POV-Ray allows) is accepted. In the frame where the axis is +z the surface is
+// (x^2 + y^2 + z^2 + R^2 - r^2)^2 = 4 R^2 (x^2 + y^2). The ray's origin is first moved to where
+// it enters the bounding sphere of radius R + r, which keeps the quartic's coefficients small,
+// then every root is polished by Newton steps on the torus function itself. Normals are
+// outward. Whether an exactly tangent ray (a double root) hits depends on rounding.
+// uv: u = angle / 2π about the axis (from the first axis of orthonormal_basis(axis)),
+// v = tube angle / 2π (0 on the outer equator, 1/4 on the +axis side); dpdu x dpdv points
+// outward.
+class Torus final : public Shape {
+ public:
+  Torus(const Vec3& center, const Vec3& axis, double major_radius, double minor_radius);
+
+  bool intersect(const Ray& ray, SurfaceHit& hit) const override;
+  bool occluded(const Ray& ray) const override;
+  Bounds3 bounds() const override;
+  std::string_view type_name() const override { return "torus"; }
+
+  const Vec3& center() const { return center_; }
+  const Vec3& axis() const { return axis_; }
+  double major_radius() const { return major_radius_; }
+  double minor_radius() const { return minor_radius_; }
+
+ private:
+  // The hit distance, or infinity for none; local is the hit in the torus frame.
+  double nearest_t(const Ray& ray, Vec3& local) const;
+  Vec3 to_local(const Vec3& v) const { return {dot(v, x_axis_), dot(v, y_axis_), dot(v, axis_)}; }
+  // The implicit function (negative inside the tube) and its gradient, in the torus frame.
+  double implicit(const Vec3& p) const;
+  Vec3 gradient(const Vec3& p) const;
+  Vec3 center_;
+  Vec3 axis_;
+  double major_radius_;
+  double minor_radius_;
+  Vec3 x_axis_;
+  Vec3 y_axis_;
+};
+
+}  // namespace candela

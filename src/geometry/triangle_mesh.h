@@ -1,0 +1,110 @@
+// Triangle meshes baked into world space, and the "triangle" shape: one triangle of a mesh,
+// intersected with the watertight test of Woop, Benthin and Wald 2013 ("Watertight Ray/Triangle
+// Intersection", JCGT 2(1)).
+//
+// Conventions:
+// - Winding: the geometric normal is normalize(cross(p1 - p0, p2 - p0)), i.e. counter-clockwise
+//   corners (seen from outside) give an outward normal. The test itself is two-sided.
+// - Shading normal: the barycentric interpolation of the corner normals (normalised) when the
+//   mesh has them, else the geometric normal. It is not flipped to the geometric side.
+// - uv: barycentric interpolation of the corner uvs; without them the corners get (0,0), (1,0),
+//   (1,1) (as pbrt), so that uv = (b1 + b2, b2).
+// - dpdu/dpdv: from the uv parameterisation (pbrt's formula); when the uv determinant is
+//   degenerate, an orthonormal basis around the geometric normal with dpdu x dpdv = normal.
+// - Zero-area triangles (cross(p1 - p0, p2 - p0) exactly zero) never hit; make_triangles skips
+//   them and counts them.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "geometry/shape.h"
+#include "math/transform.h"
+
+namespace candela {
+
+struct TriangleMesh {
+  std::vector<Vec3> positions;
+  std::vector<std::array<uint32_t, 3>> triangles;  // indices into positions
+  // Per-corner shading normals, one entry per triangle; empty = flat shading.
+  std::vector<std::array<Vec3, 3>> corner_normals;
+  // Per-corner uvs, one entry per triangle; empty = (0,0), (1,0), (1,1) at the three corners.
+  std::vector<std::array<Vec2, 3>> corner_uvs;
+
+  // Throws std::invalid_argument when an index is out of range, a corner array is neither
+  // empty nor one entry per triangle, or a position is not finite.
+  void validate() const;
+
+  // cross(p1 - p0, p2 - p0): twice the area times the (counter-clockwise) unit normal.
+  Vec3 face_cross(std::size_t triangle) const;
+  // Zero (or non-finite) area: such a triangle is never hit.
+  bool is_degenerate(std::size_t triangle) const;
+  Bounds3 bounds() const;
+  Bounds3 triangle_bounds(std::size_t triangle) const;
+
+  // Bakes object_to_world into the mesh: positions as points, corner normals by the inverse
+  // transpose (renormalised; zero normals stay zero). A transform that mirrors (negative
+  // determinant) also reverses every triangle's winding so that the geometric normal keeps
+  // pointing the way it did (outward stays outward).
+  void transform(const Transform& object_to_world);
+};
+
+// How a mesh is shaded: flat (geometric normals only) or smooth (corner normals, from the file
+// or computed by compute_corner_normals with a crease angle).
+enum class NormalMode { flat, smooth };
+
+// Fills mesh.corner_normals: each corner gets the normalised sum of the area-weighted face
+// normals of every triangle around its vertex whose face normal lies within
+// crease_angle_degrees of this triangle's own face normal (the triangle itself always counts).
+// Vertices are welded by exact position first, so duplicated OBJ vertices are smoothed across.
+// Crease 0 gives flat normals; crease >= 180 averages everything around a vertex. Corners of
+// degenerate triangles get a zero normal (such triangles are never hit). Throws
+// std::invalid_argument for a negative or NaN crease angle or an invalid mesh.
+void compute_corner_normals(TriangleMesh& mesh, double crease_angle_degrees);
+
+// The result of the watertight test: the distance and the barycentric weights of p0, p1, p2.
+struct TriangleIntersection {
+  double t = 0;
+  double b0 = 0, b1 = 0, b2 = 0;
+};
+
+// Woop, Benthin, Wald 2013, in double precision (edge functions recomputed in long double when
+// one is exactly zero, as the paper falls back from float to double). Accepts hits with
+// ray.t_min < t < ray.t_max only; two-sided; a zero-determinant (edge-on or degenerate)
+// triangle is missed. Watertight: a ray crossing a shared edge or vertex hits at least one of
+// the triangles that share it.
+bool intersect_triangle(const Ray& ray, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                        TriangleIntersection& result);
+
+class MeshTriangle final : public Shape {
+ public:
+  // Throws std::invalid_argument when mesh is null, triangle_index is out of range, a corner
+  // index is out of range or a corner array has the wrong size. Degenerate triangles are
+  // accepted here (and never hit); make_triangles skips them.
+  MeshTriangle(std::shared_ptr<const TriangleMesh> mesh, uint32_t triangle_index);
+
+  bool intersect(const Ray& ray, SurfaceHit& hit) const override;
+  bool occluded(const Ray& ray) const override;
+  Bounds3 bounds() const override;
+  std::string_view type_name() const override { return "triangle"; }
+
+  const TriangleMesh& mesh() const { return *mesh_; }
+  const std::shared_ptr<const TriangleMesh>& shared_mesh() const { return mesh_; }
+  uint32_t triangle_index() const { return index_; }
+
+ private:
+  std::shared_ptr<const TriangleMesh> mesh_;
+  uint32_t index_;
+  bool degenerate_;
+};
+
+// One MeshTriangle per non-degenerate triangle, in triangle order. When skipped_degenerate is
+// given it receives the number of degenerate triangles left out (the loader warns about them).
+// Throws std::invalid_argument when mesh is null or invalid (see TriangleMesh::validate).
+std::vector<std::unique_ptr<Shape>> make_triangles(std::shared_ptr<const TriangleMesh> mesh,
+                                                   std::size_t* skipped_degenerate = nullptr);
+
+}  // namespace candela

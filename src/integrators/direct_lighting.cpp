@@ -1,0 +1,91 @@
+#include "integrators/direct_lighting.h"
+
+#include <cmath>
+#include <unordered_map>
+
+#include "shading/local_model.h"
+
+namespace candela {
+
+Color shadow_transmittance(const Scene& scene, const Vec3& origin, const Vec3& L, double distance,
+                           TraceContext& context, int tree_parent) {
+  ++context.counts.shadow;
+  Ray ray{origin, L, 0.0, distance};
+  Color transmittance(1);
+  // Transparent objects crossed so far and where the ray entered each.
+  std::unordered_map<uint32_t, double> entered_at;
+  std::unordered_map<uint32_t, bool> counted;
+  constexpr int kMaxCrossings = 256;  // never loop forever on pathological input
+  std::string note;
+  for (int crossing = 0;; ++crossing) {
+    Intersection hit;
+    if (!scene.intersect(ray, hit)) break;
+    const Material& material = scene.material_of(hit);
+    const uint32_t object = scene.primitives[hit.primitive].object;
+    if (material.kt <= 0 || crossing >= kMaxCrossings) {
+      transmittance = Color(0);
+      note = "blocked by " + scene.objects[object].name;
+      break;
+    }
+    if (!counted[object]) {
+      counted[object] = true;
+      transmittance *= material.kt;
+    }
+    if (!material.absorption.is_black()) {
+      const bool entering = dot(L, hit.surface.geometric_normal) < 0;
+      if (entering) {
+        entered_at[object] = hit.surface.t;
+      } else {
+        const auto found = entered_at.find(object);
+        const double inside = hit.surface.t - (found != entered_at.end() ? found->second : 0.0);
+        for (int c = 0; c < 3; ++c) transmittance[c] *= std::exp(-material.absorption[c] * inside);
+        if (found != entered_at.end()) entered_at.erase(found);
+      }
+    }
+    if (!note.empty()) note += ", ";
+    note += "through " + scene.objects[object].name;
+    ray.t_min = hit.surface.t + scene.ray_offset();
+    if (ray.t_min >= ray.t_max) break;
+  }
+  if (context.tree) {
+    RayTreeNode node;
+    node.parent = tree_parent;
+    node.kind = RayKind::shadow;
+    node.depth = tree_parent >= 0 ? context.tree->node(tree_parent).depth : 0;
+    node.origin = origin;
+    node.direction = L;
+    node.transmittance = transmittance;
+    node.note = note.empty() ? "unobstructed" : note;
+    context.tree->add(node);
+  }
+  return transmittance;
+}
+
+Color local_illumination(const Scene& scene, const Intersection& hit, const Vec3& V, bool shadows,
+                         TraceContext& context, int tree_parent) {
+  const Material& material = scene.material_of(hit);
+  const SurfaceHit& surface = hit.surface;
+  const Color kd = material.diffuse(surface);
+  // Two-sided shading: the normals turned toward the viewer.
+  const Vec3 N = face_forward(surface.shading_normal, V);
+  const Vec3 geometric = face_forward(surface.geometric_normal, V);
+  Color result = material.ambient(surface) * scene.ambient;
+  const Vec3 shadow_origin = surface.position + geometric * scene.ray_offset();
+  for (const auto& light : scene.lights) {
+    LightSample sample;
+    if (!light->illuminate(surface.position, sample)) continue;
+    // 001's I_lum: only where N·L > 0; a light behind the surface itself casts no light on it.
+    if (dot(N, sample.direction) <= 0 || dot(geometric, sample.direction) <= 0) continue;
+    Color s(1);
+    if (shadows) {
+      const double reach = std::isfinite(sample.distance) ? sample.distance - 2 * scene.ray_offset()
+                                                          : kInfinity;
+      s = shadow_transmittance(scene, shadow_origin, sample.direction, reach, context, tree_parent);
+      if (s.is_black()) continue;
+    }
+    result += direct_term(material, kd, N, V, sample.direction, sample.intensity * s);
+  }
+  return result;
+}
+
+}  // namespace candela

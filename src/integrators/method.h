@@ -1,0 +1,34 @@
+// A rendering method (local, whitted, later raster, radiosity, meshless, path), found by name
+// in the method registry. A method reads the Scene; it never edits it.
+#pragma once
+
+#include <string_view>
+
+#include "camera/film.h"
+#include "scene/scene.h"
+#include "util/statistics.h"
+
+namespace candela {
+
+// The pixels to render: [x0, x1) × [y0, y1) of the camera's image.
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+};
+
+struct RenderRequest {
+  PixelRect region;
+  bool quiet = false;
+};
+
+class Method {
+ public:
+  virtual ~Method() = default;
+  virtual std::string_view name() const = 0;
+  // Fills film (region-sized) and adds to statistics.
+  virtual void render(const Scene& scene, const RenderRequest& request, Film& film,
+                      RunStatistics& statistics) const = 0;
+};
+
+}  // namespace candela

@@ -1,0 +1,100 @@
+#include "integrators/whitted.h"
+
+#include "integrators/direct_lighting.h"
+#include "shading/optics.h"
+
+namespace candela {
+
+Color WhittedMethod::trace_primary(const Scene& scene, const Ray& ray, TraceContext& context) const {
+  return trace(scene, ray, RayKind::primary, 0, 1.0, context, -1, 1.0);
+}
+
+Color WhittedMethod::trace(const Scene& scene, const Ray& ray, RayKind kind, int depth, double weight,
+                           TraceContext& context, int tree_parent, double k) const {
+  int node_index = -1;
+  if (context.tree) {
+    RayTreeNode node;
+    node.parent = tree_parent;
+    node.kind = kind;
+    node.depth = depth;
+    node.origin = ray.origin;
+    node.direction = ray.direction;
+    node.weight = weight;
+    node_index = context.tree->add(node);
+  }
+  const auto finish = [&](const Color& radiance, const Color& local, const std::string& note) {
+    if (node_index >= 0) {
+      RayTreeNode& node = context.tree->node(node_index);
+      node.radiance = radiance;
+      node.local = local;
+      node.contribution = radiance * weight;
+      if (!note.empty()) node.note = note;
+    }
+    (void)k;
+    return radiance;
+  };
+
+  Intersection hit;
+  if (!scene.intersect(ray, hit)) return finish(scene.background, {}, "left the scene");
+  if (node_index >= 0) {
+    RayTreeNode& node = context.tree->node(node_index);
+    node.hit = true;
+    node.object = scene.object_of(hit).name;
+    node.t = hit.surface.t;
+    node.position = hit.surface.position;
+  }
+
+  const Material& material = scene.material_of(hit);
+  const Vec3 V = -ray.direction;
+  const Color local = local_illumination(scene, hit, V, scene.whitted.shadows, context, node_index);
+  Color radiance = local;
+
+  const bool wants_secondary = material.kr > 0 || material.kt > 0;
+  std::string note;
+  if (wants_secondary && depth >= scene.whitted.max_depth) {
+    note = "maximum depth reached";
+  } else if (wants_secondary) {
+    const bool entering = dot(hit.surface.geometric_normal, V) > 0;
+    const Vec3 N = face_forward(hit.surface.shading_normal, V);
+    const Vec3 geometric = face_forward(hit.surface.geometric_normal, V);
+    const Vec3 outside_origin = hit.surface.position + geometric * scene.ray_offset();
+    const Vec3 inside_origin = hit.surface.position - geometric * scene.ray_offset();
+    const double min_weight = scene.whitted.min_weight;
+    std::string pruned;
+    if (material.kr > 0) {
+      if (weight * material.kr >= min_weight) {
+        ++context.counts.reflected;
+        const Ray reflected{outside_origin, normalize(reflect(V, N))};
+        radiance += material.kr * trace(scene, reflected, RayKind::reflected, depth + 1,
+                                        weight * material.kr, context, node_index, material.kr);
+      } else {
+        pruned = "reflection";
+      }
+    }
+    if (material.kt > 0) {
+      if (weight * material.kt >= min_weight) {
+        // η1/η2: from outside (air) into the material, or back out.
+        const double eta = entering ? 1.0 / material.ior : material.ior;
+        Vec3 T;
+        if (refract(V, N, eta, T)) {
+          ++context.counts.refracted;
+          const Ray refracted{inside_origin, normalize(T)};
+          radiance += material.kt * trace(scene, refracted, RayKind::refracted, depth + 1,
+                                          weight * material.kt, context, node_index, material.kt);
+        } else {
+          // 000 §5.3: no transmitted ray; reflect with the flipped normal instead.
+          ++context.counts.reflected;
+          const Ray internal{outside_origin, normalize(reflect(V, N))};
+          radiance += material.kt * trace(scene, internal, RayKind::internal_reflection, depth + 1,
+                                          weight * material.kt, context, node_index, material.kt);
+        }
+      } else {
+        pruned += pruned.empty() ? "transmission" : " and transmission";
+      }
+    }
+    if (!pruned.empty()) note = pruned + " pruned: weight below whitted.min_weight";
+  }
+  return finish(radiance, local, note);
+}
+
+}  // namespace candela

@@ -1,0 +1,26 @@
+// Whitted ray tracing (000 §5.1–5.5, 001; SPEC §8).
+//
+// I = local + kr·I_r + kt·I_t with R = 2N(N·V) − V and the refraction vector of 000 eq. 5-7;
+// total internal reflection sends the transmitted share along the internal mirror direction.
+// The ray tree ends on a miss (background), at whitted.max_depth (primary rays are depth 0,
+// so depth 0 is ray casting), or adaptively when the product of the k's along the path falls
+// below whitted.min_weight (000 §5.5).
+//
+// Settings: whitted.max_depth (5), whitted.min_weight (0.001), whitted.shadows (true).
+#pragma once
+
+#include "integrators/ray_tracing_method.h"
+
+namespace candela {
+
+class WhittedMethod final : public RayTracingMethod {
+ public:
+  std::string_view name() const override { return "whitted"; }
+  Color trace_primary(const Scene& scene, const Ray& ray, TraceContext& context) const override;
+
+ private:
+  Color trace(const Scene& scene, const Ray& ray, RayKind kind, int depth, double weight,
+              TraceContext& context, int tree_parent, double k) const;
+};
+
+}  // namespace candela

@@ -1,0 +1,88 @@
+#include "scene/camera_registry.h"
+
+#include <array>
+
+#include "camera/orthographic_camera.h"
+#include "camera/perspective_camera.h"
+
+namespace candela {
+
+namespace {
+
+template <typename Make>
+std::unique_ptr<Camera> checked(const JsonNode& node, Make make) {
+  try {
+    return make();
+  } catch (const std::invalid_argument& e) {
+    node.fail(e.what());
+  }
+}
+
+std::unique_ptr<Camera> make_perspective(const JsonNode& node, int width, int height) {
+  const Vec3 eye = node.vec3("eye", {0, 0, 5});
+  const Vec3 target = node.vec3("target", {0, 0, 0});
+  const Vec3 up = node.vec3("up", {0, 1, 0});
+  // 2θ, the horizontal field of view (000 §5.2).
+  const double fov = node.number("fov", 60.0, {0, 180, true, true});
+  return checked(node, [&] {
+    return std::make_unique<PerspectiveCamera>(eye, target, up, fov, width, height);
+  });
+}
+
+std::unique_ptr<Camera> make_orthographic(const JsonNode& node, int width, int height) {
+  const Vec3 eye = node.vec3("eye", {0, 0, 5});
+  const Vec3 target = node.vec3("target", {0, 0, 0});
+  const Vec3 up = node.vec3("up", {0, 1, 0});
+  double left, right, bottom, top;
+  if (const auto window = node.get("window")) {
+    if (window->size() != 4) window->fail("expected [left, right, bottom, top]");
+    left = window->element(0).as_number();
+    right = window->element(1).as_number();
+    bottom = window->element(2).as_number();
+    top = window->element(3).as_number();
+    if (!(right > left) || !(top > bottom)) window->fail("needs right > left and top > bottom");
+  } else {
+    const double window_height = node.number("window_height", 2.0, Range::positive());
+    top = window_height / 2;
+    bottom = -top;
+    right = top * width / height;
+    left = -right;
+  }
+  return checked(node, [&] {
+    return std::make_unique<OrthographicCamera>(eye, target, up, left, right, bottom, top, width, height);
+  });
+}
+
+const std::array kEntries = {
+    CameraEntry{"perspective", "eye, target, up, horizontal field of view fov in degrees (000 §5.2)",
+                R"({"type": "perspective", "eye": [0, 1, 5], "target": [0, 1, 0], "up": [0, 1, 0], "fov": 60, "width": 320, "height": 240})",
+                make_perspective},
+    CameraEntry{"orthographic",
+                "eye, target, up and the image window [left, right, bottom, top] (or window_height) (001)",
+                R"({"type": "orthographic", "eye": [0, 1, 5], "target": [0, 1, 0], "window": [-2, 2, -1.5, 1.5], "width": 320, "height": 240})",
+                make_orthographic},
+};
+
+}  // namespace
+
+std::span<const CameraEntry> camera_entries() { return kEntries; }
+
+const CameraEntry* find_camera(std::string_view name) {
+  for (const auto& entry : kEntries)
+    if (entry.name == name) return &entry;
+  return nullptr;
+}
+
+std::unique_ptr<Camera> read_camera(const JsonNode& node) {
+  node.expect_object();
+  const int width = node.integer("width", 640, {1, 65536, false, false});
+  const int height = node.integer("height", 480, {1, 65536, false, false});
+  const std::string type = node.string("type", "perspective");
+  const CameraEntry* entry = find_camera(type);
+  if (!entry) node.at("type").fail("unknown camera \"" + type + "\" (expected one of: perspective, orthographic)");
+  auto camera = entry->create(node, width, height);
+  node.finish();
+  return camera;
+}
+
+}  // namespace candela

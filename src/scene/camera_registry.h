@@ -1,0 +1,24 @@
+#pragma once
+
+#include <memory>
+#include <span>
+#include <string_view>
+
+#include "camera/camera.h"
+#include "scene/json_node.h"
+
+namespace candela {
+
+struct CameraEntry {
+  std::string_view name;
+  std::string_view description;
+  std::string_view example;
+  std::unique_ptr<Camera> (*create)(const JsonNode& node, int width, int height);
+};
+
+std::span<const CameraEntry> camera_entries();
+const CameraEntry* find_camera(std::string_view name);
+// The "camera" object: type (default perspective), width, height and the type's own keys.
+std::unique_ptr<Camera> read_camera(const JsonNode& node);
+
+}  // namespace candela

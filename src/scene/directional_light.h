@@ -1,0 +1,25 @@
+#pragma once
+
+#include "math/constants.h"
+#include "scene/light.h"
+
+namespace candela {
+
+// A source at infinity (000 §2.3): the same direction and intensity everywhere.
+class DirectionalLight final : public Light {
+ public:
+  // direction: the way the light travels; L is its opposite.
+  DirectionalLight(const Vec3& direction, const Color& intensity)
+      : to_light_(-normalize(direction)), intensity_(intensity) {}
+  bool illuminate(const Vec3&, LightSample& sample) const override {
+    sample = {to_light_, kInfinity, intensity_};
+    return true;
+  }
+  std::string_view type_name() const override { return "directional"; }
+
+ private:
+  Vec3 to_light_;
+  Color intensity_;
+};
+
+}  // namespace candela

@@ -1,0 +1,109 @@
+#include "scene/light_registry.h"
+
+#include <array>
+
+#include "scene/directional_light.h"
+#include "scene/point_light.h"
+#include "scene/spot_light.h"
+
+namespace candela {
+
+namespace {
+
+// "attenuation": "none" | "inverse-square" | {"mode": "linear", "d0": 1} |
+// {"mode": "polynomial", "constant": c, "linear": l, "quadratic": q}
+Attenuation read_attenuation(const JsonNode& light) {
+  Attenuation attenuation;
+  const auto node = light.get("attenuation");
+  if (!node) return attenuation;
+  std::string mode;
+  std::optional<JsonNode> object;
+  if (node->json().is_string()) {
+    mode = node->as_string();
+  } else {
+    object = node;
+    mode = node->at("mode").as_string();
+  }
+  if (mode == "none") attenuation.mode = Attenuation::Mode::none;
+  else if (mode == "inverse-square") attenuation.mode = Attenuation::Mode::inverse_square;
+  else if (mode == "linear") attenuation.mode = Attenuation::Mode::linear;
+  else if (mode == "polynomial") attenuation.mode = Attenuation::Mode::polynomial;
+  else (object ? object->at("mode") : *node).fail(
+      "unknown attenuation \"" + mode + "\" (expected one of: none, inverse-square, linear, polynomial)");
+  if (object) {
+    if (attenuation.mode == Attenuation::Mode::linear)
+      attenuation.d0 = object->number("d0", 1.0, Range::non_negative());
+    if (attenuation.mode == Attenuation::Mode::polynomial) {
+      attenuation.constant = object->number("constant", 1.0, Range::non_negative());
+      attenuation.linear_coefficient = object->number("linear", 0.0, Range::non_negative());
+      attenuation.quadratic = object->number("quadratic", 0.0, Range::non_negative());
+      if (attenuation.constant + attenuation.linear_coefficient + attenuation.quadratic <= 0)
+        object->fail("constant, linear and quadratic cannot all be 0");
+    }
+    object->finish();
+  } else if (attenuation.mode == Attenuation::Mode::linear ||
+             attenuation.mode == Attenuation::Mode::polynomial) {
+    // Defaults: d0 = 1; c = 1 (no attenuation until coefficients are given).
+  }
+  return attenuation;
+}
+
+Color intensity_of(const JsonNode& node) {
+  return node.color("intensity", Color(1), Range::non_negative());
+}
+
+std::unique_ptr<Light> make_ambient(const JsonNode& node, Color& ambient) {
+  ambient += intensity_of(node);
+  return nullptr;
+}
+
+std::unique_ptr<Light> make_point(const JsonNode& node, Color&) {
+  const Vec3 position = node.vec3("position");
+  return std::make_unique<PointLight>(position, intensity_of(node), read_attenuation(node));
+}
+
+std::unique_ptr<Light> make_directional(const JsonNode& node, Color&) {
+  const JsonNode direction = node.at("direction");
+  const Vec3 d = direction.as_vec3();
+  if (!(length(d) > 0)) direction.fail("must be non-zero");
+  return std::make_unique<DirectionalLight>(d, intensity_of(node));
+}
+
+std::unique_ptr<Light> make_spot(const JsonNode& node, Color&) {
+  const Vec3 position = node.vec3("position");
+  const JsonNode target = node.at("target");
+  const Vec3 aim = target.as_vec3();
+  if (aim == position) target.fail("must differ from position");
+  const double cutoff = node.number("cutoff", 30.0, {0, 90, true, false});
+  const double falloff_start = node.number("falloff_start", cutoff, {0, 90, false, false});
+  if (falloff_start > cutoff) node.at("falloff_start").fail("must be <= cutoff");
+  const double exponent = node.number("exponent", 0.0, Range::non_negative());
+  return std::make_unique<SpotLight>(position, aim, intensity_of(node), cutoff, falloff_start,
+                                     exponent, read_attenuation(node));
+}
+
+const std::array kEntries = {
+    LightEntry{"ambient", "uniform ambient light Ia (000 §2.4)",
+               R"({"type": "ambient", "intensity": 0.3})", make_ambient},
+    LightEntry{"point", "point source with attenuation",
+               R"({"type": "point", "position": [0, 5, 0], "intensity": 1, "attenuation": {"mode": "linear", "d0": 1}})",
+               make_point},
+    LightEntry{"directional", "source at infinity; direction is the way the light travels",
+               R"({"type": "directional", "direction": [0, -1, 0], "intensity": [1, 1, 0.9]})",
+               make_directional},
+    LightEntry{"spot", "cone of light: cutoff and falloff_start angles in degrees, exponent",
+               R"({"type": "spot", "position": [0, 5, 0], "target": [0, 0, 0], "intensity": 2, "cutoff": 30, "falloff_start": 20, "exponent": 1, "attenuation": "none"})",
+               make_spot},
+};
+
+}  // namespace
+
+std::span<const LightEntry> light_entries() { return kEntries; }
+
+const LightEntry* find_light(std::string_view name) {
+  for (const auto& entry : kEntries)
+    if (entry.name == name) return &entry;
+  return nullptr;
+}
+
+}  // namespace candela

@@ -1,0 +1,52 @@
+// Wavefront OBJ (+ MTL) import through tinyobjloader: one world-space-ready TriangleMesh per file
+// (polygons triangulated, every object and group merged), the per-triangle material index and
+// the MTL materials in file order.
+//
+// Mapping from MTL: Ka -> ka, Kd -> kd, Ke -> ke, Ks -> ks (mean of the three components),
+// Ns -> shininess, kt = 1 - d (tinyobjloader turns Tr into d = 1 - Tr; d wins when both are
+// given), clamped to [0, 1], Ni -> ior (1 when absent).
+//
+// Corner normals come from the file's vn when every triangle corner has one (zero-length vn are
+// replaced by the face normal, with a warning); otherwise the mesh is left flat. Corner uvs come
+// from vt when any corner has one (corners without vt get the default (0,0), (1,0), (1,1) of
+// their triangle, with a warning).
+//
+// Errors (InputError located at referenced_from, the scene's "file" key): a missing or unreadable
+// file, a parse error (the message names the OBJ and gives tinyobjloader's text with its line
+// number), a face index out of range, a non-finite coordinate, no triangles at all. A missing
+// .mtl or an unknown usemtl name is only a warning (those triangles get material -1).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geometry/triangle_mesh.h"
+#include "math/vector.h"
+#include "util/error.h"
+
+namespace candela {
+
+struct ImportedMaterial {
+  std::string name;
+  Color ka;
+  Color kd;
+  Color ke;              // emission (MTL Ke); black when absent
+  double ks = 0;         // mean of the MTL Ks components
+  double shininess = 0;  // MTL Ns
+  double kt = 0;         // 1 - d (or Tr), clamped to [0, 1]
+  double ior = 1;        // MTL Ni
+};
+
+struct ObjImport {
+  std::shared_ptr<TriangleMesh> mesh;       // positions as in the file (object space)
+  std::vector<int> triangle_material;       // per triangle: index into materials, -1 = none
+  std::vector<ImportedMaterial> materials;  // every material of the .mtl file(s), in order
+  std::vector<std::string> warnings;        // each prefixed with the OBJ path
+};
+
+// Reads path (taken as given: the caller resolves it against the scene's directory); the .mtl
+// files named by mtllib are searched for in the OBJ's directory.
+ObjImport import_obj(const std::string& path, const SourceLocation& referenced_from);
+
+}  // namespace candela

@@ -1,0 +1,30 @@
+#include "scene/scene.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "accel/accelerator_registry.h"
+
+namespace candela {
+
+void Scene::prepare() {
+  const AcceleratorEntry* entry = find_accelerator(render.accelerator);
+  if (!entry) throw std::invalid_argument("unknown accelerator " + render.accelerator);
+  accelerator_ = entry->create();
+  accelerator_->build(primitives);
+  bounds_ = Bounds3();
+  for (const Primitive& primitive : primitives) {
+    const Bounds3 b = primitive.shape->bounds();
+    if (b.is_finite()) bounds_.extend(b);
+  }
+  if (bounds_.empty()) bounds_ = Bounds3::of_point({0, 0, 0});
+  const Vec3 extent = bounds_.diagonal();
+  const double size = std::max({extent.x, extent.y, extent.z, std::fabs(bounds_.lower.x),
+                                std::fabs(bounds_.lower.y), std::fabs(bounds_.lower.z),
+                                std::fabs(bounds_.upper.x), std::fabs(bounds_.upper.y),
+                                std::fabs(bounds_.upper.z), 1e-3});
+  // Far above double rounding at this size (~1e-16 relative), far below any feature.
+  ray_offset_ = render.ray_offset > 0 ? render.ray_offset : 1e-7 * size;
+}
+
+}  // namespace candela

@@ -1,0 +1,89 @@
+// Everything a method reads: geometry, materials, lights, camera and settings. Methods never
+// edit it (SPEC "Architecture").
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "accel/accelerator.h"
+#include "camera/camera.h"
+#include "camera/tone_map.h"
+#include "scene/light.h"
+#include "shading/material.h"
+#include "util/error.h"
+
+namespace candela {
+
+struct RenderSettings {
+  std::string method = "whitted";
+  SourceLocation method_location;
+  uint64_t seed = 0;
+  std::string accelerator = "list";
+  double ray_offset = 0;  // 0: derived from the scene's size (see Scene::ray_offset)
+  int tile_size = 16;
+};
+
+struct WhittedSettings {
+  int max_depth = 5;         // primary rays are depth 0 (000 §5.5)
+  double min_weight = 1e-3;  // adaptive depth: stop when the product of the k's is below
+  bool shadows = true;
+};
+
+struct LocalSettings {
+  bool shadows = true;
+};
+
+// One entry of the scene file's "shapes" array.
+struct SceneObject {
+  std::string name;
+  std::string type;
+  uint32_t first_primitive = 0;
+  uint32_t primitive_count = 0;
+};
+
+class Scene {
+ public:
+  std::string source;  // file name, or "<built-in>"
+  std::unique_ptr<Camera> camera;
+  std::vector<std::unique_ptr<Shape>> shapes;
+  std::vector<Primitive> primitives;
+  std::vector<SceneObject> objects;
+  std::vector<Material> materials;
+  std::vector<std::unique_ptr<Light>> lights;
+  Color ambient;     // Ia
+  Color background;  // what a ray that leaves the scene returns
+  RenderSettings render;
+  DisplaySettings display;
+  WhittedSettings whitted;
+  LocalSettings local;
+  std::vector<std::string> warnings;
+
+  // Builds the accelerator named in render.accelerator and the derived quantities.
+  void prepare();
+
+  bool intersect(const Ray& ray, Intersection& intersection) const {
+    return accelerator_->intersect(ray, intersection);
+  }
+  bool occluded(const Ray& ray) const { return accelerator_->occluded(ray); }
+
+  const Material& material_of(const Intersection& hit) const {
+    return materials[primitives[hit.primitive].material];
+  }
+  const SceneObject& object_of(const Intersection& hit) const {
+    return objects[primitives[hit.primitive].object];
+  }
+  // Bounds of the bounded primitives and the camera's eye region.
+  const Bounds3& bounds() const { return bounds_; }
+  // SPEC §8: secondary rays start this far off the surface, along the normal, to avoid acne.
+  double ray_offset() const { return ray_offset_; }
+  const Accelerator& accelerator() const { return *accelerator_; }
+
+ private:
+  std::unique_ptr<Accelerator> accelerator_;
+  Bounds3 bounds_;
+  double ray_offset_ = 1e-6;
+};
+
+}  // namespace candela

@@ -1,0 +1,269 @@
+#include "scene/scene_loader.h"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "geometry/transformed_shape.h"
+#include "scene/camera_registry.h"
+#include "scene/json_node.h"
+#include "scene/light_registry.h"
+#include "scene/load_context.h"
+#include "scene/material_registry.h"
+#include "scene/shape_registry.h"
+
+namespace candela {
+
+namespace {
+
+constexpr const char* kFormat = "candela/1";
+
+// One operation: {"translate": [x,y,z]}, {"scale": s or [sx,sy,sz]},
+// {"rotate": {"angle": degrees, "axis": [x,y,z]}}, {"matrix": [16 numbers, row-major]}.
+Transform read_transform_step(const JsonNode& step) {
+  step.expect_object();
+  if (step.json().size() != 1)
+    step.fail("expected exactly one of translate, rotate, scale, matrix");
+  Transform result;
+  if (const auto translate = step.get("translate")) {
+    result = Transform::translate(translate->as_vec3());
+  } else if (const auto scale = step.get("scale")) {
+    const Vec3 factors = scale->json().is_number() ? Vec3{1, 1, 1} * scale->as_number() : scale->as_vec3();
+    if (factors.x == 0 || factors.y == 0 || factors.z == 0) scale->fail("scale factors must be non-zero");
+    result = Transform::scale(factors);
+  } else if (const auto rotate = step.get("rotate")) {
+    const double angle = rotate->number("angle");
+    const JsonNode axis = rotate->at("axis");
+    const Vec3 a = axis.as_vec3();
+    if (!(length(a) > 0)) axis.fail("must be non-zero");
+    rotate->finish();
+    result = Transform::rotate(angle, a);
+  } else if (const auto matrix = step.get("matrix")) {
+    if (matrix->size() != 16) matrix->fail("expected 16 numbers (a 4x4 matrix, row by row)");
+    Eigen::Matrix4d m;
+    for (int i = 0; i < 16; ++i) m(i / 4, i % 4) = matrix->element(i).as_number();
+    try {
+      result = Transform::from_matrix(m);
+    } catch (const std::invalid_argument& e) {
+      matrix->fail(e.what());
+    }
+  }
+  step.finish();
+  return result;
+}
+
+Transform read_transform(const JsonNode& node) {
+  if (node.json().is_object()) return read_transform_step(node);
+  Transform transform;
+  for (std::size_t i = 0; i < node.size(); ++i)
+    transform = read_transform_step(node.element(i)) * transform;  // listed order
+  return transform;
+}
+
+std::string shape_names() {
+  std::string names;
+  for (const auto& entry : shape_entries()) names += (names.empty() ? "" : ", ") + std::string(entry.name);
+  return names;
+}
+
+std::string light_names() {
+  std::string names;
+  for (const auto& entry : light_entries()) names += (names.empty() ? "" : ", ") + std::string(entry.name);
+  return names;
+}
+
+class SceneReader {
+ public:
+  SceneReader(const JsonDocument& document, const std::string& base_directory)
+      : document_(document), root_(document, document.root(), "") {
+    context_.base_directory = base_directory;
+  }
+
+  std::unique_ptr<Scene> read() {
+    auto scene = std::make_unique<Scene>();
+    scene_ = scene.get();
+    context_.materials = &scene->materials;
+    context_.warnings = &scene->warnings;
+    root_.expect_object();
+    const JsonNode format = root_.at("format");
+    if (format.as_string() != kFormat)
+      format.fail(fmt::format("unsupported format \"{}\" (expected \"{}\")", format.as_string(), kFormat));
+
+    scene->camera = read_camera(root_.at("camera"));
+    scene->background = root_.color("background", Color(0), Range::non_negative());
+    scene->ambient = root_.color("ambient", Color(0), Range::non_negative());
+    read_settings();
+    read_materials();
+    read_lights();
+    read_shapes();
+    root_.finish();
+    try {
+      scene->prepare();
+    } catch (const std::invalid_argument& e) {
+      root_.at("render").at("accelerator").fail(e.what());
+    }
+    return scene;
+  }
+
+ private:
+  void read_settings() {
+    if (const auto render = root_.get("render")) {
+      scene_->render.method = render->string("method", scene_->render.method);
+      if (render->has("method")) scene_->render.method_location = render->at("method").location();
+      const double seed = render->number("seed", 0, {0, 9007199254740992.0, false, false});
+      scene_->render.seed = static_cast<uint64_t>(seed);
+      scene_->render.accelerator = render->choice("accelerator", "list", {"list"});
+      scene_->render.ray_offset = render->number("ray_offset", 0.0, Range::non_negative());
+      scene_->render.tile_size = render->integer("tile_size", 16, {1, 4096, false, false});
+      render->finish();
+    }
+    if (const auto film = root_.get("film")) {
+      const std::string mode = film->choice("out_of_range", "clamp", {"clamp", "scale", "normalize"});
+      scene_->display.out_of_range = mode == "clamp" ? OutOfRange::clamp
+                                     : mode == "scale" ? OutOfRange::scale
+                                                       : OutOfRange::normalize;
+      scene_->display.exposure = film->number("exposure", 0.0, {-64, 64, false, false});
+      scene_->display.srgb = film->boolean("srgb", true);
+      film->finish();
+    }
+    if (const auto whitted = root_.get("whitted")) {
+      scene_->whitted.max_depth = whitted->integer("max_depth", 5, {0, 64, false, false});
+      scene_->whitted.min_weight = whitted->number("min_weight", 1e-3, Range::unit());
+      scene_->whitted.shadows = whitted->boolean("shadows", true);
+      whitted->finish();
+    }
+    if (const auto local = root_.get("local")) {
+      scene_->local.shadows = local->boolean("shadows", true);
+      local->finish();
+    }
+  }
+
+  void read_materials() {
+    Material fallback;
+    fallback.name = "default";
+    fallback.kd = std::make_shared<ConstantTexture>(Color(0.8));
+    scene_->materials.push_back(fallback);
+    const auto materials = root_.get("materials");
+    if (!materials) return;
+    materials->expect_object();
+    for (const auto& [name, value] : materials->json().items()) {
+      const JsonNode node = materials->at(name);
+      Material material = read_material(node);
+      material.name = name;
+      named_materials_[name] = context_.add_material(std::move(material));
+    }
+  }
+
+  void read_lights() {
+    const auto lights = root_.get("lights");
+    if (!lights) return;
+    for (std::size_t i = 0; i < lights->size(); ++i) {
+      const JsonNode node = lights->element(i);
+      node.expect_object();
+      const JsonNode type = node.at("type");
+      const LightEntry* entry = find_light(type.as_string());
+      if (!entry)
+        type.fail("unknown light \"" + type.as_string() + "\" (expected one of: " + light_names() + ")");
+      auto light = entry->create(node, scene_->ambient);
+      node.allow({"name"});
+      node.finish();
+      if (light) scene_->lights.push_back(std::move(light));
+    }
+  }
+
+  uint32_t material_for(const JsonNode& shape) {
+    const auto node = shape.get("material");
+    if (!node) return 0;
+    if (node->json().is_string()) {
+      const std::string name = node->as_string();
+      const auto found = named_materials_.find(name);
+      if (found == named_materials_.end()) {
+        std::string known;
+        for (const auto& [key, index] : named_materials_) known += (known.empty() ? "" : ", ") + key;
+        node->fail("unknown material \"" + name + "\"" +
+                   (known.empty() ? std::string(" (no materials are defined)") : " (defined: " + known + ")"));
+      }
+      return found->second;
+    }
+    Material material = read_material(*node);
+    material.name = node->path();
+    return context_.add_material(std::move(material));
+  }
+
+  void read_shapes() {
+    const auto shapes = root_.get("shapes");
+    if (!shapes) return;
+    for (std::size_t i = 0; i < shapes->size(); ++i) {
+      const JsonNode node = shapes->element(i);
+      node.expect_object();
+      const JsonNode type = node.at("type");
+      const ShapeEntry* entry = find_shape(type.as_string());
+      if (!entry)
+        type.fail("unknown shape \"" + type.as_string() + "\" (expected one of: " + shape_names() + ")");
+      SceneObject object;
+      object.type = std::string(entry->name);
+      object.name = node.string("name", fmt::format("{}#{}", entry->name, i));
+      const uint32_t material = material_for(node);
+      Transform transform;
+      if (const auto transform_node = node.get("transform")) transform = read_transform(*transform_node);
+      ShapeBuild build = entry->create(node, transform, context_);
+      node.finish();
+      object.first_primitive = static_cast<uint32_t>(scene_->primitives.size());
+      object.primitive_count = static_cast<uint32_t>(build.shapes.size());
+      const auto object_index = static_cast<uint32_t>(scene_->objects.size());
+      for (std::size_t s = 0; s < build.shapes.size(); ++s) {
+        std::unique_ptr<Shape> shape = std::move(build.shapes[s]);
+        if (!build.transform_applied && !transform.is_identity())
+          shape = std::make_unique<TransformedShape>(std::move(shape), transform);
+        const int own = build.materials[s];
+        scene_->primitives.push_back({shape.get(), own >= 0 ? uint32_t(own) : material, object_index});
+        scene_->shapes.push_back(std::move(shape));
+      }
+      scene_->objects.push_back(std::move(object));
+    }
+  }
+
+  const JsonDocument& document_;
+  JsonNode root_;
+  Scene* scene_ = nullptr;
+  LoadContext context_;
+  std::map<std::string, uint32_t> named_materials_;
+};
+
+std::unique_ptr<Scene> load_document(JsonDocument& document, const std::string& base_directory,
+                                     const std::vector<std::string>& overrides) {
+  for (const auto& assignment : overrides) document.apply_override(assignment);
+  SceneReader reader(document, base_directory);
+  auto scene = reader.read();
+  scene->source = document.file();
+  return scene;
+}
+
+}  // namespace
+
+std::unique_ptr<Scene> load_scene_text(const std::string& text, const std::string& name,
+                                       const std::string& base_directory,
+                                       const std::vector<std::string>& overrides) {
+  JsonDocument document = JsonDocument::parse(text, name);
+  return load_document(document, base_directory, overrides);
+}
+
+std::unique_ptr<Scene> load_scene_file(const std::string& path,
+                                       const std::vector<std::string>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError({path, 0, 0, {}}, "cannot open the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError({path, 0, 0, {}}, "cannot read the scene file");
+  const std::string directory = std::filesystem::path(path).parent_path().string();
+  return load_scene_text(text.str(), path, directory.empty() ? "." : directory, overrides);
+}
+
+std::unique_ptr<Scene> load_default_scene(const std::vector<std::string>& overrides) {
+  return load_scene_text(default_scene_text(), "<built-in default scene>", ".", overrides);
+}
+
+}  // namespace candela

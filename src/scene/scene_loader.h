@@ -1,0 +1,25 @@
+// The candela/1 scene format (SPEC §3, docs/scene-format.md): JSON in, Scene out.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace candela {
+
+// Reads and validates a scene file. overrides are "dotted.path=value" (--set). Throws
+// InputError naming file, line, column and JSON path for any problem.
+std::unique_ptr<Scene> load_scene_file(const std::string& path,
+                                       const std::vector<std::string>& overrides = {});
+// The same for text held in memory; name stands for the file in messages, base_directory
+// resolves relative mesh paths.
+std::unique_ptr<Scene> load_scene_text(const std::string& text, const std::string& name,
+                                       const std::string& base_directory,
+                                       const std::vector<std::string>& overrides = {});
+// The built-in default scene (the two-mirror scene of 000 §5.9).
+std::unique_ptr<Scene> load_default_scene(const std::vector<std::string>& overrides = {});
+const std::string& default_scene_text();
+
+}  // namespace candela

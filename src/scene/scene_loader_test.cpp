@@ -1,0 +1,239 @@
+#include "scene/scene_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "scene/json_document.h"
+
+namespace candela {
+namespace {
+
+// Loads text and returns the error it raises (fails the test when it loads).
+InputError load_error(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  try {
+    load_scene_text(text, "test.json", ".", overrides);
+  } catch (const InputError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "expected an InputError for:\n" << text;
+  return InputError({}, "none");
+}
+
+void expect_error(const std::string& text, const std::string& path, int line, int column,
+                  const std::string& message_part) {
+  const InputError e = load_error(text);
+  EXPECT_EQ(e.location().file, "test.json");
+  EXPECT_EQ(e.location().json_path, path) << e.what();
+  EXPECT_EQ(e.location().line, line) << e.what();
+  EXPECT_EQ(e.location().column, column) << e.what();
+  EXPECT_NE(std::string(e.what()).find(message_part), std::string::npos) << e.what();
+}
+
+const char* kHeader = R"({
+  "format": "candela/1",
+  "camera": {"eye": [0, 0, 5], "target": [0, 0, 0], "width": 4, "height": 3},
+)";
+
+TEST(SceneLoader, LoadsAMinimalScene) {
+  const auto scene = load_scene_text(std::string(kHeader) + R"(
+  "lights": [{"type": "point", "position": [0, 5, 0]}, {"type": "ambient", "intensity": 0.25}],
+  "materials": {"red": {"kd": [1, 0, 0]}},
+  "shapes": [{"type": "sphere", "radius": 2, "material": "red", "transform": [{"translate": [1, 0, 0]}]}]
+})", "test.json", ".");
+  EXPECT_EQ(scene->camera->width(), 4);
+  EXPECT_EQ(scene->lights.size(), 1u);
+  EXPECT_EQ(scene->ambient, Color(0.25));
+  ASSERT_EQ(scene->primitives.size(), 1u);
+  EXPECT_EQ(scene->materials[scene->primitives[0].material].name, "red");
+  EXPECT_NEAR(scene->primitives[0].shape->bounds().upper.x, 3.0, 1e-12);
+}
+
+TEST(SceneLoader, SyntaxErrorHasLineAndColumn) {
+  const InputError e = load_error("{\n  \"format\": \"candela/1\",\n  \"camera\": {\"width\": 4,}\n}");
+  EXPECT_EQ(e.location().line, 3);
+  EXPECT_EQ(e.location().column, 25);  // the '}' after the trailing comma
+  EXPECT_NE(std::string(e.what()).find("syntax error"), std::string::npos) << e.what();
+}
+
+TEST(SceneLoader, UnknownShapeListsTheValidOnes) {
+  expect_error(std::string(kHeader) + R"(  "shapes": [{"type": "sphere"}, {"type": "teapot"}]
+})", "shapes[1].type", 4, 43, "unknown shape \"teapot\" (expected one of: sphere, plane,");
+}
+
+TEST(SceneLoader, UnknownKeyIsAnError) {
+  expect_error(std::string(kHeader) + R"(  "shapes": [{"type": "sphere", "radus": 2}]
+})", "shapes[0].radus", 4, 42, "unknown key \"radus\"");
+  expect_error(std::string(kHeader) + R"(  "lightz": []
+})", "lightz", 4, 13, "unknown key \"lightz\"");
+}
+
+TEST(SceneLoader, NegativeRadius) {
+  expect_error(std::string(kHeader) + R"(  "shapes": [
+    {"type": "sphere", "radius": -1}
+  ]
+})", "shapes[0].radius", 5, 34, "must be > 0");
+}
+
+TEST(SceneLoader, FieldOfViewOutOfRange) {
+  expect_error(R"({"format": "candela/1",
+ "camera": {"fov": 180}})", "camera.fov", 2, 20, "must be in (0, 180)");
+}
+
+TEST(SceneLoader, MissingMeshFile) {
+  expect_error(std::string(kHeader) + R"(  "shapes": [{"type": "mesh", "file": "no/such/mesh.obj"}]
+})", "shapes[0].file", 4, 39, "no/such/mesh.obj");
+}
+
+TEST(SceneLoader, NaNIsRejected) {
+  // JSON has no NaN literal: the parser rejects the bare word with its position.
+  const InputError bare = load_error(std::string(kHeader) + R"(  "ambient": NaN
+})");
+  EXPECT_EQ(bare.location().line, 4);
+  EXPECT_EQ(bare.location().column, 14);
+  // A string where a number belongs is a type error at its path.
+  expect_error(std::string(kHeader) + R"(  "ambient": [0, "NaN", 0]
+})", "ambient[1]", 4, 18, "expected a number");
+}
+
+TEST(SceneLoader, OverflowingNumberIsRejected) {
+  const InputError e = load_error(std::string(kHeader) + R"(  "ambient": 1e999
+})");
+  EXPECT_EQ(e.location().line, 4);
+}
+
+TEST(SceneLoader, WrongTypesAndMissingKeys) {
+  expect_error(R"({"format": "candela/1", "camera": {"width": "wide"}})", "camera.width", 1, 45,
+               "expected a number");
+  expect_error(R"({"format": "candela/1", "camera": {"width": 2.5}})", "camera.width", 1, 45,
+               "expected an integer");
+  expect_error(R"({"format": "candela/2", "camera": {}})", "format", 1, 12, "unsupported format");
+  expect_error(R"({"camera": {}})", "", 1, 1, "missing required key \"format\"");
+  expect_error(std::string(kHeader) + R"(  "lights": [{"type": "point"}]
+})", "lights[0]", 4, 14, "missing required key \"position\"");
+}
+
+TEST(SceneLoader, UnknownMaterialReference) {
+  expect_error(std::string(kHeader) + R"(  "materials": {"red": {"kd": [1, 0, 0]}},
+  "shapes": [{"type": "sphere", "material": "blue"}]
+})", "shapes[0].material", 5, 45, "unknown material \"blue\" (defined: red)");
+}
+
+TEST(SceneLoader, DuplicateKeyIsAnError) {
+  const InputError e = load_error(R"({"format": "candela/1", "format": "candela/1"})");
+  EXPECT_EQ(e.location().column, 25);
+  EXPECT_NE(std::string(e.what()).find("duplicate key"), std::string::npos);
+}
+
+TEST(SceneLoader, BadValuesInMaterialsLightsAndTransforms) {
+  expect_error(std::string(kHeader) + R"(  "materials": {"m": {"kr": 1.5}}
+})", "materials.m.kr", 4, 29, "must be in [0, 1]");
+  expect_error(std::string(kHeader) + R"(  "lights": [{"type": "point", "position": [0, 1, 0], "attenuation": "cubic"}]
+})", "lights[0].attenuation", 4, 70, "unknown attenuation");
+  expect_error(std::string(kHeader) + R"(  "shapes": [{"type": "sphere", "transform": [{"scale": 0}]}]
+})", "shapes[0].transform[0].scale", 4, 57, "non-zero");
+  expect_error(std::string(kHeader) + R"(  "shapes": [{"type": "sphere", "transform": [{"matrix": [1,0,0,0, 0,1,0,0, 0,0,0,0, 0,0,0,1]}]}]
+})", "shapes[0].transform[0].matrix", 4, 58, "singular");
+  expect_error(std::string(kHeader) + R"(  "film": {"out_of_range": "wrap"}
+})", "film.out_of_range", 4, 28, "expected one of: clamp, scale, normalize");
+}
+
+TEST(SceneLoader, ConstructorValidationIsReportedAtTheShape) {
+  expect_error(std::string(kHeader) + R"(  "shapes": [{"type": "cylinder", "base": [0, 0, 0], "cap": [0, 0, 0]}]
+})", "shapes[0]", 4, 14, "base and cap must differ");
+}
+
+TEST(SceneLoader, OverridesReplaceSettingsByDottedPath) {
+  const auto scene = load_scene_text(std::string(kHeader) + R"(  "shapes": [{"type": "sphere"}]
+})", "test.json", ".", {"camera.width=640", "whitted.max_depth=3", "film.out_of_range=scale",
+                        "shapes.0.radius=2.5", "background=[0.1, 0.2, 0.3]"});
+  EXPECT_EQ(scene->camera->width(), 640);
+  EXPECT_EQ(scene->whitted.max_depth, 3);
+  EXPECT_EQ(scene->display.out_of_range, OutOfRange::scale);
+  EXPECT_NEAR(scene->primitives[0].shape->bounds().upper.x, 2.5, 1e-12);
+  EXPECT_EQ(scene->background, Color(0.1, 0.2, 0.3));
+}
+
+TEST(SceneLoader, BadOverridesNameTheAssignment) {
+  const InputError e = load_error(std::string(kHeader) + "\"shapes\": []}", {"camera.width=-3"});
+  EXPECT_EQ(e.location().file, "--set camera.width=-3");
+  EXPECT_EQ(e.location().json_path, "camera.width");
+  const InputError typo = load_error(std::string(kHeader) + "\"shapes\": []}", {"camer.width=3"});
+  EXPECT_NE(std::string(typo.what()).find("unknown key \"camer\""), std::string::npos) << typo.what();
+  const InputError no_equals = load_error(std::string(kHeader) + "\"shapes\": []}", {"camera.width"});
+  EXPECT_NE(std::string(no_equals.what()).find("key=value"), std::string::npos);
+  const InputError range = load_error(std::string(kHeader) + "\"shapes\": []}", {"shapes.4.radius=1"});
+  EXPECT_NE(std::string(range.what()).find("out of range"), std::string::npos);
+}
+
+TEST(SceneLoader, MissingSceneFile) {
+  try {
+    load_scene_file("/nonexistent/scene.json");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.location().file, "/nonexistent/scene.json");
+    EXPECT_NE(std::string(e.what()).find("cannot open"), std::string::npos);
+  }
+}
+
+TEST(SceneLoader, MeshPathIsRelativeToTheSceneFile) {
+  const auto directory = std::filesystem::temp_directory_path() / "candela-loader-test";
+  std::filesystem::create_directories(directory / "meshes");
+  {
+    std::ofstream obj(directory / "meshes" / "quad.obj");
+    obj << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+    std::ofstream scene(directory / "scene.json");
+    scene << kHeader << R"(  "shapes": [{"type": "mesh", "file": "meshes/quad.obj", "transform": {"scale": 2}}]})";
+  }
+  const auto scene = load_scene_file((directory / "scene.json").string());
+  EXPECT_EQ(scene->primitives.size(), 2u);
+  EXPECT_EQ(scene->objects.size(), 1u);
+  EXPECT_NEAR(scene->bounds().upper.x, 2.0, 1e-12);
+  std::filesystem::remove_all(directory);
+}
+
+TEST(SceneLoader, TheSeedScenesLoad) {
+  for (const char* name : {"two-mirrors.json", "glass-globe.json"}) {
+    const auto scene = load_scene_file(std::string(CANDELA_SOURCE_DIR) + "/scenes/" + name);
+    EXPECT_GT(scene->primitives.size(), 3u) << name;
+  }
+  const auto builtin = load_default_scene();
+  // 000 §5.9: 9 spheres, 9 cylinders, 2 polygons, 2 discs, and the wall and floor planes.
+  int spheres = 0, cylinders = 0, polygons = 0, discs = 0, planes = 0;
+  for (const auto& object : builtin->objects) {
+    spheres += object.type == "sphere";
+    cylinders += object.type == "cylinder";
+    polygons += object.type == "polygon";
+    discs += object.type == "disc";
+    planes += object.type == "plane";
+  }
+  EXPECT_EQ(spheres, 9);
+  EXPECT_EQ(cylinders, 9);
+  EXPECT_EQ(polygons, 2);
+  EXPECT_EQ(discs, 2);
+  EXPECT_EQ(planes, 2);
+  EXPECT_EQ(builtin->lights.size(), 2u);
+  EXPECT_EQ(builtin->ambient, Color(0.3));
+  EXPECT_EQ(builtin->whitted.max_depth, 12);
+}
+
+TEST(JsonDocument, RecordsWhereEveryValueStarts) {
+  const JsonDocument document = JsonDocument::parse(
+      "{\n  // a comment\n  \"a\": [1, 2.5,\n     {\"b\": true}],\n  /* more */ \"c\": \"x\"\n}", "f.json");
+  auto at = [&](const std::string& path) {
+    const SourceLocation l = document.locate(path);
+    return std::make_pair(l.line, l.column);
+  };
+  EXPECT_EQ(at("a"), std::make_pair(3, 8));
+  EXPECT_EQ(at("a[0]"), std::make_pair(3, 9));
+  EXPECT_EQ(at("a[1]"), std::make_pair(3, 12));
+  EXPECT_EQ(at("a[2]"), std::make_pair(4, 6));
+  EXPECT_EQ(at("a[2].b"), std::make_pair(4, 12));
+  EXPECT_EQ(at("c"), std::make_pair(5, 19));
+  // A default value not in the file is reported at its nearest ancestor.
+  EXPECT_EQ(at("a[2].missing"), std::make_pair(4, 6));
+}
+
+}  // namespace
+}  // namespace candela

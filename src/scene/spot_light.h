@@ -1,0 +1,30 @@
+#pragma once
+
+#include "scene/attenuation.h"
+#include "scene/light.h"
+
+namespace candela {
+
+// A point light limited to a cone: full intensity inside falloff_start, zero outside
+// cutoff, a smooth step between (pbrt's spot light), times (cos α)^exponent (Warn's model).
+class SpotLight final : public Light {
+ public:
+  SpotLight(const Vec3& position, const Vec3& target, const Color& intensity,
+            double cutoff_degrees, double falloff_start_degrees, double exponent,
+            const Attenuation& attenuation);
+  bool illuminate(const Vec3& point, LightSample& sample) const override;
+  std::string_view type_name() const override { return "spot"; }
+  // The factor for a direction at angle alpha from the axis, given as cos(alpha).
+  double cone_factor(double cos_alpha) const;
+
+ private:
+  Vec3 position_;
+  Vec3 axis_;
+  Color intensity_;
+  double cos_cutoff_;
+  double cos_falloff_start_;
+  double exponent_;
+  Attenuation attenuation_;
+};
+
+}  // namespace candela

@@ -1,0 +1,62 @@
+#include "util/progress.h"
+
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+namespace candela {
+
+ProgressReporter::ProgressReporter(std::string label, uint64_t total, std::string unit,
+                                   bool quiet, std::FILE* stream)
+    : label_(std::move(label)),
+      unit_(std::move(unit)),
+      total_(total),
+      quiet_(quiet),
+      terminal_(::isatty(::fileno(stream)) != 0),
+      stream_(stream),
+      start_(std::chrono::steady_clock::now()),
+      last_print_(start_) {}
+
+ProgressReporter::~ProgressReporter() { finish(); }
+
+void ProgressReporter::advance(uint64_t amount) {
+  const uint64_t done = done_.fetch_add(amount) + amount;
+  if (quiet_) return;
+  std::unique_lock lock(mutex_, std::try_to_lock);
+  if (!lock.owns_lock()) return;  // someone is printing; the next advance will
+  print(done, false);
+}
+
+void ProgressReporter::finish() {
+  std::lock_guard lock(mutex_);
+  if (finished_) return;
+  finished_ = true;
+  if (!quiet_) print(done_.load(), true);
+}
+
+void ProgressReporter::print(uint64_t done, bool final_line) {
+  const auto now = std::chrono::steady_clock::now();
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const int percent = total_ ? static_cast<int>(100.0 * done / total_) : 100;
+  if (terminal_) {
+    if (!final_line && percent == last_percent_ && now - last_print_ < std::chrono::milliseconds(200)) return;
+    constexpr int kWidth = 30;
+    const int filled = total_ ? static_cast<int>(kWidth * done / total_) : kWidth;
+    const double remaining = done > 0 ? elapsed * (double(total_) - done) / done : 0;
+    fmt::print(stream_, "\r{} [{}{}] {:3d}% {}/{} {} {:.1f}s elapsed, {:.1f}s left ", label_,
+               std::string(filled, '#'), std::string(kWidth - filled, ' '), percent, done, total_,
+               unit_, elapsed, remaining);
+    if (final_line) fmt::print(stream_, "\n");
+  } else {
+    // Plain lines: at every 10% step and at most every 5 s otherwise, never more often.
+    const bool step = percent / 10 != last_percent_ / 10;
+    if (!final_line && !step && now - last_print_ < std::chrono::seconds(5)) return;
+    if (final_line && percent == last_percent_) return;
+    fmt::print(stream_, "{}: {}% ({}/{} {}, {:.1f}s)\n", label_, percent, done, total_, unit_, elapsed);
+  }
+  std::fflush(stream_);
+  last_percent_ = percent;
+  last_print_ = now;
+}
+
+}  // namespace candela

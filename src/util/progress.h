@@ -1,0 +1,36 @@
+// One progress reporter for every long phase (STYLE.md habit 7): a bar on a terminal, plain
+// periodic lines otherwise, nothing when quiet. Thread-safe.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <mutex>
+#include <string>
+
+namespace candela {
+
+class ProgressReporter {
+ public:
+  // unit names what is counted ("tiles").
+  ProgressReporter(std::string label, uint64_t total, std::string unit, bool quiet,
+                   std::FILE* stream = stderr);
+  ~ProgressReporter();
+  void advance(uint64_t amount = 1);
+  void finish();
+
+ private:
+  void print(uint64_t done, bool final_line);
+  std::string label_, unit_;
+  uint64_t total_;
+  bool quiet_, terminal_;
+  std::FILE* stream_;
+  std::atomic<uint64_t> done_{0};
+  std::mutex mutex_;
+  std::chrono::steady_clock::time_point start_, last_print_;
+  int last_percent_ = -1;
+  bool finished_ = false;
+};
+
+}  // namespace candela

@@ -1,0 +1,55 @@
+#include "util/statistics.h"
+
+#include <fmt/format.h>
+#include <sys/resource.h>
+
+namespace candela {
+
+nlohmann::json RunStatistics::to_json() const {
+  nlohmann::json out = extra;
+  nlohmann::json phase_list = nlohmann::json::object();
+  double total = 0;
+  for (const auto& [name, seconds] : phases) {
+    phase_list[name] = seconds;
+    total += seconds;
+  }
+  out["phases_seconds"] = phase_list;
+  out["total_seconds"] = total;
+  out["rays"] = {{"primary", rays.primary},
+                 {"shadow", rays.shadow},
+                 {"reflected", rays.reflected},
+                 {"refracted", rays.refracted},
+                 {"total", rays.total()}};
+  out["pixels"] = pixels;
+  out["threads"] = threads;
+  out["peak_memory_bytes"] = peak_memory_bytes();
+  return out;
+}
+
+std::string RunStatistics::summary() const {
+  std::string text;
+  double total = 0;
+  for (const auto& [name, seconds] : phases) {
+    text += fmt::format("  {:<16} {:>10.3f} s\n", name, seconds);
+    total += seconds;
+  }
+  text += fmt::format("  {:<16} {:>10.3f} s\n", "total", total);
+  text += fmt::format("  rays: {} primary, {} shadow, {} reflected, {} refracted ({} total",
+                      rays.primary, rays.shadow, rays.reflected, rays.refracted, rays.total());
+  double render_seconds = 0;
+  for (const auto& [name, seconds] : phases)
+    if (name == "render") render_seconds = seconds;
+  if (render_seconds > 0) text += fmt::format(", {:.2f} Mrays/s", rays.total() / render_seconds / 1e6);
+  text += ")\n";
+  text += fmt::format("  pixels: {}, threads: {}, peak memory: {:.1f} MiB\n", pixels, threads,
+                      peak_memory_bytes() / (1024.0 * 1024.0));
+  return text;
+}
+
+uint64_t peak_memory_bytes() {
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) != 0) return 0;
+  return static_cast<uint64_t>(usage.ru_maxrss) * 1024;  // kilobytes on Linux
+}
+
+}  // namespace candela

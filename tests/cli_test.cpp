@@ -1,0 +1,145 @@
+// The candela executable end to end: exit codes, messages, outputs (SPEC §15).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace candela {
+namespace {
+
+namespace fs = std::filesystem;
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    directory_ = fs::temp_directory_path() /
+                 ("candela-cli-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(directory_);
+    fs::create_directories(directory_);
+  }
+  void TearDown() override { fs::remove_all(directory_); }
+
+  // Runs candela with arguments; returns the exit code and fills output (stdout + stderr).
+  int run(const std::string& arguments, std::string& output) {
+    const fs::path log = directory_ / "log.txt";
+    const std::string command = "cd '" + directory_.string() + "' && '" CANDELA_CLI "' " + arguments + " > '" +
+                                log.string() + "' 2>&1";
+    const int status = std::system(command.c_str());
+    std::ifstream in(log);
+    std::stringstream text;
+    text << in.rdbuf();
+    output = text.str();
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  fs::path write(const std::string& name, const std::string& text) {
+    std::ofstream(directory_ / name) << text;
+    return directory_ / name;
+  }
+  // No file other than the inputs and the log may exist (no half-written output).
+  int file_count() {
+    int count = 0;
+    for (const auto& entry : fs::directory_iterator(directory_)) count += entry.path().filename() != "log.txt";
+    return count;
+  }
+  fs::path directory_;
+};
+
+TEST_F(Cli, RendersTheDefaultSceneToPng) {
+  std::string output;
+  ASSERT_EQ(run("render --set camera.width=40 --set camera.height=30 -o out.png --stats stats.json", output), 0)
+      << output;
+  ASSERT_TRUE(fs::exists(directory_ / "out.png"));
+  std::ifstream png(directory_ / "out.png", std::ios::binary);
+  char signature[8];
+  png.read(signature, 8);
+  EXPECT_EQ(std::string(signature + 1, 3), "PNG");
+  EXPECT_NE(output.find("primary"), std::string::npos);  // the summary
+  std::ifstream stats_file(directory_ / "stats.json");
+  const auto stats = nlohmann::json::parse(stats_file);
+  EXPECT_EQ(stats["rays"]["primary"], 40 * 30);
+  EXPECT_GT(stats["rays"]["shadow"].get<int>(), 0);
+  EXPECT_GT(stats["rays"]["reflected"].get<int>(), 0);
+  EXPECT_TRUE(stats["phases_seconds"].contains("render"));
+  EXPECT_EQ(stats["method"], "whitted");
+}
+
+TEST_F(Cli, WritesExrAndPfmAndCrops) {
+  std::string output;
+  ASSERT_EQ(run("render --quiet --set camera.width=20 --set camera.height=10 -o out.exr", output), 0) << output;
+  EXPECT_TRUE(output.empty()) << output;
+  ASSERT_EQ(run("render -q --set camera.width=20 --set camera.height=10 --crop 5,2,15,8 -o out.pfm", output), 0)
+      << output;
+  std::ifstream pfm(directory_ / "out.pfm", std::ios::binary);
+  std::string magic;
+  int width, height;
+  pfm >> magic >> width >> height;
+  EXPECT_EQ(magic, "PF");
+  EXPECT_EQ(width, 10);
+  EXPECT_EQ(height, 6);
+  EXPECT_TRUE(fs::exists(directory_ / "out.exr"));
+}
+
+TEST_F(Cli, PixelPrintsTheRayTree) {
+  std::string output;
+  // The centre of the default scene's wall mirror: primary, reflected, ... down to depth 12.
+  ASSERT_EQ(run("render --set camera.width=50 --set camera.height=50 --pixel 25,17", output), 0) << output;
+  EXPECT_NE(output.find("primary ray, depth 0"), std::string::npos) << output;
+  EXPECT_NE(output.find("hit wall mirror"), std::string::npos) << output;
+  EXPECT_NE(output.find("reflected ray, depth 1"), std::string::npos) << output;
+  EXPECT_NE(output.find("shadow ray"), std::string::npos) << output;
+  EXPECT_EQ(file_count(), 0);  // prints, writes nothing
+}
+
+TEST_F(Cli, BadSceneExitsWithTwoAndWritesNothing) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"{\"format\": \"candela/1\",\n \"camera\": {\"width\": 4,}}", "bad.json:2:24"},
+      {R"({"format": "candela/1", "camera": {}, "shapes": [{"type": "blob"}]})", "shapes[0].type: unknown shape"},
+      {R"({"format": "candela/1", "camera": {}, "shapes": [{"type": "sphere", "radius": -2}]})",
+       "bad.json:1:79: shapes[0].radius: must be > 0"},
+      {R"({"format": "candela/1", "camera": {"fov": 0}})", "camera.fov: must be in (0, 180)"},
+      {R"({"format": "candela/1", "camera": {}, "shapes": [{"type": "mesh", "file": "gone.obj"}]})",
+       "shapes[0].file"},
+  };
+  for (const auto& [text, expected] : cases) {
+    write("bad.json", text);
+    std::string output;
+    EXPECT_EQ(run("render bad.json -o out.png", output), 2) << text;
+    EXPECT_NE(output.find(expected), std::string::npos) << output;
+    EXPECT_FALSE(fs::exists(directory_ / "out.png"));
+    EXPECT_EQ(file_count(), 1);  // bad.json alone
+  }
+}
+
+TEST_F(Cli, BadArgumentsExitWithTwo) {
+  std::string output;
+  EXPECT_EQ(run("render -o out.bmp", output), 2);
+  EXPECT_NE(output.find("unsupported extension"), std::string::npos) << output;
+  EXPECT_EQ(run("render --method teleport -o out.png", output), 2);
+  EXPECT_NE(output.find("unknown method \"teleport\" (expected one of: local, whitted)"), std::string::npos) << output;
+  EXPECT_EQ(run("render --crop 0,0,9999,10 -o out.png", output), 2);
+  EXPECT_EQ(run("render --set camera.width=abc -o out.png", output), 2);
+  EXPECT_NE(output.find("camera.width"), std::string::npos) << output;
+  EXPECT_EQ(run("render missing.json", output), 2);
+  EXPECT_EQ(run("render --bogus", output), 2);
+  EXPECT_EQ(file_count(), 0);
+}
+
+TEST_F(Cli, InfoDescribesTheScene) {
+  std::string output;
+  ASSERT_EQ(run("info", output), 0) << output;
+  EXPECT_NE(output.find("objects: 24"), std::string::npos) << output;
+  EXPECT_NE(output.find("sphere"), std::string::npos);
+  EXPECT_NE(output.find("lights: 2"), std::string::npos);
+}
+
+TEST_F(Cli, UnwritableOutputFailsWithoutLeavingFiles) {
+  std::string output;
+  EXPECT_EQ(run("render -q --set camera.width=8 --set camera.height=8 -o no/such/dir/out.png", output), 1);
+  EXPECT_EQ(file_count(), 0);
+}
+
+}  // namespace
+}  // namespace candela

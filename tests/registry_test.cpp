@@ -1,0 +1,96 @@
+// Every registered name can be created from its documented example (STYLE.md habit 2).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "accel/accelerator_registry.h"
+#include "integrators/method_registry.h"
+#include "scene/camera_registry.h"
+#include "scene/light_registry.h"
+#include "scene/material_registry.h"
+#include "scene/scene_loader.h"
+#include "scene/shape_registry.h"
+
+namespace candela {
+namespace {
+
+class RegistryTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    directory_ = std::filesystem::temp_directory_path() / "candela-registry-test";
+    std::filesystem::create_directories(directory_ / "meshes");
+    std::ofstream cube(directory_ / "meshes" / "cube.obj");
+    cube << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+            "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
+  }
+  void TearDown() override { std::filesystem::remove_all(directory_); }
+
+  std::unique_ptr<Scene> load(const std::string& body) {
+    return load_scene_text(R"({"format": "candela/1", "camera": {"width": 8, "height": 6}, )" + body + "}",
+                           "registry.json", directory_.string());
+  }
+  std::filesystem::path directory_;
+};
+
+TEST_F(RegistryTest, EveryShapeFromItsExample) {
+  std::set<std::string_view> names;
+  for (const ShapeEntry& entry : shape_entries()) {
+    EXPECT_TRUE(names.insert(entry.name).second) << "duplicate " << entry.name;
+    const auto scene = load(R"("shapes": [)" + std::string(entry.example) + "]");
+    ASSERT_EQ(scene->objects.size(), 1u) << entry.name;
+    EXPECT_EQ(scene->objects[0].type, entry.name);
+    EXPECT_GE(scene->primitives.size(), 1u) << entry.name;
+    EXPECT_EQ(find_shape(entry.name), &entry);
+  }
+  EXPECT_EQ(find_shape("teapot"), nullptr);
+}
+
+TEST_F(RegistryTest, EveryLightFromItsExample) {
+  for (const LightEntry& entry : light_entries()) {
+    const auto scene = load(R"("lights": [)" + std::string(entry.example) + "]");
+    if (entry.name == "ambient") {
+      EXPECT_TRUE(scene->lights.empty());
+      EXPECT_FALSE(scene->ambient.is_black());
+    } else {
+      ASSERT_EQ(scene->lights.size(), 1u) << entry.name;
+      EXPECT_EQ(scene->lights[0]->type_name(), entry.name);
+    }
+  }
+}
+
+TEST_F(RegistryTest, EveryMaterialAndTextureFromItsExample) {
+  for (const MaterialEntry& entry : material_entries()) {
+    const auto scene = load(R"("materials": {"m": )" + std::string(entry.example) + "}");
+    EXPECT_EQ(scene->materials.back().name, "m");
+  }
+  for (const TextureEntry& entry : texture_entries()) {
+    const auto scene = load(R"("materials": {"m": {"kd": )" + std::string(entry.example) + "}}");
+    EXPECT_EQ(scene->materials.back().kd->type_name(), entry.name);
+  }
+}
+
+TEST_F(RegistryTest, EveryCameraFromItsExample) {
+  for (const CameraEntry& entry : camera_entries()) {
+    const auto scene = load_scene_text(R"({"format": "candela/1", "camera": )" + std::string(entry.example) + "}",
+                                       "registry.json", directory_.string());
+    EXPECT_EQ(scene->camera->type_name(), entry.name);
+    EXPECT_EQ(scene->camera->width(), 320);
+  }
+}
+
+TEST_F(RegistryTest, EveryMethodAndAccelerator) {
+  for (const MethodEntry& entry : method_entries()) {
+    const auto method = entry.create();
+    EXPECT_EQ(method->name(), entry.name);
+  }
+  EXPECT_EQ(find_method("raytrace"), nullptr);
+  for (const AcceleratorEntry& entry : accelerator_entries()) {
+    const auto accelerator = entry.create();
+    EXPECT_EQ(accelerator->name(), entry.name);
+  }
+}
+
+}  // namespace
+}  // namespace candela

@@ -1,0 +1,97 @@
+// Cross-module rendering tests: determinism across thread counts and a small golden image.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "integrators/method_registry.h"
+#include "io/image_reader.h"
+#include "io/image_writer.h"
+#include "scene/scene_loader.h"
+
+namespace candela {
+namespace {
+
+Film render(const Scene& scene, const std::string& method_name, std::size_t threads) {
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+  const auto method = find_method(method_name)->create();
+  Film film(scene.camera->width(), scene.camera->height());
+  RunStatistics statistics;
+  method->render(scene, {{0, 0, film.width(), film.height()}, true}, film, statistics);
+  return film;
+}
+
+TEST(Render, SameImageBytesWhateverTheThreadCount) {
+  const auto scene = load_default_scene({"camera.width=64", "camera.height=48", "render.tile_size=8"});
+  for (const char* method : {"local", "whitted"}) {
+    const Film one = render(*scene, method, 1);
+    const Film two = render(*scene, method, 2);
+    const Film four = render(*scene, method, 4);
+    EXPECT_EQ(std::memcmp(one.pixels().data(), two.pixels().data(), one.pixels().size() * sizeof(Color)), 0) << method;
+    EXPECT_EQ(std::memcmp(one.pixels().data(), four.pixels().data(), one.pixels().size() * sizeof(Color)), 0) << method;
+    EXPECT_EQ(to_display(one, scene->display), to_display(two, scene->display));
+  }
+}
+
+TEST(Render, GoldenTwoMirrorsImage) {
+  // tests/golden/two-mirrors-64x64.pfm: `candela render scenes/two-mirrors.json --set
+  // camera.width=64 --set camera.height=64 -o tests/golden/two-mirrors-64x64.pfm`, checked by
+  // eye against 000 Figure 49 when it was made. Tolerance: float storage and libm differences.
+  const std::string source = CANDELA_SOURCE_DIR;
+  const auto scene = load_scene_file(source + "/scenes/two-mirrors.json", {"camera.width=64", "camera.height=64"});
+  const Film film = render(*scene, "whitted", 2);
+  const Film golden = read_pfm(source + "/tests/golden/two-mirrors-64x64.pfm");
+  ASSERT_EQ(golden.width(), film.width());
+  ASSERT_EQ(golden.height(), film.height());
+  double largest = 0, total = 0;
+  for (int y = 0; y < film.height(); ++y)
+    for (int x = 0; x < film.width(); ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double difference = std::fabs(film.at(x, y)[c] - golden.at(x, y)[c]);
+        largest = std::max(largest, difference);
+        total += difference;
+      }
+  EXPECT_LT(largest, 1e-3);
+  EXPECT_LT(total / (film.width() * film.height() * 3), 1e-5);
+}
+
+TEST(Render, PfmRoundTrip) {
+  Film film(3, 2);
+  film.at(0, 0) = Color(1, 2, 3);
+  film.at(2, 1) = Color(0.25, 0.5, -1);
+  const auto path = (std::filesystem::temp_directory_path() / "candela-roundtrip.pfm").string();
+  write_pfm(film, path, 0);
+  const Film back = read_pfm(path);
+  EXPECT_EQ(back.at(0, 0), Color(1, 2, 3));
+  EXPECT_EQ(back.at(2, 1), Color(0.25, 0.5, -1));
+  std::filesystem::remove(path);
+}
+
+TEST(ToneMap, OutOfRangeModes) {
+  Film film(2, 1);
+  film.at(0, 0) = Color(2, 1, 0.5);
+  film.at(1, 0) = Color(0.5, 0.25, 0);
+  DisplaySettings linear;
+  linear.srgb = false;
+  auto bytes = to_display(film, linear);  // clamp
+  EXPECT_EQ((std::vector<uint8_t>(bytes.begin(), bytes.begin() + 3)), (std::vector<uint8_t>{255, 255, 128}));
+  linear.out_of_range = OutOfRange::scale;  // whole image / 2
+  bytes = to_display(film, linear);
+  EXPECT_EQ(bytes, (std::vector<uint8_t>{255, 128, 64, 64, 32, 0}));
+  linear.out_of_range = OutOfRange::normalize;  // first pixel / 2, second untouched
+  bytes = to_display(film, linear);
+  EXPECT_EQ(bytes, (std::vector<uint8_t>{255, 128, 64, 128, 64, 0}));
+  linear.exposure = -1;  // halves first: nothing exceeds 1
+  bytes = to_display(film, linear);
+  EXPECT_EQ(bytes, (std::vector<uint8_t>{255, 128, 64, 64, 32, 0}));
+  // sRGB: 0.5 linear is 188 (0.7354), 0.0031308 is the curve's knee.
+  DisplaySettings srgb;
+  Film grey(1, 1);
+  grey.at(0, 0) = Color(0.5);
+  EXPECT_EQ(to_display(grey, srgb)[0], 188);
+  EXPECT_NEAR(srgb_encode(0.0031308), 12.92 * 0.0031308, 1e-6);
+}
+
+}  // namespace
+}  // namespace candela
