@@ -77,7 +77,7 @@ TEST(Torus, OriginInsideTheTube) {
   expect_vec_near(hit.geometric_normal, {0, 0, 1}, 1e-12);
   ASSERT_TRUE(kRing.intersect(make_ray({3, 0, 0}, {-1, 0, 0}), hit));
   EXPECT_NEAR(hit.t, 1.0, 1e-12);
-  expect_vec_near(hit.geometric_normal, {1, 0, 0}, 1e-12);  // outward, towards the hole
+  expect_vec_near(hit.geometric_normal, {-1, 0, 0}, 1e-12);  // outward, towards the hole
   ASSERT_TRUE(kRing.intersect(make_ray({0, 3, 0.5}, {0, 1, 0}), hit));
   EXPECT_NEAR(hit.t, std::sqrt(0.75), 1e-12);
 }

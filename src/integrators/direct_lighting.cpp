@@ -51,7 +51,10 @@ Color shadow_transmittance(const Scene& scene, const Vec3& origin, const Vec3& L
     RayTreeNode node;
     node.parent = tree_parent;
     node.kind = RayKind::shadow;
-    node.depth = tree_parent >= 0 ? context.tree->node(tree_parent).depth : 0;
+    if (tree_parent >= 0) {
+      node.depth = context.tree->node(tree_parent).depth;
+      node.weight = context.tree->node(tree_parent).weight;
+    }
     node.origin = origin;
     node.direction = L;
     node.transmittance = transmittance;
@@ -70,6 +73,8 @@ Color local_illumination(const Scene& scene, const Intersection& hit, const Vec3
   const Vec3 N = face_forward(surface.shading_normal, V);
   const Vec3 geometric = face_forward(surface.geometric_normal, V);
   Color result = material.ambient(surface) * scene.ambient;
+  // A pure mirror or clear glass has no local diffuse or specular part: no shadow rays.
+  if (kd.is_black() && material.ks <= 0) return result;
   const Vec3 shadow_origin = surface.position + geometric * scene.ray_offset();
   for (const auto& light : scene.lights) {
     LightSample sample;

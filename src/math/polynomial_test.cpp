@@ -51,8 +51,8 @@ TEST(Polynomial, CubicThreeRealRoots) {
   EXPECT_NEAR(roots[0], 1.0, 1e-14);
   EXPECT_NEAR(roots[1], 2.0, 1e-14);
   EXPECT_NEAR(roots[2], 3.0, 1e-14);
-  // 2 (x + 1)(x - 0.5)(x - 4) = 2x^3 - 7x^2 - 3x + 4.
-  ASSERT_EQ(solve_cubic(2, -7, -3, 4, roots), 3);
+  // 2 (x + 1)(x - 0.5)(x - 4) = 2x^3 - 7x^2 - 5x + 4.
+  ASSERT_EQ(solve_cubic(2, -7, -5, 4, roots), 3);
   EXPECT_NEAR(roots[0], -1.0, 1e-14);
   EXPECT_NEAR(roots[1], 0.5, 1e-14);
   EXPECT_NEAR(roots[2], 4.0, 1e-14);
