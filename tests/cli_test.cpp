@@ -85,7 +85,7 @@ TEST_F(Cli, WritesExrAndPfmAndCrops) {
 TEST_F(Cli, PixelPrintsTheRayTree) {
   std::string output;
   // The centre of the default scene's wall mirror: primary, reflected, ... down to depth 12.
-  ASSERT_EQ(run("render --set camera.width=50 --set camera.height=50 --pixel 25,17", output), 0) << output;
+  ASSERT_EQ(run("render --set camera.width=50 --set camera.height=50 --pixel 20,20", output), 0) << output;
   EXPECT_NE(output.find("primary ray, depth 0"), std::string::npos) << output;
   EXPECT_NE(output.find("hit wall mirror"), std::string::npos) << output;
   EXPECT_NE(output.find("reflected ray, depth 1"), std::string::npos) << output;
@@ -125,6 +125,18 @@ TEST_F(Cli, BadArgumentsExitWithTwo) {
   EXPECT_EQ(run("render missing.json", output), 2);
   EXPECT_EQ(run("render --bogus", output), 2);
   EXPECT_EQ(file_count(), 0);
+}
+
+TEST_F(Cli, ThreadCountDoesNotChangeTheBytes) {
+  std::string output;
+  ASSERT_EQ(run("render -q --set camera.width=64 --set camera.height=48 --threads 1 -o one.png", output), 0);
+  ASSERT_EQ(run("render -q --set camera.width=64 --set camera.height=48 --threads 2 -o two.png", output), 0);
+  const auto bytes = [&](const char* name) {
+    std::ifstream in(directory_ / name, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_FALSE(bytes("one.png").empty());
+  EXPECT_EQ(bytes("one.png"), bytes("two.png"));
 }
 
 TEST_F(Cli, InfoDescribesTheScene) {

@@ -9,17 +9,12 @@
 namespace candela {
 
 Cone::Cone(const Vec3& base, double base_radius, const Vec3& cap, double cap_radius, bool capped)
-    : base_(base),
-      base_radius_(base_radius),
-      cap_(cap),
-      cap_radius_(cap_radius),
-      capped_(capped) {
+    : base_(base), base_radius_(base_radius), cap_(cap), cap_radius_(cap_radius), capped_(capped) {
   if (!is_finite(base) || !is_finite(cap)) throw std::invalid_argument("end points must be finite");
   if (!(base_radius >= 0) || !(cap_radius >= 0) || !std::isfinite(base_radius) ||
       !std::isfinite(cap_radius))
     throw std::invalid_argument("radii must be >= 0");
-  if (base_radius == 0 && cap_radius == 0)
-    throw std::invalid_argument("radii must not both be 0");
+  if (base_radius == 0 && cap_radius == 0) throw std::invalid_argument("radii must not both be 0");
   height_ = length(cap - base);
   if (!(height_ > 0) || !std::isfinite(height_))
     throw std::invalid_argument("base and cap must differ");

@@ -114,7 +114,8 @@ TEST(Cone, TruncatedConeHasTwoCaps) {
   EXPECT_DOUBLE_EQ(hit.t, 3.0);
   expect_vec_near(hit.geometric_normal, {0, 0, 1}, 1e-15);
   EXPECT_NEAR(hit.uv.y, 0.5, 1e-12);  // 1 - r / cap radius
-  ASSERT_TRUE(frustum.intersect(make_ray({5, 0, 1}, {-1, 0, 0}), hit));  // radius 1.5
+  // Radius 1.5 at z = 1.
+  ASSERT_TRUE(frustum.intersect(make_ray({5, 0, 1}, {-1, 0, 0}), hit));
   EXPECT_NEAR(hit.t, 3.5, 1e-12);
   expect_vec_near(hit.geometric_normal, kSideNormalX, 1e-12);
   ASSERT_TRUE(frustum.intersect(make_ray({1.5, 0, -5}, {0, 0, 1}), hit));
@@ -168,9 +169,8 @@ TEST(Cone, TransformedLyingCone) {
   // Rotated 90° about +y (z -> x, x -> -z) and moved to (10, 0, 0): the axis runs from x = 10
   // to x = 12. Down -y at x = 10.5 the radius is 0.75; the local normal (0, 2, 1)/√5 turns
   // into (1, 2, 0)/√5.
-  const TransformedShape cone(
-      std::make_unique<Cone>(Vec3{0, 0, 0}, 1.0, Vec3{0, 0, 2}, 0.0),
-      Transform::translate({10, 0, 0}) * Transform::rotate(90, {0, 1, 0}));
+  const TransformedShape cone(std::make_unique<Cone>(Vec3{0, 0, 0}, 1.0, Vec3{0, 0, 2}, 0.0),
+                              Transform::translate({10, 0, 0}) * Transform::rotate(90, {0, 1, 0}));
   SurfaceHit hit;
   ASSERT_TRUE(cone.intersect(make_ray({10.5, 5, 0}, {0, -1, 0}), hit));
   EXPECT_NEAR(hit.t, 4.25, 1e-12);

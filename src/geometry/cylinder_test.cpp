@@ -161,9 +161,8 @@ TEST(Cylinder, RejectsBadArguments) {
 
 TEST(Cylinder, TransformedEllipticCylinder) {
   // Scaled by (2, 1, 3): an elliptic cylinder 4 wide in x, 6 high.
-  const TransformedShape cylinder(
-      std::make_unique<Cylinder>(Vec3{0, 0, 0}, Vec3{0, 0, 2}, 1.0),
-      Transform::translate({0, 0, 1}) * Transform::scale({2, 1, 3}));
+  const TransformedShape cylinder(std::make_unique<Cylinder>(Vec3{0, 0, 0}, Vec3{0, 0, 2}, 1.0),
+                                  Transform::translate({0, 0, 1}) * Transform::scale({2, 1, 3}));
   SurfaceHit hit;
   ASSERT_TRUE(cylinder.intersect(make_ray({5, 0, 4}, {-1, 0, 0}), hit));
   EXPECT_NEAR(hit.t, 3.0, 1e-12);

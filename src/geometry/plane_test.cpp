@@ -106,8 +106,7 @@ TEST(Plane, RejectsBadArguments) {
 TEST(Plane, TransformedPlane) {
   // z = 0 rotated 90° about +x (z -> -y) and moved to y = 3: the plane y = 3 facing -y.
   const TransformedShape plane(std::make_unique<Plane>(Vec3{0, 0, 0}, Vec3{0, 0, 1}),
-                               Transform::translate({0, 3, 0}) *
-                                   Transform::rotate(90, {1, 0, 0}));
+                               Transform::translate({0, 3, 0}) * Transform::rotate(90, {1, 0, 0}));
   SurfaceHit hit;
   ASSERT_TRUE(plane.intersect(make_ray({2, 10, 1}, {0, -1, 0}), hit));
   EXPECT_NEAR(hit.t, 7.0, 1e-12);

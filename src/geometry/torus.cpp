@@ -56,10 +56,10 @@ double Torus::nearest_t(const Ray& ray, Vec3& local) const {
   const double g = dot(o, o) + major_squared - minor_radius_ * minor_radius_;
   const double four_major_squared = 4 * major_squared;
   double roots[4];
-  const int count = solve_quartic(
-      1, 4 * k, 4 * k * k + 2 * g - four_major_squared * (d.x * d.x + d.y * d.y),
-      4 * k * g - 2 * four_major_squared * (o.x * d.x + o.y * d.y),
-      g * g - four_major_squared * (o.x * o.x + o.y * o.y), roots);
+  const int count =
+      solve_quartic(1, 4 * k, 4 * k * k + 2 * g - four_major_squared * (d.x * d.x + d.y * d.y),
+                    4 * k * g - 2 * four_major_squared * (o.x * d.x + o.y * d.y),
+                    g * g - four_major_squared * (o.x * o.x + o.y * o.y), roots);
   double best = kInfinity;
   for (int i = 0; i < count; ++i) {
     // Newton steps on the torus function itself, kept while they reduce it.
@@ -125,8 +125,7 @@ Bounds3 Torus::bounds() const {
   // Along world axis i the circle of centres reaches R sqrt(1 - axis_i^2), the tube r more.
   Vec3 extent;
   for (int i = 0; i < 3; ++i)
-    extent[i] = major_radius_ * std::sqrt(std::max(0.0, 1.0 - axis_[i] * axis_[i])) +
-                minor_radius_;
+    extent[i] = major_radius_ * std::sqrt(std::max(0.0, 1.0 - axis_[i] * axis_[i])) + minor_radius_;
   return {center_ - extent, center_ + extent};
 }
 

@@ -66,7 +66,8 @@ TEST(Torus, UvAndDerivatives) {
   // dp/du = 2π (R + r) (-1, 0, 0) there; dp/dv = 2π r (0, 0, 1).
   expect_vec_near(hit.dpdu, {-8 * kPi, 0, 0}, 1e-12);
   expect_vec_near(hit.dpdv, {0, 0, 2 * kPi}, 1e-12);
-  ASSERT_TRUE(kRing.intersect(make_ray({0, 0, 5}, {3.2, 1.1, -5}), hit));  // (3.2, 1.1, 0) is inside
+  // Aimed at (3.2, 1.1, 0), inside the tube.
+  ASSERT_TRUE(kRing.intersect(make_ray({0, 0, 5}, {3.2, 1.1, -5}), hit));
   EXPECT_GT(dot(cross(hit.dpdu, hit.dpdv), hit.geometric_normal), 0);
 }
 

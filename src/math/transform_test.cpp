@@ -1,0 +1,48 @@
+#include "math/transform.h"
+
+#include <gtest/gtest.h>
+
+namespace candela {
+namespace {
+
+void expect_near(const Vec3& a, const Vec3& b) {
+  EXPECT_NEAR(a.x, b.x, 1e-12);
+  EXPECT_NEAR(a.y, b.y, 1e-12);
+  EXPECT_NEAR(a.z, b.z, 1e-12);
+}
+
+TEST(Transform, ComposesInOrderAndInverts) {
+  // Scale first, then rotate 90° about z, then translate.
+  const Transform t = Transform::translate({1, 2, 3}) * Transform::rotate(90, {0, 0, 1}) *
+                      Transform::scale({2, 2, 2});
+  expect_near(t.point({1, 0, 0}), {1, 4, 3});
+  expect_near(t.vector({1, 0, 0}), {0, 2, 0});
+  expect_near(t.inverse().point(t.point({0.3, -0.7, 5})), {0.3, -0.7, 5});
+}
+
+TEST(Transform, NormalsUseTheInverseTranspose) {
+  // Under a non-uniform scale the normal of the plane x + y = 1 stays perpendicular to it.
+  const Transform t = Transform::scale({4, 1, 1});
+  const Vec3 tangent = t.vector({1, -1, 0});
+  const Vec3 normal = t.normal({1, 1, 0});
+  EXPECT_NEAR(dot(tangent, normal), 0, 1e-12);
+}
+
+TEST(Transform, RejectsSingularAndProjectiveMatrices) {
+  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+  m(2, 2) = 0;
+  EXPECT_THROW(Transform::from_matrix(m), std::invalid_argument);
+  m = Eigen::Matrix4d::Identity();
+  m(3, 0) = 1;
+  EXPECT_THROW(Transform::from_matrix(m), std::invalid_argument);
+  EXPECT_THROW(Transform::rotate(10, {0, 0, 0}), std::invalid_argument);
+}
+
+TEST(Transform, BoundsOfARotatedBox) {
+  const Bounds3 b = Transform::rotate(45, {0, 0, 1}).bounds({{-1, -1, 0}, {1, 1, 0}});
+  EXPECT_NEAR(b.upper.x, std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(b.lower.y, -std::sqrt(2.0), 1e-12);
+}
+
+}  // namespace
+}  // namespace candela

@@ -1,0 +1,39 @@
+#include "util/progress.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+namespace candela {
+namespace {
+
+std::string run_to_file(bool quiet) {
+  std::FILE* file = std::tmpfile();
+  {
+    ProgressReporter progress("render", 20, "tiles", quiet, file);
+    for (int i = 0; i < 20; ++i) progress.advance();
+  }
+  std::rewind(file);
+  std::string text;
+  char buffer[256];
+  while (std::fgets(buffer, sizeof buffer, file)) text += buffer;
+  std::fclose(file);
+  return text;
+}
+
+TEST(Progress, PlainLinesWhenNotATerminal) {
+  const std::string text = run_to_file(false);
+  // One line per 10% step, no carriage returns.
+  EXPECT_NE(text.find("render: 10% (2/20 tiles"), std::string::npos) << text;
+  EXPECT_NE(text.find("render: 100% (20/20 tiles"), std::string::npos) << text;
+  EXPECT_EQ(text.find('\r'), std::string::npos);
+  int lines = 0;
+  for (char c : text) lines += c == '\n';
+  EXPECT_EQ(lines, 10);
+}
+
+TEST(Progress, QuietPrintsNothing) { EXPECT_TRUE(run_to_file(true).empty()); }
+
+}  // namespace
+}  // namespace candela
