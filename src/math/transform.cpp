@@ -80,6 +80,8 @@ Vec3 Transform::normal(const Vec3& n) const {
 Bounds3 Transform::bounds(const Bounds3& b) const {
   Bounds3 result;
   if (b.empty()) return result;
+  // An unbounded shape (a plane) stays unbounded: inf × 0 would give NaN corners otherwise.
+  if (!b.is_finite()) return {{-kInfinity, -kInfinity, -kInfinity}, {kInfinity, kInfinity, kInfinity}};
   for (int corner = 0; corner < 8; ++corner) {
     const Vec3 p{(corner & 1) ? b.upper.x : b.lower.x, (corner & 2) ? b.upper.y : b.lower.y,
                  (corner & 4) ? b.upper.z : b.lower.z};

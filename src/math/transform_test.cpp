@@ -44,5 +44,14 @@ TEST(Transform, BoundsOfARotatedBox) {
   EXPECT_NEAR(b.lower.y, -std::sqrt(2.0), 1e-12);
 }
 
+TEST(Transform, UnboundedBoundsStayUnbounded) {
+  // A transformed plane used to get empty bounds (inf × 0 = NaN) and could be dropped.
+  const Bounds3 infinite{{-kInfinity, -kInfinity, -kInfinity}, {kInfinity, kInfinity, kInfinity}};
+  const Bounds3 b = (Transform::translate({0, 3, 0}) * Transform::rotate(30, {1, 0, 0})).bounds(infinite);
+  EXPECT_FALSE(b.empty());
+  EXPECT_EQ(b.lower.x, -kInfinity);
+  EXPECT_EQ(b.upper.y, kInfinity);
+}
+
 }  // namespace
 }  // namespace candela
