@@ -4,6 +4,8 @@
 
 #include "accel/primitive_list.h"
 
+#include "util/registry.h"
+
 namespace candela {
 
 namespace {
@@ -15,10 +17,6 @@ const std::array kEntries = {
 
 std::span<const AcceleratorEntry> accelerator_entries() { return kEntries; }
 
-const AcceleratorEntry* find_accelerator(std::string_view name) {
-  for (const auto& entry : kEntries)
-    if (entry.name == name) return &entry;
-  return nullptr;
-}
+const AcceleratorEntry* find_accelerator(std::string_view name) { return find_entry<AcceleratorEntry>(kEntries, name); }
 
 }  // namespace candela

@@ -94,12 +94,7 @@ bool Cone::intersect(const Ray& ray, SurfaceHit& hit) const {
     hit.dpdv = (radial * slope_ + axis_) * height_;
   } else {
     const bool top = part == Part::kTopCap;
-    const double cap_radius = top ? cap_radius_ : base_radius_;
-    hit.geometric_normal = top ? axis_ : -axis_;
-    hit.uv = {top ? phi / (2 * kPi) : 1.0 - phi / (2 * kPi),
-              std::clamp(1.0 - r / cap_radius, 0.0, 1.0)};
-    hit.dpdu = tangent * ((top ? 2 : -2) * kPi * r);
-    hit.dpdv = radial * -cap_radius;
+    fill_cap_hit(top, axis_, radial, tangent, phi, r, top ? cap_radius_ : base_radius_, hit);
   }
   hit.shading_normal = hit.geometric_normal;
   return true;

@@ -77,13 +77,7 @@ bool Cylinder::intersect(const Ray& ray, SurfaceHit& hit) const {
     hit.dpdu = tangent * (2 * kPi * radius_);
     hit.dpdv = axis_ * height_;
   } else {
-    const bool top = part == Part::kTopCap;
-    hit.geometric_normal = top ? axis_ : -axis_;
-    // Seen from outside the base cap, counter-clockwise is clockwise about +axis.
-    hit.uv = {top ? phi / (2 * kPi) : 1.0 - phi / (2 * kPi),
-              std::clamp(1.0 - r / radius_, 0.0, 1.0)};
-    hit.dpdu = tangent * ((top ? 2 : -2) * kPi * r);
-    hit.dpdv = radial * -radius_;
+    fill_cap_hit(part == Part::kTopCap, axis_, radial, tangent, phi, r, radius_, hit);
   }
   hit.shading_normal = hit.geometric_normal;
   return true;

@@ -1,8 +1,10 @@
 #include "geometry/disc.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
+#include "geometry/flat_surface.h"
 #include "math/constants.h"
 
 namespace candela {
@@ -22,10 +24,8 @@ Disc::Disc(const Vec3& center, const Vec3& normal, double radius, double inner_r
 
 double Disc::nearest_t(const Ray& ray) const {
   // The plane of the disc (000 eq. 5-13), then the distance from the centre.
-  const double denominator = dot(normal_, ray.direction);
-  if (denominator == 0) return kInfinity;
-  const double t = dot(normal_, center_ - ray.origin) / denominator;
-  if (!(t > ray.t_min && t < ray.t_max)) return kInfinity;
+  const double t = plane_hit_distance(ray, center_, normal_);
+  if (t == kInfinity) return kInfinity;
   const Vec3 offset = ray.at(t) - center_;
   const double x = dot(offset, u_axis_), y = dot(offset, v_axis_);
   const double r_squared = x * x + y * y;
@@ -36,11 +36,7 @@ double Disc::nearest_t(const Ray& ray) const {
 bool Disc::intersect(const Ray& ray, SurfaceHit& hit) const {
   const double t = nearest_t(ray);
   if (t == kInfinity) return false;
-  hit.t = t;
-  hit.position = ray.at(t);
-  hit.geometric_normal = normal_;
-  hit.shading_normal = normal_;
-  hit.object_position = hit.position;
+  fill_flat_hit(ray, t, normal_, hit);
   const Vec3 offset = hit.position - center_;
   const double x = dot(offset, u_axis_), y = dot(offset, v_axis_);
   const double r = std::sqrt(x * x + y * y);
@@ -59,6 +55,15 @@ bool Disc::intersect(const Ray& ray, SurfaceHit& hit) const {
 bool Disc::occluded(const Ray& ray) const { return nearest_t(ray) < kInfinity; }
 
 Bounds3 Disc::bounds() const { return disc_bounds(center_, normal_, radius_); }
+
+void fill_cap_hit(bool top, const Vec3& axis, const Vec3& radial, const Vec3& tangent, double phi,
+                  double r, double cap_radius, SurfaceHit& hit) {
+  hit.geometric_normal = top ? axis : -axis;
+  // Seen from outside the base cap, counter-clockwise is clockwise about +axis.
+  hit.uv = {top ? phi / (2 * kPi) : 1.0 - phi / (2 * kPi), std::clamp(1.0 - r / cap_radius, 0.0, 1.0)};
+  hit.dpdu = tangent * ((top ? 2 : -2) * kPi * r);
+  hit.dpdv = radial * -cap_radius;
+}
 
 Bounds3 disc_bounds(const Vec3& center, const Vec3& unit_normal, double radius) {
   Vec3 extent;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "geometry/flat_surface.h"
 #include "math/constants.h"
 
 namespace candela {
@@ -17,22 +18,13 @@ Plane::Plane(const Vec3& point, const Vec3& normal) : point_(point) {
 }
 
 double Plane::nearest_t(const Ray& ray) const {
-  // 000 eq. 5-13, t = -(d + N.O) / N.D with d = -N.P0, written as N.(P0 - O) / N.D.
-  const double denominator = dot(normal_, ray.direction);
-  if (denominator == 0) return kInfinity;  // parallel
-  const double t = dot(normal_, point_ - ray.origin) / denominator;
-  if (t > ray.t_min && t < ray.t_max) return t;
-  return kInfinity;
+  return plane_hit_distance(ray, point_, normal_);
 }
 
 bool Plane::intersect(const Ray& ray, SurfaceHit& hit) const {
   const double t = nearest_t(ray);
   if (t == kInfinity) return false;
-  hit.t = t;
-  hit.position = ray.at(t);
-  hit.geometric_normal = normal_;
-  hit.shading_normal = normal_;
-  hit.object_position = hit.position;
+  fill_flat_hit(ray, t, normal_, hit);
   const Vec3 local = hit.position - point_;
   hit.uv = {dot(local, u_axis_), dot(local, v_axis_)};
   hit.dpdu = u_axis_;

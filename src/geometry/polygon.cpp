@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "geometry/flat_surface.h"
 #include "math/constants.h"
 
 namespace candela {
@@ -75,10 +76,8 @@ bool Polygon::contains_projected(double u, double v) const {
 
 double Polygon::nearest_t(const Ray& ray) const {
   // 000 eq. 5-13: t = -(d + N.O) / N.D with d = -V0.N, written as N.(V0 - O) / N.D.
-  const double denominator = dot(normal_, ray.direction);
-  if (denominator == 0) return kInfinity;  // parallel
-  const double t = dot(normal_, vertices_[0] - ray.origin) / denominator;
-  if (!(t > ray.t_min && t < ray.t_max)) return kInfinity;
+  const double t = plane_hit_distance(ray, vertices_[0], normal_);
+  if (t == kInfinity) return kInfinity;
   const Vec3 point = ray.at(t);
   return contains_projected(point[u_index_], point[v_index_]) ? t : kInfinity;
 }
@@ -86,11 +85,7 @@ double Polygon::nearest_t(const Ray& ray) const {
 bool Polygon::intersect(const Ray& ray, SurfaceHit& hit) const {
   const double t = nearest_t(ray);
   if (t == kInfinity) return false;
-  hit.t = t;
-  hit.position = ray.at(t);
-  hit.geometric_normal = normal_;
-  hit.shading_normal = normal_;
-  hit.object_position = hit.position;
+  fill_flat_hit(ray, t, normal_, hit);
   const Vec3 offset = hit.position - vertices_[0];
   hit.uv = {std::clamp((dot(offset, u_axis_) - uv_lower_.x) / uv_extent_.x, 0.0, 1.0),
             std::clamp((dot(offset, v_axis_) - uv_lower_.y) / uv_extent_.y, 0.0, 1.0)};

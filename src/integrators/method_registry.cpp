@@ -6,6 +6,8 @@
 #include "integrators/local.h"
 #include "integrators/whitted.h"
 
+#include "util/registry.h"
+
 namespace candela {
 
 namespace {
@@ -19,16 +21,8 @@ const std::array kEntries = {
 
 std::span<const MethodEntry> method_entries() { return kEntries; }
 
-const MethodEntry* find_method(std::string_view name) {
-  for (const auto& entry : kEntries)
-    if (entry.name == name) return &entry;
-  return nullptr;
-}
+const MethodEntry* find_method(std::string_view name) { return find_entry<MethodEntry>(kEntries, name); }
 
-std::string method_names() {
-  std::string names;
-  for (const auto& entry : kEntries) names += (names.empty() ? "" : ", ") + std::string(entry.name);
-  return names;
-}
+std::string method_names() { return entry_names<MethodEntry>(kEntries); }
 
 }  // namespace candela

@@ -5,12 +5,10 @@
 
 namespace candela {
 
-Color WhittedMethod::trace_primary(const Scene& scene, const Ray& ray, TraceContext& context) const {
-  return trace(scene, ray, RayKind::primary, 0, 1.0, context, -1, 1.0);
-}
+namespace {
 
-Color WhittedMethod::trace(const Scene& scene, const Ray& ray, RayKind kind, int depth, double weight,
-                           TraceContext& context, int tree_parent, double k) const {
+Color trace(const Scene& scene, const Ray& ray, const TreeLimits& limits, RayKind kind, int depth,
+            double weight, TraceContext& context, int tree_parent) {
   int node_index = -1;
   if (context.tree) {
     RayTreeNode node;
@@ -30,7 +28,6 @@ Color WhittedMethod::trace(const Scene& scene, const Ray& ray, RayKind kind, int
       node.contribution = radiance * weight;
       if (!note.empty()) node.note = note;
     }
-    (void)k;
     return radiance;
   };
 
@@ -46,12 +43,12 @@ Color WhittedMethod::trace(const Scene& scene, const Ray& ray, RayKind kind, int
 
   const Material& material = scene.material_of(hit);
   const Vec3 V = -ray.direction;
-  const Color local = local_illumination(scene, hit, V, scene.whitted.shadows, context, node_index);
+  const Color local = local_illumination(scene, hit, V, limits.shadows, context, node_index);
   Color radiance = local;
 
   const bool wants_secondary = material.kr > 0 || material.kt > 0;
   std::string note;
-  if (wants_secondary && depth >= scene.whitted.max_depth) {
+  if (wants_secondary && depth >= limits.max_depth) {
     note = "maximum depth reached";
   } else if (wants_secondary) {
     const bool entering = dot(hit.surface.geometric_normal, V) > 0;
@@ -59,14 +56,14 @@ Color WhittedMethod::trace(const Scene& scene, const Ray& ray, RayKind kind, int
     const Vec3 geometric = face_forward(hit.surface.geometric_normal, V);
     const Vec3 outside_origin = hit.surface.position + geometric * scene.ray_offset();
     const Vec3 inside_origin = hit.surface.position - geometric * scene.ray_offset();
-    const double min_weight = scene.whitted.min_weight;
+    const double min_weight = limits.min_weight;
     std::string pruned;
     if (material.kr > 0) {
       if (weight * material.kr >= min_weight) {
         ++context.counts.reflected;
         const Ray reflected{outside_origin, normalize(reflect(V, N))};
-        radiance += material.kr * trace(scene, reflected, RayKind::reflected, depth + 1,
-                                        weight * material.kr, context, node_index, material.kr);
+        radiance += material.kr * trace(scene, reflected, limits, RayKind::reflected, depth + 1,
+                                        weight * material.kr, context, node_index);
       } else {
         pruned = "reflection";
       }
@@ -79,14 +76,14 @@ Color WhittedMethod::trace(const Scene& scene, const Ray& ray, RayKind kind, int
         if (refract(V, N, eta, T)) {
           ++context.counts.refracted;
           const Ray refracted{inside_origin, normalize(T)};
-          radiance += material.kt * trace(scene, refracted, RayKind::refracted, depth + 1,
-                                          weight * material.kt, context, node_index, material.kt);
+          radiance += material.kt * trace(scene, refracted, limits, RayKind::refracted, depth + 1,
+                                          weight * material.kt, context, node_index);
         } else {
           // 000 §5.3: no transmitted ray; reflect with the flipped normal instead.
           ++context.counts.reflected;
           const Ray internal{outside_origin, normalize(reflect(V, N))};
-          radiance += material.kt * trace(scene, internal, RayKind::internal_reflection, depth + 1,
-                                          weight * material.kt, context, node_index, material.kt);
+          radiance += material.kt * trace(scene, internal, limits, RayKind::internal_reflection,
+                                          depth + 1, weight * material.kt, context, node_index);
         }
       } else {
         pruned += pruned.empty() ? "transmission" : " and transmission";
@@ -95,6 +92,12 @@ Color WhittedMethod::trace(const Scene& scene, const Ray& ray, RayKind kind, int
     if (!pruned.empty()) note = pruned + " pruned: weight below whitted.min_weight";
   }
   return finish(radiance, local, note);
+}
+
+}  // namespace
+
+Color trace_ray_tree(const Scene& scene, const Ray& ray, const TreeLimits& limits, TraceContext& context) {
+  return trace(scene, ray, limits, RayKind::primary, 0, 1.0, context, -1);
 }
 
 }  // namespace candela

@@ -13,14 +13,24 @@
 
 namespace candela {
 
+// Where the recursion stops and whether shadow rays are cast.
+struct TreeLimits {
+  int max_depth = 5;
+  double min_weight = 1e-3;
+  bool shadows = true;
+};
+
+// The radiance along a primary ray by the recursion above; with max_depth 0 it is ray
+// casting with the local model (the local method).
+Color trace_ray_tree(const Scene& scene, const Ray& ray, const TreeLimits& limits, TraceContext& context);
+
 class WhittedMethod final : public RayTracingMethod {
  public:
   std::string_view name() const override { return "whitted"; }
-  Color trace_primary(const Scene& scene, const Ray& ray, TraceContext& context) const override;
-
- private:
-  Color trace(const Scene& scene, const Ray& ray, RayKind kind, int depth, double weight,
-              TraceContext& context, int tree_parent, double k) const;
+  Color trace_primary(const Scene& scene, const Ray& ray, TraceContext& context) const override {
+    return trace_ray_tree(scene, ray, {scene.whitted.max_depth, scene.whitted.min_weight, scene.whitted.shadows},
+                          context);
+  }
 };
 
 }  // namespace candela

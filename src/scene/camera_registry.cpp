@@ -5,6 +5,8 @@
 #include "camera/orthographic_camera.h"
 #include "camera/perspective_camera.h"
 
+#include "util/registry.h"
+
 namespace candela {
 
 namespace {
@@ -67,11 +69,7 @@ const std::array kEntries = {
 
 std::span<const CameraEntry> camera_entries() { return kEntries; }
 
-const CameraEntry* find_camera(std::string_view name) {
-  for (const auto& entry : kEntries)
-    if (entry.name == name) return &entry;
-  return nullptr;
-}
+const CameraEntry* find_camera(std::string_view name) { return find_entry<CameraEntry>(kEntries, name); }
 
 std::unique_ptr<Camera> read_camera(const JsonNode& node) {
   node.expect_object();
@@ -79,7 +77,7 @@ std::unique_ptr<Camera> read_camera(const JsonNode& node) {
   const int height = node.integer("height", 480, {1, 65536, false, false});
   const std::string type = node.string("type", "perspective");
   const CameraEntry* entry = find_camera(type);
-  if (!entry) node.at("type").fail("unknown camera \"" + type + "\" (expected one of: perspective, orthographic)");
+  if (!entry) node.at("type").fail("unknown camera \"" + type + "\" (expected one of: " + entry_names<CameraEntry>(kEntries) + ")");
   auto camera = entry->create(node, width, height);
   node.finish();
   return camera;

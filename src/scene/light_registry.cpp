@@ -6,6 +6,8 @@
 #include "scene/point_light.h"
 #include "scene/spot_light.h"
 
+#include "util/registry.h"
+
 namespace candela {
 
 namespace {
@@ -100,10 +102,6 @@ const std::array kEntries = {
 
 std::span<const LightEntry> light_entries() { return kEntries; }
 
-const LightEntry* find_light(std::string_view name) {
-  for (const auto& entry : kEntries)
-    if (entry.name == name) return &entry;
-  return nullptr;
-}
+const LightEntry* find_light(std::string_view name) { return find_entry<LightEntry>(kEntries, name); }
 
 }  // namespace candela

@@ -3,24 +3,11 @@
 #include <array>
 
 #include "shading/checkerboard_texture.h"
+#include "util/registry.h"
 
 namespace candela {
 
 namespace {
-
-template <typename Entry, std::size_t N>
-const Entry* find_in(const std::array<Entry, N>& entries, std::string_view name) {
-  for (const auto& entry : entries)
-    if (entry.name == name) return &entry;
-  return nullptr;
-}
-
-template <typename Entry, std::size_t N>
-std::string names_of(const std::array<Entry, N>& entries) {
-  std::string names;
-  for (const auto& entry : entries) names += (names.empty() ? "" : ", ") + std::string(entry.name);
-  return names;
-}
 
 Material make_phong(const JsonNode& node) {
   Material material;
@@ -73,16 +60,16 @@ const std::array kTextures = {
 }  // namespace
 
 std::span<const MaterialEntry> material_entries() { return kMaterials; }
-const MaterialEntry* find_material(std::string_view name) { return find_in(kMaterials, name); }
+const MaterialEntry* find_material(std::string_view name) { return find_entry<MaterialEntry>(kMaterials, name); }
 std::span<const TextureEntry> texture_entries() { return kTextures; }
-const TextureEntry* find_texture(std::string_view name) { return find_in(kTextures, name); }
+const TextureEntry* find_texture(std::string_view name) { return find_entry<TextureEntry>(kTextures, name); }
 
 Material read_material(const JsonNode& node) {
   node.expect_object();
   const std::string type = node.string("type", "phong");
   const MaterialEntry* entry = find_material(type);
   if (!entry)
-    node.at("type").fail("unknown material \"" + type + "\" (expected one of: " + names_of(kMaterials) + ")");
+    node.at("type").fail("unknown material \"" + type + "\" (expected one of: " + entry_names<MaterialEntry>(kMaterials) + ")");
   Material material = entry->create(node);
   node.allow({"name"});
   node.finish();
@@ -96,7 +83,7 @@ std::shared_ptr<const Texture> read_texture(const JsonNode& node) {
   const std::string name = type.as_string();
   const TextureEntry* entry = find_texture(name);
   if (!entry)
-    type.fail("unknown texture \"" + name + "\" (expected one of: " + names_of(kTextures) + ")");
+    type.fail("unknown texture \"" + name + "\" (expected one of: " + entry_names<TextureEntry>(kTextures) + ")");
   auto texture = entry->create(node);
   node.finish();
   return texture;

@@ -14,6 +14,7 @@
 #include "scene/load_context.h"
 #include "scene/material_registry.h"
 #include "scene/shape_registry.h"
+#include "util/registry.h"
 
 namespace candela {
 
@@ -61,18 +62,6 @@ Transform read_transform(const JsonNode& node) {
   for (std::size_t i = 0; i < node.size(); ++i)
     transform = read_transform_step(node.element(i)) * transform;  // listed order
   return transform;
-}
-
-std::string shape_names() {
-  std::string names;
-  for (const auto& entry : shape_entries()) names += (names.empty() ? "" : ", ") + std::string(entry.name);
-  return names;
-}
-
-std::string light_names() {
-  std::string names;
-  for (const auto& entry : light_entries()) names += (names.empty() ? "" : ", ") + std::string(entry.name);
-  return names;
 }
 
 class SceneReader {
@@ -166,7 +155,7 @@ class SceneReader {
       const JsonNode type = node.at("type");
       const LightEntry* entry = find_light(type.as_string());
       if (!entry)
-        type.fail("unknown light \"" + type.as_string() + "\" (expected one of: " + light_names() + ")");
+        type.fail("unknown light \"" + type.as_string() + "\" (expected one of: " + entry_names(light_entries()) + ")");
       auto light = entry->create(node, scene_->ambient);
       node.allow({"name"});
       node.finish();
@@ -202,7 +191,7 @@ class SceneReader {
       const JsonNode type = node.at("type");
       const ShapeEntry* entry = find_shape(type.as_string());
       if (!entry)
-        type.fail("unknown shape \"" + type.as_string() + "\" (expected one of: " + shape_names() + ")");
+        type.fail("unknown shape \"" + type.as_string() + "\" (expected one of: " + entry_names(shape_entries()) + ")");
       SceneObject object;
       object.type = std::string(entry->name);
       object.name = node.string("name", fmt::format("{}#{}", entry->name, i));

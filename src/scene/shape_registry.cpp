@@ -14,6 +14,8 @@
 #include "geometry/triangle_mesh.h"
 #include "scene/obj_import.h"
 
+#include "util/registry.h"
+
 namespace candela {
 
 namespace {
@@ -203,10 +205,6 @@ const std::array kEntries = {
 
 std::span<const ShapeEntry> shape_entries() { return kEntries; }
 
-const ShapeEntry* find_shape(std::string_view name) {
-  for (const auto& entry : kEntries)
-    if (entry.name == name) return &entry;
-  return nullptr;
-}
+const ShapeEntry* find_shape(std::string_view name) { return find_entry<ShapeEntry>(kEntries, name); }
 
 }  // namespace candela
