@@ -24,7 +24,7 @@ Color shadow_transmittance(const Scene& scene, const Vec3& origin, const Vec3& L
     const uint32_t object = scene.primitives[hit.primitive].object;
     if (material.kt <= 0 || crossing >= kMaxCrossings) {
       transmittance = Color(0);
-      note = "blocked by " + scene.objects[object].name;
+      if (context.tree) note = "blocked by " + scene.objects[object].name;
       break;
     }
     if (!counted[object]) {
@@ -42,8 +42,7 @@ Color shadow_transmittance(const Scene& scene, const Vec3& origin, const Vec3& L
         if (found != entered_at.end()) entered_at.erase(found);
       }
     }
-    if (!note.empty()) note += ", ";
-    note += "through " + scene.objects[object].name;
+    if (context.tree) note += (note.empty() ? "through " : ", through ") + scene.objects[object].name;
     ray.t_min = hit.surface.t + scene.ray_offset();
     if (ray.t_min >= ray.t_max) break;
   }

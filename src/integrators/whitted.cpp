@@ -20,13 +20,14 @@ Color trace(const Scene& scene, const Ray& ray, const TreeLimits& limits, RayKin
     node.weight = weight;
     node_index = context.tree->add(node);
   }
-  const auto finish = [&](const Color& radiance, const Color& local, const std::string& note) {
+  // Notes are string literals: nothing is allocated per ray unless a tree is recorded.
+  const auto finish = [&](const Color& radiance, const Color& local, const char* note) {
     if (node_index >= 0) {
       RayTreeNode& node = context.tree->node(node_index);
       node.radiance = radiance;
       node.local = local;
       node.contribution = radiance * weight;
-      if (!note.empty()) node.note = note;
+      if (note) node.note = note;
     }
     return radiance;
   };
@@ -47,7 +48,7 @@ Color trace(const Scene& scene, const Ray& ray, const TreeLimits& limits, RayKin
   Color radiance = local;
 
   const bool wants_secondary = material.kr > 0 || material.kt > 0;
-  std::string note;
+  const char* note = nullptr;
   if (wants_secondary && depth >= limits.max_depth) {
     note = "maximum depth reached";
   } else if (wants_secondary) {
@@ -57,7 +58,7 @@ Color trace(const Scene& scene, const Ray& ray, const TreeLimits& limits, RayKin
     const Vec3 outside_origin = hit.surface.position + geometric * scene.ray_offset();
     const Vec3 inside_origin = hit.surface.position - geometric * scene.ray_offset();
     const double min_weight = limits.min_weight;
-    std::string pruned;
+    bool reflection_pruned = false, transmission_pruned = false;
     if (material.kr > 0) {
       if (weight * material.kr >= min_weight) {
         ++context.counts.reflected;
@@ -65,7 +66,7 @@ Color trace(const Scene& scene, const Ray& ray, const TreeLimits& limits, RayKin
         radiance += material.kr * trace(scene, reflected, limits, RayKind::reflected, depth + 1,
                                         weight * material.kr, context, node_index);
       } else {
-        pruned = "reflection";
+        reflection_pruned = true;
       }
     }
     if (material.kt > 0) {
@@ -86,10 +87,15 @@ Color trace(const Scene& scene, const Ray& ray, const TreeLimits& limits, RayKin
                                           depth + 1, weight * material.kt, context, node_index);
         }
       } else {
-        pruned += pruned.empty() ? "transmission" : " and transmission";
+        transmission_pruned = true;
       }
     }
-    if (!pruned.empty()) note = pruned + " pruned: weight below whitted.min_weight";
+    if (reflection_pruned && transmission_pruned)
+      note = "reflection and transmission pruned: weight below whitted.min_weight";
+    else if (reflection_pruned)
+      note = "reflection pruned: weight below whitted.min_weight";
+    else if (transmission_pruned)
+      note = "transmission pruned: weight below whitted.min_weight";
   }
   return finish(radiance, local, note);
 }

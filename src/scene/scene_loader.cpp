@@ -67,7 +67,7 @@ Transform read_transform(const JsonNode& node) {
 class SceneReader {
  public:
   SceneReader(const JsonDocument& document, const std::string& base_directory)
-      : document_(document), root_(document, document.root(), "") {
+      : root_(document, document.root(), "") {
     context_.base_directory = base_directory;
   }
 
@@ -215,7 +215,6 @@ class SceneReader {
     }
   }
 
-  const JsonDocument& document_;
   JsonNode root_;
   Scene* scene_ = nullptr;
   LoadContext context_;
