@@ -39,7 +39,8 @@ void ProgressReporter::print(uint64_t done, bool final_line) {
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   const int percent = total_ ? static_cast<int>(100.0 * done / total_) : 100;
   if (terminal_) {
-    if (!final_line && percent == last_percent_ && now - last_print_ < std::chrono::milliseconds(200)) return;
+    // Redraw at most ten times a second: a terminal is slow to scroll through thousands.
+    if (!final_line && now - last_print_ < std::chrono::milliseconds(100)) return;
     constexpr int kWidth = 30;
     const int filled = total_ ? static_cast<int>(kWidth * done / total_) : kWidth;
     const double remaining = done > 0 ? elapsed * (double(total_) - done) / done : 0;
