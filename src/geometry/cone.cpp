@@ -9,23 +9,18 @@
 namespace candela {
 
 Cone::Cone(const Vec3& base, double base_radius, const Vec3& cap, double cap_radius, bool capped)
-    : base_(base), base_radius_(base_radius), cap_(cap), cap_radius_(cap_radius), capped_(capped) {
-  if (!is_finite(base) || !is_finite(cap)) throw std::invalid_argument("end points must be finite");
+    : frame_(base, cap), base_radius_(base_radius), cap_(cap), cap_radius_(cap_radius), capped_(capped) {
   if (!(base_radius >= 0) || !(cap_radius >= 0) || !std::isfinite(base_radius) ||
       !std::isfinite(cap_radius))
     throw std::invalid_argument("radii must be >= 0");
   if (base_radius == 0 && cap_radius == 0) throw std::invalid_argument("radii must not both be 0");
-  height_ = length(cap - base);
-  if (!(height_ > 0) || !std::isfinite(height_))
-    throw std::invalid_argument("base and cap must differ");
-  slope_ = (cap_radius - base_radius) / height_;
-  axis_ = (cap - base) / height_;
-  orthonormal_basis(axis_, x_axis_, y_axis_);
+  slope_ = (cap_radius - base_radius) / frame_.height();
 }
 
 double Cone::nearest_t(const Ray& ray, Part& part) const {
-  const Vec3 o = to_local(ray.origin - base_);
-  const Vec3 d = to_local(ray.direction);
+  Vec3 o, d;
+  frame_.localize(ray, o, d);
+  const double height = frame_.height();
   double best = kInfinity;
   const auto consider = [&](double t, Part candidate) {
     if (t > ray.t_min && t < ray.t_max && t < best) {
@@ -48,21 +43,14 @@ double Cone::nearest_t(const Ray& ray, Part& part) const {
       for (const double t : {q / a, c / q}) {
         if (!std::isfinite(t)) continue;
         const double z = o.z + d.z * t;
-        if (z >= 0 && z <= height_) consider(t, Part::kSide);
+        if (z >= 0 && z <= height) consider(t, Part::kSide);
       }
     }
   }
-  if (capped_ && d.z != 0) {
-    if (base_radius_ > 0) {
-      const double t_base = -o.z / d.z;
-      const double x = o.x + d.x * t_base, y = o.y + d.y * t_base;
-      if (x * x + y * y <= base_radius_ * base_radius_) consider(t_base, Part::kBaseCap);
-    }
-    if (cap_radius_ > 0) {
-      const double t_top = (height_ - o.z) / d.z;
-      const double x = o.x + d.x * t_top, y = o.y + d.y * t_top;
-      if (x * x + y * y <= cap_radius_ * cap_radius_) consider(t_top, Part::kTopCap);
-    }
+  if (capped_) {
+    double t;
+    if (base_radius_ > 0 && AxialFrame::cap_distance(o, d, 0, base_radius_, t)) consider(t, Part::kBaseCap);
+    if (cap_radius_ > 0 && AxialFrame::cap_distance(o, d, height, cap_radius_, t)) consider(t, Part::kTopCap);
   }
   return best;
 }
@@ -74,27 +62,22 @@ bool Cone::intersect(const Ray& ray, SurfaceHit& hit) const {
   hit.t = t;
   hit.position = ray.at(t);
   hit.object_position = hit.position;
-  const Vec3 local = to_local(hit.position - base_);
-  const double r = std::sqrt(local.x * local.x + local.y * local.y);
-  double phi = std::atan2(local.y, local.x);
-  if (phi < 0) phi += 2 * kPi;
-  const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
-  const Vec3 radial = x_axis_ * cos_phi + y_axis_ * sin_phi;
-  const Vec3 tangent = y_axis_ * cos_phi - x_axis_ * sin_phi;
+  const AxialFrame::Around at = frame_.around(hit.position);
+  const Vec3& axis = frame_.axis();
   if (part == Part::kSide) {
-    const double z = std::clamp(local.z, 0.0, height_);
+    const double z = std::clamp(at.local.z, 0.0, frame_.height());
     const double side_radius = std::max(0.0, base_radius_ + slope_ * z);
-    if (r > 0) {
-      hit.geometric_normal = normalize(radial - axis_ * slope_);
+    if (at.r > 0) {
+      hit.geometric_normal = normalize(at.radial - axis * slope_);
     } else {
-      hit.geometric_normal = slope_ < 0 ? axis_ : -axis_;  // the apex
+      hit.geometric_normal = slope_ < 0 ? axis : -axis;  // the apex
     }
-    hit.uv = {phi / (2 * kPi), z / height_};
-    hit.dpdu = tangent * (2 * kPi * side_radius);
-    hit.dpdv = (radial * slope_ + axis_) * height_;
+    hit.uv = {at.phi / (2 * kPi), z / frame_.height()};
+    hit.dpdu = at.tangent * (2 * kPi * side_radius);
+    hit.dpdv = (at.radial * slope_ + axis) * frame_.height();
   } else {
     const bool top = part == Part::kTopCap;
-    fill_cap_hit(top, axis_, radial, tangent, phi, r, top ? cap_radius_ : base_radius_, hit);
+    fill_cap_hit(top, axis, at.radial, at.tangent, at.phi, at.r, top ? cap_radius_ : base_radius_, hit);
   }
   hit.shading_normal = hit.geometric_normal;
   return true;
@@ -107,8 +90,8 @@ bool Cone::occluded(const Ray& ray) const {
 
 Bounds3 Cone::bounds() const {
   // The cone is the convex hull of its two end discs.
-  Bounds3 bounds = disc_bounds(base_, axis_, base_radius_);
-  bounds.extend(disc_bounds(cap_, axis_, cap_radius_));
+  Bounds3 bounds = disc_bounds(frame_.base(), frame_.axis(), base_radius_);
+  bounds.extend(disc_bounds(cap_, frame_.axis(), cap_radius_));
   return bounds;
 }
 

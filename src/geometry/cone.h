@@ -1,5 +1,6 @@
 #pragma once
 
+#include "geometry/axial_frame.h"
 #include "geometry/shape.h"
 
 namespace candela {
@@ -23,7 +24,7 @@ class Cone final : public Shape {
   Bounds3 bounds() const override;
   std::string_view type_name() const override { return "cone"; }
 
-  const Vec3& base() const { return base_; }
+  const Vec3& base() const { return frame_.base(); }
   const Vec3& cap() const { return cap_; }
   double base_radius() const { return base_radius_; }
   double cap_radius() const { return cap_radius_; }
@@ -33,17 +34,12 @@ class Cone final : public Shape {
   enum class Part { kSide, kBaseCap, kTopCap };
   // The hit distance and part, or infinity for none.
   double nearest_t(const Ray& ray, Part& part) const;
-  Vec3 to_local(const Vec3& v) const { return {dot(v, x_axis_), dot(v, y_axis_), dot(v, axis_)}; }
-  Vec3 base_;
+  AxialFrame frame_;
   double base_radius_;
   Vec3 cap_;
   double cap_radius_;
   bool capped_;
-  double height_;
   double slope_;  // k: the change of radius per unit of height
-  Vec3 axis_;     // unit, base to cap
-  Vec3 x_axis_;
-  Vec3 y_axis_;
 };
 
 }  // namespace candela

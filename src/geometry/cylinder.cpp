@@ -9,19 +9,14 @@
 namespace candela {
 
 Cylinder::Cylinder(const Vec3& base, const Vec3& cap, double radius, bool capped)
-    : base_(base), cap_(cap), radius_(radius), capped_(capped) {
-  if (!is_finite(base) || !is_finite(cap)) throw std::invalid_argument("end points must be finite");
+    : frame_(base, cap), cap_(cap), radius_(radius), capped_(capped) {
   if (!(radius > 0) || !std::isfinite(radius)) throw std::invalid_argument("radius must be > 0");
-  height_ = length(cap - base);
-  if (!(height_ > 0) || !std::isfinite(height_))
-    throw std::invalid_argument("base and cap must differ");
-  axis_ = (cap - base) / height_;
-  orthonormal_basis(axis_, x_axis_, y_axis_);
 }
 
 double Cylinder::nearest_t(const Ray& ray, Part& part) const {
-  const Vec3 o = to_local(ray.origin - base_);
-  const Vec3 d = to_local(ray.direction);
+  Vec3 o, d;
+  frame_.localize(ray, o, d);
+  const double height = frame_.height();
   double best = kInfinity;
   const auto consider = [&](double t, Part candidate) {
     if (t > ray.t_min && t < ray.t_max && t < best) {
@@ -40,18 +35,14 @@ double Cylinder::nearest_t(const Ray& ray, Part& part) const {
       const double root = std::sqrt(gamma / a);
       for (const double t : {t_closest - root, t_closest + root}) {
         const double z = o.z + d.z * t;
-        if (z >= 0 && z <= height_) consider(t, Part::kSide);
+        if (z >= 0 && z <= height) consider(t, Part::kSide);
       }
     }
   }
-  if (capped_ && d.z != 0) {
-    const double radius_squared = radius_ * radius_;
-    const double t_base = -o.z / d.z;
-    const double bx = o.x + d.x * t_base, by = o.y + d.y * t_base;
-    if (bx * bx + by * by <= radius_squared) consider(t_base, Part::kBaseCap);
-    const double t_top = (height_ - o.z) / d.z;
-    const double tx = o.x + d.x * t_top, ty = o.y + d.y * t_top;
-    if (tx * tx + ty * ty <= radius_squared) consider(t_top, Part::kTopCap);
+  if (capped_) {
+    double t;
+    if (AxialFrame::cap_distance(o, d, 0, radius_, t)) consider(t, Part::kBaseCap);
+    if (AxialFrame::cap_distance(o, d, height, radius_, t)) consider(t, Part::kTopCap);
   }
   return best;
 }
@@ -63,21 +54,14 @@ bool Cylinder::intersect(const Ray& ray, SurfaceHit& hit) const {
   hit.t = t;
   hit.position = ray.at(t);
   hit.object_position = hit.position;
-  const Vec3 local = to_local(hit.position - base_);
-  const double r = std::sqrt(local.x * local.x + local.y * local.y);
-  double phi = std::atan2(local.y, local.x);
-  if (phi < 0) phi += 2 * kPi;
-  // The unit radial and tangential (counter-clockwise about +axis) directions.
-  const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
-  const Vec3 radial = x_axis_ * cos_phi + y_axis_ * sin_phi;
-  const Vec3 tangent = y_axis_ * cos_phi - x_axis_ * sin_phi;
+  const AxialFrame::Around at = frame_.around(hit.position);
   if (part == Part::kSide) {
-    hit.geometric_normal = radial;
-    hit.uv = {phi / (2 * kPi), std::clamp(local.z / height_, 0.0, 1.0)};
-    hit.dpdu = tangent * (2 * kPi * radius_);
-    hit.dpdv = axis_ * height_;
+    hit.geometric_normal = at.radial;
+    hit.uv = {at.phi / (2 * kPi), std::clamp(at.local.z / frame_.height(), 0.0, 1.0)};
+    hit.dpdu = at.tangent * (2 * kPi * radius_);
+    hit.dpdv = frame_.axis() * frame_.height();
   } else {
-    fill_cap_hit(part == Part::kTopCap, axis_, radial, tangent, phi, r, radius_, hit);
+    fill_cap_hit(part == Part::kTopCap, frame_.axis(), at.radial, at.tangent, at.phi, at.r, radius_, hit);
   }
   hit.shading_normal = hit.geometric_normal;
   return true;
@@ -89,8 +73,8 @@ bool Cylinder::occluded(const Ray& ray) const {
 }
 
 Bounds3 Cylinder::bounds() const {
-  Bounds3 bounds = disc_bounds(base_, axis_, radius_);
-  bounds.extend(disc_bounds(cap_, axis_, radius_));
+  Bounds3 bounds = disc_bounds(frame_.base(), frame_.axis(), radius_);
+  bounds.extend(disc_bounds(cap_, frame_.axis(), radius_));
   return bounds;
 }
 

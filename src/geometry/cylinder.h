@@ -1,5 +1,6 @@
 #pragma once
 
+#include "geometry/axial_frame.h"
 #include "geometry/shape.h"
 
 namespace candela {
@@ -22,7 +23,7 @@ class Cylinder final : public Shape {
   Bounds3 bounds() const override;
   std::string_view type_name() const override { return "cylinder"; }
 
-  const Vec3& base() const { return base_; }
+  const Vec3& base() const { return frame_.base(); }
   const Vec3& cap() const { return cap_; }
   double radius() const { return radius_; }
   bool capped() const { return capped_; }
@@ -31,15 +32,10 @@ class Cylinder final : public Shape {
   enum class Part { kSide, kBaseCap, kTopCap };
   // The hit distance and part, or infinity for none.
   double nearest_t(const Ray& ray, Part& part) const;
-  Vec3 to_local(const Vec3& v) const { return {dot(v, x_axis_), dot(v, y_axis_), dot(v, axis_)}; }
-  Vec3 base_;
+  AxialFrame frame_;
   Vec3 cap_;
   double radius_;
   bool capped_;
-  double height_;
-  Vec3 axis_;  // unit, base to cap
-  Vec3 x_axis_;
-  Vec3 y_axis_;
 };
 
 }  // namespace candela
