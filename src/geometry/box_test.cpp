@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "shape_test_support.h"
+
 #include <cmath>
 
 #include "geometry/transformed_shape.h"
@@ -10,7 +12,7 @@
 namespace candela {
 namespace {
 
-Ray make_ray(Vec3 origin, Vec3 direction) { return Ray{origin, normalize(direction)}; }
+using candela::testing::make_ray;
 
 const Box kCube({-1, -1, -1}, {1, 1, 1});
 

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "shape_test_support.h"
+
 #include <cmath>
 
 #include "geometry/transformed_shape.h"
@@ -11,13 +13,8 @@
 namespace candela {
 namespace {
 
-Ray make_ray(Vec3 origin, Vec3 direction) { return Ray{origin, normalize(direction)}; }
-
-void expect_vec_near(const Vec3& actual, const Vec3& expected, double tolerance) {
-  EXPECT_NEAR(actual.x, expected.x, tolerance);
-  EXPECT_NEAR(actual.y, expected.y, tolerance);
-  EXPECT_NEAR(actual.z, expected.z, tolerance);
-}
+using candela::testing::make_ray;
+using candela::testing::expect_vec_near;
 
 // Base radius 1 at z = 0, apex at z = 2: radius(z) = 1 - z/2, slope k = -1/2, so the outward
 // side normal at angle φ is (cos φ, sin φ, 1/2) / sqrt(5/4) = (2 cos φ, 2 sin φ, 1) / √5.

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "shape_test_support.h"
+
 #include <cmath>
 
 #include "geometry/transformed_shape.h"
@@ -11,18 +13,13 @@
 namespace candela {
 namespace {
 
-Ray make_ray(Vec3 origin, Vec3 direction) { return Ray{origin, normalize(direction)}; }
+using candela::testing::make_ray;
+using candela::testing::expect_vec_near;
 
 // Axis +z from z = 0 to z = 2, radius 1; orthonormal_basis((0, 0, 1)) = (1, 0, 0), (0, 1, 0),
 // so u is the angle from +x about +z.
 const Cylinder kCapped({0, 0, 0}, {0, 0, 2}, 1);
 const Cylinder kOpen({0, 0, 0}, {0, 0, 2}, 1, false);
-
-void expect_vec_near(const Vec3& actual, const Vec3& expected, double tolerance) {
-  EXPECT_NEAR(actual.x, expected.x, tolerance);
-  EXPECT_NEAR(actual.y, expected.y, tolerance);
-  EXPECT_NEAR(actual.z, expected.z, tolerance);
-}
 
 TEST(Cylinder, SideHit) {
   SurfaceHit hit;

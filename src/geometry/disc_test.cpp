@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "shape_test_support.h"
+
 #include <cmath>
 
 #include "geometry/transformed_shape.h"
@@ -11,7 +13,7 @@
 namespace candela {
 namespace {
 
-Ray make_ray(Vec3 origin, Vec3 direction) { return Ray{origin, normalize(direction)}; }
+using candela::testing::make_ray;
 
 TEST(Disc, HitInsideTheRadius) {
   // orthonormal_basis((0, 0, 1)) = (1, 0, 0), (0, 1, 0): u is the angle from +x about +z.

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "shape_test_support.h"
+
 #include <cmath>
 
 #include "geometry/transformed_shape.h"
@@ -11,7 +13,7 @@
 namespace candela {
 namespace {
 
-Ray make_ray(Vec3 origin, Vec3 direction) { return Ray{origin, normalize(direction)}; }
+using candela::testing::make_ray;
 
 // A ray straight down onto z = 0 at (x, y).
 Ray down_at(double x, double y) { return make_ray({x, y, 5}, {0, 0, -1}); }

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "shape_test_support.h"
+
 #include <cmath>
 #include <map>
 #include <memory>
@@ -14,7 +16,7 @@
 namespace candela {
 namespace {
 
-Ray make_ray(Vec3 origin, Vec3 direction) { return Ray{origin, normalize(direction)}; }
+using candela::testing::make_ray;
 
 void expect_vec_near(const Vec3& actual, const Vec3& expected, double tolerance) {
   EXPECT_NEAR(actual.x, expected.x, tolerance) << actual << " vs " << expected;
