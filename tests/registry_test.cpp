@@ -87,7 +87,7 @@ TEST_F(RegistryTest, EveryMethodAndAccelerator) {
   }
   EXPECT_EQ(find_method("raytrace"), nullptr);
   for (const AcceleratorEntry& entry : accelerator_entries()) {
-    const auto accelerator = entry.create();
+    const auto accelerator = entry.create(AcceleratorSettings{});
     EXPECT_EQ(accelerator->name(), entry.name);
   }
 }

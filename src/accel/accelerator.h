@@ -1,9 +1,17 @@
 // The one interface every acceleration structure answers (SPEC §5): nearest hit and any hit.
+//
+// Contract, so that every accelerator returns the same hit as the brute-force list and images
+// do not depend on the accelerator: a primitive's hit distance depends only on the ray and the
+// primitive (each shape's own exact test); the nearest hit is the smallest t, and among equal t
+// the lowest primitive index (see closer_hit).
 #pragma once
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "geometry/shape.h"
 
@@ -22,14 +30,38 @@ struct Intersection {
   uint32_t primitive = 0;
 };
 
+// The tie rule of the contract above.
+inline bool closer_hit(double t, uint32_t primitive, double best_t, uint32_t best_primitive) {
+  return t < best_t || (t == best_t && primitive < best_primitive);
+}
+
+// Build parameters of every accelerator (scene keys bvh.*, grid.*, octree.*).
+struct AcceleratorSettings {
+  int bvh_max_leaf_primitives = 4;  // a node with more is split (binned SAH)
+  int bvh_bins = 16;
+  double grid_density = 3.0;        // voxels ≈ density × primitives (Cleary & Wyvill; Woo)
+  int octree_max_primitives = 8;    // K: subdivide a voxel holding more (000 §5.7.2)
+  int octree_max_depth = 10;        // D
+};
+
+// Quality figures printed next to timings (STYLE.md habit 8): nodes, leaves, depth, SAH cost…
+struct AcceleratorReport {
+  std::vector<std::pair<std::string, double>> figures;
+  uint64_t bytes = 0;  // memory held by the structure
+  std::string text() const;
+};
+
 class Accelerator {
  public:
   virtual ~Accelerator() = default;
-  // The primitives must outlive the accelerator.
+  // The primitives must outlive the accelerator. May run in parallel (TBB).
   virtual void build(std::span<const Primitive> primitives) = 0;
+  // Nearest hit with ray.t_min < t < ray.t_max.
   virtual bool intersect(const Ray& ray, Intersection& intersection) const = 0;
+  // Any hit with ray.t_min < t < ray.t_max.
   virtual bool occluded(const Ray& ray) const = 0;
   virtual std::string_view name() const = 0;
+  virtual AcceleratorReport report() const { return {}; }
 };
 
 }  // namespace candela

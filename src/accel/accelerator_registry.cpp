@@ -11,7 +11,7 @@ namespace candela {
 namespace {
 const std::array kEntries = {
     AcceleratorEntry{"list", "brute force: every ray against every primitive",
-                     []() -> std::unique_ptr<Accelerator> { return std::make_unique<PrimitiveList>(); }},
+                     [](const AcceleratorSettings&) -> std::unique_ptr<Accelerator> { return std::make_unique<PrimitiveList>(); }},
 };
 }  // namespace
 

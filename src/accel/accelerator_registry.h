@@ -12,7 +12,7 @@ namespace candela {
 struct AcceleratorEntry {
   std::string_view name;
   std::string_view description;
-  std::unique_ptr<Accelerator> (*create)();
+  std::unique_ptr<Accelerator> (*create)(const AcceleratorSettings& settings);
 };
 
 std::span<const AcceleratorEntry> accelerator_entries();

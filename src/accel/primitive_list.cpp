@@ -3,6 +3,8 @@
 namespace candela {
 
 bool PrimitiveList::intersect(const Ray& ray, Intersection& intersection) const {
+  // In index order, a hit at the same t as the best is never closer (closer_hit's tie rule),
+  // so the strict t_max of each shape test keeps the lowest index.
   Ray nearest = ray;
   bool found = false;
   SurfaceHit hit;

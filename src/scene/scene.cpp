@@ -10,7 +10,7 @@ namespace candela {
 void Scene::prepare() {
   const AcceleratorEntry* entry = find_accelerator(render.accelerator);
   if (!entry) throw std::invalid_argument("unknown accelerator " + render.accelerator);
-  accelerator_ = entry->create();
+  accelerator_ = entry->create(render.accelerator_settings);
   accelerator_->build(primitives);
   bounds_ = Bounds3();
   for (const Primitive& primitive : primitives) {

@@ -21,6 +21,7 @@ struct RenderSettings {
   SourceLocation method_location;
   uint64_t seed = 0;
   std::string accelerator = "list";
+  AcceleratorSettings accelerator_settings;
   double ray_offset = 0;  // 0: derived from the scene's size (see Scene::ray_offset)
   int tile_size = 16;
 };
