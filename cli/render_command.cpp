@@ -24,6 +24,7 @@ struct RenderOptions {
   SceneOptions scene;
   std::string output;
   std::string method;
+  std::string accelerator;
   int threads = 0;
   std::optional<uint64_t> seed;
   std::string stats_path;
@@ -68,9 +69,12 @@ int run_render(RenderOptions& options) {
   statistics.threads = static_cast<int>(
       tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
 
+  if (!options.accelerator.empty()) options.scene.overrides.push_back("render.accelerator=" + options.accelerator);
   Stopwatch load_timer;
   std::unique_ptr<Scene> scene = options.scene.load();
-  statistics.add_phase("load", load_timer.seconds());
+  const double build_seconds = scene->accelerator_build_seconds();
+  statistics.add_phase("load", load_timer.seconds() - build_seconds);
+  statistics.add_phase("build", build_seconds);
   for (const auto& warning : scene->warnings) std::cerr << "candela: warning: " << warning << "\n";
   if (!options.method.empty()) {
     scene->render.method = options.method;
@@ -117,6 +121,7 @@ int run_render(RenderOptions& options) {
   statistics.extra["output"] = options.output;
   statistics.extra["image"] = {{"width", film.width()}, {"height", film.height()}};
   statistics.extra["primitives"] = scene->primitives.size();
+  statistics.extra["accelerator"] = std::string(scene->accelerator().name());
   statistics.extra["seed"] = scene->render.seed;
   if (!options.quiet)
     std::cerr << fmt::format("candela: wrote {} ({}x{}, {})\n", options.output, film.width(), film.height(),
@@ -144,6 +149,7 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
   command->add_option("scene", options->scene.scene_path, "Scene file (candela/1 JSON)");
   command->add_option("-o,--output", options->output, "Output image: .png (sRGB 8-bit), .exr or .pfm (linear float)");
   command->add_option("--method", options->method, "Rendering method: " + method_names());
+  command->add_option("--accel", options->accelerator, "Acceleration structure (default: render.accelerator)");
   command->add_option("--threads", options->threads, "Worker threads (default: all cores)");
   command->add_option("--seed", options->seed, "Random seed (default: render.seed)");
   command->add_option("--set", options->scene.overrides, "Override a scene setting: key=value, e.g. camera.width=640")

@@ -35,8 +35,12 @@ inline bool closer_hit(double t, uint32_t primitive, double best_t, uint32_t bes
   return t < best_t || (t == best_t && primitive < best_primitive);
 }
 
+enum class BoundingVolumeKind { none, sphere, box, slabs };
+
 // Build parameters of every accelerator (scene keys bvh.*, grid.*, octree.*).
 struct AcceleratorSettings {
+  // The list tests each scene object's volume before its primitives (accel/bounding_volume.h).
+  BoundingVolumeKind bounding_volume = BoundingVolumeKind::none;
   int bvh_max_leaf_primitives = 4;  // a node with more is split (binned SAH)
   int bvh_bins = 16;
   double grid_density = 3.0;        // voxels ≈ density × primitives (Cleary & Wyvill; Woo)

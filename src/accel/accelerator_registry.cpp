@@ -11,7 +11,9 @@ namespace candela {
 namespace {
 const std::array kEntries = {
     AcceleratorEntry{"list", "brute force: every ray against every primitive",
-                     [](const AcceleratorSettings&) -> std::unique_ptr<Accelerator> { return std::make_unique<PrimitiveList>(); }},
+                     [](const AcceleratorSettings& settings) -> std::unique_ptr<Accelerator> {
+                       return std::make_unique<PrimitiveList>(settings.bounding_volume);
+                     }},
 };
 }  // namespace
 

@@ -1,19 +1,33 @@
 #pragma once
 
+#include <vector>
+
 #include "accel/accelerator.h"
+#include "accel/bounding_volume.h"
 
 namespace candela {
 
-// The brute-force baseline: every ray against every primitive (SPEC §5, 001 "O(n)").
+// The brute-force baseline: every ray against every primitive (SPEC §5, 001 "O(n)"),
+// optionally testing each scene object's bounding volume first (000 §5.7.1).
 class PrimitiveList final : public Accelerator {
  public:
-  void build(std::span<const Primitive> primitives) override { primitives_ = primitives; }
+  explicit PrimitiveList(BoundingVolumeKind bounding_volume = BoundingVolumeKind::none)
+      : bounding_volume_(bounding_volume) {}
+  void build(std::span<const Primitive> primitives) override;
   bool intersect(const Ray& ray, Intersection& intersection) const override;
   bool occluded(const Ray& ray) const override;
   std::string_view name() const override { return "list"; }
+  AcceleratorReport report() const override;
 
  private:
+  // A run of primitives of one object behind one bounding volume.
+  struct Group {
+    uint32_t first, count;
+    ObjectBound bound;
+  };
+  BoundingVolumeKind bounding_volume_;
   std::span<const Primitive> primitives_;
+  std::vector<Group> groups_;  // empty without bounding volumes
 };
 
 }  // namespace candela

@@ -1,6 +1,8 @@
 #include "scene/scene.h"
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <stdexcept>
 
 #include "accel/accelerator_registry.h"
@@ -9,9 +11,11 @@ namespace candela {
 
 void Scene::prepare() {
   const AcceleratorEntry* entry = find_accelerator(render.accelerator);
-  if (!entry) throw std::invalid_argument("unknown accelerator " + render.accelerator);
+  if (!entry) throw std::invalid_argument("unknown accelerator " + render.accelerator);  // checked by the loader
+  const auto start = std::chrono::steady_clock::now();
   accelerator_ = entry->create(render.accelerator_settings);
   accelerator_->build(primitives);
+  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   bounds_ = Bounds3();
   for (const Primitive& primitive : primitives) {
     const Bounds3 b = primitive.shape->bounds();

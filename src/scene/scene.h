@@ -80,11 +80,13 @@ class Scene {
   // SPEC §8: secondary rays start this far off the surface, along the normal, to avoid acne.
   double ray_offset() const { return ray_offset_; }
   const Accelerator& accelerator() const { return *accelerator_; }
+  double accelerator_build_seconds() const { return build_seconds_; }
 
  private:
   std::unique_ptr<Accelerator> accelerator_;
   Bounds3 bounds_;
   double ray_offset_ = 1e-6;
+  double build_seconds_ = 0;
 };
 
 }  // namespace candela

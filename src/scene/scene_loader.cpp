@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include "geometry/transformed_shape.h"
+#include "accel/accelerator_registry.h"
+#include "accel/bounding_volume.h"
 #include "scene/camera_registry.h"
 #include "scene/json_node.h"
 #include "scene/light_registry.h"
@@ -89,11 +91,7 @@ class SceneReader {
     read_lights();
     read_shapes();
     root_.finish();
-    try {
-      scene->prepare();
-    } catch (const std::invalid_argument& e) {
-      root_.at("render").at("accelerator").fail(e.what());
-    }
+    scene->prepare();
     return scene;
   }
 
@@ -104,7 +102,17 @@ class SceneReader {
       if (render->has("method")) scene_->render.method_location = render->at("method").location();
       const double seed = render->number("seed", 0, {0, 9007199254740992.0, false, false});
       scene_->render.seed = static_cast<uint64_t>(seed);
-      scene_->render.accelerator = render->choice("accelerator", "list", {"list"});
+      if (const auto accelerator = render->get("accelerator")) {
+        scene_->render.accelerator = accelerator->as_string();
+        if (!find_accelerator(scene_->render.accelerator))
+          accelerator->fail("unknown accelerator \"" + scene_->render.accelerator +
+                            "\" (expected one of: " + entry_names(accelerator_entries()) + ")");
+      }
+      if (const auto volume = render->get("bounding_volume")) {
+        if (!bounding_volume_from_name(volume->as_string(), scene_->render.accelerator_settings.bounding_volume))
+          volume->fail("unknown bounding volume \"" + volume->as_string() +
+                       "\" (expected one of: none, sphere, box, slabs)");
+      }
       scene_->render.ray_offset = render->number("ray_offset", 0.0, Range::non_negative());
       scene_->render.tile_size = render->integer("tile_size", 16, {1, 4096, false, false});
       render->finish();
@@ -123,6 +131,21 @@ class SceneReader {
       scene_->whitted.min_weight = whitted->number("min_weight", 1e-3, Range::unit());
       scene_->whitted.shadows = whitted->boolean("shadows", true);
       whitted->finish();
+    }
+    AcceleratorSettings& accelerator = scene_->render.accelerator_settings;
+    if (const auto bvh = root_.get("bvh")) {
+      accelerator.bvh_max_leaf_primitives = bvh->integer("max_leaf_primitives", 4, {1, 64, false, false});
+      accelerator.bvh_bins = bvh->integer("bins", 16, {2, 256, false, false});
+      bvh->finish();
+    }
+    if (const auto grid = root_.get("grid")) {
+      accelerator.grid_density = grid->number("density", 3.0, {0, 1000, true, false});
+      grid->finish();
+    }
+    if (const auto octree = root_.get("octree")) {
+      accelerator.octree_max_primitives = octree->integer("max_primitives", 8, {1, 1 << 20, false, false});
+      accelerator.octree_max_depth = octree->integer("max_depth", 10, {0, 32, false, false});
+      octree->finish();
     }
     if (const auto local = root_.get("local")) {
       scene_->local.shadows = local->boolean("shadows", true);
