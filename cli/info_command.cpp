@@ -49,7 +49,7 @@ void add_info_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<SceneOptions>();
   CLI::App* command = app.add_subcommand("info", "Describe what a scene holds");
   command->add_option("scene", options->scene_path, "Scene file (default: the built-in scene)");
-  command->add_option("--set", options->overrides, "Override a scene setting: key=value")->take_all();
+  command->add_option("--set", options->overrides, "Override a scene setting: key=value")->expected(1)->allow_extra_args(false)->take_all();
   command->callback([options, &run]() {
     run = [options]() {
       try {

@@ -1,6 +1,7 @@
 // candela render [SCENE] [-o FILE] [--method M] [--threads N] [--seed S] [--set k=v]...
 //                [--stats FILE.json] [--quiet] [--crop x0,y0,x1,y1] [--pixel X,Y]
 #include <fmt/format.h>
+#include <unistd.h>
 #include <tbb/global_control.h>
 
 #include <filesystem>
@@ -26,7 +27,7 @@ struct RenderOptions {
   std::string method;
   std::string accelerator;
   int threads = 0;
-  std::optional<uint64_t> seed;
+  std::optional<int64_t> seed;
   std::string stats_path;
   bool quiet = false;
   std::vector<int> crop;
@@ -50,6 +51,18 @@ PixelRect region_of(const RenderOptions& options, const Camera& camera) {
   return region;
 }
 
+// The file's folder must exist and accept new files (outputs are renamed into place there).
+void check_writable(const std::string& path, const char* option) {
+  namespace fs = std::filesystem;
+  const fs::path parent = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
+  std::error_code error;
+  if (!fs::is_directory(parent, error))
+    throw BadArgument(std::string(option) + " " + path + ": the folder " + parent.string() + " does not exist");
+  if (::access(parent.c_str(), W_OK) != 0)
+    throw BadArgument(std::string(option) + " " + path + ": the folder " + parent.string() + " is not writable");
+  if (fs::is_directory(path, error)) throw BadArgument(std::string(option) + " " + path + " is a folder");
+}
+
 std::string default_output(const RenderOptions& options) {
   if (options.scene.scene_path.empty()) return "candela-default.png";
   return std::filesystem::path(options.scene.scene_path).stem().string() + ".png";
@@ -62,7 +75,12 @@ int run_render(RenderOptions& options) {
   ImageFormat format;
   if (!image_format_for_path(options.output, format))
     throw BadArgument("-o " + options.output + ": unsupported extension (expected .png, .exr or .pfm)");
-  if (options.threads < 0) throw BadArgument("--threads must be >= 1");
+  if (options.threads < 0) throw BadArgument("--threads must be >= 0 (0: all cores)");
+  if (options.seed && (*options.seed < 0 || *options.seed > (int64_t(1) << 53)))
+    throw BadArgument("--seed must be in [0, 2^53]");
+  // Fail before the work, not after it: both outputs must be writable.
+  check_writable(options.output, "-o");
+  if (!options.stats_path.empty()) check_writable(options.stats_path, "--stats");
   std::optional<tbb::global_control> thread_limit;
   if (options.threads > 0)
     thread_limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(options.threads));
@@ -80,7 +98,7 @@ int run_render(RenderOptions& options) {
     scene->render.method = options.method;
     scene->render.method_location = {"--method", 0, 0, {}};
   }
-  if (options.seed) scene->render.seed = *options.seed;
+  if (options.seed) scene->render.seed = static_cast<uint64_t>(*options.seed);
   const MethodEntry* entry = find_method(scene->render.method);
   if (!entry) {
     SourceLocation where = scene->render.method_location;
@@ -152,7 +170,10 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
   command->add_option("--accel", options->accelerator, "Acceleration structure (default: render.accelerator)");
   command->add_option("--threads", options->threads, "Worker threads (default: all cores)");
   command->add_option("--seed", options->seed, "Random seed (default: render.seed)");
+  // One key=value per --set, repeated as often as needed, so SCENE may follow.
   command->add_option("--set", options->scene.overrides, "Override a scene setting: key=value, e.g. camera.width=640")
+      ->expected(1)
+      ->allow_extra_args(false)
       ->take_all();
   command->add_option("--stats", options->stats_path, "Write run statistics as JSON");
   command->add_flag("-q,--quiet", options->quiet, "No progress and no summary");

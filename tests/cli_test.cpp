@@ -139,6 +139,27 @@ TEST_F(Cli, ThreadCountDoesNotChangeTheBytes) {
   EXPECT_EQ(bytes("one.png"), bytes("two.png"));
 }
 
+TEST_F(Cli, UnwritableOutputsAreRefusedBeforeRendering) {
+  std::string output;
+  EXPECT_EQ(run("render -q -o missing/out.png", output), 2);
+  EXPECT_NE(output.find("does not exist"), std::string::npos) << output;
+  // An unwritable --stats used to leave the image behind after failing.
+  EXPECT_EQ(run("render -q --set camera.width=8 --set camera.height=8 -o out.png --stats missing/s.json", output), 2);
+  EXPECT_EQ(file_count(), 0);
+}
+
+TEST_F(Cli, SetMayComeBeforeTheScene) {
+  write("s.json", R"({"format": "candela/1", "camera": {"width": 4, "height": 4}, "shapes": [{"type": "sphere"}]})");
+  std::string output;
+  EXPECT_EQ(run("render --set camera.width=6 s.json -q -o s.pfm", output), 0) << output;
+  std::ifstream pfm(directory_ / "s.pfm", std::ios::binary);
+  std::string magic;
+  int width = 0;
+  pfm >> magic >> width;
+  EXPECT_EQ(width, 6);
+  EXPECT_EQ(run("render s.json --seed -1 -o t.png", output), 2);
+}
+
 TEST_F(Cli, InfoDescribesTheScene) {
   std::string output;
   ASSERT_EQ(run("info", output), 0) << output;
@@ -149,8 +170,46 @@ TEST_F(Cli, InfoDescribesTheScene) {
 
 TEST_F(Cli, UnwritableOutputFailsWithoutLeavingFiles) {
   std::string output;
-  EXPECT_EQ(run("render -q --set camera.width=8 --set camera.height=8 -o no/such/dir/out.png", output), 1);
+  EXPECT_EQ(run("render -q --set camera.width=8 --set camera.height=8 -o no/such/dir/out.png", output), 2);
   EXPECT_EQ(file_count(), 0);
+}
+
+TEST_F(Cli, BenchWritesTheTableJsonAndRayDump) {
+  std::string output;
+  ASSERT_EQ(run("bench --sphere 200 --accel list --threads 1 2 --width 8 --height 4 --rays 50 --repeat 1 "
+                "--json b.json --dump rays -q",
+                output),
+            0)
+      << output;
+  EXPECT_NE(output.find("incoherent_occlusion"), std::string::npos) << output;
+  std::ifstream json_file(directory_ / "b.json");
+  const nlohmann::json json = nlohmann::json::parse(json_file);
+  EXPECT_EQ(json["mesh"], "sphere 200");
+  EXPECT_EQ(json["triangles"], 4 * 7 * 6);
+  EXPECT_EQ(json["results"].size(), 8u);
+  EXPECT_EQ(json["builds"].size(), 2u);
+  EXPECT_EQ(json["results"][0]["rays"], 32);
+  EXPECT_EQ(fs::file_size(directory_ / "rays" / "primary.rays"), 32u * 32u);
+  EXPECT_EQ(fs::file_size(directory_ / "rays" / "incoherent.rays"), 50u * 32u);
+  EXPECT_TRUE(fs::exists(directory_ / "rays" / "shadow-list.rays"));
+  EXPECT_TRUE(fs::exists(directory_ / "rays" / "rays.json"));
+}
+
+TEST_F(Cli, BenchRejectsBadArguments) {
+  std::string output;
+  EXPECT_EQ(run("bench", output), 2) << output;  // no mesh
+  EXPECT_EQ(run("bench --sphere 100 --terrain 100", output), 2);
+  EXPECT_EQ(run("bench --sphere 100 --accel nonsense", output), 2);
+  EXPECT_NE(output.find("list"), std::string::npos) << output;  // the valid names are listed
+  EXPECT_EQ(run("bench --sphere 100 --threads 0", output), 2);
+  EXPECT_EQ(run("bench --sphere 100 --fov 180", output), 2);
+  EXPECT_EQ(run("bench --sphere 100 --width 0", output), 2);
+  EXPECT_EQ(run("bench --sphere 100 --eye 0 5 0 --lookat 0 0 0", output), 2);  // vertical view
+  EXPECT_EQ(run("bench missing.obj", output), 2);
+  write("bad.obj", "v 0 0 0\nv 1 0 oops\n");
+  EXPECT_EQ(run("bench bad.obj --json out.json", output), 2);
+  EXPECT_NE(output.find("bad.obj:2"), std::string::npos) << output;
+  EXPECT_EQ(file_count(), 1);  // only bad.obj: nothing written
 }
 
 }  // namespace

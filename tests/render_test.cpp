@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "accel/accelerator_registry.h"
 #include "integrators/method_registry.h"
 #include "io/image_reader.h"
 #include "io/image_writer.h"
@@ -31,6 +32,25 @@ TEST(Render, SameImageBytesWhateverTheThreadCount) {
     EXPECT_EQ(std::memcmp(one.pixels().data(), two.pixels().data(), one.pixels().size() * sizeof(Color)), 0) << method;
     EXPECT_EQ(std::memcmp(one.pixels().data(), four.pixels().data(), one.pixels().size() * sizeof(Color)), 0) << method;
     EXPECT_EQ(to_display(one, scene->display), to_display(two, scene->display));
+  }
+}
+
+TEST(Render, SameImageBytesOnEveryAccelerator) {
+  // SPEC §5: every accelerator answers identically, so the image cannot depend on the choice.
+  std::vector<uint8_t> reference;
+  for (const AcceleratorEntry& entry : accelerator_entries()) {
+    const auto scene = load_scene_file(std::string(CANDELA_SOURCE_DIR) + "/scenes/glass-globe.json",
+                                       {"camera.width=48", "camera.height=32", "render.accelerator=" + std::string(entry.name)});
+    const Film film = render(*scene, "whitted", 2);
+    const std::vector<uint8_t> bytes = to_display(film, scene->display);
+    if (reference.empty()) reference = bytes;
+    EXPECT_EQ(bytes, reference) << entry.name;
+  }
+  for (const char* volume : {"sphere", "box", "slabs"}) {
+    const auto scene = load_default_scene({"camera.width=48", "camera.height=48", std::string("render.bounding_volume=") + volume});
+    const auto plain = load_default_scene({"camera.width=48", "camera.height=48"});
+    EXPECT_EQ(to_display(render(*scene, "whitted", 2), scene->display), to_display(render(*plain, "whitted", 2), plain->display))
+        << volume;
   }
 }
 

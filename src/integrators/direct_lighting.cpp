@@ -12,8 +12,12 @@ Color shadow_transmittance(const Scene& scene, const Vec3& origin, const Vec3& L
   ++context.counts.shadow;
   Ray ray{origin, L, 0.0, distance};
   Color transmittance(1);
-  // Transparent objects crossed so far and where the ray entered each.
-  std::unordered_map<uint32_t, double> entered_at;
+  // Absorbing objects the ray is inside: where it entered (0 when it started inside) and
+  // their absorption.
+  std::unordered_map<uint32_t, std::pair<double, Color>> entered_at;
+  const auto absorb = [&](const Color& absorption, double inside) {
+    for (int c = 0; c < 3; ++c) transmittance[c] *= std::exp(-absorption[c] * inside);
+  };
   std::unordered_map<uint32_t, bool> counted;
   constexpr int kMaxCrossings = 256;  // never loop forever on pathological input
   std::string note;
@@ -34,18 +38,20 @@ Color shadow_transmittance(const Scene& scene, const Vec3& origin, const Vec3& L
     if (!material.absorption.is_black()) {
       const bool entering = dot(L, hit.surface.geometric_normal) < 0;
       if (entering) {
-        entered_at[object] = hit.surface.t;
+        entered_at[object] = {hit.surface.t, material.absorption};
       } else {
         const auto found = entered_at.find(object);
-        const double inside = hit.surface.t - (found != entered_at.end() ? found->second : 0.0);
-        for (int c = 0; c < 3; ++c) transmittance[c] *= std::exp(-material.absorption[c] * inside);
+        absorb(material.absorption, hit.surface.t - (found != entered_at.end() ? found->second.first : 0.0));
         if (found != entered_at.end()) entered_at.erase(found);
       }
     }
     if (context.tree) note += (note.empty() ? "through " : ", through ") + scene.objects[object].name;
-    ray.t_min = hit.surface.t + scene.ray_offset();
+    ray.t_min = hit.surface.t + scene.ray_offset(hit.surface.position);
     if (ray.t_min >= ray.t_max) break;
   }
+  // A light inside an absorbing object: the path from the last entry to the light.
+  if (std::isfinite(distance) && !transmittance.is_black())
+    for (const auto& [object, entry] : entered_at) absorb(entry.second, distance - entry.first);
   if (context.tree) {
     RayTreeNode node;
     node.parent = tree_parent;
@@ -74,7 +80,8 @@ Color local_illumination(const Scene& scene, const Intersection& hit, const Vec3
   Color result = material.ambient(surface) * scene.ambient;
   // A pure mirror or clear glass has no local diffuse or specular part: no shadow rays.
   if (kd.is_black() && material.ks <= 0) return result;
-  const Vec3 shadow_origin = surface.position + geometric * scene.ray_offset();
+  const double offset = scene.ray_offset(surface.position);
+  const Vec3 shadow_origin = surface.position + geometric * offset;
   for (const auto& light : scene.lights) {
     LightSample sample;
     if (!light->illuminate(surface.position, sample)) continue;
@@ -82,7 +89,7 @@ Color local_illumination(const Scene& scene, const Intersection& hit, const Vec3
     if (dot(N, sample.direction) <= 0 || dot(geometric, sample.direction) <= 0) continue;
     Color s(1);
     if (shadows) {
-      const double reach = std::isfinite(sample.distance) ? sample.distance - 2 * scene.ray_offset()
+      const double reach = std::isfinite(sample.distance) ? sample.distance - 2 * offset
                                                           : kInfinity;
       s = shadow_transmittance(scene, shadow_origin, sample.direction, reach, context, tree_parent);
       if (s.is_black()) continue;

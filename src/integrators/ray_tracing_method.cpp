@@ -14,13 +14,13 @@ void RayTracingMethod::render(const Scene& scene, const RenderRequest& request, 
   const int tile = scene.render.tile_size;
   const int tiles_x = (region.width() + tile - 1) / tile;
   const int tiles_y = (region.height() + tile - 1) / tile;
-  const int tile_count = tiles_x * tiles_y;
+  const int64_t tile_count = int64_t(tiles_x) * tiles_y;
   ProgressReporter progress("render", static_cast<uint64_t>(tile_count), "tiles", request.quiet);
   std::mutex merge;
   RayCounts total;
-  tbb::parallel_for(0, tile_count, [&](int tile_index) {
-    const int x_begin = region.x0 + (tile_index % tiles_x) * tile;
-    const int y_begin = region.y0 + (tile_index / tiles_x) * tile;
+  tbb::parallel_for(int64_t(0), tile_count, [&](int64_t tile_index) {
+    const int x_begin = region.x0 + static_cast<int>(tile_index % tiles_x) * tile;
+    const int y_begin = region.y0 + static_cast<int>(tile_index / tiles_x) * tile;
     const int x_end = std::min(x_begin + tile, region.x1);
     const int y_end = std::min(y_begin + tile, region.y1);
     TraceContext context;

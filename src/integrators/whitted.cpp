@@ -55,8 +55,9 @@ Color trace(const Scene& scene, const Ray& ray, const TreeLimits& limits, RayKin
     const bool entering = dot(hit.surface.geometric_normal, V) > 0;
     const Vec3 N = face_forward(hit.surface.shading_normal, V);
     const Vec3 geometric = face_forward(hit.surface.geometric_normal, V);
-    const Vec3 outside_origin = hit.surface.position + geometric * scene.ray_offset();
-    const Vec3 inside_origin = hit.surface.position - geometric * scene.ray_offset();
+    const double offset = scene.ray_offset(hit.surface.position);
+    const Vec3 outside_origin = hit.surface.position + geometric * offset;
+    const Vec3 inside_origin = hit.surface.position - geometric * offset;
     const double min_weight = limits.min_weight;
     bool reflection_pruned = false, transmission_pruned = false;
     if (material.kr > 0) {

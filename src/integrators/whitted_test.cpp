@@ -97,6 +97,38 @@ TEST(Whitted, AbsorptionDarkensLongerPathsThroughGlass) {
   EXPECT_LT(centre, off);
 }
 
+TEST(Whitted, LightInsideAnAbsorbingSphere) {
+  // A point light at the centre of a glass sphere (radius 0.5, kt 0.9, absorption 5): the
+  // shadow ray from outside crosses 0.5 of glass, s = 0.9·exp(−2.5). It used to skip the
+  // absorption because the ray never left the sphere before reaching the light.
+  const auto scene = scene_from(R"(
+    "lights": [{"type": "point", "position": [0, 0, 2]}],
+    "materials": {"floor": {"kd": 1}, "glass": {"kd": 0, "kt": 0.9, "absorption": 5}},
+    "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": "floor"},
+               {"type": "sphere", "center": [0, 0, 2], "radius": 0.5, "material": "glass"}])",
+                                R"({"eye": [3, 0, 0.5], "target": [0, 0, 0], "fov": 0.001, "width": 1, "height": 1})");
+  Color radiance;
+  const RayTree tree = LocalMethod().pixel_ray_tree(*scene, 0, 0, radiance);
+  ASSERT_EQ(tree.nodes().size(), 2u);
+  EXPECT_NEAR(tree.nodes()[1].transmittance.r, 0.9 * std::exp(-2.5), 1e-6);
+}
+
+TEST(Whitted, SmallShadowsSurviveFarFromTheOrigin) {
+  // A 3 mm ball 6 mm above the floor shades the floor point below it, at x = 0 and at
+  // x = 1e5 alike. The offset used to scale with the coordinates (1e-7 × 1e5 = 1 cm) and
+  // start the shadow ray above the ball.
+  for (const double x : {0.0, 1e5}) {
+    const std::string X = std::to_string(x);
+    const auto scene = scene_from(R"(
+      "lights": [{"type": "point", "position": [)" + X + R"(, 0, 1]}],
+      "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1]},
+                 {"type": "sphere", "center": [)" + X + R"(, 0, 0.006], "radius": 0.003}])",
+                                  R"({"eye": [)" + X + R"(, -0.05, 0.0001], "target": [)" + X +
+                                      R"(, 0, 0], "fov": 0.001, "width": 1, "height": 1})");
+    EXPECT_TRUE(render_pixel(*scene, LocalMethod()).is_black()) << "x = " << x;
+  }
+}
+
 TEST(Whitted, MirrorReflectionAndDepth) {
   // Eye looks at a mirror (kr 0.9, kd 0) that faces it; behind the eye is a red wall lit by
   // ambient light only. Depth 0: the mirror is black (000 Figure 51); depth 1: 0.9 × red.

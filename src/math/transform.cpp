@@ -11,8 +11,13 @@ Transform Transform::from_matrix(const Eigen::Matrix4d& matrix) {
   if (!matrix.allFinite()) throw std::invalid_argument("matrix has non-finite entries");
   if (matrix(3, 0) != 0 || matrix(3, 1) != 0 || matrix(3, 2) != 0 || matrix(3, 3) != 1)
     throw std::invalid_argument("matrix must be affine (last row 0 0 0 1)");
-  const double determinant = matrix.topLeftCorner<3, 3>().determinant();
-  if (!(std::fabs(determinant) > 1e-12)) throw std::invalid_argument("matrix is singular");
+  // Singular relative to its own size: |det| against the product of the column lengths (1 for
+  // orthogonal columns, 0 for dependent ones), so any scale, however small, is accepted and
+  // columns that are (nearly) parallel are not.
+  const Eigen::Matrix3d linear = matrix.topLeftCorner<3, 3>();
+  const double column_product = linear.col(0).norm() * linear.col(1).norm() * linear.col(2).norm();
+  if (!(column_product > 0) || !(std::fabs(linear.determinant()) > 1e-12 * column_product))
+    throw std::invalid_argument("matrix is singular");
   return Transform(matrix, matrix.inverse());
 }
 

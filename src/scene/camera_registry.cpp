@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include <fmt/format.h>
+
 #include "camera/orthographic_camera.h"
 #include "camera/perspective_camera.h"
 
@@ -75,6 +77,13 @@ std::unique_ptr<Camera> read_camera(const JsonNode& node) {
   node.expect_object();
   const int width = node.integer("width", 640, {1, 65536, false, false});
   const int height = node.integer("height", 480, {1, 65536, false, false});
+  // The film holds three doubles a pixel: refuse what would not fit (SPEC §15).
+  constexpr double kMaxPixels = 1 << 28;  // 6 GiB of film
+  if (double(width) * height > kMaxPixels)
+    node.at(node.has("width") ? "width" : "height")
+        .fail(fmt::format("{}x{} = {} pixels needs {:.1f} GiB of film; the limit is {} pixels: lower camera.width or "
+                          "camera.height", width, height, double(width) * height, double(width) * height * 24 / (1 << 30),
+                          kMaxPixels));
   const std::string type = node.string("type", "perspective");
   const CameraEntry* entry = find_camera(type);
   if (!entry) node.at("type").fail("unknown camera \"" + type + "\" (expected one of: " + entry_names<CameraEntry>(kEntries) + ")");

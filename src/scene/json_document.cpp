@@ -1,6 +1,7 @@
 #include "scene/json_document.h"
 
 #include <algorithm>
+#include <charconv>
 #include <iterator>
 
 namespace candela {
@@ -85,10 +86,13 @@ class LocatingSaxHandler {
 
   bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception& e) {
     error_offset_ = position > 0 ? position - 1 : 0;
+    // "[json.exception.parse_error.101] parse error at line 1, column 2: syntax error ..." or
+    // "[json.exception.out_of_range.406] number overflow parsing '1e999'": keep the reason.
     std::string message = e.what();
-    // "[json.exception.parse_error.101] parse error at line 1, column 2: syntax error ..."
-    const auto colon = message.find(": ");
-    error_ = colon == std::string::npos ? message : message.substr(colon + 2);
+    if (const auto bracket = message.find("] "); bracket != std::string::npos) message = message.substr(bracket + 2);
+    if (message.rfind("parse error", 0) == 0)
+      if (const auto colon = message.find(": "); colon != std::string::npos) message = message.substr(colon + 2);
+    error_ = message;
     return false;
   }
 
@@ -141,7 +145,7 @@ class LocatingSaxHandler {
         slot = &frame.value->back();
       }
     }
-    const auto [line, column] = line_and_column(text_, start);
+    const auto [line, column] = advance_to(start);
     document_.positions_[path] = {line, column, {}};
     return slot;
   }
@@ -153,6 +157,8 @@ class LocatingSaxHandler {
     return true;
   }
   bool open(json value) {
+    // Deeper nesting serves no scene and would cost memory for every level's path.
+    if (stack_.size() >= kMaxDepth) return fail("nesting deeper than " + std::to_string(kMaxDepth) + " levels");
     std::string path;
     json* slot = insert(std::move(value), path);
     stack_.push_back({slot, path, {}});
@@ -171,6 +177,20 @@ class LocatingSaxHandler {
   }
 
  public:
+  // Line and column of offset, counting on from the previous call: values arrive in order,
+  // so the whole file is scanned once.
+  std::pair<int, int> advance_to(std::size_t offset) {
+    offset = std::min(offset, text_.size());
+    if (offset < counted_to_) return line_and_column(text_, offset);
+    for (; counted_to_ < offset; ++counted_to_) {
+      if (text_[counted_to_] == '\n') {
+        ++line_;
+        line_start_ = counted_to_ + 1;
+      }
+    }
+    return {line_, static_cast<int>(offset - line_start_) + 1};
+  }
+
   static std::pair<int, int> line_and_column(const std::string& text, std::size_t offset) {
     offset = std::min(offset, text.size());
     int line = 1;
@@ -188,7 +208,10 @@ class LocatingSaxHandler {
   JsonDocument& document_;
   const std::string& text_;
   const char** furthest_;
+  static constexpr std::size_t kMaxDepth = 256;
   std::size_t consumed_ = 0;
+  std::size_t counted_to_ = 0, line_start_ = 0;
+  int line_ = 1;
   std::vector<Frame> stack_;
   json root_;
   std::string error_;
@@ -223,7 +246,9 @@ void JsonDocument::apply_override(const std::string& assignment) {
   nlohmann::json value;
   try {
     value = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error&) {
+  } catch (const nlohmann::json::out_of_range&) {
+    throw InputError(origin, "the number " + text + " is out of range");
+  } catch (const nlohmann::json::exception&) {
     value = text;  // a bare word such as clamp or whitted
   }
   nlohmann::json* node = &root_;
@@ -235,8 +260,9 @@ void JsonDocument::apply_override(const std::string& assignment) {
     if (segment.empty()) throw InputError(origin, "empty segment in the key \"" + key + "\"");
     const bool is_index = std::all_of(segment.begin(), segment.end(), ::isdigit);
     if (node->is_array() && is_index) {
-      const std::size_t index = std::stoul(segment);
-      if (index >= node->size())
+      std::size_t index = 0;
+      const auto [end, error] = std::from_chars(segment.data(), segment.data() + segment.size(), index);
+      if (error != std::errc() || end != segment.data() + segment.size() || index >= node->size())
         throw InputError(origin, path + " has " + std::to_string(node->size()) +
                                      " elements; index " + segment + " is out of range");
       path = element_path(path, index);

@@ -43,6 +43,8 @@ double JsonNode::as_number(Range range) const {
   if (!value_->is_number()) fail("expected a number, found " + type_name(*value_));
   const double value = value_->get<double>();
   if (!std::isfinite(value)) fail("must be a finite number");
+  // Squares of larger values (distances, areas) leave double precision's range.
+  if (std::fabs(value) > 1e16) fail(fmt::format("magnitude above 1e16 is not supported (found {})", value));
   if (!range.contains(value)) fail("must be " + range.describe() + fmt::format(" (found {})", value));
   return value;
 }

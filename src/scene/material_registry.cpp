@@ -24,6 +24,9 @@ Material make_phong(const JsonNode& node) {
                                 : SpecularModel::blinn_phong;
   material.kr = node.number("kr", 0.0, Range::unit());
   material.kt = node.number("kt", 0.0, Range::unit());
+  // Each level of the ray tree must carry less than its parent, or it never shrinks.
+  if (material.kr + material.kt > 1)
+    node.at(node.has("kt") ? "kt" : "kr").fail("kr + kt must be <= 1 (found " + std::to_string(material.kr + material.kt) + ")");
   material.ior = node.number("ior", 1.0, Range::positive());
   material.absorption = node.color("absorption", Color(), Range::non_negative());
   return material;

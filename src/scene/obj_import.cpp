@@ -280,6 +280,20 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
         !std::isfinite(material.ior) || std::isnan(material.kt))
       throw fail("OBJ file " + quoted(path) + ": material '" + source.name +
                  "' has a non-finite value");
+    // The ranges a scene file's materials must respect (scene/material_registry.cpp).
+    const auto non_negative = [](const Color& c) { return c.r >= 0 && c.g >= 0 && c.b >= 0; };
+    std::string problem;
+    if (!non_negative(material.ka) || !non_negative(material.kd) || !non_negative(material.ke)) {
+      problem = "Ka, Kd and Ke must be >= 0";
+    } else if (material.ks < 0) {
+      problem = "Ks must be >= 0";
+    } else if (material.shininess < 0) {
+      problem = "Ns must be >= 0";
+    } else if (!(material.ior > 0)) {
+      problem = "Ni must be > 0";
+    }
+    if (!problem.empty())
+      throw fail("OBJ file " + quoted(path) + ": material '" + source.name + "': " + problem);
     result.materials.push_back(std::move(material));
   }
 

@@ -23,11 +23,8 @@ void Scene::prepare() {
   }
   if (bounds_.empty()) bounds_ = Bounds3::of_point({0, 0, 0});
   const Vec3 extent = bounds_.diagonal();
-  const double size = std::max({extent.x, extent.y, extent.z, std::fabs(bounds_.lower.x),
-                                std::fabs(bounds_.lower.y), std::fabs(bounds_.lower.z),
-                                std::fabs(bounds_.upper.x), std::fabs(bounds_.upper.y),
-                                std::fabs(bounds_.upper.z), 1e-3});
-  // Far above double rounding at this size (~1e-16 relative), far below any feature.
+  const double size = std::max({extent.x, extent.y, extent.z});
+  // The extent part of ray_offset(p); its position part covers scenes far from the origin.
   ray_offset_ = render.ray_offset > 0 ? render.ray_offset : 1e-7 * size;
 }
 

@@ -2,6 +2,8 @@
 // edit it (SPEC "Architecture").
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -22,7 +24,7 @@ struct RenderSettings {
   uint64_t seed = 0;
   std::string accelerator = "list";
   AcceleratorSettings accelerator_settings;
-  double ray_offset = 0;  // 0: derived from the scene's size (see Scene::ray_offset)
+  double ray_offset = 0;  // 0: derived from the scene's extent (see Scene::ray_offset)
   int tile_size = 16;
 };
 
@@ -75,10 +77,14 @@ class Scene {
   const SceneObject& object_of(const Intersection& hit) const {
     return objects[primitives[hit.primitive].object];
   }
-  // Bounds of the bounded primitives and the camera's eye region.
+  // Bounds of the bounded primitives (planes excluded).
   const Bounds3& bounds() const { return bounds_; }
-  // SPEC §8: secondary rays start this far off the surface, along the normal, to avoid acne.
-  double ray_offset() const { return ray_offset_; }
+  // SPEC §8: secondary rays start this far off the surface at p, along the normal, to avoid
+  // acne: a part scaled to the scene's extent plus a part relative to |p|, far above double
+  // rounding of a hit point there and far below any feature.
+  double ray_offset(const Vec3& p) const {
+    return ray_offset_ + 1e-12 * std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+  }
   const Accelerator& accelerator() const { return *accelerator_; }
   double accelerator_build_seconds() const { return build_seconds_; }
 

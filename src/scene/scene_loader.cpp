@@ -36,7 +36,11 @@ Transform read_transform_step(const JsonNode& step) {
   } else if (const auto scale = step.get("scale")) {
     const Vec3 factors = scale->json().is_number() ? Vec3{1, 1, 1} * scale->as_number() : scale->as_vec3();
     if (factors.x == 0 || factors.y == 0 || factors.z == 0) scale->fail("scale factors must be non-zero");
-    result = Transform::scale(factors);
+    try {
+      result = Transform::scale(factors);
+    } catch (const std::invalid_argument& e) {
+      scale->fail(e.what());
+    }
   } else if (const auto rotate = step.get("rotate")) {
     const double angle = rotate->number("angle");
     const JsonNode axis = rotate->at("axis");

@@ -218,6 +218,53 @@ TEST(SceneLoader, TheSeedScenesLoad) {
   EXPECT_EQ(builtin->whitted.max_depth, 12);
 }
 
+TEST(SceneLoader, ReviewedHostileInputsAreLocatedErrors) {
+  // Nesting too deep to be a scene: refused before it eats memory.
+  const InputError deep = load_error(std::string(300, '[') + std::string(300, ']'));
+  EXPECT_NE(std::string(deep.what()).find("nesting deeper than 256"), std::string::npos) << deep.what();
+  // Small scales are valid (they used to be called singular); dependent columns are not.
+  EXPECT_NO_THROW(load_scene_text(std::string(kHeader) + R"("shapes": [{"type": "sphere", "transform": {"scale": 1e-4}}]})",
+                                  "test.json", "."));
+  EXPECT_NO_THROW(load_scene_text(
+      std::string(kHeader) + R"("shapes": [{"type": "sphere", "transform": {"scale": [1, 1, 1e-12]}}]})", "test.json", "."));
+  expect_error(std::string(kHeader) + R"(  "shapes": [{"type": "sphere", "transform": {"matrix": [1, 2, 0, 0,  1, 2, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1]}}]
+})", "shapes[0].transform.matrix", 4, 57, "singular");
+  // Magnitudes whose squares would overflow, and images too large for memory.
+  expect_error(std::string(kHeader) + R"(  "shapes": [{"type": "sphere", "radius": 1e200}]
+})", "shapes[0].radius", 4, 43, "magnitude above 1e16");
+  expect_error(R"({"format": "candela/1", "camera": {"width": 65536, "height": 65536}})", "camera.width", 1, 45,
+               "lower camera.width or camera.height");
+  // A ray tree that would never shrink.
+  expect_error(std::string(kHeader) + R"(  "materials": {"m": {"kr": 0.6, "kt": 0.6}}
+})", "materials.m.kt", 4, 40, "kr + kt must be <= 1");
+}
+
+TEST(SceneLoader, OverridesWithOutOfRangeNumbersAndIndices) {
+  const std::string text = std::string(kHeader) + R"("shapes": [{"type": "sphere"}]})";
+  const InputError huge = load_error(text, {"camera.fov=1e999"});
+  EXPECT_NE(std::string(huge.what()).find("out of range"), std::string::npos) << huge.what();
+  const InputError index = load_error(text, {"shapes.99999999999999999999999.radius=2"});
+  EXPECT_NE(std::string(index.what()).find("out of range"), std::string::npos) << index.what();
+  const InputError file_overflow = load_error(std::string(kHeader) + R"(  "ambient": 1e999})");
+  EXPECT_EQ(std::string(file_overflow.message()).find("[json.exception"), std::string::npos) << file_overflow.what();
+}
+
+TEST(SceneLoader, MtlValuesAreRangeChecked) {
+  const auto directory = std::filesystem::temp_directory_path() / "candela-mtl-test";
+  std::filesystem::create_directories(directory);
+  std::ofstream(directory / "m.obj") << "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl bad\nf 1 2 3\n";
+  std::ofstream(directory / "m.mtl") << "newmtl bad\nKd -5 0.5 0.5\n";
+  const std::string text = std::string(kHeader) + R"("shapes": [{"type": "mesh", "file": "m.obj"}]})";
+  try {
+    load_scene_text(text, "test.json", directory.string());
+    ADD_FAILURE() << "negative Kd accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.location().json_path, "shapes[0].file");
+    EXPECT_NE(std::string(e.what()).find("Ka, Kd and Ke must be >= 0"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove_all(directory);
+}
+
 TEST(JsonDocument, RecordsWhereEveryValueStarts) {
   const JsonDocument document = JsonDocument::parse(
       "{\n  // a comment\n  \"a\": [1, 2.5,\n     {\"b\": true}],\n  /* more */ \"c\": \"x\"\n}", "f.json");

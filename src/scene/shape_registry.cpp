@@ -69,12 +69,23 @@ ShapeBuild make_polygon(const JsonNode& node, const Transform&, LoadContext&) {
   return one_shape(node, [&] { return std::make_unique<Polygon>(vertices); });
 }
 
+// Transforms the mesh into the world and makes its triangles; failures (coordinates that
+// overflow under the transform) are reported at the entry.
+std::vector<std::unique_ptr<Shape>> placed_triangles(const JsonNode& node, const std::shared_ptr<TriangleMesh>& mesh,
+                                                     const Transform& transform, std::size_t& skipped) {
+  try {
+    mesh->transform(transform);
+    return make_triangles(mesh, &skipped);
+  } catch (const std::invalid_argument& e) {
+    node.fail(e.what());
+  }
+}
+
 ShapeBuild triangles_of(const JsonNode& node, std::shared_ptr<TriangleMesh> mesh,
                         const Transform& transform, LoadContext& context) {
-  mesh->transform(transform);
   std::size_t skipped = 0;
   ShapeBuild build;
-  build.shapes = make_triangles(mesh, &skipped);
+  build.shapes = placed_triangles(node, mesh, transform, skipped);
   build.materials.assign(build.shapes.size(), -1);
   build.transform_applied = true;
   if (skipped > 0)
@@ -155,10 +166,9 @@ ShapeBuild make_mesh(const JsonNode& node, const Transform& transform, LoadConte
   }
   // Degenerate triangles are dropped by make_triangles, so map materials by the surviving
   // triangles' indices.
-  imported.mesh->transform(transform);
   ShapeBuild build;
   std::size_t skipped = 0;
-  build.shapes = make_triangles(imported.mesh, &skipped);
+  build.shapes = placed_triangles(node, imported.mesh, transform, skipped);
   build.transform_applied = true;
   for (const auto& shape : build.shapes) {
     const auto& triangle = static_cast<const MeshTriangle&>(*shape);

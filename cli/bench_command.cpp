@@ -1,0 +1,186 @@
+// candela bench [MESH] [--sphere N | --terrain N] [--accel NAME...] [--threads N...] [--json FILE]
+//               [--seed S] [--eye X Y Z] [--lookat X Y Z] [--fov DEG] [--light X Y Z]
+//               [--width W] [--height H] [--rays N] [--repeat R] [--min-time S] [--dump DIR] [--quiet]
+// Reproducible ray-set throughput (SPEC §14) with the ray sets and checksums of
+// shared/BENCH-RAYS.md. "embree" is Embree's own triangle test (the reference speed).
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <optional>
+
+#include "bench/bench_runner.h"
+#include "commands.h"
+#include "util/atomic_file.h"
+#include "util/error.h"
+
+namespace candela::cli {
+
+namespace {
+
+struct BenchCommandOptions {
+  std::string mesh_path;
+  std::optional<uint64_t> sphere;
+  std::optional<uint64_t> terrain;
+  std::vector<std::string> accelerators;
+  std::vector<int> threads;
+  std::string json_path;
+  uint64_t seed = 1;
+  std::vector<double> eye, lookat, light;
+  double fov = 45.0;
+  int width = 1024;
+  int height = 1024;
+  uint64_t rays = 0;
+  int repeat = 3;
+  double min_time = 0.5;
+  std::string dump_directory;
+  bool quiet = false;
+};
+
+class BadArgument : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+constexpr uint64_t kMaxTriangles = 50'000'000;
+constexpr uint64_t kMaxRays = uint64_t{1} << 26;
+
+std::optional<Vec3> point(const std::vector<double>& xyz, const char* option) {
+  if (xyz.empty()) return std::nullopt;
+  const Vec3 p{xyz[0], xyz[1], xyz[2]};
+  if (!is_finite(p)) throw BadArgument(fmt::format("{} must be three finite numbers", option));
+  return p;
+}
+
+BenchMesh load_mesh(const BenchCommandOptions& options) {
+  const int sources = !options.mesh_path.empty() + options.sphere.has_value() + options.terrain.has_value();
+  if (sources != 1) throw BadArgument("give exactly one of MESH, --sphere N or --terrain N");
+  if (options.sphere) {
+    if (*options.sphere < 1 || *options.sphere > kMaxTriangles)
+      throw BadArgument(fmt::format("--sphere N must lie in [1, {}]", kMaxTriangles));
+    return bench_sphere(*options.sphere);
+  }
+  if (options.terrain) {
+    if (*options.terrain < 1 || *options.terrain > kMaxTriangles)
+      throw BadArgument(fmt::format("--terrain N must lie in [1, {}]", kMaxTriangles));
+    return bench_terrain(*options.terrain);
+  }
+  return read_bench_obj(options.mesh_path);
+}
+
+BenchOptions bench_options(const BenchCommandOptions& options) {
+  BenchOptions bench;
+  const std::vector<std::string> known = bench_accelerator_names();
+  for (const std::string& name : options.accelerators) {
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      std::string list;
+      for (const std::string& n : known) list += (list.empty() ? "" : ", ") + n;
+      throw BadArgument("--accel " + name + ": unknown accelerator (expected one of: " + list + ")");
+    }
+    if (std::find(bench.accelerators.begin(), bench.accelerators.end(), name) == bench.accelerators.end())
+      bench.accelerators.push_back(name);
+  }
+  if (!options.threads.empty()) {
+    bench.threads.clear();
+    for (const int threads : options.threads) {
+      if (threads < 1 || threads > 1024) throw BadArgument("--threads values must lie in [1, 1024]");
+      if (std::find(bench.threads.begin(), bench.threads.end(), threads) == bench.threads.end())
+        bench.threads.push_back(threads);
+    }
+  }
+  if (options.width < 1 || options.height < 1) throw BadArgument("--width and --height must be >= 1");
+  if (static_cast<uint64_t>(options.width) * static_cast<uint64_t>(options.height) > kMaxRays)
+    throw BadArgument(fmt::format("--width x --height must be at most {} rays", kMaxRays));
+  if (options.rays > kMaxRays) throw BadArgument(fmt::format("--rays must be at most {}", kMaxRays));
+  if (!(options.fov > 0 && options.fov < 180)) throw BadArgument("--fov must lie in (0, 180) degrees");
+  if (options.repeat < 1) throw BadArgument("--repeat must be >= 1");
+  if (!(options.min_time >= 0) || !std::isfinite(options.min_time))
+    throw BadArgument("--min-time must be >= 0");
+  bench.rays.eye = point(options.eye, "--eye");
+  bench.rays.lookat = point(options.lookat, "--lookat");
+  bench.rays.light = point(options.light, "--light");
+  bench.rays.fov_degrees = options.fov;
+  bench.rays.width = options.width;
+  bench.rays.height = options.height;
+  bench.rays.incoherent_rays = options.rays;
+  bench.rays.seed = options.seed;
+  bench.repeat = options.repeat;
+  bench.min_seconds = options.min_time;
+  bench.dump_directory = options.dump_directory;
+  return bench;
+}
+
+int run_bench_command(const BenchCommandOptions& options) {
+  BenchOptions bench = bench_options(options);
+  const BenchMesh mesh = load_mesh(options);
+  if (mesh.skipped_faces > 0)
+    std::cerr << fmt::format("candela: warning: {}: {} face(s) with an out-of-range index skipped\n",
+                             mesh.name, mesh.skipped_faces);
+  const BenchView view = resolve_view(mesh.bounds, bench.rays);
+  const Vec3 forward = view.lookat - view.eye;
+  if (!(length(cross(forward, Vec3{0, 1, 0})) > 0))
+    throw BadArgument("--eye and --lookat must differ and the view must not be vertical");
+  const BenchReport report = run_bench(mesh, bench, [&](const std::string& line) {
+    if (!options.quiet) std::cerr << "candela: bench: " << line << "\n";
+  });
+  std::cout << report.table();
+  if (!options.json_path.empty()) {
+    const std::string text = report.to_json().dump(2) + "\n";
+    write_atomically(options.json_path, [&](const std::string& temporary) {
+      std::ofstream out(temporary);
+      out << text;
+      out.close();
+      if (!out) throw std::runtime_error("cannot write " + options.json_path);
+    });
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app, std::function<int()>& run) {
+  auto options = std::make_shared<BenchCommandOptions>();
+  CLI::App* command =
+      app.add_subcommand("bench", "Ray-set throughput and checksums per accelerator (shared/BENCH-RAYS.md)");
+  command->add_option("mesh", options->mesh_path, "Wavefront OBJ mesh (only v and f lines are read)");
+  command->add_option("--sphere", options->sphere, "Generated UV sphere of about N triangles");
+  command->add_option("--terrain", options->terrain, "Generated height field of about N triangles");
+  command
+      ->add_option("--accel", options->accelerators,
+                   "Accelerators (default: every registered one); embree = Embree's own triangle test, "
+                   "embree-exact = Embree with Candela's tests")
+      ->expected(1, -1);
+  command->add_option("--threads", options->threads, "Thread counts to run (default: 1 2)")->expected(1, -1);
+  command->add_option("--json", options->json_path, "Write the results as JSON");
+  command->add_option("--seed", options->seed, "Seed of the incoherent rays (default 1)");
+  command->add_option("--eye", options->eye, "Camera position (default: from the bounds)")->expected(3);
+  command->add_option("--lookat", options->lookat, "Camera target (default: the bounds' centre)")
+      ->expected(3);
+  command->add_option("--fov", options->fov, "Vertical field of view in degrees (default 45)");
+  command->add_option("--light", options->light, "Point light of the shadow rays (default: from the bounds)")
+      ->expected(3);
+  command->add_option("--width", options->width, "Primary rays per row (default 1024)");
+  command->add_option("--height", options->height, "Rows of primary rays (default 1024)");
+  command->add_option("--rays", options->rays, "Incoherent rays (default: width x height)");
+  command->add_option("--repeat", options->repeat, "Timed repetitions (default 3)");
+  command->add_option("--min-time", options->min_time,
+                      "Stop repeating once the timed repetitions took this many seconds (default 0.5)");
+  command->add_option("--dump", options->dump_directory, "Write the ray sets to this directory");
+  command->add_flag("-q,--quiet", options->quiet, "No progress lines");
+  command->callback([options, &run]() {
+    run = [options]() {
+      try {
+        return run_bench_command(*options);
+      } catch (const InputError& e) {
+        print_error(e.what());
+        return 2;
+      } catch (const BadArgument& e) {
+        print_error(e.what());
+        return 2;
+      }
+    };
+  });
+}
+
+}  // namespace candela::cli

@@ -1,0 +1,53 @@
+// The BVH builder: how to split, kept apart from the node layout and traversal (accel/bvh.h),
+// as Embree keeps its builders apart from its kernels (STYLE.md).
+//
+// Binned SAH (Wald 2007, "On fast Construction of SAH-based Bounding Volume Hierarchies"):
+// centroids are binned into `bins` bins along each of the three axes, the split planes between
+// bins are rated by the surface area heuristic
+//   cost = traversal + intersection · (A_left · N_left + A_right · N_right) / A_node,
+// and the best plane wins. A node with at most max_leaf_primitives references becomes a leaf;
+// a larger one with at most max_leaf_hard references becomes a leaf too when the SAH says that
+// splitting costs more than intersecting everything (intersection · N). When every centroid
+// coincides, the references are halved in index order (object median); below a depth of
+// kSahMaxDepth the split is an object median on the longest centroid axis, so the depth stays
+// bounded whatever the input. Large nodes bin in parallel and children build in parallel (TBB);
+// the result does not depend on the thread count.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "math/bounds.h"
+
+namespace candela {
+
+struct BvhBuildSettings {
+  int max_leaf_primitives = 4;  // split any node with more
+  int max_leaf_hard = 16;       // never make a larger leaf
+  int bins = 16;                // per axis; clamped to [2, 256]
+  double traversal_cost = 1.0;
+  double intersection_cost = 1.5;
+};
+
+// A node of the built tree, flattened depth first: an inner node's first child is the next
+// node, its second child is at `index`; a leaf holds references order[index, index + count).
+struct BvhBuildNode {
+  Bounds3 bounds;
+  uint32_t index = 0;
+  uint32_t count = 0;  // 0 for inner nodes
+  int axis = 0;        // split axis of an inner node (the axis of the chosen plane)
+};
+
+struct BvhBuildResult {
+  std::vector<BvhBuildNode> nodes;  // empty when there was nothing to build
+  std::vector<uint32_t> order;      // reference indices (into the input) in leaf order
+  uint32_t leaves = 0;
+  uint32_t depth = 0;     // levels: a single leaf has depth 1
+  double sah_cost = 0;    // the tree's SAH cost with the settings' costs, relative to the root
+};
+
+// Every bounds must be finite and non-empty. The maximum depth is below 128.
+BvhBuildResult build_bvh(std::span<const Bounds3> bounds, const BvhBuildSettings& settings);
+
+}  // namespace candela

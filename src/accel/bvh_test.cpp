@@ -1,0 +1,475 @@
+#include "accel/bvh.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "accel/primitive_list.h"
+#include "geometry/plane.h"
+#include "geometry/sphere.h"
+#include "geometry/triangle_mesh.h"
+#include "math/constants.h"
+#include "math/pcg32.h"
+
+namespace candela {
+namespace {
+
+// Shapes and the primitives that point at them.
+struct TestScene {
+  std::vector<std::unique_ptr<Shape>> shapes;
+  std::vector<Primitive> primitives;
+
+  void add(std::unique_ptr<Shape> shape) {
+    primitives.push_back({shape.get(), 0, static_cast<uint32_t>(shapes.size())});
+    shapes.push_back(std::move(shape));
+  }
+  void add_mesh(const std::shared_ptr<const TriangleMesh>& mesh) {
+    for (auto& triangle : make_triangles(mesh)) add(std::move(triangle));
+  }
+  Bounds3 bounds() const {
+    Bounds3 b;
+    for (const auto& shape : shapes) {
+      const Bounds3 s = shape->bounds();
+      if (s.is_finite()) b.extend(s);
+    }
+    return b;
+  }
+};
+
+double uniform(Pcg32& rng, double lo, double hi) { return lo + (hi - lo) * rng.next_double(); }
+
+Vec3 random_in(Pcg32& rng, const Bounds3& b) {
+  return {uniform(rng, b.lower.x, b.upper.x), uniform(rng, b.lower.y, b.upper.y),
+          uniform(rng, b.lower.z, b.upper.z)};
+}
+
+Vec3 random_direction(Pcg32& rng) {
+  while (true) {
+    const Vec3 d{uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)};
+    const double l2 = length_squared(d);
+    if (l2 > 1e-4 && l2 <= 1) return d / std::sqrt(l2);
+  }
+}
+
+Bounds3 grown(const Bounds3& b, double factor) {
+  const Vec3 margin = b.diagonal() * factor + Vec3{1e-3, 1e-3, 1e-3};
+  return {b.lower - margin, b.upper + margin};
+}
+
+// A mix of rays: from anywhere around and inside the scene towards random points of it, random
+// directions, and directions with components of +0 or -0.
+std::vector<Ray> random_rays(Pcg32& rng, const Bounds3& scene, int count) {
+  std::vector<Ray> rays;
+  const Bounds3 around = grown(scene, 0.5);
+  for (int i = 0; i < count; ++i) {
+    Ray ray;
+    ray.origin = random_in(rng, i % 3 == 0 ? scene : around);
+    switch (i % 4) {
+      case 0: ray.direction = random_direction(rng); break;
+      case 1:
+      case 2: {
+        const Vec3 d = random_in(rng, scene) - ray.origin;
+        ray.direction = length_squared(d) > 0 ? normalize(d) : Vec3{0, 0, 1};
+        break;
+      }
+      default: {
+        // Axis-aligned or in a coordinate plane, with signed zeros.
+        Vec3 d = random_direction(rng);
+        const int zeros = 1 + static_cast<int>(rng.next_uint() % 2);
+        const int first = static_cast<int>(rng.next_uint() % 3);
+        for (int k = 0; k < zeros; ++k) d[(first + k) % 3] = (rng.next_uint() & 1) ? 0.0 : -0.0;
+        ray.direction = normalize(d);
+        break;
+      }
+    }
+    if (i % 7 == 0) ray.t_min = 1e-3;
+    if (i % 11 == 0) ray.t_max = uniform(rng, 0.1, 2) * length(scene.diagonal());
+    rays.push_back(ray);
+  }
+  return rays;
+}
+
+void expect_same_vec(const Vec3& a, const Vec3& b, const char* what) {
+  EXPECT_TRUE(a == b || (std::isnan(a.x) && std::isnan(b.x))) << what << ": " << a << " vs " << b;
+}
+
+struct Agreement {
+  int hits = 0;
+  int occluded = 0;
+};
+
+// Every ray gets the same nearest hit (index, t, normals, uv bit for bit) and the same
+// occlusion answers from the BVH as from the list.
+Agreement expect_same_as_list(const TestScene& scene, const std::vector<Ray>& rays,
+                              const AcceleratorSettings& settings = {}) {
+  PrimitiveList list;
+  list.build(scene.primitives);
+  Bvh bvh(settings);
+  bvh.build(scene.primitives);
+  Agreement agreement;
+  int failures = 0;
+  for (std::size_t i = 0; i < rays.size() && failures < 10; ++i) {
+    const Ray& ray = rays[i];
+    Intersection expected, actual;
+    const bool expected_hit = list.intersect(ray, expected);
+    const bool actual_hit = bvh.intersect(ray, actual);
+    EXPECT_EQ(actual_hit, expected_hit) << "ray " << i << " origin " << ray.origin << " direction "
+                                        << ray.direction;
+    if (actual_hit != expected_hit) {
+      ++failures;
+      continue;
+    }
+    if (expected_hit) {
+      ++agreement.hits;
+      EXPECT_EQ(actual.primitive, expected.primitive) << "ray " << i;
+      EXPECT_EQ(actual.surface.t, expected.surface.t) << "ray " << i;
+      expect_same_vec(actual.surface.position, expected.surface.position, "position");
+      expect_same_vec(actual.surface.geometric_normal, expected.surface.geometric_normal, "normal");
+      expect_same_vec(actual.surface.shading_normal, expected.surface.shading_normal, "shading");
+      EXPECT_EQ(actual.surface.uv.x, expected.surface.uv.x);
+      EXPECT_EQ(actual.surface.uv.y, expected.surface.uv.y);
+      if (actual.primitive != expected.primitive || actual.surface.t != expected.surface.t) ++failures;
+    }
+    // Occlusion over the whole ray and over a segment that ends before or at the nearest hit.
+    EXPECT_EQ(bvh.occluded(ray), list.occluded(ray)) << "ray " << i;
+    if (list.occluded(ray)) ++agreement.occluded;
+    if (expected_hit) {
+      Ray segment = ray;
+      for (double t_max : {expected.surface.t, std::nextafter(expected.surface.t, kInfinity),
+                           expected.surface.t * 0.5}) {
+        segment.t_max = t_max;
+        EXPECT_EQ(bvh.occluded(segment), list.occluded(segment)) << "ray " << i << " t_max " << t_max;
+      }
+    }
+  }
+  return agreement;
+}
+
+std::shared_ptr<TriangleMesh> random_triangles(Pcg32& rng, int count, double extent, double size) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  const Bounds3 box{{-extent, -extent, -extent}, {extent, extent, extent}};
+  for (int i = 0; i < count; ++i) {
+    const Vec3 center = random_in(rng, box);
+    const auto first = static_cast<uint32_t>(mesh->positions.size());
+    for (int k = 0; k < 3; ++k)
+      mesh->positions.push_back(center + Vec3{uniform(rng, -size, size), uniform(rng, -size, size),
+                                              uniform(rng, -size, size)});
+    mesh->triangles.push_back({first, first + 1, first + 2});
+  }
+  return mesh;
+}
+
+// A latitude-longitude sphere with shared vertices (one vertex per pole, so the pole cells give
+// degenerate triangles, which make_triangles leaves out): 2 · rings · segments - 2 · segments
+// triangles, with smooth corner normals.
+std::shared_ptr<TriangleMesh> tessellated_sphere(int rings, int segments, double radius) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  const auto vertex = [&](int ring, int segment) -> uint32_t {
+    if (ring == 0) return 0;
+    if (ring == rings) return 1;
+    return static_cast<uint32_t>(2 + (ring - 1) * segments + segment % segments);
+  };
+  mesh->positions.push_back({0, 0, radius});
+  mesh->positions.push_back({0, 0, -radius});
+  for (int ring = 1; ring < rings; ++ring) {
+    const double theta = kPi * ring / rings;
+    for (int segment = 0; segment < segments; ++segment) {
+      const double phi = 2 * kPi * segment / segments;
+      mesh->positions.push_back({radius * std::sin(theta) * std::cos(phi),
+                                 radius * std::sin(theta) * std::sin(phi), radius * std::cos(theta)});
+    }
+  }
+  for (int ring = 0; ring < rings; ++ring) {
+    for (int segment = 0; segment < segments; ++segment) {
+      const uint32_t a = vertex(ring, segment), b = vertex(ring + 1, segment);
+      const uint32_t c = vertex(ring + 1, segment + 1), d = vertex(ring, segment + 1);
+      mesh->triangles.push_back({a, b, c});
+      mesh->triangles.push_back({a, c, d});
+    }
+  }
+  compute_corner_normals(*mesh, 180);
+  return mesh;
+}
+
+TEST(Bvh, NameAndEmptyScene) {
+  Bvh bvh;
+  EXPECT_EQ(bvh.name(), "bvh");
+  bvh.build({});
+  Intersection intersection;
+  const Ray ray{{0, 0, 0}, {0, 0, 1}};
+  EXPECT_FALSE(bvh.intersect(ray, intersection));
+  EXPECT_FALSE(bvh.occluded(ray));
+  const AcceleratorReport report = bvh.report();
+  ASSERT_FALSE(report.figures.empty());
+  EXPECT_EQ(report.figures[0].first, "nodes");
+  EXPECT_EQ(report.figures[0].second, 0);
+}
+
+TEST(Bvh, RejectsInvalidSettings) {
+  AcceleratorSettings settings;
+  settings.bvh_max_leaf_primitives = 0;
+  EXPECT_THROW(Bvh{settings}, std::invalid_argument);
+  settings = {};
+  settings.bvh_bins = 1;
+  EXPECT_THROW(Bvh{settings}, std::invalid_argument);
+}
+
+TEST(Bvh, RandomSpheresMatchList) {
+  Pcg32 rng(7, 1);
+  TestScene scene;
+  for (int i = 0; i < 400; ++i)
+    scene.add(std::make_unique<Sphere>(random_in(rng, {{-10, -10, -10}, {10, 10, 10}}),
+                                       uniform(rng, 0.1, 1.0)));
+  const Agreement agreement = expect_same_as_list(scene, random_rays(rng, scene.bounds(), 4000));
+  EXPECT_GT(agreement.hits, 1000);
+}
+
+TEST(Bvh, RandomTrianglesMatchList) {
+  Pcg32 rng(11, 2);
+  TestScene scene;
+  scene.add_mesh(random_triangles(rng, 2000, 10, 1.5));
+  const Agreement agreement = expect_same_as_list(scene, random_rays(rng, scene.bounds(), 4000));
+  EXPECT_GT(agreement.hits, 1000);
+}
+
+TEST(Bvh, OtherSettingsMatchList) {
+  Pcg32 rng(13, 3);
+  TestScene scene;
+  scene.add_mesh(random_triangles(rng, 800, 10, 1.0));
+  for (int i = 0; i < 100; ++i)
+    scene.add(std::make_unique<Sphere>(random_in(rng, {{-10, -10, -10}, {10, 10, 10}}), 0.5));
+  const std::vector<Ray> rays = random_rays(rng, scene.bounds(), 1500);
+  for (const auto& [max_leaf, bins] : {std::pair{1, 2}, std::pair{2, 64}, std::pair{8, 7}, std::pair{32, 16}}) {
+    SCOPED_TRACE(testing::Message() << "max leaf " << max_leaf << ", bins " << bins);
+    AcceleratorSettings settings;
+    settings.bvh_max_leaf_primitives = max_leaf;
+    settings.bvh_bins = bins;
+    EXPECT_GT(expect_same_as_list(scene, rays, settings).hits, 300);
+  }
+}
+
+// Coincident primitives hit at exactly the same t: the lowest index must win, even when the
+// copies end up in different leaves (more copies than a leaf holds).
+TEST(Bvh, DuplicatesKeepTheLowestIndex) {
+  Pcg32 rng(17, 4);
+  auto base = random_triangles(rng, 30, 5, 2.0);
+  auto mesh = std::make_shared<TriangleMesh>(*base);
+  // Each triangle 40 times, interleaved, plus copies with rotated corners (same plane, other
+  // corner order: the same t is not guaranteed then, but whichever wins must agree).
+  mesh->triangles.clear();
+  for (int copy = 0; copy < 40; ++copy)
+    for (const auto& tri : base->triangles) mesh->triangles.push_back(tri);
+  for (const auto& tri : base->triangles) mesh->triangles.push_back({tri[1], tri[2], tri[0]});
+  TestScene scene;
+  scene.add_mesh(mesh);
+  for (int i = 0; i < 20; ++i) {
+    const Vec3 center = random_in(rng, {{-5, -5, -5}, {5, 5, 5}});
+    for (int copy = 0; copy < 25; ++copy) scene.add(std::make_unique<Sphere>(center, 1.0));
+  }
+  std::vector<Ray> rays = random_rays(rng, scene.bounds(), 2000);
+  // Rays aimed at triangle corners and edge midpoints (shared by copies).
+  for (const auto& tri : base->triangles) {
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 target = k == 0 ? base->positions[tri[0]]
+                                 : (base->positions[tri[k]] + base->positions[tri[(k + 1) % 3]]) * 0.5;
+      Ray ray;
+      ray.origin = random_in(rng, {{-12, -12, -12}, {12, 12, 12}});
+      ray.direction = normalize(target - ray.origin);
+      rays.push_back(ray);
+    }
+  }
+  const Agreement agreement = expect_same_as_list(scene, rays);
+  EXPECT_GT(agreement.hits, 500);
+}
+
+TEST(Bvh, AllPrimitivesAtOnePoint) {
+  Pcg32 rng(19, 5);
+  TestScene scene;
+  const Vec3 point{1, 2, 3};
+  for (int i = 0; i < 100; ++i) scene.add(std::make_unique<Sphere>(point, uniform(rng, 0.5, 1.5)));
+  for (int i = 0; i < 60; ++i) scene.add(std::make_unique<Sphere>(point, 1.0));
+  // Triangles whose centroids all coincide with the point.
+  auto mesh = std::make_shared<TriangleMesh>();
+  for (int i = 0; i < 100; ++i) {
+    const Vec3 a = random_direction(rng), b = random_direction(rng);
+    const auto first = static_cast<uint32_t>(mesh->positions.size());
+    mesh->positions.push_back(point + a);
+    mesh->positions.push_back(point + b);
+    mesh->positions.push_back(point - a - b);
+    mesh->triangles.push_back({first, first + 1, first + 2});
+  }
+  scene.add_mesh(mesh);
+  const Agreement agreement = expect_same_as_list(scene, random_rays(rng, scene.bounds(), 3000));
+  EXPECT_GT(agreement.hits, 500);
+}
+
+TEST(Bvh, PlanesAndBoundedPrimitives) {
+  Pcg32 rng(23, 6);
+  TestScene scene;
+  scene.add(std::make_unique<Plane>(Vec3{0, -8, 0}, Vec3{0, 1, 0}));
+  scene.add_mesh(random_triangles(rng, 500, 8, 1.0));
+  scene.add(std::make_unique<Plane>(Vec3{0, 0, 9}, normalize(Vec3{0.1, 0.2, -1})));
+  for (int i = 0; i < 200; ++i)
+    scene.add(std::make_unique<Sphere>(random_in(rng, {{-8, -8, -8}, {8, 8, 8}}), 0.4));
+  scene.add(std::make_unique<Plane>(Vec3{0, -8, 0}, Vec3{0, 1, 0}));  // a duplicate plane
+  const Agreement agreement = expect_same_as_list(scene, random_rays(rng, scene.bounds(), 3000));
+  EXPECT_GT(agreement.hits, 1500);
+
+  Bvh bvh;
+  bvh.build(scene.primitives);
+  for (const auto& [name, value] : bvh.report().figures)
+    if (name == "unbounded primitives") {
+      EXPECT_EQ(value, 3);
+    }
+}
+
+TEST(Bvh, OnlyPlanes) {
+  TestScene scene;
+  scene.add(std::make_unique<Plane>(Vec3{0, 0, 0}, Vec3{0, 0, 1}));
+  scene.add(std::make_unique<Plane>(Vec3{0, 0, 1}, Vec3{0, 0, 1}));
+  Bvh bvh;
+  bvh.build(scene.primitives);
+  Intersection intersection;
+  ASSERT_TRUE(bvh.intersect(Ray{{0, 0, 5}, {0, 0, -1}}, intersection));
+  EXPECT_EQ(intersection.primitive, 1u);
+  EXPECT_EQ(intersection.surface.t, 4.0);
+  EXPECT_TRUE(bvh.occluded(Ray{{0, 0, 5}, {0, 0, -1}}));
+  EXPECT_FALSE(bvh.occluded(Ray{{0, 0, 5}, {1, 0, 0}}));
+}
+
+// Axis-aligned rays running exactly in the planes of axis-aligned boxes and triangle edges:
+// the slab test sees 0 · inf.
+TEST(Bvh, AxisAlignedRaysInBoxPlanes) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  for (int i = 0; i < 6; ++i) {
+    for (int j = 0; j < 6; ++j) {
+      for (int k = 0; k < 6; ++k) {
+        const auto first = static_cast<uint32_t>(mesh->positions.size());
+        const Vec3 p{double(i), double(j), double(k)};
+        mesh->positions.push_back(p);
+        mesh->positions.push_back(p + Vec3{1, 0, 0});
+        mesh->positions.push_back(p + Vec3{0, 1, 0});
+        mesh->positions.push_back(p + Vec3{0, 0, 1});
+        mesh->triangles.push_back({first, first + 1, first + 2});  // z = k
+        mesh->triangles.push_back({first, first + 3, first + 1});  // y = j
+        mesh->triangles.push_back({first, first + 2, first + 3});  // x = i
+      }
+    }
+  }
+  TestScene scene;
+  scene.add_mesh(mesh);
+  std::vector<Ray> rays;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (double sign : {1.0, -1.0}) {
+      for (double a : {0.0, 0.25, 1.0, 2.5, 3.0, 6.0}) {
+        for (double b : {0.0, 0.5, 1.0, 2.0, 4.75, 6.0}) {
+          Ray ray;
+          ray.origin[axis] = sign > 0 ? -1.0 : 8.0;
+          ray.origin[(axis + 1) % 3] = a;
+          ray.origin[(axis + 2) % 3] = b;
+          ray.direction[axis] = sign;
+          ray.direction[(axis + 1) % 3] = sign > 0 ? 0.0 : -0.0;
+          ray.direction[(axis + 2) % 3] = sign > 0 ? -0.0 : 0.0;
+          rays.push_back(ray);
+          ray.origin[axis] = 3.0;  // starting inside, on a triangle's plane
+          rays.push_back(ray);
+        }
+      }
+    }
+  }
+  const Agreement agreement = expect_same_as_list(scene, rays);
+  EXPECT_GT(agreement.hits, 100);
+}
+
+TEST(Bvh, LargeTessellatedSphereMatchesList) {
+  TestScene scene;
+  scene.add_mesh(tessellated_sphere(112, 224, 2.0));
+  ASSERT_GT(scene.primitives.size(), 49000u);
+  Pcg32 rng(29, 7);
+  std::vector<Ray> rays = random_rays(rng, scene.bounds(), 600);
+  // Rays towards mesh vertices (shared by up to six triangles: ties at equal t).
+  const auto& positions = static_cast<const MeshTriangle*>(scene.primitives[0].shape)->mesh().positions;
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 target = positions[rng.next_uint() % positions.size()];
+    Ray ray;
+    ray.origin = random_in(rng, {{-6, -6, -6}, {6, 6, 6}});
+    ray.direction = normalize(target - ray.origin);
+    rays.push_back(ray);
+  }
+  const Agreement agreement = expect_same_as_list(scene, rays);
+  EXPECT_GT(agreement.hits, 400);
+
+  Bvh bvh;
+  bvh.build(scene.primitives);
+  const AcceleratorReport report = bvh.report();
+  double nodes = 0, leaves = 0, depth = 0, sah = 0, per_leaf = 0;
+  for (const auto& [name, value] : report.figures) {
+    if (name == "nodes") nodes = value;
+    if (name == "leaves") leaves = value;
+    if (name == "depth") depth = value;
+    if (name == "SAH cost") sah = value;
+    if (name == "primitives per leaf") per_leaf = value;
+  }
+  const double primitives = static_cast<double>(scene.primitives.size());
+  EXPECT_GE(leaves, primitives / 16);
+  EXPECT_EQ(nodes, 2 * leaves - 1);
+  EXPECT_GT(depth, std::log2(primitives / 16));
+  EXPECT_LT(depth, 64);
+  EXPECT_GT(sah, 1);
+  EXPECT_LT(sah, 200);
+  EXPECT_NEAR(per_leaf * leaves, primitives, 1e-6 * primitives);
+  EXPECT_GE(per_leaf, 1);
+  EXPECT_LE(per_leaf, 16);
+  EXPECT_GT(report.bytes, primitives * 72);
+}
+
+TEST(Bvh, RaysFromInsideTheMesh) {
+  TestScene scene;
+  scene.add_mesh(tessellated_sphere(40, 80, 1.0));
+  Pcg32 rng(31, 8);
+  std::vector<Ray> rays;
+  for (int i = 0; i < 1000; ++i) {
+    Ray ray;
+    ray.origin = random_in(rng, {{-0.5, -0.5, -0.5}, {0.5, 0.5, 0.5}});
+    ray.direction = random_direction(rng);
+    rays.push_back(ray);
+  }
+  const Agreement agreement = expect_same_as_list(scene, rays);
+  EXPECT_EQ(agreement.hits, 1000);  // closed and watertight: every ray leaves through it
+}
+
+// Fewer primitives than a leaf holds: the tree is a single leaf.
+TEST(Bvh, SingleLeafTree) {
+  Pcg32 rng(37, 9);
+  TestScene scene;
+  scene.add(std::make_unique<Sphere>(Vec3{0, 0, 0}, 1.0));
+  scene.add_mesh(random_triangles(rng, 2, 1, 1.0));
+  Bvh bvh;
+  bvh.build(scene.primitives);
+  for (const auto& [name, value] : bvh.report().figures) {
+    if (name == "nodes" || name == "leaves" || name == "depth") {
+      EXPECT_EQ(value, 1) << name;
+    }
+  }
+  EXPECT_GT(expect_same_as_list(scene, random_rays(rng, scene.bounds(), 1000)).hits, 200);
+}
+
+TEST(Bvh, DegenerateTrianglesNeverHit) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  mesh->positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}};
+  mesh->triangles = {{0, 1, 2}, {0, 1, 3}};
+  TestScene scene;
+  scene.add(std::make_unique<MeshTriangle>(mesh, 0));  // collinear: kept by the constructor
+  scene.add(std::make_unique<MeshTriangle>(mesh, 1));
+  Bvh bvh;
+  bvh.build(scene.primitives);
+  Intersection intersection;
+  ASSERT_TRUE(bvh.intersect(Ray{{0.25, 0.25, 1}, {0, 0, -1}}, intersection));
+  EXPECT_EQ(intersection.primitive, 1u);
+  EXPECT_FALSE(bvh.intersect(Ray{{1.5, 0.0, 1}, {0, 0, -1}}, intersection));
+}
+
+}  // namespace
+}  // namespace candela
