@@ -251,11 +251,12 @@ bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
   // Hits at exactly best_t must still be seen (a lower index wins the tie), so once something
   // is found the shape tests run with t_max just above best_t.
   Ray test = ray;
+  WatertightRay sheared(ray);  // the per-ray part of every triangle test
   const auto accept = [&](double t, uint32_t primitive) {
     best_t = t;
     best = primitive;
     found = true;
-    test.t_max = std::nextafter(t, kInfinity);
+    test.t_max = sheared.t_max = std::nextafter(t, kInfinity);
   };
 
   for (uint32_t primitive : unbounded_) {
@@ -297,10 +298,9 @@ bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
         for (uint32_t s = current.child; s < end; ++s) {
           const Slot& slot = slots_[s];
           if (!(slot.primitive & kShapeSlot)) {
-            TriangleIntersection found_triangle;
-            if (intersect_triangle(test, slot.p0, slot.p1, slot.p2, found_triangle) &&
-                closer_hit(found_triangle.t, slot.primitive, best_t, best)) {
-              accept(found_triangle.t, slot.primitive);
+            double t;
+            if (sheared.distance(slot.p0, slot.p1, slot.p2, t) && closer_hit(t, slot.primitive, best_t, best)) {
+              accept(t, slot.primitive);
               best_is_triangle = true;
             }
           } else {
@@ -339,6 +339,7 @@ bool Bvh::occluded_in_tree(const Ray& ray) const {
   const RaySlabs slabs(ray, scene_scale_);
   const double t0 = slabs.widen_down(ray.t_min);
   const double t1 = slabs.widen_up(ray.t_max);
+  const WatertightRay sheared(ray);
   Pending stack[kStackSize];
   std::size_t top = 0;
   Pending current{t0, 0, 0};
@@ -358,8 +359,8 @@ bool Bvh::occluded_in_tree(const Ray& ray) const {
       for (uint32_t s = current.child; s < end; ++s) {
         const Slot& slot = slots_[s];
         if (!(slot.primitive & kShapeSlot)) {
-          TriangleIntersection found;
-          if (intersect_triangle(ray, slot.p0, slot.p1, slot.p2, found)) return true;
+          double t;
+          if (sheared.distance(slot.p0, slot.p1, slot.p2, t)) return true;
         } else if (primitives_[slot.primitive & ~kShapeSlot].shape->occluded(ray)) {
           return true;
         }

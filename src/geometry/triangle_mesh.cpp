@@ -180,24 +180,25 @@ void compute_corner_normals(TriangleMesh& mesh, double crease_angle_degrees) {
 // ---------------------------------------------------------------------------------------------
 // The watertight test
 
-bool intersect_triangle(const Ray& ray, const Vec3& p0, const Vec3& p1, const Vec3& p2,
-                        TriangleIntersection& result) {
-  // Vertices relative to the ray origin.
-  const Vec3 a = p0 - ray.origin;
-  const Vec3 b = p1 - ray.origin;
-  const Vec3 c = p2 - ray.origin;
-
+WatertightRay::WatertightRay(const Ray& ray) : origin(ray.origin), t_min(ray.t_min), t_max(ray.t_max) {
   // The dominant direction axis becomes z; swapping x and y when it points down keeps the
   // winding (the test is two-sided, so this only matters for bit-identical edge values).
-  const int kz = max_dimension(abs(ray.direction));
-  int kx = kz + 1 == 3 ? 0 : kz + 1;
-  int ky = kx + 1 == 3 ? 0 : kx + 1;
+  kz = max_dimension(abs(ray.direction));
+  kx = kz + 1 == 3 ? 0 : kz + 1;
+  ky = kx + 1 == 3 ? 0 : kx + 1;
   if (ray.direction[kz] < 0) std::swap(kx, ky);
-
   // Shear so that the ray becomes the +z axis (the z scale is applied later, only for t).
-  const double sx = ray.direction[kx] / ray.direction[kz];
-  const double sy = ray.direction[ky] / ray.direction[kz];
-  const double sz = 1.0 / ray.direction[kz];
+  sx = ray.direction[kx] / ray.direction[kz];
+  sy = ray.direction[ky] / ray.direction[kz];
+  sz = 1.0 / ray.direction[kz];
+}
+
+bool WatertightRay::edges(const Vec3& p0, const Vec3& p1, const Vec3& p2, double& u, double& v, double& w,
+                          double& det) const {
+  // Vertices relative to the ray origin, sheared.
+  const Vec3 a = p0 - origin;
+  const Vec3 b = p1 - origin;
+  const Vec3 c = p2 - origin;
   const double ax = a[kx] - sx * a[kz];
   const double ay = a[ky] - sy * a[kz];
   const double bx = b[kx] - sx * b[kz];
@@ -206,9 +207,9 @@ bool intersect_triangle(const Ray& ray, const Vec3& p0, const Vec3& p1, const Ve
   const double cy = c[ky] - sy * c[kz];
 
   // Edge functions: u weights p0 (edge p1-p2), v weights p1, w weights p2.
-  double u = cx * by - cy * bx;
-  double v = ax * cy - ay * cx;
-  double w = bx * ay - by * ax;
+  u = cx * by - cy * bx;
+  v = ax * cy - ay * cx;
+  w = bx * ay - by * ax;
   // The paper's fallback to higher precision when the ray passes (numerically) through an edge.
   if (u == 0 || v == 0 || w == 0) {
     using Long = long double;
@@ -217,12 +218,28 @@ bool intersect_triangle(const Ray& ray, const Vec3& p0, const Vec3& p1, const Ve
     w = static_cast<double>(Long(bx) * Long(ay) - Long(by) * Long(ax));
   }
   if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return false;
-  const double det = u + v + w;
-  if (det == 0) return false;
+  det = u + v + w;
+  return det != 0;
+}
 
-  const double az = sz * a[kz];
-  const double bz = sz * b[kz];
-  const double cz = sz * c[kz];
+bool WatertightRay::distance(const Vec3& p0, const Vec3& p1, const Vec3& p2, double& t) const {
+  double u, v, w, det;
+  if (!edges(p0, p1, p2, u, v, w, det)) return false;
+  const double az = sz * (p0[kz] - origin[kz]);
+  const double bz = sz * (p1[kz] - origin[kz]);
+  const double cz = sz * (p2[kz] - origin[kz]);
+  t = (u * az + v * bz + w * cz) / det;
+  return t > t_min && t < t_max;
+}
+
+bool intersect_triangle(const Ray& ray, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                        TriangleIntersection& result) {
+  const WatertightRay sheared(ray);
+  double u, v, w, det;
+  if (!sheared.edges(p0, p1, p2, u, v, w, det)) return false;
+  const double az = sheared.sz * (p0[sheared.kz] - ray.origin[sheared.kz]);
+  const double bz = sheared.sz * (p1[sheared.kz] - ray.origin[sheared.kz]);
+  const double cz = sheared.sz * (p2[sheared.kz] - ray.origin[sheared.kz]);
   const double t = (u * az + v * bz + w * cz) / det;
   if (!(t > ray.t_min && t < ray.t_max)) return false;
 
