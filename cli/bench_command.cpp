@@ -12,6 +12,7 @@
 
 #include "bench/bench_runner.h"
 #include "commands.h"
+#include "scene/scene_loader.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 
@@ -111,19 +112,8 @@ BenchOptions bench_options(const BenchCommandOptions& options) {
   return bench;
 }
 
-int run_bench_command(const BenchCommandOptions& options) {
-  BenchOptions bench = bench_options(options);
-  const BenchMesh mesh = load_mesh(options);
-  if (mesh.skipped_faces > 0)
-    std::cerr << fmt::format("candela: warning: {}: {} face(s) with an out-of-range index skipped\n",
-                             mesh.name, mesh.skipped_faces);
-  const BenchView view = resolve_view(mesh.bounds, bench.rays);
-  const Vec3 forward = view.lookat - view.eye;
-  if (!(length(cross(forward, Vec3{0, 1, 0})) > 0))
-    throw BadArgument("--eye and --lookat must differ and the view must not be vertical");
-  const BenchReport report = run_bench(mesh, bench, [&](const std::string& line) {
-    if (!options.quiet) std::cerr << "candela: bench: " << line << "\n";
-  });
+// Prints the table and writes --json.
+int finish_bench(const BenchReport& report, const BenchCommandOptions& options) {
   std::cout << report.table();
   if (!options.json_path.empty()) {
     const std::string text = report.to_json().dump(2) + "\n";
@@ -137,13 +127,48 @@ int run_bench_command(const BenchCommandOptions& options) {
   return 0;
 }
 
+bool is_scene_file(const std::string& path) {
+  return path.size() > 5 && path.compare(path.size() - 5, 5, ".json") == 0;
+}
+
+int run_bench_command(const BenchCommandOptions& options) {
+  BenchOptions bench = bench_options(options);
+  const auto log = [&](const std::string& line) {
+    if (!options.quiet) std::cerr << "candela: bench: " << line << "\n";
+  };
+  if (is_scene_file(options.mesh_path)) {
+    // A scene: its primitives as the loader makes them, rays from the bounds of its bounded
+    // shapes; Embree's native triangle mode does not apply.
+    if (options.sphere || options.terrain) throw BadArgument("give exactly one of MESH, --sphere N or --terrain N");
+    const std::unique_ptr<Scene> scene = load_scene_file(options.mesh_path);
+    if (bench.accelerators.empty())
+      for (const std::string& name : bench_accelerator_names())
+        if (name != "embree") bench.accelerators.push_back(name);
+    if (std::find(bench.accelerators.begin(), bench.accelerators.end(), "embree") != bench.accelerators.end())
+      throw BadArgument("--accel embree measures Embree's own triangles: use embree-exact for a scene");
+    const BenchScene primitives(scene->primitives);
+    const BenchReport report =
+        run_bench(BenchInput{options.mesh_path, scene->bounds(), scene->primitives.size(), &primitives}, bench, log);
+    return finish_bench(report, options);
+  }
+  const BenchMesh mesh = load_mesh(options);
+  if (mesh.skipped_faces > 0)
+    std::cerr << fmt::format("candela: warning: {}: {} face(s) with an out-of-range index skipped\n",
+                             mesh.name, mesh.skipped_faces);
+  const BenchView view = resolve_view(mesh.bounds, bench.rays);
+  const Vec3 forward = view.lookat - view.eye;
+  if (!(length(cross(forward, Vec3{0, 1, 0})) > 0))
+    throw BadArgument("--eye and --lookat must differ and the view must not be vertical");
+  return finish_bench(run_bench(mesh, bench, log), options);
+}
+
 }  // namespace
 
 void add_bench_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<BenchCommandOptions>();
   CLI::App* command =
       app.add_subcommand("bench", "Ray-set throughput and checksums per accelerator (shared/BENCH-RAYS.md)");
-  command->add_option("mesh", options->mesh_path, "Wavefront OBJ mesh (only v and f lines are read)");
+  command->add_option("mesh", options->mesh_path, "Wavefront OBJ mesh (only v and f lines are read) or a scene file (.json)");
   command->add_option("--sphere", options->sphere, "Generated UV sphere of about N triangles");
   command->add_option("--terrain", options->terrain, "Generated height field of about N triangles");
   command

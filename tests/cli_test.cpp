@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -193,6 +194,32 @@ TEST_F(Cli, BenchWritesTheTableJsonAndRayDump) {
   EXPECT_EQ(fs::file_size(directory_ / "rays" / "incoherent.rays"), 50u * 32u);
   EXPECT_TRUE(fs::exists(directory_ / "rays" / "shadow-list.rays"));
   EXPECT_TRUE(fs::exists(directory_ / "rays" / "rays.json"));
+}
+
+TEST_F(Cli, BenchMeasuresASceneFile) {
+  // A scene's primitives (spheres and a plane here), every accelerator agreeing ray for ray.
+  write("s.json", R"({"format": "candela/1", "camera": {}, "shapes": [
+      {"type": "sphere", "center": [0, 0, 0]}, {"type": "sphere", "center": [3, 0, 0]},
+      {"type": "box", "min": [-1, 2, -1], "max": [1, 3, 1]}, {"type": "plane", "point": [0, -2, 0]}]})");
+  std::string output;
+  ASSERT_EQ(run("bench s.json --accel list bvh grid octree --threads 1 --width 16 --height 16 --rays 200 "
+                "--repeat 1 --json b.json -q",
+                output),
+            0)
+      << output;
+  std::ifstream json_file(directory_ / "b.json");
+  const nlohmann::json json = nlohmann::json::parse(json_file);
+  EXPECT_EQ(json["mesh"], "s.json");
+  EXPECT_EQ(json["triangles"], 4);  // primitives of a scene
+  std::map<std::string, nlohmann::json> first;  // per set: the list's checksums
+  for (const auto& result : json["results"]) {
+    const std::string set = result["set"];
+    if (!first.count(set)) first[set] = result;
+    EXPECT_EQ(result["hits"], first[set]["hits"]) << result["accel"] << " " << set;
+    EXPECT_EQ(result["sum_t"], first[set]["sum_t"]) << result["accel"] << " " << set;
+    EXPECT_EQ(result["sum_prim"], first[set]["sum_prim"]) << result["accel"] << " " << set;
+  }
+  EXPECT_EQ(run("bench s.json --accel embree -q", output), 2);
 }
 
 TEST_F(Cli, BenchRejectsBadArguments) {

@@ -35,6 +35,12 @@ BenchScene::BenchScene(std::shared_ptr<const TriangleMesh> mesh) {
   }
 }
 
+BenchScene::BenchScene(std::span<const Primitive> primitives)
+    : primitives_(primitives.begin(), primitives.end()) {
+  triangle_ids_.resize(primitives_.size());
+  for (uint32_t i = 0; i < triangle_ids_.size(); ++i) triangle_ids_[i] = i;
+}
+
 void trace_rays(const Accelerator& accelerator, std::span<const BenchRay> rays, RayQuery query,
                 TraceResults& results) {
   results.t.resize(rays.size());
@@ -131,14 +137,14 @@ BenchResult time_set(const Accelerator& accelerator, const BenchScene& scene, co
   return result;
 }
 
-void write_dump_index(const std::string& directory, const BenchMesh& mesh, const RaySetOptions& options,
+void write_dump_index(const std::string& directory, const BenchInput& mesh, const RaySetOptions& options,
                       const nlohmann::json& sets) {
   const BenchView view = resolve_view(mesh.bounds, options);
   const auto vec = [](const Vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); };
   nlohmann::json index = {
       {"format", "packed little-endian float32 records: origin xyz, direction xyz, tnear, tfar (32 bytes)"},
       {"mesh", mesh.name},
-      {"triangles", mesh.mesh->triangles.size()},
+      {"triangles", mesh.triangles},
       {"bounds", {vec(mesh.bounds.lower), vec(mesh.bounds.upper)}},
       {"eye", vec(view.eye)},
       {"lookat", vec(view.lookat)},
@@ -162,6 +168,14 @@ void write_dump_index(const std::string& directory, const BenchMesh& mesh, const
 
 BenchReport run_bench(const BenchMesh& mesh, const BenchOptions& options,
                       const std::function<void(const std::string&)>& log) {
+  const BenchScene scene(mesh.mesh);
+  if (scene.skipped_degenerate() > 0 && log)
+    log(fmt::format("{} degenerate triangle(s) are never hit (they keep their ids)", scene.skipped_degenerate()));
+  return run_bench(BenchInput{mesh.name, mesh.bounds, mesh.mesh->triangles.size(), &scene}, options, log);
+}
+
+BenchReport run_bench(const BenchInput& mesh, const BenchOptions& options,
+                      const std::function<void(const std::string&)>& log) {
   const auto say = [&](const std::string& line) {
     if (log) log(line);
   };
@@ -182,11 +196,8 @@ BenchReport run_bench(const BenchMesh& mesh, const BenchOptions& options,
 
   BenchReport report;
   report.mesh = mesh.name;
-  report.triangles = mesh.mesh->triangles.size();
-  const BenchScene scene(mesh.mesh);
-  if (scene.skipped_degenerate() > 0)
-    say(fmt::format("{} degenerate triangle(s) are never hit (they keep their ids)",
-                    scene.skipped_degenerate()));
+  report.triangles = mesh.triangles;
+  const BenchScene& scene = *mesh.scene;
 
   const std::vector<BenchRay> primary = primary_rays(mesh.bounds, options.rays);
   const uint64_t incoherent_count = options.rays.incoherent_rays > 0

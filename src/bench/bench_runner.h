@@ -31,6 +31,8 @@ namespace candela {
 class BenchScene {
  public:
   explicit BenchScene(std::shared_ptr<const TriangleMesh> mesh);
+  // A scene's primitives (they must outlive this); the id of a primitive is its index.
+  explicit BenchScene(std::span<const Primitive> primitives);
   std::span<const Primitive> primitives() const { return primitives_; }
   uint32_t triangle_id(uint32_t primitive) const { return triangle_ids_[primitive]; }
   std::size_t skipped_degenerate() const { return skipped_degenerate_; }
@@ -110,8 +112,19 @@ struct BenchReport {
   std::string table() const;
 };
 
+// What is measured: its name, the bounds the ray sets are made from, and its primitives.
+struct BenchInput {
+  std::string name;
+  Bounds3 bounds;
+  uint64_t triangles = 0;  // triangles of a mesh, primitives of a scene
+  const BenchScene* scene = nullptr;
+};
+
 // Throws std::invalid_argument for an unknown accelerator name or bad options.
 BenchReport run_bench(const BenchMesh& mesh, const BenchOptions& options,
+                      const std::function<void(const std::string&)>& log = {});
+// The same for any primitives (a scene file): "embree" (native triangles) does not apply.
+BenchReport run_bench(const BenchInput& input, const BenchOptions& options,
                       const std::function<void(const std::string&)>& log = {});
 
 // Writes the rays to directory/<set>.rays as packed little-endian float32 records (origin xyz,
