@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Runs `candela bench` on every model of ../shared/models and on the 10,584-sphere scene,
+# writing one JSON file each into docs/bench/ and the tables into docs/bench/*.txt.
+# Usage: scripts/run-benchmarks.sh [candela-binary] [models-directory]
+# Long: about 20 minutes on a 2-core machine. Figures go into docs/benchmarks.md
+# (scripts/benchmarks-to-markdown.py).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+candela="${1:-build/cli/candela}"
+models="${2:-../shared/models}"
+out=docs/bench
+mkdir -p "$out"
+accels=(bvh grid octree embree)
+common=(--threads 1 2 --repeat 3 --min-time 1 -q)
+
+run() {  # name, arguments...
+  local name="$1"; shift
+  echo "bench: $name" >&2
+  "$candela" bench "$@" "${common[@]}" --json "$out/$name.json" > "$out/$name.txt"
+}
+
+run cornell_box "$models/cornell_box.obj" --accel list "${accels[@]}" \
+  --eye 278 273 -800 --lookat 278 273 0 --fov 39.3 --light 278 540 279.5
+for model in bunny_npm stanford_bunny dragon_100k igea; do
+  run "$model" "$models/$model.obj" --accel "${accels[@]}"
+done
+run sphere_1M --sphere 1000000 --accel "${accels[@]}"
+# 000 §5.7.2: 10,584 objects, the list against the accelerators (fewer rays: the list is slow).
+run sphere_field_10584 scenes/sphere-field-10584.json --accel list bvh grid octree embree-exact \
+  --width 128 --height 128 --rays 16384
