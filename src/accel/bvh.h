@@ -6,35 +6,58 @@
 // split, unless the SAH says a leaf of up to 16 is cheaper; bvh.bins (default 16): SAH bins per
 // axis.
 //
-// Node layout (64 bytes, one cache line, depth first): an inner node holds the boxes of its
-// two children as floats rounded outward from the double bounds, stored lane by lane
-// (lower x of both children, then lower y, ...) so that both boxes are tested at once with
-// two-wide double arithmetic; then each child's reference (an inner child's node index, or a
-// leaf's first slot) and slot count (0 for an inner child), and the split axis. A tree that is
-// a single leaf gets one node whose second child is an empty box. Leaves index slots in leaf
-// order: for a mesh triangle the slot holds its three world-space vertices, tested inline with
-// the same watertight intersect_triangle as MeshTriangle (so t is bit-identical); every other
-// shape is tested through its Shape. Only the nearest hit's SurfaceHit is filled, by the
-// primitive's own Shape. Unbounded primitives (planes) live in a separate list tested by every
-// ray; degenerate mesh triangles, which never hit, are left out.
+// Layout (depth first): the binary SAH tree is collapsed into four-wide nodes (128 bytes): the
+// boxes of up to four children as floats rounded outward, lane by lane, tested at once with SSE
+// in float against a conservatively rounded ray (see FloatSlabs in bvh.cpp for the proof that
+// no box the exact segment meets is culled). A leaf child refers to ceil(n / 4) packets, each
+// holding four slots' triangle vertices in float for a conservative SSE pre-test of the
+// watertight edge functions (FloatShear in bvh.cpp: a lane is rejected only when its edge
+// functions certainly have mixed signs). Surviving lanes run the exact test on the slot: for a
+// mesh triangle its three double vertices, tested with WatertightRay::intersect / distance (the
+// same watertight computation as MeshTriangle, so t is bit-identical); every other shape through
+// its Shape. Only the nearest hit's SurfaceHit is filled: a triangle's by fill_triangle_hit, the
+// code MeshTriangle::intersect runs, from the slot's corners and the exact test's weights (its
+// mesh's normals are prefetched when the hit is found); a shape's by its Shape. Unbounded
+// primitives (planes) live in a separate list tested by every ray; degenerate mesh triangles,
+// which never hit, are left out. Rays outside the float test's proven range (huge or
+// non-finite values, tiny direction components) test every primitive instead.
 //
-// Traversal: both children of a node are tested together; the one entered first is visited
-// first and the other is pushed with its entry distance, and popped entries that start beyond
-// the current nearest hit are skipped. The slab test takes "max of the entries, min of the
-// exits" with NaN (0 · inf, a ray in a slab's plane) ignored, scales the exits by
-// 1 + 4 gamma(3) (Ize 2013, "Robust BVH Ray Traversal") and widens [t_min, t] by a small
+// Traversal: the children a ray enters are pushed farthest first with their (float, lower
+// bound) entry distances and the nearest is visited; popped entries that start beyond the
+// current nearest hit are skipped. Boxes are tested against [t_min, t] widened by a small
 // relative and scene-scaled slack, so that a box is never culled when its primitive's own test
 // could report a hit within the interval. Hits at the current best t are still tested
 // (t_max = nextafter(best t)), and closer_hit keeps the lowest primitive index among equal t,
 // as the contract in accel/accelerator.h asks.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
 #include "accel/accelerator.h"
 
 namespace candela {
+
+struct TriangleMesh;
+
+// Memory for the BVH's large arrays: 128-byte aligned, and on Linux a block of 1 MiB or more is
+// 2 MiB aligned and marked for transparent huge pages (random access over tens of MiB misses
+// the TLB far less). Throws std::bad_alloc.
+void* bvh_allocate(std::size_t bytes);
+void bvh_free(void* memory) noexcept;
+
+template <class T>
+struct BvhAllocator {
+  using value_type = T;
+  BvhAllocator() = default;
+  template <class U>
+  BvhAllocator(const BvhAllocator<U>&) {}
+  T* allocate(std::size_t n) { return static_cast<T*>(bvh_allocate(n * sizeof(T))); }
+  void deallocate(T* p, std::size_t) noexcept { bvh_free(p); }
+  template <class U>
+  bool operator==(const BvhAllocator<U>&) const { return true; }
+};
 
 class Bvh final : public Accelerator {
  public:
@@ -47,33 +70,53 @@ class Bvh final : public Accelerator {
   // Figures: nodes, leaves, depth, SAH cost, primitives per leaf (mean), unbounded primitives.
   AcceleratorReport report() const override;
 
-  struct alignas(64) Node {
-    // bounds[row][child]: rows lower x, y, z, upper x, y, z.
-    float bounds[6][2];
-    uint32_t child[2];  // inner child: node index; leaf child: first slot
-    uint16_t count[2];  // leaf child: number of slots (>= 1); 0 for an inner child
-    uint8_t axis;       // split axis
-    uint8_t unused[3];
+  // A node of the 4-wide tree (the binary SAH tree collapsed): the boxes of up to four
+  // children as floats rounded outward, stored lane by lane (bounds[row][child], rows lower x,
+  // y, z, upper x, y, z) so that one SSE operation handles all four; an unused lane holds an
+  // empty box (lower +inf, upper -inf), which no ray enters.
+  struct alignas(128) Node {  // a 128-byte pair of cache lines
+    float bounds[6][4];
+    uint32_t child[4];  // inner child: node index; leaf child: first packet
+    uint16_t count[4];  // leaf child: number of slots (>= 1); 0 for an inner child or none
   };
-  static_assert(sizeof(Node) == 64);
+  static_assert(sizeof(Node) == 128);
+
+  // Up to four slots of a leaf with their triangles' vertices rounded to float, lane by lane
+  // (p[vertex][axis][lane]), for the conservative float pre-test; a shape's lane holds NaN
+  // (never rejected). A leaf of n slots has ceil(n / 4) consecutive packets; lane j of packet k
+  // is slot 4 k + j of lane_slots_.
+  struct alignas(16) Packet {
+    float p[3][3][4];
+  };
 
  private:
   // A leaf entry: an inline triangle (its vertices) or a primitive tested through its Shape.
   struct Slot {
     Vec3 p0, p1, p2;     // unused for shapes
     uint32_t primitive;  // primitive index, | kShapeSlot for shapes
+    uint32_t triangle;   // the triangle's index in its mesh (unused for shapes)
   };
+  static_assert(sizeof(Slot) == 80);
   // Slot entries whose primitive goes through its Shape (not an inline triangle).
   static constexpr uint32_t kShapeSlot = 0x80000000u;
 
   bool occluded_in_tree(const Ray& ray) const;
+  void prefetch_child(uint32_t child, uint32_t count) const;
+  void prefetch_lanes(uint32_t packet) const;
+  // Rays the float slab test is not proven for (huge or non-finite values): every primitive,
+  // as the list does.
+  bool intersect_all_slots(const Ray& ray, Intersection& intersection) const;
+  bool occluded_all_slots(const Ray& ray) const;
 
   int max_leaf_primitives_;
   int bins_;
   std::span<const Primitive> primitives_;
-  std::vector<Node> nodes_;
-  std::vector<Slot> slots_;
+  std::vector<Node, BvhAllocator<Node>> nodes_;
+  std::vector<Packet, BvhAllocator<Packet>> packets_;
+  std::vector<Slot, BvhAllocator<Slot>> lane_slots_;  // four per packet (unused lanes zero)
+  std::size_t slot_count_ = 0;    // slots in leaves
   std::vector<uint32_t> unbounded_;  // primitives with infinite bounds
+  const TriangleMesh* only_mesh_ = nullptr;  // the mesh of every inline triangle, when only one
   double scene_scale_ = 0;  // largest |coordinate| of the tree's bounds
   uint32_t tree_nodes_ = 0;  // nodes of the binary tree, leaves included
   uint32_t leaves_ = 0;

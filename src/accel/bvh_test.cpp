@@ -471,5 +471,65 @@ TEST(Bvh, DegenerateTrianglesNeverHit) {
   EXPECT_FALSE(bvh.intersect(Ray{{1.5, 0.0, 1}, {0, 0, -1}}, intersection));
 }
 
+// Tiny triangles far from the origin: the float boxes and the float triangle pre-test round at
+// a scale far larger than the triangles, and must still never cull a hit.
+TEST(Bvh, TinyTrianglesFarFromTheOrigin) {
+  auto mesh = tessellated_sphere(48, 96, 1e-3);
+  const Vec3 offset{3e4, -2e4, 1e4};
+  for (Vec3& p : mesh->positions) p = p + offset;
+  TestScene scene;
+  scene.add_mesh(mesh);
+  Pcg32 rng(41, 10);
+  std::vector<Ray> rays = random_rays(rng, scene.bounds(), 1500);
+  for (int i = 0; i < 1500; ++i) {  // towards vertices, from near and far
+    const Vec3 target = mesh->positions[rng.next_uint() % mesh->positions.size()];
+    Ray ray;
+    ray.origin = offset + random_direction(rng) * (i % 2 ? 5e-3 : 50.0);
+    ray.direction = normalize(target - ray.origin);
+    rays.push_back(ray);
+  }
+  const Agreement agreement = expect_same_as_list(scene, rays);
+  EXPECT_GT(agreement.hits, 1500);
+}
+
+// Rays outside the float test's proven range (tiny or huge components, huge origins, very
+// negative t_min) and rays with a negative t_min: the BVH still answers as the list.
+TEST(Bvh, RaysOutsideTheFloatRange) {
+  Pcg32 rng(43, 11);
+  TestScene scene;
+  scene.add_mesh(random_triangles(rng, 400, 4, 1.0));
+  scene.add(std::make_unique<Sphere>(Vec3{0, 0, 0}, 0.5));
+  std::vector<Ray> rays;
+  for (int i = 0; i < 400; ++i) {
+    Ray ray;
+    ray.origin = random_in(rng, {{-6, -6, -6}, {6, 6, 6}});
+    Vec3 d = random_direction(rng);
+    switch (i % 6) {
+      case 0: d[i % 3] = 1e-35; break;                       // a tiny component
+      case 1: d[i % 3] = -1e-300; break;                     // a double subnormal-ish one
+      case 2: d = d * 1e35; break;                           // huge direction
+      case 3: ray.origin[i % 3] = 1e31; d[i % 3] = -1; break;  // huge origin
+      case 4: ray.t_min = -1e31; break;                      // very negative t_min
+      default: ray.t_min = -uniform(rng, 0, 8); break;       // hits behind the origin count
+    }
+    ray.direction = d;
+    rays.push_back(ray);
+  }
+  const Agreement agreement = expect_same_as_list(scene, rays);
+  EXPECT_GT(agreement.hits, 50);
+}
+
+// Two meshes with smooth normals: the hit is filled through each triangle's own mesh.
+TEST(Bvh, TwoMeshesFillTheirOwnNormals) {
+  TestScene scene;
+  scene.add_mesh(tessellated_sphere(20, 40, 1.0));
+  auto second = tessellated_sphere(16, 32, 0.7);
+  for (Vec3& p : second->positions) p = p + Vec3{1.5, 0.25, 0};
+  scene.add_mesh(second);
+  Pcg32 rng(47, 12);
+  const Agreement agreement = expect_same_as_list(scene, random_rays(rng, scene.bounds(), 2000));
+  EXPECT_GT(agreement.hits, 800);
+}
+
 }  // namespace
 }  // namespace candela

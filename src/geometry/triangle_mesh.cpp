@@ -232,22 +232,26 @@ bool WatertightRay::distance(const Vec3& p0, const Vec3& p1, const Vec3& p2, dou
   return t > t_min && t < t_max;
 }
 
-bool intersect_triangle(const Ray& ray, const Vec3& p0, const Vec3& p1, const Vec3& p2,
-                        TriangleIntersection& result) {
-  const WatertightRay sheared(ray);
+bool WatertightRay::intersect(const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                             TriangleIntersection& result) const {
   double u, v, w, det;
-  if (!sheared.edges(p0, p1, p2, u, v, w, det)) return false;
-  const double az = sheared.sz * (p0[sheared.kz] - ray.origin[sheared.kz]);
-  const double bz = sheared.sz * (p1[sheared.kz] - ray.origin[sheared.kz]);
-  const double cz = sheared.sz * (p2[sheared.kz] - ray.origin[sheared.kz]);
+  if (!edges(p0, p1, p2, u, v, w, det)) return false;
+  const double az = sz * (p0[kz] - origin[kz]);
+  const double bz = sz * (p1[kz] - origin[kz]);
+  const double cz = sz * (p2[kz] - origin[kz]);
   const double t = (u * az + v * bz + w * cz) / det;
-  if (!(t > ray.t_min && t < ray.t_max)) return false;
+  if (!(t > t_min && t < t_max)) return false;
 
   result.t = t;
   result.b0 = u / det;
   result.b1 = v / det;
   result.b2 = w / det;
   return true;
+}
+
+bool intersect_triangle(const Ray& ray, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+                        TriangleIntersection& result) {
+  return WatertightRay(ray).intersect(p0, p1, p2, result);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -273,15 +277,8 @@ MeshTriangle::MeshTriangle(std::shared_ptr<const TriangleMesh> mesh, uint32_t tr
   degenerate_ = mesh_->is_degenerate(index_);
 }
 
-bool MeshTriangle::intersect(const Ray& ray, SurfaceHit& hit) const {
-  if (degenerate_) return false;
-  const auto& tri = mesh_->triangles[index_];
-  const Vec3& p0 = mesh_->positions[tri[0]];
-  const Vec3& p1 = mesh_->positions[tri[1]];
-  const Vec3& p2 = mesh_->positions[tri[2]];
-  TriangleIntersection found;
-  if (!intersect_triangle(ray, p0, p1, p2, found)) return false;
-
+void fill_triangle_hit(const TriangleMesh& mesh, std::size_t triangle, const Vec3& p0, const Vec3& p1,
+                       const Vec3& p2, const TriangleIntersection& found, SurfaceHit& hit) {
   hit.t = found.t;
   hit.position = p0 * found.b0 + p1 * found.b1 + p2 * found.b2;
   hit.object_position = hit.position;
@@ -289,14 +286,14 @@ bool MeshTriangle::intersect(const Ray& ray, SurfaceHit& hit) const {
   hit.geometric_normal = normal;
 
   hit.shading_normal = normal;
-  if (!mesh_->corner_normals.empty()) {
-    const auto& n = mesh_->corner_normals[index_];
+  if (!mesh.corner_normals.empty()) {
+    const auto& n = mesh.corner_normals[triangle];
     const Vec3 interpolated = n[0] * found.b0 + n[1] * found.b1 + n[2] * found.b2;
     const double len = length(interpolated);
     if (len > 0 && std::isfinite(len)) hit.shading_normal = interpolated / len;
   }
 
-  const auto& uv = mesh_->corner_uvs.empty() ? kDefaultUvs : mesh_->corner_uvs[index_];
+  const auto& uv = mesh.corner_uvs.empty() ? kDefaultUvs : mesh.corner_uvs[triangle];
   hit.uv = {uv[0].x * found.b0 + uv[1].x * found.b1 + uv[2].x * found.b2,
             uv[0].y * found.b0 + uv[1].y * found.b1 + uv[2].y * found.b2};
 
@@ -315,6 +312,18 @@ bool MeshTriangle::intersect(const Ray& ray, SurfaceHit& hit) const {
     degenerate_uv = !(length_squared(n) > 0) || !candela::is_finite(n);
   }
   if (degenerate_uv) orthonormal_basis(normal, hit.dpdu, hit.dpdv);
+}
+
+bool MeshTriangle::intersect(const Ray& ray, SurfaceHit& hit) const {
+  if (degenerate_) return false;
+  const auto& tri = mesh_->triangles[index_];
+  const Vec3& p0 = mesh_->positions[tri[0]];
+  const Vec3& p1 = mesh_->positions[tri[1]];
+  const Vec3& p2 = mesh_->positions[tri[2]];
+  TriangleIntersection found;
+  if (!intersect_triangle(ray, p0, p1, p2, found)) return false;
+
+  fill_triangle_hit(*mesh_, index_, p0, p1, p2, found, hit);
   return true;
 }
 

@@ -79,6 +79,13 @@ struct TriangleIntersection {
 bool intersect_triangle(const Ray& ray, const Vec3& p0, const Vec3& p1, const Vec3& p2,
                         TriangleIntersection& result);
 
+// Fills hit from a watertight hit (found, from intersect_triangle with the triangle's corners
+// p0, p1, p2, which must be the mesh's positions of that triangle) exactly as
+// MeshTriangle::intersect does: it is the code MeshTriangle::intersect runs after its test, so
+// an accelerator that already holds the corners gets a bit-identical SurfaceHit.
+void fill_triangle_hit(const TriangleMesh& mesh, std::size_t triangle, const Vec3& p0, const Vec3& p1,
+                       const Vec3& p2, const TriangleIntersection& found, SurfaceHit& hit);
+
 // The per-ray part of the watertight test (the dominant axis and the shear), computed once per
 // ray by the accelerators; WatertightRay::distance then costs one division per triangle and
 // gives a t bit-identical to intersect_triangle's.
@@ -94,6 +101,9 @@ struct WatertightRay {
   bool edges(const Vec3& p0, const Vec3& p1, const Vec3& p2, double& u, double& v, double& w, double& det) const;
   // The hit distance in (t_min, t_max), or false.
   bool distance(const Vec3& p0, const Vec3& p1, const Vec3& p2, double& t) const;
+  // The hit distance in (t_min, t_max) and the barycentric weights, or false (result is then
+  // left as it was): exactly intersect_triangle's result for the ray this was made from.
+  bool intersect(const Vec3& p0, const Vec3& p1, const Vec3& p2, TriangleIntersection& result) const;
 };
 
 class MeshTriangle final : public Shape {
