@@ -29,7 +29,7 @@ namespace candela {
 namespace {
 
 constexpr int kLeafHardCap = 16;        // the SAH may keep up to this many in a leaf
-constexpr std::size_t kStackSize = 3 * 128 + 4;  // depth below 128, at most 3 left per level
+constexpr std::size_t kStackSize = (Bvh::kWidth - 1) * 128 + Bvh::kWidth;  // depth below 128, at most 7 left per level
 constexpr std::size_t kGrain = 4096;
 
 // [t_min, t_max] is widened by this relative amount plus this much of the scene's scale, far
@@ -74,7 +74,7 @@ double max_abs(const Vec3& v) { return std::max({std::fabs(v.x), std::fabs(v.y),
 // What build() does with each primitive.
 enum class Kind : uint8_t { unbounded, shape, triangle, never_hit };
 
-// The per-ray constants of the four-wide float slab test.
+// The per-ray constants of the float slab test (four lanes at a time).
 //
 // Why it never culls a box that the ray's segment [t_lo, t_hi] (the double interval the
 // triangle tests need, widened by kSlack as before) meets: let t* in [t_lo, t_hi] be a point of
@@ -113,8 +113,8 @@ struct FloatSlabs {
       if (!(d == 0 || (ad >= 1e-30 && ad <= 1e30))) return false;
       largest = std::max(largest, ad);
       const bool negative = std::signbit(d);
-      const std::size_t lower = offsetof(Bvh::Node, bounds) + sizeof(float[4]) * axis;
-      const std::size_t upper = lower + sizeof(float[4]) * 3;
+      const std::size_t lower = offsetof(Bvh::Node, bounds) + sizeof(float[Bvh::kWidth]) * axis;
+      const std::size_t upper = lower + sizeof(float[Bvh::kWidth]) * 3;
       near_offset[axis] = negative ? upper : lower;
       far_offset[axis] = negative ? lower : upper;
       origin_near[axis] = _mm_set1_ps(negative ? round_down(o) : round_up(o));
@@ -138,9 +138,14 @@ struct FloatSlabs {
   // The lanes whose box the ray meets within [t0, t1] (bit per lane); entries receives the
   // (conservative) entry distances.
   int hit(const Bvh::Node& node, __m128 t0v, __m128 t1v, float* entries) const {
+    return hit4(node, 0, t0v, t1v, entries) | (hit4(node, 4, t0v, t1v, entries + 4) << 4);
+  }
+
+  // hit() for the four lanes from first.
+  int hit4(const Bvh::Node& node, int first, __m128 t0v, __m128 t1v, float* entries) const {
     __m128 near[3], far[3];
     for (int axis = 0; axis < 3; ++axis) {
-      const char* base = reinterpret_cast<const char*>(&node);
+      const char* base = reinterpret_cast<const char*>(&node) + sizeof(float) * first;
       near[axis] = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(reinterpret_cast<const float*>(base + near_offset[axis])),
                                          origin_near[axis]),
                               inverse_near[axis]);
@@ -394,9 +399,9 @@ void Bvh::build(std::span<const Primitive> primitives) {
     }
   }
 
-  // Collapse the binary tree into four-wide nodes, depth first: a node's children start as
+  // Collapse the binary tree into eight-wide nodes, depth first: a node's children start as
   // the two children of a binary inner node, and the inner child of largest surface area is
-  // replaced by its own two children until there are four (or only leaves). A lone leaf gets
+  // replaced by its own two children until there are eight (or only leaves). A lone leaf gets
   // a node of its own.
   const auto half_area = [&](std::size_t built) {
     const Vec3 d = tree.nodes[built].bounds.diagonal();
@@ -404,7 +409,7 @@ void Bvh::build(std::span<const Primitive> primitives) {
   };
   const auto empty_node = [] {
     Node node{};
-    for (int lane = 0; lane < 4; ++lane) {
+    for (int lane = 0; lane < kWidth; ++lane) {
       for (int axis = 0; axis < 3; ++axis) {
         node.bounds[axis][lane] = std::numeric_limits<float>::infinity();
         node.bounds[axis + 3][lane] = -std::numeric_limits<float>::infinity();
@@ -430,9 +435,9 @@ void Bvh::build(std::span<const Primitive> primitives) {
     const auto emit = [&](const auto& self, std::size_t built) -> uint32_t {
       const auto index = static_cast<uint32_t>(nodes_.size());
       nodes_.emplace_back();
-      std::size_t kids[4] = {built + 1, tree.nodes[built].index, 0, 0};
+      std::size_t kids[kWidth] = {built + 1, tree.nodes[built].index};
       int n = 2;
-      while (n < 4) {
+      while (n < kWidth) {
         int widest = -1;
         double widest_area = -1;
         for (int i = 0; i < n; ++i) {
@@ -463,7 +468,11 @@ inline void Bvh::prefetch_child(uint32_t child, uint32_t count) const {
   _mm_prefetch(address, _MM_HINT_T0);
   _mm_prefetch(address + 64, _MM_HINT_T0);
   _mm_prefetch(address + 128, _MM_HINT_T0);
-  if (count != 0) prefetch_lanes(child);
+  if (count != 0) {
+    prefetch_lanes(child);
+  } else {
+    _mm_prefetch(address + 192, _MM_HINT_T0);
+  }
 }
 
 // The exact data of a leaf's first four lanes (320 bytes), fetched together with its packet
@@ -545,7 +554,7 @@ bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
     const __m128 t0v = _mm_set1_ps(slabs.t0);
     float t1 = round_up(slack.up(best_t));
     float t1_skip = t1 + slabs.margin;
-    alignas(16) float entries[4];
+    alignas(16) float entries[kWidth];
     Pending stack[kStackSize];
     std::size_t top = 0;
     uint32_t ref = 0, count = 0;
@@ -663,7 +672,7 @@ bool Bvh::occluded_in_tree(const Ray& ray) const {
   const __m128 t1v = _mm_set1_ps(round_up(slack.up(ray.t_max)));
   Lazy<WatertightRay> sheared;  // made at the first leaf
   Lazy<FloatShear> shear;
-  alignas(16) float entries[4];
+  alignas(16) float entries[kWidth];
   Pending stack[kStackSize];
   std::size_t top = 0;
   uint32_t ref = 0, count = 0;

@@ -6,9 +6,9 @@
 // split, unless the SAH says a leaf of up to 16 is cheaper; bvh.bins (default 16): SAH bins per
 // axis.
 //
-// Layout (depth first): the binary SAH tree is collapsed into four-wide nodes (128 bytes): the
-// boxes of up to four children as floats rounded outward, lane by lane, tested at once with SSE
-// in float against a conservatively rounded ray (see FloatSlabs in bvh.cpp for the proof that
+// Layout (depth first): the binary SAH tree is collapsed into eight-wide nodes (256 bytes): the
+// boxes of up to eight children as floats rounded outward, lane by lane, tested four at a time
+// with SSE in float against a conservatively rounded ray (see FloatSlabs in bvh.cpp for the proof that
 // no box the exact segment meets is culled). A leaf child refers to ceil(n / 4) packets, each
 // holding four slots' triangle vertices in float for a conservative SSE pre-test of the
 // watertight edge functions (FloatShear in bvh.cpp: a lane is rejected only when its edge
@@ -70,16 +70,17 @@ class Bvh final : public Accelerator {
   // Figures: nodes, leaves, depth, SAH cost, primitives per leaf (mean), unbounded primitives.
   AcceleratorReport report() const override;
 
-  // A node of the 4-wide tree (the binary SAH tree collapsed): the boxes of up to four
+  static constexpr int kWidth = 8;  // children per node
+  // A node of the 8-wide tree (the binary SAH tree collapsed): the boxes of up to eight
   // children as floats rounded outward, stored lane by lane (bounds[row][child], rows lower x,
-  // y, z, upper x, y, z) so that one SSE operation handles all four; an unused lane holds an
+  // y, z, upper x, y, z) so that one SSE operation handles four; an unused lane holds an
   // empty box (lower +inf, upper -inf), which no ray enters.
-  struct alignas(128) Node {  // a 128-byte pair of cache lines
-    float bounds[6][4];
-    uint32_t child[4];  // inner child: node index; leaf child: first packet
-    uint16_t count[4];  // leaf child: number of slots (>= 1); 0 for an inner child or none
+  struct alignas(128) Node {  // four cache lines
+    float bounds[6][kWidth];
+    uint32_t child[kWidth];  // inner child: node index; leaf child: first packet
+    uint16_t count[kWidth];  // leaf child: number of slots (>= 1); 0 for an inner child or none
   };
-  static_assert(sizeof(Node) == 128);
+  static_assert(sizeof(Node) == 256);
 
   // Up to four slots of a leaf with their triangles' vertices rounded to float, lane by lane
   // (p[vertex][axis][lane]), for the conservative float pre-test; a shape's lane holds NaN
