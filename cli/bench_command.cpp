@@ -39,11 +39,6 @@ struct BenchCommandOptions {
   bool quiet = false;
 };
 
-class BadArgument : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
 constexpr uint64_t kMaxTriangles = 50'000'000;
 constexpr uint64_t kMaxRays = uint64_t{1} << 26;
 
@@ -194,17 +189,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   command->add_option("--dump", options->dump_directory, "Write the ray sets to this directory");
   command->add_flag("-q,--quiet", options->quiet, "No progress lines");
   command->callback([options, &run]() {
-    run = [options]() {
-      try {
-        return run_bench_command(*options);
-      } catch (const InputError& e) {
-        print_error(e.what());
-        return 2;
-      } catch (const BadArgument& e) {
-        print_error(e.what());
-        return 2;
-      }
-    };
+    run = [options]() { return run_reporting_bad_input([&] { return run_bench_command(*options); }); };
   });
 }
 

@@ -4,6 +4,8 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <stdexcept>
+#include <string>
 
 namespace candela::cli {
 
@@ -14,5 +16,15 @@ void add_bench_command(CLI::App& app, std::function<int()>& run);
 
 // Prints "candela: error: ..." to stderr.
 void print_error(const std::string& message);
+
+// A command-line value that cannot be used (exit code 2).
+class BadArgument : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Runs a sub-command: bad input (InputError, BadArgument) is printed and gives exit code 2;
+// anything else propagates to main (exit code 1).
+int run_reporting_bad_input(const std::function<int()>& command);
 
 }  // namespace candela::cli

@@ -51,14 +51,7 @@ void add_info_command(CLI::App& app, std::function<int()>& run) {
   command->add_option("scene", options->scene_path, "Scene file (default: the built-in scene)");
   command->add_option("--set", options->overrides, "Override a scene setting: key=value")->expected(1)->allow_extra_args(false)->take_all();
   command->callback([options, &run]() {
-    run = [options]() {
-      try {
-        return run_info(*options);
-      } catch (const InputError& e) {
-        print_error(e.what());
-        return 2;
-      }
-    };
+    run = [options]() { return run_reporting_bad_input([&] { return run_info(*options); }); };
   });
 }
 

@@ -3,6 +3,25 @@
 #include <iostream>
 
 #include "commands.h"
+#include "util/error.h"
+
+namespace candela::cli {
+
+void print_error(const std::string& message) { std::cerr << "candela: error: " << message << "\n"; }
+
+int run_reporting_bad_input(const std::function<int()>& command) {
+  try {
+    return command();
+  } catch (const InputError& e) {
+    print_error(e.what());
+    return 2;
+  } catch (const BadArgument& e) {
+    print_error(e.what());
+    return 2;
+  }
+}
+
+}  // namespace candela::cli
 
 int main(int argc, char** argv) {
   CLI::App app{"Candela: global illumination renderer and lighting simulator"};

@@ -34,11 +34,6 @@ struct RenderOptions {
   std::vector<int> pixel;
 };
 
-class BadArgument : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
-
 PixelRect region_of(const RenderOptions& options, const Camera& camera) {
   PixelRect region{0, 0, camera.width(), camera.height()};
   if (options.crop.empty()) return region;
@@ -159,8 +154,6 @@ int run_render(RenderOptions& options) {
 
 }  // namespace
 
-void print_error(const std::string& message) { std::cerr << "candela: error: " << message << "\n"; }
-
 void add_render_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<RenderOptions>();
   CLI::App* command = app.add_subcommand("render", "Render a scene (the built-in default scene without SCENE)");
@@ -182,17 +175,7 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
   command->add_option("--pixel", options->pixel, "Print the ray tree of pixel X,Y instead of rendering")
       ->delimiter(',')->expected(2);
   command->callback([options, &run]() {
-    run = [options]() {
-      try {
-        return run_render(*options);
-      } catch (const InputError& e) {
-        print_error(e.what());
-        return 2;
-      } catch (const BadArgument& e) {
-        print_error(e.what());
-        return 2;
-      }
-    };
+    run = [options]() { return run_reporting_bad_input([&] { return run_render(*options); }); };
   });
 }
 
