@@ -1,9 +1,11 @@
 // candela render [SCENE] [-o FILE] [--method M] [--threads N] [--seed S] [--set k=v]...
 //                [--stats FILE.json] [--quiet] [--crop x0,y0,x1,y1] [--pixel X,Y]
+//                [--aa-map FILE.png]
 #include <fmt/format.h>
 #include <unistd.h>
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -29,6 +31,7 @@ struct RenderOptions {
   int threads = 0;
   std::optional<int64_t> seed;
   std::string stats_path;
+  std::string aa_map_path;
   bool quiet = false;
   std::vector<int> crop;
   std::vector<int> pixel;
@@ -58,6 +61,22 @@ void check_writable(const std::string& path, const char* option) {
   if (fs::is_directory(path, error)) throw BadArgument(std::string(option) + " " + path + " is a folder");
 }
 
+// --aa-map: grey levels proportional to the samples each pixel used, white the most used (a
+// pixel of one sample in an image of one sample per pixel is white too).
+void write_aa_map(const RunStatistics& statistics, int width, int height, const std::string& path) {
+  if (statistics.samples_per_pixel.size() != std::size_t(width) * height)
+    throw BadArgument("--aa-map needs a ray-tracing method (local or whitted)");
+  uint32_t most = 1;
+  for (const uint32_t count : statistics.samples_per_pixel) most = std::max(most, count);
+  Film map(width, height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      map.at(x, y) = Color(double(statistics.samples_per_pixel[std::size_t(y) * width + x]) / most);
+  DisplaySettings display;
+  display.srgb = false;
+  write_image(map, path, display);
+}
+
 std::string default_output(const RenderOptions& options) {
   if (options.scene.scene_path.empty()) return "candela-default.png";
   return std::filesystem::path(options.scene.scene_path).stem().string() + ".png";
@@ -76,6 +95,12 @@ int run_render(RenderOptions& options) {
   // Fail before the work, not after it: both outputs must be writable.
   check_writable(options.output, "-o");
   if (!options.stats_path.empty()) check_writable(options.stats_path, "--stats");
+  if (!options.aa_map_path.empty()) {
+    ImageFormat map_format;
+    if (!image_format_for_path(options.aa_map_path, map_format) || map_format != ImageFormat::png)
+      throw BadArgument("--aa-map " + options.aa_map_path + ": expected a .png file");
+    check_writable(options.aa_map_path, "--aa-map");
+  }
   std::optional<tbb::global_control> thread_limit;
   if (options.threads > 0)
     thread_limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(options.threads));
@@ -127,6 +152,7 @@ int run_render(RenderOptions& options) {
 
   Stopwatch write_timer;
   write_image(film, options.output, scene->display);
+  if (!options.aa_map_path.empty()) write_aa_map(statistics, film.width(), film.height(), options.aa_map_path);
   statistics.add_phase("write", write_timer.seconds());
 
   statistics.extra["scene"] = scene->source;
@@ -169,6 +195,8 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
       ->allow_extra_args(false)
       ->take_all();
   command->add_option("--stats", options->stats_path, "Write run statistics as JSON");
+  command->add_option("--aa-map", options->aa_map_path,
+                      "Write a PNG whose grey levels show the samples each pixel used (white: the most)");
   command->add_flag("-q,--quiet", options->quiet, "No progress and no summary");
   command->add_option("--crop", options->crop, "Render only pixels x0,y0 (inclusive) to x1,y1 (exclusive)")
       ->delimiter(',')->expected(4);

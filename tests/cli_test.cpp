@@ -67,6 +67,30 @@ TEST_F(Cli, RendersTheDefaultSceneToPng) {
   EXPECT_EQ(stats["method"], "whitted");
 }
 
+TEST_F(Cli, AntialiasingStatisticsAndSampleMap) {
+  std::string output;
+  ASSERT_EQ(run("render -q --set camera.width=40 --set camera.height=30 --set aa.mode=corners -o out.png "
+                "--stats stats.json --aa-map map.png",
+                output),
+            0)
+      << output;
+  std::ifstream stats_file(directory_ / "stats.json");
+  const auto stats = nlohmann::json::parse(stats_file);
+  EXPECT_EQ(stats["rays"]["primary"], 41 * 31);  // (m+1)(n+1)
+  EXPECT_DOUBLE_EQ(stats["rays"]["primary_per_pixel"]["mean"].get<double>(), 41.0 * 31 / (40 * 30));
+  EXPECT_EQ(stats["rays"]["primary_per_pixel"]["max"], 4);  // the bottom-right pixel
+  EXPECT_EQ(stats["samples_per_pixel"]["max"], 4);
+  EXPECT_TRUE(fs::exists(directory_ / "map.png"));
+  ASSERT_EQ(run("render -q --set camera.width=40 --set camera.height=30 --set aa.mode=adaptive -o out.png "
+                "--stats stats.json --aa-map map.png",
+                output),
+            0)
+      << output;
+  EXPECT_EQ(run("render -q --set camera.width=4 --set camera.height=3 -o out.png --aa-map map.exr", output), 2);
+  EXPECT_EQ(run("render -q --set camera.width=4 --set camera.height=3 -o out.png --aa-map nowhere/map.png", output),
+            2);
+}
+
 TEST_F(Cli, WritesExrAndPfmAndCrops) {
   std::string output;
   ASSERT_EQ(run("render --quiet --set camera.width=20 --set camera.height=10 -o out.exr", output), 0) << output;

@@ -1,5 +1,6 @@
 // Every registered name can be created from its documented example (STYLE.md habit 2).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -19,7 +20,10 @@ namespace {
 class RegistryTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    directory_ = std::filesystem::temp_directory_path() / "candela-registry-test";
+    // One folder per test and process: ctest runs the tests of this fixture in parallel.
+    directory_ = std::filesystem::temp_directory_path() /
+                 ("candela-registry-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+                  "-" + std::to_string(::getpid()));
     std::filesystem::create_directories(directory_ / "meshes");
     std::ofstream cube(directory_ / "meshes" / "cube.obj");
     cube << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"

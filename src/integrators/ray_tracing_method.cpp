@@ -1,8 +1,11 @@
 #include "integrators/ray_tracing_method.h"
 
-#include <tbb/parallel_for.h>
+#include <tbb/enumerable_thread_specific.h>
 
-#include <mutex>
+#include <algorithm>
+#include <cmath>
+
+#include "camera/antialiasing.h"
 
 #include "util/progress.h"
 
@@ -12,35 +15,30 @@ void RayTracingMethod::render(const Scene& scene, const RenderRequest& request, 
                               RunStatistics& statistics) const {
   const PixelRect region = request.region;
   const int tile = scene.render.tile_size;
-  const int tiles_x = (region.width() + tile - 1) / tile;
-  const int tiles_y = (region.height() + tile - 1) / tile;
-  const int64_t tile_count = int64_t(tiles_x) * tiles_y;
+  const int64_t tile_count = sampling_tile_count(region.width(), region.height(), tile);
   ProgressReporter progress("render", static_cast<uint64_t>(tile_count), "tiles", request.quiet);
-  std::mutex merge;
-  RayCounts total;
-  tbb::parallel_for(int64_t(0), tile_count, [&](int64_t tile_index) {
-    const int x_begin = region.x0 + static_cast<int>(tile_index % tiles_x) * tile;
-    const int y_begin = region.y0 + static_cast<int>(tile_index / tiles_x) * tile;
-    const int x_end = std::min(x_begin + tile, region.x1);
-    const int y_end = std::min(y_begin + tile, region.y1);
-    TraceContext context;
-    for (int y = y_begin; y < y_end; ++y) {
-      for (int x = x_begin; x < x_end; ++x) {
-        context.rng = pixel_rng(scene.render.seed, static_cast<uint32_t>(x), static_cast<uint32_t>(y));
-        const Ray ray = scene.camera->generate_ray(x + 0.5, y + 0.5);
-        ++context.counts.primary;
-        film.at(x - region.x0, y - region.y0) = trace_primary(scene, ray, context);
-      }
-    }
-    {
-      std::lock_guard lock(merge);
-      total += context.counts;
-    }
-    progress.advance();
-  });
+  // Counts are per thread and summed at the end; the random stream is reseeded per ray from the
+  // pixel that holds the sample point, so values never depend on the thread.
+  tbb::enumerable_thread_specific<TraceContext> contexts;
+  const RadianceFunction radiance = [&](double x, double y) {
+    TraceContext& context = contexts.local();
+    const auto px = static_cast<uint32_t>(std::clamp(static_cast<int>(std::floor(x)), 0, scene.camera->width() - 1));
+    const auto py = static_cast<uint32_t>(std::clamp(static_cast<int>(std::floor(y)), 0, scene.camera->height() - 1));
+    context.rng = pixel_rng(scene.render.seed, px, py);
+    ++context.counts.primary;
+    return trace_primary(scene, scene.camera->generate_ray(x, y), context);
+  };
+  const SamplingRegion sampling{region.x0, region.y0, scene.camera->width(), scene.camera->height()};
+  SamplingResult result = sample_image(scene.antialiasing, scene.render.seed, sampling, tile, radiance, film,
+                                       [&] { progress.advance(); });
   progress.finish();
+  RayCounts total;
+  for (const TraceContext& context : contexts) total += context.counts;
   statistics.rays += total;
   statistics.pixels += static_cast<uint64_t>(region.width()) * region.height();
+  statistics.primary_per_pixel = std::move(result.traced_per_pixel);
+  statistics.samples_per_pixel = std::move(result.samples_per_pixel);
+  statistics.extra["antialiasing"] = antialiasing_mode_name(scene.antialiasing.mode);
 }
 
 RayTree RayTracingMethod::pixel_ray_tree(const Scene& scene, int x, int y, Color& radiance) const {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "accel/accelerator.h"
+#include "camera/antialiasing.h"
 #include "camera/camera.h"
 #include "camera/tone_map.h"
 #include "scene/light.h"
@@ -61,6 +62,7 @@ class Scene {
   DisplaySettings display;
   WhittedSettings whitted;
   LocalSettings local;
+  AntialiasingSettings antialiasing;  // the "aa" object
   std::vector<std::string> warnings;
 
   // Builds the accelerator named in render.accelerator and the derived quantities.

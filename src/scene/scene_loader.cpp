@@ -10,6 +10,8 @@
 #include "geometry/transformed_shape.h"
 #include "accel/accelerator_registry.h"
 #include "accel/bounding_volume.h"
+#include "camera/antialiasing.h"
+#include "camera/pixel_filter.h"
 #include "scene/camera_registry.h"
 #include "scene/json_node.h"
 #include "scene/light_registry.h"
@@ -155,6 +157,38 @@ class SceneReader {
       scene_->local.shadows = local->boolean("shadows", true);
       local->finish();
     }
+    if (const auto aa = root_.get("aa")) read_antialiasing(*aa);
+  }
+
+  void read_antialiasing(const JsonNode& aa) {
+    AntialiasingSettings& settings = scene_->antialiasing;
+    aa.expect_object();
+    if (const auto mode = aa.get("mode")) {
+      if (!antialiasing_mode_from_name(mode->as_string(), settings.mode))
+        mode->fail("unknown anti-aliasing mode \"" + mode->as_string() + "\" (expected one of: " +
+                   kAntialiasingModeNames + ")");
+    }
+    settings.n = aa.integer("n", settings.n, {1, 64, false, false});
+    settings.max_level = aa.integer("max_level", settings.max_level, {0, 8, false, false});
+    if (const auto threshold = aa.get("threshold")) {
+      if (threshold->json().is_array() && threshold->size() != 3)
+        threshold->fail("expected three thresholds [r, g, b] or one number");
+      settings.threshold = threshold->as_color(Range::non_negative());
+    }
+    settings.jitter = aa.boolean("jitter", settings.jitter);
+    if (const auto filter = aa.get("filter")) {
+      settings.filter = filter->as_string();
+      if (!find_pixel_filter(settings.filter))
+        filter->fail("unknown filter \"" + settings.filter + "\" (expected one of: " + pixel_filter_names() + ")");
+    }
+    settings.filter_parameters.radius = aa.number("filter_radius", 0.0, Range::non_negative());
+    settings.filter_parameters.sigma = aa.number("filter_sigma", 0.0, Range::non_negative());
+    try {
+      create_pixel_filter(settings.filter, settings.filter_parameters);
+    } catch (const std::invalid_argument& e) {
+      aa.fail(e.what());
+    }
+    aa.finish();
   }
 
   void read_materials() {

@@ -1,6 +1,7 @@
 #include "scene/scene_loader.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -60,6 +61,34 @@ TEST(SceneLoader, SyntaxErrorHasLineAndColumn) {
 TEST(SceneLoader, UnknownShapeListsTheValidOnes) {
   expect_error(std::string(kHeader) + R"(  "shapes": [{"type": "sphere"}, {"type": "teapot"}]
 })", "shapes[1].type", 4, 43, "unknown shape \"teapot\" (expected one of: sphere, plane,");
+}
+
+TEST(SceneLoader, ReadsAntialiasingSettings) {
+  const auto scene = load_scene_text(std::string(kHeader) + R"(  "aa": {"mode": "adaptive", "max_level": 3,
+    "threshold": [0.1, 0.2, 0.3], "jitter": true, "filter": "gaussian", "filter_radius": 1, "filter_sigma": 0.4}
+})", "test.json", ".");
+  EXPECT_EQ(scene->antialiasing.mode, AntialiasingMode::adaptive);
+  EXPECT_EQ(scene->antialiasing.max_level, 3);
+  EXPECT_EQ(scene->antialiasing.threshold, Color(0.1, 0.2, 0.3));
+  EXPECT_TRUE(scene->antialiasing.jitter);
+  EXPECT_EQ(scene->antialiasing.filter, "gaussian");
+  EXPECT_EQ(scene->antialiasing.filter_parameters.sigma, 0.4);
+  const auto plain = load_scene_text(std::string(kHeader) + R"(  "shapes": []
+})", "test.json", ".");
+  EXPECT_EQ(plain->antialiasing.mode, AntialiasingMode::none);
+}
+
+TEST(SceneLoader, BadAntialiasingSettings) {
+  expect_error(std::string(kHeader) + R"(  "aa": {"mode": "supersampled"}
+})", "aa.mode", 4, 18, "unknown anti-aliasing mode \"supersampled\" (expected one of: none, uniform,");
+  expect_error(std::string(kHeader) + R"(  "aa": {"mode": "uniform", "n": 0}
+})", "aa.n", 4, 34, "n");
+  expect_error(std::string(kHeader) + R"(  "aa": {"threshold": [0.2, -0.1, 0.3]}
+})", "aa.threshold[1]", 4, 29, "");
+  expect_error(std::string(kHeader) + R"(  "aa": {"filter": "lanczos"}
+})", "aa.filter", 4, 20, "unknown filter \"lanczos\"");
+  expect_error(std::string(kHeader) + R"(  "aa": {"nn": 2}
+})", "aa.nn", 4, 16, "unknown key \"nn\"");
 }
 
 TEST(SceneLoader, UnknownKeyIsAnError) {
@@ -178,7 +207,7 @@ TEST(SceneLoader, MissingSceneFile) {
 }
 
 TEST(SceneLoader, MeshPathIsRelativeToTheSceneFile) {
-  const auto directory = std::filesystem::temp_directory_path() / "candela-loader-test";
+  const auto directory = std::filesystem::temp_directory_path() / ("candela-loader-test-" + std::to_string(::getpid()));
   std::filesystem::create_directories(directory / "meshes");
   {
     std::ofstream obj(directory / "meshes" / "quad.obj");
@@ -250,7 +279,7 @@ TEST(SceneLoader, OverridesWithOutOfRangeNumbersAndIndices) {
 }
 
 TEST(SceneLoader, MtlValuesAreRangeChecked) {
-  const auto directory = std::filesystem::temp_directory_path() / "candela-mtl-test";
+  const auto directory = std::filesystem::temp_directory_path() / ("candela-mtl-test-" + std::to_string(::getpid()));
   std::filesystem::create_directories(directory);
   std::ofstream(directory / "m.obj") << "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl bad\nf 1 2 3\n";
   std::ofstream(directory / "m.mtl") << "newmtl bad\nKd -5 0.5 0.5\n";

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <sys/resource.h>
 
+#include <algorithm>
+
 namespace candela {
 
 nlohmann::json RunStatistics::to_json() const {
@@ -21,6 +23,17 @@ nlohmann::json RunStatistics::to_json() const {
                  {"refracted", rays.refracted},
                  {"total", rays.total()}};
   out["pixels"] = pixels;
+  const auto mean_max = [](const std::vector<uint32_t>& counts) {
+    uint64_t sum = 0;
+    uint32_t most = 0;
+    for (const uint32_t count : counts) {
+      sum += count;
+      most = std::max(most, count);
+    }
+    return nlohmann::json{{"mean", counts.empty() ? 0.0 : double(sum) / double(counts.size())}, {"max", most}};
+  };
+  if (!primary_per_pixel.empty()) out["rays"]["primary_per_pixel"] = mean_max(primary_per_pixel);
+  if (!samples_per_pixel.empty()) out["samples_per_pixel"] = mean_max(samples_per_pixel);
   out["threads"] = threads;
   out["peak_memory_bytes"] = peak_memory_bytes();
   return out;
@@ -41,6 +54,11 @@ std::string RunStatistics::summary() const {
     if (name == "render") render_seconds = seconds;
   if (render_seconds > 0) text += fmt::format(", {:.2f} Mrays/s", rays.total() / render_seconds / 1e6);
   text += ")\n";
+  if (!primary_per_pixel.empty() && pixels > 0) {
+    uint32_t most = 0;
+    for (const uint32_t count : primary_per_pixel) most = std::max(most, count);
+    text += fmt::format("  primary rays per pixel: mean {:.3f}, max {}\n", double(rays.primary) / double(pixels), most);
+  }
   text += fmt::format("  pixels: {}, threads: {}, peak memory: {:.1f} MiB\n", pixels, threads,
                       peak_memory_bytes() / (1024.0 * 1024.0));
   return text;

@@ -42,6 +42,11 @@ struct RunStatistics {
   RayCounts rays;
   uint64_t pixels = 0;
   int threads = 0;
+  // Region-sized, row by row; empty for methods that do not report them. primary_per_pixel:
+  // the primary rays traced for each pixel (a sample shared by several pixels counts once, for
+  // the pixel whose square holds it); samples_per_pixel: the samples each pixel's value used.
+  std::vector<uint32_t> primary_per_pixel;
+  std::vector<uint32_t> samples_per_pixel;
   nlohmann::json extra = nlohmann::json::object();  // scene and method facts
 
   void add_phase(std::string name, double seconds) { phases.emplace_back(std::move(name), seconds); }

@@ -1,0 +1,294 @@
+#include "camera/antialiasing.h"
+
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <mutex>
+#include <numbers>
+#include <set>
+#include <utility>
+
+#include "math/pcg32.h"
+
+namespace candela {
+namespace {
+
+constexpr int kWidth = 16, kHeight = 12;
+
+// White where n·(p − p0) > 0, black elsewhere: a straight edge through p0 at `degrees`.
+struct HalfPlane {
+  double nx, ny, d;
+  explicit HalfPlane(double degrees) {
+    const double a = degrees * std::numbers::pi / 180;
+    nx = -std::sin(a);
+    ny = std::cos(a);
+    d = nx * (kWidth / 2.0 + 0.31) + ny * (kHeight / 2.0 + 0.17);
+  }
+  double side(double x, double y) const { return nx * x + ny * y - d; }
+  Color operator()(double x, double y) const { return Color(side(x, y) > 0 ? 1.0 : 0.0); }
+  // The exact white area of pixel (px, py): the unit square clipped by the half-plane.
+  double covered(int px, int py) const {
+    std::vector<std::pair<double, double>> polygon{{px, py}, {px + 1, py}, {px + 1, py + 1}, {px, py + 1}};
+    std::vector<std::pair<double, double>> clipped;
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+      const auto a = polygon[i], b = polygon[(i + 1) % polygon.size()];
+      const double sa = side(a.first, a.second), sb = side(b.first, b.second);
+      if (sa > 0) clipped.push_back(a);
+      if ((sa > 0) != (sb > 0)) {
+        const double t = sa / (sa - sb);
+        clipped.emplace_back(a.first + t * (b.first - a.first), a.second + t * (b.second - a.second));
+      }
+    }
+    double area = 0;
+    for (std::size_t i = 0; i < clipped.size(); ++i) {
+      const auto a = clipped[i], b = clipped[(i + 1) % clipped.size()];
+      area += a.first * b.second - b.first * a.second;
+    }
+    return std::fabs(area) / 2;
+  }
+};
+
+struct Render {
+  Film film{kWidth, kHeight};
+  SamplingResult result;
+  std::vector<std::pair<double, double>> points;  // every radiance call
+};
+
+template <typename Radiance>
+Render render(const AntialiasingSettings& settings, const Radiance& scene, int tile = 4, uint64_t seed = 7) {
+  Render out;
+  std::mutex mutex;
+  const RadianceFunction radiance = [&](double x, double y) {
+    {
+      std::lock_guard lock(mutex);
+      out.points.emplace_back(x, y);
+    }
+    return scene(x, y);
+  };
+  out.result = sample_image(settings, seed, {0, 0, kWidth, kHeight}, tile, radiance, out.film);
+  return out;
+}
+
+AntialiasingSettings with_mode(AntialiasingMode mode, int n = 2) {
+  AntialiasingSettings settings;
+  settings.mode = mode;
+  settings.n = n;
+  return settings;
+}
+
+uint64_t sum(const std::vector<uint32_t>& counts) {
+  uint64_t total = 0;
+  for (const uint32_t c : counts) total += c;
+  return total;
+}
+
+std::size_t unique_points(std::vector<std::pair<double, double>> points) {
+  std::sort(points.begin(), points.end());
+  return std::size_t(std::unique(points.begin(), points.end()) - points.begin());
+}
+
+TEST(Antialiasing, ModeNamesRoundTrip) {
+  for (const auto name : {"none", "uniform", "jittered", "corners", "adaptive"}) {
+    AntialiasingMode mode;
+    ASSERT_TRUE(antialiasing_mode_from_name(name, mode));
+    EXPECT_STREQ(antialiasing_mode_name(mode), name);
+  }
+  AntialiasingMode mode;
+  EXPECT_FALSE(antialiasing_mode_from_name("supersampled", mode));
+}
+
+TEST(Antialiasing, NoneTracesThePixelCentres) {
+  const Render r = render(with_mode(AntialiasingMode::none), HalfPlane(30));
+  EXPECT_EQ(r.result.traced, uint64_t(kWidth * kHeight));
+  for (const auto& [x, y] : r.points) {
+    EXPECT_EQ(x - std::floor(x), 0.5);
+    EXPECT_EQ(y - std::floor(y), 0.5);
+  }
+}
+
+TEST(Antialiasing, CornersCostsOneRayPerLatticePoint) {
+  const Render r = render(with_mode(AntialiasingMode::corners), HalfPlane(30));
+  EXPECT_EQ(r.result.traced, uint64_t((kWidth + 1) * (kHeight + 1)));
+  EXPECT_EQ(r.points.size(), std::size_t((kWidth + 1) * (kHeight + 1)));
+  EXPECT_EQ(unique_points(r.points), r.points.size());
+  EXPECT_EQ(sum(r.result.traced_per_pixel), r.result.traced);
+  EXPECT_EQ(*std::max_element(r.result.samples_per_pixel.begin(), r.result.samples_per_pixel.end()), 4u);
+}
+
+TEST(Antialiasing, AdaptiveNeverTracesAPointTwice) {
+  for (const bool jitter : {false, true}) {
+    AntialiasingSettings settings = with_mode(AntialiasingMode::adaptive);
+    settings.max_level = 3;
+    settings.jitter = jitter;
+    const Render r = render(settings, HalfPlane(30), 3);
+    EXPECT_EQ(r.result.traced, r.points.size());
+    EXPECT_EQ(unique_points(r.points), r.points.size()) << "jitter " << jitter;
+    EXPECT_EQ(sum(r.result.traced_per_pixel), r.result.traced);
+    EXPECT_GT(r.result.traced, uint64_t((kWidth + 1) * (kHeight + 1)));
+  }
+}
+
+TEST(Antialiasing, AFlatImageTriggersNoSubdivision) {
+  AntialiasingSettings settings = with_mode(AntialiasingMode::adaptive);
+  settings.max_level = 4;
+  const Render r = render(settings, [](double, double) { return Color(0.3, 0.7, 0.1); });
+  EXPECT_EQ(r.result.traced, uint64_t((kWidth + 1) * (kHeight + 1)));
+  for (const Color& c : r.film.pixels()) EXPECT_EQ(c, Color(0.3, 0.7, 0.1));
+}
+
+TEST(Antialiasing, ContrastThresholdsArePerChannel) {
+  // A blue-only step of contrast 1/3: below B's 0.4, so no subdivision; above with 0.3.
+  const auto step = [](double x, double) { return Color(0.5, 0.5, x < kWidth / 2.0 + 0.3 ? 0.5 : 1.0); };
+  AntialiasingSettings settings = with_mode(AntialiasingMode::adaptive);
+  EXPECT_EQ(render(settings, step).result.traced, uint64_t((kWidth + 1) * (kHeight + 1)));
+  settings.threshold.b = 0.3;
+  EXPECT_GT(render(settings, step).result.traced, uint64_t((kWidth + 1) * (kHeight + 1)));
+}
+
+// Worst |pixel − exact white area| over the image for one edge.
+double worst_error(const Film& film, const HalfPlane& edge) {
+  double worst = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) worst = std::max(worst, std::fabs(film.at(x, y).r - edge.covered(x, y)));
+  return worst;
+}
+
+TEST(Antialiasing, HalfPlaneEdgeErrorShrinksWithN) {
+  for (const double degrees : {10.0, 30.0, 45.0, 80.0}) {
+    const HalfPlane edge(degrees);
+    for (const AntialiasingMode mode : {AntialiasingMode::uniform, AntialiasingMode::jittered}) {
+      for (const int n : {1, 2, 4, 8}) {
+        const Render r = render(with_mode(mode, n), edge);
+        EXPECT_EQ(r.result.traced, uint64_t(kWidth * kHeight * n * n));
+        const double error = worst_error(r.film, edge);
+        // Jittered: at most the 2n − 1 sub-cells the edge crosses are wrong, each by 1/n²;
+        // uniform centres do better: within 1/n.
+        const double bound = mode == AntialiasingMode::uniform ? 1.0 / n : (2.0 * n - 1) / (n * n);
+        EXPECT_LE(error, bound + 1e-9) << antialiasing_mode_name(mode) << " n=" << n << " at " << degrees << "°";
+        std::printf("  %-8s n=%d at %4.0f°: worst pixel error %.4f\n", antialiasing_mode_name(mode), n, degrees,
+                    error);
+      }
+    }
+    const double corners = worst_error(render(with_mode(AntialiasingMode::corners), edge).film, edge);
+    EXPECT_LE(corners, 0.75 + 1e-9);
+  }
+}
+
+TEST(Antialiasing, AdaptiveMatchesTheDenseLatticeOnEdgePixelsWithFewerRays) {
+  constexpr int kLevel = 3, kScale = 1 << kLevel;
+  for (const double degrees : {10.0, 30.0, 45.0, 80.0}) {
+    const HalfPlane edge(degrees);
+    AntialiasingSettings settings = with_mode(AntialiasingMode::adaptive);
+    settings.max_level = kLevel;
+    const Render adaptive = render(settings, edge);
+    // The dense 2^L × 2^L corner lattice: each pixel the mean of its 64 sub-squares' corner means.
+    const uint64_t dense_rays = uint64_t(kWidth * kScale + 1) * (kHeight * kScale + 1);
+    double worst = 0, worst_exact = 0;
+    for (int y = 0; y < kHeight; ++y) {
+      for (int x = 0; x < kWidth; ++x) {
+        const double exact = edge.covered(x, y);
+        if (exact <= 0 || exact >= 1) continue;  // edge pixels only
+        double dense = 0;
+        for (int j = 0; j < kScale; ++j)
+          for (int i = 0; i < kScale; ++i) {
+            const auto at = [&](int a, int b) {
+              return edge(x + double(i + a) / kScale, y + double(j + b) / kScale).r;
+            };
+            dense += (at(0, 0) + at(1, 0) + at(0, 1) + at(1, 1)) / 4;
+          }
+        dense /= kScale * kScale;
+        worst = std::max(worst, std::fabs(adaptive.film.at(x, y).r - dense));
+        worst_exact = std::max(worst_exact, std::fabs(adaptive.film.at(x, y).r - exact));
+      }
+    }
+    EXPECT_LT(worst, 1e-12) << degrees << "°";
+    EXPECT_LE(worst_exact, 2.0 / kScale) << degrees << "°";
+    EXPECT_LT(adaptive.result.traced, dense_rays);
+    // The uniform 8×8 sub-pixel centres cost this many rays.
+    const uint64_t uniform_rays = uint64_t(kWidth * kHeight) * kScale * kScale;
+    std::printf("  adaptive L=%d at %4.0f°: %llu rays vs %llu for the dense lattice (ratio %.3f) and %llu for "
+                "uniform %dx%d; worst edge-pixel error vs exact area %.4f\n",
+                kLevel, degrees, static_cast<unsigned long long>(adaptive.result.traced),
+                static_cast<unsigned long long>(dense_rays), double(adaptive.result.traced) / double(dense_rays),
+                static_cast<unsigned long long>(uniform_rays), kScale, kScale, worst_exact);
+  }
+}
+
+TEST(Antialiasing, SeedExampleOnePixelTwoLevels) {
+  // As in 001's worked example: one pixel, three leaf quadrants at level 1 and the fourth split
+  // into four leaves at level 2; pixel = ¼(Q1 + Q2 + Q3 + ¼(L1 + L2 + L3 + L4)).
+  AntialiasingSettings settings = with_mode(AntialiasingMode::adaptive);
+  settings.max_level = 2;
+  Film film(1, 1);
+  std::vector<std::pair<double, double>> points;
+  const RadianceFunction radiance = [&](double x, double y) {
+    points.emplace_back(x, y);
+    return Color(x > 0.6 && y > 0.6 ? 1.0 : 0.0);
+  };
+  const SamplingResult r = sample_image(settings, 0, {0, 0, 1, 1}, 1, radiance, film);
+  // Level 0: 4 corners (1 white); level 1: 5 midpoints; the bottom-right quadrant splits (5 more),
+  // and of its children only the bottom-right one is all white at level 2.
+  EXPECT_EQ(r.traced, 4u + 5u + 5u);
+  EXPECT_EQ(r.samples_per_pixel[0], 14u);
+  // Samples at x, y in {0.75, 1} are white: leaf TL of the quadrant (0.5..0.75) has one white
+  // corner (0.75, 0.75); TR and BL two white corners each; BR four.
+  const double expected = (0 + 0 + 0 + (0.25 + 0.5 + 0.5 + 1.0) / 4) / 4;
+  EXPECT_DOUBLE_EQ(film.at(0, 0).r, expected);
+}
+
+TEST(Antialiasing, ImagesDoNotDependOnTheThreadCount) {
+  std::vector<AntialiasingSettings> all;
+  for (const AntialiasingMode mode : {AntialiasingMode::none, AntialiasingMode::uniform, AntialiasingMode::jittered,
+                                      AntialiasingMode::corners, AntialiasingMode::adaptive})
+    all.push_back(with_mode(mode, 3));
+  all.push_back(with_mode(AntialiasingMode::adaptive));
+  all.back().jitter = true;
+  all.back().max_level = 3;
+  all.push_back(with_mode(AntialiasingMode::jittered, 4));
+  all.back().filter = "mitchell";
+  all.push_back(with_mode(AntialiasingMode::uniform, 4));
+  all.back().filter = "gaussian";
+  // A radiance with texture everywhere so adaptive subdivides unevenly.
+  const auto scene = [](double x, double y) {
+    return Color(0.5 + 0.5 * std::sin(x * 1.7) * std::cos(y * 2.3), x * y > 40 ? 1.0 : 0.1, 0.3);
+  };
+  for (const AntialiasingSettings& settings : all) {
+    Render one, two;
+    {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+      one = render(settings, scene, 2);
+    }
+    {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+      two = render(settings, scene, 2);
+    }
+    const std::string mode = antialiasing_mode_name(settings.mode);
+    ASSERT_EQ(one.film.pixels().size(), two.film.pixels().size());
+    EXPECT_EQ(std::memcmp(one.film.pixels().data(), two.film.pixels().data(),
+                          one.film.pixels().size() * sizeof(Color)),
+              0)
+        << mode;
+    EXPECT_EQ(one.result.traced, two.result.traced) << mode;
+    EXPECT_EQ(one.result.traced_per_pixel, two.result.traced_per_pixel) << mode;
+    EXPECT_EQ(one.result.samples_per_pixel, two.result.samples_per_pixel) << mode;
+  }
+}
+
+TEST(Antialiasing, ACroppedRegionKeepsThePixelValues) {
+  AntialiasingSettings settings = with_mode(AntialiasingMode::adaptive);
+  settings.max_level = 3;
+  settings.jitter = true;
+  const HalfPlane edge(30);
+  const Render full = render(settings, edge);
+  Film part(5, 4);
+  const RadianceFunction radiance = [&](double x, double y) { return edge(x, y); };
+  sample_image(settings, 7, {3, 2, kWidth, kHeight}, 4, radiance, part);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 5; ++x) EXPECT_EQ(part.at(x, y), full.film.at(x + 3, y + 2));
+}
+
+}  // namespace
+}  // namespace candela
