@@ -35,6 +35,17 @@ TEST(Render, SameImageBytesWhateverTheThreadCount) {
   }
 }
 
+TEST(Render, EveryAntialiasingModeIsThreadIndependent) {
+  for (const char* mode : {"uniform", "jittered", "corners", "adaptive"}) {
+    const auto scene = load_default_scene({"camera.width=40", "camera.height=30", "render.tile_size=7",
+                                           std::string("aa.mode=") + mode, "aa.n=3", "aa.max_level=2",
+                                           "aa.jitter=true", "aa.filter=gaussian"});
+    const Film one = render(*scene, "whitted", 1);
+    const Film two = render(*scene, "whitted", 2);
+    EXPECT_EQ(std::memcmp(one.pixels().data(), two.pixels().data(), one.pixels().size() * sizeof(Color)), 0) << mode;
+  }
+}
+
 TEST(Render, SameImageBytesOnEveryAccelerator) {
   // SPEC §5: every accelerator answers identically, so the image cannot depend on the choice.
   std::vector<uint8_t> reference;
