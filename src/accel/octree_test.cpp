@@ -234,20 +234,9 @@ TEST(Octree, IsSafeToShareBetweenThreads) {
   SubdivisionScene scene(14);
   const Bounds3 region = testing::long_thin_scene(scene);
   const std::vector<Ray> rays = scene.rays(20000, region);
-  PrimitiveList list;
-  list.build(scene.primitives());
   Octree octree;
   octree.build(scene.primitives());
-  std::vector<int> mismatches(rays.size(), 0);
-  tbb::parallel_for(std::size_t{0}, rays.size(), [&](std::size_t i) {
-    Intersection expected, actual;
-    const bool expected_hit = list.intersect(rays[i], expected);
-    const bool actual_hit = octree.intersect(rays[i], actual);
-    mismatches[i] =
-        expected_hit != actual_hit ||
-        (expected_hit && (expected.primitive != actual.primitive || expected.surface.t != actual.surface.t));
-  });
-  EXPECT_EQ(std::count(mismatches.begin(), mismatches.end(), 1), 0);
+  EXPECT_EQ(testing::mismatches_when_shared(octree, scene.primitives(), rays), 0);
 }
 
 TEST(Octree, ReportsItsFigures) {
@@ -256,12 +245,7 @@ TEST(Octree, ReportsItsFigures) {
   Octree octree;
   octree.build(scene.primitives());
   const AcceleratorReport report = octree.report();
-  const auto figure = [&](const std::string& name) {
-    for (const auto& [key, value] : report.figures)
-      if (key == name) return value;
-    ADD_FAILURE() << "no figure " << name;
-    return 0.0;
-  };
+  const auto figure = [&](const std::string& name) { return testing::report_figure(report, name); };
   EXPECT_EQ(figure("nodes"), static_cast<double>(octree.nodes().size()));
   EXPECT_GT(figure("leaves"), 8);
   EXPECT_LE(figure("max depth"), 10);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -272,6 +273,32 @@ inline int expect_same_as_list(Accelerator& accelerator, std::span<const Primiti
   }
   EXPECT_EQ(mismatches, 0) << "of " << rays.size() << " rays";
   return hits;
+}
+
+// Traces the rays from many threads at once against one shared accelerator; returns the number
+// of rays whose nearest hit differs from the list's.
+inline int mismatches_when_shared(const Accelerator& accelerator, std::span<const Primitive> primitives,
+                                  const std::vector<Ray>& rays) {
+  PrimitiveList list;
+  list.build(primitives);
+  std::vector<int> mismatches(rays.size(), 0);
+  tbb::parallel_for(std::size_t{0}, rays.size(), [&](std::size_t i) {
+    Intersection expected, actual;
+    const bool expected_hit = list.intersect(rays[i], expected);
+    const bool actual_hit = accelerator.intersect(rays[i], actual);
+    mismatches[i] =
+        expected_hit != actual_hit ||
+        (expected_hit && (expected.primitive != actual.primitive || expected.surface.t != actual.surface.t));
+  });
+  return static_cast<int>(std::count(mismatches.begin(), mismatches.end(), 1));
+}
+
+// The named figure of a quality report (a test failure when it is missing).
+inline double report_figure(const AcceleratorReport& report, const std::string& name) {
+  for (const auto& [key, value] : report.figures)
+    if (key == name) return value;
+  ADD_FAILURE() << "no figure " << name;
+  return 0.0;
 }
 
 }  // namespace candela::testing

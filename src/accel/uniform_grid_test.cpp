@@ -198,20 +198,9 @@ TEST(UniformGrid, IsSafeToShareBetweenThreads) {
   SubdivisionScene scene(13);
   const Bounds3 region = testing::long_thin_scene(scene);
   const std::vector<Ray> rays = scene.rays(20000, region);
-  PrimitiveList list;
-  list.build(scene.primitives());
   UniformGrid grid;
   grid.build(scene.primitives());
-  std::vector<int> mismatches(rays.size(), 0);
-  tbb::parallel_for(std::size_t{0}, rays.size(), [&](std::size_t i) {
-    Intersection expected, actual;
-    const bool expected_hit = list.intersect(rays[i], expected);
-    const bool actual_hit = grid.intersect(rays[i], actual);
-    mismatches[i] =
-        expected_hit != actual_hit ||
-        (expected_hit && (expected.primitive != actual.primitive || expected.surface.t != actual.surface.t));
-  });
-  EXPECT_EQ(std::count(mismatches.begin(), mismatches.end(), 1), 0);
+  EXPECT_EQ(testing::mismatches_when_shared(grid, scene.primitives(), rays), 0);
 }
 
 TEST(UniformGrid, ReportsItsFigures) {
@@ -220,12 +209,7 @@ TEST(UniformGrid, ReportsItsFigures) {
   UniformGrid grid;
   grid.build(scene.primitives());
   const AcceleratorReport report = grid.report();
-  const auto figure = [&](const std::string& name) {
-    for (const auto& [key, value] : report.figures)
-      if (key == name) return value;
-    ADD_FAILURE() << "no figure " << name;
-    return 0.0;
-  };
+  const auto figure = [&](const std::string& name) { return testing::report_figure(report, name); };
   EXPECT_EQ(figure("voxels"), 1.0 * grid.resolution()[0] * grid.resolution()[1] * grid.resolution()[2]);
   EXPECT_EQ(figure("unbounded"), 3);
   EXPECT_GE(figure("references"), 500);
