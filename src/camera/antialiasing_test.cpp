@@ -184,6 +184,10 @@ TEST(Antialiasing, AdaptiveMatchesTheDenseLatticeOnEdgePixelsWithFewerRays) {
     AntialiasingSettings settings = with_mode(AntialiasingMode::adaptive);
     settings.max_level = kLevel;
     const Render adaptive = render(settings, edge);
+    AntialiasingSettings uniform_settings = with_mode(AntialiasingMode::uniform);
+    uniform_settings.n = kScale;
+    const Render uniform = render(uniform_settings, edge);  // uniform 2^L × 2^L sub-pixel centres
+    double worst_uniform = 0;
     // The dense 2^L × 2^L corner lattice: each pixel the mean of its 64 sub-squares' corner means.
     const uint64_t dense_rays = uint64_t(kWidth * kScale + 1) * (kHeight * kScale + 1);
     double worst = 0, worst_exact = 0;
@@ -202,11 +206,16 @@ TEST(Antialiasing, AdaptiveMatchesTheDenseLatticeOnEdgePixelsWithFewerRays) {
         dense /= kScale * kScale;
         worst = std::max(worst, std::fabs(adaptive.film.at(x, y).r - dense));
         worst_exact = std::max(worst_exact, std::fabs(adaptive.film.at(x, y).r - exact));
+        worst_uniform = std::max(worst_uniform, std::fabs(adaptive.film.at(x, y).r - uniform.film.at(x, y).r));
       }
     }
     EXPECT_LT(worst, 1e-12) << degrees << "°";
     EXPECT_LE(worst_exact, 2.0 / kScale) << degrees << "°";
     EXPECT_LT(adaptive.result.traced, dense_rays);
+    // Uniform 2^L × 2^L estimates the same covered area (both within 1/2^L of it on an edge):
+    // adaptive matches it to that accuracy with fewer rays over the image.
+    EXPECT_LE(worst_uniform, 2.0 / kScale) << degrees << "°";
+    EXPECT_LT(adaptive.result.traced, uniform.result.traced);
     // The uniform 8×8 sub-pixel centres cost this many rays.
     const uint64_t uniform_rays = uint64_t(kWidth * kHeight) * kScale * kScale;
     std::printf("  adaptive L=%d at %4.0f°: %llu rays vs %llu for the dense lattice (ratio %.3f) and %llu for "
