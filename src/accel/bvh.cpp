@@ -218,6 +218,23 @@ struct FloatShear {
   }
 };
 
+// Calls visit(slot) for every slot of the leaf packets [ref, ref + ceil(count / 4)) whose
+// triangle survives the float pre-test (shapes always do), in slot order; stops and returns
+// true as soon as visit does. Shared by the nearest-hit and the any-hit traversal.
+template <class PacketType, class SlotType, class Visit>
+inline bool visit_candidates(const PacketType* packets, const SlotType* slots, uint32_t ref, uint32_t count,
+                             const FloatShear& shear, Visit&& visit) {
+  for (uint32_t first = 0; first < count; first += 4, ++ref) {
+    int mask = shear.candidates(packets[ref]) & ((1 << std::min(4u, count - first)) - 1);
+    while (mask != 0) {
+      const SlotType& slot = slots[4 * std::size_t{ref} + __builtin_ctz(static_cast<unsigned>(mask))];
+      mask &= mask - 1;
+      if (visit(slot)) return true;
+    }
+  }
+  return false;
+}
+
 // The double interval [t_lo, t_hi] every box test must cover: [t_min, t] widened by a small
 // relative and scene-scaled slack, far more than any shape's rounding of its hit distance near
 // a box face.
@@ -607,12 +624,7 @@ bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
           sheared->t_max = test.t_max;
           shear.emplace(*sheared, scene_scale_);
         }
-        for (uint32_t first = 0; first < count; first += 4, ++ref) {
-          const Packet& packet = packets_[ref];
-          int mask = shear->candidates(packet) & ((1 << std::min(4u, count - first)) - 1);
-          while (mask != 0) {
-          const Slot& slot = lane_slots_[4 * std::size_t{ref} + __builtin_ctz(static_cast<unsigned>(mask))];
-          mask &= mask - 1;
+        visit_candidates(packets_.data(), lane_slots_.data(), ref, count, *shear, [&](const Slot& slot) {
           if (!(slot.primitive & kShapeSlot)) {
             TriangleIntersection found_triangle;
             if (sheared->intersect(slot.p0, slot.p1, slot.p2, found_triangle) &&
@@ -634,8 +646,8 @@ bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
               best_is_triangle = false;
             }
           }
-          }
-        }
+          return false;
+        });
         t1 = round_up(slack.up(best_t));
         t1_skip = t1 + slabs.margin;
       }
@@ -699,20 +711,14 @@ bool Bvh::occluded_in_tree(const Ray& ray) const {
         sheared.emplace(ray);
         shear.emplace(*sheared, scene_scale_);
       }
-        for (uint32_t first = 0; first < count; first += 4, ++ref) {
-        const Packet& packet = packets_[ref];
-        int mask = shear->candidates(packet) & ((1 << std::min(4u, count - first)) - 1);
-        while (mask != 0) {
-          const Slot& slot = lane_slots_[4 * std::size_t{ref} + __builtin_ctz(static_cast<unsigned>(mask))];
-          mask &= mask - 1;
-          if (!(slot.primitive & kShapeSlot)) {
-            double t;
-            if (sheared->distance(slot.p0, slot.p1, slot.p2, t)) return true;
-          } else if (primitives_[slot.primitive & ~kShapeSlot].shape->occluded(ray)) {
-            return true;
-          }
-        }
-      }
+      if (visit_candidates(packets_.data(), lane_slots_.data(), ref, count, *shear, [&](const Slot& slot) {
+            if (!(slot.primitive & kShapeSlot)) {
+              double t;
+              return sheared->distance(slot.p0, slot.p1, slot.p2, t);
+            }
+            return primitives_[slot.primitive & ~kShapeSlot].shape->occluded(ray);
+          }))
+        return true;
     }
     if (top == 0) return false;
     --top;
