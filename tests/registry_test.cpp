@@ -8,6 +8,7 @@
 
 #include "accel/accelerator_registry.h"
 #include "integrators/method_registry.h"
+#include "io/image_writer.h"
 #include "scene/camera_registry.h"
 #include "scene/light_registry.h"
 #include "scene/material_registry.h"
@@ -25,6 +26,11 @@ class RegistryTest : public ::testing::Test {
                  ("candela-registry-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
                   "-" + std::to_string(::getpid()));
     std::filesystem::create_directories(directory_ / "meshes");
+    std::filesystem::create_directories(directory_ / "textures");
+    Film checker(4, 4);
+    for (int y = 0; y < 4; ++y)
+      for (int x = 0; x < 4; ++x) checker.at(x, y) = Color((x + y) % 2 ? 0.9 : 0.1);
+    write_png(checker, (directory_ / "textures" / "checker.png").string(), DisplaySettings{});
     std::ofstream cube(directory_ / "meshes" / "cube.obj");
     cube << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
             "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
@@ -68,6 +74,12 @@ TEST_F(RegistryTest, EveryMaterialAndTextureFromItsExample) {
   for (const MaterialEntry& entry : material_entries()) {
     const auto scene = load(R"("materials": {"m": )" + std::string(entry.example) + "}");
     EXPECT_EQ(scene->materials.back().name, "m");
+  }
+  for (const MappingEntry& entry : mapping_entries()) {
+    const auto scene = load(R"("materials": {"m": {"kd": {"type": "checker2d", "mapping": )" + std::string(entry.example) + "}}}");
+    const auto& texture = dynamic_cast<const Texture2D&>(*scene->materials.back().kd);
+    EXPECT_EQ(texture.mapping().type_name(), entry.name);
+    EXPECT_EQ(find_mapping(entry.name), &entry);
   }
   for (const TextureEntry& entry : texture_entries()) {
     const auto scene = load(R"("materials": {"m": {"kd": )" + std::string(entry.example) + "}}");

@@ -15,6 +15,12 @@ struct SurfaceHit {
   Vec3 dpdu;
   Vec3 dpdv;
   Vec3 object_position;  // the hit in the shape's own coordinates (solid textures)
+  // dpdu and dpdv in the shape's own coordinates, set by TransformedShape (bump mapping of
+  // solid textures moves object_position along them); equal to dpdu, dpdv otherwise.
+  bool transformed = false;
+  Vec3 object_dpdu_, object_dpdv_;
+  const Vec3& object_dpdu() const { return transformed ? object_dpdu_ : dpdu; }
+  const Vec3& object_dpdv() const { return transformed ? object_dpdv_ : dpdv; }
 };
 
 }  // namespace candela

@@ -27,6 +27,9 @@ bool TransformedShape::intersect(const Ray& ray, SurfaceHit& hit) const {
   hit.position = object_to_world_.point(hit.position);
   hit.geometric_normal = normalize(object_to_world_.normal(hit.geometric_normal));
   hit.shading_normal = normalize(object_to_world_.normal(hit.shading_normal));
+  hit.transformed = true;
+  hit.object_dpdu_ = hit.dpdu;
+  hit.object_dpdv_ = hit.dpdv;
   hit.dpdu = object_to_world_.vector(hit.dpdu);
   hit.dpdv = object_to_world_.vector(hit.dpdv);
   return true;

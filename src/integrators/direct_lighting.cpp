@@ -26,15 +26,19 @@ Color shadow_transmittance(const Scene& scene, const Vec3& origin, const Vec3& L
     if (!scene.intersect(ray, hit)) break;
     const Material& material = scene.material_of(hit);
     const uint32_t object = scene.primitives[hit.primitive].object;
-    if (material.kt <= 0 || crossing >= kMaxCrossings) {
+    double passes = material.lets_light_through() && crossing < kMaxCrossings ? 1.0 : 0.0;
+    if (passes > 0 && material.transparency.active())
+      passes *= material.transparency.at(std::fabs(dot(hit.surface.shading_normal, L)));
+    if (passes > 0 && material.has_refraction() && !counted[object]) {
+      counted[object] = true;
+      passes *= material.transmission_at(hit.surface);
+    }
+    if (!(passes > 0)) {
       transmittance = Color(0);
       if (context.tree) note = "blocked by " + scene.objects[object].name;
       break;
     }
-    if (!counted[object]) {
-      counted[object] = true;
-      transmittance *= material.kt;
-    }
+    transmittance *= passes;
     if (!material.absorption.is_black()) {
       const bool entering = dot(L, hit.surface.geometric_normal) < 0;
       if (entering) {
@@ -69,17 +73,16 @@ Color shadow_transmittance(const Scene& scene, const Vec3& origin, const Vec3& L
   return transmittance;
 }
 
-Color local_illumination(const Scene& scene, const Intersection& hit, const Vec3& V, bool shadows,
-                         TraceContext& context, int tree_parent) {
+Color local_illumination(const Scene& scene, const Intersection& hit, const SurfaceProperties& at,
+                         const Vec3& V, bool shadows, TraceContext& context, int tree_parent) {
   const Material& material = scene.material_of(hit);
   const SurfaceHit& surface = hit.surface;
-  const Color kd = material.diffuse(surface);
   // Two-sided shading: the normals turned toward the viewer.
   const Vec3 N = face_forward(surface.shading_normal, V);
   const Vec3 geometric = face_forward(surface.geometric_normal, V);
-  Color result = material.ambient(surface) * scene.ambient;
+  Color result = at.ka * scene.ambient;
   // A pure mirror or clear glass has no local diffuse or specular part: no shadow rays.
-  if (kd.is_black() && material.ks <= 0) return result;
+  if (at.kd.is_black() && at.ks <= 0) return result;
   const double offset = scene.ray_offset(surface.position);
   const Vec3 shadow_origin = surface.position + geometric * offset;
   for (const auto& light : scene.lights) {
@@ -94,7 +97,7 @@ Color local_illumination(const Scene& scene, const Intersection& hit, const Vec3
       s = shadow_transmittance(scene, shadow_origin, sample.direction, reach, context, tree_parent);
       if (s.is_black()) continue;
     }
-    result += direct_term(material, kd, N, V, sample.direction, sample.intensity * s);
+    result += direct_term(material, at, N, V, sample.direction, sample.intensity * s);
   }
   return result;
 }

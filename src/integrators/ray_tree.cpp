@@ -12,6 +12,7 @@ const char* ray_kind_name(RayKind kind) {
     case RayKind::reflected: return "reflected";
     case RayKind::refracted: return "refracted";
     case RayKind::internal_reflection: return "internal reflection";
+    case RayKind::see_through: return "see-through";
     case RayKind::shadow: return "shadow";
   }
   return "?";

@@ -9,7 +9,7 @@
 
 namespace candela {
 
-enum class RayKind { primary, reflected, refracted, internal_reflection, shadow };
+enum class RayKind { primary, reflected, refracted, internal_reflection, see_through, shadow };
 const char* ray_kind_name(RayKind kind);
 
 struct RayTreeNode {

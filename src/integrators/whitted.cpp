@@ -1,6 +1,10 @@
 #include "integrators/whitted.h"
 
+#include <cmath>
+#include <string_view>
+
 #include "integrators/direct_lighting.h"
+#include "shading/bump.h"
 #include "shading/optics.h"
 
 namespace candela {
@@ -33,7 +37,7 @@ Color trace(const Scene& scene, const Ray& ray, const TreeLimits& limits, RayKin
   };
 
   Intersection hit;
-  if (!scene.intersect(ray, hit)) return finish(scene.background, {}, "left the scene");
+  if (!scene.intersect(ray, hit)) return finish(scene.background_along(ray.direction), {}, "left the scene");
   if (node_index >= 0) {
     RayTreeNode& node = context.tree->node(node_index);
     node.hit = true;
@@ -43,61 +47,88 @@ Color trace(const Scene& scene, const Ray& ray, const TreeLimits& limits, RayKin
   }
 
   const Material& material = scene.material_of(hit);
+  // 000 §4.2.1: the bump tilts the shading normal only; the geometry stays smooth.
+  hit.surface.shading_normal = bumped_normal(material.bump, hit.surface);
+  const SurfaceProperties at = material.at(hit.surface);
   const Vec3 V = -ray.direction;
-  const Color local = local_illumination(scene, hit, V, limits.shadows, context, node_index);
+  const Color local = local_illumination(scene, hit, at, V, limits.shadows, context, node_index);
   Color radiance = local;
 
-  const bool wants_secondary = material.kr > 0 || material.kt > 0;
-  const char* note = nullptr;
+  const bool entering = dot(hit.surface.geometric_normal, V) > 0;
+  const Vec3 N = face_forward(hit.surface.shading_normal, V);
+  const Vec3 geometric = face_forward(hit.surface.geometric_normal, V);
+  const double offset = scene.ray_offset(hit.surface.position);
+  const Vec3 outside_origin = hit.surface.position + geometric * offset;
+  const Vec3 inside_origin = hit.surface.position - geometric * offset;
+  const double min_weight = limits.min_weight;
+  std::string_view note_reached_depth, note_pruned;
+
+  const bool wants_secondary = at.kr > 0 || at.kt > 0;
   if (wants_secondary && depth >= limits.max_depth) {
-    note = "maximum depth reached";
+    note_reached_depth = "maximum depth reached";
   } else if (wants_secondary) {
-    const bool entering = dot(hit.surface.geometric_normal, V) > 0;
-    const Vec3 N = face_forward(hit.surface.shading_normal, V);
-    const Vec3 geometric = face_forward(hit.surface.geometric_normal, V);
-    const double offset = scene.ray_offset(hit.surface.position);
-    const Vec3 outside_origin = hit.surface.position + geometric * offset;
-    const Vec3 inside_origin = hit.surface.position - geometric * offset;
-    const double min_weight = limits.min_weight;
     bool reflection_pruned = false, transmission_pruned = false;
-    if (material.kr > 0) {
-      if (weight * material.kr >= min_weight) {
+    if (at.kr > 0) {
+      if (weight * at.kr >= min_weight) {
         ++context.counts.reflected;
         const Ray reflected{outside_origin, normalize(reflect(V, N))};
-        radiance += material.kr * trace(scene, reflected, limits, RayKind::reflected, depth + 1,
-                                        weight * material.kr, context, node_index);
+        radiance += at.kr * trace(scene, reflected, limits, RayKind::reflected, depth + 1,
+                                  weight * at.kr, context, node_index);
       } else {
         reflection_pruned = true;
       }
     }
-    if (material.kt > 0) {
-      if (weight * material.kt >= min_weight) {
+    if (at.kt > 0) {
+      if (weight * at.kt >= min_weight) {
         // η1/η2: from outside (air) into the material, or back out.
-        const double eta = entering ? 1.0 / material.ior : material.ior;
+        const double eta = entering ? 1.0 / at.ior : at.ior;
         Vec3 T;
         if (refract(V, N, eta, T)) {
           ++context.counts.refracted;
           const Ray refracted{inside_origin, normalize(T)};
-          radiance += material.kt * trace(scene, refracted, limits, RayKind::refracted, depth + 1,
-                                          weight * material.kt, context, node_index);
+          radiance += at.kt * trace(scene, refracted, limits, RayKind::refracted, depth + 1,
+                                    weight * at.kt, context, node_index);
         } else {
           // 000 §5.3: no transmitted ray; reflect with the flipped normal instead.
           ++context.counts.reflected;
           const Ray internal{outside_origin, normalize(reflect(V, N))};
-          radiance += material.kt * trace(scene, internal, limits, RayKind::internal_reflection,
-                                          depth + 1, weight * material.kt, context, node_index);
+          radiance += at.kt * trace(scene, internal, limits, RayKind::internal_reflection,
+                                    depth + 1, weight * at.kt, context, node_index);
         }
       } else {
         transmission_pruned = true;
       }
     }
     if (reflection_pruned && transmission_pruned)
-      note = "reflection and transmission pruned: weight below whitted.min_weight";
+      note_pruned = "reflection and transmission pruned: weight below whitted.min_weight";
     else if (reflection_pruned)
-      note = "reflection pruned: weight below whitted.min_weight";
+      note_pruned = "reflection pruned: weight below whitted.min_weight";
     else if (transmission_pruned)
-      note = "transmission pruned: weight below whitted.min_weight";
+      note_pruned = "transmission pruned: weight below whitted.min_weight";
   }
+
+  // 000 §4.4: the see-through blend I = (1 − t)·I_surface + t·I_behind; the ray goes on
+  // undeviated (the seed ignores the small displacement refraction would cause).
+  if (material.transparency.active()) {
+    const double t = material.transparency.at(std::fabs(dot(hit.surface.shading_normal, V)));
+    if (t > 0) {
+      Color behind;
+      if (depth >= limits.max_depth) {
+        note_reached_depth = "maximum depth reached";
+      } else if (weight * t >= min_weight) {
+        ++context.counts.refracted;
+        const Ray through{inside_origin, ray.direction};
+        behind = trace(scene, through, limits, RayKind::see_through, depth + 1, weight * t, context,
+                       node_index);
+      } else {
+        note_pruned = "see-through pruned: weight below whitted.min_weight";
+      }
+      radiance = (1 - t) * radiance + t * behind;
+    }
+  }
+  const char* note = !note_reached_depth.empty() ? note_reached_depth.data()
+                     : !note_pruned.empty()      ? note_pruned.data()
+                                                 : nullptr;
   return finish(radiance, local, note);
 }
 

@@ -1,5 +1,8 @@
-// Materials and textures by name. One material model today ("phong": the classic local model
-// with Whitted's kr, kt); textures "constant" and "checkerboard".
+// Materials, textures and texture mappings by name (SPEC §7).
+// Materials: "phong", "blinn-phong", "cook-torrance" (the classic local model with Whitted's
+// kr, kt, the see-through transparency models and bump mapping; they differ in the specular
+// term). Textures: constant, checkerboard (3D), checker2d, wood, marble, noise, waves, image.
+// Mappings for 2D textures: uv, spherical, planar, cylindrical.
 #pragma once
 
 #include <memory>
@@ -7,6 +10,7 @@
 #include <string_view>
 
 #include "scene/json_node.h"
+#include "scene/load_context.h"
 #include "shading/material.h"
 
 namespace candela {
@@ -15,24 +19,40 @@ struct MaterialEntry {
   std::string_view name;
   std::string_view description;
   std::string_view example;
-  Material (*create)(const JsonNode& node);
+  Material (*create)(const JsonNode& node, const LoadContext& context);
 };
 
 struct TextureEntry {
   std::string_view name;
   std::string_view description;
   std::string_view example;
-  std::shared_ptr<const Texture> (*create)(const JsonNode& node);
+  std::shared_ptr<const Texture> (*create)(const JsonNode& node, const LoadContext& context);
+};
+
+struct MappingEntry {
+  std::string_view name;
+  std::string_view description;
+  std::string_view example;
+  // node is null for a mapping given by its bare name: every parameter takes its default.
+  std::shared_ptr<const TextureMapping> (*create)(const JsonNode* node, const UvTransform& uv);
 };
 
 std::span<const MaterialEntry> material_entries();
 const MaterialEntry* find_material(std::string_view name);
 std::span<const TextureEntry> texture_entries();
 const TextureEntry* find_texture(std::string_view name);
+std::span<const MappingEntry> mapping_entries();
+const MappingEntry* find_mapping(std::string_view name);
 
 // A material object; "type" defaults to "phong".
-Material read_material(const JsonNode& node);
+Material read_material(const JsonNode& node, const LoadContext& context);
 // A colour ([r, g, b] or a number) or a texture object with a "type".
-std::shared_ptr<const Texture> read_texture(const JsonNode& node);
+std::shared_ptr<const Texture> read_texture(const JsonNode& node, const LoadContext& context);
+// A number (checked against range) or a texture object, read through its channel mean.
+std::shared_ptr<const Texture> read_scalar_texture(const JsonNode& node, const LoadContext& context,
+                                                   Range range);
+// The "mapping" member of a 2D texture: absent or "uv" for the shape's own uv, a name, or an
+// object with "type", the mapping's parameters, "scale" ([su, sv] or s) and "offset".
+std::shared_ptr<const TextureMapping> read_mapping(const JsonNode& texture);
 
 }  // namespace candela

@@ -6,8 +6,16 @@
 #include <stdexcept>
 
 #include "accel/accelerator_registry.h"
+#include "shading/environment.h"
 
 namespace candela {
+
+Scene::Scene() = default;
+Scene::~Scene() = default;
+
+Color Scene::background_along(const Vec3& direction) const {
+  return environment ? environment->radiance(direction) : background;
+}
 
 void Scene::prepare() {
   const AcceleratorEntry* entry = find_accelerator(render.accelerator);

@@ -47,8 +47,12 @@ struct SceneObject {
   uint32_t primitive_count = 0;
 };
 
+class Environment;
+
 class Scene {
  public:
+  Scene();
+  ~Scene();
   std::string source;  // file name, or "<built-in>"
   std::unique_ptr<Camera> camera;
   std::vector<std::unique_ptr<Shape>> shapes;
@@ -57,7 +61,8 @@ class Scene {
   std::vector<Material> materials;
   std::vector<std::unique_ptr<Light>> lights;
   Color ambient;     // Ia
-  Color background;  // what a ray that leaves the scene returns
+  Color background;  // what a ray that leaves the scene returns, without an environment
+  std::unique_ptr<Environment> environment;  // environment map (000 §4.1.3), or null
   RenderSettings render;
   DisplaySettings display;
   WhittedSettings whitted;
@@ -72,6 +77,9 @@ class Scene {
     return accelerator_->intersect(ray, intersection);
   }
   bool occluded(const Ray& ray) const { return accelerator_->occluded(ray); }
+  // What a ray leaving the scene along the unit direction sees: the environment map, or the
+  // background colour.
+  Color background_along(const Vec3& direction) const;
 
   const Material& material_of(const Intersection& hit) const {
     return materials[primitives[hit.primitive].material];

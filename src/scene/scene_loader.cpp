@@ -13,9 +13,12 @@
 #include "camera/antialiasing.h"
 #include "camera/pixel_filter.h"
 #include "scene/camera_registry.h"
+#include "scene/environment_registry.h"
 #include "scene/json_node.h"
+#include "scene/json_transform.h"
 #include "scene/light_registry.h"
 #include "scene/load_context.h"
+#include "shading/environment.h"
 #include "scene/material_registry.h"
 #include "scene/shape_registry.h"
 #include "util/registry.h"
@@ -25,52 +28,6 @@ namespace candela {
 namespace {
 
 constexpr const char* kFormat = "candela/1";
-
-// One operation: {"translate": [x,y,z]}, {"scale": s or [sx,sy,sz]},
-// {"rotate": {"angle": degrees, "axis": [x,y,z]}}, {"matrix": [16 numbers, row-major]}.
-Transform read_transform_step(const JsonNode& step) {
-  step.expect_object();
-  if (step.json().size() != 1)
-    step.fail("expected exactly one of translate, rotate, scale, matrix");
-  Transform result;
-  if (const auto translate = step.get("translate")) {
-    result = Transform::translate(translate->as_vec3());
-  } else if (const auto scale = step.get("scale")) {
-    const Vec3 factors = scale->json().is_number() ? Vec3{1, 1, 1} * scale->as_number() : scale->as_vec3();
-    if (factors.x == 0 || factors.y == 0 || factors.z == 0) scale->fail("scale factors must be non-zero");
-    try {
-      result = Transform::scale(factors);
-    } catch (const std::invalid_argument& e) {
-      scale->fail(e.what());
-    }
-  } else if (const auto rotate = step.get("rotate")) {
-    const double angle = rotate->number("angle");
-    const JsonNode axis = rotate->at("axis");
-    const Vec3 a = axis.as_vec3();
-    if (!(length(a) > 0)) axis.fail("must be non-zero");
-    rotate->finish();
-    result = Transform::rotate(angle, a);
-  } else if (const auto matrix = step.get("matrix")) {
-    if (matrix->size() != 16) matrix->fail("expected 16 numbers (a 4x4 matrix, row by row)");
-    Eigen::Matrix4d m;
-    for (int i = 0; i < 16; ++i) m(i / 4, i % 4) = matrix->element(i).as_number();
-    try {
-      result = Transform::from_matrix(m);
-    } catch (const std::invalid_argument& e) {
-      matrix->fail(e.what());
-    }
-  }
-  step.finish();
-  return result;
-}
-
-Transform read_transform(const JsonNode& node) {
-  if (node.json().is_object()) return read_transform_step(node);
-  Transform transform;
-  for (std::size_t i = 0; i < node.size(); ++i)
-    transform = read_transform_step(node.element(i)) * transform;  // listed order
-  return transform;
-}
 
 class SceneReader {
  public:
@@ -91,6 +48,7 @@ class SceneReader {
 
     scene->camera = read_camera(root_.at("camera"));
     scene->background = root_.color("background", Color(0), Range::non_negative());
+    if (const auto environment = root_.get("environment")) scene->environment = read_environment(*environment, context_);
     scene->ambient = root_.color("ambient", Color(0), Range::non_negative());
     read_settings();
     read_materials();
@@ -194,14 +152,13 @@ class SceneReader {
   void read_materials() {
     Material fallback;
     fallback.name = "default";
-    fallback.kd = std::make_shared<ConstantTexture>(Color(0.8));
     scene_->materials.push_back(fallback);
     const auto materials = root_.get("materials");
     if (!materials) return;
     materials->expect_object();
     for (const auto& [name, value] : materials->json().items()) {
       const JsonNode node = materials->at(name);
-      Material material = read_material(node);
+      Material material = read_material(node, context_);
       material.name = name;
       named_materials_[name] = context_.add_material(std::move(material));
     }
@@ -238,7 +195,7 @@ class SceneReader {
       }
       return found->second;
     }
-    Material material = read_material(*node);
+    Material material = read_material(*node, context_);
     material.name = node->path();
     return context_.add_material(std::move(material));
   }

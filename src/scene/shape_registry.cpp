@@ -155,13 +155,12 @@ ShapeBuild make_mesh(const JsonNode& node, const Transform& transform, LoadConte
   for (const ImportedMaterial& m : imported.materials) {
     Material material;
     material.name = m.name;
-    material.kd = std::make_shared<ConstantTexture>(m.kd);
-    material.ka = m.ka;
-    material.ka_follows_kd = false;
-    material.ks = m.ks;
-    material.shininess = std::max(1.0, m.shininess);
-    material.kt = m.kt;
-    material.ior = m.ior;
+    material.kd = constant_texture(m.kd);
+    material.ka = constant_texture(m.ka);
+    material.ks = constant_texture(m.ks);
+    material.shininess = constant_texture(std::max(1.0, m.shininess));
+    material.kt = constant_texture(m.kt);
+    material.ior = constant_texture(m.ior);
     material_index.push_back(static_cast<int>(context.add_material(std::move(material))));
   }
   // Degenerate triangles are dropped by make_triangles, so map materials by the surviving

@@ -1,4 +1,6 @@
-// The classic material of the local model and Whitted ray tracing (SPEC §7, §8).
+// The classic material of the local model and Whitted ray tracing (SPEC §7, §8; 000 §2–§4).
+// Every parameter is a texture (a constant one unless the scene gives a texture), evaluated
+// once per hit into SurfaceProperties.
 #pragma once
 
 #include <memory>
@@ -8,23 +10,70 @@
 
 namespace candela {
 
-enum class SpecularModel { phong, blinn_phong };
+enum class SpecularModel { phong, blinn_phong, cook_torrance };
+
+// The see-through blend of 000 §4.4 (besides refraction): I = (1 − t)·I_surface + t·I_behind,
+// where t is the transparency (0 opaque, 1 clear) and n_z = |N·V| the cosine between the
+// normal and the direction to the viewer (the seed's n_z in eye coordinates):
+//   constant   t
+//   linear     t = t_min + (t_max − t_min)·n_z
+//   nonlinear  t = t_min + (t_max − t_min)·(1 − (1 − n_z)^m)
+// so a glass vase is least transparent (t_min) at its silhouette, where light crosses the
+// most material (000 Figure 29).
+enum class TransparencyModel { none, constant, linear, nonlinear };
+
+struct Transparency {
+  TransparencyModel model = TransparencyModel::none;
+  double t_min = 0;     // also the constant model's t
+  double t_max = 0;
+  double exponent = 2;  // m of the nonlinear model, "of the order of 2 or 3"
+  bool active() const { return model != TransparencyModel::none; }
+  double at(double n_z) const;
+};
+
+// 000 §4.2.1: the surface is shaded as if displaced to q' = q + f(q)·n, f = scale·height.
+struct BumpMap {
+  std::shared_ptr<const Texture> height;  // null: no bump mapping
+  double scale = 1;
+  double delta = 1e-4;  // finite-difference step in (u, v)
+};
+
+// The parameters at one surface point.
+struct SurfaceProperties {
+  Color ka, kd;
+  double ks = 0, shininess = 1, kr = 0, kt = 0, ior = 1, roughness = 0.3;
+};
 
 struct Material {
   std::string name;
   std::shared_ptr<const Texture> kd;  // diffuse reflectance per channel (000 §2.9)
-  Color ka;                            // ambient reflectance per channel
-  bool ka_follows_kd = true;           // seed 000 eq. 5-2 uses kd·Ia: ka = kd unless given
-  double ks = 0;                       // local specular, colourless (000 §2.9)
-  double shininess = 1;                // n of (R·V)^n or (N·H)^n
+  std::shared_ptr<const Texture> ka;  // ambient reflectance; null: ka = kd (000 eq. 5-2: kd·Ia)
+  std::shared_ptr<const Texture> ks;  // local specular weight, colourless (000 §2.9)
+  std::shared_ptr<const Texture> shininess;  // n of (R·V)^n or (N·H)^n
   SpecularModel specular_model = SpecularModel::phong;
-  double kr = 0;                       // global specular reflection (000 eq. 5-2)
-  double kt = 0;                       // global specular transmission
-  double ior = 1;                      // index of refraction (000 eq. 5-6)
-  Color absorption;                    // per unit length inside: exp(-a·d) on shadow rays
+  std::shared_ptr<const Texture> roughness;  // Cook-Torrance m: rms slope of the facets
+  Color fresnel_ior{1.5, 1.5, 1.5};          // Cook-Torrance: index of refraction per channel
+  std::shared_ptr<const Texture> kr;         // global specular reflection (000 eq. 5-2)
+  std::shared_ptr<const Texture> kt;         // global specular transmission (refraction)
+  std::shared_ptr<const Texture> ior;        // index of refraction for kt (000 eq. 5-6)
+  Color absorption;                          // per unit length inside: exp(-a·d) on shadow rays
+  Transparency transparency;
+  BumpMap bump;
 
-  Color diffuse(const SurfaceHit& hit) const { return kd->evaluate(hit); }
-  Color ambient(const SurfaceHit& hit) const { return ka_follows_kd ? diffuse(hit) : ka; }
+  // A material with every parameter constant: kd 0.8, no specular, no kr/kt.
+  Material();
+
+  SurfaceProperties at(const SurfaceHit& hit) const;
+  // kt alone, for shadow rays.
+  double transmission_at(const SurfaceHit& hit) const;
+  // True when the material can be seen through at all (refraction or the blend).
+  bool lets_light_through() const;
+  // The largest kr and kt can take (textured ones: their values are checked per hit).
+  bool has_reflection() const;
+  bool has_refraction() const;
 };
+
+std::shared_ptr<const Texture> constant_texture(double value);
+std::shared_ptr<const Texture> constant_texture(const Color& value);
 
 }  // namespace candela

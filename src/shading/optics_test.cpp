@@ -50,30 +50,33 @@ TEST(Optics, TotalInternalReflectionBeyondTheCriticalAngle) {
 
 TEST(LocalModel, LambertAndPhongTerms) {
   Material material;
-  material.ks = 0.5;
-  material.shininess = 10;
+  SurfaceProperties at;
+  at.ks = 0.5;
+  at.shininess = 10;
+  at.kd = Color(0.4, 0.5, 0.6);
   const Vec3 N{0, 0, 1};
   const Vec3 L = normalize(Vec3{1, 0, 1});
   const Vec3 V = normalize(Vec3{-1, 0, 1});  // exactly along R: (R·V)^n = 1
-  const Color kd(0.4, 0.5, 0.6);
-  const Color I = direct_term(material, kd, N, V, L, Color(2));
+  const Color I = direct_term(material, at, N, V, L, Color(2));
   const double n_dot_l = std::sqrt(0.5);
   EXPECT_NEAR(I.r, 2 * (0.4 * n_dot_l + 0.5), 1e-12);
   EXPECT_NEAR(I.b, 2 * (0.6 * n_dot_l + 0.5), 1e-12);
   // Blinn-Phong: H = N here, so (N·H)^n = 1 too.
   material.specular_model = SpecularModel::blinn_phong;
-  EXPECT_NEAR(direct_term(material, kd, N, V, L, Color(2)).g, 2 * (0.5 * n_dot_l + 0.5), 1e-12);
+  EXPECT_NEAR(direct_term(material, at, N, V, L, Color(2)).g, 2 * (0.5 * n_dot_l + 0.5), 1e-12);
   // Off the mirror direction by 30° the Phong lobe is cos^10(30°).
   material.specular_model = SpecularModel::phong;
   const Vec3 V2 = normalize(Vec3{-std::sin(kPi / 4 - kPi / 6), 0, std::cos(kPi / 4 - kPi / 6)});
-  EXPECT_NEAR(direct_term(material, kd, N, V2, L, Color(1)).r,
+  EXPECT_NEAR(direct_term(material, at, N, V2, L, Color(1)).r,
               0.4 * n_dot_l + 0.5 * std::pow(std::cos(kPi / 6), 10), 1e-12);
 }
 
 TEST(LocalModel, NoContributionFromBehind) {
   Material material;
-  material.ks = 1;
-  const Color I = direct_term(material, Color(1), {0, 0, 1}, {0, 0, 1}, normalize(Vec3{1, 0, -1}), Color(1));
+  SurfaceProperties at;
+  at.ks = 1;
+  at.kd = Color(1);
+  const Color I = direct_term(material, at, {0, 0, 1}, {0, 0, 1}, normalize(Vec3{1, 0, -1}), Color(1));
   EXPECT_TRUE(I.is_black());
 }
 

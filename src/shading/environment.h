@@ -1,0 +1,110 @@
+// Environment maps: the radiance arriving from infinitely far away along a direction, seen by
+// rays that leave the scene (background and reflections; 000 §4.1.3, SPEC §7). Created by name
+// in scene/environment_registry.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string_view>
+
+#include "math/vector.h"
+#include "shading/texture_image.h"
+
+namespace candela {
+
+class Environment {
+ public:
+  virtual ~Environment() = default;
+  // The radiance seen looking along the unit direction (away from the scene).
+  virtual Color radiance(const Vec3& unit_direction) const = 0;
+  virtual std::string_view type_name() const = 0;
+};
+
+// The same colour in every direction.
+class ConstantEnvironment final : public Environment {
+ public:
+  explicit ConstantEnvironment(const Color& color) : color_(color) {}
+  Color radiance(const Vec3&) const override { return color_; }
+  std::string_view type_name() const override { return "constant"; }
+  const Color& color() const { return color_; }
+
+ private:
+  Color color_;
+};
+
+// A cube of six square images around the scene (000 §4.1.3), in the OpenGL cube-map convention
+// (OpenGL 4.6 core specification §8.13, Table 8.19), which is also Direct3D's and RenderMan's.
+//
+// The face is the one of the direction r's major axis (largest |component|; on a tie x before
+// y before z, so a direction exactly on an edge or corner always picks the same face). With ma
+// the major component, the face coordinates are
+//   face  sc    tc    ma
+//   +x    −rz   −ry   rx
+//   −x    +rz   −ry   rx
+//   +y    +rx   +rz   ry
+//   −y    +rx   −rz   ry
+//   +z    +rx   −ry   rz
+//   −z    −rx   −ry   rz
+//   s = (sc/|ma| + 1)/2 (s = 0 the image's left column, 1 its right column),
+//   t = (tc/|ma| + 1)/2 (t = 0 the image's TOP row as stored in the file, 1 its bottom row).
+// So the +z face's top row is towards +y and its right column towards +x: each face image is the
+// cube's face seen from OUTSIDE the cube (or, equally, the view of a 90° camera at the centre in
+// a left-handed frame, y up; the side faces of common sky-box sets, "posx.jpg" … "negz.jpg",
+// are made this way). Equivalently, a camera at the centre with the OpenGL up vectors (−y for
+// ±x and ±z, +z for +y, −z for −y) photographs each face flipped top to bottom: the photo's
+// bottom row is the file's top row (OpenGL's framebuffer rows start at the bottom, so a face
+// rendered by OpenGL and read back row 0 first is stored right).
+//
+// Lookups are bilinear, clamped to the edge texels within a face (no blending across faces).
+class CubeMapEnvironment final : public Environment {
+ public:
+  enum Face { positive_x, negative_x, positive_y, negative_y, positive_z, negative_z };
+
+  // faces in the order +x, −x, +y, −y, +z, −z. Throws std::invalid_argument when one is null,
+  // not square, or not the size of the others.
+  CubeMapEnvironment(std::array<std::shared_ptr<const TextureImage>, 6> faces, const Color& multiplier);
+
+  // Black for a zero or non-finite direction.
+  Color radiance(const Vec3& direction) const override;
+  std::string_view type_name() const override { return "cube"; }
+
+  struct FaceCoordinates {
+    Face face;
+    double s, t;  // as in the table above: t = 0 at the image's top row
+  };
+  // The face and (s, t) a direction looks up (needs not be unit length, must be non-zero).
+  static FaceCoordinates face_coordinates(const Vec3& direction);
+
+ private:
+  std::array<std::shared_ptr<const TextureImage>, 6> faces_;
+  Color multiplier_;
+};
+
+// A latitude/longitude panorama (the common "lat-long" or equirectangular HDRI): the image's
+// width spans 360° of longitude, its height 180° of latitude. With up and forward made an
+// orthonormal pair (forward loses its component along up) and right = forward × up (the right
+// of a camera looking along forward with up up, as the perspective camera's X = G × U):
+//   u = 0.5 + atan2(d·right, d·forward) / (2π)   (u = 0 the left column, 1 the right column)
+//   v = acos(d·up) / π                            (v = 0 the TOP row, 1 the bottom row)
+// so forward is the centre of the image, up its top row, −up its bottom row, right is at
+// u = 0.75, left at u = 0.25, and behind (−forward) at the left/right edge, where the lookup
+// blends the last and first columns. Bilinear, repeating in u, clamped in v.
+class EquirectangularEnvironment final : public Environment {
+ public:
+  // Throws std::invalid_argument for a null image, a zero up or forward, or parallel ones.
+  EquirectangularEnvironment(std::shared_ptr<const TextureImage> image, const Vec3& up, const Vec3& forward,
+                             const Color& multiplier);
+
+  Color radiance(const Vec3& unit_direction) const override;
+  std::string_view type_name() const override { return "equirectangular"; }
+
+  // (u, v) as in the comment above (v from the top row); for a unit direction.
+  Vec2 panorama_coordinates(const Vec3& unit_direction) const;
+
+ private:
+  std::shared_ptr<const TextureImage> image_;
+  Vec3 up_, forward_, right_;
+  Color multiplier_;
+};
+
+}  // namespace candela

@@ -1,0 +1,472 @@
+// Image files to linear RGB (SPEC §7: image textures, PNG/JPG/EXR, bilinear): decoded values
+// against the sRGB formula, the bottom-row-first convention, bilinear lookups and wrap modes,
+// and the errors a bad file gives.
+#include "shading/texture_image.h"
+
+#include <gtest/gtest.h>
+#include <stb_image_write.h>  // the implementation is in candela_core (io/image_writer.cpp)
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "camera/film.h"
+#include "io/image_writer.h"
+#include "shading/image_texture.h"
+
+namespace candela {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The sRGB EOTF written out independently of the code under test (IEC 61966-2-1).
+double srgb_to_linear(int byte) {
+  const double c = byte / 255.0;
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+// A fresh folder per test and process.
+class TextureImageFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    directory_ = fs::temp_directory_path() /
+                 ("candela-texture-image-" +
+                  std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "-" +
+                  std::to_string(::getpid()));
+    fs::create_directories(directory_);
+  }
+  void TearDown() override { fs::remove_all(directory_); }
+
+  fs::path path(const std::string& name) const { return directory_ / name; }
+
+  static void write_bytes(const fs::path& file, const void* data, std::size_t size) {
+    std::ofstream out(file, std::ios::binary);
+    out.write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
+    ASSERT_TRUE(out.good()) << file;
+  }
+  static void append(void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<unsigned char>*>(context);
+    out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+  }
+  // candela_core builds stb_image_write without stdio: encode to memory, then write.
+  fs::path write_png(const std::string& name, int width, int height, int channels,
+                     const std::vector<unsigned char>& pixels) const {
+    std::vector<unsigned char> encoded;
+    EXPECT_TRUE(stbi_write_png_to_func(append, &encoded, width, height, channels, pixels.data(), width * channels));
+    write_bytes(path(name), encoded.data(), encoded.size());
+    return path(name);
+  }
+  fs::path write_jpg(const std::string& name, int width, int height, const std::vector<unsigned char>& rgb) const {
+    std::vector<unsigned char> encoded;
+    EXPECT_TRUE(stbi_write_jpg_to_func(append, &encoded, width, height, 3, rgb.data(), 100));
+    write_bytes(path(name), encoded.data(), encoded.size());
+    return path(name);
+  }
+
+  fs::path directory_;
+};
+
+// The message of the std::runtime_error that loading `file` throws.
+std::string load_error(const fs::path& file) {
+  try {
+    TextureImage::load(file);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no error for " << file;
+  return "";
+}
+
+// 4×2 RGB bytes, file order (top row first); every channel of every pixel different.
+const std::vector<unsigned char> kPixels4x2 = {
+    0,   10,  20,  30,  40,  50,  60,  70,  80,  90,  100, 110,  // top row
+    120, 130, 140, 150, 160, 170, 200, 220, 240, 255, 1,   5,    // bottom row
+};
+
+TEST_F(TextureImageFiles, PngBytesDecodeWithTheSrgbCurveBottomRowFirst) {
+  const TextureImage image = TextureImage::load(write_png("rgb.png", 4, 2, 3, kPixels4x2), ColorEncoding::automatic);
+  ASSERT_EQ(image.width(), 4);
+  ASSERT_EQ(image.height(), 2);
+  for (int file_row = 0; file_row < 2; ++file_row)
+    for (int x = 0; x < 4; ++x) {
+      // The file's first (top) row is y = 1; its last (bottom) row y = 0.
+      const Color c = image.texel(x, 1 - file_row);
+      for (int channel = 0; channel < 3; ++channel)
+        EXPECT_NEAR(c[channel], srgb_to_linear(kPixels4x2[std::size_t(file_row * 12 + x * 3 + channel)]), 1e-7)
+            << "x " << x << " file row " << file_row << " channel " << channel;
+    }
+  // Spot values: byte 255 → 1, byte 0 → 0, byte 10 below the 0.04045 threshold is linear.
+  EXPECT_FLOAT_EQ(image.texel(3, 0).r, 1.0f);
+  EXPECT_FLOAT_EQ(image.texel(0, 1).r, 0.0f);
+  EXPECT_FLOAT_EQ(image.texel(0, 1).g, static_cast<float>(10 / 255.0 / 12.92));
+  // Explicit srgb is what automatic means for a PNG.
+  const TextureImage srgb = TextureImage::load(path("rgb.png"), ColorEncoding::srgb);
+  EXPECT_EQ(srgb.rgb(), image.rgb());
+}
+
+TEST_F(TextureImageFiles, LinearEncodingKeepsPngBytesDividedBy255) {
+  const TextureImage image = TextureImage::load(write_png("rgb.png", 4, 2, 3, kPixels4x2), ColorEncoding::linear);
+  EXPECT_FLOAT_EQ(image.texel(2, 1).g, static_cast<float>(70 / 255.0));
+  EXPECT_FLOAT_EQ(image.texel(3, 0).b, static_cast<float>(5 / 255.0));
+}
+
+TEST_F(TextureImageFiles, GreyAndGreyAlphaBecomeEqualChannels) {
+  const TextureImage grey = TextureImage::load(write_png("grey.png", 2, 1, 1, {64, 200}));
+  EXPECT_EQ(grey.texel(0, 0), Color(static_cast<float>(srgb_to_linear(64))));
+  EXPECT_EQ(grey.texel(1, 0), Color(static_cast<float>(srgb_to_linear(200))));
+  // Grey + alpha: alpha is ignored, not multiplied in.
+  const TextureImage grey_alpha = TextureImage::load(write_png("grey-alpha.png", 2, 1, 2, {64, 0, 200, 17}));
+  EXPECT_EQ(grey_alpha.rgb(), grey.rgb());
+}
+
+TEST_F(TextureImageFiles, RgbaDropsAlpha) {
+  const TextureImage image = TextureImage::load(write_png("rgba.png", 1, 1, 4, {255, 128, 0, 0}));
+  EXPECT_EQ(image.texel(0, 0),
+            Color(1.0, static_cast<float>(srgb_to_linear(128)), 0.0));
+}
+
+// A 16-bit PNG built by hand (stb_image_write writes only 8 bits): IHDR, one IDAT holding an
+// uncompressed ("stored") deflate block, IEND; CRC-32 and Adler-32 as PNG and zlib define them.
+std::string sixteen_bit_png(int width, int height, int colour_type, const std::vector<int>& samples) {
+  const auto crc32 = [](const std::string& bytes) {
+    uint32_t crc = 0xffffffffu;
+    for (const unsigned char byte : bytes) {
+      crc ^= byte;
+      for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+    }
+    return ~crc;
+  };
+  const auto big_endian = [](uint32_t value, int bytes) {
+    std::string out;
+    for (int i = bytes - 1; i >= 0; --i) out += static_cast<char>((value >> (8 * i)) & 0xff);
+    return out;
+  };
+  const auto chunk = [&](const std::string& type, const std::string& data) {
+    return big_endian(static_cast<uint32_t>(data.size()), 4) + type + data + big_endian(crc32(type + data), 4);
+  };
+  const int channels = colour_type == 2 ? 3 : 1;
+  std::string raw;  // each row: filter type 0, then big-endian samples
+  for (int y = 0; y < height; ++y) {
+    raw += '\0';
+    for (int i = 0; i < width * channels; ++i)
+      raw += big_endian(static_cast<uint32_t>(samples[std::size_t(y * width * channels + i)]), 2);
+  }
+  uint32_t a = 1, b = 0;  // Adler-32
+  for (const unsigned char byte : raw) {
+    a = (a + byte) % 65521;
+    b = (b + a) % 65521;
+  }
+  const uint16_t length = static_cast<uint16_t>(raw.size());
+  std::string zlib = "\x78\x01";
+  zlib += '\x01';  // final block, stored
+  zlib += static_cast<char>(length & 0xff);
+  zlib += static_cast<char>(length >> 8);
+  zlib += static_cast<char>(~length & 0xff);
+  zlib += static_cast<char>((~length >> 8) & 0xff);
+  zlib += raw + big_endian((b << 16) | a, 4);
+  const std::string header = big_endian(static_cast<uint32_t>(width), 4) + big_endian(static_cast<uint32_t>(height), 4) +
+                             static_cast<char>(16) + static_cast<char>(colour_type) + std::string(3, '\0');
+  return std::string("\x89PNG\r\n\x1a\n") + chunk("IHDR", header) + chunk("IDAT", zlib) + chunk("IEND", "");
+}
+
+TEST_F(TextureImageFiles, SixteenBitPngKeepsItsPrecision) {
+  const std::string rgb = sixteen_bit_png(2, 1, 2, {1000, 40000, 65535, 0, 257, 12345});
+  write_bytes(path("deep.png"), rgb.data(), rgb.size());
+  const TextureImage linear = TextureImage::load(path("deep.png"), ColorEncoding::linear);
+  EXPECT_EQ(linear.texel(0, 0), Color(static_cast<float>(1000 / 65535.0), static_cast<float>(40000 / 65535.0), 1.0));
+  EXPECT_EQ(linear.texel(1, 0), Color(0.0, static_cast<float>(257 / 65535.0), static_cast<float>(12345 / 65535.0)));
+  const TextureImage srgb = TextureImage::load(path("deep.png"));
+  EXPECT_FLOAT_EQ(srgb.texel(0, 0).g, static_cast<float>(std::pow((40000 / 65535.0 + 0.055) / 1.055, 2.4)));
+  // 1000/65535 is no multiple of 1/255: eight bits would have lost it.
+  EXPECT_FLOAT_EQ(srgb.texel(0, 0).r, static_cast<float>(1000 / 65535.0 / 12.92));
+  // 16-bit grey becomes equal channels.
+  const std::string grey = sixteen_bit_png(2, 1, 0, {1000, 40000});
+  write_bytes(path("deep-grey.png"), grey.data(), grey.size());
+  const TextureImage grey_image = TextureImage::load(path("deep-grey.png"), ColorEncoding::linear);
+  EXPECT_EQ(grey_image.texel(0, 0), Color(static_cast<float>(1000 / 65535.0)));
+  EXPECT_EQ(grey_image.texel(1, 0), Color(static_cast<float>(40000 / 65535.0)));
+}
+
+TEST_F(TextureImageFiles, EightBitPnmIsReadSixteenBitRefused) {
+  const std::string ppm = std::string("P6\n2 1\n255\n") + '\x00' + '\x80' + '\xff' + '\x10' + '\x20' + '\x30';
+  write_bytes(path("small.ppm"), ppm.data(), ppm.size());
+  const TextureImage image = TextureImage::load(path("small.ppm"), ColorEncoding::linear);
+  EXPECT_EQ(image.texel(0, 0), Color(0.0, static_cast<float>(128 / 255.0), 1.0));
+  // stb_image 2.27 swaps the bytes of 16-bit PNM samples: refused, not read wrong.
+  const std::string pgm = std::string("P5\n1 1\n65535\n") + '\x03' + '\xe8';
+  write_bytes(path("deep.pgm"), pgm.data(), pgm.size());
+  const std::string message = load_error(path("deep.pgm"));
+  EXPECT_NE(message.find("deep.pgm"), std::string::npos) << message;
+  EXPECT_NE(message.find("16-bit PNM"), std::string::npos) << message;
+}
+
+TEST_F(TextureImageFiles, JpegRoundTripsWithinCompressionError) {
+  // Smooth content at quality 100 (no chroma subsampling): JPEG's error stays within 3 codes.
+  constexpr int kSize = 16;
+  std::vector<unsigned char> rgb;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x)
+      for (const int value : {40 + 8 * x, 200 - 4 * y, 128}) rgb.push_back(static_cast<unsigned char>(value));
+  const TextureImage image = TextureImage::load(write_jpg("smooth.jpg", kSize, kSize, rgb));
+  ASSERT_EQ(image.width(), kSize);
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const Color c = image.texel(x, kSize - 1 - y);
+      for (int channel = 0; channel < 3; ++channel) {
+        const int code = rgb[std::size_t((y * kSize + x) * 3 + channel)];
+        EXPECT_GE(c[channel], srgb_to_linear(code - 3)) << x << ", " << y << " channel " << channel;
+        EXPECT_LE(c[channel], srgb_to_linear(code + 3)) << x << ", " << y << " channel " << channel;
+      }
+    }
+}
+
+Film float_film() {
+  Film film(3, 2);  // rows top first
+  film.at(0, 0) = {1.5, 2.25, 1000.125};
+  film.at(1, 0) = {0.1, 0.2, 0.3};
+  film.at(2, 0) = {0, 65504.5, 1e-4};
+  film.at(0, 1) = {3.75, 0, 42};
+  film.at(1, 1) = {0.333, 0.666, 0.999};
+  film.at(2, 1) = {7, 8, 9};
+  return film;
+}
+
+void expect_film_exactly(const TextureImage& image, const Film& film) {
+  ASSERT_EQ(image.width(), film.width());
+  ASSERT_EQ(image.height(), film.height());
+  for (int y = 0; y < film.height(); ++y)
+    for (int x = 0; x < film.width(); ++x) {
+      const Color stored = film.at(x, film.height() - 1 - y);
+      const Color read = image.texel(x, y);
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(read[c], static_cast<float>(stored[c])) << x << ", " << y << " channel " << c;
+    }
+}
+
+TEST_F(TextureImageFiles, ExrFromTheImageWriterReadsBackExactlyAndLinear) {
+  const Film film = float_film();
+  write_exr(film, path("float.exr").string(), 0);
+  expect_film_exactly(TextureImage::load(path("float.exr")), film);  // values > 1 kept, no curve applied
+  expect_film_exactly(TextureImage::load(path("float.exr"), ColorEncoding::linear), film);
+  const TextureImage srgb = TextureImage::load(path("float.exr"), ColorEncoding::srgb);
+  EXPECT_FLOAT_EQ(srgb.texel(1, 0).g, static_cast<float>(std::pow((0.666f + 0.055) / 1.055, 2.4)));
+}
+
+TEST_F(TextureImageFiles, PfmReadsBackExactlyAndLinear) {
+  const Film film = float_film();
+  write_pfm(film, path("float.pfm").string(), 0);
+  expect_film_exactly(TextureImage::load(path("float.pfm")), film);
+}
+
+TEST_F(TextureImageFiles, RadianceHdrIsLinear) {
+  // One RGBE pixel written by hand (candela_core's stb_image_write has no HDR writer): shared
+  // exponent 133 means mantissa · 2^(133 − 136), so (4, 16, 128) is (0.5, 2, 16) exactly.
+  const std::string hdr = std::string("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 1\n") + '\x04' + '\x10' +
+                          '\x80' + '\x85';
+  write_bytes(path("sky.hdr"), hdr.data(), hdr.size());
+  EXPECT_EQ(TextureImage::load(path("sky.hdr")).texel(0, 0), Color(0.5, 2, 16));
+  const TextureImage srgb = TextureImage::load(path("sky.hdr"), ColorEncoding::srgb);
+  EXPECT_FLOAT_EQ(srgb.texel(0, 0).r, static_cast<float>(std::pow(0.555 / 1.055, 2.4)));
+}
+
+TEST_F(TextureImageFiles, UpperCaseExtensionIsAccepted) {
+  write_png("rgb.png", 4, 2, 3, kPixels4x2);
+  fs::rename(path("rgb.png"), path("RGB.PNG"));
+  EXPECT_EQ(TextureImage::load(path("RGB.PNG")).width(), 4);
+}
+
+TEST_F(TextureImageFiles, MissingFileNamesTheFile) {
+  const std::string message = load_error(path("absent.png"));
+  EXPECT_NE(message.find("absent.png"), std::string::npos) << message;
+  EXPECT_NE(message.find("no such file"), std::string::npos) << message;
+}
+
+TEST_F(TextureImageFiles, GarbageBytesNameTheFileAndStbsReason) {
+  const std::string garbage = "this is not a PNG file at all, just text";
+  write_bytes(path("garbage.png"), garbage.data(), garbage.size());
+  const std::string message = load_error(path("garbage.png"));
+  EXPECT_NE(message.find("garbage.png"), std::string::npos) << message;
+  EXPECT_NE(message.find("stb_image: "), std::string::npos) << message;
+  // A PNG cut short after its header.
+  std::vector<unsigned char> encoded;
+  ASSERT_TRUE(stbi_write_png_to_func(append, &encoded, 4, 2, 3, kPixels4x2.data(), 12));
+  write_bytes(path("truncated.png"), encoded.data(), 40);
+  EXPECT_NE(load_error(path("truncated.png")).find("truncated.png"), std::string::npos);
+}
+
+TEST_F(TextureImageFiles, GarbageExrAndPfmNameTheFile) {
+  const std::string garbage = "garbage";
+  write_bytes(path("garbage.exr"), garbage.data(), garbage.size());
+  const std::string exr = load_error(path("garbage.exr"));
+  EXPECT_NE(exr.find("garbage.exr"), std::string::npos) << exr;
+  EXPECT_NE(exr.find("OpenEXR"), std::string::npos) << exr;
+  write_bytes(path("garbage.pfm"), garbage.data(), garbage.size());
+  const std::string pfm = load_error(path("garbage.pfm"));
+  EXPECT_NE(pfm.find("garbage.pfm"), std::string::npos) << pfm;
+  EXPECT_NE(pfm.find("not a PFM file"), std::string::npos) << pfm;
+  const std::string truncated = "PF\n2 2\n-1.0\n0123";
+  write_bytes(path("truncated.pfm"), truncated.data(), truncated.size());
+  EXPECT_NE(load_error(path("truncated.pfm")).find("truncated PFM data"), std::string::npos);
+}
+
+TEST_F(TextureImageFiles, UnknownExtensionNamesTheFileAndTheKnownOnes) {
+  write_png("picture.png", 4, 2, 3, kPixels4x2);
+  fs::copy_file(path("picture.png"), path("picture.webp"));
+  const std::string message = load_error(path("picture.webp"));
+  EXPECT_NE(message.find("picture.webp"), std::string::npos) << message;
+  EXPECT_NE(message.find("\".webp\""), std::string::npos) << message;
+  EXPECT_NE(message.find("png, jpg"), std::string::npos) << message;
+  fs::copy_file(path("picture.png"), path("no-extension"));
+  EXPECT_NE(load_error(path("no-extension")).find("no-extension"), std::string::npos);
+}
+
+TEST_F(TextureImageFiles, EmptyFilesAndFoldersAreRefused) {
+  write_bytes(path("empty.png"), "", 0);
+  EXPECT_NE(load_error(path("empty.png")).find("empty"), std::string::npos);
+  fs::create_directories(path("folder.png"));
+  EXPECT_NE(load_error(path("folder.png")).find("directory"), std::string::npos);
+}
+
+TEST_F(TextureImageFiles, ImagesOverTwoToThe28PixelsAreRefusedBeforeDecoding) {
+  // A PFM header announcing 20000 × 20000 pixels (400 M > 2^28) and no data: refused from the
+  // header, without allocating the 4.8 GB it announces.
+  const std::string huge = "PF\n20000 20000\n-1.0\n";
+  write_bytes(path("huge.pfm"), huge.data(), huge.size());
+  const std::string message = load_error(path("huge.pfm"));
+  EXPECT_NE(message.find("huge.pfm"), std::string::npos) << message;
+  EXPECT_NE(message.find("2^28"), std::string::npos) << message;
+  const std::string zero = "PF\n0 4\n-1.0\n";
+  write_bytes(path("zero.pfm"), zero.data(), zero.size());
+  EXPECT_NE(load_error(path("zero.pfm")).find("no pixels"), std::string::npos);
+}
+
+// --- lookups -----------------------------------------------------------------------------------
+
+// 4×2, texel (x, y) = (x + 4y, 10x, 100y): every texel different, averages exact.
+TextureImage grid_image() {
+  std::vector<float> rgb;
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 4; ++x)
+      for (const int value : {x + 4 * y, 10 * x, 100 * y}) rgb.push_back(static_cast<float>(value));
+  return TextureImage(4, 2, std::move(rgb));
+}
+
+constexpr WrapMode kWrapModes[] = {WrapMode::repeat, WrapMode::clamp, WrapMode::mirror};
+
+TEST(TextureImage, ConstructorKeepsBottomRowFirstAndChecksSizes) {
+  const TextureImage image = grid_image();
+  EXPECT_EQ(image.texel(0, 0), Color(0, 0, 0));
+  EXPECT_EQ(image.texel(3, 0), Color(3, 30, 0));
+  EXPECT_EQ(image.texel(2, 1), Color(6, 20, 100));
+  EXPECT_THROW(TextureImage(4, 2, std::vector<float>(23)), std::invalid_argument);
+  EXPECT_THROW(TextureImage(0, 2, {}), std::invalid_argument);
+  EXPECT_THROW(TextureImage(-1, -1, std::vector<float>(3)), std::invalid_argument);
+}
+
+TEST(TextureImage, BilinearAtTexelCentresGivesTheTexels) {
+  const TextureImage image = grid_image();
+  for (const WrapMode wrap : kWrapModes)
+    for (int y = 0; y < 2; ++y)
+      for (int x = 0; x < 4; ++x)
+        EXPECT_EQ(image.bilinear({(x + 0.5) / 4, (y + 0.5) / 2}, wrap), image.texel(x, y))
+            << wrap_mode_name(wrap) << " " << x << ", " << y;
+}
+
+TEST(TextureImage, BilinearHalfwayIsTheAverage) {
+  const TextureImage image = grid_image();
+  for (const WrapMode wrap : kWrapModes) {
+    // Between texels (1, 0) and (2, 0): u = 0.5, v = 0.25.
+    EXPECT_EQ(image.bilinear({0.5, 0.25}, wrap), (image.texel(1, 0) + image.texel(2, 0)) * 0.5);
+    // Between the rows: v = 0.5.
+    EXPECT_EQ(image.bilinear({0.125, 0.5}, wrap), (image.texel(0, 0) + image.texel(0, 1)) * 0.5);
+    // Amid four texels.
+    EXPECT_EQ(image.bilinear({0.75, 0.5}, wrap),
+              (image.texel(2, 0) + image.texel(3, 0) + image.texel(2, 1) + image.texel(3, 1)) * 0.25);
+    // A quarter of the way from (0, 1) to (1, 1).
+    EXPECT_EQ(image.bilinear({0.1875, 0.75}, wrap), image.texel(0, 1) * 0.75 + image.texel(1, 1) * 0.25);
+  }
+}
+
+TEST(TextureImage, RepeatBlendsTheLastAndFirstColumnsAcrossTheSeam) {
+  const TextureImage image = grid_image();
+  const Color seam = (image.texel(3, 0) + image.texel(0, 0)) * 0.5;
+  EXPECT_EQ(image.bilinear({0.0, 0.25}, WrapMode::repeat), seam);
+  EXPECT_EQ(image.bilinear({1.0, 0.25}, WrapMode::repeat), seam);
+  EXPECT_EQ(image.bilinear({-3.0, 0.25}, WrapMode::repeat), seam);
+  // Whole periods away, the same texel.
+  EXPECT_EQ(image.bilinear({1.125, 0.25}, WrapMode::repeat), image.texel(0, 0));
+  EXPECT_EQ(image.bilinear({-0.875, 0.25}, WrapMode::repeat), image.texel(0, 0));
+  EXPECT_EQ(image.bilinear({0.375, 1.75}, WrapMode::repeat), image.texel(1, 1));
+  // The v seam blends the top and bottom rows.
+  EXPECT_EQ(image.bilinear({0.125, 0.0}, WrapMode::repeat), (image.texel(0, 1) + image.texel(0, 0)) * 0.5);
+}
+
+TEST(TextureImage, ClampHoldsTheEdgeTexels) {
+  const TextureImage image = grid_image();
+  EXPECT_EQ(image.bilinear({0.0, 0.25}, WrapMode::clamp), image.texel(0, 0));
+  EXPECT_EQ(image.bilinear({-5.0, 0.25}, WrapMode::clamp), image.texel(0, 0));
+  EXPECT_EQ(image.bilinear({1.0, 0.25}, WrapMode::clamp), image.texel(3, 0));
+  EXPECT_EQ(image.bilinear({7.0, 3.0}, WrapMode::clamp), image.texel(3, 1));
+  EXPECT_EQ(image.bilinear({-1.0, -1.0}, WrapMode::clamp), image.texel(0, 0));
+  // Inside the outer half texel, the edge texel alone.
+  EXPECT_EQ(image.bilinear({0.05, 0.25}, WrapMode::clamp), image.texel(0, 0));
+}
+
+TEST(TextureImage, MirrorReflectsAtEveryInteger) {
+  const TextureImage image = grid_image();
+  EXPECT_EQ(image.bilinear({-0.125, 0.25}, WrapMode::mirror), image.texel(0, 0));  // reflection of 0.125
+  EXPECT_EQ(image.bilinear({1.125, 0.25}, WrapMode::mirror), image.texel(3, 0));   // of 0.875
+  EXPECT_EQ(image.bilinear({1.375, 0.25}, WrapMode::mirror), image.texel(2, 0));   // of 0.625
+  EXPECT_EQ(image.bilinear({2.125, 0.25}, WrapMode::mirror), image.texel(0, 0));   // a full period on
+  EXPECT_EQ(image.bilinear({-1.125, 0.25}, WrapMode::mirror), image.texel(3, 0));  // of −0.875, of 0.875
+  // At the mirror line the edge texel meets its own reflection.
+  EXPECT_EQ(image.bilinear({1.0, 0.25}, WrapMode::mirror), image.texel(3, 0));
+  EXPECT_EQ(image.bilinear({0.0, 0.25}, WrapMode::mirror), image.texel(0, 0));
+  EXPECT_EQ(image.bilinear({0.125, 1.25}, WrapMode::mirror), image.texel(0, 1));  // v: of 0.75
+  // Per-axis modes.
+  EXPECT_EQ(image.bilinear({1.125, 1.25}, WrapMode::repeat, WrapMode::mirror), image.texel(0, 1));
+}
+
+TEST(TextureImage, NonFiniteAndHugeCoordinatesStayInside) {
+  const TextureImage image = grid_image();
+  for (const WrapMode wrap : kWrapModes) {
+    EXPECT_EQ(image.bilinear({std::nan(""), 0.25}, wrap), image.bilinear({0.0, 0.25}, wrap));
+    EXPECT_EQ(image.bilinear({0.125, INFINITY}, wrap), image.bilinear({0.125, 0.0}, wrap));
+    const Color far = image.bilinear({1e300, -1e300}, wrap);
+    EXPECT_TRUE(std::isfinite(far.r) && far.r >= 0 && far.r <= 7) << wrap_mode_name(wrap);
+  }
+}
+
+TEST(TextureImage, SrgbDecodeMatchesTheStandard) {
+  EXPECT_EQ(srgb_decode(0), 0);
+  EXPECT_DOUBLE_EQ(srgb_decode(1), 1);
+  EXPECT_DOUBLE_EQ(srgb_decode(0.04045), 0.04045 / 12.92);
+  EXPECT_DOUBLE_EQ(srgb_decode(0.5), std::pow(0.555 / 1.055, 2.4));
+  // The two pieces meet at the threshold up to the rounding of the standard's constants (2e-9).
+  EXPECT_NEAR(srgb_decode(0.04045 + 1e-12), srgb_decode(0.04045), 1e-8);
+}
+
+TEST(ImageTexture, LookupIsTheMultiplierTimesTheBilinearValue) {
+  auto image = std::make_shared<const TextureImage>(grid_image());
+  const ImageTexture texture(image, WrapMode::clamp, Color(2, 0.5, 1), std::make_shared<ParametricMapping>());
+  EXPECT_EQ(texture.type_name(), "image");
+  EXPECT_EQ(texture.lookup({0.5, 0.25}), Color(2, 0.5, 1) * image->bilinear({0.5, 0.25}, WrapMode::clamp));
+  SurfaceHit hit;
+  hit.uv = {0.625, 0.75};  // texel (2, 1) = (6, 20, 100)
+  EXPECT_EQ(texture.evaluate(hit), Color(12, 10, 100));
+  EXPECT_DOUBLE_EQ(texture.evaluate_scalar(hit), (12.0 + 10 + 100) / 3);
+  // The wrap mode is the texture's.
+  const ImageTexture repeating(image, WrapMode::repeat, Color(1), std::make_shared<ParametricMapping>());
+  EXPECT_EQ(repeating.lookup({0.0, 0.25}), (image->texel(3, 0) + image->texel(0, 0)) * 0.5);
+  EXPECT_EQ(repeating.wrap(), WrapMode::repeat);
+  EXPECT_THROW(ImageTexture(nullptr, WrapMode::repeat, Color(1), std::make_shared<ParametricMapping>()),
+               std::invalid_argument);
+  EXPECT_THROW(ImageTexture(image, WrapMode::repeat, Color(1), nullptr), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace candela

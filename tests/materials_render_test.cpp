@@ -1,0 +1,175 @@
+// Issue 5 end to end: materials, textures, environment maps, bump mapping and the see-through
+// transparency models inside whole renders (SPEC §7, 000 §4).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "integrators/local.h"
+#include "integrators/method_registry.h"
+#include "integrators/whitted.h"
+#include "io/image_writer.h"
+#include "scene/scene_loader.h"
+
+namespace candela {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::unique_ptr<Scene> scene_from(const std::string& body, const std::string& camera,
+                                  const std::string& directory = ".") {
+  return load_scene_text(R"({"format": "candela/1", "camera": )" + camera + ", " + body + "}", "test.json", directory);
+}
+
+// One pixel looking down −z through the image centre.
+const char* kCentreCamera = R"({"eye": [0, 0, 10], "target": [0, 0, 0], "fov": 1, "width": 1, "height": 1})";
+
+Color pixel(const Scene& scene) {
+  Color radiance;
+  WhittedMethod().pixel_ray_tree(scene, 0, 0, radiance);
+  return radiance;
+}
+
+Film render(const Scene& scene) {
+  const auto method = find_method("whitted")->create();
+  Film film(scene.camera->width(), scene.camera->height());
+  RunStatistics statistics;
+  method->render(scene, {{0, 0, film.width(), film.height()}, true}, film, statistics);
+  return film;
+}
+
+void expect_color_near(const Color& got, const Color& expected, double tolerance) {
+  EXPECT_NEAR(got.r, expected.r, tolerance);
+  EXPECT_NEAR(got.g, expected.g, tolerance);
+  EXPECT_NEAR(got.b, expected.b, tolerance);
+}
+
+TEST(MaterialsRender, BumpLeavesTheSilhouetteSmooth) {
+  // 000 §4.2.1: the bump changes shading, never the outline. Every pixel that shows the
+  // background without the bump shows it with the bump, and the other way round.
+  const std::string camera = R"({"eye": [0, 0, 6], "target": [0, 0, 0], "fov": 40, "width": 48, "height": 48})";
+  const std::string lights = R"("lights": [{"type": "point", "position": [3, 4, 6]}], "background": [0, 0, 1], )";
+  const auto plain = scene_from(lights + R"("shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1.5, "material": {"kd": [1, 1, 0], "ks": 0.3}}])", camera);
+  const auto bumped = scene_from(lights + R"("shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1.5, "material": {"kd": [1, 1, 0], "ks": 0.3,
+      "bump": {"height": {"type": "waves", "waves": [{"amplitude": 1, "frequency": [24, 0]}, {"amplitude": 0.5, "frequency": [0, 12]}]}, "scale": 0.004}}}])", camera);
+  const Film a = render(*plain);
+  const Film b = render(*bumped);
+  int background = 0, different = 0;
+  for (int y = 0; y < a.height(); ++y)
+    for (int x = 0; x < a.width(); ++x) {
+      const bool a_background = a.at(x, y) == Color(0, 0, 1);
+      const bool b_background = b.at(x, y) == Color(0, 0, 1);
+      EXPECT_EQ(a_background, b_background) << x << "," << y;
+      background += a_background;
+      if (!a_background && !(a.at(x, y) == b.at(x, y))) ++different;
+    }
+  EXPECT_GT(background, 500);
+  EXPECT_GT(different, 500);  // and yet the surface inside is visibly bumped
+}
+
+TEST(MaterialsRender, ConstantTransparencyBlendsFrontAndBehind) {
+  // 000 §4.4: I = (1 − t)·I_front + t·I_behind, the ray going on undeviated.
+  const std::string back = R"({"type": "plane", "point": [0, 0, -2], "normal": [0, 0, 1], "material": {"kd": [1, 0, 0]}})";
+  const std::string light = R"("lights": [{"type": "directional", "direction": [0, 0, -1]}], )";
+  const auto front_only = scene_from(light + R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": {"kd": [0, 0.5, 0]}}])", kCentreCamera);
+  const auto behind_only = scene_from(light + R"("shapes": [)" + back + "]", kCentreCamera);
+  const auto both = scene_from(light + R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
+      "material": {"kd": [0, 0.5, 0], "transparency": {"model": "constant", "t": 0.3}}}, )" + back + "]", kCentreCamera);
+  const Color front = pixel(*front_only);
+  // The back plane is lit through the pane: its light is attenuated by t on the way in.
+  const Color behind = pixel(*behind_only) * 0.3;
+  expect_color_near(pixel(*both), front * 0.7 + behind * 0.3, 1e-12);
+}
+
+TEST(MaterialsRender, LinearAndNonlinearTransparencyFollowTheNormal) {
+  // A sphere seen through its centre has n_z = 1 at both surfaces: t = t_max there; the
+  // same in the nonlinear model (1 − (1 − 1)^m = 1).
+  const std::string light = R"("ambient": 1, )";
+  const auto expect_through_centre = [&](const std::string& transparency, double t) {
+    const auto scene = scene_from(light + R"("background": [0, 0, 1], "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1,
+        "material": {"kd": [1, 0, 0], "transparency": )" + transparency + "}}]", kCentreCamera);
+    // Two surfaces, each I = (1 − t)·kd·Ia + t·(what lies behind).
+    const Color inner = Color(1, 0, 0) * (1 - t) + Color(0, 0, 1) * t;
+    const Color outer = Color(1, 0, 0) * (1 - t) + inner * t;
+    expect_color_near(pixel(*scene), outer, 1e-12);
+  };
+  expect_through_centre(R"({"model": "linear", "t_min": 0.1, "t_max": 0.8})", 0.8);
+  expect_through_centre(R"({"model": "nonlinear", "t_min": 0.1, "t_max": 0.6, "m": 3})", 0.6);
+  // Off centre n_z < 1: the linear model is less transparent there.
+  Transparency linear;
+  linear.model = TransparencyModel::linear;
+  linear.t_min = 0.1;
+  linear.t_max = 0.8;
+  EXPECT_NEAR(linear.at(0.5), 0.45, 1e-15);
+  EXPECT_NEAR(linear.at(0), 0.1, 1e-15);
+  Transparency nonlinear = linear;
+  nonlinear.model = TransparencyModel::nonlinear;
+  nonlinear.exponent = 2;
+  EXPECT_NEAR(nonlinear.at(0.5), 0.1 + 0.7 * 0.75, 1e-15);
+  EXPECT_GT(nonlinear.at(0.5), linear.at(0.5));  // more transparent away from the silhouette
+}
+
+TEST(MaterialsRender, TexturedKrReflectsOnlyWhereTheTextureSaysSo) {
+  // kr from a 2D checker over the plane's uv (uv = the hit's coordinates): the centre pixel
+  // sees cell (0, 0) — even, kr = 0.5 — of a mirror facing a white background.
+  const auto scene = scene_from(R"("background": 1, "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
+      "material": {"kd": 0, "kr": {"type": "checker2d", "even": 0.5, "odd": 0, "mapping": {"type": "uv", "offset": [0.5, 0.5]}}}}])",
+                                kCentreCamera);
+  expect_color_near(pixel(*scene), Color(0.5), 1e-12);
+  const auto shifted = scene_from(R"("background": 1, "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
+      "material": {"kd": 0, "kr": {"type": "checker2d", "even": 0.5, "odd": 0, "mapping": {"type": "uv", "offset": [1.5, 0.5]}}}}])",
+                                  kCentreCamera);
+  expect_color_near(pixel(*shifted), Color(0), 1e-12);
+}
+
+class EnvironmentRender : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    directory_ = fs::temp_directory_path() / ("candela-environment-" + std::to_string(::getpid()) + "-" +
+                                              ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(directory_);
+    // Six 2×2 faces (PFM: linear floats), each one flat colour: face i has red = 0.1·(i + 1).
+    const char* names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
+    for (int i = 0; i < 6; ++i) {
+      Film face(2, 2);
+      for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 2; ++x) face.at(x, y) = Color(red_of_face(i), 0.25, 0);
+      write_pfm(face, (directory_ / (std::string(names[i]) + ".pfm")).string(), 0);
+    }
+  }
+  void TearDown() override { fs::remove_all(directory_); }
+  static double red_of_face(int face) { return 0.125 * (face + 1); }
+  fs::path directory_;
+};
+
+const char* kCube = R"("environment": {"type": "cube", "faces": {"+x": "px.pfm", "-x": "nx.pfm", "+y": "py.pfm", "-y": "ny.pfm", "+z": "pz.pfm", "-z": "nz.pfm"}}, )";
+
+TEST_F(EnvironmentRender, BackgroundIsTheCubeFaceAhead) {
+  // Looking down −z: the −z face (index 5).
+  const auto scene = scene_from(kCube + std::string(R"("shapes": [])"), kCentreCamera, directory_.string());
+  EXPECT_NEAR(pixel(*scene).r, red_of_face(5), 1e-6);
+  EXPECT_NEAR(pixel(*scene).g, 0.25, 1e-6);
+}
+
+TEST_F(EnvironmentRender, MirrorReflectsTheFaceBehindTheCamera) {
+  // A mirror facing +z sends the central ray back along +z: the +z face (index 4).
+  const auto scene = scene_from(kCube + std::string(R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": {"kd": 0, "kr": 1}}])"),
+                                kCentreCamera, directory_.string());
+  EXPECT_NEAR(pixel(*scene).r, red_of_face(4), 1e-6);
+  // Turned 45° about x the mirror sends the ray up, to +y (index 2).
+  const auto tilted = scene_from(kCube + std::string(R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 1], "material": {"kd": 0, "kr": 1}}])"),
+                                 kCentreCamera, directory_.string());
+  EXPECT_NEAR(pixel(*tilted).r, red_of_face(2), 1e-6);
+}
+
+TEST_F(EnvironmentRender, RefractedRaysThatMissSeeTheEnvironment) {
+  // A clear slab (kt = 1, ior 1.5) facing the eye: the ray passes straight through at normal
+  // incidence and sees the −z face.
+  const auto scene = scene_from(kCube + std::string(R"("shapes": [{"type": "box", "min": [-1, -1, -1], "max": [1, 1, 1], "material": {"kd": 0, "kt": 1, "ior": 1.5}}])"),
+                                kCentreCamera, directory_.string());
+  EXPECT_NEAR(pixel(*scene).r, red_of_face(5), 1e-6);
+}
+
+}  // namespace
+}  // namespace candela
