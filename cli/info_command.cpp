@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "scene_options.h"
+#include "shading/environment.h"
 #include "util/error.h"
 #include "util/statistics.h"
 
@@ -34,6 +35,11 @@ int run_info(const SceneOptions& options) {
                            scene->ambient.r, scene->ambient.g, scene->ambient.b);
   for (const auto& light : scene->lights) std::cout << "  " << light->type_name() << "\n";
   std::cout << fmt::format("materials: {}\n", scene->materials.size());
+  if (scene->environment)
+    std::cout << fmt::format("environment: {}\n", scene->environment->type_name());
+  else
+    std::cout << fmt::format("background: [{:.4g}, {:.4g}, {:.4g}]\n", scene->background.r, scene->background.g,
+                             scene->background.b);
   const Bounds3& b = scene->bounds();
   std::cout << fmt::format("bounds (finite shapes): ({:.4g}, {:.4g}, {:.4g}) to ({:.4g}, {:.4g}, {:.4g})\n",
                            b.lower.x, b.lower.y, b.lower.z, b.upper.x, b.upper.y, b.upper.z);

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include "integrators/local.h"
 #include "integrators/method_registry.h"
@@ -169,6 +170,75 @@ TEST_F(EnvironmentRender, RefractedRaysThatMissSeeTheEnvironment) {
   const auto scene = scene_from(kCube + std::string(R"("shapes": [{"type": "box", "min": [-1, -1, -1], "max": [1, 1, 1], "material": {"kd": 0, "kt": 1, "ior": 1.5}}])"),
                                 kCentreCamera, directory_.string());
   EXPECT_NEAR(pixel(*scene).r, red_of_face(5), 1e-6);
+}
+
+TEST_F(EnvironmentRender, SixRendersFromTheCentreAreACubeMapOfTheScene) {
+  // CubeLayout::inside: faces photographed by 90° cameras at the centre (up +y for the side
+  // faces, −z looking up, +z looking down) give the same scene back as an environment. A
+  // mirrored or rotated face convention would disagree on about half of the pixels.
+  const std::string room = R"("ambient": 1, "shapes": [{"type": "box", "min": [-1, -1, -1], "max": [1, 1, 1],
+      "material": {"kd": {"type": "checkerboard", "even": [0.9, 0.5, 0.1], "odd": [0.1, 0.3, 0.8], "size": 0.37, "offset": [0.11, 0.05, 0.02]}}},
+      {"type": "sphere", "center": [0.6, 0.3, -0.5], "radius": 0.2, "material": {"kd": [1, 0, 0]}}])";
+  const struct {
+    const char* name;
+    const char* forward;
+    const char* up;
+  } faces[6] = {{"px", "[1, 0, 0]", "[0, 1, 0]"}, {"nx", "[-1, 0, 0]", "[0, 1, 0]"}, {"py", "[0, 1, 0]", "[0, 0, -1]"},
+                {"ny", "[0, -1, 0]", "[0, 0, 1]"}, {"pz", "[0, 0, 1]", "[0, 1, 0]"},  {"nz", "[0, 0, -1]", "[0, 1, 0]"}};
+  for (const auto& face : faces) {
+    const auto scene = scene_from(room, std::string(R"({"eye": [0, 0, 0], "target": )") + face.forward + R"(, "up": )" +
+                                            face.up + R"(, "fov": 90, "width": 96, "height": 96})");
+    write_pfm(render(*scene), (directory_ / (std::string("room-") + face.name + ".pfm")).string(), 0);
+  }
+  const std::string view = R"({"eye": [0, 0, 0], "target": [0.5, 0.35, -1], "up": [0.1, 1, 0], "fov": 100, "width": 48, "height": 40})";
+  const Film direct = render(*scene_from(room, view));
+  const Film through_cube = render(*scene_from(
+      R"("environment": {"type": "cube", "faces": {"+x": "room-px.pfm", "-x": "room-nx.pfm", "+y": "room-py.pfm", "-y": "room-ny.pfm", "+z": "room-pz.pfm", "-z": "room-nz.pfm"}}, "shapes": [])",
+      view, directory_.string()));
+  int mismatched = 0;
+  for (int y = 0; y < direct.height(); ++y)
+    for (int x = 0; x < direct.width(); ++x) {
+      const Color d = direct.at(x, y), c = through_cube.at(x, y);
+      if (std::fabs(d.r - c.r) + std::fabs(d.g - c.g) + std::fabs(d.b - c.b) > 0.15) ++mismatched;
+    }
+  // Only pixels on cell and sphere edges differ (bilinear resampling of the faces).
+  EXPECT_LT(mismatched, direct.width() * direct.height() / 10) << mismatched;
+}
+
+TEST_F(EnvironmentRender, ObjTextureCoordinatesAndMapKd) {
+  // A unit quad with vt at its corners and an MTL whose map_Kd is a 2×2 image: the pixel aimed
+  // at (−0.5, −0.5) has uv (0.25, 0.25), the centre of the bottom-left texel.
+  Film texture(2, 2);  // film rows run top to bottom: (0, 1) is the bottom-left texel
+  texture.at(0, 0) = Color(0, 1, 0);
+  texture.at(1, 0) = Color(0, 0, 1);
+  texture.at(0, 1) = Color(1, 0, 0);
+  texture.at(1, 1) = Color(1, 1, 1);
+  write_pfm(texture, (directory_ / "quad.pfm").string(), 0);
+  {
+    std::ofstream mtl(directory_ / "quad.mtl");
+    mtl << "newmtl textured\nKd 0.5 0.5 0.5\nmap_Kd quad.pfm\n";
+    std::ofstream obj(directory_ / "quad.obj");
+    obj << "mtllib quad.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+           "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl textured\nf 1/1 2/2 3/3 4/4\n";
+  }
+  // Look straight down −z at a point: eye 10 units above it.
+  const auto scene = scene_from(R"("lights": [{"type": "directional", "direction": [0, 0, -1]}], "shapes": [{"type": "mesh", "file": "quad.obj"}])",
+                                R"({"eye": [-0.5, -0.5, 10], "target": [-0.5, -0.5, 0], "fov": 1, "width": 1, "height": 1})",
+                                directory_.string());
+  expect_color_near(pixel(*scene), Color(0.5, 0, 0), 1e-6);  // Kd × texel
+  const auto top_right = scene_from(R"("lights": [{"type": "directional", "direction": [0, 0, -1]}], "shapes": [{"type": "mesh", "file": "quad.obj"}])",
+                                    R"({"eye": [0.5, 0.5, 10], "target": [0.5, 0.5, 0], "fov": 1, "width": 1, "height": 1})",
+                                    directory_.string());
+  expect_color_near(pixel(*top_right), Color(0, 0, 0.5), 1e-6);
+  // A missing map_Kd image is an error naming the OBJ's "file" entry.
+  fs::remove(directory_ / "quad.pfm");
+  try {
+    scene_from(R"("shapes": [{"type": "mesh", "file": "quad.obj"}])", kCentreCamera, directory_.string());
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("shapes[0].file"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("map_Kd"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -129,7 +129,9 @@ std::unique_ptr<Environment> make_cube(const JsonNode& node, const LoadContext& 
                      std::to_string(faces[0]->height()) + "; all six faces must be the same size");
   }
   faces_node.finish();
-  return std::make_unique<CubeMapEnvironment>(std::move(faces), multiplier);
+  const CubeLayout layout = node.choice("layout", "inside", {"inside", "opengl"}) == "inside" ? CubeLayout::inside
+                                                                                             : CubeLayout::opengl;
+  return std::make_unique<CubeMapEnvironment>(std::move(faces), multiplier, layout);
 }
 
 std::unique_ptr<Environment> make_equirectangular(const JsonNode& node, const LoadContext& context) {
@@ -152,9 +154,9 @@ const std::array kEntries = {
     EnvironmentEntry{"constant", "the same radiance from every direction",
                      R"({"type": "constant", "color": [0.2, 0.3, 0.5]})", make_constant},
     EnvironmentEntry{"cube",
-                     "cube map of six square images around the scene (000 §4.1.3), OpenGL face "
-                     "convention; bilinear within a face",
-                     R"({"type": "cube", "faces": {"+x": "sky/px.png", "-x": "sky/nx.png", "+y": "sky/py.png", "-y": "sky/ny.png", "+z": "sky/pz.png", "-z": "sky/nz.png"}, "multiplier": 1, "encoding": "auto"})",
+                     "cube map of six square images around the scene (000 §4.1.3); layout \"inside\" (what a 90° "
+                     "camera at the centre sees) or \"opengl\" (sky-box sets); bilinear within a face",
+                     R"({"type": "cube", "faces": {"+x": "sky/px.png", "-x": "sky/nx.png", "+y": "sky/py.png", "-y": "sky/ny.png", "+z": "sky/pz.png", "-z": "sky/nz.png"}, "multiplier": 1, "encoding": "auto", "layout": "inside"})",
                      make_cube},
     EnvironmentEntry{"equirectangular",
                      "latitude/longitude panorama: image centre along forward, top row up; "

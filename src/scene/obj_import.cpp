@@ -275,6 +275,11 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
     material.shininess = static_cast<double>(source.shininess);
     material.kt = std::clamp(1.0 - static_cast<double>(source.dissolve), 0.0, 1.0);
     material.ior = static_cast<double>(source.ior);
+    if (!source.diffuse_texname.empty()) {
+      const std::filesystem::path texture(source.diffuse_texname);
+      material.diffuse_texture =
+          texture.is_absolute() ? texture.string() : (std::filesystem::path(config.mtl_search_path) / texture).string();
+    }
     if (!finite_color(material.ka) || !finite_color(material.kd) || !finite_color(material.ke) ||
         !std::isfinite(material.ks) || !std::isfinite(material.shininess) ||
         !std::isfinite(material.ior) || std::isnan(material.kt))

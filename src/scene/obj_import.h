@@ -36,6 +36,7 @@ struct ImportedMaterial {
   double shininess = 0;  // MTL Ns
   double kt = 0;         // 1 - d (or Tr), clamped to [0, 1]
   double ior = 1;        // MTL Ni
+  std::string diffuse_texture;  // MTL map_Kd, resolved against the OBJ's folder; empty if none
 };
 
 struct ObjImport {

@@ -13,6 +13,7 @@
 #include "geometry/torus.h"
 #include "geometry/triangle_mesh.h"
 #include "scene/obj_import.h"
+#include "shading/image_texture.h"
 
 #include "util/registry.h"
 
@@ -156,6 +157,17 @@ ShapeBuild make_mesh(const JsonNode& node, const Transform& transform, LoadConte
     Material material;
     material.name = m.name;
     material.kd = constant_texture(m.kd);
+    if (!m.diffuse_texture.empty()) {
+      // MTL map_Kd: an image over the OBJ's texture coordinates (vt), multiplied by Kd as the
+      // MTL format specifies.
+      try {
+        auto image = std::make_shared<const TextureImage>(TextureImage::load(m.diffuse_texture));
+        material.kd = std::make_shared<ImageTexture>(std::move(image), WrapMode::repeat, m.kd,
+                                                     std::make_shared<ParametricMapping>());
+      } catch (const std::runtime_error& e) {
+        file.fail(fmt::format("material '{}' (map_Kd): {}", m.name, e.what()));
+      }
+    }
     material.ka = constant_texture(m.ka);
     material.ks = constant_texture(m.ks);
     material.shininess = constant_texture(std::max(1.0, m.shininess));

@@ -14,8 +14,8 @@ constexpr const char* kFaceNames[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
 }  // namespace
 
 CubeMapEnvironment::CubeMapEnvironment(std::array<std::shared_ptr<const TextureImage>, 6> faces,
-                                       const Color& multiplier)
-    : faces_(std::move(faces)), multiplier_(multiplier) {
+                                       const Color& multiplier, CubeLayout layout)
+    : faces_(std::move(faces)), multiplier_(multiplier), layout_(layout) {
   for (int face = 0; face < 6; ++face)
     if (!faces_[face]) throw std::invalid_argument(std::string("cube map face ") + kFaceNames[face] + " is missing");
   const int size = faces_[0]->width();
@@ -61,7 +61,8 @@ Color CubeMapEnvironment::radiance(const Vec3& direction) const {
   if (!(major > 0) || !is_finite(direction)) return Color(0);
   const FaceCoordinates at = face_coordinates(direction);
   // TextureImage's v runs up from the bottom row; the cube map's t runs down from the top row.
-  return multiplier_ * faces_[at.face]->bilinear({at.s, 1 - at.t}, WrapMode::clamp);
+  const double column = layout_ == CubeLayout::inside ? 1 - at.s : at.s;
+  return multiplier_ * faces_[at.face]->bilinear({column, 1 - at.t}, WrapMode::clamp);
 }
 
 EquirectangularEnvironment::EquirectangularEnvironment(std::shared_ptr<const TextureImage> image, const Vec3& up,

@@ -32,12 +32,22 @@ class ConstantEnvironment final : public Environment {
   Color color_;
 };
 
-// A cube of six square images around the scene (000 §4.1.3), in the OpenGL cube-map convention
-// (OpenGL 4.6 core specification §8.13, Table 8.19), which is also Direct3D's and RenderMan's.
+// A cube of six square images around the scene (000 §4.1.3). Two layouts of the face images:
+//
+// CubeLayout::inside (the default): each face is what a 90° camera at the centre photographs
+// looking along the face's axis, the image's top row up — with up = +y for the ±x and ±z
+// faces, up = −z looking along +y and up = +z looking along −y (the camera's right is
+// forward × up). Six renders of a scene from its centre with those cameras are a cube map that
+// gives the same scene back (tested).
+//
+// CubeLayout::opengl: the OpenGL cube-map convention (OpenGL 4.6 core §8.13, Table 8.19), in
+// which common sky-box sets ("posx.jpg" … "negz.jpg") are stored. It is the inside view
+// mirrored left to right (OpenGL's cube maps are defined in a left-handed frame, which is why
+// three.js flips x for them).
 //
 // The face is the one of the direction r's major axis (largest |component|; on a tie x before
 // y before z, so a direction exactly on an edge or corner always picks the same face). With ma
-// the major component, the face coordinates are
+// the major component, the OpenGL face coordinates are
 //   face  sc    tc    ma
 //   +x    −rz   −ry   rx
 //   −x    +rz   −ry   rx
@@ -46,23 +56,20 @@ class ConstantEnvironment final : public Environment {
 //   +z    +rx   −ry   rz
 //   −z    −rx   −ry   rz
 //   s = (sc/|ma| + 1)/2 (s = 0 the image's left column, 1 its right column),
-//   t = (tc/|ma| + 1)/2 (t = 0 the image's TOP row as stored in the file, 1 its bottom row).
-// So the +z face's top row is towards +y and its right column towards +x: each face image is the
-// cube's face seen from OUTSIDE the cube (or, equally, the view of a 90° camera at the centre in
-// a left-handed frame, y up; the side faces of common sky-box sets, "posx.jpg" … "negz.jpg",
-// are made this way). Equivalently, a camera at the centre with the OpenGL up vectors (−y for
-// ±x and ±z, +z for +y, −z for −y) photographs each face flipped top to bottom: the photo's
-// bottom row is the file's top row (OpenGL's framebuffer rows start at the bottom, so a face
-// rendered by OpenGL and read back row 0 first is stored right).
+//   t = (tc/|ma| + 1)/2 (t = 0 the image's TOP row as stored in the file, 1 its bottom row),
+// and the inside layout reads column 1 − s instead of s.
 //
 // Lookups are bilinear, clamped to the edge texels within a face (no blending across faces).
+enum class CubeLayout { inside, opengl };
+
 class CubeMapEnvironment final : public Environment {
  public:
   enum Face { positive_x, negative_x, positive_y, negative_y, positive_z, negative_z };
 
   // faces in the order +x, −x, +y, −y, +z, −z. Throws std::invalid_argument when one is null,
   // not square, or not the size of the others.
-  CubeMapEnvironment(std::array<std::shared_ptr<const TextureImage>, 6> faces, const Color& multiplier);
+  CubeMapEnvironment(std::array<std::shared_ptr<const TextureImage>, 6> faces, const Color& multiplier,
+                     CubeLayout layout = CubeLayout::inside);
 
   // Black for a zero or non-finite direction.
   Color radiance(const Vec3& direction) const override;
@@ -70,7 +77,7 @@ class CubeMapEnvironment final : public Environment {
 
   struct FaceCoordinates {
     Face face;
-    double s, t;  // as in the table above: t = 0 at the image's top row
+    double s, t;  // as in the OpenGL table above: t = 0 at the image's top row
   };
   // The face and (s, t) a direction looks up (needs not be unit length, must be non-zero).
   static FaceCoordinates face_coordinates(const Vec3& direction);
@@ -78,6 +85,7 @@ class CubeMapEnvironment final : public Environment {
  private:
   std::array<std::shared_ptr<const TextureImage>, 6> faces_;
   Color multiplier_;
+  CubeLayout layout_;
 };
 
 // A latitude/longitude panorama (the common "lat-long" or equirectangular HDRI): the image's

@@ -116,7 +116,10 @@ TEST(EnvironmentCube, GradientFacesGiveTheExactBilinearLookup) {
   constexpr int kSize = 8;
   std::array<std::shared_ptr<const TextureImage>, 6> faces;
   for (int face = 0; face < 6; ++face) faces[face] = gradient_image(kSize, kSize, face);
-  const CubeMapEnvironment cube(faces, Color(1));
+  const CubeMapEnvironment cube(faces, Color(1), CubeLayout::opengl);
+  // The inside layout reads the mirrored column 1 − s: (1 − 0.625)·8 − 0.5 = 2.5.
+  EXPECT_EQ(CubeMapEnvironment(faces, Color(1)).radiance({1, 0.5, -0.25}),
+            Color(2.5, 5.5, CubeMapEnvironment::positive_x));
   // (1, 0.5, −0.25) → +x at s = 0.625, t = 0.25: column position 0.625·8 − 0.5 = 4.5; t runs
   // down from the top row, so the row position from the bottom is (1 − 0.25)·8 − 0.5 = 5.5.
   EXPECT_EQ(cube.radiance({1, 0.5, -0.25}), Color(4.5, 5.5, CubeMapEnvironment::positive_x));
