@@ -9,6 +9,7 @@
 #include "geometry/disc.h"
 #include "geometry/plane.h"
 #include "geometry/polygon.h"
+#include "geometry/quad.h"
 #include "geometry/sphere.h"
 #include "geometry/torus.h"
 #include "geometry/triangle_mesh.h"
@@ -52,6 +53,13 @@ ShapeBuild make_disc(const JsonNode& node, const Transform&, LoadContext&) {
   const double radius = node.number("radius", 1.0, Range::positive());
   const double inner = node.number("inner_radius", 0.0, Range::non_negative());
   return one_shape(node, [&] { return std::make_unique<Disc>(center, normal, radius, inner); });
+}
+
+ShapeBuild make_quad(const JsonNode& node, const Transform&, LoadContext&) {
+  const Vec3 corner = node.vec3("corner");
+  const Vec3 edge_u = node.vec3("edge_u");
+  const Vec3 edge_v = node.vec3("edge_v");
+  return one_shape(node, [&] { return std::make_unique<Quad>(corner, edge_u, edge_v); });
 }
 
 std::vector<Vec3> read_vertices(const JsonNode& node, std::size_t minimum, std::size_t maximum) {
@@ -201,6 +209,8 @@ const std::array kEntries = {
     ShapeEntry{"disc", "disc or annulus: centre, normal, radius, inner_radius",
                R"({"type": "disc", "center": [0, 0, 0], "normal": [0, 1, 0], "radius": 2, "inner_radius": 0.5})",
                make_disc},
+    ShapeEntry{"quad", "parallelogram corner + u·edge_u + v·edge_v, (u, v) in [0, 1]² its own uv",
+               R"({"type": "quad", "corner": [-1, 0, -1], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2]})", make_quad},
     ShapeEntry{"polygon", "planar polygon, convex or not (000 §5.6.2)",
                R"({"type": "polygon", "vertices": [[0, 0, 0], [2, 0, 0], [2, 1, 0], [1, 1, 0], [1, 2, 0], [0, 2, 0]]})",
                make_polygon},

@@ -1,0 +1,60 @@
+#include "geometry/quad.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "geometry/flat_surface.h"
+
+namespace candela {
+
+Quad::Quad(const Vec3& corner, const Vec3& edge_u, const Vec3& edge_v)
+    : corner_(corner), edge_u_(edge_u), edge_v_(edge_v) {
+  if (!is_finite(corner) || !is_finite(edge_u) || !is_finite(edge_v))
+    throw std::invalid_argument("corner and edges must be finite");
+  const Vec3 n = cross(edge_u, edge_v);
+  area_ = length(n);
+  // Relative test: edges parallel to within rounding span no area.
+  if (!(area_ > 1e-12 * length(edge_u) * length(edge_v)) || !std::isfinite(area_))
+    throw std::invalid_argument("edge_u and edge_v must be non-zero and not parallel");
+  normal_ = n / area_;
+  // For p − corner = u·e_u + v·e_v: u = ((p − c) × e_v)·n / |n|², v = (e_u × (p − c))·n / |n|²,
+  // i.e. u = (p − c)·(e_v × n)/|n|² and v = (p − c)·(n × e_u)/|n|².
+  dual_u_ = cross(edge_v, n) / (area_ * area_);
+  dual_v_ = cross(n, edge_u) / (area_ * area_);
+}
+
+double Quad::nearest_t(const Ray& ray, double& u, double& v) const {
+  const double t = plane_hit_distance(ray, corner_, normal_);
+  if (t == kInfinity) return kInfinity;
+  const Vec3 offset = ray.at(t) - corner_;
+  u = dot(offset, dual_u_);
+  v = dot(offset, dual_v_);
+  if (!(u >= 0 && u <= 1 && v >= 0 && v <= 1)) return kInfinity;
+  return t;
+}
+
+bool Quad::intersect(const Ray& ray, SurfaceHit& hit) const {
+  double u, v;
+  const double t = nearest_t(ray, u, v);
+  if (t == kInfinity) return false;
+  fill_flat_hit(ray, t, normal_, hit);
+  hit.uv = {u, v};
+  hit.dpdu = edge_u_;
+  hit.dpdv = edge_v_;
+  return true;
+}
+
+bool Quad::occluded(const Ray& ray) const {
+  double u, v;
+  return nearest_t(ray, u, v) < kInfinity;
+}
+
+Bounds3 Quad::bounds() const {
+  Bounds3 b = Bounds3::of_point(corner_);
+  b.extend(corner_ + edge_u_);
+  b.extend(corner_ + edge_v_);
+  b.extend(corner_ + edge_u_ + edge_v_);
+  return b;
+}
+
+}  // namespace candela

@@ -1,0 +1,36 @@
+#pragma once
+
+#include "geometry/shape.h"
+
+namespace candela {
+
+// A parallelogram: the points corner + u·edge_u + v·edge_v for (u, v) in [0, 1]², which are
+// also its parametric uv (000 §4.1.2): dpdu = edge_u, dpdv = edge_v, and the normal is
+// edge_u × edge_v, normalised. Like the other flat shapes both sides are hit and the geometric
+// normal is the declared one; edges and corners belong to the quad; a ray in its plane misses.
+class Quad final : public Shape {
+ public:
+  // Throws std::invalid_argument for non-finite input or parallel (or zero) edges.
+  Quad(const Vec3& corner, const Vec3& edge_u, const Vec3& edge_v);
+
+  bool intersect(const Ray& ray, SurfaceHit& hit) const override;
+  bool occluded(const Ray& ray) const override;
+  Bounds3 bounds() const override;
+  std::string_view type_name() const override { return "quad"; }
+
+  const Vec3& corner() const { return corner_; }
+  const Vec3& edge_u() const { return edge_u_; }
+  const Vec3& edge_v() const { return edge_v_; }
+  const Vec3& normal() const { return normal_; }
+  double area() const { return area_; }
+
+ private:
+  // The hit distance and (u, v), or infinity for none.
+  double nearest_t(const Ray& ray, double& u, double& v) const;
+  Vec3 corner_, edge_u_, edge_v_, normal_;
+  // Rows of the inverse of [edge_u edge_v] restricted to the plane: u = dual_u·(p − corner).
+  Vec3 dual_u_, dual_v_;
+  double area_;
+};
+
+}  // namespace candela
