@@ -81,6 +81,10 @@ TEST(MaterialsRender, ConstantTransparencyBlendsFrontAndBehind) {
   // The back plane is lit through the pane: its light is attenuated by t on the way in.
   const Color behind = pixel(*behind_only) * 0.3;
   expect_color_near(pixel(*both), front * 0.7 + behind * 0.3, 1e-12);
+  // The blend belongs to the local model (000 §4.4): ray casting shows it too.
+  Color local;
+  LocalMethod().pixel_ray_tree(*both, 0, 0, local);
+  expect_color_near(local, front * 0.7 + behind * 0.3, 1e-12);
 }
 
 TEST(MaterialsRender, LinearAndNonlinearTransparencyFollowTheNormal) {

@@ -113,7 +113,7 @@ Color trace(const Scene& scene, const Ray& ray, const TreeLimits& limits, RayKin
     const double t = material.transparency.at(std::fabs(dot(hit.surface.shading_normal, V)));
     if (t > 0) {
       Color behind;
-      if (depth >= limits.max_depth) {
+      if (depth >= limits.see_through_depth) {
         note_reached_depth = "maximum depth reached";
       } else if (weight * t >= min_weight) {
         ++context.counts.refracted;

@@ -18,6 +18,9 @@ struct TreeLimits {
   int max_depth = 5;
   double min_weight = 1e-3;
   bool shadows = true;
+  // The see-through blend of 000 §4.4 may go deeper than reflection and refraction: it is part
+  // of the local model (a surface seen through another), so ray casting keeps it.
+  int see_through_depth = 5;
 };
 
 // The radiance along a primary ray by the recursion above; with max_depth 0 it is ray
@@ -28,7 +31,9 @@ class WhittedMethod final : public RayTracingMethod {
  public:
   std::string_view name() const override { return "whitted"; }
   Color trace_primary(const Scene& scene, const Ray& ray, TraceContext& context) const override {
-    return trace_ray_tree(scene, ray, {scene.whitted.max_depth, scene.whitted.min_weight, scene.whitted.shadows},
+    return trace_ray_tree(scene, ray,
+                          {scene.whitted.max_depth, scene.whitted.min_weight, scene.whitted.shadows,
+                           scene.whitted.max_depth},
                           context);
   }
 };
