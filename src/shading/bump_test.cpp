@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include "math/constants.h"
+#include "shading/image_texture.h"
+#include "shading/noise.h"
 #include "shading/procedural_textures.h"
 
 namespace candela {
@@ -47,6 +49,40 @@ TEST(Bump, SineWavesOnAPlaneGiveTheAnalyticNormal) {
     EXPECT_NEAR(n.x, expected.x, 2e-6) << u;
     EXPECT_NEAR(n.y, 0.0, 1e-12) << u;
     EXPECT_NEAR(n.z, expected.z, 2e-6) << u;
+  }
+}
+
+TEST(Bump, HeightImageSlopeBetweenTexelCentres) {
+  // Texels 0, 1, 2 along u (centres at u = 1/6, 1/2, 5/6): bilinear slope 1 per 1/3 of u, so
+  // f_u = scale·3 anywhere strictly between the first and last centres.
+  auto image = std::make_shared<const TextureImage>(3, 1, std::vector<float>{0, 0, 0, 1, 1, 1, 2, 2, 2});
+  BumpMap bump;
+  bump.height = std::make_shared<ImageTexture>(image, WrapMode::clamp, Color(1), std::make_shared<ParametricMapping>());
+  bump.scale = 0.2;
+  for (const double u : {0.25, 0.4, 0.6, 0.75}) {
+    const Vec3 n = bumped_normal(bump, plane_hit(u, 0.5));
+    const Vec3 expected = normalize(Vec3{-0.2 * 3, 0, 1});
+    EXPECT_NEAR(n.x, expected.x, 1e-9) << u;
+    EXPECT_NEAR(n.z, expected.z, 1e-9) << u;
+  }
+  // Beyond the last centre the clamped image is flat.
+  EXPECT_NEAR(bumped_normal(bump, plane_hit(0.95, 0.5)).z, 1.0, 1e-12);
+}
+
+TEST(Bump, NoiseHeightTiltsTheNormalAlongItsGradient) {
+  // fbm with one octave: f = 0.5 + 0.5·noise(p), so f_u = 0.5·∇noise·dpdu on the plane z = 0.
+  NoiseParameters parameters;
+  parameters.octaves = 1;
+  BumpMap bump;
+  bump.height = std::make_shared<NoiseTexture>(parameters);
+  bump.scale = 0.3;
+  for (const Vec2 at : {Vec2{0.3, 0.7}, Vec2{1.45, -2.2}, Vec2{5.1, 3.9}}) {
+    const Vec3 gradient = gradient_noise_gradient({at.x, at.y, 0});
+    const Vec3 expected = normalize(Vec3{-0.3 * 0.5 * gradient.x, -0.3 * 0.5 * gradient.y, 1});
+    const Vec3 n = bumped_normal(bump, plane_hit(at.x, at.y));
+    EXPECT_NEAR(n.x, expected.x, 1e-6);
+    EXPECT_NEAR(n.y, expected.y, 1e-6);
+    EXPECT_NEAR(n.z, expected.z, 1e-6);
   }
 }
 
