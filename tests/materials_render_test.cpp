@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "integrators/local.h"
 #include "integrators/method_registry.h"
@@ -101,6 +102,23 @@ TEST(MaterialsRender, LinearAndNonlinearTransparencyFollowTheNormal) {
   };
   expect_through_centre(R"({"model": "linear", "t_min": 0.1, "t_max": 0.8})", 0.8);
   expect_through_centre(R"({"model": "nonlinear", "t_min": 0.1, "t_max": 0.6, "m": 3})", 0.6);
+  // Off centre, seen along −x: n_z is |N·V| at the hit (not the world z of the normal, which
+  // is 0 here). A chord of a sphere meets both surfaces at the same |N·V|.
+  const Vec3 eye{10, 0, 0};
+  const Vec3 direction = normalize(Vec3{0, 0.6, 0} - eye);
+  const double b = dot(eye, direction);
+  const double distance = -b - std::sqrt(b * b - (dot(eye, eye) - 1));
+  const double n_z = std::fabs(dot(eye + direction * distance, direction));  // N = p on the unit sphere
+  const auto expect_off_centre = [&](const std::string& transparency, double t) {
+    const auto scene = scene_from(light + R"("background": [0, 0, 1], "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1,
+        "material": {"kd": [1, 0, 0], "transparency": )" + transparency + "}}]",
+                                  R"({"eye": [10, 0, 0], "target": [0, 0.6, 0], "fov": 1, "width": 1, "height": 1})");
+    const Color inner = Color(1, 0, 0) * (1 - t) + Color(0, 0, 1) * t;
+    // The see-through ray starts 1e-7·extent inside: its second hit moves by as much.
+    expect_color_near(pixel(*scene), Color(1, 0, 0) * (1 - t) + inner * t, 1e-6);
+  };
+  expect_off_centre(R"({"model": "linear", "t_min": 0.1, "t_max": 0.8})", 0.1 + 0.7 * n_z);
+  expect_off_centre(R"({"model": "nonlinear", "t_min": 0.1, "t_max": 0.8, "m": 3})", 0.1 + 0.7 * (1 - std::pow(1 - n_z, 3)));
   // Off centre n_z < 1: the linear model is less transparent there.
   Transparency linear;
   linear.model = TransparencyModel::linear;
@@ -126,6 +144,61 @@ TEST(MaterialsRender, TexturedKrReflectsOnlyWhereTheTextureSaysSo) {
       "material": {"kd": 0, "kr": {"type": "checker2d", "even": 0.5, "odd": 0, "mapping": {"type": "uv", "offset": [1.5, 0.5]}}}}])",
                                   kCentreCamera);
   expect_color_near(pixel(*shifted), Color(0), 1e-12);
+}
+
+TEST(MaterialsRender, NegativeTextureValuesNeverMakeNegativePixels) {
+  // Waves swing to −1: as kd they would give negative light; reflectances stay >= 0.
+  const std::string camera = R"({"eye": [0, 0, 6], "target": [0, 0, 0], "fov": 40, "width": 24, "height": 24})";
+  const auto scene = scene_from(R"("ambient": 0.5, "lights": [{"type": "point", "position": [2, 3, 5]}], "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1.5,
+      "material": {"kd": {"type": "waves", "waves": [{"amplitude": 1, "frequency": [8, 0]}]}, "ks": {"type": "noise", "amplitude": 4, "offset": -2}}}])",
+                                camera);
+  const Film film = render(*scene);
+  int dark = 0;
+  for (const Color& c : film.pixels()) {
+    EXPECT_TRUE(c.r >= 0 && c.g >= 0 && c.b >= 0) << c.r << " " << c.g << " " << c.b;
+    dark += c.is_black();
+  }
+  EXPECT_GT(dark, 0);  // where the waves are negative the surface is black, not negative
+}
+
+TEST(MaterialsRender, ConstantTexturesAreRangeChecked) {
+  const auto expect_error = [](const std::string& material, const std::string& expected) {
+    try {
+      scene_from(R"("shapes": [{"type": "sphere", "material": )" + material + "}]", kCentreCamera);
+      FAIL() << "expected an error for " << material;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  };
+  expect_error(R"({"type": "cook-torrance", "roughness": {"type": "constant", "value": 0}})", "shapes[0].material.roughness: must be > 0");
+  expect_error(R"({"ior": {"type": "constant", "value": 0}})", "shapes[0].material.ior: must be > 0");
+  expect_error(R"({"kr": {"type": "constant", "value": 1.5}})", "must be in [0, 1]");
+  // A spherical mapping without a centre cannot carry bump heights (its uv never move).
+  expect_error(R"({"bump": {"height": {"type": "waves", "waves": [{"frequency": [24, 0]}], "mapping": "spherical"}}})",
+               "shapes[0].material.bump.height: a spherical mapping without \"center\"");
+}
+
+TEST(MaterialsRender, SecondaryRaysOfASeeThroughSurfaceCarryItsShare) {
+  // kr 0.5 on a surface with t = 0.9: the reflection reaches the pixel with weight 0.1·0.5.
+  const auto scene = scene_from(R"("background": 1, "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
+      "material": {"kd": 0, "kr": 0.5, "transparency": {"model": "constant", "t": 0.9}}}])", kCentreCamera);
+  Color radiance;
+  const RayTree tree = WhittedMethod().pixel_ray_tree(*scene, 0, 0, radiance);
+  bool found_reflection = false, found_see_through = false;
+  for (const RayTreeNode& node : tree.nodes()) {
+    if (node.kind == RayKind::reflected) {
+      found_reflection = true;
+      EXPECT_NEAR(node.weight, 0.05, 1e-15);
+      EXPECT_NEAR(node.contribution.r, 0.05, 1e-15);  // background 1 × its weight
+    }
+    if (node.kind == RayKind::see_through) {
+      found_see_through = true;
+      EXPECT_NEAR(node.weight, 0.9, 1e-15);
+    }
+  }
+  EXPECT_TRUE(found_reflection);
+  EXPECT_TRUE(found_see_through);
+  EXPECT_NEAR(radiance.r, 0.1 * 0.5 + 0.9, 1e-12);
 }
 
 class EnvironmentRender : public ::testing::Test {
@@ -207,6 +280,39 @@ TEST_F(EnvironmentRender, SixRendersFromTheCentreAreACubeMapOfTheScene) {
     }
   // Only pixels on cell and sphere edges differ (bilinear resampling of the faces).
   EXPECT_LT(mismatched, direct.width() * direct.height() / 10) << mismatched;
+}
+
+// Review findings on issue 5, each a test that failed before its fix.
+TEST_F(EnvironmentRender, ScalarImagesAreLinearColourImagesSrgb) {
+  // An 8-bit PNG holding 128 everywhere: as kr it is the number 128/255, as kd it is sRGB.
+  Film grey(2, 2);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 2; ++x) grey.at(x, y) = Color(128 / 255.0);
+  DisplaySettings linear_bytes;
+  linear_bytes.srgb = false;
+  write_png(grey, (directory_ / "grey.png").string(), linear_bytes);
+  const auto mirror = scene_from(R"("background": 1, "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
+      "material": {"kd": 0, "kr": {"type": "image", "file": "grey.png"}}}])", kCentreCamera, directory_.string());
+  EXPECT_NEAR(pixel(*mirror).r, 128 / 255.0, 1e-6);
+  const auto diffuse = scene_from(R"("ambient": 1, "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
+      "material": {"kd": {"type": "image", "file": "grey.png"}}}])", kCentreCamera, directory_.string());
+  EXPECT_NEAR(pixel(*diffuse).r, std::pow((128 / 255.0 + 0.055) / 1.055, 2.4), 1e-6);
+}
+
+TEST_F(EnvironmentRender, NonFiniteTexelsAreRefusedWithTheFileAndTexel) {
+  Film bad(2, 1);
+  bad.at(1, 0) = Color(1, std::numeric_limits<double>::infinity(), 0);
+  write_pfm(bad, (directory_ / "bad.pfm").string(), 0);
+  try {
+    scene_from(R"("shapes": [{"type": "sphere", "material": {"kd": {"type": "image", "file": "bad.pfm"}}}])", kCentreCamera,
+               directory_.string());
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("bad.pfm"), std::string::npos) << message;
+    EXPECT_NE(message.find("texel (1, 0)"), std::string::npos) << message;
+    EXPECT_NE(message.find("infinite"), std::string::npos) << message;
+  }
 }
 
 TEST_F(EnvironmentRender, ObjTextureCoordinatesAndMapKd) {

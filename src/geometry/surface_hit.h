@@ -17,10 +17,12 @@ struct SurfaceHit {
   Vec3 object_position;  // the hit in the shape's own coordinates (solid textures)
   // dpdu and dpdv in the shape's own coordinates, set by TransformedShape (bump mapping of
   // solid textures moves object_position along them); equal to dpdu, dpdv otherwise.
+  // Likewise the geometric normal in the shape's own coordinates (the spherical mapping).
   bool transformed = false;
-  Vec3 object_dpdu_, object_dpdv_;
+  Vec3 object_dpdu_, object_dpdv_, object_normal_;
   const Vec3& object_dpdu() const { return transformed ? object_dpdu_ : dpdu; }
   const Vec3& object_dpdv() const { return transformed ? object_dpdv_ : dpdv; }
+  const Vec3& object_normal() const { return transformed ? object_normal_ : geometric_normal; }
 };
 
 }  // namespace candela

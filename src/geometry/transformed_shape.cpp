@@ -30,6 +30,7 @@ bool TransformedShape::intersect(const Ray& ray, SurfaceHit& hit) const {
   hit.transformed = true;
   hit.object_dpdu_ = hit.dpdu;
   hit.object_dpdv_ = hit.dpdv;
+  hit.object_normal_ = hit.geometric_normal;
   hit.dpdu = object_to_world_.vector(hit.dpdu);
   hit.dpdv = object_to_world_.vector(hit.dpdv);
   return true;

@@ -49,9 +49,17 @@ Color trace(const Scene& scene, const Ray& ray, const TreeLimits& limits, RayKin
   const Material& material = scene.material_of(hit);
   // 000 §4.2.1: the bump tilts the shading normal only; the geometry stays smooth.
   hit.surface.shading_normal = bumped_normal(material.bump, hit.surface);
-  const SurfaceProperties at = material.at(hit.surface);
   const Vec3 V = -ray.direction;
-  const Color local = local_illumination(scene, hit, at, V, limits.shadows, context, node_index);
+  // 000 §4.4: the see-through blend I = (1 − t)·I_surface + t·I_behind. The surface's own
+  // share (1 − t) scales everything it sends out, so its secondary rays carry that weight.
+  const double t = material.transparency.active()
+                       ? material.transparency.at(std::fabs(dot(hit.surface.shading_normal, V)))
+                       : 0.0;
+  const double surface_share = 1 - t;
+  const SurfaceProperties at = material.at(hit.surface);
+  // A fully clear surface shows only what lies behind it.
+  const Color local = surface_share > 0 ? local_illumination(scene, hit, at, V, limits.shadows, context, node_index)
+                                        : Color();
   Color radiance = local;
 
   const bool entering = dot(hit.surface.geometric_normal, V) > 0;
@@ -61,39 +69,51 @@ Color trace(const Scene& scene, const Ray& ray, const TreeLimits& limits, RayKin
   const Vec3 outside_origin = hit.surface.position + geometric * offset;
   const Vec3 inside_origin = hit.surface.position - geometric * offset;
   const double min_weight = limits.min_weight;
+  const double surface_weight = weight * surface_share;
   std::string_view note_reached_depth, note_pruned;
+  // A bumped normal can send a mirror direction below the true surface; it is folded back
+  // above it (mirrored in the geometric tangent plane) rather than hitting the surface itself.
+  const auto above = [&](Vec3 direction) {
+    const double below = dot(direction, geometric);
+    if (below < 0) direction -= geometric * (2 * below);
+    return normalize(direction);
+  };
 
-  const bool wants_secondary = at.kr > 0 || at.kt > 0;
+  const bool wants_secondary = surface_share > 0 && (at.kr > 0 || at.kt > 0);
   if (wants_secondary && depth >= limits.max_depth) {
     note_reached_depth = "maximum depth reached";
   } else if (wants_secondary) {
     bool reflection_pruned = false, transmission_pruned = false;
     if (at.kr > 0) {
-      if (weight * at.kr >= min_weight) {
+      if (surface_weight * at.kr >= min_weight) {
         ++context.counts.reflected;
-        const Ray reflected{outside_origin, normalize(reflect(V, N))};
+        const Ray reflected{outside_origin, above(reflect(V, N))};
         radiance += at.kr * trace(scene, reflected, limits, RayKind::reflected, depth + 1,
-                                  weight * at.kr, context, node_index);
+                                  surface_weight * at.kr, context, node_index);
       } else {
         reflection_pruned = true;
       }
     }
     if (at.kt > 0) {
-      if (weight * at.kt >= min_weight) {
+      if (surface_weight * at.kt >= min_weight) {
         // η1/η2: from outside (air) into the material, or back out.
         const double eta = entering ? 1.0 / at.ior : at.ior;
         Vec3 T;
         if (refract(V, N, eta, T)) {
           ++context.counts.refracted;
-          const Ray refracted{inside_origin, normalize(T)};
+          // Folded below the surface when a bumped normal would turn it back out.
+          Vec3 inward = normalize(T);
+          const double outward = dot(inward, geometric);
+          if (outward > 0) inward = normalize(inward - geometric * (2 * outward));
+          const Ray refracted{inside_origin, inward};
           radiance += at.kt * trace(scene, refracted, limits, RayKind::refracted, depth + 1,
-                                    weight * at.kt, context, node_index);
+                                    surface_weight * at.kt, context, node_index);
         } else {
           // 000 §5.3: no transmitted ray; reflect with the flipped normal instead.
           ++context.counts.reflected;
-          const Ray internal{outside_origin, normalize(reflect(V, N))};
+          const Ray internal{outside_origin, above(reflect(V, N))};
           radiance += at.kt * trace(scene, internal, limits, RayKind::internal_reflection,
-                                    depth + 1, weight * at.kt, context, node_index);
+                                    depth + 1, surface_weight * at.kt, context, node_index);
         }
       } else {
         transmission_pruned = true;
@@ -107,24 +127,19 @@ Color trace(const Scene& scene, const Ray& ray, const TreeLimits& limits, RayKin
       note_pruned = "transmission pruned: weight below whitted.min_weight";
   }
 
-  // 000 §4.4: the see-through blend I = (1 − t)·I_surface + t·I_behind; the ray goes on
-  // undeviated (the seed ignores the small displacement refraction would cause).
-  if (material.transparency.active()) {
-    const double t = material.transparency.at(std::fabs(dot(hit.surface.shading_normal, V)));
-    if (t > 0) {
-      Color behind;
-      if (depth >= limits.see_through_depth) {
-        note_reached_depth = "maximum depth reached";
-      } else if (weight * t >= min_weight) {
-        ++context.counts.refracted;
-        const Ray through{inside_origin, ray.direction};
-        behind = trace(scene, through, limits, RayKind::see_through, depth + 1, weight * t, context,
-                       node_index);
-      } else {
-        note_pruned = "see-through pruned: weight below whitted.min_weight";
-      }
-      radiance = (1 - t) * radiance + t * behind;
+  if (t > 0) {
+    // The ray goes on undeviated (the seed ignores the small displacement refraction causes).
+    Color behind;
+    if (depth >= limits.see_through_depth) {
+      note_reached_depth = "maximum depth reached";
+    } else if (weight * t >= min_weight) {
+      ++context.counts.refracted;
+      const Ray through{inside_origin, ray.direction};
+      behind = trace(scene, through, limits, RayKind::see_through, depth + 1, weight * t, context, node_index);
+    } else {
+      note_pruned = "see-through pruned: weight below whitted.min_weight";
     }
+    radiance = surface_share * radiance + t * behind;
   }
   const char* note = !note_reached_depth.empty() ? note_reached_depth.data()
                      : !note_pruned.empty()      ? note_pruned.data()

@@ -40,7 +40,14 @@ Transparency read_transparency(const JsonNode& node) {
 BumpMap read_bump(const JsonNode& node, const LoadContext& context) {
   node.expect_object();
   BumpMap bump;
-  bump.height = read_scalar_texture(node.at("height"), context, {});
+  const JsonNode height = node.at("height");
+  bump.height = read_scalar_texture(height, context, {});
+  if (const auto* planar = dynamic_cast<const Texture2D*>(bump.height.get())) {
+    const auto* spherical = dynamic_cast<const SphericalMapping*>(&planar->mapping());
+    if (spherical && !spherical->has_center())
+      height.fail("a spherical mapping without \"center\" reads only the surface normal, which the bump's "
+                  "finite differences do not move: give the sphere's centre (object coordinates)");
+  }
   bump.scale = node.number("scale", 1.0, {-1e6, 1e6, false, false});
   bump.delta = node.number("delta", 1e-4, {0, 1, true, false});
   node.finish();
@@ -63,6 +70,8 @@ Material read_classic(const JsonNode& node, const LoadContext& context, Specular
                                                         : SpecularModel::cook_torrance;
   if (const auto kd = node.get("kd")) material.kd = read_texture(*kd, context);
   if (const auto ka = node.get("ka")) material.ka = read_texture(*ka, context);
+  // Cook-Torrance's ks weighs a term that is already a reflectance: 1 unless given.
+  if (material.specular_model == SpecularModel::cook_torrance) material.ks = constant_texture(1.0);
   if (const auto ks = node.get("ks")) material.ks = read_scalar_texture(*ks, context, Range::non_negative());
   material.shininess = constant_texture(20.0);
   if (material.specular_model == SpecularModel::cook_torrance) {
@@ -209,11 +218,11 @@ std::shared_ptr<const Texture> checked_texture(const JsonNode& node, Make make) 
   }
 }
 
-std::shared_ptr<const Texture> make_constant(const JsonNode& node, const LoadContext&) {
+std::shared_ptr<const Texture> make_constant(const JsonNode& node, const LoadContext&, TextureUse) {
   return std::make_shared<ConstantTexture>(node.color("value", Color(1), Range::non_negative()));
 }
 
-std::shared_ptr<const Texture> make_checkerboard(const JsonNode& node, const LoadContext&) {
+std::shared_ptr<const Texture> make_checkerboard(const JsonNode& node, const LoadContext&, TextureUse) {
   const Color even = node.color("even", Color(0.9), Range::non_negative());
   const Color odd = node.color("odd", Color(0.1), Range::non_negative());
   const double size = node.number("size", 1.0, Range::positive());
@@ -224,14 +233,15 @@ std::shared_ptr<const Texture> make_checkerboard(const JsonNode& node, const Loa
   });
 }
 
-std::shared_ptr<const Texture> make_checker2d(const JsonNode& node, const LoadContext&) {
+std::shared_ptr<const Texture> make_checker2d(const JsonNode& node, const LoadContext&, TextureUse) {
   const Color even = node.color("even", Color(0.9), Range::non_negative());
   const Color odd = node.color("odd", Color(0.1), Range::non_negative());
   return std::make_shared<Checkerboard2DTexture>(even, odd, read_mapping(node));
 }
 
-std::shared_ptr<const Texture> make_image(const JsonNode& node, const LoadContext& context) {
-  const ColorEncoding encoding = read_color_encoding(node);
+std::shared_ptr<const Texture> make_image(const JsonNode& node, const LoadContext& context, TextureUse use) {
+  const ColorEncoding encoding =
+      use == TextureUse::scalar && !node.has("encoding") ? ColorEncoding::linear : read_color_encoding(node);
   const WrapMode wrap = read_wrap_mode(node);
   const Color multiplier = node.color("multiplier", Color(1), Range::non_negative());
   auto image = load_texture_image(node.at("file"), context, encoding);
@@ -275,7 +285,7 @@ namespace {
 
 const Range kOctaves{1, 16, false, false};
 
-std::shared_ptr<const Texture> make_wood(const JsonNode& node, const LoadContext&) {
+std::shared_ptr<const Texture> make_wood(const JsonNode& node, const LoadContext&, TextureUse) {
   WoodParameters p;
   p.light = node.color("light", p.light, Range::non_negative());
   p.dark = node.color("dark", p.dark, Range::non_negative());
@@ -287,7 +297,7 @@ std::shared_ptr<const Texture> make_wood(const JsonNode& node, const LoadContext
   return checked_texture(node, [&] { return std::make_shared<WoodTexture>(p, placement); });
 }
 
-std::shared_ptr<const Texture> make_marble(const JsonNode& node, const LoadContext&) {
+std::shared_ptr<const Texture> make_marble(const JsonNode& node, const LoadContext&, TextureUse) {
   MarbleParameters p;
   p.base = node.color("base", p.base, Range::non_negative());
   p.vein = node.color("vein", p.vein, Range::non_negative());
@@ -300,7 +310,7 @@ std::shared_ptr<const Texture> make_marble(const JsonNode& node, const LoadConte
   return checked_texture(node, [&] { return std::make_shared<MarbleTexture>(p, placement); });
 }
 
-std::shared_ptr<const Texture> make_noise(const JsonNode& node, const LoadContext&) {
+std::shared_ptr<const Texture> make_noise(const JsonNode& node, const LoadContext&, TextureUse) {
   NoiseParameters p;
   p.mode = node.choice("mode", "fbm", {"fbm", "turbulence"}) == "fbm" ? NoiseMode::fbm : NoiseMode::turbulence;
   p.octaves = node.integer("octaves", p.octaves, kOctaves);
@@ -313,7 +323,7 @@ std::shared_ptr<const Texture> make_noise(const JsonNode& node, const LoadContex
   return checked_texture(node, [&] { return std::make_shared<NoiseTexture>(p, placement); });
 }
 
-std::shared_ptr<const Texture> make_waves(const JsonNode& node, const LoadContext&) {
+std::shared_ptr<const Texture> make_waves(const JsonNode& node, const LoadContext&, TextureUse) {
   const JsonNode list = node.at("waves");
   if (list.size() == 0) list.fail("expected at least one wave");
   std::vector<Wave> waves;
@@ -378,7 +388,7 @@ Material read_material(const JsonNode& node, const LoadContext& context) {
   return material;
 }
 
-std::shared_ptr<const Texture> read_texture(const JsonNode& node, const LoadContext& context) {
+std::shared_ptr<const Texture> read_texture(const JsonNode& node, const LoadContext& context, TextureUse use) {
   if (!node.json().is_object())
     return std::make_shared<ConstantTexture>(node.as_color(Range::non_negative()));
   const JsonNode type = node.at("type");
@@ -386,7 +396,7 @@ std::shared_ptr<const Texture> read_texture(const JsonNode& node, const LoadCont
   const TextureEntry* entry = find_texture(name);
   if (!entry)
     type.fail("unknown texture \"" + name + "\" (expected one of: " + entry_names<TextureEntry>(kTextures) + ")");
-  auto texture = entry->create(node, context);
+  auto texture = entry->create(node, context, use);
   node.finish();
   return texture;
 }
@@ -394,7 +404,12 @@ std::shared_ptr<const Texture> read_texture(const JsonNode& node, const LoadCont
 std::shared_ptr<const Texture> read_scalar_texture(const JsonNode& node, const LoadContext& context, Range range) {
   if (node.json().is_number()) return constant_texture(node.as_number(range));
   if (!node.json().is_object()) node.fail("expected a number or a texture object with a \"type\"");
-  return read_texture(node, context);
+  auto texture = read_texture(node, context, TextureUse::scalar);
+  if (texture->is_constant()) {
+    const double value = texture->evaluate_scalar(SurfaceHit{});
+    if (!range.contains(value)) node.fail(fmt::format("must be {} (found {})", range.describe(), value));
+  }
+  return texture;
 }
 
 }  // namespace candela

@@ -22,11 +22,16 @@ struct MaterialEntry {
   Material (*create)(const JsonNode& node, const LoadContext& context);
 };
 
+// What a texture feeds: a colour (kd, ka) or a scalar (ks, n, kr, kt, ior, roughness, a bump
+// height). Image files default to sRGB decoding for colours and to linear for scalars (height
+// maps and masks store plain numbers).
+enum class TextureUse { color, scalar };
+
 struct TextureEntry {
   std::string_view name;
   std::string_view description;
   std::string_view example;
-  std::shared_ptr<const Texture> (*create)(const JsonNode& node, const LoadContext& context);
+  std::shared_ptr<const Texture> (*create)(const JsonNode& node, const LoadContext& context, TextureUse use);
 };
 
 struct MappingEntry {
@@ -47,8 +52,10 @@ const MappingEntry* find_mapping(std::string_view name);
 // A material object; "type" defaults to "phong".
 Material read_material(const JsonNode& node, const LoadContext& context);
 // A colour ([r, g, b] or a number) or a texture object with a "type".
-std::shared_ptr<const Texture> read_texture(const JsonNode& node, const LoadContext& context);
-// A number (checked against range) or a texture object, read through its channel mean.
+std::shared_ptr<const Texture> read_texture(const JsonNode& node, const LoadContext& context,
+                                            TextureUse use = TextureUse::color);
+// A number or a texture object, read through its channel mean; numbers and constant textures
+// are checked against range.
 std::shared_ptr<const Texture> read_scalar_texture(const JsonNode& node, const LoadContext& context,
                                                    Range range);
 // The "mapping" member of a 2D texture: absent or "uv" for the shape's own uv, a name, or an

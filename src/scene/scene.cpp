@@ -14,10 +14,14 @@ Scene::Scene() = default;
 Scene::~Scene() = default;
 
 Color Scene::background_along(const Vec3& direction) const {
-  return environment ? environment->radiance(direction) : background;
+  if (!environment) return background;
+  // An image may hold negative values (a processed EXR): radiance is kept >= 0.
+  const Color c = environment->radiance(direction);
+  return {c.r > 0 ? c.r : 0.0, c.g > 0 ? c.g : 0.0, c.b > 0 ? c.b : 0.0};
 }
 
 void Scene::prepare() {
+  for (Material& material : materials) material.prepare();
   const AcceleratorEntry* entry = find_accelerator(render.accelerator);
   if (!entry) throw std::invalid_argument("unknown accelerator " + render.accelerator);  // checked by the loader
   const auto start = std::chrono::steady_clock::now();

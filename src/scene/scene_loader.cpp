@@ -48,7 +48,12 @@ class SceneReader {
 
     scene->camera = read_camera(root_.at("camera"));
     scene->background = root_.color("background", Color(0), Range::non_negative());
-    if (const auto environment = root_.get("environment")) scene->environment = read_environment(*environment, context_);
+    if (const auto environment = root_.get("environment")) {
+      scene->environment = read_environment(*environment, context_);
+      if (root_.has("background"))
+        scene->warnings.push_back(root_.at("background").location().describe() +
+                                  ": background is not used: the environment map gives what rays leaving the scene see");
+    }
     scene->ambient = root_.color("ambient", Color(0), Range::non_negative());
     read_settings();
     read_materials();

@@ -34,17 +34,19 @@ Vec3 bumped_normal(const BumpMap& bump, const SurfaceHit& hit) {
     return bump.scale * (ahead - behind) / (2 * delta);
   };
   const Vec3 unbumped = cross(hit.dpdu, hit.dpdv);
-  if (!(length_squared(unbumped) > 0)) return n;  // a pole: no tangent plane to tilt
+  const double unbumped_length = length(unbumped);
+  if (!(unbumped_length > 0)) return n;  // a pole: no tangent plane to tilt
   const double f_u = slope(0);
   const double f_v = slope(1);
-  const Vec3 tangent_u = hit.dpdu + n * f_u;
-  const Vec3 tangent_v = hit.dpdv + n * f_v;
-  const Vec3 normal = cross(tangent_u, tangent_v);
+  // (dpdu + f_u·n) × (dpdv + f_v·n) = dpdu×dpdv + f_u·(n×dpdv) + f_v·(dpdu×n). The first term
+  // is taken as n·|dpdu×dpdv| (oriented as dpdu×dpdv): the same on analytic shapes, where n is
+  // along dpdu×dpdv, and it keeps a smooth mesh's interpolated normal instead of its face's.
+  const double side = dot(unbumped, n) < 0 ? -1.0 : 1.0;
+  const Vec3 normal = n * (side * unbumped_length) + cross(n, hit.dpdv) * f_u + cross(hit.dpdu, n) * f_v;
   const double normal_length = length(normal);
   if (!(normal_length > 0) || !std::isfinite(normal_length)) return n;
-  // The unbumped cross product points along ±n; keep the shading normal's side.
-  const Vec3 unit = normal / normal_length;
-  return dot(unbumped, n) < 0 ? -unit : unit;
+  // Keep the shading normal's side.
+  return normal * (side / normal_length);
 }
 
 }  // namespace candela

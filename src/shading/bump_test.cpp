@@ -113,6 +113,18 @@ TEST(Bump, KeepsTheShadingNormalsSide) {
   EXPECT_NEAR(n.x, -std::sqrt(0.5), 1e-9);
 }
 
+TEST(Bump, FlatHeightKeepsAnInterpolatedNormal) {
+  // A smooth mesh's shading normal differs from dpdu × dpdv; a zero slope must leave it as is.
+  BumpMap bump;
+  bump.height = std::make_shared<LinearSolidHeight>(Vec3{0, 0, 0});
+  SurfaceHit hit = plane_hit(0.3, 0.3);
+  hit.shading_normal = normalize(Vec3{0.2, -0.1, 1});
+  const Vec3 n = bumped_normal(bump, hit);
+  EXPECT_NEAR(n.x, hit.shading_normal.x, 1e-15);
+  EXPECT_NEAR(n.y, hit.shading_normal.y, 1e-15);
+  EXPECT_NEAR(n.z, hit.shading_normal.z, 1e-15);
+}
+
 TEST(Bump, NoHeightOrNoTangentPlaneLeavesTheNormal) {
   const SurfaceHit hit = plane_hit(0.5, 0.5);
   EXPECT_EQ(bumped_normal(BumpMap{}, hit), hit.shading_normal);

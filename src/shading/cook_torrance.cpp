@@ -11,7 +11,10 @@ double beckmann_distribution(double cos_alpha, double m) {
   if (!(cos_alpha > 0)) return 0;
   const double cos2 = cos_alpha * cos_alpha;
   const double tan2 = (1 - cos2) / cos2;
-  return std::exp(-tan2 / (m * m)) / (m * m * cos2 * cos2);
+  const double exponent = tan2 / (m * m);
+  // Past e^-700 the value is 0 in double, and cos⁴ may underflow too (0/0 at grazing facets).
+  if (exponent > 700) return 0;
+  return std::exp(-exponent) / (m * m * cos2 * cos2);
 }
 
 double geometric_attenuation(double n_dot_h, double n_dot_v, double n_dot_l, double v_dot_h) {

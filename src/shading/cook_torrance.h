@@ -1,7 +1,9 @@
 // The Cook-Torrance specular term (000 §4.2.2; SPEC §7; Cook & Torrance 1982):
 //   k_s = D·G·F / (π (N·V)(N·L))
 // D: Beckmann's facet distribution with rms slope m, as in Cook and Torrance's paper,
-//    D = exp(−(tan α / m)²) / (m² cos⁴ α), α the angle between N and H;
+//    D = exp(−(tan α / m)²) / (m² cos⁴ α), α the angle between N and H — without the 1/π of
+//    the normalised Beckmann distribution of pbrt and Mitsuba (∫D cos α dω = π here), which
+//    the π in the denominator of k_s accounts for;
 // G: masking and shadowing, G = min(1, 2(N·H)(N·V)/(V·H), 2(N·H)(N·L)/(V·H));
 // F: the unpolarised Fresnel reflectance (000 §4.2.2, ½[sin²(φ−θ)/sin²(φ+θ) +
 //    tan²(φ−θ)/tan²(φ+θ)]) at the angle θ between V and H, with an index of refraction per RGB

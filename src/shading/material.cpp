@@ -12,6 +12,12 @@ bool is_constant_zero(const std::shared_ptr<const Texture>& texture) {
   return constant && constant->value().is_black();
 }
 
+// Textures may give anything (noise and waves go negative, a float image may hold anything):
+// reflectances are kept >= 0 and NaN reads as 0, so no pixel turns negative or NaN.
+double at_least_zero(double value) { return value > 0 ? value : 0.0; }
+Color at_least_zero(const Color& c) { return {at_least_zero(c.r), at_least_zero(c.g), at_least_zero(c.b)}; }
+double in_unit_interval(double value) { return value > 0 ? std::min(value, 1.0) : 0.0; }
+
 }  // namespace
 
 std::shared_ptr<const Texture> constant_texture(double value) {
@@ -44,13 +50,13 @@ Material::Material()
 
 SurfaceProperties Material::at(const SurfaceHit& hit) const {
   SurfaceProperties p;
-  p.kd = kd->evaluate(hit);
-  p.ka = ka ? ka->evaluate(hit) : p.kd;
-  p.ks = std::max(0.0, ks->evaluate_scalar(hit));
-  p.shininess = std::max(0.0, shininess->evaluate_scalar(hit));
-  p.roughness = std::max(1e-4, roughness->evaluate_scalar(hit));
-  p.kr = std::clamp(kr->evaluate_scalar(hit), 0.0, 1.0);
-  p.kt = std::clamp(kt->evaluate_scalar(hit), 0.0, 1.0);
+  p.kd = at_least_zero(kd->evaluate(hit));
+  p.ka = ka ? at_least_zero(ka->evaluate(hit)) : p.kd;
+  p.ks = at_least_zero(ks->evaluate_scalar(hit));
+  p.shininess = at_least_zero(shininess->evaluate_scalar(hit));
+  p.roughness = std::max(1e-4, at_least_zero(roughness->evaluate_scalar(hit)));
+  p.kr = in_unit_interval(kr->evaluate_scalar(hit));
+  p.kt = in_unit_interval(kt->evaluate_scalar(hit));
   // A textured kr + kt may exceed 1 somewhere; each level of the ray tree must carry less
   // than its parent, so both shrink in proportion there (constant ones are checked on load).
   if (p.kr + p.kt > 1) {
@@ -63,10 +69,17 @@ SurfaceProperties Material::at(const SurfaceHit& hit) const {
   return p;
 }
 
-double Material::transmission_at(const SurfaceHit& hit) const { return at(hit).kt; }
+double Material::transmission_at(const SurfaceHit& hit) const {
+  const double transmission = in_unit_interval(kt->evaluate_scalar(hit));
+  if (!reflects_) return transmission;
+  // As in at(): where kr + kt > 1 both shrink in proportion.
+  const double reflection = in_unit_interval(kr->evaluate_scalar(hit));
+  return reflection + transmission > 1 ? transmission / (reflection + transmission) : transmission;
+}
 
-bool Material::has_reflection() const { return !is_constant_zero(kr); }
-bool Material::has_refraction() const { return !is_constant_zero(kt); }
-bool Material::lets_light_through() const { return has_refraction() || transparency.active(); }
+void Material::prepare() {
+  reflects_ = !is_constant_zero(kr);
+  refracts_ = !is_constant_zero(kt);
+}
 
 }  // namespace candela

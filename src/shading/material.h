@@ -63,14 +63,21 @@ struct Material {
   // A material with every parameter constant: kd 0.8, no specular, no kr/kt.
   Material();
 
+  // Caches what the per-ray tests below read; called by Scene::prepare() (and again whenever
+  // kr or kt are replaced).
+  void prepare();
+
   SurfaceProperties at(const SurfaceHit& hit) const;
-  // kt alone, for shadow rays.
+  // kt alone (scaled as in at() where a textured kr + kt exceeds 1), for shadow rays.
   double transmission_at(const SurfaceHit& hit) const;
-  // True when the material can be seen through at all (refraction or the blend).
-  bool lets_light_through() const;
-  // The largest kr and kt can take (textured ones: their values are checked per hit).
-  bool has_reflection() const;
-  bool has_refraction() const;
+  // Whether kr or kt can be non-zero anywhere, and whether light passes at all (refraction
+  // or the see-through blend).
+  bool has_reflection() const { return reflects_; }
+  bool has_refraction() const { return refracts_; }
+  bool lets_light_through() const { return refracts_ || transparency.active(); }
+
+ private:
+  bool reflects_ = false, refracts_ = false;
 };
 
 std::shared_ptr<const Texture> constant_texture(double value);

@@ -335,15 +335,34 @@ constexpr std::array<std::string_view, 13> kStbExtensions = {
 
 }  // namespace
 
+namespace {
+
+// A NaN or infinite texel would spread through every pixel that sees it (and one infinity
+// turns a whole `out_of_range: scale` image black): float files must hold finite values.
+TextureImage checked_finite(const std::filesystem::path& path, TextureImage image) {
+  const std::vector<float>& rgb = image.rgb();
+  for (std::size_t i = 0; i < rgb.size(); ++i)
+    if (!std::isfinite(rgb[i])) {
+      const std::size_t pixel = i / 3;
+      const std::size_t x = pixel % std::size_t(image.width());
+      const std::size_t y = pixel / std::size_t(image.width());
+      fail(path, "texel (" + std::to_string(x) + ", " + std::to_string(y) + ") counted from the bottom-left is " +
+                     (std::isnan(rgb[i]) ? "NaN" : "infinite") + "; image values must be finite");
+    }
+  return image;
+}
+
+}  // namespace
+
 TextureImage TextureImage::load(const std::filesystem::path& path, ColorEncoding encoding) {
   std::error_code error;
   if (!std::filesystem::exists(path, error)) fail(path, "no such file");
   if (std::filesystem::is_directory(path, error)) fail(path, "it is a directory");
   const std::string extension = lower_case_extension(path);
-  if (extension == "exr") return load_exr(path, encoding);
-  if (extension == "pfm") return load_pfm(path, encoding);
+  if (extension == "exr") return checked_finite(path, load_exr(path, encoding));
+  if (extension == "pfm") return checked_finite(path, load_pfm(path, encoding));
   if (std::find(kStbExtensions.begin(), kStbExtensions.end(), extension) != kStbExtensions.end())
-    return load_with_stb(path, encoding);
+    return checked_finite(path, load_with_stb(path, encoding));
   std::string known = "exr, pfm";
   for (const std::string_view name : kStbExtensions) known += ", " + std::string(name);
   fail(path, "unknown image extension \"" + path.extension().string() + "\" (expected one of: " + known + ")");

@@ -52,7 +52,7 @@ Vec2 SphericalMapping::of_direction(const Vec3& N) const {
 }
 
 Vec2 SphericalMapping::raw(const SurfaceHit& hit) const {
-  if (!has_center_) return of_direction(hit.geometric_normal);
+  if (!has_center_) return of_direction(hit.object_normal());
   const Vec3 d = hit.object_position - center_;
   const double l = length(d);
   if (!(l > 0)) return {0, 0.5};

@@ -40,7 +40,8 @@ class ParametricMapping final : public TextureMapping {
 };
 
 // 000 §4.1.1, eqs. 4-2..4-5: latitude and longitude of the unit vector N from `center` to the
-// point (in object coordinates), or of the geometric normal when no centre is given.
+// point, or of the geometric normal when no centre is given (both in object coordinates, so
+// the texture turns with the object's transform).
 // v = φ/π with φ = acos(−Tp·N) (0 at the south pole, 1 at the north pole);
 // u = acos((Te·N)/sin φ)/(2π), u := 1 − u when (Tp×Te)·N < 0; u = 0 at the poles.
 class SphericalMapping final : public TextureMapping {
@@ -50,6 +51,9 @@ class SphericalMapping final : public TextureMapping {
   Vec2 raw(const SurfaceHit& hit) const override;
   Vec2 of_direction(const Vec3& unit_n) const;
   std::string_view type_name() const override { return "spherical"; }
+  // Without a centre the mapping reads only the normal, which a bump map's finite differences
+  // do not move: such a mapping cannot carry bump heights.
+  bool has_center() const { return has_center_; }
 
  private:
   Vec3 pole_, equator_, east_;  // east = Tp × Te

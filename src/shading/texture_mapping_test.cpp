@@ -99,6 +99,16 @@ TEST(SphericalMapping, OnARealSphereHit) {
   EXPECT_NEAR(uv.y, 0.5, 1e-12);
 }
 
+TEST(SphericalMapping, TurnsWithTheObjectsTransform) {
+  // A transformed shape reports its object-space normal too: the mapping reads that one, so
+  // the texture turns with the object like every other mapping.
+  const SphericalMapping mapping({0, 0, 1}, {1, 0, 0}, nullptr);
+  SurfaceHit hit = hit_with_normal({1, 0, 0});  // the world normal
+  hit.transformed = true;
+  hit.object_normal_ = {0, 0, 1};  // the object's north pole
+  EXPECT_EQ(mapping.map(hit).y, 1.0);
+}
+
 TEST(SphericalMapping, ScaleAndOffsetApplyAfterTheMapping) {
   const SphericalMapping mapping({0, 0, 1}, {1, 0, 0}, nullptr, UvTransform{{4, 2}, {0.5, 0.25}});
   const Vec2 uv = mapping.map(hit_with_normal({0, 1, 0}));  // raw (1/4, 1/2)
