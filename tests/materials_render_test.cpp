@@ -1,6 +1,8 @@
 // Issue 5 end to end: materials, textures, environment maps, bump mapping and the see-through
 // transparency models inside whole renders (SPEC §7, 000 §4).
 #include <gtest/gtest.h>
+
+#include "scratch_directory.h"
 #include <unistd.h>
 
 #include <cmath>
@@ -204,9 +206,6 @@ TEST(MaterialsRender, SecondaryRaysOfASeeThroughSurfaceCarryItsShare) {
 class EnvironmentRender : public ::testing::Test {
  protected:
   void SetUp() override {
-    directory_ = fs::temp_directory_path() / ("candela-environment-" + std::to_string(::getpid()) + "-" +
-                                              ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(directory_);
     // Six 2×2 faces (PFM: linear floats), each one flat colour: face i has red = 0.1·(i + 1).
     const char* names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
     for (int i = 0; i < 6; ++i) {
@@ -216,9 +215,9 @@ class EnvironmentRender : public ::testing::Test {
       write_pfm(face, (directory_ / (std::string(names[i]) + ".pfm")).string(), 0);
     }
   }
-  void TearDown() override { fs::remove_all(directory_); }
   static double red_of_face(int face) { return 0.125 * (face + 1); }
-  fs::path directory_;
+  candela::testing::ScratchDirectory scratch_{"candela-materials-render"};
+  const fs::path& directory_ = scratch_.path();
 };
 
 const char* kCube = R"("environment": {"type": "cube", "faces": {"+x": "px.pfm", "-x": "nx.pfm", "+y": "py.pfm", "-y": "ny.pfm", "+z": "pz.pfm", "-z": "nz.pfm"}}, )";

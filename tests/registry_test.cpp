@@ -1,5 +1,7 @@
 // Every registered name can be created from its documented example (STYLE.md habit 2).
 #include <gtest/gtest.h>
+
+#include "scratch_directory.h"
 #include <unistd.h>
 
 #include <filesystem>
@@ -21,10 +23,6 @@ namespace {
 class RegistryTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    // One folder per test and process: ctest runs the tests of this fixture in parallel.
-    directory_ = std::filesystem::temp_directory_path() /
-                 ("candela-registry-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-                  "-" + std::to_string(::getpid()));
     std::filesystem::create_directories(directory_ / "meshes");
     std::filesystem::create_directories(directory_ / "textures");
     Film checker(4, 4);
@@ -35,13 +33,13 @@ class RegistryTest : public ::testing::Test {
     cube << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
             "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n";
   }
-  void TearDown() override { std::filesystem::remove_all(directory_); }
 
   std::unique_ptr<Scene> load(const std::string& body) {
     return load_scene_text(R"({"format": "candela/1", "camera": {"width": 8, "height": 6}, )" + body + "}",
                            "registry.json", directory_.string());
   }
-  std::filesystem::path directory_;
+  candela::testing::ScratchDirectory scratch_{"candela-registry"};
+  const std::filesystem::path& directory_ = scratch_.path();
 };
 
 TEST_F(RegistryTest, EveryShapeFromItsExample) {

@@ -4,6 +4,8 @@
 #include "shading/environment.h"
 
 #include <gtest/gtest.h>
+
+#include "scratch_directory.h"
 #include <stb_image_write.h>  // the implementation is in candela_core (io/image_writer.cpp)
 #include <unistd.h>
 
@@ -229,10 +231,6 @@ TEST(EnvironmentEquirectangular, MultiplierScales) {
 class EnvironmentRegistry : public ::testing::Test {
  protected:
   void SetUp() override {
-    directory_ = fs::temp_directory_path() /
-                 ("candela-environment-" +
-                  std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "-" +
-                  std::to_string(::getpid()));
     fs::create_directories(directory_ / "sky");
     // The files the entries' examples name.
     for (const char* face : {"px", "nx", "py", "ny", "pz", "nz"}) write_png("sky/" + std::string(face) + ".png", 4, 4);
@@ -242,7 +240,6 @@ class EnvironmentRegistry : public ::testing::Test {
     write_exr(panorama, (directory_ / "sky.exr").string(), 0);
     context_.base_directory = directory_;
   }
-  void TearDown() override { fs::remove_all(directory_); }
 
   void write_png(const std::string& name, int width, int height) const {
     std::vector<unsigned char> pixels(std::size_t(width) * height * 3, 128);
@@ -275,7 +272,8 @@ class EnvironmentRegistry : public ::testing::Test {
            minus_y + R"(", "+z": "sky/pz.png", "-z": "sky/nz.png"}})";
   }
 
-  fs::path directory_;
+  candela::testing::ScratchDirectory scratch_{"candela-environment"};
+  const fs::path& directory_ = scratch_.path();
   LoadContext context_;
 };
 

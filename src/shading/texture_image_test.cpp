@@ -4,6 +4,8 @@
 #include "shading/texture_image.h"
 
 #include <gtest/gtest.h>
+
+#include "scratch_directory.h"
 #include <stb_image_write.h>  // the implementation is in candela_core (io/image_writer.cpp)
 #include <unistd.h>
 
@@ -33,14 +35,6 @@ double srgb_to_linear(int byte) {
 // A fresh folder per test and process.
 class TextureImageFiles : public ::testing::Test {
  protected:
-  void SetUp() override {
-    directory_ = fs::temp_directory_path() /
-                 ("candela-texture-image-" +
-                  std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "-" +
-                  std::to_string(::getpid()));
-    fs::create_directories(directory_);
-  }
-  void TearDown() override { fs::remove_all(directory_); }
 
   fs::path path(const std::string& name) const { return directory_ / name; }
 
@@ -68,7 +62,8 @@ class TextureImageFiles : public ::testing::Test {
     return path(name);
   }
 
-  fs::path directory_;
+  candela::testing::ScratchDirectory scratch_{"candela-texture-image"};
+  const fs::path& directory_ = scratch_.path();
 };
 
 // The message of the std::runtime_error that loading `file` throws.
