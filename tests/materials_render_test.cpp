@@ -163,6 +163,44 @@ TEST(MaterialsRender, NegativeTextureValuesNeverMakeNegativePixels) {
   EXPECT_GT(dark, 0);  // where the waves are negative the surface is black, not negative
 }
 
+TEST(MaterialsRender, EveryParameterTakesATexture) {
+  // ka, kd, ks, n, kr, kt, ior (and roughness) each from a texture: a 2D checker over the
+  // plane's uv, even cells one value, odd cells another.
+  const auto checker = [](const std::string& even, const std::string& odd) {
+    return R"({"type": "checker2d", "even": )" + even + R"(, "odd": )" + odd + "}";
+  };
+  const auto scene = scene_from(R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": {
+      "ka": )" + checker("[0.1, 0.2, 0.3]", "0") + R"(, "kd": )" + checker("[0.4, 0.5, 0.6]", "0") +
+                                    R"(, "ks": )" + checker("0.7", "0") + R"(, "n": )" + checker("33", "1") +
+                                    R"(, "kr": )" + checker("0.25", "0") + R"(, "kt": )" + checker("0.5", "0") +
+                                    R"(, "ior": )" + checker("1.7", "1") + "}}]",
+                                kCentreCamera);
+  const Material& material = scene->materials.back();
+  SurfaceHit even, odd;
+  even.uv = {0.5, 0.5};
+  odd.uv = {1.5, 0.5};
+  const SurfaceProperties a = material.at(even), b = material.at(odd);
+  expect_color_near(a.ka, Color(0.1, 0.2, 0.3), 1e-15);
+  expect_color_near(a.kd, Color(0.4, 0.5, 0.6), 1e-15);
+  EXPECT_NEAR(a.ks, 0.7, 1e-15);
+  EXPECT_NEAR(a.shininess, 33, 1e-12);
+  EXPECT_NEAR(a.kr, 0.25, 1e-15);
+  EXPECT_NEAR(a.kt, 0.5, 1e-15);
+  EXPECT_NEAR(a.ior, 1.7, 1e-15);
+  EXPECT_TRUE(b.ka.is_black());
+  EXPECT_EQ(b.ks, 0.0);
+  EXPECT_NEAR(b.shininess, 1, 1e-15);
+  EXPECT_EQ(b.kr, 0.0);
+  EXPECT_NEAR(b.ior, 1.0, 1e-15);
+  EXPECT_TRUE(material.has_reflection());
+  EXPECT_TRUE(material.has_refraction());
+  const auto rough = scene_from(R"("shapes": [{"type": "sphere", "material": {"type": "cook-torrance", "roughness": )" +
+                                    checker("0.2", "0.6") + "}}]",
+                                kCentreCamera);
+  EXPECT_NEAR(rough->materials.back().at(even).roughness, 0.2, 1e-15);
+  EXPECT_NEAR(rough->materials.back().at(odd).roughness, 0.6, 1e-15);
+}
+
 TEST(MaterialsRender, ConstantTexturesAreRangeChecked) {
   const auto expect_error = [](const std::string& material, const std::string& expected) {
     try {
