@@ -60,5 +60,41 @@ TEST(OrthographicCamera, RaysArePerpendicularToTheWindow) {
   EXPECT_EQ(ray.direction, (Vec3{0, 0, -1}));
 }
 
+// view_projection is generate_ray read backwards: a point on the ray through image position
+// (x, y) projects to ndc (2x/width − 1, 1 − 2y/height), in front of the near plane.
+void expect_projection_matches_rays(const Camera& camera) {
+  const Eigen::Matrix4d clip_from_world = camera.view_projection(0.5, 100);
+  for (const auto& [x, y] : {std::pair{0.5, 0.5}, std::pair{13.25, 7.75}, std::pair{31.5, 23.5}, std::pair{16.0, 12.0}}) {
+    const Ray ray = camera.generate_ray(x, y);
+    for (const double t : {1.0, 5.0, 40.0}) {
+      const Vec3 p = ray.at(t);
+      const Eigen::Vector4d clip = clip_from_world * Eigen::Vector4d(p.x, p.y, p.z, 1);
+      ASSERT_GT(clip.w(), 0);
+      EXPECT_NEAR(clip.x() / clip.w(), 2 * x / camera.width() - 1, 1e-12) << x << "," << y << " t " << t;
+      EXPECT_NEAR(clip.y() / clip.w(), 1 - 2 * y / camera.height(), 1e-12) << x << "," << y << " t " << t;
+      EXPECT_GT(clip.z() / clip.w(), -1);
+      EXPECT_LT(clip.z() / clip.w(), 1);
+    }
+  }
+  // Depth grows with distance along the view direction.
+  const Vec3 eye = camera.eye_position(), ahead = camera.view_direction();
+  const auto depth = [&](double t) {
+    const Vec3 p = eye + ahead * t;
+    const Eigen::Vector4d clip = clip_from_world * Eigen::Vector4d(p.x, p.y, p.z, 1);
+    return clip.z() / clip.w();
+  };
+  EXPECT_NEAR(depth(0.5), -1, 1e-12);
+  EXPECT_NEAR(depth(100), 1, 1e-12);
+  EXPECT_LT(depth(2), depth(3));
+}
+
+TEST(PerspectiveCamera, ViewProjectionMatchesGenerateRay) {
+  expect_projection_matches_rays(PerspectiveCamera({1, 2, 3}, {-2, 0.5, -4}, {0.1, 1, 0}, 70, 32, 24));
+}
+
+TEST(OrthographicCamera, ViewProjectionMatchesGenerateRay) {
+  expect_projection_matches_rays(OrthographicCamera({1, 2, 3}, {-2, 0.5, -4}, {0, 1, 0}, -3, 2, -1, 2.5, 32, 24));
+}
+
 }  // namespace
 }  // namespace candela

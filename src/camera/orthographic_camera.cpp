@@ -1,5 +1,6 @@
 #include "camera/orthographic_camera.h"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace candela {
@@ -16,6 +17,26 @@ OrthographicCamera::OrthographicCamera(const Vec3& eye, const Vec3& target, cons
   x_unit_ = normalize(x_axis);
   y_unit_ = cross(x_unit_, gaze_);
   if (!(right > left) || !(top > bottom)) throw std::invalid_argument("window must have right > left and top > bottom");
+}
+
+Eigen::Matrix4d OrthographicCamera::view_projection(double near, double far) const {
+  const Vec3 rows[3] = {x_unit_, y_unit_, -gaze_};
+  Eigen::Matrix4d view = Eigen::Matrix4d::Identity();
+  for (int r = 0; r < 3; ++r) {
+    view(r, 0) = rows[r].x;
+    view(r, 1) = rows[r].y;
+    view(r, 2) = rows[r].z;
+    view(r, 3) = -dot(rows[r], eye_);
+  }
+  // u = l + (r − l)(ndc_x + 1)/2 and v = b + (t − b)(ndc_y + 1)/2, as generate_ray.
+  Eigen::Matrix4d projection = Eigen::Matrix4d::Identity();
+  projection(0, 0) = 2 / (right_ - left_);
+  projection(0, 3) = -(right_ + left_) / (right_ - left_);
+  projection(1, 1) = 2 / (top_ - bottom_);
+  projection(1, 3) = -(top_ + bottom_) / (top_ - bottom_);
+  projection(2, 2) = -2 / (far - near);
+  projection(2, 3) = -(far + near) / (far - near);
+  return projection * view;
 }
 
 Ray OrthographicCamera::generate_ray(double x, double y) const {

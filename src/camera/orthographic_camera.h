@@ -12,6 +12,10 @@ class OrthographicCamera final : public Camera {
                      double right, double bottom, double top, int width, int height);
   Ray generate_ray(double x, double y) const override;
   std::string_view type_name() const override { return "orthographic"; }
+  // The window (l, r, b, t) onto ndc [−1, 1]²; depth from the eye plane along the gaze.
+  Eigen::Matrix4d view_projection(double near, double far) const override;
+  Vec3 eye_position() const override { return eye_; }
+  Vec3 view_direction() const override { return gaze_; }
 
  private:
   Vec3 eye_, gaze_, x_unit_, y_unit_;

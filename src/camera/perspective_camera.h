@@ -14,6 +14,10 @@ class PerspectiveCamera final : public Camera {
                     double horizontal_fov_degrees, int width, int height);
   Ray generate_ray(double x, double y) const override;
   std::string_view type_name() const override { return "perspective"; }
+  // The OpenGL frustum whose pixel centres are generate_ray's: 1/tanθ across, 1/tanφ up.
+  Eigen::Matrix4d view_projection(double near, double far) const override;
+  Vec3 eye_position() const override { return eye_; }
+  Vec3 view_direction() const override { return gaze_; }
 
   const Vec3& gaze() const { return gaze_; }
   const Vec3& half_width() const { return half_width_; }    // H (d = 1)
