@@ -1,16 +1,23 @@
 // candela bench [MESH] [--sphere N | --terrain N] [--accel NAME...] [--threads N...] [--json FILE]
 //               [--seed S] [--eye X Y Z] [--lookat X Y Z] [--fov DEG] [--light X Y Z]
 //               [--width W] [--height H] [--rays N] [--repeat R] [--min-time S] [--dump DIR] [--quiet]
+// candela bench --raster [MESH.obj ...] [--sphere N] [--terrain N] [--width W] [--height H] [--fov DEG]
+//               [--repeat R] [--min-time S] [--json FILE] [--quiet]
 // Reproducible ray-set throughput (SPEC §14) with the ray sets and checksums of
 // shared/BENCH-RAYS.md. "embree" is Embree's own triangle test (the reference speed).
+// --raster measures the scanline rasterizer instead (bench/raster_bench.h): every mesh given,
+// or every .obj of ../shared/models (from the current directory) when none is.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <optional>
 
 #include "bench/bench_runner.h"
+#include "bench/raster_bench.h"
 #include "commands.h"
 #include "scene/scene_loader.h"
 #include "util/atomic_file.h"
@@ -21,7 +28,8 @@ namespace candela::cli {
 namespace {
 
 struct BenchCommandOptions {
-  std::string mesh_path;
+  std::vector<std::string> inputs;  // the positional arguments
+  std::string mesh_path;            // the one input of a ray-set bench
   std::optional<uint64_t> sphere;
   std::optional<uint64_t> terrain;
   std::vector<std::string> accelerators;
@@ -37,7 +45,14 @@ struct BenchCommandOptions {
   double min_time = 0.5;
   std::string dump_directory;
   bool quiet = false;
+  bool raster = false;
+  // Whether the option was on the command line (the raster bench has its own defaults).
+  bool width_given = false, height_given = false, min_time_given = false;
 };
+
+// Where `candela bench --raster` looks for meshes when none is given (as
+// scripts/run-benchmarks.sh does, from the repository root).
+constexpr const char* kDefaultModelDirectory = "../shared/models";
 
 constexpr uint64_t kMaxTriangles = 50'000'000;
 constexpr uint64_t kMaxRays = uint64_t{1} << 26;
@@ -107,11 +122,10 @@ BenchOptions bench_options(const BenchCommandOptions& options) {
   return bench;
 }
 
-// Prints the table and writes --json.
-int finish_bench(const BenchReport& report, const BenchCommandOptions& options) {
-  std::cout << report.table();
+// Writes --json (when given) atomically.
+int write_json(const nlohmann::json& json, const BenchCommandOptions& options) {
   if (!options.json_path.empty()) {
-    const std::string text = report.to_json().dump(2) + "\n";
+    const std::string text = json.dump(2) + "\n";
     write_atomically(options.json_path, [&](const std::string& temporary) {
       std::ofstream out(temporary);
       out << text;
@@ -122,11 +136,89 @@ int finish_bench(const BenchReport& report, const BenchCommandOptions& options) 
   return 0;
 }
 
+// Prints the table and writes --json.
+int finish_bench(const BenchReport& report, const BenchCommandOptions& options) {
+  std::cout << report.table();
+  return write_json(report.to_json(), options);
+}
+
 bool is_scene_file(const std::string& path) {
   return path.size() > 5 && path.compare(path.size() - 5, 5, ".json") == 0;
 }
 
-int run_bench_command(const BenchCommandOptions& options) {
+// The meshes of --raster: the files given, the generated ones, else every .obj of the models
+// directory in name order.
+std::vector<BenchMesh> raster_meshes(const BenchCommandOptions& options) {
+  std::vector<std::string> paths = options.inputs;
+  for (const std::string& path : paths)
+    if (is_scene_file(path)) throw BadArgument("--raster measures meshes (.obj), not scene files: " + path);
+  std::vector<BenchMesh> meshes;
+  if (paths.empty() && !options.sphere && !options.terrain) {
+    std::error_code error;
+    for (const auto& entry : std::filesystem::directory_iterator(kDefaultModelDirectory, error))
+      if (entry.is_regular_file() && entry.path().extension() == ".obj") paths.push_back(entry.path().string());
+    std::sort(paths.begin(), paths.end());
+    if (paths.empty())
+      throw BadArgument(fmt::format("--raster: no MESH given and no .obj file in {} (run from the repository root "
+                                    "or pass the meshes)",
+                                    kDefaultModelDirectory));
+  }
+  for (const std::string& path : paths) {
+    meshes.push_back(read_bench_obj(path));
+    if (meshes.back().skipped_faces > 0)
+      std::cerr << fmt::format("candela: warning: {}: {} face(s) with an out-of-range index skipped\n",
+                               meshes.back().name, meshes.back().skipped_faces);
+  }
+  if (options.sphere) {
+    if (*options.sphere < 1 || *options.sphere > kMaxTriangles)
+      throw BadArgument(fmt::format("--sphere N must lie in [1, {}]", kMaxTriangles));
+    meshes.push_back(bench_sphere(*options.sphere));
+  }
+  if (options.terrain) {
+    if (*options.terrain < 1 || *options.terrain > kMaxTriangles)
+      throw BadArgument(fmt::format("--terrain N must lie in [1, {}]", kMaxTriangles));
+    meshes.push_back(bench_terrain(*options.terrain));
+  }
+  return meshes;
+}
+
+int run_raster_bench_command(const BenchCommandOptions& options) {
+  // The options of the ray sets do not apply to the rasterizer.
+  if (!options.accelerators.empty() || !options.threads.empty() || !options.eye.empty() || !options.lookat.empty() ||
+      !options.light.empty() || options.rays != 0 || !options.dump_directory.empty())
+    throw BadArgument("--raster takes MESH files, --sphere, --terrain, --width, --height, --fov, --repeat, "
+                      "--min-time, --json and --quiet only");
+  RasterBenchOptions raster;
+  if (options.width_given) raster.width = options.width;
+  if (options.height_given) raster.height = options.height;
+  if (raster.width < 1 || raster.height < 1) throw BadArgument("--width and --height must be >= 1");
+  if (static_cast<uint64_t>(raster.width) * static_cast<uint64_t>(raster.height) > kMaxRays)
+    throw BadArgument(fmt::format("--width x --height must be at most {} pixels", kMaxRays));
+  if (!(options.fov > 0 && options.fov < 180)) throw BadArgument("--fov must lie in (0, 180) degrees");
+  raster.fov_degrees = options.fov;
+  if (options.repeat < 1) throw BadArgument("--repeat must be >= 1");
+  raster.repeat = options.repeat;
+  if (options.min_time_given) {
+    if (!(options.min_time >= 0) || !std::isfinite(options.min_time)) throw BadArgument("--min-time must be >= 0");
+    raster.min_seconds = options.min_time;
+  }
+  const auto log = [&](const std::string& line) {
+    if (!options.quiet) std::cerr << "candela: bench: " << line << "\n";
+  };
+  nlohmann::json reports = nlohmann::json::array();
+  for (const BenchMesh& mesh : raster_meshes(options)) {
+    const RasterBenchReport report = run_raster_bench(mesh, raster, log);
+    std::cout << report.table() << "\n";
+    reports.push_back(report.to_json());
+  }
+  return write_json({{"raster", reports}}, options);
+}
+
+int run_bench_command(const BenchCommandOptions& given) {
+  if (given.raster) return run_raster_bench_command(given);
+  if (given.inputs.size() > 1) throw BadArgument("give exactly one of MESH, --sphere N or --terrain N");
+  BenchCommandOptions options = given;
+  if (!given.inputs.empty()) options.mesh_path = given.inputs.front();
   BenchOptions bench = bench_options(options);
   const auto log = [&](const std::string& line) {
     if (!options.quiet) std::cerr << "candela: bench: " << line << "\n";
@@ -163,7 +255,11 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<BenchCommandOptions>();
   CLI::App* command =
       app.add_subcommand("bench", "Ray-set throughput and checksums per accelerator (shared/BENCH-RAYS.md)");
-  command->add_option("mesh", options->mesh_path, "Wavefront OBJ mesh (only v and f lines are read) or a scene file (.json)");
+  command->add_option("mesh", options->inputs,
+                      "Wavefront OBJ mesh (only v and f lines are read) or a scene file (.json); with --raster, "
+                      "any number of meshes (default: every .obj of ../shared/models)");
+  command->add_flag("--raster", options->raster,
+                    "Measure the scanline rasterizer (item buffer, depth, Gouraud, Phong passes) instead of rays");
   command->add_option("--sphere", options->sphere, "Generated UV sphere of about N triangles");
   command->add_option("--terrain", options->terrain, "Generated height field of about N triangles");
   command
@@ -180,15 +276,19 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   command->add_option("--fov", options->fov, "Vertical field of view in degrees (default 45)");
   command->add_option("--light", options->light, "Point light of the shadow rays (default: from the bounds)")
       ->expected(3);
-  command->add_option("--width", options->width, "Primary rays per row (default 1024)");
-  command->add_option("--height", options->height, "Rows of primary rays (default 1024)");
+  command->add_option("--width", options->width, "Primary rays per row (default 1024; --raster: image width, 1024)");
+  command->add_option("--height", options->height, "Rows of primary rays (default 1024; --raster: image height, 768)");
   command->add_option("--rays", options->rays, "Incoherent rays (default: width x height)");
   command->add_option("--repeat", options->repeat, "Timed repetitions (default 3)");
   command->add_option("--min-time", options->min_time,
-                      "Stop repeating once the timed repetitions took this many seconds (default 0.5)");
+                      "Stop repeating once the timed repetitions took this many seconds (default 0.5; --raster: "
+                      "repeat until they took at least this long, default 1)");
   command->add_option("--dump", options->dump_directory, "Write the ray sets to this directory");
   command->add_flag("-q,--quiet", options->quiet, "No progress lines");
-  command->callback([options, &run]() {
+  command->callback([options, command, &run]() {
+    options->width_given = command->count("--width") > 0;
+    options->height_given = command->count("--height") > 0;
+    options->min_time_given = command->count("--min-time") > 0;
     run = [options]() { return run_reporting_bad_input([&] { return run_bench_command(*options); }); };
   });
 }

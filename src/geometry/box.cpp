@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
+#include "geometry/tessellation.h"
 #include "math/constants.h"
 
 namespace candela {
@@ -86,5 +88,29 @@ bool Box::occluded(const Ray& ray) const {
 }
 
 Bounds3 Box::bounds() const { return {lower_, upper_}; }
+
+void Box::tessellate(const TessellationSettings&, TriangleMesh& mesh) const {
+  MeshAppender out(mesh);
+  // Corner i takes the upper bound on axis k when bit k of i is set.
+  std::array<uint32_t, 8> corners;
+  for (int i = 0; i < 8; ++i) {
+    Vec3 p;
+    for (int axis = 0; axis < 3; ++axis) p[axis] = ((i >> axis) & 1) ? upper_[axis] : lower_[axis];
+    corners[i] = out.vertex(p);
+  }
+  for (int face = 0; face < 6; ++face) {
+    // As intersect: axis k, u along k+1 and v along k+2 on the upper face, swapped on the lower
+    // face, so that dpdu × dpdv is outward and (u, v) counter-clockwise is too.
+    const int axis = face % 3;
+    const bool upper_face = face >= 3;
+    int u_axis = (axis + 1) % 3, v_axis = (axis + 2) % 3;
+    if (!upper_face) std::swap(u_axis, v_axis);
+    const auto corner = [&](int u, int v) {
+      return corners[(upper_face ? 1 << axis : 0) | (u << u_axis) | (v << v_axis)];
+    };
+    out.triangle({corner(0, 0), corner(1, 0), corner(1, 1)}, {Vec2{0, 0}, Vec2{1, 0}, Vec2{1, 1}});
+    out.triangle({corner(0, 0), corner(1, 1), corner(0, 1)}, {Vec2{0, 0}, Vec2{1, 1}, Vec2{0, 1}});
+  }
+}
 
 }  // namespace candela

@@ -18,6 +18,9 @@ class Box final : public Shape {
   bool occluded(const Ray& ray) const override;
   Bounds3 bounds() const override;
   std::string_view type_name() const override { return "box"; }
+  // Two triangles per face, counter-clockwise seen from outside, uv as on a hit; the faces
+  // share the 8 corner vertices.
+  void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const override;
 
   const Vec3& lower() const { return lower_; }
   const Vec3& upper() const { return upper_; }

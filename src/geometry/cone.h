@@ -23,6 +23,10 @@ class Cone final : public Shape {
   bool occluded(const Ray& ray) const override;
   Bounds3 bounds() const override;
   std::string_view type_name() const override { return "cone"; }
+  // The side as one band of segments quads (segments triangles about the apex of a pointed
+  // cone, whose apex is one vertex), and when capped each end of radius > 0 as a fan of
+  // segments triangles; uv as on a hit. The rims are shared with the caps (watertight).
+  void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const override;
 
   const Vec3& base() const { return frame_.base(); }
   const Vec3& cap() const { return cap_; }

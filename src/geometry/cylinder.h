@@ -22,6 +22,9 @@ class Cylinder final : public Shape {
   bool occluded(const Ray& ray) const override;
   Bounds3 bounds() const override;
   std::string_view type_name() const override { return "cylinder"; }
+  // The side as one band of segments quads, and when capped each cap as a fan of segments
+  // triangles about its centre; uv as on a hit. The rims are shared with the caps (watertight).
+  void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const override;
 
   const Vec3& base() const { return frame_.base(); }
   const Vec3& cap() const { return cap_; }

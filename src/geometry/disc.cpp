@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "geometry/flat_surface.h"
+#include "geometry/tessellation.h"
 #include "math/constants.h"
 
 namespace candela {
@@ -55,6 +56,15 @@ bool Disc::intersect(const Ray& ray, SurfaceHit& hit) const {
 bool Disc::occluded(const Ray& ray) const { return nearest_t(ray) < kInfinity; }
 
 Bounds3 Disc::bounds() const { return disc_bounds(center_, normal_, radius_); }
+
+void Disc::tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const {
+  MeshAppender out(mesh);
+  const std::vector<Vec2> circle = unit_circle(turn_divisions(settings));
+  // v = 0 on the rim, 1 on the inner rim; u counter-clockwise about the normal from u_axis_.
+  append_revolution_grid({circle_points(center_, u_axis_, v_axis_, radius_, circle),
+                          circle_points(center_, u_axis_, v_axis_, inner_radius_, circle)},
+                         /*wrap_rings=*/false, out);
+}
 
 void fill_cap_hit(bool top, const Vec3& axis, const Vec3& radial, const Vec3& tangent, double phi,
                   double r, double cap_radius, SurfaceHit& hit) {

@@ -18,6 +18,9 @@ class Disc final : public Shape {
   bool occluded(const Ray& ray) const override;
   Bounds3 bounds() const override;
   std::string_view type_name() const override { return "disc"; }
+  // One ring of segments cells between the rim and the inner rim (a fan about one centre
+  // vertex when inner_radius is 0), uv as on a hit.
+  void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const override;
 
   const Vec3& center() const { return center_; }
   const Vec3& normal() const { return normal_; }

@@ -16,6 +16,10 @@ class Plane final : public Shape {
   bool occluded(const Ray& ray) const override;
   Bounds3 bounds() const override;
   std::string_view type_name() const override { return "plane"; }
+  // The convex polygon (3 to 6 vertices) where the plane meets settings.clip, found on the
+  // box's edges, as a fan; nothing when the plane misses the box or only touches it (an edge
+  // or a corner), or when the box is empty or not finite.
+  void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const override;
 
   const Vec3& point() const { return point_; }
   const Vec3& normal() const { return normal_; }

@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "geometry/flat_surface.h"
+#include "geometry/tessellation.h"
 #include "math/constants.h"
 
 namespace candela {
@@ -97,5 +99,80 @@ bool Polygon::intersect(const Ray& ray, SurfaceHit& hit) const {
 bool Polygon::occluded(const Ray& ray) const { return nearest_t(ray) < kInfinity; }
 
 Bounds3 Polygon::bounds() const { return bounds_; }
+
+namespace {
+
+// Twice the signed area of the triangle a b c in the plane: > 0 when counter-clockwise.
+double orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+// Whether p lies in the counter-clockwise triangle a b c: with its boundary when closed,
+// strictly inside otherwise.
+bool in_triangle(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c, bool closed) {
+  const double ab = orientation(a, b, p), bc = orientation(b, c, p), ca = orientation(c, a, p);
+  return closed ? (ab >= 0 && bc >= 0 && ca >= 0) : (ab > 0 && bc > 0 && ca > 0);
+}
+
+}  // namespace
+
+void Polygon::tessellate(const TessellationSettings&, TriangleMesh& mesh) const {
+  MeshAppender out(mesh);
+  // The vertices in the uv frame's axes (counter-clockwise about the normal, since Newell's
+  // normal follows the vertex order), dropping repeated consecutive vertices.
+  struct Corner {
+    uint32_t vertex;
+    Vec2 plane;  // coordinates along u_axis_, v_axis_ from the first vertex
+    Vec2 uv;
+  };
+  std::vector<Corner> remaining;
+  for (std::size_t i = 0; i < vertices_.size(); ++i) {
+    const Vec3& vertex = vertices_[i];
+    if (vertex == vertices_[(i + 1) % vertices_.size()]) continue;
+    const Vec3 offset = vertex - vertices_[0];
+    const Vec2 plane{dot(offset, u_axis_), dot(offset, v_axis_)};
+    // As intersect: the bounding rectangle of the vertices in this frame is [0, 1]².
+    const Vec2 uv{std::clamp((plane.x - uv_lower_.x) / uv_extent_.x, 0.0, 1.0),
+                  std::clamp((plane.y - uv_lower_.y) / uv_extent_.y, 0.0, 1.0)};
+    remaining.push_back({out.vertex(vertex), plane, uv});
+  }
+  // An ear: a strictly convex corner whose triangle with its neighbours holds no other corner
+  // (Meisters 1975: every simple polygon of more than three vertices has two). Corners at the
+  // same place as one of the ear's (a polygon touching itself) do not count. The first pass
+  // also refuses corners on the triangle's boundary, which keeps a collinear corner on the
+  // new diagonal from being left out as a T-junction; the second accepts them; the last takes
+  // any convex corner, so that rounding on a nearly degenerate polygon cannot stall the loop.
+  const auto find_ear = [&](int pass) -> std::size_t {
+    const std::size_t count = remaining.size();
+    for (std::size_t i = 0; i < count; ++i) {
+      const Corner& previous = remaining[(i + count - 1) % count];
+      const Corner& current = remaining[i];
+      const Corner& next = remaining[(i + 1) % count];
+      if (!(orientation(previous.plane, current.plane, next.plane) > 0)) continue;
+      bool holds_another = false;
+      for (std::size_t j = 0; j < count && pass < 2 && !holds_another; ++j) {
+        const Vec3& p = out.position(remaining[j].vertex);
+        if (p == out.position(previous.vertex) || p == out.position(current.vertex) ||
+            p == out.position(next.vertex))
+          continue;
+        holds_another = in_triangle(remaining[j].plane, previous.plane, current.plane, next.plane, pass == 0);
+      }
+      if (!holds_another) return i;
+    }
+    return count;
+  };
+  while (remaining.size() >= 3) {
+    const std::size_t count = remaining.size();
+    std::size_t ear = count;
+    for (int pass = 0; pass < 3 && ear == count; ++pass) ear = find_ear(pass);
+    // No convex corner left: what remains spans no area (collinear corners).
+    if (ear == count) break;
+    const Corner& previous = remaining[(ear + count - 1) % count];
+    const Corner& current = remaining[ear];
+    const Corner& next = remaining[(ear + 1) % count];
+    out.triangle({previous.vertex, current.vertex, next.vertex}, {previous.uv, current.uv, next.uv});
+    remaining.erase(remaining.begin() + static_cast<std::ptrdiff_t>(ear));
+  }
+}
 
 }  // namespace candela

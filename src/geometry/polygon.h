@@ -23,6 +23,11 @@ class Polygon final : public Shape {
   bool occluded(const Ray& ray) const override;
   Bounds3 bounds() const override;
   std::string_view type_name() const override { return "polygon"; }
+  // Ear clipping in the polygon's plane (convex or not): at most vertices - 2 triangles, all
+  // counter-clockwise about the normal, on the polygon's own vertices, uv as on a hit. A vertex
+  // between two collinear edges is kept (it is a corner of a neighbouring triangle) but never
+  // clipped as an ear of zero area. O(vertices³) at worst, which polygons of a scene file afford.
+  void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const override;
 
   const std::vector<Vec3>& vertices() const { return vertices_; }
   const Vec3& normal() const { return normal_; }

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "geometry/flat_surface.h"
+#include "geometry/tessellation.h"
 
 namespace candela {
 
@@ -55,6 +56,15 @@ Bounds3 Quad::bounds() const {
   b.extend(corner_ + edge_v_);
   b.extend(corner_ + edge_u_ + edge_v_);
   return b;
+}
+
+void Quad::tessellate(const TessellationSettings&, TriangleMesh& mesh) const {
+  MeshAppender out(mesh);
+  // Counter-clockwise in (u, v), so about edge_u × edge_v, the normal.
+  const uint32_t origin = out.vertex(corner_), along_u = out.vertex(corner_ + edge_u_),
+                 opposite = out.vertex(corner_ + edge_u_ + edge_v_), along_v = out.vertex(corner_ + edge_v_);
+  out.triangle({origin, along_u, opposite}, {Vec2{0, 0}, Vec2{1, 0}, Vec2{1, 1}});
+  out.triangle({origin, opposite, along_v}, {Vec2{0, 0}, Vec2{1, 1}, Vec2{0, 1}});
 }
 
 }  // namespace candela

@@ -17,6 +17,8 @@ class Quad final : public Shape {
   bool occluded(const Ray& ray) const override;
   Bounds3 bounds() const override;
   std::string_view type_name() const override { return "quad"; }
+  // Two triangles, corner → corner + edge_u → opposite corner and back by corner + edge_v.
+  void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const override;
 
   const Vec3& corner() const { return corner_; }
   const Vec3& edge_u() const { return edge_u_; }

@@ -14,6 +14,9 @@ class Sphere final : public Shape {
   bool occluded(const Ray& ray) const override;
   Bounds3 bounds() const override;
   std::string_view type_name() const override { return "sphere"; }
+  // segments longitudes by max(2, segments / 2) latitude bands, uv as on a hit; one vertex at
+  // each pole, whose corner u is the middle of its triangle's longitude band.
+  void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const override;
 
   const Vec3& center() const { return center_; }
   double radius() const { return radius_; }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "geometry/tessellation.h"
 #include "math/constants.h"
 #include "math/polynomial.h"
 
@@ -127,6 +128,21 @@ Bounds3 Torus::bounds() const {
   for (int i = 0; i < 3; ++i)
     extent[i] = major_radius_ * std::sqrt(std::max(0.0, 1.0 - axis_[i] * axis_[i])) + minor_radius_;
   return {center_ - extent, center_ + extent};
+}
+
+void Torus::tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const {
+  MeshAppender out(mesh);
+  const int ring_divisions = turn_divisions(settings);
+  const int tube_divisions = std::max(3, ring_divisions / 2);
+  const std::vector<Vec2> ring_circle = unit_circle(ring_divisions);
+  const std::vector<Vec2> tube_circle = unit_circle(tube_divisions);
+  // Ring j at tube angle θ = 2π j / tube_divisions: p = (R + r cos θ) radial(φ) + r sin θ axis.
+  std::vector<std::vector<Vec3>> rings;
+  for (const Vec2& tube : tube_circle) {
+    rings.push_back(circle_points(center_ + axis_ * (minor_radius_ * tube.y), x_axis_, y_axis_,
+                                  major_radius_ + minor_radius_ * tube.x, ring_circle));
+  }
+  append_revolution_grid(rings, /*wrap_rings=*/true, out);
 }
 
 }  // namespace candela

@@ -22,6 +22,10 @@ class Torus final : public Shape {
   bool occluded(const Ray& ray) const override;
   Bounds3 bounds() const override;
   std::string_view type_name() const override { return "torus"; }
+  // segments cells around the axis by max(3, segments / 2) around the tube (the tube is
+  // usually the thinner, and the error of both falls as 1 / segments²), uv as on a hit;
+  // both seams (u and v) are shared vertices, so the mesh is closed.
+  void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const override;
 
   const Vec3& center() const { return center_; }
   const Vec3& axis() const { return axis_; }

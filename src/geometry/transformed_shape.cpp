@@ -1,5 +1,12 @@
 #include "geometry/transformed_shape.h"
 
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "geometry/tessellation.h"
+#include "geometry/triangle_mesh.h"
+
 namespace candela {
 
 TransformedShape::TransformedShape(std::unique_ptr<Shape> shape, const Transform& object_to_world)
@@ -42,5 +49,86 @@ bool TransformedShape::occluded(const Ray& ray) const {
 }
 
 Bounds3 TransformedShape::bounds() const { return object_to_world_.bounds(shape_->bounds()); }
+
+namespace {
+
+// A corner of a triangle being clipped.
+struct ClipCorner {
+  Vec3 position;
+  Vec2 uv;
+};
+
+// Sutherland and Hodgman 1974, "Reentrant polygon clipping": the convex polygon cut by the six
+// planes of box in turn. A new point lies on the segment from the corner inside to the corner
+// outside, computed in that direction whichever way the polygon runs, so the two triangles
+// sharing an edge cut it at bit-identical points. uv is interpolated linearly, which is exact on
+// a flat triangle whose uv is affine (a plane's).
+std::vector<ClipCorner> clip_to_box(std::vector<ClipCorner> polygon, const Bounds3& box) {
+  for (int axis = 0; axis < 3 && !polygon.empty(); ++axis) {
+    for (const bool upper : {false, true}) {
+      const double bound = upper ? box.upper[axis] : box.lower[axis];
+      const auto inside = [&](const ClipCorner& c) {
+        return upper ? c.position[axis] <= bound : c.position[axis] >= bound;
+      };
+      std::vector<ClipCorner> kept;
+      for (std::size_t i = 0; i < polygon.size(); ++i) {
+        const ClipCorner& current = polygon[i];
+        const ClipCorner& next = polygon[(i + 1) % polygon.size()];
+        if (inside(current)) kept.push_back(current);
+        if (inside(current) != inside(next)) {
+          const ClipCorner& in = inside(current) ? current : next;
+          const ClipCorner& out = inside(current) ? next : current;
+          const double s = (bound - in.position[axis]) / (out.position[axis] - in.position[axis]);
+          ClipCorner cut{in.position + (out.position - in.position) * s,
+                         {in.uv.x + (out.uv.x - in.uv.x) * s, in.uv.y + (out.uv.y - in.uv.y) * s}};
+          cut.position[axis] = bound;  // exactly on the box
+          kept.push_back(cut);
+        }
+      }
+      polygon = std::move(kept);
+    }
+  }
+  return polygon;
+}
+
+}  // namespace
+
+void TransformedShape::tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const {
+  MeshAppender out(mesh);
+  const bool unbounded = !shape_->bounds().is_finite();
+  const bool clip_usable = !settings.clip.empty() && settings.clip.is_finite();
+  TessellationSettings object_settings = settings;
+  if (unbounded && clip_usable) object_settings.clip = world_to_object_.bounds(settings.clip);
+  TriangleMesh object_mesh;
+  shape_->tessellate(object_settings, object_mesh);
+  object_mesh.transform(object_to_world_);
+
+  const auto corner_uvs = [&](std::size_t t) {
+    return object_mesh.corner_uvs.empty() ? kDefaultCornerUvs : object_mesh.corner_uvs[t];
+  };
+  if (!(unbounded && clip_usable)) {
+    std::vector<uint32_t> ids(object_mesh.positions.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = out.vertex(object_mesh.positions[i]);
+    for (std::size_t t = 0; t < object_mesh.triangles.size(); ++t) {
+      const auto& tri = object_mesh.triangles[t];
+      out.triangle({ids[tri[0]], ids[tri[1]], ids[tri[2]]}, corner_uvs(t));
+    }
+    return;
+  }
+  for (std::size_t t = 0; t < object_mesh.triangles.size(); ++t) {
+    const auto& tri = object_mesh.triangles[t];
+    std::vector<ClipCorner> polygon;
+    const std::array<Vec2, 3> uvs = corner_uvs(t);
+    for (int k = 0; k < 3; ++k) polygon.push_back({object_mesh.positions[tri[k]], uvs[k]});
+    polygon = clip_to_box(std::move(polygon), settings.clip);
+    // A point made by clipping is the same vertex (the appender welds by position) as the
+    // neighbouring triangle's, which is computed bit for bit the same.
+    std::vector<uint32_t> ids;
+    for (const ClipCorner& corner : polygon) ids.push_back(out.vertex(corner.position));
+    // The clipped triangle is convex: a fan (zero-area pieces are dropped by the appender).
+    for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
+      out.triangle({ids[0], ids[k], ids[k + 1]}, {polygon[0].uv, polygon[k].uv, polygon[k + 1].uv});
+  }
+}
 
 }  // namespace candela

@@ -17,6 +17,11 @@ class TransformedShape final : public Shape {
   bool occluded(const Ray& ray) const override;
   Bounds3 bounds() const override;
   std::string_view type_name() const override { return shape_->type_name(); }
+  // The shape's own tessellation moved by object_to_world (TriangleMesh::transform: the
+  // winding stays on the normal's side under a mirroring transform). An unbounded shape (a
+  // plane) is tessellated inside the object-space bounds of settings.clip, which cover more
+  // than the box, and its triangles are then cut to the box itself in world space.
+  void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const override;
 
   const Shape& shape() const { return *shape_; }
   const Transform& object_to_world() const { return object_to_world_; }

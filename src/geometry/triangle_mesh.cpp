@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "geometry/tessellation.h"
 #include "math/constants.h"
 
 // The watertight test relies on every edge function a*b - c*d being rounded term by term:
@@ -21,8 +22,6 @@
 namespace candela {
 
 namespace {
-
-constexpr std::array<Vec2, 3> kDefaultUvs{Vec2{0, 0}, Vec2{1, 0}, Vec2{1, 1}};
 
 bool is_finite(const Vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 
@@ -293,7 +292,7 @@ void fill_triangle_hit(const TriangleMesh& mesh, std::size_t triangle, const Vec
     if (len > 0 && std::isfinite(len)) hit.shading_normal = interpolated / len;
   }
 
-  const auto& uv = mesh.corner_uvs.empty() ? kDefaultUvs : mesh.corner_uvs[triangle];
+  const auto& uv = mesh.corner_uvs.empty() ? kDefaultCornerUvs : mesh.corner_uvs[triangle];
   hit.uv = {uv[0].x * found.b0 + uv[1].x * found.b1 + uv[2].x * found.b2,
             uv[0].y * found.b0 + uv[1].y * found.b1 + uv[2].y * found.b2};
 
@@ -336,6 +335,16 @@ bool MeshTriangle::occluded(const Ray& ray) const {
 }
 
 Bounds3 MeshTriangle::bounds() const { return mesh_->triangle_bounds(index_); }
+
+void MeshTriangle::tessellate(const TessellationSettings&, TriangleMesh& mesh) const {
+  // Copied before appending: mesh may be the very mesh this triangle belongs to.
+  const auto& tri = mesh_->triangles[index_];
+  const std::array<Vec3, 3> corners{mesh_->positions[tri[0]], mesh_->positions[tri[1]],
+                                    mesh_->positions[tri[2]]};
+  const std::array<Vec2, 3> uvs = mesh_->corner_uvs.empty() ? kDefaultCornerUvs : mesh_->corner_uvs[index_];
+  MeshAppender out(mesh);
+  out.triangle({out.vertex(corners[0]), out.vertex(corners[1]), out.vertex(corners[2])}, uvs);
+}
 
 std::vector<std::unique_ptr<Shape>> make_triangles(std::shared_ptr<const TriangleMesh> mesh,
                                                    std::size_t* skipped_degenerate) {

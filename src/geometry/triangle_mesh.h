@@ -26,6 +26,9 @@
 
 namespace candela {
 
+// The corner uvs of a triangle whose mesh has none (as pbrt), so that uv = (b1 + b2, b2).
+inline constexpr std::array<Vec2, 3> kDefaultCornerUvs{Vec2{0, 0}, Vec2{1, 0}, Vec2{1, 1}};
+
 struct TriangleMesh {
   std::vector<Vec3> positions;
   std::vector<std::array<uint32_t, 3>> triangles;  // indices into positions
@@ -117,6 +120,9 @@ class MeshTriangle final : public Shape {
   bool occluded(const Ray& ray) const override;
   Bounds3 bounds() const override;
   std::string_view type_name() const override { return "triangle"; }
+  // Its one triangle (none when degenerate), in the mesh's winding and with the mesh's corner
+  // uvs (or kDefaultCornerUvs); the mesh's corner normals are not copied (Shape::tessellate).
+  void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const override;
 
   const TriangleMesh& mesh() const { return *mesh_; }
   const std::shared_ptr<const TriangleMesh>& shared_mesh() const { return mesh_; }

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "integrators/local.h"
+#include "integrators/raster_method.h"
 #include "integrators/whitted.h"
 
 #include "util/registry.h"
@@ -16,6 +17,8 @@ const std::array kEntries = {
                 []() -> std::unique_ptr<Method> { return std::make_unique<LocalMethod>(); }},
     MethodEntry{"whitted", "recursive Whitted ray tracing (000 §5, 001)",
                 []() -> std::unique_ptr<Method> { return std::make_unique<WhittedMethod>(); }},
+    MethodEntry{"raster", "scanline z-buffer rasterizer, flat / Gouraud / Phong / dot-product shading (000 §3)",
+                []() -> std::unique_ptr<Method> { return std::make_unique<RasterMethod>(); }},
 };
 }  // namespace
 

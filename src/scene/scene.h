@@ -39,6 +39,16 @@ struct LocalSettings {
   bool shadows = true;
 };
 
+// The raster method (SPEC §9).
+enum class RasterShading { flat, gouraud, phong, dot_product };
+
+struct RasterSettings {
+  RasterShading shading = RasterShading::phong;
+  int segments = 32;           // tessellation: divisions of a full turn
+  double crease_angle = 60;    // degrees: sharper edges keep two normals at a vertex
+  bool shadows = false;        // shadow rays from the shaded points (through the accelerator)
+};
+
 // One entry of the scene file's "shapes" array.
 struct SceneObject {
   std::string name;
@@ -67,6 +77,7 @@ class Scene {
   DisplaySettings display;
   WhittedSettings whitted;
   LocalSettings local;
+  RasterSettings raster;
   AntialiasingSettings antialiasing;  // the "aa" object
   std::vector<std::string> warnings;
 

@@ -116,6 +116,17 @@ class SceneReader {
       accelerator.octree_max_depth = octree->integer("max_depth", 10, {0, 32, false, false});
       octree->finish();
     }
+    if (const auto raster = root_.get("raster")) {
+      const std::string shading = raster->choice("shading", "phong", {"flat", "gouraud", "phong", "dotproduct"});
+      scene_->raster.shading = shading == "flat"      ? RasterShading::flat
+                               : shading == "gouraud" ? RasterShading::gouraud
+                               : shading == "phong"   ? RasterShading::phong
+                                                      : RasterShading::dot_product;
+      scene_->raster.segments = raster->integer("segments", 32, {3, 4096, false, false});
+      scene_->raster.crease_angle = raster->number("crease_angle", 60.0, {0, 180, false, false});
+      scene_->raster.shadows = raster->boolean("shadows", false);
+      raster->finish();
+    }
     if (const auto local = root_.get("local")) {
       scene_->local.shadows = local->boolean("shadows", true);
       local->finish();

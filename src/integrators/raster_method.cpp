@@ -1,0 +1,345 @@
+#include "integrators/raster_method.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "integrators/direct_lighting.h"
+#include "raster/rasterizer.h"
+#include "raster/tessellated_scene.h"
+#include "shading/cook_torrance.h"
+#include "shading/local_model.h"
+#include "shading/optics.h"
+#include "util/error.h"
+#include "util/progress.h"
+
+namespace candela {
+
+namespace {
+
+// Varyings of the per-pixel modes, in this order.
+constexpr int kPosition = 0;         // world position (3)
+constexpr int kObjectPosition = 3;   // object position (3), for solid textures
+constexpr int kUv = 6;               // uv (2)
+constexpr int kNormal = 8;           // vertex normal (3), phong
+constexpr int kSurfaceVaryings = 8;  // position, object position, uv
+constexpr int kPerLight = 4;         // dot-product mode: N·L and the specular colour
+
+const char* shading_name(RasterShading shading) {
+  switch (shading) {
+    case RasterShading::flat: return "flat";
+    case RasterShading::gouraud: return "gouraud";
+    case RasterShading::phong: return "phong";
+    case RasterShading::dot_product: return "dotproduct";
+  }
+  return "?";
+}
+
+// Everything the shading of one scene needs, shared by all tiles.
+class RasterShader {
+ public:
+  RasterShader(const Scene& scene, const TessellatedScene& triangles)
+      : scene_(scene), triangles_(triangles), settings_(scene.raster),
+        perspective_(scene.camera->type_name() == "perspective"),
+        eye_(scene.camera->eye_position()), view_direction_(scene.camera->view_direction()) {
+    if (settings_.shading == RasterShading::dot_product &&
+        kSurfaceVaryings + kPerLight * static_cast<int>(scene.lights.size()) > kMaxVaryings)
+      throw InputError({scene.source, 0, 0, "raster.shading"}, "\"dotproduct\" interpolates " + std::to_string(kPerLight) +
+                                  " values per light and supports at most " +
+                                  std::to_string((kMaxVaryings - kSurfaceVaryings) / kPerLight) +
+                                  " lights (the scene has " + std::to_string(scene.lights.size()) + ")");
+  }
+
+  int varying_count() const {
+    switch (settings_.shading) {
+      case RasterShading::flat: return 0;
+      case RasterShading::gouraud: return 3;
+      case RasterShading::phong: return kNormal + 3;
+      case RasterShading::dot_product: return kSurfaceVaryings + kPerLight * static_cast<int>(scene_.lights.size());
+    }
+    return 0;
+  }
+
+  // The unit vector toward the viewer from p.
+  Vec3 toward_viewer(const Vec3& p) const { return perspective_ ? normalize(eye_ - p) : -view_direction_; }
+
+  // The local model at a surface point (the ray tracer's own, shadows as raster.shadows).
+  Color local_model(uint32_t triangle, const Vec3& position, const Vec3& object_position, const Vec2& uv,
+                    const Vec3& normal, TraceContext& context) const {
+    Intersection hit;
+    hit.primitive = triangles_.primitives[triangle];
+    hit.surface.position = position;
+    hit.surface.object_position = object_position;
+    hit.surface.uv = uv;
+    hit.surface.geometric_normal = triangles_.face_normals[triangle];
+    const double n_length = length(normal);
+    hit.surface.shading_normal = n_length > 0 && std::isfinite(n_length) ? normal / n_length
+                                                                          : hit.surface.geometric_normal;
+    const Material& material = scene_.materials[triangles_.materials[triangle]];
+    const SurfaceProperties at = material.at(hit.surface);
+    return local_illumination(scene_, hit, at, toward_viewer(position), settings_.shadows, context, -1);
+  }
+
+  // The varyings of corner k (0..2) of a triangle; `out` has varying_count() entries.
+  void corner_varyings(uint32_t triangle, int k, double* out, TraceContext& context) const {
+    const std::size_t corner = 3 * std::size_t(triangle) + k;
+    const Vec3& p = triangles_.corner_positions[corner];
+    const Vec3& q = triangles_.corner_object_positions[corner];
+    const Vec2& uv = triangles_.corner_uvs[corner];
+    const Vec3& n = triangles_.corner_normals[corner];
+    if (settings_.shading == RasterShading::gouraud) {
+      // 000 §3.2: the intensity at the vertex from the vertex normal.
+      const Color I = local_model(triangle, p, q, uv, n, context);
+      out[0] = I.r;
+      out[1] = I.g;
+      out[2] = I.b;
+      return;
+    }
+    out[kPosition] = p.x, out[kPosition + 1] = p.y, out[kPosition + 2] = p.z;
+    out[kObjectPosition] = q.x, out[kObjectPosition + 1] = q.y, out[kObjectPosition + 2] = q.z;
+    out[kUv] = uv.x, out[kUv + 1] = uv.y;
+    if (settings_.shading == RasterShading::phong) {
+      out[kNormal] = n.x, out[kNormal + 1] = n.y, out[kNormal + 2] = n.z;
+      return;
+    }
+    // 000 §3.4: N·L and the specular term of each light at the vertex.
+    const Vec3 V = toward_viewer(p);
+    const Vec3 N = face_forward(length_squared(n) > 0 ? n : triangles_.face_normals[triangle], V);
+    const Material& material = scene_.materials[triangles_.materials[triangle]];
+    SurfaceHit hit;
+    hit.position = p;
+    hit.object_position = q;
+    hit.uv = uv;
+    hit.geometric_normal = hit.shading_normal = N;
+    const SurfaceProperties at = material.at(hit);
+    double* light_out = out + kSurfaceVaryings;
+    for (const auto& light : scene_.lights) {
+      LightSample sample;
+      Vec3 L;
+      if (light->illuminate(p, sample)) L = sample.direction;
+      else L = -N;  // outside a spot cone: no light from it here
+      const double n_dot_l = dot(N, L);
+      Color specular;
+      if (n_dot_l > 0 && at.ks > 0) {
+        if (material.specular_model == SpecularModel::cook_torrance) {
+          specular = at.ks * n_dot_l * cook_torrance(N, V, L, at.roughness, material.fresnel_ior);
+        } else {
+          const double cosine = material.specular_model == SpecularModel::phong ? dot(reflect(L, N), V)
+                                                                                 : dot(N, normalize(L + V));
+          if (cosine > 0) specular = Color(at.ks * std::pow(cosine, at.shininess));
+        }
+      }
+      light_out[0] = n_dot_l;
+      light_out[1] = specular.r, light_out[2] = specular.g, light_out[3] = specular.b;
+      light_out += kPerLight;
+    }
+  }
+
+  // The colour of a pixel whose nearest surface is `triangle` with interpolated varyings.
+  Color shade(uint32_t triangle, const double* v, const Color& flat_color, TraceContext& context) const {
+    switch (settings_.shading) {
+      case RasterShading::flat: return flat_color;
+      case RasterShading::gouraud: return {v[0], v[1], v[2]};
+      case RasterShading::phong:
+        return local_model(triangle, {v[kPosition], v[kPosition + 1], v[kPosition + 2]},
+                           {v[kObjectPosition], v[kObjectPosition + 1], v[kObjectPosition + 2]}, {v[kUv], v[kUv + 1]},
+                           {v[kNormal], v[kNormal + 1], v[kNormal + 2]}, context);
+      case RasterShading::dot_product: return dot_product(triangle, v, context);
+    }
+    return {};
+  }
+
+  // Flat shading (000 §3.1): the model once, at the centroid, with the face normal.
+  Color flat(uint32_t triangle, TraceContext& context) const {
+    const std::size_t c = 3 * std::size_t(triangle);
+    const Vec3 p = (triangles_.corner_positions[c] + triangles_.corner_positions[c + 1] + triangles_.corner_positions[c + 2]) / 3;
+    const Vec3 q = (triangles_.corner_object_positions[c] + triangles_.corner_object_positions[c + 1] +
+                    triangles_.corner_object_positions[c + 2]) / 3;
+    const Vec2 uv{(triangles_.corner_uvs[c].x + triangles_.corner_uvs[c + 1].x + triangles_.corner_uvs[c + 2].x) / 3,
+                  (triangles_.corner_uvs[c].y + triangles_.corner_uvs[c + 1].y + triangles_.corner_uvs[c + 2].y) / 3};
+    return local_model(triangle, p, q, uv, triangles_.face_normals[triangle], context);
+  }
+
+ private:
+  Color dot_product(uint32_t triangle, const double* v, TraceContext& context) const {
+    const Vec3 p{v[kPosition], v[kPosition + 1], v[kPosition + 2]};
+    SurfaceHit hit;
+    hit.position = p;
+    hit.object_position = {v[kObjectPosition], v[kObjectPosition + 1], v[kObjectPosition + 2]};
+    hit.uv = {v[kUv], v[kUv + 1]};
+    hit.geometric_normal = hit.shading_normal = face_forward(triangles_.face_normals[triangle], toward_viewer(p));
+    const Material& material = scene_.materials[triangles_.materials[triangle]];
+    const SurfaceProperties at = material.at(hit);
+    Color result = at.ka * scene_.ambient;
+    const double offset = scene_.ray_offset(p);
+    const double* light_in = v + kSurfaceVaryings;
+    for (const auto& light : scene_.lights) {
+      const double n_dot_l = light_in[0];
+      const Color specular{light_in[1], light_in[2], light_in[3]};
+      light_in += kPerLight;
+      LightSample sample;
+      if (n_dot_l <= 0 || !light->illuminate(p, sample)) continue;
+      Color s(1);
+      if (settings_.shadows) {
+        const double reach = std::isfinite(sample.distance) ? sample.distance - 2 * offset : kInfinity;
+        s = shadow_transmittance(scene_, p + hit.geometric_normal * offset, sample.direction, reach, context, -1);
+      }
+      result += sample.intensity * s * (at.kd * n_dot_l + specular);
+    }
+    return result;
+  }
+
+  const Scene& scene_;
+  const TessellatedScene& triangles_;
+  RasterSettings settings_;
+  bool perspective_;
+  Vec3 eye_, view_direction_;
+};
+
+// Per-tile buffers: the winning triangle and its varyings per pixel.
+struct TileBuffers {
+  std::vector<uint32_t> triangle;
+  std::vector<double> varyings;
+};
+
+}  // namespace
+
+void RasterMethod::render(const Scene& scene, const RenderRequest& request, Film& film,
+                          RunStatistics& statistics) const {
+  const PixelRect region = request.region;
+  const Camera& camera = *scene.camera;
+  Stopwatch tessellation_time;
+  // Unbounded shapes (planes) are cut by a box around the scene and the eye, far beyond both:
+  // a floor then reaches a horizon a hundred scene sizes away.
+  Bounds3 reach = scene.bounds();
+  reach.extend(camera.eye_position());
+  const double size = std::max(length(reach.diagonal()), 1e-9);
+  const Vec3 middle = (reach.lower + reach.upper) * 0.5;
+  const Vec3 half{100 * size, 100 * size, 100 * size};
+  const Bounds3 clip{middle - half, middle + half};
+  const TessellatedScene triangles = tessellate_scene(scene, scene.raster.segments, scene.raster.crease_angle, clip);
+  statistics.add_phase("tessellate", tessellation_time.seconds());
+
+  Stopwatch raster_time;
+  const RasterShader shader(scene, triangles);
+  const int varying_count = shader.varying_count();
+  // Depth range: everything inside the clip box; near small enough for the closest surface.
+  const double far = 400 * size;
+  const double near = far * 1e-7;
+  const Eigen::Matrix4d clip_from_world = camera.view_projection(near, far);
+  const std::size_t triangle_count = triangles.triangle_count();
+  // Per-vertex work once: clip coordinates and varyings (Gouraud's vertex intensities), the
+  // varyings packed (varying_count per corner).
+  const std::size_t stride = static_cast<std::size_t>(std::max(varying_count, 1));
+  std::vector<Eigen::Vector4d> clip_positions(3 * triangle_count);
+  std::vector<double> corner_varyings(3 * triangle_count * stride);
+  std::vector<Color> flat_colors(scene.raster.shading == RasterShading::flat ? triangle_count : 0);
+  tbb::enumerable_thread_specific<TraceContext> contexts;
+  tbb::parallel_for(std::size_t(0), triangle_count, [&](std::size_t t) {
+    TraceContext& context = contexts.local();
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p = triangles.corner_positions[3 * t + k];
+      clip_positions[3 * t + k] = clip_from_world * Eigen::Vector4d(p.x, p.y, p.z, 1);
+      if (varying_count > 0) shader.corner_varyings(static_cast<uint32_t>(t), k, &corner_varyings[(3 * t + k) * stride], context);
+    }
+    if (!flat_colors.empty()) flat_colors[t] = shader.flat(static_cast<uint32_t>(t), context);
+  });
+
+  // Tiles of the region, each with the triangles whose screen bounds reach it (a triangle
+  // with a vertex behind the eye plane may reach anywhere once clipped: every tile gets it).
+  const int tile = 32;
+  const int tiles_x = (region.width() + tile - 1) / tile;
+  const int tiles_y = (region.height() + tile - 1) / tile;
+  std::vector<std::vector<uint32_t>> bins(std::size_t(tiles_x) * tiles_y);
+  for (std::size_t t = 0; t < triangle_count; ++t) {
+    int tx0 = 0, ty0 = 0, tx1 = tiles_x - 1, ty1 = tiles_y - 1;
+    bool in_front = true;
+    double lower_x = kInfinity, upper_x = -kInfinity, lower_y = kInfinity, upper_y = -kInfinity;
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector4d& c = clip_positions[3 * t + k];
+      if (!(c.w() > near)) {
+        in_front = false;
+        break;
+      }
+      const double x = (c.x() / c.w() + 1) * 0.5 * camera.width();
+      const double y = (1 - c.y() / c.w()) * 0.5 * camera.height();
+      lower_x = std::min(lower_x, x), upper_x = std::max(upper_x, x);
+      lower_y = std::min(lower_y, y), upper_y = std::max(upper_y, y);
+    }
+    if (in_front) {
+      if (!(upper_x >= region.x0 && lower_x <= region.x1 && upper_y >= region.y0 && lower_y <= region.y1)) continue;
+      const auto tile_of = [&](double v, int origin, int count) {
+        return std::clamp(static_cast<int>(std::floor((std::clamp(v, -1e9, 1e9) - origin) / tile)), 0, count - 1);
+      };
+      tx0 = tile_of(lower_x, region.x0, tiles_x), tx1 = tile_of(upper_x, region.x0, tiles_x);
+      ty0 = tile_of(lower_y, region.y0, tiles_y), ty1 = tile_of(upper_y, region.y0, tiles_y);
+    }
+    for (int ty = ty0; ty <= ty1; ++ty)
+      for (int tx = tx0; tx <= tx1; ++tx) bins[std::size_t(ty) * tiles_x + tx].push_back(static_cast<uint32_t>(t));
+  }
+  ProgressReporter progress("raster", static_cast<uint64_t>(tiles_x) * tiles_y, "tiles", request.quiet);
+  tbb::enumerable_thread_specific<RasterStatistics> tile_statistics;
+  tbb::parallel_for(0, tiles_x * tiles_y, [&](int index) {
+    const int x0 = region.x0 + (index % tiles_x) * tile, y0 = region.y0 + (index / tiles_x) * tile;
+    const int x1 = std::min(x0 + tile, region.x1), y1 = std::min(y0 + tile, region.y1);
+    const int w = x1 - x0;
+    Rasterizer rasterizer(camera.width(), camera.height());
+    rasterizer.set_region(x0, y0, x1, y1);
+    rasterizer.clear_depth();
+    TileBuffers buffers;
+    buffers.triangle.assign(std::size_t(w) * (y1 - y0), UINT32_MAX);
+    buffers.varyings.assign(buffers.triangle.size() * stride, 0.0);
+    std::array<RasterVertex, 3> corners;
+    for (const uint32_t id : bins[index]) {
+      const std::size_t t = id;
+      for (int k = 0; k < 3; ++k) {
+        corners[k].clip = clip_positions[3 * t + k];
+        std::copy_n(&corner_varyings[(3 * t + k) * stride], varying_count, corners[k].varyings.begin());
+      }
+      rasterizer.draw_triangle(corners[0], corners[1], corners[2], varying_count, [&](const Fragment& fragment) {
+        const std::size_t pixel = std::size_t(fragment.y - y0) * w + (fragment.x - x0);
+        buffers.triangle[pixel] = id;
+        std::copy_n(fragment.varyings, varying_count, buffers.varyings.begin() + pixel * stride);
+        return true;
+      });
+    }
+    TraceContext& context = contexts.local();
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const std::size_t pixel = std::size_t(y - y0) * w + (x - x0);
+        const uint32_t t = buffers.triangle[pixel];
+        film.at(x - region.x0, y - region.y0) =
+            t == UINT32_MAX ? scene.background_along(camera.generate_ray(x + 0.5, y + 0.5).direction)
+                            : shader.shade(t, buffers.varyings.data() + pixel * stride,
+                                           flat_colors.empty() ? Color() : flat_colors[t], context);
+      }
+    RasterStatistics& total = tile_statistics.local();
+    const RasterStatistics& own = rasterizer.statistics();
+    total.fragments += own.fragments;
+    total.written += own.written;
+    progress.advance();
+  });
+  progress.finish();
+  statistics.add_phase("rasterize and shade", raster_time.seconds());
+  RayCounts shadow_rays;
+  for (const TraceContext& context : contexts) shadow_rays += context.counts;
+  statistics.rays += shadow_rays;
+  statistics.pixels += static_cast<uint64_t>(region.width()) * region.height();
+  uint64_t fragments = 0, written = 0;
+  for (const RasterStatistics& s : tile_statistics) {
+    fragments += s.fragments;
+    written += s.written;
+  }
+  statistics.extra["raster"] = {{"shading", shading_name(scene.raster.shading)},
+                                {"segments", scene.raster.segments},
+                                {"triangles", triangle_count},
+                                {"fragments", fragments},
+                                {"depth_writes", written}};
+}
+
+}  // namespace candela

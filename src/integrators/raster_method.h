@@ -1,0 +1,33 @@
+// The `raster` method (SPEC §9; 000 §3): the scene tessellated (Shape::tessellate), drawn by the
+// scanline z-buffer rasterizer and shaded with the same local model and lights as the ray
+// tracer (src/integrators/direct_lighting.h), in one of four modes (setting raster.shading):
+//
+//   flat        one intensity per triangle: the local model at its centroid with its face
+//               normal (000 §3.1) — Mach bands at every edge (000 §3.1.1);
+//   gouraud     the local model at the vertices with the averaged vertex normals, intensities
+//               interpolated across the triangle, incrementally along each scanline
+//               (000 §3.2: I_p2 = I_p1 + ΔI·Δv) — a highlight inside a triangle is lost;
+//   phong       normals (and positions, uvs) interpolated, the local model per pixel (000 §3.3);
+//   dotproduct  N·L and the specular term of each light interpolated, combined per pixel with
+//               the material and the light's intensity there (000 §3.4, "reduced Phong").
+//
+// Vertex normals average the adjacent face normals of the same object, except across edges
+// sharper than raster.crease_angle (000 §3.2.1: two normals at a vertex). Shading is deferred:
+// the rasterizer keeps the nearest triangle's interpolated values per pixel and each pixel is
+// shaded once, so the image does not depend on the drawing order of hidden triangles or on the
+// thread count. Surfaces are two-sided; uncovered pixels show the background or environment.
+// Not drawn here: reflection, refraction, the see-through blend, bump mapping (ray tracing's).
+#pragma once
+
+#include "integrators/method.h"
+
+namespace candela {
+
+class RasterMethod final : public Method {
+ public:
+  std::string_view name() const override { return "raster"; }
+  void render(const Scene& scene, const RenderRequest& request, Film& film,
+              RunStatistics& statistics) const override;
+};
+
+}  // namespace candela
