@@ -28,3 +28,6 @@ run sphere_1M --sphere 1000000 --accel "${accels[@]}"
 # 000 §5.7.2: 10,584 objects, the list against the accelerators (fewer rays: the list is slow).
 run sphere_field_10584 scenes/sphere-field-10584.json --accel list bvh grid octree embree-exact \
   --width 128 --height 128 --rays 16384
+# Issue 6: the scanline rasterizer on every model (one thread, its own framing; see benchmarks.md).
+echo "bench: raster" >&2
+"$candela" bench --raster "$models"/*.obj --json "$out/raster.json" > "$out/raster.txt"

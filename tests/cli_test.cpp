@@ -220,6 +220,23 @@ TEST_F(Cli, BenchWritesTheTableJsonAndRayDump) {
   EXPECT_TRUE(fs::exists(directory_ / "rays" / "rays.json"));
 }
 
+TEST_F(Cli, BenchRasterReportsEveryPass) {
+  std::string output;
+  ASSERT_EQ(run("bench --raster --sphere 200 --width 64 --height 48 --repeat 1 --min-time 0 --json r.json -q", output), 0)
+      << output;
+  std::ifstream json_file(directory_ / "r.json");
+  const nlohmann::json json = nlohmann::json::parse(json_file);
+  ASSERT_EQ(json["raster"].size(), 1u);
+  const auto& passes = json["raster"][0]["passes"];
+  ASSERT_EQ(passes.size(), 4u);
+  for (const auto& pass : passes) {
+    EXPECT_GT(pass["written"].get<uint64_t>(), 0u) << pass;
+    EXPECT_GT(pass["mtriangles_per_s"].get<double>(), 0) << pass;
+  }
+  // The ray-set options do not apply to the rasterizer.
+  EXPECT_EQ(run("bench --raster --sphere 200 --accel bvh -q", output), 2) << output;
+}
+
 TEST_F(Cli, BenchMeasuresASceneFile) {
   // A scene's primitives (spheres and a plane here), every accelerator agreeing ray for ray.
   write("s.json", R"({"format": "candela/1", "camera": {}, "shapes": [
