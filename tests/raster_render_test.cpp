@@ -138,6 +138,117 @@ TEST(RasterRender, SameBytesWhateverTheThreadCount) {
   }
 }
 
+// The mean per-pixel difference between two images over the pixels both cover (not the
+// background), and how many pixels one covers and the other does not.
+struct Comparison {
+  double mean = 0;
+  int covered = 0, coverage_differs = 0;
+};
+Comparison compare(const Film& a, const Film& b, const Color& background) {
+  Comparison result;
+  double total = 0;
+  for (int y = 0; y < a.height(); ++y)
+    for (int x = 0; x < a.width(); ++x) {
+      const bool a_background = a.at(x, y) == background, b_background = b.at(x, y) == background;
+      if (a_background != b_background) ++result.coverage_differs;
+      if (a_background || b_background) continue;
+      ++result.covered;
+      total += difference(a.at(x, y), b.at(x, y));
+    }
+  result.mean = result.covered ? total / result.covered : 0;
+  return result;
+}
+
+// Review findings on issue 6, each a test that failed before its fix.
+TEST(RasterRender, ShadowsMatchTheRayTracerWithoutSelfShadowing) {
+  // A coarse sphere over a floor, shadows on: the sphere's own triangles lie inside it, yet it
+  // must not shadow itself, and its shadow on the floor must be where ray casting puts it.
+  const std::string body = R"(
+    "camera": {"eye": [0, 3, 6], "target": [0, 0.5, 0], "fov": 50, "width": 64, "height": 48},
+    "background": [0, 0, 1], "ambient": 0.1,
+    "lights": [{"type": "point", "position": [2, 6, 2]}],
+    "shapes": [{"type": "sphere", "center": [0, 1, 0], "radius": 1, "material": {"kd": [0.8, 0.5, 0.3]}},
+               {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": {"kd": 0.7}}],
+    "raster": {"segments": 24, "shadows": true})";
+  const auto scene = scene_from(body);
+  const Comparison c = compare(render(*scene, "raster"), render(*scene, "local"), Color(0, 0, 1));
+  EXPECT_GT(c.covered, 2000);
+  EXPECT_LT(c.mean, 0.02) << c.mean;  // self-shadowing made the lit half of the sphere ambient-only
+}
+
+TEST(RasterRender, TheTerminatorFollowsTheInterpolatedNormal) {
+  // Lit from the side: the light-dark boundary of a coarse Phong sphere is where the
+  // interpolated normal turns from the light, not a staircase along the facets.
+  const std::string body = R"(
+    "camera": {"eye": [0, 0, 5], "target": [0, 0, 0], "fov": 40, "width": 64, "height": 64},
+    "background": [0, 0, 1],
+    "lights": [{"type": "point", "position": [10, 2, 0]}],
+    "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1.2, "material": {"kd": 0.7}}],
+    "raster": {"segments": 24}, "local": {"shadows": false})";
+  const auto scene = scene_from(body);
+  const Film raster = render(*scene, "raster"), traced = render(*scene, "local");
+  int disagree = 0;
+  for (int y = 0; y < raster.height(); ++y)
+    for (int x = 0; x < raster.width(); ++x) {
+      if (raster.at(x, y) == Color(0, 0, 1) || traced.at(x, y) == Color(0, 0, 1)) continue;
+      if ((raster.at(x, y).r > 0) != (traced.at(x, y).r > 0)) ++disagree;
+    }
+  EXPECT_LT(disagree, 20) << disagree;
+}
+
+TEST(RasterRender, PlanesAreRefinedSoGouraudLightsTheFloor) {
+  // A floor under a point light: a plane's few huge triangles would put Gouraud's vertices a
+  // hundred scene sizes away and leave the floor unlit.
+  const std::string body = R"(
+    "camera": {"eye": [0, 2, 6], "target": [0, 0, 0], "fov": 60, "width": 48, "height": 36},
+    "background": [0, 0, 1], "ambient": 0.05,
+    "lights": [{"type": "point", "position": [0, 3, 0]}],
+    "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": {"kd": 0.8}}])";
+  for (const char* shading : {"flat", "gouraud", "dotproduct"}) {
+    const auto scene = scene_from(body, {std::string("raster.shading=\"") + shading + "\""});
+    const Comparison c = compare(render(*scene, "raster"), render(*scene, "local"), Color(0, 0, 1));
+    EXPECT_GT(c.covered, 1000) << shading;
+    // Flat shading keeps its steps (one value per triangle); the others follow the light.
+    EXPECT_LT(c.mean, std::string(shading) == "flat" ? 0.1 : 0.03) << shading << " " << c.mean;
+  }
+  // A scene of planes only, the eye near them: the floor is drawn, not left to the background.
+  const auto only_plane = scene_from(R"("camera": {"eye": [0, 0, 0], "target": [0, -0.5, -1], "width": 32, "height": 24},
+      "background": [0, 0, 1], "ambient": 1, "shapes": [{"type": "plane", "point": [0, -1, 0], "normal": [0, 1, 0]}])");
+  const Comparison c = compare(render(*only_plane, "raster"), render(*only_plane, "local"), Color(0, 0, 1));
+  EXPECT_EQ(c.coverage_differs, 0);
+  EXPECT_GT(c.covered, 300);
+}
+
+TEST(RasterRender, MeshesKeepTheirOwnNormals) {
+  // The cube mesh with flat normals (the mesh default) is faceted in both methods.
+  const std::string source = CANDELA_SOURCE_DIR;
+  const std::string body = R"(
+    "camera": {"eye": [2.5, 2, 3], "target": [0.5, 0.5, 0.5], "width": 48, "height": 36},
+    "background": [0, 0, 1], "ambient": 0.1, "lights": [{"type": "point", "position": [4, 5, 3]}],
+    "shapes": [{"type": "mesh", "file": ")" + source + R"(/scenes/meshes/cube.obj", "material": {"kd": 0.7}}],
+    "local": {"shadows": false})";
+  const auto scene = scene_from(body);
+  const Comparison c = compare(render(*scene, "raster"), render(*scene, "local"), Color(0, 0, 1));
+  EXPECT_GT(c.covered, 200);
+  EXPECT_LT(c.mean, 1e-6) << c.mean;
+}
+
+TEST(RasterRender, CameraInsideASphereAndOrthographicViews) {
+  // Most triangles behind the eye: clipped, not smeared over every tile; the inside is drawn.
+  const auto inside = scene_from(R"("camera": {"eye": [0, 0, 0], "target": [0, 0, -1], "width": 32, "height": 24},
+      "background": [0, 0, 1], "ambient": 1, "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 3}])");
+  const Comparison c = compare(render(*inside, "raster"), render(*inside, "local"), Color(0, 0, 1));
+  EXPECT_EQ(c.coverage_differs, 0);
+  EXPECT_EQ(c.covered, 32 * 24);
+  const auto orthographic = scene_from(R"("camera": {"type": "orthographic", "eye": [0, 0, 5], "target": [0, 0, 0], "window": [-2, 2, -1.5, 1.5], "width": 32, "height": 24},
+      "background": [0, 0, 1], "ambient": 0.2, "lights": [{"type": "directional", "direction": [0, 0, -1]}],
+      "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1}], "raster": {"segments": 128}, "local": {"shadows": false})");
+  const Comparison o = compare(render(*orthographic, "raster"), render(*orthographic, "local"), Color(0, 0, 1));
+  EXPECT_GT(o.covered, 150);
+  EXPECT_LT(o.coverage_differs, 12);
+  EXPECT_LT(o.mean, 0.01);
+}
+
 TEST(RasterRender, SettingsAreChecked) {
   EXPECT_THROW(scene_from(kSphereScene, {"raster.shading=\"toon\""}), InputError);
   EXPECT_THROW(scene_from(kSphereScene, {"raster.segments=2"}), InputError);

@@ -68,18 +68,44 @@ class RasterShader {
   // The unit vector toward the viewer from p.
   Vec3 toward_viewer(const Vec3& p) const { return perspective_ ? normalize(eye_ - p) : -view_direction_; }
 
+  // A point of a triangle moved onto the primitive's true surface along the face normal: a
+  // curved shape's triangles lie inside it (their vertices on it), and a shadow ray leaving
+  // from inside would be stopped by the shape itself. Planar shapes are hit at t = 0: kept.
+  Vec3 on_surface(uint32_t triangle, const Vec3& p) const {
+    const std::size_t c = 3 * std::size_t(triangle);
+    const Vec3* corners = &triangles_.corner_positions[c];
+    const double reach = std::max({length(corners[1] - corners[0]), length(corners[2] - corners[1]),
+                                   length(corners[0] - corners[2])});
+    const Vec3& n = triangles_.face_normals[triangle];
+    const Shape& shape = *scene_.primitives[triangles_.primitives[triangle]].shape;
+    double best = kInfinity;
+    Vec3 best_point = p;
+    for (const Vec3& direction : {n, -n}) {
+      SurfaceHit hit;
+      if (shape.intersect(Ray{p, direction, 0.0, reach}, hit) && hit.t < best) {
+        best = hit.t;
+        best_point = hit.position;
+      }
+    }
+    return best_point;
+  }
+
   // The local model at a surface point (the ray tracer's own, shadows as raster.shadows).
   Color local_model(uint32_t triangle, const Vec3& position, const Vec3& object_position, const Vec2& uv,
                     const Vec3& normal, TraceContext& context) const {
     Intersection hit;
     hit.primitive = triangles_.primitives[triangle];
-    hit.surface.position = position;
+    hit.surface.position = on_surface(triangle, position);
     hit.surface.object_position = object_position;
     hit.surface.uv = uv;
-    hit.surface.geometric_normal = triangles_.face_normals[triangle];
+    const Vec3& face_normal = triangles_.face_normals[triangle];
     const double n_length = length(normal);
-    hit.surface.shading_normal = n_length > 0 && std::isfinite(n_length) ? normal / n_length
-                                                                          : hit.surface.geometric_normal;
+    hit.surface.shading_normal = n_length > 0 && std::isfinite(n_length) ? normal / n_length : face_normal;
+    // The interpolated normal stands for the true surface's normal everywhere the model asks
+    // for the geometric one (which side a light is on, the shadow-ray offset, the spherical
+    // mapping): the face normal would step the terminator along the facets. It keeps the
+    // face's side.
+    hit.surface.geometric_normal = face_forward(hit.surface.shading_normal, face_normal);
     const Material& material = scene_.materials[triangles_.materials[triangle]];
     const SurfaceProperties at = material.at(hit.surface);
     return local_illumination(scene_, hit, at, toward_viewer(position), settings_.shadows, context, -1);
@@ -167,7 +193,7 @@ class RasterShader {
 
  private:
   Color dot_product(uint32_t triangle, const double* v, TraceContext& context) const {
-    const Vec3 p{v[kPosition], v[kPosition + 1], v[kPosition + 2]};
+    const Vec3 p = on_surface(triangle, {v[kPosition], v[kPosition + 1], v[kPosition + 2]});
     SurfaceHit hit;
     hit.position = p;
     hit.object_position = {v[kObjectPosition], v[kObjectPosition + 1], v[kObjectPosition + 2]};
@@ -214,30 +240,33 @@ void RasterMethod::render(const Scene& scene, const RenderRequest& request, Film
   const PixelRect region = request.region;
   const Camera& camera = *scene.camera;
   Stopwatch tessellation_time;
-  // Unbounded shapes (planes) are cut by a box around the scene and the eye, far beyond both:
-  // a floor then reaches a horizon a hundred scene sizes away.
-  Bounds3 reach = scene.bounds();
-  reach.extend(camera.eye_position());
-  const double size = std::max(length(reach.diagonal()), 1e-9);
-  const Vec3 middle = (reach.lower + reach.upper) * 0.5;
-  const Vec3 half{100 * size, 100 * size, 100 * size};
-  const Bounds3 clip{middle - half, middle + half};
-  const TessellatedScene triangles = tessellate_scene(scene, scene.raster.segments, scene.raster.crease_angle, clip);
-  statistics.add_phase("tessellate", tessellation_time.seconds());
+  // Unbounded shapes (planes) are cut by a box around the scene, the eye and the planes' points
+  // nearest the eye, a hundred times its size: a floor reaches a horizon far beyond the scene.
+  const Bounds3 clip = raster_clip_box(scene, camera.eye_position(), 100);
+  // Depth range: everything inside the clip box; near small enough for the closest surface.
+  const double far = 2 * length(clip.diagonal());
+  const double near = far * 1e-8;
+  const Eigen::Matrix4d clip_from_world = camera.view_projection(near, far);
+  TessellationRequest tessellation;
+  tessellation.max_segments = scene.raster.segments;
+  tessellation.crease_angle_degrees = scene.raster.crease_angle;
+  tessellation.clip = clip;
+  tessellation.has_view = true;
+  tessellation.clip_from_world = clip_from_world;
+  tessellation.image_width = camera.width();
+  tessellation.eye = camera.eye_position();
+  const TessellatedScene triangles = tessellate_scene(scene, tessellation);
+  const double tessellation_seconds = tessellation_time.seconds();
 
   Stopwatch raster_time;
   const RasterShader shader(scene, triangles);
   const int varying_count = shader.varying_count();
-  // Depth range: everything inside the clip box; near small enough for the closest surface.
-  const double far = 400 * size;
-  const double near = far * 1e-7;
-  const Eigen::Matrix4d clip_from_world = camera.view_projection(near, far);
   const std::size_t triangle_count = triangles.triangle_count();
   // Per-vertex work once: clip coordinates and varyings (Gouraud's vertex intensities), the
   // varyings packed (varying_count per corner).
   const std::size_t stride = static_cast<std::size_t>(std::max(varying_count, 1));
   std::vector<Eigen::Vector4d> clip_positions(3 * triangle_count);
-  std::vector<double> corner_varyings(3 * triangle_count * stride);
+  std::vector<double> corner_varyings(varying_count > 0 ? 3 * triangle_count * stride : 0);
   std::vector<Color> flat_colors(scene.raster.shading == RasterShading::flat ? triangle_count : 0);
   tbb::enumerable_thread_specific<TraceContext> contexts;
   tbb::parallel_for(std::size_t(0), triangle_count, [&](std::size_t t) {
@@ -257,12 +286,22 @@ void RasterMethod::render(const Scene& scene, const RenderRequest& request, Film
   const int tiles_y = (region.height() + tile - 1) / tile;
   std::vector<std::vector<uint32_t>> bins(std::size_t(tiles_x) * tiles_y);
   for (std::size_t t = 0; t < triangle_count; ++t) {
+    // Outside one of the six clip planes with all three corners: in no tile.
+    int outside_all = 0x3F;
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector4d& c = clip_positions[3 * t + k];
+      const int outside = (c.x() < -c.w()) | (c.x() > c.w()) << 1 | (c.y() < -c.w()) << 2 | (c.y() > c.w()) << 3 |
+                          (c.z() < -c.w()) << 4 | (c.z() > c.w()) << 5;
+      outside_all &= outside;
+    }
+    if (outside_all != 0) continue;
     int tx0 = 0, ty0 = 0, tx1 = tiles_x - 1, ty1 = tiles_y - 1;
     bool in_front = true;
     double lower_x = kInfinity, upper_x = -kInfinity, lower_y = kInfinity, upper_y = -kInfinity;
     for (int k = 0; k < 3; ++k) {
       const Eigen::Vector4d& c = clip_positions[3 * t + k];
-      if (!(c.w() > near)) {
+      // Behind the near plane: the clipped polygon may reach anywhere on screen.
+      if (!(c.z() >= -c.w()) || !(c.w() > 0)) {
         in_front = false;
         break;
       }
@@ -325,7 +364,7 @@ void RasterMethod::render(const Scene& scene, const RenderRequest& request, Film
     progress.advance();
   });
   progress.finish();
-  statistics.add_phase("rasterize and shade", raster_time.seconds());
+  const double raster_seconds = raster_time.seconds();
   RayCounts shadow_rays;
   for (const TraceContext& context : contexts) shadow_rays += context.counts;
   statistics.rays += shadow_rays;
@@ -335,8 +374,11 @@ void RasterMethod::render(const Scene& scene, const RenderRequest& request, Film
     fragments += s.fragments;
     written += s.written;
   }
+  // Sub-phases of "render", kept out of the phase list so the total is not counted twice.
   statistics.extra["raster"] = {{"shading", shading_name(scene.raster.shading)},
                                 {"segments", scene.raster.segments},
+                                {"tessellate_seconds", tessellation_seconds},
+                                {"rasterize_and_shade_seconds", raster_seconds},
                                 {"triangles", triangle_count},
                                 {"fragments", fragments},
                                 {"depth_writes", written}};
