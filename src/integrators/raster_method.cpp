@@ -338,7 +338,8 @@ void RasterMethod::render(const Scene& scene, const RenderRequest& request, Film
       const std::size_t t = id;
       for (int k = 0; k < 3; ++k) {
         corners[k].clip = clip_positions[3 * t + k];
-        std::copy_n(&corner_varyings[(3 * t + k) * stride], varying_count, corners[k].varyings.begin());
+        if (varying_count > 0)
+          std::copy_n(corner_varyings.data() + (3 * t + k) * stride, varying_count, corners[k].varyings.begin());
       }
       rasterizer.draw_triangle(corners[0], corners[1], corners[2], varying_count, [&](const Fragment& fragment) {
         const std::size_t pixel = std::size_t(fragment.y - y0) * w + (fragment.x - x0);
