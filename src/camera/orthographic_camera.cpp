@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "camera/view_matrix.h"
+
 namespace candela {
 
 OrthographicCamera::OrthographicCamera(const Vec3& eye, const Vec3& target, const Vec3& up,
@@ -20,14 +22,7 @@ OrthographicCamera::OrthographicCamera(const Vec3& eye, const Vec3& target, cons
 }
 
 Eigen::Matrix4d OrthographicCamera::view_projection(double near, double far) const {
-  const Vec3 rows[3] = {x_unit_, y_unit_, -gaze_};
-  Eigen::Matrix4d view = Eigen::Matrix4d::Identity();
-  for (int r = 0; r < 3; ++r) {
-    view(r, 0) = rows[r].x;
-    view(r, 1) = rows[r].y;
-    view(r, 2) = rows[r].z;
-    view(r, 3) = -dot(rows[r], eye_);
-  }
+  const Eigen::Matrix4d view = view_matrix(x_unit_, y_unit_, gaze_, eye_);
   // u = l + (r − l)(ndc_x + 1)/2 and v = b + (t − b)(ndc_y + 1)/2, as generate_ray.
   Eigen::Matrix4d projection = Eigen::Matrix4d::Identity();
   projection(0, 0) = 2 / (right_ - left_);

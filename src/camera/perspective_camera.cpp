@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "camera/view_matrix.h"
 #include "math/constants.h"
 
 namespace candela {
@@ -25,15 +26,7 @@ PerspectiveCamera::PerspectiveCamera(const Vec3& eye, const Vec3& target, const 
 
 Eigen::Matrix4d PerspectiveCamera::view_projection(double near, double far) const {
   // View space: x along X, y along Y, looking down −z (z = −G·(p − E)).
-  const Vec3 x_unit = normalize(half_width_), y_unit = normalize(half_height_);
-  Eigen::Matrix4d view = Eigen::Matrix4d::Identity();
-  const Vec3 rows[3] = {x_unit, y_unit, -gaze_};
-  for (int r = 0; r < 3; ++r) {
-    view(r, 0) = rows[r].x;
-    view(r, 1) = rows[r].y;
-    view(r, 2) = rows[r].z;
-    view(r, 3) = -dot(rows[r], eye_);
-  }
+  const Eigen::Matrix4d view = view_matrix(normalize(half_width_), normalize(half_height_), gaze_, eye_);
   // ndc x = (x_v / −z_v)/tanθ and ndc y = (y_v / −z_v)/tanφ: generate_ray's direction
   // G + (2x'−1)H + (2y'−1)V read backwards.
   Eigen::Matrix4d projection = Eigen::Matrix4d::Zero();

@@ -102,23 +102,7 @@ void Cone::tessellate(const TessellationSettings& settings, TriangleMesh& mesh) 
   // The frame's own x and y axes (AxialFrame builds them by this same call).
   Vec3 x_axis, y_axis;
   orthonormal_basis(frame_.axis(), x_axis, y_axis);
-  const Vec3 base_center = frame_.base();
-  const Vec3 top_center = frame_.base() + frame_.axis() * frame_.height();
-  // As for the cylinder; a zero radius makes its ring one apex vertex.
-  append_revolution_grid({circle_points(base_center, x_axis, y_axis, base_radius_, circle),
-                          circle_points(top_center, x_axis, y_axis, cap_radius_, circle)},
-                         /*wrap_rings=*/false, out);
-  if (!capped_) return;
-  if (cap_radius_ > 0) {
-    append_revolution_grid({circle_points(top_center, x_axis, y_axis, cap_radius_, circle),
-                            circle_points(top_center, x_axis, y_axis, 0, circle)},
-                           /*wrap_rings=*/false, out);
-  }
-  if (base_radius_ > 0) {
-    append_revolution_grid({circle_points(base_center, x_axis, y_axis, base_radius_, circle, /*clockwise=*/true),
-                            circle_points(base_center, x_axis, y_axis, 0, circle, /*clockwise=*/true)},
-                           /*wrap_rings=*/false, out);
-  }
+  append_truncated_cone(frame_.base(), frame_.axis(), frame_.height(), x_axis, y_axis, base_radius_, cap_radius_, capped_, circle, out);
 }
 
 }  // namespace candela

@@ -85,22 +85,7 @@ void Cylinder::tessellate(const TessellationSettings& settings, TriangleMesh& me
   // The frame's own x and y axes (AxialFrame builds them by this same call).
   Vec3 x_axis, y_axis;
   orthonormal_basis(frame_.axis(), x_axis, y_axis);
-  const Vec3 base_center = frame_.base();
-  const Vec3 top_center = frame_.base() + frame_.axis() * frame_.height();
-  // Side: v = z / height. Caps: v = 0 on the rim, 1 at the centre; the base cap's u runs
-  // clockwise about the axis (counter-clockwise seen from outside), hence its reversed ring.
-  // Every rim point is computed by circle_points from the same centre, so side and caps share
-  // them bit for bit.
-  append_revolution_grid({circle_points(base_center, x_axis, y_axis, radius_, circle),
-                          circle_points(top_center, x_axis, y_axis, radius_, circle)},
-                         /*wrap_rings=*/false, out);
-  if (!capped_) return;
-  append_revolution_grid({circle_points(top_center, x_axis, y_axis, radius_, circle),
-                          circle_points(top_center, x_axis, y_axis, 0, circle)},
-                         /*wrap_rings=*/false, out);
-  append_revolution_grid({circle_points(base_center, x_axis, y_axis, radius_, circle, /*clockwise=*/true),
-                          circle_points(base_center, x_axis, y_axis, 0, circle, /*clockwise=*/true)},
-                         /*wrap_rings=*/false, out);
+  append_truncated_cone(frame_.base(), frame_.axis(), frame_.height(), x_axis, y_axis, radius_, radius_, capped_, circle, out);
 }
 
 }  // namespace candela

@@ -170,4 +170,28 @@ inline void append_revolution_grid(const std::vector<std::vector<Vec3>>& rings, 
   }
 }
 
+// A truncated cone about the axis from base_center toward axis·height (a cylinder when both
+// radii are equal): the side as one band — v = z / height — and, when capped, the caps whose
+// radius is > 0 — v = 0 on the rim, 1 at the centre; the base cap's u runs clockwise about the
+// axis (counter-clockwise seen from outside), hence its reversed ring. Every rim point is
+// computed by circle_points from the same centre, so side and caps share them bit for bit, and
+// a zero radius makes its ring one apex vertex. x_axis, y_axis: the shape's own frame axes.
+inline void append_truncated_cone(const Vec3& base_center, const Vec3& axis, double height, const Vec3& x_axis,
+                                  const Vec3& y_axis, double base_radius, double cap_radius, bool capped,
+                                  const std::vector<Vec2>& circle, MeshAppender& out) {
+  const Vec3 top_center = base_center + axis * height;
+  append_revolution_grid({circle_points(base_center, x_axis, y_axis, base_radius, circle),
+                          circle_points(top_center, x_axis, y_axis, cap_radius, circle)},
+                         /*wrap_rings=*/false, out);
+  if (!capped) return;
+  if (cap_radius > 0)
+    append_revolution_grid({circle_points(top_center, x_axis, y_axis, cap_radius, circle),
+                            circle_points(top_center, x_axis, y_axis, 0, circle)},
+                           /*wrap_rings=*/false, out);
+  if (base_radius > 0)
+    append_revolution_grid({circle_points(base_center, x_axis, y_axis, base_radius, circle, /*clockwise=*/true),
+                            circle_points(base_center, x_axis, y_axis, 0, circle, /*clockwise=*/true)},
+                           /*wrap_rings=*/false, out);
+}
+
 }  // namespace candela

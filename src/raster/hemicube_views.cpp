@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "camera/view_matrix.h"
+
 namespace candela {
 
 HemicubeFaceAxes hemicube_face_axes(const Vec3& normal, const Vec3& tangent_hint, HemicubeFace face) {
@@ -43,14 +45,7 @@ Eigen::Matrix4d hemicube_view_projection(const Vec3& center, const Vec3& normal,
   const HemicubeFaceAxes axes = hemicube_face_axes(normal, tangent_hint, face);
   // View space as PerspectiveCamera::view_projection builds it: x along right, y along up,
   // looking down −z; then the OpenGL frustum with tan 45° = 1 across and up.
-  Eigen::Matrix4d view = Eigen::Matrix4d::Identity();
-  const Vec3 rows[3] = {axes.right, axes.up, -axes.forward};
-  for (int r = 0; r < 3; ++r) {
-    view(r, 0) = rows[r].x;
-    view(r, 1) = rows[r].y;
-    view(r, 2) = rows[r].z;
-    view(r, 3) = -dot(rows[r], center);
-  }
+  const Eigen::Matrix4d view = view_matrix(axes.right, axes.up, axes.forward, center);
   Eigen::Matrix4d projection = Eigen::Matrix4d::Zero();
   projection(0, 0) = 1;
   projection(1, 1) = 1;
