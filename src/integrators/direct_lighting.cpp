@@ -80,7 +80,8 @@ Color local_illumination(const Scene& scene, const Intersection& hit, const Surf
   // Two-sided shading: the normals turned toward the viewer.
   const Vec3 N = face_forward(surface.shading_normal, V);
   const Vec3 geometric = face_forward(surface.geometric_normal, V);
-  Color result = at.ka * scene.ambient;
+  // A self-luminous surface shows its emitted exitance whatever lights it (000 eq. 6-7's E_i).
+  Color result = at.ka * scene.ambient + material.emission;
   // A pure mirror or clear glass has no local diffuse or specular part: no shadow rays.
   if (at.kd.is_black() && at.ks <= 0) return result;
   const double offset = scene.ray_offset(surface.position);

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "integrators/local.h"
+#include "integrators/radiosity_method.h"
 #include "integrators/raster_method.h"
 #include "integrators/whitted.h"
 
@@ -19,6 +20,8 @@ const std::array kEntries = {
                 []() -> std::unique_ptr<Method> { return std::make_unique<WhittedMethod>(); }},
     MethodEntry{"raster", "scanline z-buffer rasterizer, flat / Gouraud / Phong / dot-product shading (000 §3)",
                 []() -> std::unique_ptr<Method> { return std::make_unique<RasterMethod>(); }},
+    MethodEntry{"radiosity", "classic radiosity: hemicube form factors, progressive refinement with substructuring (000 §6)",
+                []() -> std::unique_ptr<Method> { return std::make_unique<RadiosityMethod>(); }},
 };
 }  // namespace
 

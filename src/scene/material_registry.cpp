@@ -104,6 +104,7 @@ Material read_classic(const JsonNode& node, const LoadContext& context, Specular
     }
   }
   material.absorption = node.color("absorption", Color(), Range::non_negative());
+  material.emission = node.color("emission", Color(), Range::non_negative());  // 000 eq. 6-7's E
   if (const auto transparency = node.get("transparency")) material.transparency = read_transparency(*transparency);
   if (const auto bump = node.get("bump")) material.bump = read_bump(*bump, context);
   return material;

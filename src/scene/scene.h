@@ -49,6 +49,27 @@ struct RasterSettings {
   bool shadows = false;        // shadow rays from the shaded points (through the accelerator)
 };
 
+// The radiosity method (SPEC §10; 000 §6): the "radiosity" object of the scene file.
+enum class RadiositySolver { progressive, gauss_seidel, gaussian };
+// hemicube: 000 §6.4; ray_cast: Lambert's point-to-polygon form factor times the visible fraction
+// of ray_cast_samples² rays through the accelerator (radiosity/ray_cast_form_factors.h).
+enum class RadiosityFormFactors { hemicube, ray_cast };
+
+struct RadiositySettings {
+  RadiositySolver solver = RadiositySolver::progressive;
+  RadiosityFormFactors form_factors = RadiosityFormFactors::hemicube;
+  int hemicube_resolution = 100;  // even, ≥ 2 (000 §6.4)
+  int ray_cast_samples = 4;       // per side of the source: 16 visibility rays per form factor
+  double patch_size = 0;          // the longest patch edge; 0: the scene size / 8
+  double element_size = 0;        // the longest element edge; 0: patch_size / 2
+  int segments = 16;              // tessellation of curved shapes: divisions of a full turn
+  // progressive: stop when the unshot flux is this fraction of the emitted flux (000 §6.6);
+  // gauss-seidel: stop when a sweep changes no radiosity by more than this fraction of max B.
+  double threshold = 0.001;
+  int max_steps = 100000;  // shots (progressive) or sweeps (gauss-seidel) at most
+  bool ambient = true;     // progressive: add the ambient term of 000 §6.6.2 for display
+};
+
 // One entry of the scene file's "shapes" array.
 struct SceneObject {
   std::string name;
@@ -78,6 +99,7 @@ class Scene {
   WhittedSettings whitted;
   LocalSettings local;
   RasterSettings raster;
+  RadiositySettings radiosity;
   AntialiasingSettings antialiasing;  // the "aa" object
   std::vector<std::string> warnings;
 

@@ -127,11 +127,37 @@ class SceneReader {
       scene_->raster.shadows = raster->boolean("shadows", false);
       raster->finish();
     }
+    if (const auto radiosity = root_.get("radiosity")) read_radiosity(*radiosity);
     if (const auto local = root_.get("local")) {
       scene_->local.shadows = local->boolean("shadows", true);
       local->finish();
     }
     if (const auto aa = root_.get("aa")) read_antialiasing(*aa);
+  }
+
+  // The radiosity method's settings (SPEC §10, 000 §6); ranges checked, unknown keys refused.
+  void read_radiosity(const JsonNode& node) {
+    RadiositySettings& settings = scene_->radiosity;
+    node.expect_object();
+    const std::string solver = node.choice("solver", "progressive", {"progressive", "gauss-seidel", "gaussian"});
+    settings.solver = solver == "progressive"    ? RadiositySolver::progressive
+                      : solver == "gauss-seidel" ? RadiositySolver::gauss_seidel
+                                                 : RadiositySolver::gaussian;
+    settings.form_factors = node.choice("form_factors", "hemicube", {"hemicube", "ray-cast"}) == "hemicube"
+                                ? RadiosityFormFactors::hemicube
+                                : RadiosityFormFactors::ray_cast;
+    settings.ray_cast_samples = node.integer("ray_cast_samples", 4, {1, 64, false, false});
+    settings.hemicube_resolution = node.integer("hemicube_resolution", 100, {2, 4096, false, false});
+    if (settings.hemicube_resolution % 2 != 0) node.at("hemicube_resolution").fail("hemicube_resolution must be even");
+    settings.patch_size = node.number("patch_size", 0.0, Range::non_negative());
+    settings.element_size = node.number("element_size", 0.0, Range::non_negative());
+    if (settings.patch_size > 0 && settings.element_size > settings.patch_size)
+      node.at("element_size").fail("element_size must not exceed patch_size");
+    settings.segments = node.integer("segments", 16, {3, 4096, false, false});
+    settings.threshold = node.number("threshold", 0.001, {0, 1, true, false});
+    settings.max_steps = node.integer("max_steps", 100000, {1, 1 << 30, false, false});
+    settings.ambient = node.boolean("ambient", true);
+    node.finish();
   }
 
   void read_antialiasing(const JsonNode& aa) {

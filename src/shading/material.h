@@ -57,6 +57,9 @@ struct Material {
   std::shared_ptr<const Texture> kt;         // global specular transmission (refraction)
   std::shared_ptr<const Texture> ior;        // index of refraction for kt (000 eq. 5-6)
   Color absorption;                          // per unit length inside: exp(-a·d) on shadow rays
+  // Emitted exitance E per channel (≥ 0): the self-luminous surfaces of classic radiosity
+  // (000 eq. 6-7's E_i); the local model adds it as seen, independent of the lights.
+  Color emission;
   Transparency transparency;
   BumpMap bump;
 

@@ -1,0 +1,62 @@
+// The `radiosity` method (SPEC §10; 000 §6): classic radiosity on a mesh of patches and elements
+// (radiosity/radiosity_mesh.h, 000 §6.7.1), form factors by the hemicube (000 §6.4) or by ray
+// casting (setting radiosity.form_factors: "hemicube" or "ray-cast", which multiplies Lambert's
+// exact point-to-polygon form factor by the fraction of radiosity.ray_cast_samples² rays through
+// the accelerator that reach the target), and a view-independent solution displayed by ray
+// casting. Every form factor is taken from a surface's centroid (the seed's point approximation).
+//
+// Solvers (setting radiosity.solver):
+//   progressive   000 §6.6 with substructuring (000 §6.7.1): the patch j with the largest unshot
+//                 flux ΔB_j·A_j shoots to the ELEMENTS; every element q receives
+//                     ΔRad_q = ρ_q ΔB_j F_qj                 (000 eqs. 6-12, 6-13)
+//                 with F_qj from q's centroid to the patches (computed once for
+//                 all elements, in parallel: memory elements × patches; each such row sums to 1
+//                 in a closed scene, which the shooter's hemicube with reciprocity
+//                 F_qj = F_jq A_j / A_q does not give elements near the shooter: a furnace then
+//                 shows ±17%). B_q += ΔRad_q; the unshot radiosity of q's patch grows by the
+//                 area-weighted mean of its elements' gains. Until the unshot flux is at most radiosity.threshold
+//                 of the emitted flux, or radiosity.max_steps shots. With radiosity.ambient the
+//                 display adds ρ_q·B_amb (000 §6.6.2), never fed back.
+//   gauss-seidel  the patch system (000 eq. 6-9) with form-factor rows over the patches, by
+//   gaussian      Gauss-Seidel sweeps or LU elimination, then the elements gathered from the
+//                 patch solution, B_q = E_q + ρ_q Σ_j F_qj B_j (000 eq. 6-16), with F_qj from
+//                 every element's centroid to the patches.
+//
+// Display: one ray through each pixel centre; its hit → the element of the hit primitive
+// nearest the hit point → that element's radiosity B (the exitance, view independent), shown
+// directly as the seed's radiosity images are. Misses show the background. Each pixel depends
+// only on the solution and its own ray, and the solution is computed sequentially (the form-factor
+// rows in parallel, each row by one thread into its own place), so the image does not depend on
+// the thread count.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "integrators/method.h"
+#include "radiosity/radiosity_mesh.h"
+
+namespace candela {
+
+// The solution of a scene: the mesh and one displayed radiosity per element.
+struct RadiositySolveResult {
+  RadiosityMesh mesh;
+  std::vector<Color> element_radiosity;  // B_q (+ ρ_q B_amb with the ambient term)
+  std::size_t steps = 0;                 // shots or sweeps (1 for gaussian)
+  double unshot_fraction = 0;            // progressive: on return; 0 for the direct solvers
+  bool converged = true;
+  std::size_t form_factor_rows = 0;      // form-factor rows computed
+  double solve_seconds = 0, mesh_seconds = 0;
+};
+
+// Meshes and solves the scene with scene.radiosity (quiet: no progress bar).
+RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet);
+
+class RadiosityMethod final : public Method {
+ public:
+  std::string_view name() const override { return "radiosity"; }
+  void render(const Scene& scene, const RenderRequest& request, Film& film,
+              RunStatistics& statistics) const override;
+};
+
+}  // namespace candela

@@ -1,0 +1,220 @@
+#include "radiosity/radiosity_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "raster/tessellated_scene.h"
+#include "scene/scene.h"
+#include "shading/material.h"
+
+namespace candela {
+namespace {
+
+// A corner carried through the bisection: world and object positions and the uv, all
+// interpolated linearly along an edge.
+struct MeshCorner {
+  Vec3 position, object_position;
+  Vec2 uv;
+};
+using CornerTriangle = std::array<MeshCorner, 3>;
+
+MeshCorner midpoint(const MeshCorner& a, const MeshCorner& b) {
+  return {(a.position + b.position) * 0.5, (a.object_position + b.object_position) * 0.5,
+          Vec2{(a.uv.x + b.uv.x) * 0.5, (a.uv.y + b.uv.y) * 0.5}};
+}
+
+// 000 §6.7.1: patches (and elements) by binary subdivision. Longest-edge bisection: the
+// longest edge (k, k+1) is halved at m and the triangle becomes (k, m, k+2) and (m, k+1, k+2),
+// both with the original winding. Every split halves the area, and the longest edge of the
+// descendants shrinks geometrically (Rivara's bisection), so the recursion ends; the pieces tile
+// the triangle exactly.
+void bisect(const CornerTriangle& triangle, double max_edge, std::vector<CornerTriangle>& out) {
+  int longest = 0;
+  double longest_length = -1;
+  for (int k = 0; k < 3; ++k) {
+    const double edge = length(triangle[(k + 1) % 3].position - triangle[k].position);
+    if (edge > longest_length) {
+      longest_length = edge;
+      longest = k;
+    }
+  }
+  if (longest_length <= max_edge) {
+    out.push_back(triangle);
+    return;
+  }
+  const MeshCorner& a = triangle[longest];
+  const MeshCorner& b = triangle[(longest + 1) % 3];
+  const MeshCorner& c = triangle[(longest + 2) % 3];
+  const MeshCorner m = midpoint(a, b);
+  bisect({a, m, c}, max_edge, out);
+  bisect({m, b, c}, max_edge, out);
+}
+
+// A surface of the mesh from its corners: area, centroid, normal, and ρ, E of the material
+// evaluated at the centroid (000 eq. 6-7's ρ_i and E_i taken constant over the surface).
+RadiositySurface make_surface(const Scene& scene, const CornerTriangle& triangle, uint32_t primitive) {
+  RadiositySurface surface;
+  for (int k = 0; k < 3; ++k) surface.corners[k] = triangle[k].position;
+  const Vec3 face_cross = cross(triangle[1].position - triangle[0].position, triangle[2].position - triangle[0].position);
+  surface.area = 0.5 * length(face_cross);
+  surface.normal = normalize(face_cross);
+  surface.centroid = (triangle[0].position + triangle[1].position + triangle[2].position) / 3.0;
+  surface.primitive = primitive;
+  surface.object = scene.primitives[primitive].object;
+  surface.material = scene.primitives[primitive].material;
+
+  SurfaceHit hit;
+  hit.position = surface.centroid;
+  hit.geometric_normal = surface.normal;
+  hit.shading_normal = surface.normal;
+  hit.object_position = (triangle[0].object_position + triangle[1].object_position + triangle[2].object_position) / 3.0;
+  hit.uv = Vec2{(triangle[0].uv.x + triangle[1].uv.x + triangle[2].uv.x) / 3.0,
+                (triangle[0].uv.y + triangle[1].uv.y + triangle[2].uv.y) / 3.0};
+  // Any tangent frame in the surface (only bump mapping reads it, and ρ does not depend on it).
+  hit.dpdu = normalize(triangle[1].position - triangle[0].position);
+  hit.dpdv = cross(surface.normal, hit.dpdu);
+  const Material& material = scene.materials[surface.material];
+  const SurfaceProperties properties = material.at(hit);
+  for (int c = 0; c < 3; ++c) surface.reflectance[c] = std::clamp(properties.kd[c], 0.0, 1.0);
+  surface.emission = material.emission;
+  return surface;
+}
+
+FormFactorGeometry geometry_of(const std::vector<RadiositySurface>& surfaces) {
+  FormFactorGeometry geometry;
+  geometry.mesh.positions.reserve(3 * surfaces.size());
+  for (uint32_t i = 0; i < surfaces.size(); ++i) {
+    const auto first = static_cast<uint32_t>(geometry.mesh.positions.size());
+    for (const Vec3& corner : surfaces[i].corners) geometry.mesh.positions.push_back(corner);
+    geometry.mesh.triangles.push_back({first, first + 1, first + 2});
+    geometry.element_of_triangle.push_back(i);
+  }
+  geometry.element_count = static_cast<uint32_t>(surfaces.size());
+  return geometry;
+}
+
+RadiositySystem system_of(const std::vector<RadiositySurface>& surfaces) {
+  RadiositySystem system;
+  for (const RadiositySurface& surface : surfaces) {
+    system.areas.push_back(surface.area);
+    system.reflectance.push_back(surface.reflectance);
+    system.emission.push_back(surface.emission);
+  }
+  return system;
+}
+
+// The point of triangle (a, b, c) closest to p (Ericson, Real-Time Collision Detection §5.1.5).
+Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+  const Vec3 cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const double denominator = 1 / (va + vb + vc);
+  return a + ab * (vb * denominator) + ac * (vc * denominator);
+}
+
+}  // namespace
+
+RadiositySystem RadiosityMesh::patch_system() const { return system_of(patches); }
+RadiositySystem RadiosityMesh::element_system() const { return system_of(elements); }
+
+double RadiosityMesh::patch_area() const {
+  double sum = 0;
+  for (const auto& patch : patches) sum += patch.area;
+  return sum;
+}
+
+double RadiosityMesh::element_area() const {
+  double sum = 0;
+  for (const auto& element : elements) sum += element.area;
+  return sum;
+}
+
+uint32_t RadiosityMesh::element_at(uint32_t primitive, const Vec3& point) const {
+  if (primitive >= elements_of_primitive.size()) return UINT32_MAX;
+  uint32_t best = UINT32_MAX;
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (const uint32_t e : elements_of_primitive[primitive]) {
+    const auto& corners = elements[e].corners;
+    const double distance = length_squared(point - closest_point_on_triangle(point, corners[0], corners[1], corners[2]));
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = e;
+    }
+  }
+  return best;
+}
+
+RadiosityMesh build_radiosity_mesh(const Scene& scene, const RadiosityMeshSettings& settings) {
+  if (settings.segments < 3) {
+    throw std::invalid_argument("radiosity mesh: segments " + std::to_string(settings.segments) + " (must be >= 3)");
+  }
+  if (!(settings.patch_size >= 0) || !std::isfinite(settings.patch_size) || !(settings.element_size >= 0) ||
+      !std::isfinite(settings.element_size)) {
+    throw std::invalid_argument("radiosity mesh: patch_size and element_size must be finite and >= 0");
+  }
+  const Bounds3 clip = settings.clip.empty() ? scene.bounds() : settings.clip;
+  if (clip.empty() || !clip.is_finite()) {
+    throw std::invalid_argument("radiosity mesh: the scene has no bounded shape and no clip box (where planes end)");
+  }
+  const double scene_size = length(clip.diagonal());
+  RadiosityMesh result;
+  result.patch_size = settings.patch_size > 0 ? settings.patch_size : scene_size / 8;
+  result.element_size = settings.element_size > 0 ? settings.element_size : result.patch_size / 2;
+  if (!(result.patch_size > 0)) throw std::invalid_argument("radiosity mesh: the scene has zero size");
+  if (result.element_size > result.patch_size) {
+    throw std::invalid_argument("radiosity mesh: element_size " + std::to_string(result.element_size) +
+                                " exceeds patch_size " + std::to_string(result.patch_size));
+  }
+
+  TessellationRequest request;
+  request.max_segments = settings.segments;
+  request.clip = clip;
+  const TessellatedScene triangles = tessellate_scene(scene, request);
+
+  result.elements_of_primitive.resize(scene.primitives.size());
+  result.first_element.push_back(0);
+  std::vector<CornerTriangle> patch_pieces, element_pieces;
+  for (std::size_t t = 0; t < triangles.triangle_count(); ++t) {
+    CornerTriangle triangle;
+    for (int k = 0; k < 3; ++k) {
+      triangle[k] = {triangles.corner_positions[3 * t + k], triangles.corner_object_positions[3 * t + k],
+                     triangles.corner_uvs[3 * t + k]};
+    }
+    const uint32_t primitive = triangles.primitives[t];
+    patch_pieces.clear();
+    bisect(triangle, result.patch_size, patch_pieces);
+    for (const CornerTriangle& patch : patch_pieces) {
+      const auto patch_index = static_cast<uint32_t>(result.patches.size());
+      result.patches.push_back(make_surface(scene, patch, primitive));
+      element_pieces.clear();
+      bisect(patch, result.element_size, element_pieces);  // 000 §6.7.1: elements within patches
+      for (const CornerTriangle& element : element_pieces) {
+        result.elements_of_primitive[primitive].push_back(static_cast<uint32_t>(result.elements.size()));
+        result.elements.push_back(make_surface(scene, element, primitive));
+        result.patch_of_element.push_back(patch_index);
+      }
+      result.first_element.push_back(static_cast<uint32_t>(result.elements.size()));
+    }
+  }
+  if (result.patches.empty()) throw std::invalid_argument("radiosity mesh: the scene has no surface to mesh");
+  result.element_geometry = geometry_of(result.elements);
+  result.patch_geometry = geometry_of(result.patches);
+  return result;
+}
+
+}  // namespace candela

@@ -1,0 +1,75 @@
+// The radiosity mesh of a scene (000 §6.7.1 substructuring, SPEC §10): every primitive
+// tessellated into triangles (Shape::tessellate through tessellate_scene; planes cut by a clip
+// box), each triangle split by longest-edge bisection until no edge is longer than patch_size —
+// the patches, which shoot light — and each patch split the same way until no edge is longer
+// than element_size — the elements, which receive it. A patch is the union of its elements, so
+// their areas add up exactly.
+//
+// Every patch and element is one triangle, wound counter-clockwise about the shape's geometric
+// normal (outward for closed shapes), with the diffuse reflectance ρ = kd and the emitted exitance
+// E of its material at its centroid (000 eq. 6-7's ρ_i and E_i).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "math/bounds.h"
+#include "math/vector.h"
+#include "radiosity/hemicube_form_factors.h"
+#include "radiosity/radiosity_system.h"
+
+namespace candela {
+
+class Scene;
+
+struct RadiosityMeshSettings {
+  int segments = 16;        // divisions of a full turn of a curved shape (≥ 3)
+  double patch_size = 0;    // the longest patch edge; 0: the scene size / 8
+  double element_size = 0;  // the longest element edge; 0: patch_size / 2 (≤ patch_size)
+  // Where planes are cut; empty: the bounds of the bounded shapes (the scene size is the length
+  // of this box's diagonal).
+  Bounds3 clip;
+};
+
+// One patch or element: a triangle of the mesh.
+struct RadiositySurface {
+  std::array<Vec3, 3> corners;  // world, counter-clockwise about normal
+  double area = 0;
+  Vec3 centroid;
+  Vec3 normal;  // unit
+  uint32_t primitive = 0, object = 0, material = 0;
+  Color reflectance;  // ρ = kd at the centroid, clamped to [0, 1]
+  Color emission;     // E of the material
+};
+
+struct RadiosityMesh {
+  std::vector<RadiositySurface> patches;
+  std::vector<RadiositySurface> elements;
+  // Patch p's elements are first_element[p] … first_element[p + 1] − 1 (size patches + 1).
+  std::vector<uint32_t> first_element;
+  std::vector<uint32_t> patch_of_element;  // one per element
+  // The elements of each primitive of the scene (for finding the element a ray hits).
+  std::vector<std::vector<uint32_t>> elements_of_primitive;
+  // The hemicube's geometry: one triangle per element (id = element index), and per patch.
+  FormFactorGeometry element_geometry;
+  FormFactorGeometry patch_geometry;
+  double patch_size = 0, element_size = 0;  // the bounds used
+
+  // The patches as a radiosity system (areas, ρ, E) and the elements likewise.
+  RadiositySystem patch_system() const;
+  RadiositySystem element_system() const;
+  double patch_area() const;    // Σ patch areas
+  double element_area() const;  // Σ element areas
+  // The element of primitive `primitive` nearest the world point (the one containing it for
+  // flat shapes; for curved ones the triangle closest to the true surface point); UINT32_MAX
+  // when the primitive has no elements.
+  uint32_t element_at(uint32_t primitive, const Vec3& point) const;
+};
+
+// Builds the mesh of a prepared scene. Throws std::invalid_argument for segments < 3, a negative
+// or non-finite size, element_size > patch_size, a scene with no surface, or a scene whose bounds
+// (and clip box) are empty.
+RadiosityMesh build_radiosity_mesh(const Scene& scene, const RadiosityMeshSettings& settings);
+
+}  // namespace candela

@@ -1,0 +1,187 @@
+#include "radiosity/radiosity_mesh.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "raster/tessellated_scene.h"
+#include "scene/scene_loader.h"
+
+namespace candela {
+namespace {
+
+std::unique_ptr<Scene> scene_with(const std::string& shapes) {
+  return load_scene_text(
+      R"({"format": "candela/1", "camera": {"eye": [0, 0, 20], "target": [0, 0, 0], "fov": 40, "width": 8, "height": 8}, "shapes": )" +
+          shapes + "}",
+      "test.json", ".");
+}
+
+double longest_edge(const RadiositySurface& surface) {
+  double longest = 0;
+  for (int k = 0; k < 3; ++k) longest = std::max(longest, length(surface.corners[(k + 1) % 3] - surface.corners[k]));
+  return longest;
+}
+
+// Sizes, areas and the element → patch mapping of any mesh.
+void expect_consistent(const RadiosityMesh& mesh) {
+  ASSERT_EQ(mesh.first_element.size(), mesh.patches.size() + 1);
+  ASSERT_EQ(mesh.patch_of_element.size(), mesh.elements.size());
+  EXPECT_EQ(mesh.first_element.front(), 0u);
+  EXPECT_EQ(mesh.first_element.back(), mesh.elements.size());
+  for (std::size_t p = 0; p < mesh.patches.size(); ++p) {
+    EXPECT_LE(longest_edge(mesh.patches[p]), mesh.patch_size * (1 + 1e-12));
+    double element_area = 0;
+    for (uint32_t e = mesh.first_element[p]; e < mesh.first_element[p + 1]; ++e) {
+      EXPECT_EQ(mesh.patch_of_element[e], p);
+      EXPECT_LE(longest_edge(mesh.elements[e]), mesh.element_size * (1 + 1e-12));
+      EXPECT_EQ(mesh.elements[e].primitive, mesh.patches[p].primitive);
+      EXPECT_NEAR(length(mesh.elements[e].normal), 1, 1e-12);
+      EXPECT_GT(dot(mesh.elements[e].normal, mesh.patches[p].normal), 1 - 1e-9);  // same plane, same side
+      element_area += mesh.elements[e].area;
+    }
+    EXPECT_NEAR(element_area, mesh.patches[p].area, 1e-12 * mesh.patches[p].area);
+  }
+  EXPECT_NO_THROW(mesh.element_geometry.validate());
+  EXPECT_NO_THROW(mesh.patch_geometry.validate());
+  EXPECT_EQ(mesh.element_geometry.element_count, mesh.elements.size());
+  EXPECT_EQ(mesh.patch_geometry.element_count, mesh.patches.size());
+  std::size_t listed = 0;
+  for (const auto& list : mesh.elements_of_primitive) listed += list.size();
+  EXPECT_EQ(listed, mesh.elements.size());
+}
+
+TEST(RadiosityMesh, BoxAreaIsExactAndEveryPieceWithinItsBound) {
+  const auto scene = scene_with(R"([{"type": "box", "min": [0, 0, 0], "max": [2, 3, 4]}])");
+  RadiosityMeshSettings settings;
+  settings.patch_size = 1;
+  settings.element_size = 0.4;
+  const RadiosityMesh mesh = build_radiosity_mesh(*scene, settings);
+  expect_consistent(mesh);
+  EXPECT_NEAR(mesh.patch_area(), 52, 1e-12);  // 2·(2·3 + 2·4 + 3·4)
+  EXPECT_NEAR(mesh.element_area(), 52, 1e-12);
+  EXPECT_GT(mesh.elements.size(), mesh.patches.size());
+  // Outward normals: every centroid + normal lies outside the box.
+  for (const auto& element : mesh.elements) {
+    const Vec3 outside = element.centroid + element.normal * 0.01;
+    EXPECT_TRUE(outside.x < 0 || outside.x > 2 || outside.y < 0 || outside.y > 3 || outside.z < 0 || outside.z > 4);
+  }
+  // The element found at an element's centroid is that element.
+  for (uint32_t e = 0; e < mesh.elements.size(); ++e) {
+    EXPECT_EQ(mesh.element_at(mesh.elements[e].primitive, mesh.elements[e].centroid), e);
+  }
+}
+
+TEST(RadiosityMesh, DefaultSizesFollowTheSceneSize) {
+  const auto scene = scene_with(R"([{"type": "box", "min": [0, 0, 0], "max": [2, 3, 6]}])");
+  const RadiosityMesh mesh = build_radiosity_mesh(*scene, {});
+  EXPECT_NEAR(mesh.patch_size, 7.0 / 8, 1e-12);  // the diagonal √(4 + 9 + 36) = 7
+  EXPECT_NEAR(mesh.element_size, 7.0 / 16, 1e-12);
+  expect_consistent(mesh);
+}
+
+TEST(RadiosityMesh, SphereAreaIsTheTessellatedArea) {
+  const auto scene = scene_with(R"([{"type": "sphere", "center": [1, 0, 0], "radius": 2}])");
+  RadiosityMeshSettings settings;
+  settings.segments = 12;
+  settings.patch_size = 0.9;
+  const RadiosityMesh mesh = build_radiosity_mesh(*scene, settings);
+  expect_consistent(mesh);
+  TessellationRequest request;
+  request.max_segments = 12;
+  request.clip = scene->bounds();
+  const TessellatedScene triangles = tessellate_scene(*scene, request);
+  double tessellated_area = 0;
+  for (std::size_t t = 0; t < triangles.triangle_count(); ++t) {
+    const Vec3* p = &triangles.corner_positions[3 * t];
+    tessellated_area += 0.5 * length(cross(p[1] - p[0], p[2] - p[0]));
+  }
+  EXPECT_NEAR(mesh.patch_area(), tessellated_area, 1e-9);
+  EXPECT_NEAR(mesh.element_area(), tessellated_area, 1e-9);
+  EXPECT_LT(mesh.patch_area(), 4 * kPi * 4);  // inscribed: a little less than 4πr²
+  EXPECT_GT(mesh.patch_area(), 0.9 * 4 * kPi * 4);
+}
+
+TEST(RadiosityMesh, ElementAtFindsTheElementUnderAPointOfACurvedSurface) {
+  // Points of the true sphere lie just off its inscribed triangles: the element found is the one
+  // the point projects into, whose centroid lies within an element size of it, never one on the
+  // far side.
+  const auto scene = scene_with(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1}])");
+  RadiosityMeshSettings settings;
+  settings.segments = 16;
+  settings.patch_size = 0.5;
+  const RadiosityMesh mesh = build_radiosity_mesh(*scene, settings);
+  for (int k = 0; k < 50; ++k) {
+    const double theta = 0.1 + 2.9 * k / 49.0, phi = 0.7 * k;
+    const Vec3 point{std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)};
+    const uint32_t element = mesh.element_at(0, point);
+    ASSERT_LT(element, mesh.elements.size());
+    EXPECT_LT(length(mesh.elements[element].centroid - point), mesh.element_size);
+    EXPECT_GT(dot(mesh.elements[element].normal, point), 0.9);
+  }
+  EXPECT_EQ(mesh.element_at(7, {0, 0, 0}), UINT32_MAX);  // no such primitive
+}
+
+TEST(RadiosityMesh, PlanesAreCutByTheClipBox) {
+  const auto scene = scene_with(R"([{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0]}])");
+  RadiosityMeshSettings settings;
+  settings.clip = {{-1, -1, -2}, {1, 1, 2}};
+  settings.patch_size = 0.5;
+  const RadiosityMesh mesh = build_radiosity_mesh(*scene, settings);
+  expect_consistent(mesh);
+  EXPECT_NEAR(mesh.patch_area(), 8, 1e-12);  // the 2 × 4 rectangle inside the box
+  for (const auto& patch : mesh.patches) EXPECT_NEAR(patch.normal.y, 1, 1e-12);
+  // Without a clip box nothing bounds the plane.
+  EXPECT_THROW(build_radiosity_mesh(*scene, {}), std::invalid_argument);
+}
+
+TEST(RadiosityMesh, ReflectanceAndEmissionComeFromTheMaterials) {
+  const auto scene = scene_with(R"([
+      {"type": "quad", "corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0], "material": {"kd": [0.2, 0.4, 0.6], "emission": [1, 2, 3]}},
+      {"type": "quad", "corner": [0, 0, 1], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0],
+       "material": {"kd": {"type": "checker2d", "even": [0.1, 0.1, 0.1], "odd": [0.9, 0.9, 0.9], "mapping": {"type": "uv", "scale": [2, 1]}}}},
+      {"type": "quad", "corner": [0, 0, 2], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0], "material": {"kd": 1.5}}])");
+  RadiosityMeshSettings settings;
+  settings.patch_size = 0.3;
+  const RadiosityMesh mesh = build_radiosity_mesh(*scene, settings);
+  expect_consistent(mesh);
+  bool saw_dark = false, saw_light = false;
+  for (const auto& element : mesh.elements) {
+    if (element.primitive == 0) {
+      EXPECT_EQ(element.reflectance.r, 0.2);
+      EXPECT_EQ(element.reflectance.b, 0.6);
+      EXPECT_EQ(element.emission.g, 2);
+    } else if (element.primitive == 1) {
+      EXPECT_TRUE(element.emission.is_black());
+      // The checker in u: ρ follows the element's centroid.
+      EXPECT_TRUE(element.reflectance.r == 0.1 || element.reflectance.r == 0.9);
+      saw_dark |= element.reflectance.r == 0.1;
+      saw_light |= element.reflectance.r == 0.9;
+    } else {
+      EXPECT_EQ(element.reflectance.r, 1);  // clamped to a physical reflectance
+    }
+  }
+  EXPECT_TRUE(saw_dark);
+  EXPECT_TRUE(saw_light);
+  EXPECT_NO_THROW(mesh.element_system().validate());
+  EXPECT_NO_THROW(mesh.patch_system().validate());
+}
+
+TEST(RadiosityMesh, BadSettingsAreRefused) {
+  const auto scene = scene_with(R"([{"type": "box", "min": [0, 0, 0], "max": [1, 1, 1]}])");
+  RadiosityMeshSettings settings;
+  settings.segments = 2;
+  EXPECT_THROW(build_radiosity_mesh(*scene, settings), std::invalid_argument);
+  settings = {};
+  settings.patch_size = 0.1;
+  settings.element_size = 0.2;
+  EXPECT_THROW(build_radiosity_mesh(*scene, settings), std::invalid_argument);
+  settings = {};
+  settings.patch_size = -1;
+  EXPECT_THROW(build_radiosity_mesh(*scene, settings), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace candela
