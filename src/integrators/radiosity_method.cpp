@@ -13,6 +13,8 @@
 #include "radiosity/hemicube_form_factors.h"
 #include "radiosity/ray_cast_form_factors.h"
 #include "radiosity/solvers.h"
+#include "radiosity/vertex_radiosity.h"
+#include "raster/rasterizer.h"
 #include "util/progress.h"
 
 namespace candela {
@@ -249,6 +251,74 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
   return result;
 }
 
+// 000 §6.5: the elements drawn as triangles through the scanline rasterizer with their vertex
+// radiosities as colours, interpolated perspective-correctly (Gouraud); pixels no element covers
+// show the background. Tiles of 32 × 32 pixels, each drawn by one thread from the same inputs with
+// its own depth buffer, so the image does not depend on the thread count.
+void display_gouraud(const Scene& scene, const RadiositySolveResult& solution, const PixelRect& region, Film& film) {
+  const Camera& camera = *scene.camera;
+  const std::vector<RadiositySurface>& elements = solution.mesh.elements;
+  const VertexRadiosity vertices = compute_vertex_radiosity(elements, solution.element_radiosity);
+  // Depth range: a box around the elements and the eye; near small enough for the closest element.
+  Bounds3 bounds;
+  bounds.extend(camera.eye_position());
+  for (const RadiositySurface& element : elements)
+    for (const Vec3& corner : element.corners) bounds.extend(corner);
+  const double far = 2 * length(bounds.diagonal()) + 1;
+  const Eigen::Matrix4d clip_from_world = camera.view_projection(far * 1e-8, far);
+  std::vector<std::array<RasterVertex, 3>> triangles(elements.size());
+  // The screen bounds of each triangle; unbounded when a corner is behind the near plane.
+  std::vector<std::array<double, 4>> screen_bounds(elements.size());
+  for (std::size_t q = 0; q < elements.size(); ++q) {
+    std::array<double, 4>& box = screen_bounds[q];
+    box = {kInfinity, -kInfinity, kInfinity, -kInfinity};
+    bool in_front = true;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Vec3& p = elements[q].corners[k];
+      RasterVertex& vertex = triangles[q][k];
+      vertex.clip = clip_from_world * Eigen::Vector4d(p.x, p.y, p.z, 1);
+      const Color& b = vertices.radiosity[vertices.element_vertices[q][k]];
+      vertex.varyings[0] = b.r, vertex.varyings[1] = b.g, vertex.varyings[2] = b.b;
+      const Eigen::Vector4d& c = vertex.clip;
+      if (!(c.z() >= -c.w()) || !(c.w() > 0)) {
+        in_front = false;
+        continue;
+      }
+      const double x = (c.x() / c.w() + 1) * 0.5 * camera.width(), y = (1 - c.y() / c.w()) * 0.5 * camera.height();
+      box = {std::min(box[0], x), std::max(box[1], x), std::min(box[2], y), std::max(box[3], y)};
+    }
+    if (!in_front) box = {-kInfinity, kInfinity, -kInfinity, kInfinity};
+  }
+  const int tile = 32;
+  const int tiles_x = (region.width() + tile - 1) / tile, tiles_y = (region.height() + tile - 1) / tile;
+  tbb::parallel_for(0, tiles_x * tiles_y, [&](int index) {
+    const int x0 = region.x0 + (index % tiles_x) * tile, y0 = region.y0 + (index / tiles_x) * tile;
+    const int x1 = std::min(x0 + tile, region.x1), y1 = std::min(y0 + tile, region.y1);
+    const int w = x1 - x0;
+    Rasterizer rasterizer(camera.width(), camera.height());
+    rasterizer.set_region(x0, y0, x1, y1);
+    rasterizer.clear_depth();
+    std::vector<Color> colors(std::size_t(w) * (y1 - y0));
+    std::vector<bool> covered(colors.size(), false);
+    for (std::size_t q = 0; q < elements.size(); ++q) {
+      const std::array<double, 4>& box = screen_bounds[q];
+      if (box[1] < x0 || box[0] > x1 || box[3] < y0 || box[2] > y1) continue;  // misses the tile
+      rasterizer.draw_triangle(triangles[q][0], triangles[q][1], triangles[q][2], 3, [&](const Fragment& fragment) {
+        const std::size_t pixel = std::size_t(fragment.y - y0) * w + (fragment.x - x0);
+        colors[pixel] = {fragment.varyings[0], fragment.varyings[1], fragment.varyings[2]};
+        covered[pixel] = true;
+        return true;
+      });
+    }
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const std::size_t pixel = std::size_t(y - y0) * w + (x - x0);
+        film.at(x - region.x0, y - region.y0) =
+            covered[pixel] ? colors[pixel] : scene.background_along(camera.generate_ray(x + 0.5, y + 0.5).direction);
+      }
+  });
+}
+
 }  // namespace
 
 RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet) { return solve_with_statistics(scene, quiet, nullptr); }
@@ -260,24 +330,29 @@ void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, F
   const PixelRect region = request.region;
   const Camera& camera = *scene.camera;
   Stopwatch display_time;
-  // Display: the radiosity of the element each pixel's ray hits (view independent: B itself).
-  tbb::parallel_for(region.y0, region.y1, [&](int y) {
-    for (int x = region.x0; x < region.x1; ++x) {
-      const Ray ray = camera.generate_ray(x + 0.5, y + 0.5);
-      Intersection hit;
-      Color color;
-      if (scene.intersect(ray, hit)) {
-        const uint32_t element = solution.mesh.element_at(hit.primitive, hit.surface.position);
-        color = element == UINT32_MAX ? Color() : solution.element_radiosity[element];
-      } else {
-        color = scene.background_along(ray.direction);
+  if (scene.radiosity.display == RadiosityDisplay::gouraud) {
+    display_gouraud(scene, solution, region, film);
+  } else {
+    // Display: the radiosity of the element each pixel's ray hits (view independent: B itself).
+    tbb::parallel_for(region.y0, region.y1, [&](int y) {
+      for (int x = region.x0; x < region.x1; ++x) {
+        const Ray ray = camera.generate_ray(x + 0.5, y + 0.5);
+        Intersection hit;
+        Color color;
+        if (scene.intersect(ray, hit)) {
+          const uint32_t element = solution.mesh.element_at(hit.primitive, hit.surface.position);
+          color = element == UINT32_MAX ? Color() : solution.element_radiosity[element];
+        } else {
+          color = scene.background_along(ray.direction);
+        }
+        film.at(x - region.x0, y - region.y0) = color;
       }
-      film.at(x - region.x0, y - region.y0) = color;
-    }
-  });
+    });
+  }
   const auto pixel_count = static_cast<uint64_t>(region.width()) * region.height();
-  statistics.rays.primary += pixel_count;
+  if (scene.radiosity.display == RadiosityDisplay::flat) statistics.rays.primary += pixel_count;  // rasterized: none
   statistics.pixels += pixel_count;
+  facts["display"] = scene.radiosity.display == RadiosityDisplay::gouraud ? "gouraud" : "flat";
   facts["display_seconds"] = display_time.seconds();
   statistics.extra["radiosity"] = std::move(facts);
 }

@@ -22,12 +22,16 @@
 //                 patch solution, B_q = E_q + ρ_q Σ_j F_qj B_j (000 eq. 6-16), with F_qj from
 //                 every element's centroid to the patches.
 //
-// Display: one ray through each pixel centre; its hit → the element of the hit primitive
-// nearest the hit point → that element's radiosity B (the exitance, view independent), shown
-// directly as the seed's radiosity images are. Misses show the background. Each pixel depends
-// only on the solution and its own ray, and the solution is computed sequentially (the form-factor
-// rows in parallel, each row by one thread into its own place), so the image does not depend on
-// the thread count.
+// Display (setting radiosity.display, 000 §6.5):
+//   flat     one ray through each pixel centre; its hit → the element of the hit primitive
+//            nearest the hit point → that element's radiosity B (the exitance, view
+//            independent), shown directly as the seed's radiosity images are.
+//   gouraud  (default) the vertex radiosities of radiosity/vertex_radiosity.h; the elements drawn
+//            as triangles by the scanline rasterizer in 32 × 32 tiles, colours interpolated
+//            perspective-correctly.
+// Pixels no surface covers show the background. Each pixel depends only on the solution and its
+// own ray or tile, and the solution is computed sequentially (the form-factor rows in parallel,
+// each row by one thread into its own place), so the image does not depend on the thread count.
 #pragma once
 
 #include <cstddef>

@@ -54,6 +54,9 @@ enum class RadiositySolver { progressive, gauss_seidel, gaussian };
 // hemicube: 000 §6.4; ray_cast: Lambert's point-to-polygon form factor times the visible fraction
 // of ray_cast_samples² rays through the accelerator (radiosity/ray_cast_form_factors.h).
 enum class RadiosityFormFactors { hemicube, ray_cast };
+// How the solution is shown (000 §6.5): one radiosity per element, or vertex radiosities
+// interpolated across each element (Gouraud).
+enum class RadiosityDisplay { flat, gouraud };
 
 struct RadiositySettings {
   RadiositySolver solver = RadiositySolver::progressive;
@@ -68,6 +71,7 @@ struct RadiositySettings {
   double threshold = 0.001;
   int max_steps = 100000;  // shots (progressive) or sweeps (gauss-seidel) at most
   bool ambient = true;     // progressive: add the ambient term of 000 §6.6.2 for display
+  RadiosityDisplay display = RadiosityDisplay::gouraud;
 };
 
 // One entry of the scene file's "shapes" array.

@@ -157,6 +157,8 @@ class SceneReader {
     settings.threshold = node.number("threshold", 0.001, {0, 1, true, false});
     settings.max_steps = node.integer("max_steps", 100000, {1, 1 << 30, false, false});
     settings.ambient = node.boolean("ambient", true);
+    settings.display = node.choice("display", "gouraud", {"flat", "gouraud"}) == "flat" ? RadiosityDisplay::flat
+                                                                                       : RadiosityDisplay::gouraud;
     node.finish();
   }
 
