@@ -268,26 +268,17 @@ void display_gouraud(const Scene& scene, const RadiositySolveResult& solution, c
   const Eigen::Matrix4d clip_from_world = camera.view_projection(far * 1e-8, far);
   std::vector<std::array<RasterVertex, 3>> triangles(elements.size());
   // The screen bounds of each triangle; unbounded when a corner is behind the near plane.
-  std::vector<std::array<double, 4>> screen_bounds(elements.size());
+  std::vector<ScreenBounds> bounds_on_screen(elements.size());
   for (std::size_t q = 0; q < elements.size(); ++q) {
-    std::array<double, 4>& box = screen_bounds[q];
-    box = {kInfinity, -kInfinity, kInfinity, -kInfinity};
-    bool in_front = true;
     for (std::size_t k = 0; k < 3; ++k) {
       const Vec3& p = elements[q].corners[k];
       RasterVertex& vertex = triangles[q][k];
       vertex.clip = clip_from_world * Eigen::Vector4d(p.x, p.y, p.z, 1);
       const Color& b = vertices.radiosity[vertices.element_vertices[q][k]];
       vertex.varyings[0] = b.r, vertex.varyings[1] = b.g, vertex.varyings[2] = b.b;
-      const Eigen::Vector4d& c = vertex.clip;
-      if (!(c.z() >= -c.w()) || !(c.w() > 0)) {
-        in_front = false;
-        continue;
-      }
-      const double x = (c.x() / c.w() + 1) * 0.5 * camera.width(), y = (1 - c.y() / c.w()) * 0.5 * camera.height();
-      box = {std::min(box[0], x), std::max(box[1], x), std::min(box[2], y), std::max(box[3], y)};
     }
-    if (!in_front) box = {-kInfinity, kInfinity, -kInfinity, kInfinity};
+    bounds_on_screen[q] = screen_bounds(triangles[q][0].clip, triangles[q][1].clip, triangles[q][2].clip,
+                                        camera.width(), camera.height());
   }
   const int tile = 32;
   const int tiles_x = (region.width() + tile - 1) / tile, tiles_y = (region.height() + tile - 1) / tile;
@@ -301,8 +292,8 @@ void display_gouraud(const Scene& scene, const RadiositySolveResult& solution, c
     std::vector<Color> colors(std::size_t(w) * (y1 - y0));
     std::vector<bool> covered(colors.size(), false);
     for (std::size_t q = 0; q < elements.size(); ++q) {
-      const std::array<double, 4>& box = screen_bounds[q];
-      if (box[1] < x0 || box[0] > x1 || box[3] < y0 || box[2] > y1) continue;  // misses the tile
+      const ScreenBounds& box = bounds_on_screen[q];
+      if (box.upper_x < x0 || box.lower_x > x1 || box.upper_y < y0 || box.lower_y > y1) continue;  // misses the tile
       rasterizer.draw_triangle(triangles[q][0], triangles[q][1], triangles[q][2], 3, [&](const Fragment& fragment) {
         const std::size_t pixel = std::size_t(fragment.y - y0) * w + (fragment.x - x0);
         colors[pixel] = {fragment.varyings[0], fragment.varyings[1], fragment.varyings[2]};

@@ -296,20 +296,9 @@ void RasterMethod::render(const Scene& scene, const RenderRequest& request, Film
     }
     if (outside_all != 0) continue;
     int tx0 = 0, ty0 = 0, tx1 = tiles_x - 1, ty1 = tiles_y - 1;
-    bool in_front = true;
-    double lower_x = kInfinity, upper_x = -kInfinity, lower_y = kInfinity, upper_y = -kInfinity;
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector4d& c = clip_positions[3 * t + k];
-      // Behind the near plane: the clipped polygon may reach anywhere on screen.
-      if (!(c.z() >= -c.w()) || !(c.w() > 0)) {
-        in_front = false;
-        break;
-      }
-      const double x = (c.x() / c.w() + 1) * 0.5 * camera.width();
-      const double y = (1 - c.y() / c.w()) * 0.5 * camera.height();
-      lower_x = std::min(lower_x, x), upper_x = std::max(upper_x, x);
-      lower_y = std::min(lower_y, y), upper_y = std::max(upper_y, y);
-    }
+    const auto [lower_x, upper_x, lower_y, upper_y, in_front] =
+        screen_bounds(clip_positions[3 * t], clip_positions[3 * t + 1], clip_positions[3 * t + 2], camera.width(),
+                      camera.height());
     if (in_front) {
       if (!(upper_x >= region.x0 && lower_x <= region.x1 && upper_y >= region.y0 && lower_y <= region.y1)) continue;
       const auto tile_of = [&](double v, int origin, int count) {

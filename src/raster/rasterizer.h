@@ -46,6 +46,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
+#include <limits>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -76,6 +77,27 @@ struct Fragment {
   double depth = 0;        // ndc z in [−1, 1]
   const double* varyings;  // varying_count perspective-correct values
 };
+
+// The image-space box of a triangle given in clip coordinates (for binning triangles to tiles).
+// `in_front` is false when a corner is behind the near plane: the clipped polygon may then
+// reach anywhere on screen, and the box is unbounded.
+struct ScreenBounds {
+  double lower_x, upper_x, lower_y, upper_y;
+  bool in_front;
+};
+inline ScreenBounds screen_bounds(const Eigen::Vector4d& a, const Eigen::Vector4d& b, const Eigen::Vector4d& c,
+                                  int width, int height) {
+  constexpr double kUnbounded = std::numeric_limits<double>::infinity();
+  ScreenBounds box{kUnbounded, -kUnbounded, kUnbounded, -kUnbounded, true};
+  for (const Eigen::Vector4d* corner : {&a, &b, &c}) {
+    const Eigen::Vector4d& p = *corner;
+    if (!(p.z() >= -p.w()) || !(p.w() > 0)) return {-kUnbounded, kUnbounded, -kUnbounded, kUnbounded, false};
+    const double x = (p.x() / p.w() + 1) * 0.5 * width, y = (1 - p.y() / p.w()) * 0.5 * height;
+    box.lower_x = std::min(box.lower_x, x), box.upper_x = std::max(box.upper_x, x);
+    box.lower_y = std::min(box.lower_y, y), box.upper_y = std::max(box.upper_y, y);
+  }
+  return box;
+}
 
 class Rasterizer {
  public:
