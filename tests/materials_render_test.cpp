@@ -14,6 +14,7 @@
 #include "integrators/method_registry.h"
 #include "integrators/whitted.h"
 #include "io/image_writer.h"
+#include "render_support.h"
 #include "scene/scene_loader.h"
 
 namespace candela {
@@ -35,13 +36,7 @@ Color pixel(const Scene& scene) {
   return radiance;
 }
 
-Film render(const Scene& scene) {
-  const auto method = find_method("whitted")->create();
-  Film film(scene.camera->width(), scene.camera->height());
-  RunStatistics statistics;
-  method->render(scene, {{0, 0, film.width(), film.height()}, true}, film, statistics);
-  return film;
-}
+Film render(const Scene& scene) { return testing::render_scene(scene, "whitted"); }
 
 void expect_color_near(const Color& got, const Color& expected, double tolerance) {
   EXPECT_NEAR(got.r, expected.r, tolerance);

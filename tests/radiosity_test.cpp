@@ -2,6 +2,8 @@
 // radiosity mesh inside whole scenes.
 #include <gtest/gtest.h>
 
+#include "render_support.h"
+
 #include <tbb/global_control.h>
 
 #include <cmath>
@@ -159,11 +161,7 @@ TEST(RadiosityMethod, SettingsAreCheckedAndUnknownKeysRefused) {
 }
 
 Film render_cornell_box(const Scene& scene, int threads, RunStatistics& statistics) {
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
-  const auto method = find_method("radiosity")->create();
-  Film film(scene.camera->width(), scene.camera->height());
-  method->render(scene, {{0, 0, film.width(), film.height()}, true}, film, statistics);
-  return film;
+  return testing::render_scene(scene, "radiosity", static_cast<std::size_t>(threads), statistics);
 }
 
 TEST(RadiosityMethod, CornellBoxConvergesAndDoesNotDependOnThreads) {

@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "integrators/method_registry.h"
+#include "render_support.h"
 #include "scene/scene_loader.h"
 #include "util/error.h"
 
@@ -19,12 +20,7 @@ std::unique_ptr<Scene> scene_from(const std::string& body, const std::vector<std
 }
 
 Film render(const Scene& scene, const std::string& method_name, std::size_t threads = 2) {
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-  const auto method = find_method(method_name)->create();
-  Film film(scene.camera->width(), scene.camera->height());
-  RunStatistics statistics;
-  method->render(scene, {{0, 0, film.width(), film.height()}, true}, film, statistics);
-  return film;
+  return testing::render_scene(scene, method_name, threads);
 }
 
 double difference(const Color& a, const Color& b) {

@@ -9,18 +9,14 @@
 #include "integrators/method_registry.h"
 #include "io/image_reader.h"
 #include "io/image_writer.h"
+#include "render_support.h"
 #include "scene/scene_loader.h"
 
 namespace candela {
 namespace {
 
 Film render(const Scene& scene, const std::string& method_name, std::size_t threads) {
-  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-  const auto method = find_method(method_name)->create();
-  Film film(scene.camera->width(), scene.camera->height());
-  RunStatistics statistics;
-  method->render(scene, {{0, 0, film.width(), film.height()}, true}, film, statistics);
-  return film;
+  return testing::render_scene(scene, method_name, threads);
 }
 
 TEST(Render, SameImageBytesWhateverTheThreadCount) {
