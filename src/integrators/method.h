@@ -2,6 +2,7 @@
 // in the method registry. A method reads the Scene; it never edits it.
 #pragma once
 
+#include <string>
 #include <string_view>
 
 #include "camera/film.h"
@@ -20,6 +21,9 @@ struct PixelRect {
 struct RenderRequest {
   PixelRect region;
   bool quiet = false;
+  // Where a method that computes a view-independent solution writes it (radiosity: .csv, .ply
+  // or .gltf, radiosity/solution_export.h); empty: nowhere. Other methods ignore it.
+  std::string export_solution;
 };
 
 class Method {

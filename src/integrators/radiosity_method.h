@@ -38,20 +38,9 @@
 #include <vector>
 
 #include "integrators/method.h"
-#include "radiosity/radiosity_mesh.h"
+#include "radiosity/radiosity_solve_result.h"
 
 namespace candela {
-
-// The solution of a scene: the mesh and one displayed radiosity per element.
-struct RadiositySolveResult {
-  RadiosityMesh mesh;
-  std::vector<Color> element_radiosity;  // B_q (+ ρ_q B_amb with the ambient term)
-  std::size_t steps = 0;                 // shots or sweeps (1 for gaussian)
-  double unshot_fraction = 0;            // progressive: on return; 0 for the direct solvers
-  bool converged = true;
-  std::size_t form_factor_rows = 0;      // form-factor rows computed
-  double solve_seconds = 0, mesh_seconds = 0;
-};
 
 // Meshes and solves the scene with scene.radiosity (quiet: no progress bar).
 RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet);

@@ -1,0 +1,1 @@
+#include "radiosity/solution_export.h"
