@@ -1,6 +1,6 @@
 // candela render [SCENE] [-o FILE] [--method M] [--threads N] [--seed S] [--set k=v]...
 //                [--stats FILE.json] [--quiet] [--crop x0,y0,x1,y1] [--pixel X,Y]
-//                [--aa-map FILE.png]
+//                [--aa-map FILE.png] [--camera NAME[,NAME...]]... [--export-solution FILE]
 #include <fmt/format.h>
 #include <unistd.h>
 #include <tbb/global_control.h>
@@ -15,6 +15,7 @@
 #include "integrators/method_registry.h"
 #include "integrators/ray_tracing_method.h"
 #include "io/image_writer.h"
+#include "radiosity/solution_export.h"
 #include "scene_options.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -35,6 +36,8 @@ struct RenderOptions {
   bool quiet = false;
   std::vector<int> crop;
   std::vector<int> pixel;
+  std::vector<std::string> cameras;  // --camera values in the order given, each NAME or NAME,NAME...
+  std::string export_solution;
 };
 
 PixelRect region_of(const RenderOptions& options, const Camera& camera) {
@@ -82,9 +85,124 @@ std::string default_output(const RenderOptions& options) {
   return std::filesystem::path(options.scene.scene_path).stem().string() + ".png";
 }
 
+// One image to render: the scene's "camera" ("default") or one of its named cameras.
+struct View {
+  std::string name;
+  std::unique_ptr<Camera>* named_camera = nullptr;  // the slot in Scene::cameras; null: "default"
+  const Camera& camera(const Scene& scene) const { return named_camera ? **named_camera : *scene.camera; }
+};
+
+// Makes a view's camera the one methods render through (Scene::camera) for as long as it lives:
+// the pointers are swapped, and swapped back on the way out, errors included.
+class CurrentCamera {
+ public:
+  CurrentCamera(Scene& scene, const View& view) : scene_(scene), named_camera_(view.named_camera) {
+    if (named_camera_) std::swap(scene_.camera, *named_camera_);
+  }
+  ~CurrentCamera() {
+    if (named_camera_) std::swap(scene_.camera, *named_camera_);
+  }
+  CurrentCamera(const CurrentCamera&) = delete;
+  CurrentCamera& operator=(const CurrentCamera&) = delete;
+
+ private:
+  Scene& scene_;
+  std::unique_ptr<Camera>* named_camera_;
+};
+
+std::string camera_names(const Scene& scene) {
+  std::string names = "default";
+  for (const auto& named : scene.cameras) names += ", " + named.name;
+  return names + (scene.cameras.empty() ? "" : " or all");
+}
+
+// --camera: names in the order given (each once); "default" is the "camera" object, "all" every
+// named camera. None given: the "camera" object.
+std::vector<View> select_views(const std::vector<std::string>& requested, Scene& scene) {
+  std::vector<View> views;
+  const auto add = [&](View view) {
+    const bool seen = std::any_of(views.begin(), views.end(), [&](const View& v) { return v.name == view.name; });
+    if (!seen) views.push_back(std::move(view));
+  };
+  for (const std::string& name : requested) {
+    if (name == "default") {
+      add({"default", nullptr});
+    } else if (name == "all") {
+      if (scene.cameras.empty())
+        throw BadArgument("--camera all: the scene has no named cameras (no \"cameras\" array)");
+      for (auto& named : scene.cameras) add({named.name, &named.camera});
+    } else {
+      const auto found = std::find_if(scene.cameras.begin(), scene.cameras.end(),
+                                      [&](const NamedCamera& named) { return named.name == name; });
+      if (found == scene.cameras.end())
+        throw BadArgument("--camera " + name + ": unknown camera (expected one of: " + camera_names(scene) + ")");
+      add({found->name, &found->camera});
+    }
+  }
+  if (views.empty()) views.push_back({"default", nullptr});
+  return views;
+}
+
+// "--camera a,b --camera c" → a, b, c.
+std::vector<std::string> split_camera_names(const std::vector<std::string>& values) {
+  std::vector<std::string> names;
+  for (const std::string& value : values) {
+    std::size_t start = 0;
+    while (true) {
+      const std::size_t comma = value.find(',', start);
+      const std::string name = value.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+      if (name.empty()) throw BadArgument("--camera " + value + ": empty camera name");
+      names.push_back(name);
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+  }
+  return names;
+}
+
+// With several views each output gets the camera's name: out.png → out-front.png.
+std::string path_for_view(const std::string& path, const View& view, std::size_t view_count) {
+  if (path.empty() || view_count == 1) return path;
+  const std::filesystem::path original(path);
+  return (original.parent_path() / (original.stem().string() + "-" + view.name + original.extension().string()))
+      .string();
+}
+
+void write_statistics(const RunStatistics& statistics, const std::string& path) {
+  const std::string text = statistics.to_json().dump(2) + "\n";
+  write_atomically(path, [&](const std::string& temporary) {
+    std::ofstream out(temporary);
+    out << text;
+    out.close();
+    if (!out) throw std::runtime_error("cannot write " + path);
+  });
+}
+
+int print_pixel_ray_trees(const RenderOptions& options, Scene& scene, const std::vector<View>& views,
+                          const Method& method) {
+  for (const View& view : views) {
+    const Camera& camera = view.camera(scene);
+    if (options.pixel.size() != 2 || options.pixel[0] < 0 || options.pixel[1] < 0 ||
+        options.pixel[0] >= camera.width() || options.pixel[1] >= camera.height())
+      throw BadArgument(fmt::format("--pixel X,Y must lie in the {}x{} image{}", camera.width(), camera.height(),
+                                    views.size() > 1 ? " of camera " + view.name : std::string()));
+  }
+  const auto* tracer = dynamic_cast<const RayTracingMethod*>(&method);
+  if (!tracer) throw BadArgument("--pixel needs a ray-tracing method (local or whitted)");
+  for (const View& view : views) {
+    const CurrentCamera current(scene, view);
+    Color radiance;
+    const RayTree tree = tracer->pixel_ray_tree(scene, options.pixel[0], options.pixel[1], radiance);
+    if (views.size() > 1) std::cout << "camera " << view.name << ":\n";
+    std::cout << fmt::format("pixel ({}, {}) with method {}: radiance [{:.6g}, {:.6g}, {:.6g}]\n",
+                             options.pixel[0], options.pixel[1], method.name(), radiance.r, radiance.g,
+                             radiance.b)
+              << tree.to_text();
+  }
+  return 0;
+}
+
 int run_render(RenderOptions& options) {
-  Stopwatch total;
-  RunStatistics statistics;
   if (options.output.empty()) options.output = default_output(options);
   ImageFormat format;
   if (!image_format_for_path(options.output, format))
@@ -92,7 +210,7 @@ int run_render(RenderOptions& options) {
   if (options.threads < 0) throw BadArgument("--threads must be >= 0 (0: all cores)");
   if (options.seed && (*options.seed < 0 || *options.seed > (int64_t(1) << 53)))
     throw BadArgument("--seed must be in [0, 2^53]");
-  // Fail before the work, not after it: both outputs must be writable.
+  // Fail before the work, not after it: every output must be writable.
   check_writable(options.output, "-o");
   if (!options.stats_path.empty()) check_writable(options.stats_path, "--stats");
   if (!options.aa_map_path.empty()) {
@@ -101,18 +219,25 @@ int run_render(RenderOptions& options) {
       throw BadArgument("--aa-map " + options.aa_map_path + ": expected a .png file");
     check_writable(options.aa_map_path, "--aa-map");
   }
+  if (!options.export_solution.empty()) {
+    SolutionFormat solution_format;
+    if (!solution_format_for_path(options.export_solution, solution_format))
+      throw BadArgument("--export-solution " + options.export_solution +
+                        ": unsupported extension (expected .csv, .ply or .gltf)");
+    check_writable(options.export_solution, "--export-solution");
+  }
+  const std::vector<std::string> camera_requests = split_camera_names(options.cameras);
   std::optional<tbb::global_control> thread_limit;
   if (options.threads > 0)
     thread_limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(options.threads));
-  statistics.threads = static_cast<int>(
+  const int threads = static_cast<int>(
       tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
 
   if (!options.accelerator.empty()) options.scene.overrides.push_back("render.accelerator=" + options.accelerator);
   Stopwatch load_timer;
   std::unique_ptr<Scene> scene = options.scene.load();
   const double build_seconds = scene->accelerator_build_seconds();
-  statistics.add_phase("load", load_timer.seconds() - build_seconds);
-  statistics.add_phase("build", build_seconds);
+  const double load_seconds = load_timer.seconds() - build_seconds;
   for (const auto& warning : scene->warnings) std::cerr << "candela: warning: " << warning << "\n";
   if (!options.method.empty()) {
     scene->render.method = options.method;
@@ -126,54 +251,74 @@ int run_render(RenderOptions& options) {
     throw InputError(where, "unknown method \"" + scene->render.method + "\" (expected one of: " +
                                 method_names() + ")");
   }
+  // Only radiosity computes a view-independent solution; anything else would silently ignore it.
+  if (!options.export_solution.empty() && entry->name != "radiosity")
+    throw BadArgument("--export-solution needs --method radiosity (the method is " + std::string(entry->name) + ")");
+  const std::vector<View> views = select_views(camera_requests, *scene);
+  // One method object renders every view, so what it keeps between renders (a radiosity
+  // solution) is computed once.
   const std::unique_ptr<Method> method = entry->create();
-  const Camera& camera = *scene->camera;
 
-  if (!options.pixel.empty()) {
-    if (options.pixel.size() != 2 || options.pixel[0] < 0 || options.pixel[1] < 0 ||
-        options.pixel[0] >= camera.width() || options.pixel[1] >= camera.height())
-      throw BadArgument(fmt::format("--pixel X,Y must lie in the {}x{} image", camera.width(), camera.height()));
-    const auto* tracer = dynamic_cast<const RayTracingMethod*>(method.get());
-    if (!tracer) throw BadArgument("--pixel needs a ray-tracing method (local or whitted)");
-    Color radiance;
-    const RayTree tree = tracer->pixel_ray_tree(*scene, options.pixel[0], options.pixel[1], radiance);
-    std::cout << fmt::format("pixel ({}, {}) with method {}: radiance [{:.6g}, {:.6g}, {:.6g}]\n",
-                             options.pixel[0], options.pixel[1], method->name(), radiance.r, radiance.g,
-                             radiance.b)
-              << tree.to_text();
-    return 0;
+  if (!options.pixel.empty()) return print_pixel_ray_trees(options, *scene, views, *method);
+
+  // Every view's region and outputs are checked before the first image is rendered.
+  std::vector<PixelRect> regions;
+  for (const View& view : views) {
+    try {
+      regions.push_back(region_of(options, view.camera(*scene)));
+    } catch (const BadArgument& e) {
+      if (views.size() == 1) throw;
+      throw BadArgument(std::string(e.what()) + " (camera " + view.name + ")");
+    }
+    check_writable(path_for_view(options.output, view, views.size()), "-o");
+    if (!options.stats_path.empty()) check_writable(path_for_view(options.stats_path, view, views.size()), "--stats");
+    if (!options.aa_map_path.empty())
+      check_writable(path_for_view(options.aa_map_path, view, views.size()), "--aa-map");
   }
 
-  const PixelRect region = region_of(options, camera);
-  Film film(region.width(), region.height());
-  Stopwatch render_timer;
-  method->render(*scene, {region, options.quiet}, film, statistics);
-  statistics.add_phase("render", render_timer.seconds());
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    const View& view = views[v];
+    const std::string output = path_for_view(options.output, view, views.size());
+    const std::string stats_path = path_for_view(options.stats_path, view, views.size());
+    const std::string aa_map_path = path_for_view(options.aa_map_path, view, views.size());
+    RunStatistics statistics;
+    statistics.threads = threads;
+    // Loading and building are done once, before the first view: they count in its statistics
+    // alone, so the views' total_seconds add up to the run's.
+    if (v == 0) {
+      statistics.add_phase("load", load_seconds);
+      statistics.add_phase("build", build_seconds);
+    }
+    const CurrentCamera current(*scene, view);
+    const PixelRect region = regions[v];
+    Film film(region.width(), region.height());
+    RenderRequest request;
+    request.region = region;
+    request.quiet = options.quiet;
+    // The solution is the same for every view: written once, with the first.
+    if (v == 0) request.export_solution = options.export_solution;
+    Stopwatch render_timer;
+    method->render(*scene, request, film, statistics);
+    statistics.add_phase("render", render_timer.seconds());
 
-  Stopwatch write_timer;
-  write_image(film, options.output, scene->display);
-  if (!options.aa_map_path.empty()) write_aa_map(statistics, film.width(), film.height(), options.aa_map_path);
-  statistics.add_phase("write", write_timer.seconds());
+    Stopwatch write_timer;
+    write_image(film, output, scene->display);
+    if (!aa_map_path.empty()) write_aa_map(statistics, film.width(), film.height(), aa_map_path);
+    statistics.add_phase("write", write_timer.seconds());
 
-  statistics.extra["scene"] = scene->source;
-  statistics.extra["method"] = std::string(method->name());
-  statistics.extra["output"] = options.output;
-  statistics.extra["image"] = {{"width", film.width()}, {"height", film.height()}};
-  statistics.extra["primitives"] = scene->primitives.size();
-  statistics.extra["accelerator"] = std::string(scene->accelerator().name());
-  statistics.extra["seed"] = scene->render.seed;
-  if (!options.quiet)
-    std::cerr << fmt::format("candela: wrote {} ({}x{}, {})\n", options.output, film.width(), film.height(),
-                             method->name())
-              << statistics.summary();
-  if (!options.stats_path.empty()) {
-    const std::string text = statistics.to_json().dump(2) + "\n";
-    write_atomically(options.stats_path, [&](const std::string& temporary) {
-      std::ofstream out(temporary);
-      out << text;
-      out.close();
-      if (!out) throw std::runtime_error("cannot write " + options.stats_path);
-    });
+    statistics.extra["scene"] = scene->source;
+    statistics.extra["camera"] = view.name;
+    statistics.extra["method"] = std::string(method->name());
+    statistics.extra["output"] = output;
+    statistics.extra["image"] = {{"width", film.width()}, {"height", film.height()}};
+    statistics.extra["primitives"] = scene->primitives.size();
+    statistics.extra["accelerator"] = std::string(scene->accelerator().name());
+    statistics.extra["seed"] = scene->render.seed;
+    if (!options.quiet)
+      std::cerr << fmt::format("candela: wrote {} ({}x{}, {}{})\n", output, film.width(), film.height(),
+                               method->name(), views.size() > 1 ? ", camera " + view.name : std::string())
+                << statistics.summary();
+    if (!stats_path.empty()) write_statistics(statistics, stats_path);
   }
   return 0;
 }
@@ -202,6 +347,14 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
       ->delimiter(',')->expected(4);
   command->add_option("--pixel", options->pixel, "Print the ray tree of pixel X,Y instead of rendering")
       ->delimiter(',')->expected(2);
+  command->add_option("--camera", options->cameras,
+                      "Render the named camera(s) of the scene's \"cameras\": NAME, a comma-separated list, or "
+                      "all; default is the \"camera\" object. Several: one image each, -o out.png -> out-NAME.png")
+      ->expected(1)
+      ->allow_extra_args(false)
+      ->take_all();
+  command->add_option("--export-solution", options->export_solution,
+                      "radiosity: also write the solution (.csv, .ply or .gltf)");
   command->callback([options, &run]() {
     run = [options]() { return run_reporting_bad_input([&] { return run_render(*options); }); };
   });

@@ -199,6 +199,116 @@ TEST_F(Cli, UnwritableOutputFailsWithoutLeavingFiles) {
   EXPECT_EQ(file_count(), 0);
 }
 
+// A small scene with two named views besides "camera"; "side" has its own size.
+const char* kViewsScene = R"({"format": "candela/1",
+  "camera": {"eye": [0, 0, 5], "target": [0, 0, 0], "width": 16, "height": 12},
+  "cameras": [{"name": "front", "eye": [0, 0, 5], "target": [0, 0, 0]},
+              {"name": "side", "eye": [5, 1, 0], "target": [0, 0, 0], "fov": 40, "width": 8, "height": 6}],
+  "ambient": 0.2,
+  "lights": [{"type": "point", "position": [3, 5, 4]}],
+  "shapes": [{"type": "sphere"}, {"type": "box", "min": [-2, -2, -2], "max": [2, -1.5, 2]}]})";
+
+// kViewsScene with "camera" replaced by the "side" view.
+const char* kSideAsCameraScene = R"({"format": "candela/1",
+  "camera": {"eye": [5, 1, 0], "target": [0, 0, 0], "fov": 40, "width": 8, "height": 6},
+  "ambient": 0.2,
+  "lights": [{"type": "point", "position": [3, 5, 4]}],
+  "shapes": [{"type": "sphere"}, {"type": "box", "min": [-2, -2, -2], "max": [2, -1.5, 2]}]})";
+
+std::string file_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST_F(Cli, CameraRendersANamedViewLikeTheSameCameraAsCamera) {
+  write("views.json", kViewsScene);
+  write("side.json", kSideAsCameraScene);
+  std::string output;
+  ASSERT_EQ(run("render views.json -q --camera side -o named.png", output), 0) << output;
+  ASSERT_EQ(run("render side.json -q -o reference.png", output), 0) << output;
+  ASSERT_EQ(run("render views.json -q -o default.png", output), 0) << output;
+  EXPECT_FALSE(file_bytes(directory_ / "named.png").empty());
+  EXPECT_EQ(file_bytes(directory_ / "named.png"), file_bytes(directory_ / "reference.png"));
+  EXPECT_NE(file_bytes(directory_ / "named.png"), file_bytes(directory_ / "default.png"));
+  // One camera: the output keeps its name; "default" is "camera".
+  ASSERT_EQ(run("render views.json -q --camera default -o default-again.png", output), 0) << output;
+  EXPECT_EQ(file_bytes(directory_ / "default-again.png"), file_bytes(directory_ / "default.png"));
+  EXPECT_EQ(file_count(), 6);
+}
+
+TEST_F(Cli, SeveralCamerasWriteOneImageAndStatisticsFileEach) {
+  write("views.json", kViewsScene);
+  write("side.json", kSideAsCameraScene);
+  std::string output;
+  // A list, a repeated option and a repeated name (rendered once).
+  ASSERT_EQ(run("render views.json -q --camera side,default --camera front,side -o out.png --stats stats.json", output),
+            0)
+      << output;
+  for (const char* name : {"side", "default", "front"}) {
+    EXPECT_TRUE(fs::exists(directory_ / ("out-" + std::string(name) + ".png"))) << name;
+    std::ifstream stats_file(directory_ / ("stats-" + std::string(name) + ".json"));
+    const auto stats = nlohmann::json::parse(stats_file);
+    EXPECT_EQ(stats["camera"], name);
+    EXPECT_EQ(stats["output"], "out-" + std::string(name) + ".png");
+    EXPECT_EQ(stats["image"]["width"], std::string(name) == "side" ? 8 : 16);
+    EXPECT_EQ(stats["rays"]["primary"], std::string(name) == "side" ? 8 * 6 : 16 * 12);
+    // Loading and building happen once, before the first view (side).
+    EXPECT_EQ(stats["phases_seconds"].contains("load"), std::string(name) == "side") << name;
+  }
+  EXPECT_EQ(file_count(), 2 + 3 + 3);
+  // The same method object renders the views in turn: each image is the one rendered alone.
+  ASSERT_EQ(run("render side.json -q -o reference.png", output), 0) << output;
+  EXPECT_EQ(file_bytes(directory_ / "out-side.png"), file_bytes(directory_ / "reference.png"));
+  EXPECT_EQ(file_bytes(directory_ / "out-default.png"), file_bytes(directory_ / "out-front.png"));
+  // all: every named camera, not "camera".
+  ASSERT_EQ(run("render views.json -q --camera all -o all.pfm", output), 0) << output;
+  EXPECT_TRUE(fs::exists(directory_ / "all-front.pfm"));
+  EXPECT_TRUE(fs::exists(directory_ / "all-side.pfm"));
+  EXPECT_FALSE(fs::exists(directory_ / "all-default.pfm"));
+  // --pixel: one ray tree per view.
+  ASSERT_EQ(run("render views.json --camera front,side --pixel 4,3", output), 0) << output;
+  EXPECT_NE(output.find("camera front:"), std::string::npos) << output;
+  EXPECT_NE(output.find("camera side:"), std::string::npos) << output;
+}
+
+TEST_F(Cli, BadCameraSelectionsAreRefusedAndNothingIsWritten) {
+  write("views.json", kViewsScene);
+  std::string output;
+  EXPECT_EQ(run("render views.json -q --camera front,nope -o out.png", output), 2);
+  EXPECT_NE(output.find("--camera nope: unknown camera (expected one of: default, front, side or all)"),
+            std::string::npos)
+      << output;
+  EXPECT_EQ(run("render views.json -q --camera front, -o out.png", output), 2);
+  EXPECT_NE(output.find("empty camera name"), std::string::npos) << output;
+  // --crop must fit every view: side is 8x6.
+  EXPECT_EQ(run("render views.json -q --camera front,side --crop 0,0,10,10 -o out.png", output), 2);
+  EXPECT_NE(output.find("(camera side)"), std::string::npos) << output;
+  EXPECT_EQ(run("render views.json -q --camera front,side --pixel 10,2", output), 2);
+  EXPECT_NE(output.find("of camera side"), std::string::npos) << output;
+  // The default scene has no "cameras".
+  EXPECT_EQ(run("render -q --camera all -o out.png", output), 2);
+  EXPECT_NE(output.find("no named cameras"), std::string::npos) << output;
+  EXPECT_EQ(run("render -q --camera front -o out.png", output), 2);
+  EXPECT_NE(output.find("(expected one of: default)"), std::string::npos) << output;
+  EXPECT_EQ(file_count(), 1);  // views.json alone
+}
+
+TEST_F(Cli, ExportSolutionIsCheckedBeforeRendering) {
+  write("views.json", kViewsScene);
+  std::string output;
+  EXPECT_EQ(run("render views.json -q --export-solution solution.csv -o out.png", output), 2);
+  EXPECT_NE(output.find("--export-solution needs --method radiosity (the method is whitted)"), std::string::npos)
+      << output;
+  EXPECT_EQ(run("render views.json -q --method radiosity --export-solution solution.txt -o out.png", output), 2);
+  EXPECT_NE(output.find("--export-solution solution.txt: unsupported extension (expected .csv, .ply or .gltf)"),
+            std::string::npos)
+      << output;
+  EXPECT_EQ(run("render views.json -q --method radiosity --export-solution missing/solution.ply -o out.png", output),
+            2);
+  EXPECT_NE(output.find("does not exist"), std::string::npos) << output;
+  EXPECT_EQ(file_count(), 1);  // views.json alone
+}
+
 TEST_F(Cli, BenchWritesTheTableJsonAndRayDump) {
   std::string output;
   ASSERT_EQ(run("bench --sphere 200 --accel list --threads 1 2 --width 8 --height 4 --rays 50 --repeat 1 "

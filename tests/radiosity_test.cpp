@@ -6,6 +6,7 @@
 
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -14,6 +15,7 @@
 #include "integrators/method_registry.h"
 #include "integrators/radiosity_method.h"
 #include "integrators/whitted.h"
+#include "radiosity/solvers.h"
 #include "scene/scene_loader.h"
 
 namespace candela {
@@ -123,8 +125,16 @@ TEST(RadiosityMethod, FurnaceProgressiveWithSubstructuring) {
 }
 
 TEST(RadiosityMethod, FurnaceProgressiveWithAmbient) {
-  // Stopped early, the ambient term of 000 §6.6.2 stands in for what is left unshot.
-  expect_furnace(R"({"patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 0.002, "ambient": true})");
+  // Stopped early, the ambient term of 000 §6.6.2 stands in for what is left unshot: in a uniform
+  // closed furnace it is nearly exact, so 5% unshot still shows E / (1 − ρ) everywhere...
+  expect_furnace(R"({"patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 0.05, "ambient": true})");
+  // ...which without it is far off.
+  const auto scene = scene_from(furnace_scene(R"({"patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 0.05, "ambient": false})"),
+                                kFurnaceCamera);
+  const RadiositySolveResult result = solve_radiosity(*scene, true);
+  double mean = 0;
+  for (const Color& b : result.element_radiosity) mean += b.g / static_cast<double>(result.element_radiosity.size());
+  EXPECT_LT(mean, 0.985 * 2.5);  // ≈ 2.43: the missing ρ·B_amb
 }
 
 TEST(RadiosityMethod, FurnaceGaussSeidel) {
@@ -158,6 +168,40 @@ TEST(RadiosityMethod, SettingsAreCheckedAndUnknownKeysRefused) {
   EXPECT_THROW(load(R"({"form_factors": "analytic"})"), std::exception);
   EXPECT_THROW(load(R"({"patch_size": 1, "element_size": 2})"), std::exception);
   EXPECT_THROW(load(R"({"patch_sise": 1})"), std::exception);
+  EXPECT_THROW(load(R"({"hemicube_resolution": 2048})"), std::exception);  // 12 MiB per thread at most
+  EXPECT_EQ(load(R"({"hemicube_resolution": 1024})")->radiosity.hemicube_resolution, 1024);
+  EXPECT_THROW(load(R"({"subdivision_threshold": 1.5})"), std::exception);
+  EXPECT_THROW(load(R"({"element_size": 0.5, "min_element_size": 1})"), std::exception);
+  EXPECT_THROW(load(R"({"memory_limit_mib": -1})"), std::exception);
+  EXPECT_EQ(load(R"({"display": "ray-traced"})")->radiosity.display, RadiosityDisplay::ray_traced);
+}
+
+// Issue 7: "A full-matrix solve that would not fit in memory is refused with a message naming
+// the setting to change" — before any form factor is computed.
+TEST(RadiosityMethod, SolvesThatDoNotFitAreRefusedNamingTheSettings) {
+  const auto refused = [](const std::string& radiosity, const std::vector<std::string>& names) {
+    const auto scene = scene_from(furnace_scene(radiosity), kFurnaceCamera);
+    try {
+      solve_radiosity(*scene, true);
+      ADD_FAILURE() << "not refused: " << radiosity;
+    } catch (const SolverMemoryError& error) {
+      const std::string message = error.what();
+      for (const std::string& name : names) EXPECT_NE(message.find(name), std::string::npos) << message;
+      EXPECT_GT(error.required_bytes(), error.limit_bytes());
+    }
+  };
+  // 768 patches: the full matrices take ≈ 14 MiB, more than 1 MiB.
+  refused(R"({"solver": "gaussian", "patch_size": 0.25, "element_size": 0.25, "memory_limit_mib": 1})",
+          {"radiosity.solver", "progressive", "radiosity.patch_size", "radiosity.memory_limit_mib"});
+  refused(R"({"solver": "gauss-seidel", "patch_size": 0.25, "element_size": 0.25, "memory_limit_mib": 1})",
+          {"radiosity.solver", "radiosity.patch_size"});
+  // Progressive keeps elements × patches floats: 3,072 × 768 × 4 bytes ≈ 9 MiB.
+  refused(R"({"patch_size": 0.25, "element_size": 0.125, "memory_limit_mib": 1})",
+          {"radiosity.patch_size", "radiosity.element_size"});
+  // Within the limit the same scene solves.
+  const auto scene = scene_from(furnace_scene(R"({"patch_size": 0.5, "element_size": 0.5, "memory_limit_mib": 1, "hemicube_resolution": 20, "threshold": 0.05})"),
+                                kFurnaceCamera);
+  EXPECT_NO_THROW(solve_radiosity(*scene, true));
 }
 
 Film render_cornell_box(const Scene& scene, int threads, RunStatistics& statistics) {
@@ -194,6 +238,100 @@ TEST(RadiosityMethod, CornellBoxConvergesAndDoesNotDependOnThreads) {
   EXPECT_GT(near_red.r / near_red.b, near_blue.r / near_blue.b);
 }
 
+std::unique_ptr<Scene> cornell_box(std::vector<std::string> settings) {
+  return load_scene_file(std::string(CANDELA_SOURCE_DIR) + "/scenes/cornell-box.json", std::move(settings));
+}
+
+// One-sided surfaces (000 §6.2): after the first shot, the energy that arrived is what the lamp
+// patch sent out, never more — before back faces were made occluders, the ceiling behind the lamp
+// counted the lamp's back as a lit front and 1.79 times the shot arrived.
+TEST(RadiosityMethod, FirstShotDeliversNoMoreThanTheShooterSent) {
+  const auto scene = cornell_box({"radiosity.hemicube_resolution=60", "radiosity.element_size=2", "radiosity.max_steps=1", "radiosity.ambient=false",
+                                  "camera.width=8", "camera.height=8"});
+  const RadiositySolveResult result = solve_radiosity(*scene, true);
+  ASSERT_EQ(result.steps, 1u);
+  double shooter_flux = 0, arrived = 0;
+  for (const RadiositySurface& patch : result.mesh.patches)
+    shooter_flux = std::max(shooter_flux, patch.emission.g * patch.area);  // the lamp's patches are equal
+  for (std::size_t q = 0; q < result.mesh.elements.size(); ++q) {
+    const RadiositySurface& element = result.mesh.elements[q];
+    if (element.reflectance.g <= 0) continue;  // the lamp (kd 0) receives nothing from itself anyway
+    arrived += (result.element_radiosity[q].g - element.emission.g) / element.reflectance.g * element.area;
+  }
+  ASSERT_GT(shooter_flux, 0);
+  RecordProperty("arrived_over_sent", std::to_string(arrived / shooter_flux));
+  EXPECT_LE(arrived, 1.01 * shooter_flux);
+  EXPECT_GE(arrived, 0.97 * shooter_flux);  // a closed room: nearly everything arrives somewhere
+}
+
+// 000 §6.7.2: elements whose radiosity differs from a neighbour's by more than the threshold are
+// split and the scene solved again, until no neighbours differ by more — or they are as small as
+// allowed.
+TEST(RadiosityMethod, AdaptiveSubdivisionRefinesUntilNoNeighboursDifferTooMuch) {
+  const double threshold = 0.15, min_size = 0.5;
+  const auto scene = cornell_box({"radiosity.patch_size=2", "radiosity.element_size=2", "radiosity.hemicube_resolution=40",
+                                  "radiosity.threshold=0.01", "radiosity.ambient=false",
+                                  "radiosity.subdivision_threshold=0.15", "radiosity.min_element_size=0.5",
+                                  "camera.width=8", "camera.height=8"});
+  const auto uniform = cornell_box({"radiosity.patch_size=2", "radiosity.element_size=2", "radiosity.hemicube_resolution=40",
+                                    "radiosity.threshold=0.01", "radiosity.ambient=false", "camera.width=8", "camera.height=8"});
+  const RadiositySolveResult refined = solve_radiosity(*scene, true);
+  const RadiositySolveResult plain = solve_radiosity(*uniform, true);
+  EXPECT_EQ(refined.mesh.patches.size(), plain.mesh.patches.size());  // patches stay, elements split
+  EXPECT_GT(refined.mesh.elements.size(), plain.mesh.elements.size());
+  EXPECT_GE(refined.subdivision_passes, 2u);
+  EXPECT_TRUE(refined.converged);
+  double element_area = 0;
+  for (const RadiositySurface& element : refined.mesh.elements) element_area += element.area;
+  EXPECT_NEAR(element_area, refined.mesh.patch_area(), 1e-9 * element_area);
+  // The stopping rule holds on the final solution.
+  const auto& elements = refined.mesh.elements;
+  const auto& b = refined.element_radiosity;
+  double largest = 0;
+  for (std::size_t q = 0; q < elements.size(); ++q)
+    if (elements[q].emission.is_black()) largest = std::max({largest, b[q].r, b[q].g, b[q].b});
+  const auto longest_edge = [&](std::size_t q) {
+    const auto& c = elements[q].corners;
+    return std::max({length(c[1] - c[0]), length(c[2] - c[1]), length(c[0] - c[2])});
+  };
+  const auto neighbours = refined.mesh.element_neighbours();
+  std::size_t steep_pairs = 0;
+  for (std::size_t q = 0; q < elements.size(); ++q) {
+    if (!elements[q].emission.is_black()) continue;
+    for (const uint32_t other : neighbours[q]) {
+      if (!elements[other].emission.is_black()) continue;
+      const Color d = b[q] - b[other];
+      if (std::max({std::fabs(d.r), std::fabs(d.g), std::fabs(d.b)}) > threshold * largest) {
+        ++steep_pairs;
+        EXPECT_TRUE(longest_edge(q) <= min_size || longest_edge(other) <= min_size);
+      }
+    }
+  }
+  RecordProperty("elements", std::to_string(elements.size()));
+  RecordProperty("steep_pairs_at_min_size", std::to_string(steep_pairs));
+}
+
+// SPEC §10: "view-independent: many views from one solution".
+TEST(RadiosityMethod, OneSolutionServesEveryView) {
+  const auto scene = cornell_box({"camera.width=24", "camera.height=24", "radiosity.hemicube_resolution=30",
+                                  "radiosity.threshold=0.02"});
+  const auto method = find_method("radiosity")->create();
+  Film first(24, 24), second(24, 24);
+  RunStatistics first_statistics, second_statistics;
+  method->render(*scene, {{0, 0, 24, 24}, true}, first, first_statistics);
+  method->render(*scene, {{0, 0, 24, 24}, true}, second, second_statistics);
+  EXPECT_FALSE(first_statistics.extra["radiosity"]["solution_reused"].get<bool>());
+  EXPECT_TRUE(second_statistics.extra["radiosity"]["solution_reused"].get<bool>());
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 24; ++x) EXPECT_EQ(first.at(x, y).g, second.at(x, y).g);
+  // Another scene object (even with the same file) is solved afresh.
+  const auto other = cornell_box({"camera.width=24", "camera.height=24", "radiosity.hemicube_resolution=30",
+                                  "radiosity.threshold=0.02"});
+  RunStatistics other_statistics;
+  method->render(*other, {{0, 0, 24, 24}, true}, first, other_statistics);
+  EXPECT_FALSE(other_statistics.extra["radiosity"]["solution_reused"].get<bool>());
+}
+
 // 000 §6.5, SPEC §10 "Display": the radiosity.display setting, "gouraud" by default.
 TEST(RadiosityDisplay, SettingDefaultsToGouraudAndIsChecked) {
   const auto load = [](const std::string& radiosity) { return scene_from(furnace_scene(radiosity), kFurnaceCamera); };
@@ -207,6 +345,34 @@ TEST(RadiosityDisplay, SettingDefaultsToGouraudAndIsChecked) {
 TEST(RadiosityDisplay, FurnaceGouraudShowsEOverOneMinusRhoEverywhere) {
   expect_furnace(R"({"display": "gouraud", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-4, "ambient": false})");
   expect_furnace(R"({"display": "gouraud", "solver": "gaussian", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60})");
+}
+
+TEST(RadiosityDisplay, FurnaceRayTracedShowsEOverOneMinusRhoEverywhere) {
+  expect_furnace(R"({"display": "ray-traced", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-4, "ambient": false})");
+}
+
+// The ray-traced view looks up the same vertex field the Gouraud display interpolates on screen:
+// the two images agree closely (they differ only where screen-space and surface interpolation
+// part, and at silhouettes).
+TEST(RadiosityDisplay, RayTracedViewMatchesGouraud) {
+  const std::vector<std::string> base{"camera.width=48", "camera.height=48", "radiosity.hemicube_resolution=40",
+                                      "radiosity.element_size=2", "radiosity.threshold=0.01"};
+  auto traced_settings = base, gouraud_settings = base;
+  traced_settings.push_back("radiosity.display=\"ray-traced\"");
+  const auto traced_scene = cornell_box(traced_settings);
+  const auto gouraud_scene = cornell_box(gouraud_settings);
+  RunStatistics statistics;
+  const Film traced = testing::render_scene(*traced_scene, "radiosity", 2, statistics);
+  EXPECT_EQ(statistics.extra["radiosity"]["display"], "ray-traced");
+  const Film gouraud = testing::render_scene(*gouraud_scene, "radiosity", 2, statistics);
+  double difference = 0, level = 0;
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 48; ++x) {
+      difference += std::fabs(traced.at(x, y).g - gouraud.at(x, y).g);
+      level += gouraud.at(x, y).g;
+    }
+  RecordProperty("relative_difference", std::to_string(difference / level));
+  EXPECT_LT(difference / level, 0.03);
 }
 
 TEST(RadiosityDisplay, FurnaceFlatShowsEOverOneMinusRhoEverywhere) {

@@ -23,7 +23,7 @@ struct RenderRequest {
   bool quiet = false;
   // Where a method that computes a view-independent solution writes it (radiosity: .csv, .ply
   // or .gltf, radiosity/solution_export.h); empty: nowhere. Other methods ignore it.
-  std::string export_solution;
+  std::string export_solution = {};
 };
 
 class Method {

@@ -3,6 +3,8 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -16,6 +18,7 @@
 #include "radiosity/vertex_radiosity.h"
 #include "raster/rasterizer.h"
 #include "util/progress.h"
+#include "radiosity/solution_export.h"
 
 namespace candela {
 
@@ -35,11 +38,17 @@ double channel_sum(const Color& c) { return c.r + c.g + c.b; }
 // Orients the hemicube around a surface's normal: its first edge (never along the normal).
 Vec3 tangent_of(const RadiositySurface& surface) { return normalize(surface.corners[1] - surface.corners[0]); }
 
-// Row sums of the hemicube rows (000 eq. 6-6: 1 in a closed scene), summarised.
+// Row sums of the form-factor rows (000 eq. 6-6: 1 in a closed scene), summarised. A row that
+// sees nothing at all (a face lying on another, like a box's bottom on the floor, whose hemicube
+// sees only the floor's back) is counted apart: it is hidden, not open.
 struct RowSumSummary {
   double min = std::numeric_limits<double>::infinity(), max = 0, total = 0;
-  std::size_t rows = 0;
+  std::size_t rows = 0, hidden_rows = 0;
   void add(double sum) {
+    if (sum < 1e-6) {
+      ++hidden_rows;
+      return;
+    }
     min = std::min(min, sum);
     max = std::max(max, sum);
     total += sum;
@@ -47,29 +56,51 @@ struct RowSumSummary {
   }
 };
 
-// Form factors from every surface's centroid to every target (a row per surface, F_i→j), in
-// parallel: each row by one thread into its own matrix row (ray casting with a random stream per
-// row), so the result does not depend on the thread count. A surface's row skips the target
-// `skipped(i)` (its own patch). The targets are the triangles of `geometry`, one per target.
+// The memory the stored form factors may take: radiosity.memory_limit_mib, or half the machine's.
+uint64_t form_factor_memory_limit(const RadiositySettings& settings) {
+  return settings.memory_limit_mib > 0 ? static_cast<uint64_t>(settings.memory_limit_mib * 1048576.0)
+                                       : default_gaussian_elimination_memory_limit();
+}
+
+// Refuses, before anything is allocated, form factors that would not fit (issue 7: "refused with a
+// message naming the setting to change").
+void check_form_factor_memory(uint64_t required, const RadiositySettings& settings, const std::string& what,
+                              const std::string& remedy) {
+  const uint64_t limit = form_factor_memory_limit(settings);
+  if (required <= limit) return;
+  throw SolverMemoryError(fmt::format("radiosity: {} needs {:.1f} MiB, more than the {:.1f} MiB allowed; {} "
+                                      "(or raise radiosity.memory_limit_mib)",
+                                      what, required / 1048576.0, limit / 1048576.0, remedy),
+                          required, limit);
+}
+
+// Form factors from the centroids of surfaces[rows[k]] to every target (F_i→j), into row rows[k]
+// of matrix (float: the element rows are the largest thing the solver keeps), in parallel: each
+// row by one thread into its own place (ray casting with a random stream per row index), so the
+// result does not depend on the thread count. A surface's row skips the target `skipped(i)`.
 //   hemicube  000 §6.4: the row of a hemicube at the centroid over the targets;
 //   ray-cast  per target, Lambert's exact unoccluded point-to-polygon form factor times the
 //             fraction of ray_cast_samples² rays that reach it (radiosity/ray_cast_form_factors.h).
-template <typename Skipped>
-Eigen::MatrixXd form_factor_rows(const Scene& scene, const std::vector<RadiositySurface>& surfaces,
-                                 const std::vector<RadiositySurface>& targets, const FormFactorGeometry& geometry,
-                                 Skipped skipped, RowSumSummary& row_sums) {
+template <typename Matrix, typename Skipped>
+void fill_form_factor_rows(const Scene& scene, const std::vector<RadiositySurface>& surfaces,
+                           const std::vector<uint32_t>& rows, const std::vector<RadiositySurface>& targets,
+                           const FormFactorGeometry& geometry, Skipped skipped, Matrix& matrix,
+                           RowSumSummary& row_sums) {
+  using Scalar = typename Matrix::Scalar;
   const RadiositySettings& settings = scene.radiosity;
-  Eigen::MatrixXd matrix = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(surfaces.size()), static_cast<Eigen::Index>(targets.size()));
+  std::vector<double> sums(rows.size());
   if (settings.form_factors == RadiosityFormFactors::hemicube) {
     const auto table = std::make_shared<const DeltaFormFactors>(settings.hemicube_resolution);
     tbb::enumerable_thread_specific<std::unique_ptr<HemicubeFormFactors>> hemicubes;
-    tbb::parallel_for(std::size_t(0), surfaces.size(), [&](std::size_t i) {
+    tbb::parallel_for(std::size_t(0), rows.size(), [&](std::size_t k) {
       auto& hemicube = hemicubes.local();
       if (!hemicube) hemicube = std::make_unique<HemicubeFormFactors>(table);
       thread_local std::vector<double> row;
+      const std::size_t i = rows[k];
       const RadiositySurface& surface = surfaces[i];
       hemicube->compute_row(geometry, surface.centroid, surface.normal, tangent_of(surface), static_cast<uint32_t>(skipped(i)), row);
-      for (std::size_t j = 0; j < row.size(); ++j) matrix(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = row[j];
+      for (std::size_t j = 0; j < row.size(); ++j) matrix(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = static_cast<Scalar>(row[j]);
+      sums[k] = row_sum(row);
     });
   } else {
     std::vector<FormFactorElement> sources;
@@ -78,32 +109,92 @@ Eigen::MatrixXd form_factor_rows(const Scene& scene, const std::vector<Radiosity
       sources.push_back(FormFactorElement::triangle(target.corners[0], target.corners[1], target.corners[2]));
     RayCastSettings ray_cast;
     ray_cast.source_samples_per_side = settings.ray_cast_samples;
-    tbb::parallel_for(std::size_t(0), surfaces.size(), [&](std::size_t i) {
+    tbb::parallel_for(std::size_t(0), rows.size(), [&](std::size_t k) {
+      const std::size_t i = rows[k];
       Pcg32 random(scene.render.seed, i);  // one stream per row
       const RadiositySurface& surface = surfaces[i];
+      double sum = 0;
       for (std::size_t j = 0; j < sources.size(); ++j) {
-        if (j == skipped(i)) continue;
-        matrix(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = point_to_element_form_factor(
-            surface.centroid, surface.normal, sources[j], &scene.accelerator(), ray_cast, random);
+        double form_factor = 0;
+        if (j != skipped(i))
+          form_factor = point_to_element_form_factor(surface.centroid, surface.normal, sources[j], &scene.accelerator(), ray_cast, random);
+        matrix(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = static_cast<Scalar>(form_factor);
+        sum += form_factor;
       }
+      sums[k] = sum;
     });
   }
-  for (Eigen::Index i = 0; i < matrix.rows(); ++i) row_sums.add(matrix.row(i).sum());
-  return matrix;
+  for (const double sum : sums) row_sums.add(sum);
 }
 
-// 000 §6.6 with substructuring (000 §6.7.1): patches shoot, elements receive. See the header.
-void solve_progressive(const Scene& scene, RadiositySolveResult& result, RowSumSummary& row_sums, bool quiet) {
-  const RadiositySettings& settings = scene.radiosity;
-  const RadiosityMesh& mesh = result.mesh;
+std::vector<uint32_t> all_rows(std::size_t count) {
+  std::vector<uint32_t> rows(count);
+  for (std::size_t i = 0; i < count; ++i) rows[i] = static_cast<uint32_t>(i);
+  return rows;
+}
+
+// Reciprocity (000 eq. 6-5) of patch form factors F_ij, measured over every pair: the
+// transfer-weighted mean Σ|A_i F_ij − A_j F_ji| / Σ(A_i F_ij + A_j F_ji) and the largest
+// mismatch relative to the largest transfer.
+struct Reciprocity {
+  double mean_error = 0, max_error = 0;
+};
+
+template <typename Matrix>
+Reciprocity measure_reciprocity(const std::vector<RadiositySurface>& patches, const Matrix& patch_rows) {
+  double largest_transfer = 0, largest_mismatch = 0, mismatch_sum = 0, transfer_sum = 0;
+  for (Eigen::Index i = 0; i < patch_rows.rows(); ++i)
+    for (Eigen::Index j = i + 1; j < patch_rows.cols(); ++j) {
+      const double a = patches[static_cast<std::size_t>(i)].area * patch_rows(i, j);
+      const double b = patches[static_cast<std::size_t>(j)].area * patch_rows(j, i);
+      largest_transfer = std::max({largest_transfer, a, b});
+      largest_mismatch = std::max(largest_mismatch, std::fabs(a - b));
+      mismatch_sum += std::fabs(a - b);
+      transfer_sum += a + b;
+    }
+  Reciprocity result;
+  if (transfer_sum > 0) result.mean_error = mismatch_sum / transfer_sum;
+  if (largest_transfer > 0) result.max_error = largest_mismatch / largest_transfer;
+  return result;
+}
+
+// The element rows F_qj, q an element, j a patch (000 §6.7.1: elements receive from patches),
+// kept for the whole solve; float (4 bytes a form factor).
+using ElementToPatch = Eigen::MatrixXf;
+
+uint64_t element_rows_bytes(std::size_t elements, std::size_t patches) {
+  return static_cast<uint64_t>(elements) * patches * sizeof(float);
+}
+
+// What the elements' radiosities came to, before the ambient term.
+struct ElementSolution {
+  std::vector<Color> radiosity;  // B_q
+  std::vector<Color> unshot;     // per patch (progressive), ΔB_j
+  std::size_t steps = 0;
+  double unshot_fraction = 0;
+  bool converged = true;
+};
+
+// 000 §6.6 with substructuring (000 §6.7.1): patches shoot, elements receive. The patch j with
+// the largest unshot flux ΔB_j·A_j shoots; every element q receives ΔRad_q = ρ_q ΔB_j F_qj
+// (000 eqs. 6-12, 6-13) with F_qj from a hemicube at q over the patches — each such row sums to 1
+// in a closed scene, which a hemicube at the shooter with reciprocity (F_qj = F_jq A_j / A_q) does
+// not give elements near the shooter (a furnace then shows ±17%); B_q += ΔRad_q, and the unshot
+// radiosity of q's patch grows by the area-weighted mean of its elements' gains.
+ElementSolution shoot_progressively(const RadiosityMesh& mesh, const ElementToPatch& element_to_patch,
+                                    const RadiositySettings& settings, ProgressReporter& progress,
+                                    uint64_t& progress_done) {
   const std::size_t patch_count = mesh.patches.size(), element_count = mesh.elements.size();
-  std::vector<Color> radiosity(element_count), unshot(patch_count);
+  ElementSolution result;
+  std::vector<Color>& radiosity = result.radiosity;
+  std::vector<Color>& unshot = result.unshot;
+  radiosity.resize(element_count);
+  unshot.resize(patch_count);
   for (std::size_t q = 0; q < element_count; ++q) radiosity[q] = mesh.elements[q].emission;  // B = E
-  double emitted_flux = 0, total_area = 0;
+  double emitted_flux = 0;
   for (std::size_t p = 0; p < patch_count; ++p) {
     unshot[p] = mesh.patches[p].emission;  // ΔB = E
     emitted_flux += channel_sum(unshot[p]) * mesh.patches[p].area;
-    total_area += mesh.patches[p].area;
   }
   const auto unshot_fraction = [&](std::size_t& shooter) {
     double flux = 0, largest = 0;
@@ -115,29 +206,18 @@ void solve_progressive(const Scene& scene, RadiositySolveResult& result, RowSumS
     }
     return emitted_flux > 0 ? flux / emitted_flux : 0.0;
   };
-
-  // The gathering form factors F_qj from every element q to every patch j: a hemicube at each
-  // element's centroid over the patches (000 §6.7.1), its own patch skipped. Each row sums to 1 in a
-  // closed scene, so every element receives exactly its share (a hemicube at the shooter with
-  // reciprocity, F_qj = F_jq A_j / A_q, misjudges elements near the shooter: ±17% in a furnace).
-  const Eigen::MatrixXd element_to_patch = form_factor_rows(
-      scene, mesh.elements, mesh.patches, mesh.patch_geometry,
-      [&](std::size_t q) { return std::size_t{mesh.patch_of_element[q]}; }, row_sums);
-  ProgressReporter progress("radiosity", 1000, "per mille of convergence", quiet);
-  uint64_t progress_done = 0;
   std::size_t shooter = patch_count;
   double fraction = unshot_fraction(shooter);
   std::size_t steps = 0;
   while (fraction > settings.threshold && shooter < patch_count && steps < static_cast<std::size_t>(settings.max_steps)) {
     const Color shot = unshot[shooter];
     unshot[shooter] = Color();
-    const auto column = element_to_patch.col(static_cast<Eigen::Index>(shooter));
+    const float* column = element_to_patch.col(static_cast<Eigen::Index>(shooter)).data();  // contiguous
     for (std::size_t q = 0; q < element_count; ++q) {
-      const double form_factor = column(static_cast<Eigen::Index>(q));  // F_qj
+      const double form_factor = column[q];  // F_qj
       if (form_factor <= 0) continue;
       const RadiositySurface& element = mesh.elements[q];
-      // 000 eqs. 6-12, 6-13: ΔRad = ρ_q ΔB_j F_qj.
-      const Color gain = element.reflectance * shot * form_factor;
+      const Color gain = element.reflectance * shot * form_factor;  // 000 eqs. 6-12, 6-13
       radiosity[q] += gain;
       const uint32_t patch = mesh.patch_of_element[q];
       unshot[patch] += gain * (element.area / mesh.patches[patch].area);  // area-weighted mean
@@ -145,68 +225,58 @@ void solve_progressive(const Scene& scene, RadiositySolveResult& result, RowSumS
     ++steps;
     fraction = unshot_fraction(shooter);
     const auto done = static_cast<uint64_t>(1000 * progressive_convergence_progress(fraction, settings.threshold));
+    progress.set_detail(fmt::format("unshot {:.3g}% after {} steps", 100 * fraction, steps));
     if (done > progress_done) progress.advance(done - progress_done), progress_done = done;
   }
-  progress.finish();
-
-  if (settings.ambient && total_area > 0) {
-    // 000 §6.6.2: ρ_avg (eq. 6-14), R = 1 / (1 − ρ_avg) (eq. 6-15), B_amb = R Σ_i ΔB_i A_i / Σ A.
-    Color average_reflectance, area_weighted_unshot;
-    for (const RadiositySurface& element : mesh.elements) average_reflectance += element.reflectance * (element.area / total_area);
-    for (std::size_t p = 0; p < patch_count; ++p) area_weighted_unshot += unshot[p] * (mesh.patches[p].area / total_area);
-    Color ambient;
-    for (int c = 0; c < 3; ++c) {
-      // A channel where every surface reflects everything has no finite series; show no ambient.
-      if (average_reflectance[c] < 1) ambient[c] = area_weighted_unshot[c] / (1 - average_reflectance[c]);
-    }
-    for (std::size_t q = 0; q < element_count; ++q) radiosity[q] += mesh.elements[q].reflectance * ambient;
-  }
-  result.element_radiosity = std::move(radiosity);
   result.steps = steps;
   result.unshot_fraction = fraction;
   result.converged = fraction <= settings.threshold;
-  result.form_factor_rows = element_count;
+  return result;
 }
 
-// The patch system by Gauss-Seidel or Gaussian elimination (000 eq. 6-9), then the elements
-// gathered from it (000 eq. 6-16).
-void solve_direct(const Scene& scene, RadiositySolveResult& result, RowSumSummary& row_sums, double& reciprocity_error) {
-  const RadiositySettings& settings = scene.radiosity;
-  const RadiosityMesh& mesh = result.mesh;
-  const RadiositySystem patches = mesh.patch_system();
-  Eigen::MatrixXd patch_rows = form_factor_rows(
-      scene, mesh.patches, mesh.patches, mesh.patch_geometry, [](std::size_t i) { return i; }, row_sums);
-  // Reciprocity (000 eq. 6-5): the largest |A_i F_ij − A_j F_ji| relative to the largest A_i F_ij.
-  double largest_transfer = 0, largest_mismatch = 0;
-  for (Eigen::Index i = 0; i < patch_rows.rows(); ++i)
-    for (Eigen::Index j = i + 1; j < patch_rows.cols(); ++j) {
-      const double a = patches.areas[static_cast<std::size_t>(i)] * patch_rows(i, j);
-      const double b = patches.areas[static_cast<std::size_t>(j)] * patch_rows(j, i);
-      largest_transfer = std::max({largest_transfer, a, b});
-      largest_mismatch = std::max(largest_mismatch, std::fabs(a - b));
+// 000 eq. 6-16: every element gathers from the patch solution, B_q = E_q + ρ_q Σ_j F_qj B_j.
+std::vector<Color> gather_from_patches(const RadiosityMesh& mesh, const ElementToPatch& element_to_patch,
+                                       const std::vector<Color>& patch_radiosity) {
+  std::vector<Color> radiosity(mesh.elements.size());
+  tbb::parallel_for(std::size_t(0), mesh.elements.size(), [&](std::size_t q) {
+    Color gathered;
+    for (std::size_t j = 0; j < patch_radiosity.size(); ++j)
+      gathered += patch_radiosity[j] * static_cast<double>(element_to_patch(static_cast<Eigen::Index>(q), static_cast<Eigen::Index>(j)));
+    radiosity[q] = mesh.elements[q].emission + mesh.elements[q].reflectance * gathered;
+  });
+  return radiosity;
+}
+
+// 000 §6.7.2: the elements to split — both of every pair of neighbours whose radiosities differ
+// in some channel by more than threshold × the largest radiosity a reflecting element shows, as
+// long as the element's longest edge exceeds min_size.
+std::vector<bool> elements_to_split(const RadiosityMesh& mesh, const std::vector<Color>& radiosity,
+                                    double threshold, double min_size) {
+  const std::size_t count = mesh.elements.size();
+  double largest = 0;
+  for (std::size_t q = 0; q < count; ++q)
+    if (mesh.elements[q].emission.is_black())
+      largest = std::max({largest, radiosity[q].r, radiosity[q].g, radiosity[q].b});
+  std::vector<bool> split(count, false);
+  if (!(largest > 0)) return split;
+  const double limit = threshold * largest;
+  const auto splittable = [&](std::size_t q) {
+    const auto& c = mesh.elements[q].corners;
+    return std::max({length(c[1] - c[0]), length(c[2] - c[1]), length(c[0] - c[2])}) > min_size;
+  };
+  const std::vector<std::vector<uint32_t>> neighbours = mesh.element_neighbours();
+  for (std::size_t q = 0; q < count; ++q) {
+    if (!mesh.elements[q].emission.is_black()) continue;
+    for (const uint32_t other : neighbours[q]) {
+      if (!mesh.elements[other].emission.is_black()) continue;
+      const Color d = radiosity[q] - radiosity[other];
+      if (std::max({std::fabs(d.r), std::fabs(d.g), std::fabs(d.b)}) > limit) {
+        if (splittable(q)) split[q] = true;
+        if (splittable(other)) split[other] = true;
+      }
     }
-  reciprocity_error = largest_transfer > 0 ? largest_mismatch / largest_transfer : 0;
-  const FormFactorSource patch_source(std::move(patch_rows));
-  const RadiositySolution solution =
-      settings.solver == RadiositySolver::gaussian
-          ? solve_gaussian_elimination(patches, patch_source)
-          : solve_gauss_seidel(patches, patch_source, settings.threshold, static_cast<std::size_t>(settings.max_steps));
-  ElementSystem elements;
-  for (std::size_t q = 0; q < mesh.elements.size(); ++q) {
-    elements.patch.push_back(mesh.patch_of_element[q]);
-    elements.areas.push_back(mesh.elements[q].area);
-    elements.reflectance.push_back(mesh.elements[q].reflectance);
-    elements.emission.push_back(mesh.elements[q].emission);
   }
-  RowSumSummary element_row_sums;  // element → patch rows: not the shooting rows, kept apart
-  const FormFactorSource element_to_patch(form_factor_rows(
-      scene, mesh.elements, mesh.patches, mesh.patch_geometry,
-      [&](std::size_t q) { return std::size_t{mesh.patch_of_element[q]}; }, element_row_sums));
-  result.element_radiosity = gather_element_radiosities(elements, element_to_patch, solution.radiosity);
-  result.steps = solution.iterations;
-  result.converged = solution.converged;
-  result.unshot_fraction = 0;
-  result.form_factor_rows = mesh.patches.size() + mesh.elements.size();
+  return split;
 }
 
 RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohmann::json* statistics) {
@@ -220,33 +290,149 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
   result.mesh = build_radiosity_mesh(scene, mesh_settings);
   result.mesh_seconds = mesh_time.seconds();
   Stopwatch solve_time;
-  RowSumSummary row_sums;
-  double reciprocity_error = -1;  // measured by the direct solvers only
-  if (settings.solver == RadiositySolver::progressive) {
-    solve_progressive(scene, result, row_sums, quiet);
-  } else {
-    solve_direct(scene, result, row_sums, reciprocity_error);
+  RadiosityMesh& mesh = result.mesh;
+  const std::size_t patch_count = mesh.patches.size();
+  const bool progressive = settings.solver == RadiositySolver::progressive;
+  const std::string fewer = "raise radiosity.patch_size or radiosity.element_size (fewer patches and elements)";
+
+  // The patch system first (direct solvers), its memory checked before anything is computed.
+  RowSumSummary patch_row_sums, element_row_sums;
+  Reciprocity reciprocity;
+  std::vector<Color> patch_radiosity;
+  std::size_t patch_steps = 0;
+  bool patch_converged = true;
+  if (!progressive) {
+    const uint64_t solver_bytes = settings.solver == RadiositySolver::gaussian ? gaussian_elimination_memory_bytes(patch_count) : 0;
+    check_form_factor_memory(static_cast<uint64_t>(patch_count) * patch_count * sizeof(double) + solver_bytes +
+                                 element_rows_bytes(mesh.elements.size(), patch_count),
+                             settings, fmt::format("the full matrix of {} patches ({} elements)", patch_count, mesh.elements.size()),
+                             "use radiosity.solver \"progressive\", or " + fewer);
+    Eigen::MatrixXd patch_rows(static_cast<Eigen::Index>(patch_count), static_cast<Eigen::Index>(patch_count));
+    fill_form_factor_rows(scene, mesh.patches, all_rows(patch_count), mesh.patches, mesh.patch_geometry,
+                          [](std::size_t i) { return i; }, patch_rows, patch_row_sums);
+    reciprocity = measure_reciprocity(mesh.patches, patch_rows);
+    const RadiositySystem patches = mesh.patch_system();
+    const FormFactorSource patch_source(std::move(patch_rows));
+    const RadiositySolution solution =
+        settings.solver == RadiositySolver::gaussian
+            ? solve_gaussian_elimination(patches, patch_source, form_factor_memory_limit(settings))
+            : solve_gauss_seidel(patches, patch_source, settings.threshold, static_cast<std::size_t>(settings.max_steps));
+    patch_radiosity = solution.radiosity;
+    patch_steps = solution.iterations;
+    patch_converged = solution.converged;
   }
+
+  // The element rows, then solutions and adaptive subdivision (000 §6.7.2) until no neighbours
+  // differ by more than the threshold.
+  check_form_factor_memory(element_rows_bytes(mesh.elements.size(), patch_count), settings,
+                           fmt::format("the form factors of {} elements to {} patches", mesh.elements.size(), patch_count), fewer);
+  ElementToPatch element_to_patch(static_cast<Eigen::Index>(mesh.elements.size()), static_cast<Eigen::Index>(patch_count));
+  const auto own_patch = [&](std::size_t q) { return std::size_t{mesh.patch_of_element[q]}; };
+  fill_form_factor_rows(scene, mesh.elements, all_rows(mesh.elements.size()), mesh.patches, mesh.patch_geometry,
+                        own_patch, element_to_patch, element_row_sums);
+  std::size_t form_factor_rows = (progressive ? 0 : patch_count) + mesh.elements.size();
+  const double min_element_size = settings.min_element_size > 0 ? settings.min_element_size : mesh.element_size / 8;
+  ProgressReporter progress("radiosity", 1000, "per mille of convergence", quiet);
+  ElementSolution solution;
+  for (;;) {
+    uint64_t progress_done = 0;
+    if (progressive) {
+      solution = shoot_progressively(mesh, element_to_patch, settings, progress, progress_done);
+    } else {
+      solution.radiosity = gather_from_patches(mesh, element_to_patch, patch_radiosity);
+      solution.steps = patch_steps;
+      solution.converged = patch_converged;
+    }
+    if (!(settings.subdivision_threshold > 0)) break;
+    const std::vector<bool> split = elements_to_split(mesh, solution.radiosity, settings.subdivision_threshold, min_element_size);
+    const auto split_count = static_cast<std::size_t>(std::count(split.begin(), split.end(), true));
+    if (split_count == 0) break;
+    // The new elements' rows; the others keep theirs. Both matrices are held while copying.
+    const std::size_t new_count = mesh.elements.size() + split_count;
+    check_form_factor_memory(element_rows_bytes(mesh.elements.size(), patch_count) + element_rows_bytes(new_count, patch_count),
+                             settings, fmt::format("adaptive subdivision to {} elements", new_count),
+                             "raise radiosity.subdivision_threshold or radiosity.min_element_size");
+    const std::vector<uint32_t> origin = mesh.split_elements(scene, split);
+    ElementToPatch refined(static_cast<Eigen::Index>(mesh.elements.size()), static_cast<Eigen::Index>(patch_count));
+    std::vector<uint32_t> new_rows;
+    for (std::size_t q = 0; q < origin.size(); ++q) {
+      if (split[origin[q]]) {
+        new_rows.push_back(static_cast<uint32_t>(q));
+      } else {
+        refined.row(static_cast<Eigen::Index>(q)) = element_to_patch.row(origin[q]);
+      }
+    }
+    element_to_patch = ElementToPatch();  // free before the new rows are computed
+    fill_form_factor_rows(scene, mesh.elements, new_rows, mesh.patches, mesh.patch_geometry, own_patch, refined, element_row_sums);
+    element_to_patch = std::move(refined);
+    form_factor_rows += new_rows.size();
+    ++result.subdivision_passes;
+  }
+  progress.finish();
+
+  if (progressive && settings.ambient) {
+    // 000 §6.6.2: ρ_avg (eq. 6-14), R = 1 / (1 − ρ_avg) (eq. 6-15), B_amb = R Σ_i ΔB_i A_i / Σ A.
+    const double total_area = mesh.patch_area();
+    Color average_reflectance, area_weighted_unshot;
+    for (const RadiositySurface& element : mesh.elements) average_reflectance += element.reflectance * (element.area / total_area);
+    for (std::size_t p = 0; p < patch_count; ++p) area_weighted_unshot += solution.unshot[p] * (mesh.patches[p].area / total_area);
+    Color ambient;
+    for (int c = 0; c < 3; ++c) {
+      // A channel where every surface reflects everything has no finite series; show no ambient.
+      if (average_reflectance[c] < 1) ambient[c] = area_weighted_unshot[c] / (1 - average_reflectance[c]);
+    }
+    for (std::size_t q = 0; q < mesh.elements.size(); ++q) solution.radiosity[q] += mesh.elements[q].reflectance * ambient;
+  }
+  if (progressive && patch_count <= 8192) {
+    // Reciprocity of the substructured patch form factors F_ij = Σ_{q∈i} A_q F_qj / A_i (000 eq. 6-19).
+    Eigen::MatrixXd patch_rows = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(patch_count), static_cast<Eigen::Index>(patch_count));
+    for (std::size_t q = 0; q < mesh.elements.size(); ++q) {
+      const uint32_t i = mesh.patch_of_element[q];
+      const double weight = mesh.elements[q].area / mesh.patches[i].area;
+      patch_rows.row(i) += element_to_patch.row(static_cast<Eigen::Index>(q)).cast<double>() * weight;
+    }
+    reciprocity = measure_reciprocity(mesh.patches, patch_rows);
+  }
+  result.element_radiosity = std::move(solution.radiosity);
+  result.steps = solution.steps;
+  result.unshot_fraction = solution.unshot_fraction;
+  result.converged = solution.converged;
+  result.form_factor_rows = form_factor_rows;
+  result.form_factors = (progressive ? 0 : patch_count * patch_count) + (form_factor_rows - (progressive ? 0 : patch_count)) * patch_count;
+  result.form_factor_bytes = element_rows_bytes(mesh.elements.size(), patch_count);
   result.solve_seconds = solve_time.seconds();
   if (statistics) {
     nlohmann::json& out = *statistics;
     out = {{"solver", solver_name(settings.solver)},
            {"form_factors", settings.form_factors == RadiosityFormFactors::hemicube ? "hemicube" : "ray-cast"},
            {"hemicube_resolution", settings.hemicube_resolution},
-           {"patches", result.mesh.patches.size()},
-           {"elements", result.mesh.elements.size()},
-           {"patch_size", result.mesh.patch_size},
-           {"element_size", result.mesh.element_size},
+           {"patches", patch_count},
+           {"elements", mesh.elements.size()},
+           {"patch_size", mesh.patch_size},
+           {"element_size", mesh.element_size},
            {"steps", result.steps},
            {"converged", result.converged},
            {"unshot_fraction", result.unshot_fraction},
+           {"subdivision_passes", result.subdivision_passes},
            {"form_factor_rows", result.form_factor_rows},
+           {"form_factors_computed", result.form_factors},
+           {"form_factors_per_second", result.solve_seconds > 0 ? static_cast<double>(result.form_factors) / result.solve_seconds : 0.0},
+           {"form_factor_memory_mib", static_cast<double>(result.form_factor_bytes) / 1048576.0},
            {"mesh_seconds", result.mesh_seconds},
-           {"solve_seconds", result.solve_seconds}};
-    if (row_sums.rows > 0) {
-      out["row_sum"] = {{"min", row_sums.min}, {"mean", row_sums.total / static_cast<double>(row_sums.rows)}, {"max", row_sums.max}};
-    }
-    if (reciprocity_error >= 0) out["reciprocity_error"] = reciprocity_error;
+           {"solve_seconds", result.solve_seconds},
+           {"reciprocity_error", reciprocity.mean_error},
+           {"reciprocity_error_max", reciprocity.max_error}};
+    const auto summary = [](const RowSumSummary& sums) {
+      nlohmann::json json = {{"rows", sums.rows}, {"hidden_rows", sums.hidden_rows}};
+      if (sums.rows > 0) {
+        json["min"] = sums.min;
+        json["mean"] = sums.total / static_cast<double>(sums.rows);
+        json["max"] = sums.max;
+      }
+      return json;
+    };
+    out["row_sum"] = summary(progressive ? element_row_sums : patch_row_sums);
+    if (!progressive) out["element_row_sum"] = summary(element_row_sums);
   }
   return result;
 }
@@ -310,29 +496,84 @@ void display_gouraud(const Scene& scene, const RadiositySolveResult& solution, c
   });
 }
 
+// 000 §6.5 and SPEC §10 "a ray-traced view that looks the value up at each hit": a ray through
+// each pixel centre; at its hit, the element under the hit point, and the vertex radiosities of
+// that element interpolated at the point's barycentric coordinates (the same field the Gouraud
+// display shows, without its screen-space interpolation).
+Color ray_traced_radiosity(const RadiositySolveResult& solution, const VertexRadiosity& vertices,
+                           const Intersection& hit) {
+  const uint32_t element = solution.mesh.element_at(hit.primitive, hit.surface.position);
+  if (element == UINT32_MAX) return Color();
+  const auto& corners = solution.mesh.elements[element].corners;
+  // Barycentric coordinates of the hit projected on the element's plane, clamped to the triangle.
+  const Vec3 e1 = corners[1] - corners[0], e2 = corners[2] - corners[0], d = hit.surface.position - corners[0];
+  const double d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2), d1 = dot(d, e1), d2 = dot(d, e2);
+  const double denominator = d11 * d22 - d12 * d12;
+  double v = denominator > 0 ? (d22 * d1 - d12 * d2) / denominator : 0;
+  double w = denominator > 0 ? (d11 * d2 - d12 * d1) / denominator : 0;
+  v = std::clamp(v, 0.0, 1.0);
+  w = std::clamp(w, 0.0, 1.0 - v);
+  const auto& ids = vertices.element_vertices[element];
+  return vertices.radiosity[ids[0]] * (1 - v - w) + vertices.radiosity[ids[1]] * v + vertices.radiosity[ids[2]] * w;
+}
+
+const char* display_name(RadiosityDisplay display) {
+  switch (display) {
+    case RadiosityDisplay::flat: return "flat";
+    case RadiosityDisplay::gouraud: return "gouraud";
+    case RadiosityDisplay::ray_traced: return "ray-traced";
+  }
+  return "?";
+}
+
 }  // namespace
 
 RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet) { return solve_with_statistics(scene, quiet, nullptr); }
 
+std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(const Scene& scene, bool quiet) const {
+  std::lock_guard lock(cache_mutex_);
+  if (cached_ && cached_scene_id_ == scene.unique_id) return cached_;
+  auto solved = std::make_shared<Solved>();
+  solved->result = solve_with_statistics(scene, quiet, &solved->facts);
+  cached_ = solved;
+  cached_scene_id_ = scene.unique_id;
+  return solved;
+}
+
 void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, Film& film,
                              RunStatistics& statistics) const {
-  nlohmann::json facts;
-  const RadiositySolveResult solution = solve_with_statistics(scene, request.quiet, &facts);
+  const bool reused = cached_ && cached_scene_id_ == scene.unique_id;
+  const std::shared_ptr<const Solved> solved = solution_for(scene, request.quiet);
+  const RadiositySolveResult& solution = solved->result;
+  nlohmann::json facts = solved->facts;
+  facts["solution_reused"] = reused;
+  if (!request.export_solution.empty()) {
+    export_solution(solution, request.export_solution, scene.display);
+    facts["exported_to"] = request.export_solution;
+  }
   const PixelRect region = request.region;
   const Camera& camera = *scene.camera;
   Stopwatch display_time;
-  if (scene.radiosity.display == RadiosityDisplay::gouraud) {
+  const RadiosityDisplay display = scene.radiosity.display;
+  if (display == RadiosityDisplay::gouraud) {
     display_gouraud(scene, solution, region, film);
   } else {
-    // Display: the radiosity of the element each pixel's ray hits (view independent: B itself).
+    // Display by ray casting: the radiosity (view independent: B itself) where each pixel's ray hits.
+    const VertexRadiosity vertices = display == RadiosityDisplay::ray_traced
+                                         ? compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity)
+                                         : VertexRadiosity();
     tbb::parallel_for(region.y0, region.y1, [&](int y) {
       for (int x = region.x0; x < region.x1; ++x) {
         const Ray ray = camera.generate_ray(x + 0.5, y + 0.5);
         Intersection hit;
         Color color;
         if (scene.intersect(ray, hit)) {
-          const uint32_t element = solution.mesh.element_at(hit.primitive, hit.surface.position);
-          color = element == UINT32_MAX ? Color() : solution.element_radiosity[element];
+          if (display == RadiosityDisplay::ray_traced) {
+            color = ray_traced_radiosity(solution, vertices, hit);
+          } else {
+            const uint32_t element = solution.mesh.element_at(hit.primitive, hit.surface.position);
+            color = element == UINT32_MAX ? Color() : solution.element_radiosity[element];
+          }
         } else {
           color = scene.background_along(ray.direction);
         }
@@ -341,9 +582,9 @@ void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, F
     });
   }
   const auto pixel_count = static_cast<uint64_t>(region.width()) * region.height();
-  if (scene.radiosity.display == RadiosityDisplay::flat) statistics.rays.primary += pixel_count;  // rasterized: none
+  if (display != RadiosityDisplay::gouraud) statistics.rays.primary += pixel_count;  // rasterized: none
   statistics.pixels += pixel_count;
-  facts["display"] = scene.radiosity.display == RadiosityDisplay::gouraud ? "gouraud" : "flat";
+  facts["display"] = display_name(display);
   facts["display_seconds"] = display_time.seconds();
   statistics.extra["radiosity"] = std::move(facts);
 }

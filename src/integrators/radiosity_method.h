@@ -35,7 +35,12 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <mutex>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "integrators/method.h"
 #include "radiosity/radiosity_solve_result.h"
@@ -45,11 +50,24 @@ namespace candela {
 // Meshes and solves the scene with scene.radiosity (quiet: no progress bar).
 RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet);
 
+// One solution serves every view: render() keeps the last scene's solution (recognised by
+// Scene::unique_id) and reuses it when called again for the same scene with another camera.
 class RadiosityMethod final : public Method {
  public:
   std::string_view name() const override { return "radiosity"; }
   void render(const Scene& scene, const RenderRequest& request, Film& film,
               RunStatistics& statistics) const override;
+
+ private:
+  struct Solved {
+    RadiositySolveResult result;
+    nlohmann::json facts;  // what the solve measured, for --stats
+  };
+  std::shared_ptr<const Solved> solution_for(const Scene& scene, bool quiet) const;
+
+  mutable std::mutex cache_mutex_;
+  mutable std::shared_ptr<const Solved> cached_;
+  mutable uint64_t cached_scene_id_ = 0;
 };
 
 }  // namespace candela

@@ -279,17 +279,20 @@ TEST(FormFactorAnalytic, HowellClosedFormsGiveTheCatalogueValues) {
 
 TEST(FormFactorAnalytic, PointToPolygonIsExactForRectangles) {
   const Vec3 up{0, 0, 1};
-  // Normal through a corner: [0,a] × [0,b] at height c, both windings, any normal length.
+  // Normal through a corner: [0,a] × [0,b] at height c, any normal length. One-sided: wound
+  // clockwise seen from above, the rectangle faces down to the point; the other winding faces
+  // away and passes nothing.
   for (const auto& [a, b, c] :
        {std::array{1.0, 1.0, 1.0}, std::array{0.3, 2.0, 0.7}, std::array{5.0, 0.1, 2.0}}) {
-    const std::vector<Vec3> rectangle{{0, 0, c}, {a, 0, c}, {a, b, c}, {0, b, c}};
-    const std::vector<Vec3> reversed(rectangle.rbegin(), rectangle.rend());
+    const std::vector<Vec3> facing_down{{0, 0, c}, {0, b, c}, {a, b, c}, {a, 0, c}};
+    const std::vector<Vec3> facing_up(facing_down.rbegin(), facing_down.rend());
     const double expected = point_to_parallel_rectangle_corner(a, b, c);
-    EXPECT_NEAR(point_to_polygon_form_factor({0, 0, 0}, up, rectangle), expected, 1e-12);
-    EXPECT_NEAR(point_to_polygon_form_factor({0, 0, 0}, up * 3, reversed), expected, 1e-12);
+    EXPECT_NEAR(point_to_polygon_form_factor({0, 0, 0}, up, facing_down), expected, 1e-12);
+    EXPECT_NEAR(point_to_polygon_form_factor({0, 0, 0}, up * 3, facing_down), expected, 1e-12);
+    EXPECT_EQ(point_to_polygon_form_factor({0, 0, 0}, up, facing_up), 0.0);
   }
   // The centre of a unit square facing a parallel unit square at distance 1: 0.2395.
-  const std::vector<Vec3> square{{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const std::vector<Vec3> square{{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}};
   EXPECT_NEAR(point_to_polygon_form_factor({0.5, 0.5, 0}, up, square), kPointToSquare, 1e-12);
   // An off-centre point: four corner rectangles of different sizes.
   const Vec3 x{0.2, 0.65, 0};
@@ -319,7 +322,8 @@ TEST(FormFactorAnalytic, PointToPolygonClipsAtTheHorizon) {
   const std::vector<Vec3> below{{0, 0, -1}, {1, 0, -1}, {1, 1, -1}};
   EXPECT_EQ(point_to_polygon_form_factor({0, 0, 0}, up, below), 0.0);
   // A fine regular polygon tends to the coaxial disc's r²/(h² + r²) (inscribed: slightly below).
-  const double disc = point_to_polygon_form_factor({0, 0, 0}, up, disc_polygon({0, 0, 0.8}, 1.3, 4096));
+  const std::vector<Vec3> ring = disc_polygon({0, 0, 0.8}, 1.3, 4096);
+  const double disc = point_to_polygon_form_factor({0, 0, 0}, up, std::vector<Vec3>(ring.rbegin(), ring.rend()));
   EXPECT_NEAR(disc, point_to_coaxial_disc(1.3, 0.8), 1e-6);
   EXPECT_LT(disc, point_to_coaxial_disc(1.3, 0.8));
   EXPECT_THROW(point_to_polygon_form_factor({0, 0, 0}, Vec3{}, floor), std::invalid_argument);
@@ -422,7 +426,8 @@ TEST(HemicubeFormFactors, SubstructuredCoaxialDiscs) {
   const double r1 = 1, r2 = 0.6, h = 0.8;
   FormFactorGeometry geometry;
   add_fan(geometry, {0, 0, 0}, disc_polygon({0, 0, 0}, r1, 256), 0);
-  add_fan(geometry, {0, 0, h}, disc_polygon({0, 0, h}, r2, 256), 1);
+  const std::vector<Vec3> upper = disc_polygon({0, 0, h}, r2, 256);
+  add_fan(geometry, {0, 0, h}, std::vector<Vec3>(upper.rbegin(), upper.rend()), 1);  // facing down
   HemicubeFormFactors hemicube(100);
   std::vector<double> row;
   const int rings = 8, sectors = 32;
@@ -442,13 +447,50 @@ TEST(HemicubeFormFactors, SubstructuredCoaxialDiscs) {
   record_measurement("point_to_disc_error", relative_error(row[1], point_to_coaxial_disc(r2, h)));
 }
 
+TEST(HemicubeFormFactors, BackFacesHideButPassNothing) {
+  // Surfaces are one-sided: a square above the point facing away from it (its back toward the
+  // point, like a lamp's back toward the ceiling) receives nothing and hides the target above.
+  FormFactorGeometry geometry = parallel_squares();  // element 1 at z = 1, facing down
+  add_quad(geometry, {-1, -1, 0.5}, {2, -1, 0.5}, {2, 2, 0.5}, {-1, 2, 0.5}, 2);  // faces up
+  geometry.validate();
+  HemicubeFormFactors hemicube(50);
+  const std::vector<double> row = hemicube.row(geometry, {0.5, 0.5, 0}, {0, 0, 1}, {1, 0, 0}, 0);
+  EXPECT_EQ(row[2], 0.0);
+  EXPECT_EQ(row[1], 0.0);
+  EXPECT_LT(row_sum(row), 1e-12);
+  // Turned around, the same square faces the point and takes its full share.
+  FormFactorGeometry facing = parallel_squares();
+  add_quad(facing, {-1, -1, 0.5}, {-1, 2, 0.5}, {2, 2, 0.5}, {2, -1, 0.5}, 2);
+  const std::vector<double> seen = hemicube.row(facing, {0.5, 0.5, 0}, {0, 0, 1}, {1, 0, 0}, 0);
+  EXPECT_EQ(seen[1], 0.0);
+  EXPECT_NEAR(seen[2], point_to_polygon_form_factor({0.5, 0.5, 0}, {0, 0, 1},
+                                                    std::vector<Vec3>{{-1, -1, 0.5}, {-1, 2, 0.5}, {2, 2, 0.5}, {2, -1, 0.5}}),
+              0.01);
+}
+
+TEST(FormFactorRayCast, BackFacingSourcesSendNothing) {
+  // The sampled integrand and the exact polygon formula agree that a source seen from behind
+  // gives 0, and that the same source turned around gives the catalogue's 0.2395.
+  const FormFactorElement facing = FormFactorElement::quad({0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1});
+  const FormFactorElement away = FormFactorElement::quad({0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1});
+  RayCastSettings settings;
+  settings.source_samples_per_side = 16;
+  for (const InnerIntegral inner : {InnerIntegral::sampled, InnerIntegral::analytic_visibility}) {
+    settings.inner_integral = inner;
+    Pcg32 random(3, 4);
+    EXPECT_NEAR(point_to_element_form_factor({0.5, 0.5, 0}, {0, 0, 1}, facing, nullptr, settings, random),
+                kPointToSquare, 0.003);
+    EXPECT_EQ(point_to_element_form_factor({0.5, 0.5, 0}, {0, 0, 1}, away, nullptr, settings, random), 0.0);
+  }
+}
+
 TEST(HemicubeFormFactors, SkipsTheSourceAndReusesItsBuffers) {
   // The source element also owns a triangle above the point, which would hide the target.
   FormFactorGeometry geometry = parallel_squares();
   const auto base = static_cast<uint32_t>(geometry.mesh.positions.size());
   for (const Vec3& p : {Vec3{-1, -1, 0.5}, Vec3{3, -1, 0.5}, Vec3{0.5, 3, 0.5}})
     geometry.mesh.positions.push_back(p);
-  geometry.mesh.triangles.push_back({base, base + 1, base + 2});
+  geometry.mesh.triangles.push_back({base, base + 2, base + 1});  // facing down, to the point
   geometry.element_of_triangle.push_back(0);
   geometry.validate();
   HemicubeFormFactors hemicube(50);
@@ -609,7 +651,7 @@ TEST(FormFactorRayCast, EdgeSharingErrorFallsLikeOneOverN) {
 TEST(FormFactorRayCast, ElementsSampleTheirArea) {
   // A trapezoid (not a parallelogram: the bilinear map's density varies) and a triangle.
   const FormFactorElement trapezoid = FormFactorElement::quad({0, 0, 1}, {0, 2, 1}, {1, 1.5, 1}, {1, 0.5, 1});
-  const FormFactorElement triangle = FormFactorElement::triangle({-1, 0, 2}, {0.5, -1, 2}, {0, 1, 2});
+  const FormFactorElement triangle = FormFactorElement::triangle({-1, 0, 2}, {0, 1, 2}, {0.5, -1, 2});  // faces down
   EXPECT_NEAR(trapezoid.area(), 1.5, 1e-15);
   EXPECT_NEAR(triangle.area(), 0.5 * length(cross(Vec3{1.5, -1, 0}, Vec3{1, 1, 0})), 1e-15);
   EXPECT_NEAR(trapezoid.normal().z, -1, 1e-15);  // clockwise seen from above: faces down

@@ -15,6 +15,9 @@ void FormFactorGeometry::validate() const {
   if (element_of_triangle.size() != mesh.triangles.size())
     throw std::invalid_argument("form factor geometry: " + std::to_string(element_of_triangle.size()) +
                                 " element ids for " + std::to_string(mesh.triangles.size()) + " triangles");
+  if (element_count >= kBackFace)
+    throw std::invalid_argument("form factor geometry: " + std::to_string(element_count) +
+                                " elements; at most " + std::to_string(kBackFace - 1));
   for (std::size_t t = 0; t < element_of_triangle.size(); ++t)
     if (element_of_triangle[t] >= element_count)
       throw std::invalid_argument("form factor geometry: triangle " + std::to_string(t) +
@@ -86,15 +89,19 @@ void HemicubeFormFactors::compute_row(const FormFactorGeometry& geometry, const 
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const uint32_t element = geometry.element_of_triangle[t];
     const auto& corner = mesh.triangles[t];
-    if (element >= geometry.element_count || corner[0] >= corner_count || corner[1] >= corner_count ||
+    if (element >= geometry.element_count || element >= kBackFace || corner[0] >= corner_count || corner[1] >= corner_count ||
         corner[2] >= corner_count)
       throw std::invalid_argument("hemicube form factors: triangle " + std::to_string(t) +
                                   " has an element id or a corner index out of range");
     if (element == source_element) continue;
     if (std::max({corner_heights_[corner[0]], corner_heights_[corner[1]], corner_heights_[corner[2]]}) <= 0)
       continue;
+    // Surfaces are one-sided (000 §6.2: a patch emits and reflects from its front): a triangle
+    // whose back faces the point still hides what lies behind it, but passes no energy.
+    const Vec3& a = visible_.positions[corner[0]];
+    const Vec3 front = cross(visible_.positions[corner[1]] - a, visible_.positions[corner[2]] - a);
     visible_.triangles.push_back(corner);
-    visible_elements_.push_back(element);
+    visible_elements_.push_back(dot(front, a) < 0 ? element : kBackFace);
   }
   const double reach = std::sqrt(reach_squared);
   if (visible_.triangles.empty() || !(reach > 0) || !std::isfinite(reach)) return;
@@ -132,7 +139,7 @@ void HemicubeFormFactors::accumulate(const ItemBuffer& items, HemicubeFace face,
     const uint32_t* id_row = ids + static_cast<std::size_t>(image_row) * static_cast<std::size_t>(resolution);
     for (int column = 0; column < resolution; ++column) {
       const uint32_t id = id_row[column];
-      if (id != ItemBuffer::kNoItem) {
+      if (id < kBackFace) {  // neither background nor a back face
         row_out[id] += delta[column];
         ++covered;
       }

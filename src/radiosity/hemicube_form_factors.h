@@ -10,8 +10,10 @@
 // a patch weighted by area gives the substructured F_ij = (1/A_i) Σ_k A_k F_{k→j} (000 eq. 6-19).
 //
 // Conventions:
-// - Geometry: triangles in world space, each with the id of the element it belongs to; both
-//   windings are drawn (the item buffer is two-sided). The source's own triangles (those of
+// - Geometry: triangles in world space, each with the id of the element it belongs to, its front
+//   side the one its corners wind counter-clockwise around. Surfaces are one-sided: a triangle
+//   seen from behind is drawn (it hides what is behind it) with the id kBackFace, and its cells
+//   add to no element (element ids must lie below kBackFace). The source's own triangles (those of
 //   source_element) are skipped, so F_{source→source} = 0, as the seed's F_ii.
 // - Near and far planes: near = near_fraction × (the largest distance from the point to a
 //   vertex of the mesh), far = 2 × that distance. The patch, which lies in the plane through the
@@ -55,6 +57,8 @@ struct FormFactorGeometry {
 
 // The id of no element: a row computed with it as the source skips no triangle.
 inline constexpr uint32_t kNoElement = 0xFFFFFFFFu;
+// The item id of a triangle seen from behind: it occludes, and nothing is added for it.
+inline constexpr uint32_t kBackFace = 0xFFFFFFFEu;
 
 class HemicubeFormFactors {
  public:

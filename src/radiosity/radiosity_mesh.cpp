@@ -5,7 +5,9 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 
+#include "math/constants.h"
 #include "raster/tessellated_scene.h"
 #include "scene/scene.h"
 #include "shading/material.h"
@@ -159,6 +161,119 @@ uint32_t RadiosityMesh::element_at(uint32_t primitive, const Vec3& point) const 
   return best;
 }
 
+std::vector<std::vector<uint32_t>> RadiosityMesh::element_neighbours() const {
+  const std::size_t count = elements.size();
+  std::vector<std::vector<uint32_t>> neighbours(count);
+  if (count == 0) return neighbours;
+  // A hash grid with cells as large as the largest element: touching elements share a cell.
+  Bounds3 bounds;
+  double largest_edge = 0;
+  for (const RadiositySurface& element : elements)
+    for (int k = 0; k < 3; ++k) {
+      bounds.extend(element.corners[k]);
+      largest_edge = std::max(largest_edge, length(element.corners[(k + 1) % 3] - element.corners[k]));
+    }
+  const double cell = largest_edge > 0 ? largest_edge : 1;
+  const double tolerance = 1e-7 * std::max(largest_edge, length(bounds.diagonal()) * 1e-3);
+  const auto cell_of = [&](double value, double origin) { return static_cast<int64_t>(std::floor((value - origin) / cell)); };
+  std::unordered_map<uint64_t, std::vector<uint32_t>> grid;
+  const auto key = [](int64_t x, int64_t y, int64_t z) {
+    return (static_cast<uint64_t>(x) & 0x1FFFFF) | (static_cast<uint64_t>(y) & 0x1FFFFF) << 21 |
+           (static_cast<uint64_t>(z) & 0x1FFFFF) << 42;
+  };
+  const auto for_each_cell = [&](const RadiositySurface& element, auto&& visit) {
+    Bounds3 box;
+    for (const Vec3& corner : element.corners) box.extend(corner);
+    for (int64_t x = cell_of(box.lower.x - tolerance, bounds.lower.x); x <= cell_of(box.upper.x + tolerance, bounds.lower.x); ++x)
+      for (int64_t y = cell_of(box.lower.y - tolerance, bounds.lower.y); y <= cell_of(box.upper.y + tolerance, bounds.lower.y); ++y)
+        for (int64_t z = cell_of(box.lower.z - tolerance, bounds.lower.z); z <= cell_of(box.upper.z + tolerance, bounds.lower.z); ++z)
+          visit(key(x, y, z));
+  };
+  for (uint32_t q = 0; q < count; ++q) for_each_cell(elements[q], [&](uint64_t k) { grid[k].push_back(q); });
+  // How many corners of a lie on the boundary of b (within the tolerance).
+  const auto corners_on_boundary = [&](const RadiositySurface& a, const RadiositySurface& b) {
+    int on = 0;
+    for (const Vec3& p : a.corners)
+      for (int k = 0; k < 3; ++k) {
+        const Vec3 start = b.corners[k], edge = b.corners[(k + 1) % 3] - start;
+        const double t = std::clamp(dot(p - start, edge) / std::max(dot(edge, edge), 1e-300), 0.0, 1.0);
+        if (length(p - (start + edge * t)) <= tolerance) {
+          ++on;
+          break;
+        }
+      }
+    return on;
+  };
+  const double crease_cosine = std::cos(kPi / 4);
+  for (uint32_t q = 0; q < count; ++q) {
+    std::vector<uint32_t>& list = neighbours[q];
+    for_each_cell(elements[q], [&](uint64_t k) {
+      for (const uint32_t other : grid[k]) {
+        if (other == q || elements[other].object != elements[q].object) continue;
+        if (dot(elements[other].normal, elements[q].normal) < crease_cosine) continue;
+        // A shared piece of edge: two corners of one lie on the other's boundary.
+        if (corners_on_boundary(elements[q], elements[other]) >= 2 || corners_on_boundary(elements[other], elements[q]) >= 2)
+          list.push_back(other);
+      }
+    });
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+  return neighbours;
+}
+
+std::vector<uint32_t> RadiosityMesh::split_elements(const Scene& scene, const std::vector<bool>& split) {
+  if (split.size() != elements.size())
+    throw std::invalid_argument("radiosity mesh: " + std::to_string(split.size()) + " split flags for " +
+                                std::to_string(elements.size()) + " elements");
+  std::vector<RadiositySurface> new_elements;
+  std::vector<uint32_t> new_patch_of_element, origin;
+  std::vector<std::array<Vec3, 3>> new_object_corners;
+  std::vector<std::array<Vec2, 3>> new_uvs;
+  std::vector<uint32_t> new_first_element{0};
+  for (std::size_t p = 0; p + 1 < first_element.size(); ++p) {
+    for (uint32_t q = first_element[p]; q < first_element[p + 1]; ++q) {
+      CornerTriangle triangle;
+      for (int k = 0; k < 3; ++k)
+        triangle[k] = {elements[q].corners[k], element_object_corners[q][k], element_uvs[q][k]};
+      std::vector<CornerTriangle> pieces;
+      if (split[q]) {
+        // One bisection: a zero max_edge would recurse to the bottom, so halve by hand.
+        int longest = 0;
+        double longest_length = -1;
+        for (int k = 0; k < 3; ++k) {
+          const double edge = length(triangle[(k + 1) % 3].position - triangle[k].position);
+          if (edge > longest_length) longest_length = edge, longest = k;
+        }
+        const MeshCorner& a = triangle[longest];
+        const MeshCorner& b = triangle[(longest + 1) % 3];
+        const MeshCorner& c = triangle[(longest + 2) % 3];
+        const MeshCorner m = midpoint(a, b);
+        pieces = {{a, m, c}, {m, b, c}};
+      } else {
+        pieces = {triangle};
+      }
+      for (const CornerTriangle& piece : pieces) {
+        new_elements.push_back(split[q] ? make_surface(scene, piece, elements[q].primitive) : elements[q]);
+        new_patch_of_element.push_back(static_cast<uint32_t>(p));
+        new_object_corners.push_back({piece[0].object_position, piece[1].object_position, piece[2].object_position});
+        new_uvs.push_back({piece[0].uv, piece[1].uv, piece[2].uv});
+        origin.push_back(q);
+      }
+    }
+    new_first_element.push_back(static_cast<uint32_t>(new_elements.size()));
+  }
+  elements = std::move(new_elements);
+  patch_of_element = std::move(new_patch_of_element);
+  element_object_corners = std::move(new_object_corners);
+  element_uvs = std::move(new_uvs);
+  first_element = std::move(new_first_element);
+  for (auto& list : elements_of_primitive) list.clear();
+  for (uint32_t q = 0; q < elements.size(); ++q) elements_of_primitive[elements[q].primitive].push_back(q);
+  element_geometry = geometry_of(elements);
+  return origin;
+}
+
 RadiosityMesh build_radiosity_mesh(const Scene& scene, const RadiosityMeshSettings& settings) {
   if (settings.segments < 3) {
     throw std::invalid_argument("radiosity mesh: segments " + std::to_string(settings.segments) + " (must be >= 3)");
@@ -207,6 +322,8 @@ RadiosityMesh build_radiosity_mesh(const Scene& scene, const RadiosityMeshSettin
         result.elements_of_primitive[primitive].push_back(static_cast<uint32_t>(result.elements.size()));
         result.elements.push_back(make_surface(scene, element, primitive));
         result.patch_of_element.push_back(patch_index);
+        result.element_object_corners.push_back({element[0].object_position, element[1].object_position, element[2].object_position});
+        result.element_uvs.push_back({element[0].uv, element[1].uv, element[2].uv});
       }
       result.first_element.push_back(static_cast<uint32_t>(result.elements.size()));
     }

@@ -55,6 +55,10 @@ struct RadiosityMesh {
   FormFactorGeometry element_geometry;
   FormFactorGeometry patch_geometry;
   double patch_size = 0, element_size = 0;  // the bounds used
+  // Per element: its corners in object space and their uvs (where textures are looked up when
+  // an element is split again).
+  std::vector<std::array<Vec3, 3>> element_object_corners;
+  std::vector<std::array<Vec2, 3>> element_uvs;
 
   // The patches as a radiosity system (areas, ρ, E) and the elements likewise.
   RadiositySystem patch_system() const;
@@ -65,6 +69,18 @@ struct RadiosityMesh {
   // flat shapes; for curved ones the triangle closest to the true surface point); UINT32_MAX
   // when the primitive has no elements.
   uint32_t element_at(uint32_t primitive, const Vec3& point) const;
+
+  // The neighbours of every element (000 §6.7.2): the elements of the same object that share a
+  // piece of an edge with it (also across the T-junctions that splitting leaves) and whose
+  // normals differ by at most 45° (a crease, like a box's edge, separates two surfaces).
+  // Symmetric, sorted, without the element itself.
+  std::vector<std::vector<uint32_t>> element_neighbours() const;
+
+  // 000 §6.7.2: splits every element q with split[q] once by longest-edge bisection (ρ and E
+  // evaluated again at the halves' centroids); the elements stay grouped patch by patch and the
+  // geometry is rebuilt. Returns, for each new element, the index of the old element it is or
+  // was cut from. Throws std::invalid_argument unless split has one entry per element.
+  std::vector<uint32_t> split_elements(const Scene& scene, const std::vector<bool>& split);
 };
 
 // Builds the mesh of a prepared scene. Throws std::invalid_argument for segments < 3, a negative

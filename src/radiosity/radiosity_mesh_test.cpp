@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -181,6 +182,60 @@ TEST(RadiosityMesh, BadSettingsAreRefused) {
   settings = {};
   settings.patch_size = -1;
   EXPECT_THROW(build_radiosity_mesh(*scene, settings), std::invalid_argument);
+}
+
+TEST(RadiosityMesh, NeighboursShareEdgesWithinOneSurfaceAndAreSymmetric) {
+  // A unit quad meshed into 8 elements (two triangles, each bisected twice), and a box beside it.
+  const auto scene = scene_with(R"([{"type": "quad", "corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0]},
+                                    {"type": "box", "min": [2, 0, 0], "max": [3, 1, 1]}])");
+  RadiosityMeshSettings settings;
+  settings.patch_size = 1.5;
+  settings.element_size = 0.75;
+  RadiosityMesh mesh = build_radiosity_mesh(*scene, settings);
+  const auto neighbours = mesh.element_neighbours();
+  ASSERT_EQ(neighbours.size(), mesh.elements.size());
+  for (uint32_t q = 0; q < neighbours.size(); ++q) {
+    for (const uint32_t other : neighbours[q]) {
+      EXPECT_NE(other, q);
+      EXPECT_EQ(mesh.elements[other].object, mesh.elements[q].object);
+      EXPECT_GT(dot(mesh.elements[other].normal, mesh.elements[q].normal), 0.7);  // never across a crease
+      EXPECT_TRUE(std::binary_search(neighbours[other].begin(), neighbours[other].end(), q));
+    }
+  }
+  // In a triangulated square every element has at least one and at most three edge neighbours.
+  for (uint32_t q = 0; q < mesh.elements.size(); ++q) {
+    if (mesh.elements[q].object != 0) continue;
+    EXPECT_GE(neighbours[q].size(), 1u);
+    EXPECT_LE(neighbours[q].size(), 3u);
+  }
+  // Split one element of the quad: across the T-junction its halves still neighbour the old
+  // neighbours that touch them, and the areas still add up.
+  const uint32_t split_one = mesh.elements_of_primitive[0].front();
+  const std::vector<uint32_t> before = neighbours[split_one];
+  std::vector<bool> split(mesh.elements.size(), false);
+  split[split_one] = true;
+  const double area_before = mesh.element_area();
+  const std::size_t count_before = mesh.elements.size();
+  const std::vector<uint32_t> origin = mesh.split_elements(*scene, split);
+  ASSERT_EQ(origin.size(), count_before + 1);
+  ASSERT_EQ(mesh.elements.size(), count_before + 1);
+  EXPECT_NEAR(mesh.element_area(), area_before, 1e-12);
+  expect_consistent(mesh);
+  const auto after = mesh.element_neighbours();
+  std::vector<uint32_t> halves;
+  for (uint32_t q = 0; q < origin.size(); ++q)
+    if (origin[q] == split_one) halves.push_back(q);
+  ASSERT_EQ(halves.size(), 2u);
+  // The halves neighbour each other, and between them they touch every old neighbour.
+  EXPECT_TRUE(std::binary_search(after[halves[0]].begin(), after[halves[0]].end(), halves[1]));
+  for (const uint32_t old_neighbour : before) {
+    uint32_t renumbered = 0;
+    while (origin[renumbered] != old_neighbour) ++renumbered;
+    const bool touches = std::binary_search(after[halves[0]].begin(), after[halves[0]].end(), renumbered) ||
+                         std::binary_search(after[halves[1]].begin(), after[halves[1]].end(), renumbered);
+    EXPECT_TRUE(touches) << "old neighbour " << old_neighbour;
+  }
+  EXPECT_THROW(mesh.split_elements(*scene, std::vector<bool>(3, false)), std::invalid_argument);
 }
 
 }  // namespace

@@ -154,9 +154,10 @@ double point_to_polygon_form_factor(const Vec3& x, const Vec3& normal, std::span
     if (p_inside) contour.add_corner(p);
     if (p_inside != q_inside) contour.add_corner(p + (q - p) * (hp / (hp - hq)));
   }
-  // Hottel and Sarofim's contour form of Lambert's polygon formula; the sign follows the
-  // winding seen from x.
-  return std::fabs(contour.close()) / (2 * kPi);
+  // Hottel and Sarofim's contour form of Lambert's polygon formula; the sum is negative when the
+  // polygon winds counter-clockwise around a normal toward x (its front faces x). Surfaces are
+  // one-sided: a polygon seen from behind passes nothing.
+  return std::max(0.0, -contour.close()) / (2 * kPi);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -191,7 +192,9 @@ SampledIntegral sample_source(const Vec3& x, const Vec3& n, const FormFactorElem
       const Vec3 omega = d / r;
       const double cos_x = dot(n, omega);
       if (!(cos_x > 0)) continue;  // below the receiving point's horizon
-      const double cos_y = std::fabs(dot(source.normal(), omega));
+      // One-sided: a source seen from behind sends nothing toward x.
+      const double cos_y = -dot(source.normal(), omega);
+      if (!(cos_y > 0)) continue;
       // 000 eq. 6-2: cosφ_i cosφ_j / (π R²) dA, with dA = J du dv.
       const double weight = cos_x * cos_y / (kPi * r_squared) * area_density;
       result.unoccluded += weight;

@@ -14,8 +14,8 @@
 //
 // Conventions:
 // - Sides: the point (and the `from` element) sees only the hemisphere its normal points into,
-//   cosθ_x = max(0, n·ω); the source element is two-sided, cosθ_y = |n_y·ω|, as the hemicube's
-//   item buffer draws both windings. An element's front is the side its corners run
+//   cosθ_x = max(0, n·ω); the source element is one-sided too, cosθ_y = max(0, −n_y·ω), as the
+//   hemicube counts only front faces. An element's front is the side its corners run
 //   counter-clockwise around (TriangleMesh's winding).
 // - Visibility: V(x, y) = 1 unless `visibility->occluded` reports a hit on the open segment
 //   from x to y shortened by offset_fraction · r at both ends (so that the two surfaces the
@@ -93,11 +93,12 @@ struct RayCastSettings {
 
 // The differential-area-to-polygon form factor of Lambert (1760), in the contour form of
 // Hottel and Sarofim (1967):
-//   F_{dA→A} = (1/2π) |Σ_k γ_k n · (R_k × R_{k+1}) / |R_k × R_{k+1}||,
+//   F_{dA→A} = max(0, −(1/2π) Σ_k γ_k n · (R_k × R_{k+1}) / |R_k × R_{k+1}|),
 // R_k = p_k − x, γ_k the angle between R_k and R_{k+1}. Exact for any simple planar polygon
 // without occluders; the polygon is first clipped to the half-space above x's plane
 // (n·(p − x) > 0), so that a polygon crossing the horizon counts only its visible part, and one
-// on or below it counts 0. Two-sided: the winding does not matter. normal need not be unit
+// on or below it counts 0. One-sided: the sum is negative when the polygon's front (its corners
+// counter-clockwise) faces x, and a polygon seen from behind gives 0. normal need not be unit
 // length; throws std::invalid_argument for a zero or non-finite normal.
 double point_to_polygon_form_factor(const Vec3& x, const Vec3& normal, std::span<const Vec3> polygon);
 

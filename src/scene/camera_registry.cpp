@@ -73,10 +73,10 @@ std::span<const CameraEntry> camera_entries() { return kEntries; }
 
 const CameraEntry* find_camera(std::string_view name) { return find_entry<CameraEntry>(kEntries, name); }
 
-std::unique_ptr<Camera> read_camera(const JsonNode& node) {
+std::unique_ptr<Camera> read_camera(const JsonNode& node, int default_width, int default_height) {
   node.expect_object();
-  const int width = node.integer("width", 640, {1, 65536, false, false});
-  const int height = node.integer("height", 480, {1, 65536, false, false});
+  const int width = node.integer("width", default_width, {1, 65536, false, false});
+  const int height = node.integer("height", default_height, {1, 65536, false, false});
   // The film holds three doubles a pixel: refuse what would not fit (SPEC §15).
   constexpr double kMaxPixels = 1 << 28;  // 6 GiB of film
   if (double(width) * height > kMaxPixels)

@@ -1,6 +1,7 @@
 #include "scene/scene.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -10,7 +11,11 @@
 
 namespace candela {
 
-Scene::Scene() = default;
+namespace {
+std::atomic<uint64_t> next_scene_id{1};
+}  // namespace
+
+Scene::Scene() : unique_id(next_scene_id.fetch_add(1)) {}
 Scene::~Scene() = default;
 
 Color Scene::background_along(const Vec3& direction) const {

@@ -56,7 +56,7 @@ enum class RadiositySolver { progressive, gauss_seidel, gaussian };
 enum class RadiosityFormFactors { hemicube, ray_cast };
 // How the solution is shown (000 §6.5): one radiosity per element, or vertex radiosities
 // interpolated across each element (Gouraud).
-enum class RadiosityDisplay { flat, gouraud };
+enum class RadiosityDisplay { flat, gouraud, ray_traced };
 
 struct RadiositySettings {
   RadiositySolver solver = RadiositySolver::progressive;
@@ -72,6 +72,14 @@ struct RadiositySettings {
   int max_steps = 100000;  // shots (progressive) or sweeps (gauss-seidel) at most
   bool ambient = true;     // progressive: add the ambient term of 000 §6.6.2 for display
   RadiosityDisplay display = RadiosityDisplay::gouraud;
+  // Adaptive subdivision (000 §6.7.2): after a solution, every element whose radiosity differs
+  // from a neighbour's by more than this fraction of the largest reflected radiosity is split,
+  // and the scene solved again, until no pair differs by more (0: off) or the elements reach
+  // min_element_size.
+  double subdivision_threshold = 0;
+  double min_element_size = 0;  // 0: element_size / 8
+  // The memory the stored form factors may take (MiB); 0: half the machine's memory.
+  double memory_limit_mib = 0;
 };
 
 // One entry of the scene file's "shapes" array.
@@ -82,14 +90,27 @@ struct SceneObject {
   uint32_t primitive_count = 0;
 };
 
+// One entry of the scene file's "cameras" array: another view of the same scene, chosen with
+// `candela render --camera NAME`. The name goes into output file names.
+struct NamedCamera {
+  std::string name;
+  std::unique_ptr<Camera> camera;
+};
+
 class Environment;
 
 class Scene {
  public:
   Scene();
   ~Scene();
+  // Different for every Scene object made by this process: what a method that keeps a
+  // view-independent solution between views (radiosity) recognises its scene by.
+  const uint64_t unique_id;
   std::string source;  // file name, or "<built-in>"
+  // The camera methods render through: the "camera" object, unless the caller swapped in one
+  // of the named cameras for a view (candela render --camera).
   std::unique_ptr<Camera> camera;
+  std::vector<NamedCamera> cameras;  // the "cameras" array, in file order
   std::vector<std::unique_ptr<Shape>> shapes;
   std::vector<Primitive> primitives;
   std::vector<SceneObject> objects;

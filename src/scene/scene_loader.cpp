@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -47,6 +48,7 @@ class SceneReader {
       format.fail(fmt::format("unsupported format \"{}\" (expected \"{}\")", format.as_string(), kFormat));
 
     scene->camera = read_camera(root_.at("camera"));
+    read_named_cameras();
     scene->background = root_.color("background", Color(0), Range::non_negative());
     if (const auto environment = root_.get("environment")) {
       scene->environment = read_environment(*environment, context_);
@@ -65,6 +67,42 @@ class SceneReader {
   }
 
  private:
+  // The "cameras" array: the keys of "camera" plus a name. An absent width or height is the one
+  // of "camera" (so --set camera.width=… resizes every view that does not fix its own); every
+  // other absent key takes its usual default, as in "camera".
+  void read_named_cameras() {
+    const auto cameras = root_.get("cameras");
+    if (!cameras) return;
+    std::map<std::string, std::string> path_of_name;
+    for (std::size_t i = 0; i < cameras->size(); ++i) {
+      const JsonNode node = cameras->element(i);
+      node.expect_object();
+      const JsonNode name_node = node.at("name");
+      const std::string name = name_node.as_string();
+      check_camera_name(name_node, name);
+      const auto [previous, inserted] = path_of_name.emplace(name, node.path());
+      if (!inserted)
+        name_node.fail("duplicate camera name \"" + name + "\" (" + previous->second + " has it already)");
+      scene_->cameras.push_back(
+          {name, read_camera(node, scene_->camera->width(), scene_->camera->height())});
+    }
+  }
+
+  // Names go into output file names (out-NAME.png) and are chosen with --camera, where "default"
+  // means "camera" and "all" every named camera.
+  static void check_camera_name(const JsonNode& node, const std::string& name) {
+    if (name.empty()) node.fail("a camera name must not be empty");
+    const bool allowed = std::all_of(name.begin(), name.end(), [](char c) {
+      return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+    });
+    if (!allowed)
+      node.fail("camera name \"" + name +
+                "\" may only use letters, digits, '_' and '-' (it becomes part of output file names)");
+    if (name == "default" || name == "all")
+      node.fail("camera name \"" + name + "\" is reserved (--camera " + name + " means " +
+                (name == "default" ? "the \"camera\" object" : "every named camera") + ")");
+  }
+
   void read_settings() {
     if (const auto render = root_.get("render")) {
       scene_->render.method = render->string("method", scene_->render.method);
@@ -147,7 +185,8 @@ class SceneReader {
                                 ? RadiosityFormFactors::hemicube
                                 : RadiosityFormFactors::ray_cast;
     settings.ray_cast_samples = node.integer("ray_cast_samples", 4, {1, 64, false, false});
-    settings.hemicube_resolution = node.integer("hemicube_resolution", 100, {2, 4096, false, false});
+    // 1024: 12 MiB of item buffers per thread; the error falls as 1/R² (000 §6.4), so more buys nothing.
+    settings.hemicube_resolution = node.integer("hemicube_resolution", 100, {2, 1024, false, false});
     if (settings.hemicube_resolution % 2 != 0) node.at("hemicube_resolution").fail("hemicube_resolution must be even");
     settings.patch_size = node.number("patch_size", 0.0, Range::non_negative());
     settings.element_size = node.number("element_size", 0.0, Range::non_negative());
@@ -157,8 +196,16 @@ class SceneReader {
     settings.threshold = node.number("threshold", 0.001, {0, 1, true, false});
     settings.max_steps = node.integer("max_steps", 100000, {1, 1 << 30, false, false});
     settings.ambient = node.boolean("ambient", true);
-    settings.display = node.choice("display", "gouraud", {"flat", "gouraud"}) == "flat" ? RadiosityDisplay::flat
-                                                                                       : RadiosityDisplay::gouraud;
+    const std::string display = node.choice("display", "gouraud", {"flat", "gouraud", "ray-traced"});
+    settings.display = display == "flat"      ? RadiosityDisplay::flat
+                       : display == "gouraud" ? RadiosityDisplay::gouraud
+                                              : RadiosityDisplay::ray_traced;
+    settings.subdivision_threshold = node.number("subdivision_threshold", 0.0, Range::unit());
+    settings.min_element_size = node.number("min_element_size", 0.0, Range::non_negative());
+    const double element_size = settings.element_size > 0 ? settings.element_size : settings.patch_size;
+    if (settings.min_element_size > 0 && element_size > 0 && settings.min_element_size > element_size)
+      node.at("min_element_size").fail("min_element_size must not exceed element_size");
+    settings.memory_limit_mib = node.number("memory_limit_mib", 0.0, Range::non_negative());
     node.finish();
   }
 

@@ -222,6 +222,91 @@ TEST(SceneLoader, MeshPathIsRelativeToTheSceneFile) {
   std::filesystem::remove_all(directory);
 }
 
+TEST(SceneLoader, ReadsNamedCamerasThatInheritTheImageSize) {
+  const auto scene = load_scene_text(std::string(kHeader) + R"(  "cameras": [
+    {"name": "front", "fov": 40},
+    {"name": "side_2", "eye": [5, 0, 0], "width": 8},
+    {"name": "plan", "type": "orthographic", "eye": [0, 5, 0], "up": [0, 0, -1], "height": 6}
+  ]
+})", "test.json", ".");
+  EXPECT_EQ(scene->camera->width(), 4);  // "camera" is still the one rendered
+  ASSERT_EQ(scene->cameras.size(), 3u);
+  EXPECT_EQ(scene->cameras[0].name, "front");
+  EXPECT_EQ(scene->cameras[0].camera->width(), 4);
+  EXPECT_EQ(scene->cameras[0].camera->height(), 3);
+  EXPECT_EQ(scene->cameras[1].name, "side_2");
+  EXPECT_EQ(scene->cameras[1].camera->width(), 8);
+  EXPECT_EQ(scene->cameras[1].camera->height(), 3);
+  EXPECT_EQ(scene->cameras[1].camera->eye_position(), Vec3(5, 0, 0));
+  EXPECT_EQ(scene->cameras[2].camera->type_name(), "orthographic");
+  EXPECT_EQ(scene->cameras[2].camera->width(), 4);
+  EXPECT_EQ(scene->cameras[2].camera->height(), 6);
+  // Only the size is inherited: eye is the default, not the eye of "camera".
+  const auto moved = load_scene_text(R"({"format": "candela/1", "camera": {"eye": [1, 2, 3]},
+    "cameras": [{"name": "a"}]})", "test.json", ".");
+  EXPECT_EQ(moved->cameras[0].camera->eye_position(), Vec3(0, 0, 5));
+  EXPECT_EQ(moved->cameras[0].camera->width(), 640);
+  // --set camera.width resizes the views that do not fix their own width.
+  const auto resized = load_scene_text(std::string(kHeader) + R"(  "cameras": [{"name": "a"}, {"name": "b", "width": 2}]
+})", "test.json", ".", {"camera.width=10"});
+  EXPECT_EQ(resized->cameras[0].camera->width(), 10);
+  EXPECT_EQ(resized->cameras[1].camera->width(), 2);
+  const auto none = load_scene_text(std::string(kHeader) + R"(  "shapes": []
+})", "test.json", ".");
+  EXPECT_TRUE(none->cameras.empty());
+}
+
+TEST(SceneLoader, BadNamedCamerasAreLocatedErrors) {
+  const std::string header = kHeader;
+  expect_error(header + R"(  "cameras": [
+    {"name": "a"},
+    {"name": "a"}
+  ]
+})", "cameras[1].name", 6, 14, "duplicate camera name \"a\" (cameras[0] has it already)");
+  expect_error(header + R"(  "cameras": [
+    {"fov": 30}
+  ]
+})", "cameras[0]", 5, 5, "missing required key \"name\"");
+  expect_error(header + R"(  "cameras": [
+    {"name": "my camera"}
+  ]
+})", "cameras[0].name", 5, 14, "may only use letters, digits, '_' and '-'");
+  expect_error(header + R"(  "cameras": [
+    {"name": ""}
+  ]
+})", "cameras[0].name", 5, 14, "must not be empty");
+  expect_error(header + R"(  "cameras": [
+    {"name": "all"}
+  ]
+})", "cameras[0].name", 5, 14, "reserved");
+  expect_error(header + R"(  "cameras": [
+    {"name": "default"}
+  ]
+})", "cameras[0].name", 5, 14, "reserved");
+  expect_error(header + R"(  "cameras": [
+    {"name": 7}
+  ]
+})", "cameras[0].name", 5, 14, "expected a string");
+  // The keys of "camera" are read by the same reader, with the same checks.
+  expect_error(header + R"(  "cameras": [
+    {"name": "a"},
+    {"name": "b", "fov": 200}
+  ]
+})", "cameras[1].fov", 6, 26, "must be in (0, 180)");
+  expect_error(header + R"(  "cameras": [
+    {"name": "b", "zoom": 2}
+  ]
+})", "cameras[0].zoom", 5, 27, "unknown key \"zoom\" (expected one of: eye, fov, height, name, target, type, up, width)");
+  expect_error(header + R"(  "cameras": [
+    {"name": "b", "type": "fisheye"}
+  ]
+})", "cameras[0].type", 5, 27, "unknown camera \"fisheye\"");
+  expect_error(header + R"(  "cameras": {"name": "a"}
+})", "cameras", 4, 14, "expected an array");
+  expect_error(header + R"(  "cameras": [3]
+})", "cameras[0]", 4, 15, "expected an object");
+}
+
 TEST(SceneLoader, TheSeedScenesLoad) {
   for (const char* name : {"two-mirrors.json", "glass-globe.json"}) {
     const auto scene = load_scene_file(std::string(CANDELA_SOURCE_DIR) + "/scenes/" + name);

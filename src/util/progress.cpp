@@ -27,6 +27,11 @@ void ProgressReporter::advance(uint64_t amount) {
   print(done, false);
 }
 
+void ProgressReporter::set_detail(std::string detail) {
+  std::lock_guard lock(mutex_);
+  detail_ = std::move(detail);
+}
+
 void ProgressReporter::finish() {
   std::lock_guard lock(mutex_);
   if (finished_) return;
@@ -44,16 +49,17 @@ void ProgressReporter::print(uint64_t done, bool final_line) {
     constexpr int kWidth = 30;
     const int filled = total_ ? static_cast<int>(kWidth * done / total_) : kWidth;
     const double remaining = done > 0 ? elapsed * (double(total_) - done) / done : 0;
-    fmt::print(stream_, "\r{} [{}{}] {:3d}% {}/{} {} {:.1f}s elapsed, {:.1f}s left ", label_,
+    fmt::print(stream_, "\r{} [{}{}] {:3d}% {}/{} {}{}{} {:.1f}s elapsed, {:.1f}s left ", label_,
                std::string(filled, '#'), std::string(kWidth - filled, ' '), percent, done, total_,
-               unit_, elapsed, remaining);
+               unit_, detail_.empty() ? "" : ", ", detail_, elapsed, remaining);
     if (final_line) fmt::print(stream_, "\n");
   } else {
     // Plain lines: at every 10% step and at most every 5 s otherwise, never more often.
     const bool step = percent / 10 != last_percent_ / 10;
     if (!final_line && !step && now - last_print_ < std::chrono::seconds(5)) return;
     if (final_line && percent == last_percent_) return;
-    fmt::print(stream_, "{}: {}% ({}/{} {}, {:.1f}s)\n", label_, percent, done, total_, unit_, elapsed);
+    fmt::print(stream_, "{}: {}% ({}/{} {}{}{}, {:.1f}s)\n", label_, percent, done, total_, unit_,
+               detail_.empty() ? "" : ", ", detail_, elapsed);
   }
   std::fflush(stream_);
   last_percent_ = percent;

@@ -18,11 +18,13 @@ class ProgressReporter {
                    std::FILE* stream = stderr);
   ~ProgressReporter();
   void advance(uint64_t amount = 1);
+  // A short text shown after the count from the next print on (e.g. "unshot 0.42%").
+  void set_detail(std::string detail);
   void finish();
 
  private:
   void print(uint64_t done, bool final_line);
-  std::string label_, unit_;
+  std::string label_, unit_, detail_;
   uint64_t total_;
   bool quiet_, terminal_;
   std::FILE* stream_;

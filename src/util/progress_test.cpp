@@ -33,6 +33,22 @@ TEST(Progress, PlainLinesWhenNotATerminal) {
   EXPECT_EQ(lines, 10);
 }
 
+TEST(Progress, DetailFollowsTheCount) {
+  // The radiosity solver shows its unshot fraction this way (issue 7).
+  std::FILE* file = std::tmpfile();
+  {
+    ProgressReporter progress("radiosity", 10, "per mille", false, file);
+    progress.set_detail("unshot 4.5%");
+    progress.advance(10);
+  }
+  std::rewind(file);
+  char buffer[256];
+  std::string text;
+  while (std::fgets(buffer, sizeof buffer, file)) text += buffer;
+  std::fclose(file);
+  EXPECT_NE(text.find("radiosity: 100% (10/10 per mille, unshot 4.5%, "), std::string::npos) << text;
+}
+
 TEST(Progress, QuietPrintsNothing) { EXPECT_TRUE(run_to_file(true).empty()); }
 
 }  // namespace
