@@ -390,5 +390,42 @@ TEST_F(Cli, BenchRejectsBadArguments) {
   EXPECT_EQ(file_count(), 1);  // only bad.obj: nothing written
 }
 
+TEST_F(Cli, BenchRadiositySolvesASceneAndReportsItsFacts) {
+  // Issue 7: the Cornell box on a coarse mesh, one run per thread count.
+  std::string output;
+  ASSERT_EQ(run("bench --radiosity '" CANDELA_SOURCE_DIR "/scenes/cornell-box.json' --set radiosity.patch_size=5 "
+                "--set radiosity.element_size=2.5 --set radiosity.hemicube_resolution=20 --threads 1 2 "
+                "--json r.json -q",
+                output),
+            0)
+      << output;
+  EXPECT_NE(output.find("elements"), std::string::npos) << output;  // the table
+  std::ifstream json_file(directory_ / "r.json");
+  const nlohmann::json json = nlohmann::json::parse(json_file)["radiosity"];
+  EXPECT_EQ(json["overrides"].size(), 3u);
+  EXPECT_TRUE(json["machine"].contains("cpu"));
+  ASSERT_EQ(json["runs"].size(), 2u);
+  for (const auto& r : json["runs"]) {
+    EXPECT_GT(r["elements"].get<uint64_t>(), r["patches"].get<uint64_t>()) << r;
+    EXPECT_GE(r["steps"].get<uint64_t>(), 1u) << r;
+    EXPECT_TRUE(r["converged"].get<bool>()) << r;
+    EXPECT_LE(r["unshot_fraction"].get<double>(), 0.001) << r;
+    EXPECT_GT(r["form_factors_computed"].get<uint64_t>(), 0u) << r;
+    EXPECT_GT(r["form_factors_per_second"].get<double>(), 0) << r;
+    EXPECT_GT(r["form_factor_memory_mib"].get<double>(), 0) << r;
+    EXPECT_GT(r["peak_memory_mib"].get<double>(), 0) << r;
+    EXPECT_TRUE(r.contains("row_sum")) << r;
+  }
+  EXPECT_EQ(json["runs"][0]["threads"], 1);
+  EXPECT_EQ(json["runs"][1]["threads"], 2);
+  // The solution does not depend on the thread count.
+  EXPECT_EQ(json["runs"][0]["steps"], json["runs"][1]["steps"]);
+  EXPECT_EQ(json["runs"][0]["unshot_fraction"], json["runs"][1]["unshot_fraction"]);
+  // The ray-set options do not apply; nor does --set without --radiosity.
+  EXPECT_EQ(run("bench --radiosity --accel bvh -q", output), 2) << output;
+  EXPECT_EQ(run("bench --radiosity --raster -q", output), 2) << output;
+  EXPECT_EQ(run("bench --sphere 100 --set radiosity.patch_size=5 -q", output), 2) << output;
+}
+
 }  // namespace
 }  // namespace candela

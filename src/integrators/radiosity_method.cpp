@@ -41,11 +41,13 @@ Vec3 tangent_of(const RadiositySurface& surface) { return normalize(surface.corn
 // Row sums of the form-factor rows (000 eq. 6-6: 1 in a closed scene), summarised. A row that
 // sees nothing at all (a face lying on another, like a box's bottom on the floor, whose hemicube
 // sees only the floor's back) is counted apart: it is hidden, not open.
+constexpr double kHiddenRowSum = 1e-6;
+
 struct RowSumSummary {
   double min = std::numeric_limits<double>::infinity(), max = 0, total = 0;
   std::size_t rows = 0, hidden_rows = 0;
   void add(double sum) {
-    if (sum < 1e-6) {
+    if (sum < kHiddenRowSum) {
       ++hidden_rows;
       return;
     }
@@ -85,7 +87,7 @@ template <typename Matrix, typename Skipped>
 void fill_form_factor_rows(const Scene& scene, const std::vector<RadiositySurface>& surfaces,
                            const std::vector<uint32_t>& rows, const std::vector<RadiositySurface>& targets,
                            const FormFactorGeometry& geometry, Skipped skipped, Matrix& matrix,
-                           RowSumSummary& row_sums) {
+                           RowSumSummary& row_sums, std::vector<double>* sums_by_row = nullptr) {
   using Scalar = typename Matrix::Scalar;
   const RadiositySettings& settings = scene.radiosity;
   std::vector<double> sums(rows.size());
@@ -125,6 +127,8 @@ void fill_form_factor_rows(const Scene& scene, const std::vector<RadiositySurfac
     });
   }
   for (const double sum : sums) row_sums.add(sum);
+  if (sums_by_row)
+    for (std::size_t k = 0; k < rows.size(); ++k) (*sums_by_row)[rows[k]] = sums[k];
 }
 
 std::vector<uint32_t> all_rows(std::size_t count) {
@@ -287,6 +291,7 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
   mesh_settings.segments = settings.segments;
   mesh_settings.patch_size = settings.patch_size;
   mesh_settings.element_size = settings.element_size;
+  mesh_settings.split_at_contacts = settings.split_at_contacts;
   result.mesh = build_radiosity_mesh(scene, mesh_settings);
   result.mesh_seconds = mesh_time.seconds();
   Stopwatch solve_time;
@@ -328,8 +333,9 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
                            fmt::format("the form factors of {} elements to {} patches", mesh.elements.size(), patch_count), fewer);
   ElementToPatch element_to_patch(static_cast<Eigen::Index>(mesh.elements.size()), static_cast<Eigen::Index>(patch_count));
   const auto own_patch = [&](std::size_t q) { return std::size_t{mesh.patch_of_element[q]}; };
+  std::vector<double> element_sums(mesh.elements.size());
   fill_form_factor_rows(scene, mesh.elements, all_rows(mesh.elements.size()), mesh.patches, mesh.patch_geometry,
-                        own_patch, element_to_patch, element_row_sums);
+                        own_patch, element_to_patch, element_row_sums, &element_sums);
   std::size_t form_factor_rows = (progressive ? 0 : patch_count) + mesh.elements.size();
   const double min_element_size = settings.min_element_size > 0 ? settings.min_element_size : mesh.element_size / 8;
   ProgressReporter progress("radiosity", 1000, "per mille of convergence", quiet);
@@ -355,15 +361,19 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
     const std::vector<uint32_t> origin = mesh.split_elements(scene, split);
     ElementToPatch refined(static_cast<Eigen::Index>(mesh.elements.size()), static_cast<Eigen::Index>(patch_count));
     std::vector<uint32_t> new_rows;
+    std::vector<double> refined_sums(mesh.elements.size());
     for (std::size_t q = 0; q < origin.size(); ++q) {
       if (split[origin[q]]) {
         new_rows.push_back(static_cast<uint32_t>(q));
       } else {
         refined.row(static_cast<Eigen::Index>(q)) = element_to_patch.row(origin[q]);
+        refined_sums[q] = element_sums[origin[q]];
       }
     }
     element_to_patch = ElementToPatch();  // free before the new rows are computed
-    fill_form_factor_rows(scene, mesh.elements, new_rows, mesh.patches, mesh.patch_geometry, own_patch, refined, element_row_sums);
+    fill_form_factor_rows(scene, mesh.elements, new_rows, mesh.patches, mesh.patch_geometry, own_patch, refined,
+                          element_row_sums, &refined_sums);
+    element_sums = std::move(refined_sums);
     element_to_patch = std::move(refined);
     form_factor_rows += new_rows.size();
     ++result.subdivision_passes;
@@ -394,6 +404,8 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
     reciprocity = measure_reciprocity(mesh.patches, patch_rows);
   }
   result.element_radiosity = std::move(solution.radiosity);
+  result.element_hidden.resize(mesh.elements.size());
+  for (std::size_t q = 0; q < mesh.elements.size(); ++q) result.element_hidden[q] = element_sums[q] < kHiddenRowSum;
   result.steps = solution.steps;
   result.unshot_fraction = solution.unshot_fraction;
   result.converged = solution.converged;
@@ -437,6 +449,35 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
   return result;
 }
 
+// The vertex radiosities of 000 §6.5 over the elements that see something; a hidden element (it
+// lies against another surface and received nothing) would darken its visible neighbours'
+// vertices — a shadow leak of its own — so it keeps its flat radiosity instead.
+struct DisplayVertices {
+  VertexRadiosity vertices;
+  std::vector<int64_t> slot;  // per element: its index among the visible ones, or −1 if hidden
+
+  // The radiosity at corner k of element q.
+  Color corner(const RadiositySolveResult& solution, std::size_t q, int k) const {
+    if (slot[q] < 0) return solution.element_radiosity[q];
+    return vertices.radiosity[vertices.element_vertices[static_cast<std::size_t>(slot[q])][static_cast<std::size_t>(k)]];
+  }
+};
+
+DisplayVertices display_vertices(const RadiositySolveResult& solution) {
+  DisplayVertices result;
+  std::vector<RadiositySurface> visible;
+  std::vector<Color> radiosity;
+  result.slot.assign(solution.mesh.elements.size(), -1);
+  for (std::size_t q = 0; q < solution.mesh.elements.size(); ++q) {
+    if (q < solution.element_hidden.size() && solution.element_hidden[q]) continue;
+    result.slot[q] = static_cast<int64_t>(visible.size());
+    visible.push_back(solution.mesh.elements[q]);
+    radiosity.push_back(solution.element_radiosity[q]);
+  }
+  result.vertices = compute_vertex_radiosity(visible, radiosity);
+  return result;
+}
+
 // 000 §6.5: the elements drawn as triangles through the scanline rasterizer with their vertex
 // radiosities as colours, interpolated perspective-correctly (Gouraud); pixels no element covers
 // show the background. Tiles of 32 × 32 pixels, each drawn by one thread from the same inputs with
@@ -444,7 +485,7 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
 void display_gouraud(const Scene& scene, const RadiositySolveResult& solution, const PixelRect& region, Film& film) {
   const Camera& camera = *scene.camera;
   const std::vector<RadiositySurface>& elements = solution.mesh.elements;
-  const VertexRadiosity vertices = compute_vertex_radiosity(elements, solution.element_radiosity);
+  const DisplayVertices vertices = display_vertices(solution);
   // Depth range: a box around the elements and the eye; near small enough for the closest element.
   Bounds3 bounds;
   bounds.extend(camera.eye_position());
@@ -460,7 +501,7 @@ void display_gouraud(const Scene& scene, const RadiositySolveResult& solution, c
       const Vec3& p = elements[q].corners[k];
       RasterVertex& vertex = triangles[q][k];
       vertex.clip = clip_from_world * Eigen::Vector4d(p.x, p.y, p.z, 1);
-      const Color& b = vertices.radiosity[vertices.element_vertices[q][k]];
+      const Color b = vertices.corner(solution, q, static_cast<int>(k));
       vertex.varyings[0] = b.r, vertex.varyings[1] = b.g, vertex.varyings[2] = b.b;
     }
     bounds_on_screen[q] = screen_bounds(triangles[q][0].clip, triangles[q][1].clip, triangles[q][2].clip,
@@ -500,7 +541,7 @@ void display_gouraud(const Scene& scene, const RadiositySolveResult& solution, c
 // each pixel centre; at its hit, the element under the hit point, and the vertex radiosities of
 // that element interpolated at the point's barycentric coordinates (the same field the Gouraud
 // display shows, without its screen-space interpolation).
-Color ray_traced_radiosity(const RadiositySolveResult& solution, const VertexRadiosity& vertices,
+Color ray_traced_radiosity(const RadiositySolveResult& solution, const DisplayVertices& vertices,
                            const Intersection& hit) {
   const uint32_t element = solution.mesh.element_at(hit.primitive, hit.surface.position);
   if (element == UINT32_MAX) return Color();
@@ -513,8 +554,8 @@ Color ray_traced_radiosity(const RadiositySolveResult& solution, const VertexRad
   double w = denominator > 0 ? (d11 * d2 - d12 * d1) / denominator : 0;
   v = std::clamp(v, 0.0, 1.0);
   w = std::clamp(w, 0.0, 1.0 - v);
-  const auto& ids = vertices.element_vertices[element];
-  return vertices.radiosity[ids[0]] * (1 - v - w) + vertices.radiosity[ids[1]] * v + vertices.radiosity[ids[2]] * w;
+  return vertices.corner(solution, element, 0) * (1 - v - w) + vertices.corner(solution, element, 1) * v +
+         vertices.corner(solution, element, 2) * w;
 }
 
 const char* display_name(RadiosityDisplay display) {
@@ -559,9 +600,7 @@ void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, F
     display_gouraud(scene, solution, region, film);
   } else {
     // Display by ray casting: the radiosity (view independent: B itself) where each pixel's ray hits.
-    const VertexRadiosity vertices = display == RadiosityDisplay::ray_traced
-                                         ? compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity)
-                                         : VertexRadiosity();
+    const DisplayVertices vertices = display == RadiosityDisplay::ray_traced ? display_vertices(solution) : DisplayVertices();
     tbb::parallel_for(region.y0, region.y1, [&](int y) {
       for (int x = region.x0; x < region.x1; ++x) {
         const Ray ray = camera.generate_ray(x + 0.5, y + 0.5);
@@ -588,5 +627,7 @@ void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, F
   facts["display_seconds"] = display_time.seconds();
   statistics.extra["radiosity"] = std::move(facts);
 }
+
+RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet, nlohmann::json* facts) { return solve_with_statistics(scene, quiet, facts); }
 
 }  // namespace candela

@@ -49,6 +49,9 @@ namespace candela {
 
 // Meshes and solves the scene with scene.radiosity (quiet: no progress bar).
 RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet);
+// The same, with what the solve measured written to *facts when not null (the "radiosity" facts
+// of render --stats without the display's: steps, form_factors_per_second, row_sum, ...).
+RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet, nlohmann::json* facts);
 
 // One solution serves every view: render() keeps the last scene's solution (recognised by
 // Scene::unique_id) and reuses it when called again for the same scene with another camera.

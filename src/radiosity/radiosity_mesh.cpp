@@ -15,6 +15,9 @@
 namespace candela {
 namespace {
 
+// The most elements a mesh may have (issue 7's scale is 10⁴; 2²⁴ leaves room and still fits).
+constexpr uint64_t kMaxElements = uint64_t{1} << 24;
+
 // A corner carried through the bisection: world and object positions and the uv, all
 // interpolated linearly along an edge.
 struct MeshCorner {
@@ -127,6 +130,137 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
   if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
   const double denominator = 1 / (va + vb + vc);
   return a + ab * (vb * denominator) + ac * (vc * denominator);
+}
+
+// Where surfaces meet (SPEC §10: the remedy for the light and shadow leaks of 000 §6.5.1): every
+// triangle is cut along the line where a triangle of another object meets or crosses its plane
+// inside it — a box standing on the floor cuts the floor along its footprint — so that no patch
+// or element straddles the contact, half lit and half hidden.
+//
+// A cut is the infinite line through the contact segment, in the triangle's plane; the pieces on
+// either side (halves of a convex polygon, fanned into triangles with the original winding) carry
+// positions, object positions and uvs interpolated linearly along the cut edges.
+void cut_at_contacts(const Scene& scene, std::vector<CornerTriangle>& triangles, std::vector<uint32_t>& primitives,
+                     double tolerance) {
+  const std::size_t count = triangles.size();
+  std::vector<Bounds3> boxes(count);
+  for (std::size_t t = 0; t < count; ++t)
+    for (const MeshCorner& corner : triangles[t]) boxes[t].extend(corner.position);
+  // Candidate pairs by sweeping along x.
+  std::vector<std::size_t> order(count);
+  for (std::size_t t = 0; t < count; ++t) order[t] = t;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return boxes[a].lower.x < boxes[b].lower.x; });
+  std::vector<std::vector<std::size_t>> touching(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t a = order[i];
+    for (std::size_t j = i + 1; j < count && boxes[order[j]].lower.x <= boxes[a].upper.x + tolerance; ++j) {
+      const std::size_t b = order[j];
+      if (scene.primitives[primitives[a]].object == scene.primitives[primitives[b]].object) continue;
+      if (boxes[b].lower.y > boxes[a].upper.y + tolerance || boxes[a].lower.y > boxes[b].upper.y + tolerance ||
+          boxes[b].lower.z > boxes[a].upper.z + tolerance || boxes[a].lower.z > boxes[b].upper.z + tolerance)
+        continue;
+      touching[a].push_back(b);
+      touching[b].push_back(a);
+    }
+  }
+  std::vector<CornerTriangle> result;
+  std::vector<uint32_t> result_primitives;
+  for (std::size_t t = 0; t < count; ++t) {
+    const CornerTriangle& triangle = triangles[t];
+    const Vec3 origin = triangle[0].position;
+    const Vec3 face = cross(triangle[1].position - origin, triangle[2].position - origin);
+    std::vector<CornerTriangle> pieces{triangle};
+    if (!(length(face) > 0) || touching[t].empty()) {
+      result.push_back(triangle);
+      result_primitives.push_back(primitives[t]);
+      continue;
+    }
+    const Vec3 n = normalize(face);
+    const Vec3 axis_u = normalize(triangle[1].position - origin), axis_v = cross(n, axis_u);
+    const auto plane_coordinates = [&](const Vec3& p) { return Vec2{dot(p - origin, axis_u), dot(p - origin, axis_v)}; };
+    std::array<Vec2, 3> corners2;
+    for (int k = 0; k < 3; ++k) corners2[k] = plane_coordinates(triangle[k].position);
+    for (const std::size_t other : touching[t]) {
+      // The other triangle's crossing of this plane: the points where its edges meet the plane.
+      std::array<double, 3> height;
+      for (int k = 0; k < 3; ++k) height[k] = dot(triangles[other][k].position - origin, n);
+      const double highest = std::max({height[0], height[1], height[2]}), lowest = std::min({height[0], height[1], height[2]});
+      if (lowest > tolerance || highest < -tolerance) continue;   // wholly on one side
+      if (highest <= tolerance && lowest >= -tolerance) continue;  // coplanar: no line
+      std::vector<Vec2> crossing;
+      for (int k = 0; k < 3; ++k) {
+        const Vec3& p = triangles[other][k].position;
+        const Vec3& q = triangles[other][(k + 1) % 3].position;
+        const double hp = height[k], hq = height[(k + 1) % 3];
+        if (std::fabs(hp) <= tolerance) crossing.push_back(plane_coordinates(p));
+        else if ((hp > tolerance && hq < -tolerance) || (hp < -tolerance && hq > tolerance))
+          crossing.push_back(plane_coordinates(p + (q - p) * (hp / (hp - hq))));
+      }
+      if (crossing.size() < 2) continue;
+      Vec2 a = crossing[0], b = crossing[1];
+      for (const Vec2& c : crossing)  // the two farthest apart
+        if (std::hypot(c.x - a.x, c.y - a.y) > std::hypot(b.x - a.x, b.y - a.y)) b = c;
+      const Vec2 direction{b.x - a.x, b.y - a.y};
+      const double segment_length = std::hypot(direction.x, direction.y);
+      if (!(segment_length > tolerance)) continue;
+      // Does the segment reach the triangle's interior? Clip it to the three edges' half-planes.
+      double t0 = 0, t1 = 1;
+      for (int k = 0; k < 3 && t0 <= t1; ++k) {
+        const Vec2 e0 = corners2[k], e1 = corners2[(k + 1) % 3];
+        const Vec2 edge{e1.x - e0.x, e1.y - e0.y};
+        // Inside: to the left of each counter-clockwise edge (the plane's axes make it so).
+        const double start = edge.x * (a.y - e0.y) - edge.y * (a.x - e0.x);
+        const double change = edge.x * direction.y - edge.y * direction.x;
+        if (std::fabs(change) < 1e-300) {
+          if (start < 0) t1 = -1;
+          continue;
+        }
+        const double t_edge = -start / change;
+        if (change > 0) t0 = std::max(t0, t_edge);
+        else t1 = std::min(t1, t_edge);
+      }
+      if (!((t1 - t0) * segment_length > tolerance)) continue;
+      // Cut every piece by the line through a and b.
+      std::vector<CornerTriangle> cut;
+      for (const CornerTriangle& piece : pieces) {
+        std::array<double, 3> side;
+        for (int k = 0; k < 3; ++k) {
+          const Vec2 p = plane_coordinates(piece[k].position);
+          side[k] = (direction.x * (p.y - a.y) - direction.y * (p.x - a.x)) / segment_length;
+          if (std::fabs(side[k]) <= tolerance) side[k] = 0;
+        }
+        if (!(std::max({side[0], side[1], side[2]}) > 0 && std::min({side[0], side[1], side[2]}) < 0)) {
+          cut.push_back(piece);
+          continue;
+        }
+        for (const double sign : {1.0, -1.0}) {
+          // Sutherland–Hodgman against sign·side ≥ 0, then a fan.
+          std::vector<MeshCorner> polygon;
+          for (int k = 0; k < 3; ++k) {
+            const int next = (k + 1) % 3;
+            const double sp = sign * side[k], sq = sign * side[next];
+            if (sp >= 0) polygon.push_back(piece[k]);
+            if ((sp > 0 && sq < 0) || (sp < 0 && sq > 0)) {
+              const double f = sp / (sp - sq);
+              const MeshCorner& p = piece[k];
+              const MeshCorner& q = piece[next];
+              polygon.push_back({p.position + (q.position - p.position) * f,
+                                 p.object_position + (q.object_position - p.object_position) * f,
+                                 Vec2{p.uv.x + (q.uv.x - p.uv.x) * f, p.uv.y + (q.uv.y - p.uv.y) * f}});
+            }
+          }
+          for (std::size_t k = 1; k + 1 < polygon.size(); ++k) cut.push_back({polygon[0], polygon[k], polygon[k + 1]});
+        }
+      }
+      pieces = std::move(cut);
+    }
+    for (const CornerTriangle& piece : pieces) {
+      result.push_back(piece);
+      result_primitives.push_back(primitives[t]);
+    }
+  }
+  triangles = std::move(result);
+  primitives = std::move(result_primitives);
 }
 
 }  // namespace
@@ -299,18 +433,31 @@ RadiosityMesh build_radiosity_mesh(const Scene& scene, const RadiosityMeshSettin
   TessellationRequest request;
   request.max_segments = settings.segments;
   request.clip = clip;
-  const TessellatedScene triangles = tessellate_scene(scene, request);
+  const TessellatedScene tessellated = tessellate_scene(scene, request);
+  std::vector<CornerTriangle> triangles(tessellated.triangle_count());
+  std::vector<uint32_t> primitives(tessellated.primitives.begin(), tessellated.primitives.end());
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+      triangles[t][k] = {tessellated.corner_positions[3 * t + k], tessellated.corner_object_positions[3 * t + k],
+                         tessellated.corner_uvs[3 * t + k]};
+  if (settings.split_at_contacts) cut_at_contacts(scene, triangles, primitives, 1e-9 * scene_size);
+  // Elements bound the work: refuse a mesh far beyond what any solver could keep (a right
+  // triangle with legs s/√2 has area s²/4, the smallest bisection keeps).
+  double total_area = 0;
+  for (const CornerTriangle& t : triangles)
+    total_area += 0.5 * length(cross(t[1].position - t[0].position, t[2].position - t[0].position));
+  const double estimated_elements = total_area / (0.25 * result.element_size * result.element_size);
+  if (estimated_elements > kMaxElements)
+    throw std::invalid_argument("radiosity mesh: about " + std::to_string(static_cast<uint64_t>(estimated_elements)) +
+                                " elements of size " + std::to_string(result.element_size) + " (at most " +
+                                std::to_string(kMaxElements) + "); raise radiosity.element_size and radiosity.patch_size");
 
   result.elements_of_primitive.resize(scene.primitives.size());
   result.first_element.push_back(0);
   std::vector<CornerTriangle> patch_pieces, element_pieces;
-  for (std::size_t t = 0; t < triangles.triangle_count(); ++t) {
-    CornerTriangle triangle;
-    for (int k = 0; k < 3; ++k) {
-      triangle[k] = {triangles.corner_positions[3 * t + k], triangles.corner_object_positions[3 * t + k],
-                     triangles.corner_uvs[3 * t + k]};
-    }
-    const uint32_t primitive = triangles.primitives[t];
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const CornerTriangle& triangle = triangles[t];
+    const uint32_t primitive = primitives[t];
     patch_pieces.clear();
     bisect(triangle, result.patch_size, patch_pieces);
     for (const CornerTriangle& patch : patch_pieces) {

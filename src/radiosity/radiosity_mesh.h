@@ -27,6 +27,9 @@ struct RadiosityMeshSettings {
   int segments = 16;        // divisions of a full turn of a curved shape (≥ 3)
   double patch_size = 0;    // the longest patch edge; 0: the scene size / 8
   double element_size = 0;  // the longest element edge; 0: patch_size / 2 (≤ patch_size)
+  // Cut every surface along the lines where other objects meet it before meshing (the remedy
+  // for light and shadow leaks, SPEC §10), so that no patch straddles a contact.
+  bool split_at_contacts = false;
   // Where planes are cut; empty: the bounds of the bounded shapes (the scene size is the length
   // of this box's diagonal).
   Bounds3 clip;
@@ -84,8 +87,8 @@ struct RadiosityMesh {
 };
 
 // Builds the mesh of a prepared scene. Throws std::invalid_argument for segments < 3, a negative
-// or non-finite size, element_size > patch_size, a scene with no surface, or a scene whose bounds
-// (and clip box) are empty.
+// or non-finite size, element_size > patch_size, a scene with no surface, a scene whose bounds
+// (and clip box) are empty, or sizes that would make more than 2²⁴ elements (named in the message).
 RadiosityMesh build_radiosity_mesh(const Scene& scene, const RadiosityMeshSettings& settings);
 
 }  // namespace candela

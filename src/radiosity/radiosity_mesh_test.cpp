@@ -238,5 +238,49 @@ TEST(RadiosityMesh, NeighboursShareEdgesWithinOneSurfaceAndAreSymmetric) {
   EXPECT_THROW(mesh.split_elements(*scene, std::vector<bool>(3, false)), std::invalid_argument);
 }
 
+// SPEC §10's remedy for light leaks: surfaces cut where other objects meet them, so that no
+// floor element straddles the footprint of a box standing on it.
+TEST(RadiosityMesh, SplitAtContactsCutsTheFloorAlongABoxFootprint) {
+  const auto scene = scene_with(R"([{"type": "quad", "corner": [0, 0, 0], "edge_u": [4, 0, 0], "edge_v": [0, 4, 0]},
+                                    {"type": "box", "min": [1.3, 1.1, 0], "max": [2.45, 2.7, 1]}])");
+  RadiosityMeshSettings settings;
+  settings.patch_size = 1;
+  settings.element_size = 0.5;
+  // Elements partly inside and partly outside the footprint [1.3, 2.45] × [1.1, 2.7]: sampled at
+  // the centroid and halfway from it to each corner.
+  const auto straddling = [](const RadiosityMesh& mesh) {
+    std::size_t count = 0;
+    for (const RadiositySurface& element : mesh.elements) {
+      if (element.object != 0) continue;
+      bool inside = false, outside = false;
+      for (const Vec3& corner : element.corners)
+        for (const Vec3& p : {element.centroid, (element.centroid + corner) * 0.5}) {
+          const bool in = p.x > 1.3 && p.x < 2.45 && p.y > 1.1 && p.y < 2.7;
+          inside |= in;
+          outside |= !in;
+        }
+      count += inside && outside;
+    }
+    return count;
+  };
+  const RadiosityMesh plain = build_radiosity_mesh(*scene, settings);
+  EXPECT_GT(straddling(plain), 0u);
+  settings.split_at_contacts = true;
+  const RadiosityMesh cut = build_radiosity_mesh(*scene, settings);
+  expect_consistent(cut);
+  EXPECT_EQ(straddling(cut), 0u);
+  // Nothing is lost or added: the floor still has area 16 and the box 2·(1.15·1.6 + 1.15 + 1.6).
+  double floor = 0, box = 0;
+  for (const RadiositySurface& patch : cut.patches) (patch.object == 0 ? floor : box) += patch.area;
+  EXPECT_NEAR(floor, 16, 1e-9);
+  EXPECT_NEAR(box, 2 * (1.15 * 1.6 + 1.15 + 1.6), 1e-9);
+  // The box's own faces are cut only where the floor meets them: along their bottom edges, which
+  // they already have, so they gain nothing beyond bisection.
+  std::size_t plain_box = 0, cut_box = 0;
+  for (const RadiositySurface& patch : plain.patches) plain_box += patch.object == 1;
+  for (const RadiositySurface& patch : cut.patches) cut_box += patch.object == 1;
+  EXPECT_EQ(cut_box, plain_box);
+}
+
 }  // namespace
 }  // namespace candela

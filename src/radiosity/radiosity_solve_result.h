@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "radiosity/radiosity_mesh.h"
@@ -14,6 +15,10 @@ namespace candela {
 struct RadiositySolveResult {
   RadiosityMesh mesh;
   std::vector<Color> element_radiosity;  // B_q (+ ρ_q B_amb with the ambient term)
+  // 1 for an element whose form factors sum to ≈ 0: it sees nothing (it lies against another
+  // surface, like the floor under a box) and receives nothing; its radiosity says nothing about
+  // its visible neighbours', so the display leaves it out of their vertex radiosities.
+  std::vector<uint8_t> element_hidden;
   std::size_t steps = 0;                 // shots or sweeps (1 for gaussian)
   double unshot_fraction = 0;            // progressive: on return; 0 for the direct solvers
   bool converged = true;

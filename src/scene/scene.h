@@ -78,6 +78,8 @@ struct RadiositySettings {
   // min_element_size.
   double subdivision_threshold = 0;
   double min_element_size = 0;  // 0: element_size / 8
+  // Cut surfaces where other objects meet them before meshing (the remedy for light leaks).
+  bool split_at_contacts = false;
   // The memory the stored form factors may take (MiB); 0: half the machine's memory.
   double memory_limit_mib = 0;
 };

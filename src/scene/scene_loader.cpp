@@ -206,6 +206,7 @@ class SceneReader {
     if (settings.min_element_size > 0 && element_size > 0 && settings.min_element_size > element_size)
       node.at("min_element_size").fail("min_element_size must not exceed element_size");
     settings.memory_limit_mib = node.number("memory_limit_mib", 0.0, Range::non_negative());
+    settings.split_at_contacts = node.boolean("split_at_contacts", false);
     node.finish();
   }
 
