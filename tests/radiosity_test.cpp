@@ -407,6 +407,26 @@ TEST(RadiosityDisplay, RayTracedViewMatchesGouraud) {
   EXPECT_LT(difference / level, 0.03);
 }
 
+// 000 Figure 65's picture of the mesh: flat elements with their edges dark (15%).
+TEST(RadiosityDisplay, ElementsDisplayOutlinesEveryElement) {
+  const auto scene = scene_from(furnace_scene(R"({"display": "elements", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 40, "threshold": 1e-4, "ambient": false})"),
+                                R"({"eye": [1, 1, 1.9], "target": [1, 1, 0], "fov": 80, "width": 64, "height": 64})");
+  EXPECT_EQ(scene->radiosity.display, RadiosityDisplay::elements);
+  RunStatistics statistics;
+  const Film film = testing::render_scene(*scene, "radiosity", 2, statistics);
+  EXPECT_EQ(statistics.extra["radiosity"]["display"], "elements");
+  std::size_t inside = 0, outline = 0;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const double g = film.at(x, y).g;
+      if (std::fabs(g - 2.5) < 0.025) ++inside;
+      else if (std::fabs(g - 0.15 * 2.5) < 0.025 * 0.15) ++outline;
+    }
+  EXPECT_EQ(inside + outline, 64u * 64u);  // every pixel is one or the other
+  EXPECT_GT(outline, 64u * 4u);            // lines cross the image
+  EXPECT_GT(inside, outline);
+}
+
 TEST(RadiosityDisplay, FurnaceFlatShowsEOverOneMinusRhoEverywhere) {
   expect_furnace(R"({"display": "flat", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-4, "ambient": false})");
 }

@@ -541,21 +541,42 @@ void display_gouraud(const Scene& scene, const RadiositySolveResult& solution, c
 // each pixel centre; at its hit, the element under the hit point, and the vertex radiosities of
 // that element interpolated at the point's barycentric coordinates (the same field the Gouraud
 // display shows, without its screen-space interpolation).
-Color ray_traced_radiosity(const RadiositySolveResult& solution, const DisplayVertices& vertices,
-                           const Intersection& hit) {
-  const uint32_t element = solution.mesh.element_at(hit.primitive, hit.surface.position);
-  if (element == UINT32_MAX) return Color();
-  const auto& corners = solution.mesh.elements[element].corners;
-  // Barycentric coordinates of the hit projected on the element's plane, clamped to the triangle.
-  const Vec3 e1 = corners[1] - corners[0], e2 = corners[2] - corners[0], d = hit.surface.position - corners[0];
+// Barycentric coordinates (weights of corners 0, 1, 2) of a point projected on a triangle's
+// plane, clamped to the triangle.
+std::array<double, 3> barycentric(const std::array<Vec3, 3>& corners, const Vec3& point) {
+  const Vec3 e1 = corners[1] - corners[0], e2 = corners[2] - corners[0], d = point - corners[0];
   const double d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2), d1 = dot(d, e1), d2 = dot(d, e2);
   const double denominator = d11 * d22 - d12 * d12;
   double v = denominator > 0 ? (d22 * d1 - d12 * d2) / denominator : 0;
   double w = denominator > 0 ? (d11 * d2 - d12 * d1) / denominator : 0;
   v = std::clamp(v, 0.0, 1.0);
   w = std::clamp(w, 0.0, 1.0 - v);
-  return vertices.corner(solution, element, 0) * (1 - v - w) + vertices.corner(solution, element, 1) * v +
-         vertices.corner(solution, element, 2) * w;
+  return {1 - v - w, v, w};
+}
+
+Color ray_traced_radiosity(const RadiositySolveResult& solution, const DisplayVertices& vertices,
+                           const Intersection& hit) {
+  const uint32_t element = solution.mesh.element_at(hit.primitive, hit.surface.position);
+  if (element == UINT32_MAX) return Color();
+  const auto weights = barycentric(solution.mesh.elements[element].corners, hit.surface.position);
+  return vertices.corner(solution, element, 0) * weights[0] + vertices.corner(solution, element, 1) * weights[1] +
+         vertices.corner(solution, element, 2) * weights[2];
+}
+
+// The element mesh (000 Figure 65): each element flat, its edges drawn dark about a pixel wide —
+// where the hit lies closer to an edge than pixel_footprint (the width a pixel covers there).
+Color element_outline(const RadiositySolveResult& solution, const Intersection& hit, double pixel_footprint) {
+  const uint32_t element = solution.mesh.element_at(hit.primitive, hit.surface.position);
+  if (element == UINT32_MAX) return Color();
+  const RadiositySurface& surface = solution.mesh.elements[element];
+  const auto weights = barycentric(surface.corners, hit.surface.position);
+  for (int k = 0; k < 3; ++k) {
+    // Weight k is the distance to the opposite edge over the triangle's height there, 2A/|edge|.
+    const double edge = length(surface.corners[(k + 2) % 3] - surface.corners[(k + 1) % 3]);
+    if (edge > 0 && weights[static_cast<std::size_t>(k)] * 2 * surface.area / edge < 0.6 * pixel_footprint)
+      return solution.element_radiosity[element] * 0.15;
+  }
+  return solution.element_radiosity[element];
 }
 
 const char* display_name(RadiosityDisplay display) {
@@ -563,6 +584,7 @@ const char* display_name(RadiosityDisplay display) {
     case RadiosityDisplay::flat: return "flat";
     case RadiosityDisplay::gouraud: return "gouraud";
     case RadiosityDisplay::ray_traced: return "ray-traced";
+    case RadiosityDisplay::elements: return "elements";
   }
   return "?";
 }
@@ -609,6 +631,10 @@ void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, F
         if (scene.intersect(ray, hit)) {
           if (display == RadiosityDisplay::ray_traced) {
             color = ray_traced_radiosity(solution, vertices, hit);
+          } else if (display == RadiosityDisplay::elements) {
+            const Vec3 next = camera.generate_ray(x + 1.5, y + 0.5).direction;
+            color = element_outline(solution, hit, length(hit.surface.position - ray.origin) *
+                                                       length(normalize(next) - normalize(ray.direction)));
           } else {
             const uint32_t element = solution.mesh.element_at(hit.primitive, hit.surface.position);
             color = element == UINT32_MAX ? Color() : solution.element_radiosity[element];

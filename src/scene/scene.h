@@ -56,7 +56,7 @@ enum class RadiositySolver { progressive, gauss_seidel, gaussian };
 enum class RadiosityFormFactors { hemicube, ray_cast };
 // How the solution is shown (000 §6.5): one radiosity per element, or vertex radiosities
 // interpolated across each element (Gouraud).
-enum class RadiosityDisplay { flat, gouraud, ray_traced };
+enum class RadiosityDisplay { flat, gouraud, ray_traced, elements };
 
 struct RadiositySettings {
   RadiositySolver solver = RadiositySolver::progressive;

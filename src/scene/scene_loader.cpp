@@ -196,10 +196,11 @@ class SceneReader {
     settings.threshold = node.number("threshold", 0.001, {0, 1, true, false});
     settings.max_steps = node.integer("max_steps", 100000, {1, 1 << 30, false, false});
     settings.ambient = node.boolean("ambient", true);
-    const std::string display = node.choice("display", "gouraud", {"flat", "gouraud", "ray-traced"});
-    settings.display = display == "flat"      ? RadiosityDisplay::flat
-                       : display == "gouraud" ? RadiosityDisplay::gouraud
-                                              : RadiosityDisplay::ray_traced;
+    const std::string display = node.choice("display", "gouraud", {"flat", "gouraud", "ray-traced", "elements"});
+    settings.display = display == "flat"         ? RadiosityDisplay::flat
+                       : display == "gouraud"    ? RadiosityDisplay::gouraud
+                       : display == "ray-traced" ? RadiosityDisplay::ray_traced
+                                                 : RadiosityDisplay::elements;
     settings.subdivision_threshold = node.number("subdivision_threshold", 0.0, Range::unit());
     settings.min_element_size = node.number("min_element_size", 0.0, Range::non_negative());
     const double element_size = settings.element_size > 0 ? settings.element_size : settings.patch_size;
