@@ -453,35 +453,6 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
   return result;
 }
 
-// The vertex radiosities of 000 §6.5 over the elements that see something; a hidden element (it
-// lies against another surface and received nothing) would darken its visible neighbours'
-// vertices — a shadow leak of its own — so it keeps its flat radiosity instead.
-struct DisplayVertices {
-  VertexRadiosity vertices;
-  std::vector<int64_t> slot;  // per element: its index among the visible ones, or −1 if hidden
-
-  // The radiosity at corner k of element q.
-  Color corner(const RadiositySolveResult& solution, std::size_t q, int k) const {
-    if (slot[q] < 0) return solution.element_radiosity[q];
-    return vertices.radiosity[vertices.element_vertices[static_cast<std::size_t>(slot[q])][static_cast<std::size_t>(k)]];
-  }
-};
-
-DisplayVertices display_vertices(const RadiositySolveResult& solution) {
-  DisplayVertices result;
-  std::vector<RadiositySurface> visible;
-  std::vector<Color> radiosity;
-  result.slot.assign(solution.mesh.elements.size(), -1);
-  for (std::size_t q = 0; q < solution.mesh.elements.size(); ++q) {
-    if (q < solution.element_hidden.size() && solution.element_hidden[q]) continue;
-    result.slot[q] = static_cast<int64_t>(visible.size());
-    visible.push_back(solution.mesh.elements[q]);
-    radiosity.push_back(solution.element_radiosity[q]);
-  }
-  result.vertices = compute_vertex_radiosity(visible, radiosity);
-  return result;
-}
-
 // 000 §6.5: the elements drawn as triangles through the scanline rasterizer with their vertex
 // radiosities as colours, interpolated perspective-correctly (Gouraud); pixels no element covers
 // show the background. Tiles of 32 × 32 pixels, each drawn by one thread from the same inputs with
@@ -489,7 +460,8 @@ DisplayVertices display_vertices(const RadiositySolveResult& solution) {
 void display_gouraud(const Scene& scene, const RadiositySolveResult& solution, const PixelRect& region, Film& film) {
   const Camera& camera = *scene.camera;
   const std::vector<RadiositySurface>& elements = solution.mesh.elements;
-  const DisplayVertices vertices = display_vertices(solution);
+  const VertexRadiosity vertices =
+      compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity, solution.element_hidden);
   // Depth range: a box around the elements and the eye; near small enough for the closest element.
   Bounds3 bounds;
   bounds.extend(camera.eye_position());
@@ -505,7 +477,7 @@ void display_gouraud(const Scene& scene, const RadiositySolveResult& solution, c
       const Vec3& p = elements[q].corners[k];
       RasterVertex& vertex = triangles[q][k];
       vertex.clip = clip_from_world * Eigen::Vector4d(p.x, p.y, p.z, 1);
-      const Color b = vertices.corner(solution, q, static_cast<int>(k));
+      const Color& b = vertices.radiosity[vertices.element_vertices[q][k]];
       vertex.varyings[0] = b.r, vertex.varyings[1] = b.g, vertex.varyings[2] = b.b;
     }
     bounds_on_screen[q] = screen_bounds(triangles[q][0].clip, triangles[q][1].clip, triangles[q][2].clip,
@@ -558,13 +530,14 @@ std::array<double, 3> barycentric(const std::array<Vec3, 3>& corners, const Vec3
   return {1 - v - w, v, w};
 }
 
-Color ray_traced_radiosity(const RadiositySolveResult& solution, const DisplayVertices& vertices,
+Color ray_traced_radiosity(const RadiositySolveResult& solution, const VertexRadiosity& vertices,
                            const Intersection& hit) {
   const uint32_t element = solution.mesh.element_at(hit.primitive, hit.surface.position);
   if (element == UINT32_MAX) return Color();
   const auto weights = barycentric(solution.mesh.elements[element].corners, hit.surface.position);
-  return vertices.corner(solution, element, 0) * weights[0] + vertices.corner(solution, element, 1) * weights[1] +
-         vertices.corner(solution, element, 2) * weights[2];
+  const auto& ids = vertices.element_vertices[element];
+  return vertices.radiosity[ids[0]] * weights[0] + vertices.radiosity[ids[1]] * weights[1] +
+         vertices.radiosity[ids[2]] * weights[2];
 }
 
 // The element mesh (000 Figure 65): each element flat, its edges drawn dark about a pixel wide —
@@ -626,7 +599,10 @@ void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, F
     display_gouraud(scene, solution, region, film);
   } else {
     // Display by ray casting: the radiosity (view independent: B itself) where each pixel's ray hits.
-    const DisplayVertices vertices = display == RadiosityDisplay::ray_traced ? display_vertices(solution) : DisplayVertices();
+    const VertexRadiosity vertices =
+        display == RadiosityDisplay::ray_traced
+            ? compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity, solution.element_hidden)
+            : VertexRadiosity();
     tbb::parallel_for(region.y0, region.y1, [&](int y) {
       for (int x = region.x0; x < region.x1; ++x) {
         const Ray ray = camera.generate_ray(x + 0.5, y + 0.5);

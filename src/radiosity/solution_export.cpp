@@ -150,7 +150,7 @@ void write_solution_ply(const RadiositySolveResult& solution, const DisplaySetti
                         std::ostream& out) {
   require_consistent(solution);
   const VertexRadiosity vertices =
-      compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity);
+      compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity, solution.element_hidden);
   require_int_indexable(vertices);
   // The same bytes the PNG output would hold for these radiosities (tone_map.h's to_display).
   const std::vector<uint8_t> display_colors = to_display(vertex_film(vertices), display);
@@ -194,7 +194,7 @@ void write_solution_gltf(const RadiositySolveResult& solution, const DisplaySett
                          std::ostream& out) {
   require_consistent(solution);
   const VertexRadiosity vertices =
-      compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity);
+      compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity, solution.element_hidden);
   require_int_indexable(vertices);
   const std::size_t vertex_count = vertices.positions.size();
   const std::size_t index_count = vertices.element_vertices.size() * 3;

@@ -1,6 +1,7 @@
 #include "radiosity/vertex_radiosity.h"
 
 #include <algorithm>
+#include <string>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -143,6 +144,40 @@ VertexRadiosity compute_vertex_radiosity(const std::vector<RadiositySurface>& el
     }
   }
   for (Color& b : result.radiosity) b = clamped_at_zero(b);
+  return result;
+}
+
+VertexRadiosity compute_vertex_radiosity(const std::vector<RadiositySurface>& elements,
+                                         const std::vector<Color>& element_radiosity,
+                                         const std::vector<uint8_t>& hidden) {
+  if (hidden.empty()) return compute_vertex_radiosity(elements, element_radiosity);
+  if (hidden.size() != elements.size() || element_radiosity.size() != elements.size())
+    throw std::invalid_argument("vertex radiosity: " + std::to_string(elements.size()) + " elements, " +
+                                std::to_string(element_radiosity.size()) + " radiosities and " +
+                                std::to_string(hidden.size()) + " hidden flags");
+  std::vector<RadiositySurface> visible;
+  std::vector<Color> visible_radiosity;
+  for (std::size_t q = 0; q < elements.size(); ++q)
+    if (!hidden[q]) visible.push_back(elements[q]), visible_radiosity.push_back(element_radiosity[q]);
+  VertexRadiosity result = compute_vertex_radiosity(visible, visible_radiosity);
+  std::vector<std::array<uint32_t, 3>> visible_vertices = std::move(result.element_vertices);
+  result.element_vertices.clear();
+  std::size_t next_visible = 0;
+  for (std::size_t q = 0; q < elements.size(); ++q) {
+    if (!hidden[q]) {
+      result.element_vertices.push_back(visible_vertices[next_visible++]);
+      continue;
+    }
+    std::array<uint32_t, 3> own;
+    for (std::size_t k = 0; k < 3; ++k) {
+      own[k] = static_cast<uint32_t>(result.positions.size());
+      result.positions.push_back(elements[q].corners[k]);
+      result.object.push_back(elements[q].object);
+      result.kind.push_back(VertexKind::isolated_boundary);
+      result.radiosity.push_back(element_radiosity[q]);
+    }
+    result.element_vertices.push_back(own);
+  }
   return result;
 }
 

@@ -51,4 +51,12 @@ struct VertexRadiosity {
 VertexRadiosity compute_vertex_radiosity(const std::vector<RadiositySurface>& elements,
                                          const std::vector<Color>& element_radiosity);
 
+// The same over the elements with hidden[q] == 0 only; every hidden element (one lying against
+// another surface, which sees nothing and receives nothing: its radiosity says nothing about its
+// visible neighbours') gets three vertices of its own carrying its flat radiosity. element_vertices
+// keeps the order of elements. hidden may be empty (nothing hidden).
+VertexRadiosity compute_vertex_radiosity(const std::vector<RadiositySurface>& elements,
+                                         const std::vector<Color>& element_radiosity,
+                                         const std::vector<uint8_t>& hidden);
+
 }  // namespace candela

@@ -126,5 +126,44 @@ TEST(VertexRadiosity, SizeMismatchThrows) {
   EXPECT_THROW(compute_vertex_radiosity({triangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0)}, {}), std::invalid_argument);
 }
 
+TEST(VertexRadiosity, HiddenElementsKeepTheirOwnVerticesAndLeaveTheOthersAlone) {
+  // A linear field on a 4 × 4 grid; two elements in the middle are "hidden" (they lie under
+  // another surface) and black. Left in, they would darken the vertices around them; left out,
+  // the other elements' vertices are what the grid without those two gives, and each hidden
+  // element shows its own flat value.
+  const auto field = [](const Vec3& p) { return 1 + 0.3 * p.x + 0.2 * p.y; };
+  std::vector<RadiositySurface> elements;
+  std::vector<Color> radiosity;
+  add_grid(4, 0, 0, field, elements, radiosity);
+  std::vector<uint8_t> hidden(elements.size(), 0);
+  for (const std::size_t q : {std::size_t{10}, std::size_t{11}}) hidden[q] = 1, radiosity[q] = Color(0.0);
+  const VertexRadiosity with_hidden = compute_vertex_radiosity(elements, radiosity, hidden);
+  std::vector<RadiositySurface> visible;
+  std::vector<Color> visible_radiosity;
+  for (std::size_t q = 0; q < elements.size(); ++q)
+    if (!hidden[q]) visible.push_back(elements[q]), visible_radiosity.push_back(radiosity[q]);
+  const VertexRadiosity without = compute_vertex_radiosity(visible, visible_radiosity);
+  ASSERT_EQ(with_hidden.element_vertices.size(), elements.size());
+  std::size_t next = 0;
+  for (std::size_t q = 0; q < elements.size(); ++q) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Color got = with_hidden.radiosity[with_hidden.element_vertices[q][k]];
+      EXPECT_EQ(with_hidden.positions[with_hidden.element_vertices[q][k]], elements[q].corners[k]);
+      if (hidden[q]) {
+        EXPECT_EQ(got.r, 0.0);
+      } else {
+        EXPECT_EQ(got.r, without.radiosity[without.element_vertices[next][k]].r);
+        EXPECT_GT(got.r, 0.5);  // never pulled toward the hidden black
+      }
+    }
+    if (!hidden[q]) ++next;
+  }
+  EXPECT_EQ(with_hidden.positions.size(), without.positions.size() + 6);
+  // Empty flags: the plain computation.
+  const VertexRadiosity plain = compute_vertex_radiosity(elements, radiosity, {});
+  EXPECT_EQ(plain.positions.size(), compute_vertex_radiosity(elements, radiosity).positions.size());
+  EXPECT_THROW(compute_vertex_radiosity(elements, radiosity, std::vector<uint8_t>(3, 0)), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace candela
