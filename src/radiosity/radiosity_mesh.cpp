@@ -5,7 +5,6 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 
 #include "math/constants.h"
 #include "raster/tessellated_scene.h"
@@ -284,14 +283,27 @@ uint32_t RadiosityMesh::element_at(uint32_t primitive, const Vec3& point) const 
   if (primitive >= elements_of_primitive.size()) return UINT32_MAX;
   uint32_t best = UINT32_MAX;
   double best_distance = std::numeric_limits<double>::infinity();
-  for (const uint32_t e : elements_of_primitive[primitive]) {
+  // The nearest element, ties to the lowest index (the same answer in any visiting order).
+  const auto consider = [&](uint32_t e) {
+    if (elements[e].primitive != primitive) return;
     const auto& corners = elements[e].corners;
     const double distance = length_squared(point - closest_point_on_triangle(point, corners[0], corners[1], corners[2]));
-    if (distance < best_distance) {
+    if (distance < best_distance || (distance == best_distance && e < best)) {
       best_distance = distance;
       best = e;
     }
+  };
+  // Near the point first: every element within one cell size of it overlaps the box of that
+  // half-width around it, so a nearest element found within that distance is the nearest of all.
+  if (!element_grid.empty()) {
+    const double reach = element_grid.cell_size();
+    Bounds3 around;
+    around.extend(point - Vec3(reach, reach, reach));
+    around.extend(point + Vec3(reach, reach, reach));
+    element_grid.for_each_near(around, consider);
+    if (best != UINT32_MAX && best_distance <= element_grid.cell_size() * element_grid.cell_size()) return best;
   }
+  for (const uint32_t e : elements_of_primitive[primitive]) consider(e);  // far from every element
   return best;
 }
 
@@ -299,7 +311,6 @@ std::vector<std::vector<uint32_t>> RadiosityMesh::element_neighbours() const {
   const std::size_t count = elements.size();
   std::vector<std::vector<uint32_t>> neighbours(count);
   if (count == 0) return neighbours;
-  // A hash grid with cells as large as the largest element: touching elements share a cell.
   Bounds3 bounds;
   double largest_edge = 0;
   for (const RadiositySurface& element : elements)
@@ -307,23 +318,8 @@ std::vector<std::vector<uint32_t>> RadiosityMesh::element_neighbours() const {
       bounds.extend(element.corners[k]);
       largest_edge = std::max(largest_edge, length(element.corners[(k + 1) % 3] - element.corners[k]));
     }
-  const double cell = largest_edge > 0 ? largest_edge : 1;
   const double tolerance = 1e-7 * std::max(largest_edge, length(bounds.diagonal()) * 1e-3);
-  const auto cell_of = [&](double value, double origin) { return static_cast<int64_t>(std::floor((value - origin) / cell)); };
-  std::unordered_map<uint64_t, std::vector<uint32_t>> grid;
-  const auto key = [](int64_t x, int64_t y, int64_t z) {
-    return (static_cast<uint64_t>(x) & 0x1FFFFF) | (static_cast<uint64_t>(y) & 0x1FFFFF) << 21 |
-           (static_cast<uint64_t>(z) & 0x1FFFFF) << 42;
-  };
-  const auto for_each_cell = [&](const RadiositySurface& element, auto&& visit) {
-    Bounds3 box;
-    for (const Vec3& corner : element.corners) box.extend(corner);
-    for (int64_t x = cell_of(box.lower.x - tolerance, bounds.lower.x); x <= cell_of(box.upper.x + tolerance, bounds.lower.x); ++x)
-      for (int64_t y = cell_of(box.lower.y - tolerance, bounds.lower.y); y <= cell_of(box.upper.y + tolerance, bounds.lower.y); ++y)
-        for (int64_t z = cell_of(box.lower.z - tolerance, bounds.lower.z); z <= cell_of(box.upper.z + tolerance, bounds.lower.z); ++z)
-          visit(key(x, y, z));
-  };
-  for (uint32_t q = 0; q < count; ++q) for_each_cell(elements[q], [&](uint64_t k) { grid[k].push_back(q); });
+  const SurfaceGrid grid(elements, tolerance);  // touching elements share a cell
   // How many corners of a lie on the boundary of b (within the tolerance).
   const auto corners_on_boundary = [&](const RadiositySurface& a, const RadiositySurface& b) {
     int on = 0;
@@ -341,14 +337,14 @@ std::vector<std::vector<uint32_t>> RadiosityMesh::element_neighbours() const {
   const double crease_cosine = std::cos(kPi / 4);
   for (uint32_t q = 0; q < count; ++q) {
     std::vector<uint32_t>& list = neighbours[q];
-    for_each_cell(elements[q], [&](uint64_t k) {
-      for (const uint32_t other : grid[k]) {
-        if (other == q || elements[other].object != elements[q].object) continue;
-        if (dot(elements[other].normal, elements[q].normal) < crease_cosine) continue;
-        // A shared piece of edge: two corners of one lie on the other's boundary.
-        if (corners_on_boundary(elements[q], elements[other]) >= 2 || corners_on_boundary(elements[other], elements[q]) >= 2)
-          list.push_back(other);
-      }
+    Bounds3 box;
+    for (const Vec3& corner : elements[q].corners) box.extend(corner);
+    grid.for_each_near(box, [&](uint32_t other) {
+      if (other == q || elements[other].object != elements[q].object) return;
+      if (dot(elements[other].normal, elements[q].normal) < crease_cosine) return;
+      // A shared piece of edge: two corners of one lie on the other's boundary.
+      if (corners_on_boundary(elements[q], elements[other]) >= 2 || corners_on_boundary(elements[other], elements[q]) >= 2)
+        list.push_back(other);
     });
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
@@ -405,6 +401,7 @@ std::vector<uint32_t> RadiosityMesh::split_elements(const Scene& scene, const st
   for (auto& list : elements_of_primitive) list.clear();
   for (uint32_t q = 0; q < elements.size(); ++q) elements_of_primitive[elements[q].primitive].push_back(q);
   element_geometry = geometry_of(elements);
+  element_grid = SurfaceGrid(elements, 0);
   return origin;
 }
 
@@ -478,6 +475,7 @@ RadiosityMesh build_radiosity_mesh(const Scene& scene, const RadiosityMeshSettin
   if (result.patches.empty()) throw std::invalid_argument("radiosity mesh: the scene has no surface to mesh");
   result.element_geometry = geometry_of(result.elements);
   result.patch_geometry = geometry_of(result.patches);
+  result.element_grid = SurfaceGrid(result.elements, 0);
   return result;
 }
 

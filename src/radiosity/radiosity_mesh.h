@@ -18,6 +18,7 @@
 #include "math/vector.h"
 #include "radiosity/hemicube_form_factors.h"
 #include "radiosity/radiosity_system.h"
+#include "radiosity/surface_grid.h"
 
 namespace candela {
 
@@ -62,6 +63,8 @@ struct RadiosityMesh {
   // an element is split again).
   std::vector<std::array<Vec3, 3>> element_object_corners;
   std::vector<std::array<Vec2, 3>> element_uvs;
+  // The elements by place, for element_at (rebuilt with the elements).
+  SurfaceGrid element_grid;
 
   // The patches as a radiosity system (areas, ρ, E) and the elements likewise.
   RadiositySystem patch_system() const;

@@ -282,5 +282,34 @@ TEST(RadiosityMesh, SplitAtContactsCutsTheFloorAlongABoxFootprint) {
   EXPECT_EQ(cut_box, plain_box);
 }
 
+// element_at looks near the point through the element grid; the answer must be the brute-force
+// nearest element of the primitive (ties to the lowest index), near and far from the surface.
+TEST(RadiosityMesh, ElementAtMatchesTheNearestElementFoundByScanning) {
+  const auto scene = scene_with(R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1.5},
+                                    {"type": "quad", "corner": [-3, -3, -2], "edge_u": [6, 0, 0], "edge_v": [0, 6, 0]}])");
+  RadiosityMeshSettings settings;
+  settings.patch_size = 0.8;
+  settings.element_size = 0.3;
+  settings.segments = 24;
+  const RadiosityMesh mesh = build_radiosity_mesh(*scene, settings);
+  uint64_t state = 12345;
+  const auto next = [&] {
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  // The same mesh without its grid answers by scanning every element of the primitive.
+  RadiosityMesh scan_only = mesh;
+  scan_only.element_grid = SurfaceGrid();
+  for (int trial = 0; trial < 2000; ++trial) {
+    const uint32_t primitive = trial % 2;
+    // Points on and off the surfaces, some far away (the grid's fallback).
+    const double spread = trial % 10 == 0 ? 40 : 4;
+    const Vec3 point{(next() - 0.5) * spread, (next() - 0.5) * spread, (next() - 0.5) * spread};
+    const uint32_t expected = scan_only.element_at(primitive, point);
+    ASSERT_NE(expected, UINT32_MAX);
+    EXPECT_EQ(mesh.element_at(primitive, point), expected) << trial;
+  }
+}
+
 }  // namespace
 }  // namespace candela
