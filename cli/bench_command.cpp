@@ -3,10 +3,15 @@
 //               [--width W] [--height H] [--rays N] [--repeat R] [--min-time S] [--dump DIR] [--quiet]
 // candela bench --raster [MESH.obj ...] [--sphere N] [--terrain N] [--width W] [--height H] [--fov DEG]
 //               [--repeat R] [--min-time S] [--json FILE] [--quiet]
+// candela bench --radiosity [SCENE.json] [--set key=value]... [--threads N...] [--json FILE] [--quiet]
 // Reproducible ray-set throughput (SPEC §14) with the ray sets and checksums of
 // shared/BENCH-RAYS.md. "embree" is Embree's own triangle test (the reference speed).
 // --raster measures the scanline rasterizer instead (bench/raster_bench.h): every mesh given,
 // or every .obj of ../shared/models (from the current directory) when none is.
+// --radiosity meshes and solves a scene's radiosity (integrators/radiosity_method.h) once per
+// thread count (default: one run with every core) and reports the solve's facts: patches,
+// elements, steps, unshot fraction, form factors computed and per second, their memory, and the
+// process's peak resident memory; SCENE defaults to the built-in default scene, as for render.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -15,13 +20,19 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <string>
+#include <thread>
+
+#include <tbb/global_control.h>
 
 #include "bench/bench_runner.h"
 #include "bench/raster_bench.h"
 #include "commands.h"
+#include "integrators/radiosity_method.h"
 #include "scene/scene_loader.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
+#include "util/statistics.h"
 
 namespace candela::cli {
 
@@ -46,8 +57,11 @@ struct BenchCommandOptions {
   std::string dump_directory;
   bool quiet = false;
   bool raster = false;
+  bool radiosity = false;
+  std::vector<std::string> overrides;  // --set key=value (scene files)
   // Whether the option was on the command line (the raster bench has its own defaults).
   bool width_given = false, height_given = false, min_time_given = false;
+  bool fov_given = false, repeat_given = false, seed_given = false;
 };
 
 // Where `candela bench --raster` looks for meshes when none is given (as
@@ -214,8 +228,79 @@ int run_raster_bench_command(const BenchCommandOptions& options) {
   return write_json({{"raster", reports}}, options);
 }
 
+// The machine, for the JSON of --radiosity: the CPU's model name (Linux) and hardware threads.
+nlohmann::json machine_facts() {
+  std::string model = "unknown";
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuinfo, line);) {
+    if (line.rfind("model name", 0) != 0) continue;
+    const std::size_t colon = line.find(':');
+    if (colon != std::string::npos) model = line.substr(line.find_first_not_of(" \t", colon + 1));
+    break;
+  }
+  return {{"cpu", model}, {"hardware_threads", std::thread::hardware_concurrency()}};
+}
+
+int run_radiosity_bench_command(const BenchCommandOptions& options) {
+  if (options.raster) throw BadArgument("give one of --raster and --radiosity");
+  if (!options.accelerators.empty() || !options.eye.empty() || !options.lookat.empty() || !options.light.empty() ||
+      options.rays != 0 || !options.dump_directory.empty() || options.sphere || options.terrain ||
+      options.width_given || options.height_given || options.min_time_given || options.fov_given ||
+      options.repeat_given || options.seed_given)
+    throw BadArgument("--radiosity takes SCENE, --set, --threads, --json and --quiet only");
+  if (options.inputs.size() > 1) throw BadArgument("--radiosity takes at most one SCENE");
+  const std::string scene_path = options.inputs.empty() ? std::string() : options.inputs.front();
+  if (!scene_path.empty() && !is_scene_file(scene_path))
+    throw BadArgument("--radiosity measures a scene file (.json), not " + scene_path);
+  std::vector<int> thread_counts;
+  for (const int threads : options.threads) {
+    if (threads < 1 || threads > 1024) throw BadArgument("--threads values must lie in [1, 1024]");
+    if (std::find(thread_counts.begin(), thread_counts.end(), threads) == thread_counts.end())
+      thread_counts.push_back(threads);
+  }
+  if (thread_counts.empty())
+    thread_counts.push_back(
+        static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
+
+  const std::unique_ptr<Scene> scene =
+      scene_path.empty() ? load_default_scene(options.overrides) : load_scene_file(scene_path, options.overrides);
+  for (const auto& warning : scene->warnings) std::cerr << "candela: warning: " << warning << "\n";
+  nlohmann::json runs = nlohmann::json::array();
+  std::cout << fmt::format("scene: {}\n", scene_path.empty() ? "(built-in default)" : scene_path);
+  std::cout << fmt::format("{:>7} {:>8} {:>9} {:>7} {:>10} {:>9} {:>9} {:>9} {:>13} {:>10} {:>9} {:>9}\n", "threads",
+                           "patches", "elements", "steps", "unshot", "converged", "mesh s", "solve s",
+                           "form factors", "FF/s", "FF MiB", "peak MiB");
+  for (const int threads : thread_counts) {
+    if (!options.quiet) std::cerr << fmt::format("candela: bench: radiosity, {} thread(s)\n", threads);
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+    nlohmann::json facts;
+    Stopwatch total;
+    const RadiositySolveResult result = solve_radiosity(*scene, options.quiet, &facts);
+    facts["total_seconds"] = total.seconds();
+    facts["threads"] = threads;
+    // The process's peak so far: with several thread counts, the largest run's up to this one.
+    const double peak_mib = static_cast<double>(peak_memory_bytes()) / 1048576.0;
+    facts["peak_memory_mib"] = peak_mib;
+    std::cout << fmt::format("{:>7} {:>8} {:>9} {:>7} {:>9.4f}% {:>9} {:>9.3f} {:>9.3f} {:>13} {:>10.4g} {:>9.1f} {:>9.1f}\n",
+                             threads, result.mesh.patches.size(), result.mesh.elements.size(), result.steps,
+                             100 * result.unshot_fraction, result.converged ? "yes" : "no", result.mesh_seconds,
+                             result.solve_seconds, result.form_factors,
+                             facts.value("form_factors_per_second", 0.0), result.form_factor_bytes / 1048576.0,
+                             peak_mib);
+    runs.push_back(std::move(facts));
+  }
+  return write_json({{"radiosity",
+                      {{"scene", scene_path.empty() ? "(built-in default)" : scene_path},
+                       {"overrides", options.overrides},
+                       {"machine", machine_facts()},
+                       {"runs", runs}}}},
+                    options);
+}
+
 int run_bench_command(const BenchCommandOptions& given) {
+  if (given.radiosity) return run_radiosity_bench_command(given);
   if (given.raster) return run_raster_bench_command(given);
+  if (!given.overrides.empty()) throw BadArgument("--set applies to --radiosity only");
   if (given.inputs.size() > 1) throw BadArgument("give exactly one of MESH, --sphere N or --terrain N");
   BenchCommandOptions options = given;
   if (!given.inputs.empty()) options.mesh_path = given.inputs.front();
@@ -260,6 +345,14 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
                       "any number of meshes (default: every .obj of ../shared/models)");
   command->add_flag("--raster", options->raster,
                     "Measure the scanline rasterizer (item buffer, depth, Gouraud, Phong passes) instead of rays");
+  command->add_flag("--radiosity", options->radiosity,
+                    "Mesh and solve a scene's radiosity (SCENE, default: the built-in scene) once per --threads "
+                    "value and report steps, form factors per second and memory");
+  // One key=value per --set, as for render.
+  command->add_option("--set", options->overrides, "--radiosity: override a scene setting, e.g. radiosity.patch_size=1")
+      ->expected(1)
+      ->allow_extra_args(false)
+      ->take_all();
   command->add_option("--sphere", options->sphere, "Generated UV sphere of about N triangles");
   command->add_option("--terrain", options->terrain, "Generated height field of about N triangles");
   command
@@ -267,7 +360,8 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
                    "Accelerators (default: every registered one); embree = Embree's own triangle test, "
                    "embree-exact = Embree with Candela's tests")
       ->expected(1, -1);
-  command->add_option("--threads", options->threads, "Thread counts to run (default: 1 2)")->expected(1, -1);
+  command->add_option("--threads", options->threads,
+                      "Thread counts to run (default: 1 2; --radiosity: every core)")->expected(1, -1);
   command->add_option("--json", options->json_path, "Write the results as JSON");
   command->add_option("--seed", options->seed, "Seed of the incoherent rays (default 1)");
   command->add_option("--eye", options->eye, "Camera position (default: from the bounds)")->expected(3);
@@ -289,6 +383,9 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
     options->width_given = command->count("--width") > 0;
     options->height_given = command->count("--height") > 0;
     options->min_time_given = command->count("--min-time") > 0;
+    options->fov_given = command->count("--fov") > 0;
+    options->repeat_given = command->count("--repeat") > 0;
+    options->seed_given = command->count("--seed") > 0;
     run = [options]() { return run_reporting_bad_input([&] { return run_bench_command(*options); }); };
   });
 }
