@@ -26,6 +26,9 @@ int run_info(const SceneOptions& options) {
   std::cout << fmt::format("scene: {}\n", scene->source);
   std::cout << fmt::format("camera: {} {}x{}\n", scene->camera->type_name(), scene->camera->width(),
                            scene->camera->height());
+  for (const NamedCamera& view : scene->cameras)  // --camera NAME
+    std::cout << fmt::format("camera {}: {} {}x{}\n", view.name, view.camera->type_name(), view.camera->width(),
+                             view.camera->height());
   std::cout << fmt::format("objects: {}, primitives: {}\n", scene->objects.size(), scene->primitives.size());
   for (const auto& [type, counts] : by_type)
     std::cout << fmt::format("  {:<10} {:>6} object(s) {:>10} primitive(s)\n", type, counts.first, counts.second);

@@ -191,6 +191,10 @@ TEST_F(Cli, InfoDescribesTheScene) {
   EXPECT_NE(output.find("objects: 24"), std::string::npos) << output;
   EXPECT_NE(output.find("sphere"), std::string::npos);
   EXPECT_NE(output.find("lights: 2"), std::string::npos);
+  // The named views --camera can choose.
+  ASSERT_EQ(run("info " + std::string(CANDELA_SOURCE_DIR) + "/scenes/cornell-box.json", output), 0) << output;
+  EXPECT_NE(output.find("camera corner: perspective 256x256"), std::string::npos) << output;
+  EXPECT_NE(output.find("camera floor: perspective"), std::string::npos) << output;
 }
 
 TEST_F(Cli, UnwritableOutputFailsWithoutLeavingFiles) {
