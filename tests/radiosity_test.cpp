@@ -201,6 +201,13 @@ TEST(RadiosityMethod, SolvesThatDoNotFitAreRefusedNamingTheSettings) {
   // Progressive keeps elements × patches floats: 3,072 × 768 × 4 bytes ≈ 9 MiB.
   refused(R"({"patch_size": 0.25, "element_size": 0.125, "memory_limit_mib": 1})",
           {"radiosity.patch_size", "radiosity.element_size"});
+  // A mesh far too large is refused from the sizes alone, before it is built (it would take
+  // gigabytes itself): 24 m² in elements of 1 mm.
+  refused(R"({"patch_size": 0.001, "element_size": 0.001})", {"radiosity.patch_size", "radiosity.element_size", "at least"});
+  // A limit beyond 2⁶⁴ bytes is no limit (not a wrapped-around 0).
+  const auto generous = scene_from(furnace_scene(R"({"patch_size": 1, "element_size": 1, "memory_limit_mib": 2e13, "hemicube_resolution": 20, "threshold": 0.05})"),
+                                   kFurnaceCamera);
+  EXPECT_NO_THROW(solve_radiosity(*generous, true));
   // Within the limit the same scene solves.
   const auto scene = scene_from(furnace_scene(R"({"patch_size": 0.5, "element_size": 0.5, "memory_limit_mib": 1, "hemicube_resolution": 20, "threshold": 0.05})"),
                                 kFurnaceCamera);
@@ -284,8 +291,12 @@ TEST(RadiosityMethod, AdaptiveSubdivisionRefinesUntilNoNeighboursDifferTooMuch) 
                                   "camera.width=8", "camera.height=8"});
   const auto uniform = cornell_box({"radiosity.patch_size=2", "radiosity.element_size=2", "radiosity.hemicube_resolution=40",
                                     "radiosity.threshold=0.01", "radiosity.ambient=false", "camera.width=8", "camera.height=8"});
-  const RadiositySolveResult refined = solve_radiosity(*scene, true);
+  nlohmann::json facts;
+  const RadiositySolveResult refined = solve_radiosity(*scene, true, &facts);
   const RadiositySolveResult plain = solve_radiosity(*uniform, true);
+  // Row sums describe the final elements, not the rows they replaced.
+  EXPECT_EQ(facts["row_sum"]["rows"].get<std::size_t>() + facts["row_sum"]["hidden_rows"].get<std::size_t>(),
+            refined.mesh.elements.size());
   EXPECT_EQ(refined.mesh.patches.size(), plain.mesh.patches.size());  // patches stay, elements split
   EXPECT_GT(refined.mesh.elements.size(), plain.mesh.elements.size());
   EXPECT_GE(refined.subdivision_passes, 2u);
@@ -296,9 +307,11 @@ TEST(RadiosityMethod, AdaptiveSubdivisionRefinesUntilNoNeighboursDifferTooMuch) 
   // The stopping rule holds on the final solution.
   const auto& elements = refined.mesh.elements;
   const auto& b = refined.element_radiosity;
+  // Emitters and hidden elements (lying against another surface) are not compared.
+  const auto counted = [&](std::size_t q) { return elements[q].emission.is_black() && !refined.element_hidden[q]; };
   double largest = 0;
   for (std::size_t q = 0; q < elements.size(); ++q)
-    if (elements[q].emission.is_black()) largest = std::max({largest, b[q].r, b[q].g, b[q].b});
+    if (counted(q)) largest = std::max({largest, b[q].r, b[q].g, b[q].b});
   const auto longest_edge = [&](std::size_t q) {
     const auto& c = elements[q].corners;
     return std::max({length(c[1] - c[0]), length(c[2] - c[1]), length(c[0] - c[2])});
@@ -306,9 +319,9 @@ TEST(RadiosityMethod, AdaptiveSubdivisionRefinesUntilNoNeighboursDifferTooMuch) 
   const auto neighbours = refined.mesh.element_neighbours();
   std::size_t steep_pairs = 0;
   for (std::size_t q = 0; q < elements.size(); ++q) {
-    if (!elements[q].emission.is_black()) continue;
+    if (!counted(q)) continue;
     for (const uint32_t other : neighbours[q]) {
-      if (!elements[other].emission.is_black()) continue;
+      if (!counted(other)) continue;
       const Color d = b[q] - b[other];
       if (std::max({std::fabs(d.r), std::fabs(d.g), std::fabs(d.b)}) > threshold * largest) {
         ++steep_pairs;
@@ -316,6 +329,11 @@ TEST(RadiosityMethod, AdaptiveSubdivisionRefinesUntilNoNeighboursDifferTooMuch) 
       }
     }
   }
+  // Hidden elements are never split: the floor under the tall box keeps its first elements.
+  std::size_t hidden_refined = 0, hidden_plain = 0;
+  for (const uint8_t hidden : refined.element_hidden) hidden_refined += hidden;
+  for (const uint8_t hidden : plain.element_hidden) hidden_plain += hidden;
+  EXPECT_EQ(hidden_refined, hidden_plain);
   RecordProperty("elements", std::to_string(elements.size()));
   RecordProperty("steep_pairs_at_min_size", std::to_string(steep_pairs));
 }
@@ -369,6 +387,12 @@ TEST(RadiosityMethod, OneSolutionServesEveryView) {
   RunStatistics other_statistics;
   method->render(*other, {{0, 0, 24, 24}, true}, first, other_statistics);
   EXPECT_FALSE(other_statistics.extra["radiosity"]["solution_reused"].get<bool>());
+  // The same scene object with other radiosity settings is solved afresh too.
+  other->radiosity.threshold = 0.05;
+  method->render(*other, {{0, 0, 24, 24}, true}, first, other_statistics);
+  EXPECT_FALSE(other_statistics.extra["radiosity"]["solution_reused"].get<bool>());
+  method->render(*other, {{0, 0, 24, 24}, true}, first, other_statistics);
+  EXPECT_TRUE(other_statistics.extra["radiosity"]["solution_reused"].get<bool>());
 }
 
 // 000 §6.5, SPEC §10 "Display": the radiosity.display setting, "gouraud" by default.

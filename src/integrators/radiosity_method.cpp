@@ -60,8 +60,10 @@ struct RowSumSummary {
 
 // The memory the stored form factors may take: radiosity.memory_limit_mib, or half the machine's.
 uint64_t form_factor_memory_limit(const RadiositySettings& settings) {
-  return settings.memory_limit_mib > 0 ? static_cast<uint64_t>(settings.memory_limit_mib * 1048576.0)
-                                       : default_gaussian_elimination_memory_limit();
+  if (!(settings.memory_limit_mib > 0)) return default_gaussian_elimination_memory_limit();
+  const double bytes = settings.memory_limit_mib * 1048576.0;
+  // Saturated: beyond 2⁶⁴ bytes the conversion would be undefined.
+  return bytes >= 18446744073709549568.0 ? UINT64_MAX : static_cast<uint64_t>(bytes);
 }
 
 // Refuses, before anything is allocated, form factors that would not fit (issue 7: "refused with a
@@ -87,7 +89,7 @@ template <typename Matrix, typename Skipped>
 void fill_form_factor_rows(const Scene& scene, const std::vector<RadiositySurface>& surfaces,
                            const std::vector<uint32_t>& rows, const std::vector<RadiositySurface>& targets,
                            const FormFactorGeometry& geometry, Skipped skipped, Matrix& matrix,
-                           RowSumSummary& row_sums, std::vector<double>* sums_by_row = nullptr) {
+                           std::vector<double>& sums_by_row) {
   using Scalar = typename Matrix::Scalar;
   const RadiositySettings& settings = scene.radiosity;
   std::vector<double> sums(rows.size());
@@ -126,9 +128,7 @@ void fill_form_factor_rows(const Scene& scene, const std::vector<RadiositySurfac
       sums[k] = sum;
     });
   }
-  for (const double sum : sums) row_sums.add(sum);
-  if (sums_by_row)
-    for (std::size_t k = 0; k < rows.size(); ++k) (*sums_by_row)[rows[k]] = sums[k];
+  for (std::size_t k = 0; k < rows.size(); ++k) sums_by_row[rows[k]] = sums[k];
 }
 
 std::vector<uint32_t> all_rows(std::size_t count) {
@@ -257,12 +257,13 @@ std::vector<Color> gather_from_patches(const RadiosityMesh& mesh, const ElementT
 // in some channel by more than threshold × the largest radiosity a reflecting element shows, as
 // long as the element's longest edge exceeds min_size.
 std::vector<bool> elements_to_split(const RadiosityMesh& mesh, const std::vector<Color>& radiosity,
-                                    double threshold, double min_size) {
+                                    const std::vector<double>& row_sums, double threshold, double min_size) {
+  // Hidden elements (lying against another surface) see nothing: their darkness is no gradient.
+  const auto counted = [&](std::size_t q) { return mesh.elements[q].emission.is_black() && row_sums[q] >= kHiddenRowSum; };
   const std::size_t count = mesh.elements.size();
   double largest = 0;
   for (std::size_t q = 0; q < count; ++q)
-    if (mesh.elements[q].emission.is_black())
-      largest = std::max({largest, radiosity[q].r, radiosity[q].g, radiosity[q].b});
+    if (counted(q)) largest = std::max({largest, radiosity[q].r, radiosity[q].g, radiosity[q].b});
   std::vector<bool> split(count, false);
   if (!(largest > 0)) return split;
   const double limit = threshold * largest;
@@ -272,9 +273,9 @@ std::vector<bool> elements_to_split(const RadiosityMesh& mesh, const std::vector
   };
   const std::vector<std::vector<uint32_t>> neighbours = mesh.element_neighbours();
   for (std::size_t q = 0; q < count; ++q) {
-    if (!mesh.elements[q].emission.is_black()) continue;
+    if (!counted(q)) continue;
     for (const uint32_t other : neighbours[q]) {
-      if (!mesh.elements[other].emission.is_black()) continue;
+      if (!counted(other)) continue;
       const Color d = radiosity[q] - radiosity[other];
       if (std::max({std::fabs(d.r), std::fabs(d.g), std::fabs(d.b)}) > limit) {
         if (splittable(q)) split[q] = true;
@@ -294,17 +295,28 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
   mesh_settings.patch_size = settings.patch_size;
   mesh_settings.element_size = settings.element_size;
   mesh_settings.split_at_contacts = settings.split_at_contacts;
+  const bool progressive = settings.solver == RadiositySolver::progressive;
+  const std::string fewer = "raise radiosity.patch_size or radiosity.element_size (fewer patches and elements)";
+  {
+    // Refused before the mesh is built (it can take gigabytes itself): the fewest patches and
+    // elements these sizes can give, and what their form factors would take.
+    const RadiosityMeshEstimate least = estimate_radiosity_mesh(scene, mesh_settings);
+    const double element_bytes = least.elements * least.patches * sizeof(float);
+    const double patch_bytes = progressive ? 0.0 : least.patches * least.patches * sizeof(double) * (settings.solver == RadiositySolver::gaussian ? 3 : 1);
+    const double bytes = std::min(element_bytes + patch_bytes, 1.8e19);
+    check_form_factor_memory(static_cast<uint64_t>(bytes), settings,
+                             fmt::format("a mesh of at least {:.0f} patches and {:.0f} elements", least.patches, least.elements),
+                             progressive ? fewer : "use radiosity.solver \"progressive\", or " + fewer);
+  }
   result.mesh = build_radiosity_mesh(scene, mesh_settings);
   result.mesh_seconds = mesh_time.seconds();
   Stopwatch solve_time;
   double form_factor_seconds = 0;  // of solve_seconds, the time spent computing form factors
   RadiosityMesh& mesh = result.mesh;
   const std::size_t patch_count = mesh.patches.size();
-  const bool progressive = settings.solver == RadiositySolver::progressive;
-  const std::string fewer = "raise radiosity.patch_size or radiosity.element_size (fewer patches and elements)";
 
   // The patch system first (direct solvers), its memory checked before anything is computed.
-  RowSumSummary patch_row_sums, element_row_sums;
+  std::vector<double> patch_sums;
   Reciprocity reciprocity;
   std::vector<Color> patch_radiosity;
   std::size_t patch_steps = 0;
@@ -315,11 +327,12 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
                                  element_rows_bytes(mesh.elements.size(), patch_count),
                              settings, fmt::format("the full matrix of {} patches ({} elements)", patch_count, mesh.elements.size()),
                              "use radiosity.solver \"progressive\", or " + fewer);
+    patch_sums.resize(patch_count);
     Eigen::MatrixXd patch_rows(static_cast<Eigen::Index>(patch_count), static_cast<Eigen::Index>(patch_count));
     {
       Stopwatch form_factor_time;
       fill_form_factor_rows(scene, mesh.patches, all_rows(patch_count), mesh.patches, mesh.patch_geometry,
-                            [](std::size_t i) { return i; }, patch_rows, patch_row_sums);
+                            [](std::size_t i) { return i; }, patch_rows, patch_sums);
       form_factor_seconds += form_factor_time.seconds();
     }
     reciprocity = measure_reciprocity(mesh.patches, patch_rows);
@@ -344,7 +357,7 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
   {
     Stopwatch form_factor_time;
     fill_form_factor_rows(scene, mesh.elements, all_rows(mesh.elements.size()), mesh.patches, mesh.patch_geometry,
-                          own_patch, element_to_patch, element_row_sums, &element_sums);
+                          own_patch, element_to_patch, element_sums);
     form_factor_seconds += form_factor_time.seconds();
   }
   std::size_t form_factor_rows = (progressive ? 0 : patch_count) + mesh.elements.size();
@@ -361,7 +374,8 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
       solution.converged = patch_converged;
     }
     if (!(settings.subdivision_threshold > 0)) break;
-    const std::vector<bool> split = elements_to_split(mesh, solution.radiosity, settings.subdivision_threshold, min_element_size);
+    const std::vector<bool> split =
+        elements_to_split(mesh, solution.radiosity, element_sums, settings.subdivision_threshold, min_element_size);
     const auto split_count = static_cast<std::size_t>(std::count(split.begin(), split.end(), true));
     if (split_count == 0) break;
     // The new elements' rows; the others keep theirs. Both matrices are held while copying.
@@ -385,7 +399,7 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
     {
       Stopwatch form_factor_time;
       fill_form_factor_rows(scene, mesh.elements, new_rows, mesh.patches, mesh.patch_geometry, own_patch, refined,
-                            element_row_sums, &refined_sums);
+                            refined_sums);
       form_factor_seconds += form_factor_time.seconds();
     }
     element_sums = std::move(refined_sums);
@@ -452,7 +466,9 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
       out["reciprocity_error"] = reciprocity.mean_error;
       out["reciprocity_error_max"] = reciprocity.max_error;
     }
-    const auto summary = [](const RowSumSummary& sums) {
+    const auto summary = [](const std::vector<double>& row_sums) {
+      RowSumSummary sums;
+      for (const double sum : row_sums) sums.add(sum);
       nlohmann::json json = {{"rows", sums.rows}, {"hidden_rows", sums.hidden_rows}};
       if (sums.rows > 0) {
         json["min"] = sums.min;
@@ -461,8 +477,8 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
       }
       return json;
     };
-    out["row_sum"] = summary(progressive ? element_row_sums : patch_row_sums);
-    if (!progressive) out["element_row_sum"] = summary(element_row_sums);
+    out["row_sum"] = summary(progressive ? element_sums : patch_sums);
+    if (!progressive) out["element_row_sum"] = summary(element_sums);
   }
   return result;
 }
@@ -503,9 +519,7 @@ void display_gouraud(const Scene& scene, const RadiositySolveResult& solution, c
     const int x0 = region.x0 + (index % tiles_x) * tile, y0 = region.y0 + (index / tiles_x) * tile;
     const int x1 = std::min(x0 + tile, region.x1), y1 = std::min(y0 + tile, region.y1);
     const int w = x1 - x0;
-    Rasterizer rasterizer(camera.width(), camera.height());
-    rasterizer.set_region(x0, y0, x1, y1);
-    rasterizer.clear_depth();
+    Rasterizer rasterizer(camera.width(), camera.height(), x0, y0, x1, y1);  // cleared
     std::vector<Color> colors(std::size_t(w) * (y1 - y0));
     std::vector<bool> covered(colors.size(), false);
     for (std::size_t q = 0; q < elements.size(); ++q) {
@@ -545,9 +559,7 @@ std::array<double, 3> barycentric(const std::array<Vec3, 3>& corners, const Vec3
 }
 
 Color ray_traced_radiosity(const RadiositySolveResult& solution, const VertexRadiosity& vertices,
-                           const Intersection& hit) {
-  const uint32_t element = solution.mesh.element_at(hit.primitive, hit.surface.position);
-  if (element == UINT32_MAX) return Color();
+                           uint32_t element, const Intersection& hit) {
   const auto weights = barycentric(solution.mesh.elements[element].corners, hit.surface.position);
   const auto& ids = vertices.element_vertices[element];
   return vertices.radiosity[ids[0]] * weights[0] + vertices.radiosity[ids[1]] * weights[1] +
@@ -556,9 +568,8 @@ Color ray_traced_radiosity(const RadiositySolveResult& solution, const VertexRad
 
 // The element mesh (000 Figure 65): each element flat, its edges drawn dark about a pixel wide —
 // where the hit lies closer to an edge than pixel_footprint (the width a pixel covers there).
-Color element_outline(const RadiositySolveResult& solution, const Intersection& hit, double pixel_footprint) {
-  const uint32_t element = solution.mesh.element_at(hit.primitive, hit.surface.position);
-  if (element == UINT32_MAX) return Color();
+Color element_outline(const RadiositySolveResult& solution, uint32_t element, const Intersection& hit,
+                      double pixel_footprint) {
   const RadiositySurface& surface = solution.mesh.elements[element];
   const auto weights = barycentric(surface.corners, hit.surface.position);
   for (int k = 0; k < 3; ++k) {
@@ -584,20 +595,37 @@ const char* display_name(RadiosityDisplay display) {
 
 RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet) { return solve_with_statistics(scene, quiet, nullptr); }
 
-std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(const Scene& scene, bool quiet) const {
+namespace {
+
+// What a solution depends on besides the scene object: its radiosity settings (all but the
+// display) and the seed of the ray-cast form factors.
+std::string solution_key(const Scene& scene) {
+  const RadiositySettings& r = scene.radiosity;
+  return fmt::format("{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}", scene.unique_id, static_cast<int>(r.solver),
+                     static_cast<int>(r.form_factors), r.hemicube_resolution, r.ray_cast_samples, r.patch_size,
+                     r.element_size, r.segments, r.threshold, r.max_steps, r.ambient, r.subdivision_threshold,
+                     r.min_element_size, r.memory_limit_mib, r.split_at_contacts, scene.render.seed);
+}
+
+}  // namespace
+
+std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(const Scene& scene, bool quiet,
+                                                                            bool& reused) const {
+  const std::string key = solution_key(scene);
   std::lock_guard lock(cache_mutex_);
-  if (cached_ && cached_scene_id_ == scene.unique_id) return cached_;
+  reused = cached_ && cached_key_ == key;
+  if (reused) return cached_;
   auto solved = std::make_shared<Solved>();
   solved->result = solve_with_statistics(scene, quiet, &solved->facts);
   cached_ = solved;
-  cached_scene_id_ = scene.unique_id;
+  cached_key_ = key;
   return solved;
 }
 
 void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, Film& film,
                              RunStatistics& statistics) const {
-  const bool reused = cached_ && cached_scene_id_ == scene.unique_id;
-  const std::shared_ptr<const Solved> solved = solution_for(scene, request.quiet);
+  bool reused = false;
+  const std::shared_ptr<const Solved> solved = solution_for(scene, request.quiet, reused);
   const RadiositySolveResult& solution = solved->result;
   nlohmann::json facts = solved->facts;
   facts["solution_reused"] = reused;
@@ -622,19 +650,18 @@ void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, F
         const Ray ray = camera.generate_ray(x + 0.5, y + 0.5);
         Intersection hit;
         Color color;
-        if (scene.intersect(ray, hit)) {
-          if (display == RadiosityDisplay::ray_traced) {
-            color = ray_traced_radiosity(solution, vertices, hit);
-          } else if (display == RadiosityDisplay::elements) {
-            const Vec3 next = camera.generate_ray(x + 1.5, y + 0.5).direction;
-            color = element_outline(solution, hit, length(hit.surface.position - ray.origin) *
-                                                       length(normalize(next) - normalize(ray.direction)));
-          } else {
-            const uint32_t element = solution.mesh.element_at(hit.primitive, hit.surface.position);
-            color = element == UINT32_MAX ? Color() : solution.element_radiosity[element];
-          }
+        const uint32_t element =
+            scene.intersect(ray, hit) ? solution.mesh.element_at(hit.primitive, hit.surface.position) : UINT32_MAX;
+        if (element == UINT32_MAX) {
+          color = scene.background_along(ray.direction);  // a miss, or off the mesh (as the Gouraud display)
+        } else if (display == RadiosityDisplay::ray_traced) {
+          color = ray_traced_radiosity(solution, vertices, element, hit);
+        } else if (display == RadiosityDisplay::elements) {
+          const Vec3 next = camera.generate_ray(x + 1.5, y + 0.5).direction;
+          color = element_outline(solution, element, hit, length(hit.surface.position - ray.origin) *
+                                                              length(normalize(next) - normalize(ray.direction)));
         } else {
-          color = scene.background_along(ray.direction);
+          color = solution.element_radiosity[element];
         }
         film.at(x - region.x0, y - region.y0) = color;
       }

@@ -38,6 +38,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -54,7 +55,8 @@ RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet);
 RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet, nlohmann::json* facts);
 
 // One solution serves every view: render() keeps the last scene's solution (recognised by
-// Scene::unique_id) and reuses it when called again for the same scene with another camera.
+// Scene::unique_id and the radiosity settings and seed) and reuses it when called again for the
+// same scene with another camera.
 class RadiosityMethod final : public Method {
  public:
   std::string_view name() const override { return "radiosity"; }
@@ -66,11 +68,13 @@ class RadiosityMethod final : public Method {
     RadiositySolveResult result;
     nlohmann::json facts;  // what the solve measured, for --stats
   };
-  std::shared_ptr<const Solved> solution_for(const Scene& scene, bool quiet) const;
+  // The cached solution when the scene and its settings are the ones last solved (reused set),
+  // else a new one, which replaces it.
+  std::shared_ptr<const Solved> solution_for(const Scene& scene, bool quiet, bool& reused) const;
 
   mutable std::mutex cache_mutex_;
   mutable std::shared_ptr<const Solved> cached_;
-  mutable uint64_t cached_scene_id_ = 0;
+  mutable std::string cached_key_;  // Scene::unique_id and the settings the solution used
 };
 
 }  // namespace candela

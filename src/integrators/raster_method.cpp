@@ -316,9 +316,7 @@ void RasterMethod::render(const Scene& scene, const RenderRequest& request, Film
     const int x0 = region.x0 + (index % tiles_x) * tile, y0 = region.y0 + (index / tiles_x) * tile;
     const int x1 = std::min(x0 + tile, region.x1), y1 = std::min(y0 + tile, region.y1);
     const int w = x1 - x0;
-    Rasterizer rasterizer(camera.width(), camera.height());
-    rasterizer.set_region(x0, y0, x1, y1);
-    rasterizer.clear_depth();
+    Rasterizer rasterizer(camera.width(), camera.height(), x0, y0, x1, y1);  // cleared
     TileBuffers buffers;
     buffers.triangle.assign(std::size_t(w) * (y1 - y0), UINT32_MAX);
     buffers.varyings.assign(buffers.triangle.size() * stride, 0.0);

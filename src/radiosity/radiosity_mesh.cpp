@@ -131,35 +131,65 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
   return a + ab * (vb * denominator) + ac * (vc * denominator);
 }
 
+// The fraction of the segment a + t·direction, t ∈ [0, 1], inside a counter-clockwise triangle
+// (clipped to the three edges' half-planes); 0 when it misses.
+double segment_inside(const std::array<Vec2, 3>& corners, const Vec2& a, const Vec2& direction) {
+  double t0 = 0, t1 = 1;
+  for (int k = 0; k < 3 && t0 <= t1; ++k) {
+    const Vec2 e0 = corners[static_cast<std::size_t>(k)], e1 = corners[static_cast<std::size_t>((k + 1) % 3)];
+    const Vec2 edge{e1.x - e0.x, e1.y - e0.y};
+    // Inside: to the left of each counter-clockwise edge.
+    const double start = edge.x * (a.y - e0.y) - edge.y * (a.x - e0.x);
+    const double change = edge.x * direction.y - edge.y * direction.x;
+    if (std::fabs(change) < 1e-300) {
+      if (start < 0) return 0;
+      continue;
+    }
+    const double t_edge = -start / change;
+    if (change > 0) t0 = std::max(t0, t_edge);
+    else t1 = std::min(t1, t_edge);
+  }
+  return std::max(0.0, t1 - t0);
+}
+
 // Where surfaces meet (SPEC §10: the remedy for the light and shadow leaks of 000 §6.5.1): every
-// triangle is cut along the line where a triangle of another object meets or crosses its plane
-// inside it — a box standing on the floor cuts the floor along its footprint — so that no patch
-// or element straddles the contact, half lit and half hidden.
+// triangle (a patch) is cut along the lines where a cutter — a triangle of another object — meets
+// or crosses its plane inside it: a box standing on the floor cuts the floor's patches along its
+// footprint, so that no patch or element straddles the contact, half lit and half hidden. The
+// patches are cut, not the surfaces they come from, so that a cut runs at most across one patch.
 //
 // A cut is the infinite line through the contact segment, in the triangle's plane; the pieces on
 // either side (halves of a convex polygon, fanned into triangles with the original winding) carry
 // positions, object positions and uvs interpolated linearly along the cut edges.
 void cut_at_contacts(const Scene& scene, std::vector<CornerTriangle>& triangles, std::vector<uint32_t>& primitives,
+                     const std::vector<CornerTriangle>& cutters, const std::vector<uint32_t>& cutter_primitives,
                      double tolerance) {
   const std::size_t count = triangles.size();
-  std::vector<Bounds3> boxes(count);
-  for (std::size_t t = 0; t < count; ++t)
-    for (const MeshCorner& corner : triangles[t]) boxes[t].extend(corner.position);
-  // Candidate pairs by sweeping along x.
-  std::vector<std::size_t> order(count);
-  for (std::size_t t = 0; t < count; ++t) order[t] = t;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return boxes[a].lower.x < boxes[b].lower.x; });
+  const auto box_of = [](const CornerTriangle& triangle) {
+    Bounds3 box;
+    for (const MeshCorner& corner : triangle) box.extend(corner.position);
+    return box;
+  };
+  // The cutters that may touch each triangle: boxes overlapping within the tolerance, found by
+  // walking the cutters sorted by their lowest x.
+  std::vector<Bounds3> cutter_boxes(cutters.size());
+  for (std::size_t c = 0; c < cutters.size(); ++c) cutter_boxes[c] = box_of(cutters[c]);
+  std::vector<std::size_t> by_x(cutters.size());
+  for (std::size_t c = 0; c < cutters.size(); ++c) by_x[c] = c;
+  std::sort(by_x.begin(), by_x.end(), [&](std::size_t a, std::size_t b) { return cutter_boxes[a].lower.x < cutter_boxes[b].lower.x; });
   std::vector<std::vector<std::size_t>> touching(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    const std::size_t a = order[i];
-    for (std::size_t j = i + 1; j < count && boxes[order[j]].lower.x <= boxes[a].upper.x + tolerance; ++j) {
-      const std::size_t b = order[j];
-      if (scene.primitives[primitives[a]].object == scene.primitives[primitives[b]].object) continue;
-      if (boxes[b].lower.y > boxes[a].upper.y + tolerance || boxes[a].lower.y > boxes[b].upper.y + tolerance ||
-          boxes[b].lower.z > boxes[a].upper.z + tolerance || boxes[a].lower.z > boxes[b].upper.z + tolerance)
+  for (std::size_t t = 0; t < count; ++t) {
+    const Bounds3 box = box_of(triangles[t]);
+    const uint32_t object = scene.primitives[primitives[t]].object;
+    for (std::size_t i = 0; i < by_x.size() && cutter_boxes[by_x[i]].lower.x <= box.upper.x + tolerance; ++i) {
+      const std::size_t c = by_x[i];
+      const Bounds3& other = cutter_boxes[c];
+      if (other.upper.x < box.lower.x - tolerance || other.lower.y > box.upper.y + tolerance ||
+          box.lower.y > other.upper.y + tolerance || other.lower.z > box.upper.z + tolerance ||
+          box.lower.z > other.upper.z + tolerance)
         continue;
-      touching[a].push_back(b);
-      touching[b].push_back(a);
+      if (scene.primitives[cutter_primitives[c]].object == object) continue;
+      touching[t].push_back(c);
     }
   }
   std::vector<CornerTriangle> result;
@@ -182,14 +212,14 @@ void cut_at_contacts(const Scene& scene, std::vector<CornerTriangle>& triangles,
     for (const std::size_t other : touching[t]) {
       // The other triangle's crossing of this plane: the points where its edges meet the plane.
       std::array<double, 3> height;
-      for (int k = 0; k < 3; ++k) height[k] = dot(triangles[other][k].position - origin, n);
+      for (int k = 0; k < 3; ++k) height[k] = dot(cutters[other][k].position - origin, n);
       const double highest = std::max({height[0], height[1], height[2]}), lowest = std::min({height[0], height[1], height[2]});
       if (lowest > tolerance || highest < -tolerance) continue;   // wholly on one side
       if (highest <= tolerance && lowest >= -tolerance) continue;  // coplanar: no line
       std::vector<Vec2> crossing;
       for (int k = 0; k < 3; ++k) {
-        const Vec3& p = triangles[other][k].position;
-        const Vec3& q = triangles[other][(k + 1) % 3].position;
+        const Vec3& p = cutters[other][k].position;
+        const Vec3& q = cutters[other][(k + 1) % 3].position;
         const double hp = height[k], hq = height[(k + 1) % 3];
         if (std::fabs(hp) <= tolerance) crossing.push_back(plane_coordinates(p));
         else if ((hp > tolerance && hq < -tolerance) || (hp < -tolerance && hq > tolerance))
@@ -202,26 +232,19 @@ void cut_at_contacts(const Scene& scene, std::vector<CornerTriangle>& triangles,
       const Vec2 direction{b.x - a.x, b.y - a.y};
       const double segment_length = std::hypot(direction.x, direction.y);
       if (!(segment_length > tolerance)) continue;
-      // Does the segment reach the triangle's interior? Clip it to the three edges' half-planes.
-      double t0 = 0, t1 = 1;
-      for (int k = 0; k < 3 && t0 <= t1; ++k) {
-        const Vec2 e0 = corners2[k], e1 = corners2[(k + 1) % 3];
-        const Vec2 edge{e1.x - e0.x, e1.y - e0.y};
-        // Inside: to the left of each counter-clockwise edge (the plane's axes make it so).
-        const double start = edge.x * (a.y - e0.y) - edge.y * (a.x - e0.x);
-        const double change = edge.x * direction.y - edge.y * direction.x;
-        if (std::fabs(change) < 1e-300) {
-          if (start < 0) t1 = -1;
-          continue;
-        }
-        const double t_edge = -start / change;
-        if (change > 0) t0 = std::max(t0, t_edge);
-        else t1 = std::min(t1, t_edge);
-      }
-      if (!((t1 - t0) * segment_length > tolerance)) continue;
-      // Cut every piece by the line through a and b.
+      // Does the segment reach the triangle's interior?
+      if (!(segment_inside(corners2, a, direction) * segment_length > tolerance)) continue;
+      // Cut every piece the segment crosses by the line through a and b (a piece is convex, so
+      // the cut runs across it); pieces the segment does not reach stay whole, so the cut does
+      // not run on across the rest of the surface.
       std::vector<CornerTriangle> cut;
       for (const CornerTriangle& piece : pieces) {
+        const std::array<Vec2, 3> piece2{plane_coordinates(piece[0].position), plane_coordinates(piece[1].position),
+                                         plane_coordinates(piece[2].position)};
+        if (!(segment_inside(piece2, a, direction) * segment_length > tolerance)) {
+          cut.push_back(piece);
+          continue;
+        }
         std::array<double, 3> side;
         for (int k = 0; k < 3; ++k) {
           const Vec2 p = plane_coordinates(piece[k].position);
@@ -301,7 +324,12 @@ uint32_t RadiosityMesh::element_at(uint32_t primitive, const Vec3& point) const 
     around.extend(point - Vec3(reach, reach, reach));
     around.extend(point + Vec3(reach, reach, reach));
     element_grid.for_each_near(around, consider);
-    if (best != UINT32_MAX && best_distance <= element_grid.cell_size() * element_grid.cell_size()) return best;
+    if (best != UINT32_MAX && best_distance <= reach * reach) return best;
+    // Farther than a cell from the mesh's box: off the mesh (an unbounded plane beyond where
+    // it was cut), not a point of any element.
+    const Bounds3& mesh_box = element_grid.bounds();
+    for (int axis = 0; axis < 3; ++axis)
+      if (point[axis] < mesh_box.lower[axis] - reach || point[axis] > mesh_box.upper[axis] + reach) return UINT32_MAX;
   }
   for (const uint32_t e : elements_of_primitive[primitive]) consider(e);  // far from every element
   return best;
@@ -405,7 +433,16 @@ std::vector<uint32_t> RadiosityMesh::split_elements(const Scene& scene, const st
   return origin;
 }
 
-RadiosityMesh build_radiosity_mesh(const Scene& scene, const RadiosityMeshSettings& settings) {
+namespace {
+
+// The sizes a mesh is built with, checked, and the scene's triangles before any split.
+struct MeshStart {
+  double scene_size = 0, patch_size = 0, element_size = 0;
+  std::vector<CornerTriangle> triangles;
+  std::vector<uint32_t> primitives;
+};
+
+MeshStart start_mesh(const Scene& scene, const RadiosityMeshSettings& settings) {
   if (settings.segments < 3) {
     throw std::invalid_argument("radiosity mesh: segments " + std::to_string(settings.segments) + " (must be >= 3)");
   }
@@ -417,60 +454,91 @@ RadiosityMesh build_radiosity_mesh(const Scene& scene, const RadiosityMeshSettin
   if (clip.empty() || !clip.is_finite()) {
     throw std::invalid_argument("radiosity mesh: the scene has no bounded shape and no clip box (where planes end)");
   }
-  const double scene_size = length(clip.diagonal());
-  RadiosityMesh result;
-  result.patch_size = settings.patch_size > 0 ? settings.patch_size : scene_size / 8;
-  result.element_size = settings.element_size > 0 ? settings.element_size : result.patch_size / 2;
-  if (!(result.patch_size > 0)) throw std::invalid_argument("radiosity mesh: the scene has zero size");
-  if (result.element_size > result.patch_size) {
-    throw std::invalid_argument("radiosity mesh: element_size " + std::to_string(result.element_size) +
-                                " exceeds patch_size " + std::to_string(result.patch_size));
+  MeshStart start;
+  start.scene_size = length(clip.diagonal());
+  start.patch_size = settings.patch_size > 0 ? settings.patch_size : start.scene_size / 8;
+  start.element_size = settings.element_size > 0 ? settings.element_size : start.patch_size / 2;
+  if (!(start.patch_size > 0)) throw std::invalid_argument("radiosity mesh: the scene has zero size");
+  if (start.element_size > start.patch_size) {
+    throw std::invalid_argument("radiosity mesh: element_size " + std::to_string(start.element_size) +
+                                " exceeds patch_size " + std::to_string(start.patch_size));
   }
-
   TessellationRequest request;
   request.max_segments = settings.segments;
   request.clip = clip;
   const TessellatedScene tessellated = tessellate_scene(scene, request);
-  std::vector<CornerTriangle> triangles(tessellated.triangle_count());
-  std::vector<uint32_t> primitives(tessellated.primitives.begin(), tessellated.primitives.end());
-  for (std::size_t t = 0; t < triangles.size(); ++t)
+  start.triangles.resize(tessellated.triangle_count());
+  start.primitives.assign(tessellated.primitives.begin(), tessellated.primitives.end());
+  for (std::size_t t = 0; t < start.triangles.size(); ++t)
     for (int k = 0; k < 3; ++k)
-      triangles[t][k] = {tessellated.corner_positions[3 * t + k], tessellated.corner_object_positions[3 * t + k],
-                         tessellated.corner_uvs[3 * t + k]};
-  if (settings.split_at_contacts) cut_at_contacts(scene, triangles, primitives, 1e-9 * scene_size);
+      start.triangles[t][k] = {tessellated.corner_positions[3 * t + k], tessellated.corner_object_positions[3 * t + k],
+                               tessellated.corner_uvs[3 * t + k]};
+  return start;
+}
+
+double total_area(const std::vector<CornerTriangle>& triangles) {
+  double area = 0;
+  for (const CornerTriangle& t : triangles)
+    area += 0.5 * length(cross(t[1].position - t[0].position, t[2].position - t[0].position));
+  return area;
+}
+
+}  // namespace
+
+RadiosityMeshEstimate estimate_radiosity_mesh(const Scene& scene, const RadiosityMeshSettings& settings) {
+  const MeshStart start = start_mesh(scene, settings);
+  // No triangle whose longest edge is at most s is larger than the equilateral one, √3/4 s².
+  const double area = total_area(start.triangles), largest = std::sqrt(3.0) / 4;
+  RadiosityMeshEstimate estimate;
+  estimate.patches = std::max(static_cast<double>(start.triangles.size()), area / (largest * start.patch_size * start.patch_size));
+  estimate.elements = std::max(estimate.patches, area / (largest * start.element_size * start.element_size));
+  return estimate;
+}
+
+RadiosityMesh build_radiosity_mesh(const Scene& scene, const RadiosityMeshSettings& settings) {
+  MeshStart start = start_mesh(scene, settings);
+  const double scene_size = start.scene_size;
+  RadiosityMesh result;
+  result.patch_size = start.patch_size;
+  result.element_size = start.element_size;
+  std::vector<CornerTriangle>& triangles = start.triangles;
+  std::vector<uint32_t>& primitives = start.primitives;
   // Elements bound the work: refuse a mesh far beyond what any solver could keep (a right
   // triangle with legs s/√2 has area s²/4, the smallest bisection keeps).
-  double total_area = 0;
-  for (const CornerTriangle& t : triangles)
-    total_area += 0.5 * length(cross(t[1].position - t[0].position, t[2].position - t[0].position));
-  const double estimated_elements = total_area / (0.25 * result.element_size * result.element_size);
+  const double estimated_elements = total_area(triangles) / (0.25 * result.element_size * result.element_size);
   if (estimated_elements > kMaxElements)
     throw std::invalid_argument("radiosity mesh: about " + std::to_string(static_cast<uint64_t>(estimated_elements)) +
                                 " elements of size " + std::to_string(result.element_size) + " (at most " +
                                 std::to_string(kMaxElements) + "); raise radiosity.element_size and radiosity.patch_size");
 
+  // Patches: each triangle bisected to patch_size, then cut where other objects meet it.
+  std::vector<CornerTriangle> patches;
+  std::vector<uint32_t> patch_primitives;
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    bisect(triangles[t], result.patch_size, patches);
+    patch_primitives.resize(patches.size(), primitives[t]);
+  }
+  if (settings.split_at_contacts)
+    cut_at_contacts(scene, patches, patch_primitives, triangles, primitives, 1e-9 * scene_size);
+
   result.elements_of_primitive.resize(scene.primitives.size());
   result.first_element.push_back(0);
-  std::vector<CornerTriangle> patch_pieces, element_pieces;
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
-    const CornerTriangle& triangle = triangles[t];
-    const uint32_t primitive = primitives[t];
-    patch_pieces.clear();
-    bisect(triangle, result.patch_size, patch_pieces);
-    for (const CornerTriangle& patch : patch_pieces) {
-      const auto patch_index = static_cast<uint32_t>(result.patches.size());
-      result.patches.push_back(make_surface(scene, patch, primitive));
-      element_pieces.clear();
-      bisect(patch, result.element_size, element_pieces);  // 000 §6.7.1: elements within patches
-      for (const CornerTriangle& element : element_pieces) {
-        result.elements_of_primitive[primitive].push_back(static_cast<uint32_t>(result.elements.size()));
-        result.elements.push_back(make_surface(scene, element, primitive));
-        result.patch_of_element.push_back(patch_index);
-        result.element_object_corners.push_back({element[0].object_position, element[1].object_position, element[2].object_position});
-        result.element_uvs.push_back({element[0].uv, element[1].uv, element[2].uv});
-      }
-      result.first_element.push_back(static_cast<uint32_t>(result.elements.size()));
+  std::vector<CornerTriangle> element_pieces;
+  for (std::size_t p = 0; p < patches.size(); ++p) {
+    const uint32_t primitive = patch_primitives[p];
+    const CornerTriangle& patch = patches[p];
+    const auto patch_index = static_cast<uint32_t>(result.patches.size());
+    result.patches.push_back(make_surface(scene, patch, primitive));
+    element_pieces.clear();
+    bisect(patch, result.element_size, element_pieces);  // 000 §6.7.1: elements within patches
+    for (const CornerTriangle& element : element_pieces) {
+      result.elements_of_primitive[primitive].push_back(static_cast<uint32_t>(result.elements.size()));
+      result.elements.push_back(make_surface(scene, element, primitive));
+      result.patch_of_element.push_back(patch_index);
+      result.element_object_corners.push_back({element[0].object_position, element[1].object_position, element[2].object_position});
+      result.element_uvs.push_back({element[0].uv, element[1].uv, element[2].uv});
     }
+    result.first_element.push_back(static_cast<uint32_t>(result.elements.size()));
   }
   if (result.patches.empty()) throw std::invalid_argument("radiosity mesh: the scene has no surface to mesh");
   result.element_geometry = geometry_of(result.elements);

@@ -73,7 +73,9 @@ struct RadiosityMesh {
   double element_area() const;  // Σ element areas
   // The element of primitive `primitive` nearest the world point (the one containing it for
   // flat shapes; for curved ones the triangle closest to the true surface point); UINT32_MAX
-  // when the primitive has no elements.
+  // when the primitive has no elements, or when the point lies farther than the grid's cell size
+  // (the longest element edge) outside the box of all elements — off the mesh, like the part of
+  // an unbounded plane beyond its clip box.
   uint32_t element_at(uint32_t primitive, const Vec3& point) const;
 
   // The neighbours of every element (000 §6.7.2): the elements of the same object that share a
@@ -88,6 +90,15 @@ struct RadiosityMesh {
   // was cut from. Throws std::invalid_argument unless split has one entry per element.
   std::vector<uint32_t> split_elements(const Scene& scene, const std::vector<bool>& split);
 };
+
+// The fewest patches and elements build_radiosity_mesh can make with these settings (the
+// tessellated area over the largest triangle whose longest edge is the bound), found by
+// tessellating only: what memory checks read before the mesh is built. Throws like
+// build_radiosity_mesh for bad settings.
+struct RadiosityMeshEstimate {
+  double patches = 0, elements = 0;
+};
+RadiosityMeshEstimate estimate_radiosity_mesh(const Scene& scene, const RadiosityMeshSettings& settings);
 
 // Builds the mesh of a prepared scene. Throws std::invalid_argument for segments < 3, a negative
 // or non-finite size, element_size > patch_size, a scene with no surface, a scene whose bounds

@@ -305,9 +305,53 @@ TEST(RadiosityMesh, ElementAtMatchesTheNearestElementFoundByScanning) {
     // Points on and off the surfaces, some far away (the grid's fallback).
     const double spread = trial % 10 == 0 ? 40 : 4;
     const Vec3 point{(next() - 0.5) * spread, (next() - 0.5) * spread, (next() - 0.5) * spread};
-    const uint32_t expected = scan_only.element_at(primitive, point);
+    uint32_t expected = scan_only.element_at(primitive, point);
     ASSERT_NE(expected, UINT32_MAX);
+    // Off the mesh (beyond the elements' box by more than a cell): no element.
+    const double reach = mesh.element_grid.cell_size();
+    const Bounds3& box = mesh.element_grid.bounds();
+    for (int axis = 0; axis < 3; ++axis)
+      if (point[axis] < box.lower[axis] - reach || point[axis] > box.upper[axis] + reach) expected = UINT32_MAX;
     EXPECT_EQ(mesh.element_at(primitive, point), expected) << trial;
+  }
+}
+
+// The contact cuts stay near the contact: a cylinder standing through a floor cuts the floor
+// around its footprint only, not along lines running across the whole floor.
+TEST(RadiosityMesh, ContactCutsStayNearTheContact) {
+  const auto scene = scene_with(R"([{"type": "quad", "corner": [-5, -5, 0], "edge_u": [10, 0, 0], "edge_v": [0, 10, 0]},
+                                    {"type": "cylinder", "base": [0.3, 0.2, -1], "cap": [0.3, 0.2, 2], "radius": 1}])");
+  RadiosityMeshSettings settings;
+  settings.patch_size = 1;
+  settings.element_size = 1;
+  settings.segments = 32;
+  const RadiosityMesh plain = build_radiosity_mesh(*scene, settings);
+  settings.split_at_contacts = true;
+  const RadiosityMesh cut = build_radiosity_mesh(*scene, settings);
+  expect_consistent(cut);
+  const auto far_floor = [](const RadiosityMesh& mesh) {
+    std::size_t count = 0;
+    for (const RadiositySurface& element : mesh.elements)
+      if (element.object == 0 && std::hypot(element.centroid.x - 0.3, element.centroid.y - 0.2) > 3) ++count;
+    return count;
+  };
+  EXPECT_EQ(far_floor(cut), far_floor(plain));
+  std::size_t floor_plain = 0, floor_cut = 0;
+  for (const RadiositySurface& element : plain.elements) floor_plain += element.object == 0;
+  for (const RadiositySurface& element : cut.elements) floor_cut += element.object == 0;
+  EXPECT_GT(floor_cut, floor_plain);      // cut around the footprint
+  EXPECT_LT(floor_cut, 4 * floor_plain);  // and not everywhere
+  // No floor element straddles the circle of the cylinder's 32 facets (up to their sagitta).
+  for (const RadiositySurface& element : cut.elements) {
+    if (element.object != 0) continue;
+    bool inside = false, outside = false;
+    for (const Vec3& corner : element.corners)
+      for (const Vec3& p : {element.centroid, (element.centroid + corner) * 0.5}) {
+        const double r = std::hypot(p.x - 0.3, p.y - 0.2);
+        inside |= r < 1 - 0.01;
+        outside |= r > 1 + 1e-9;
+      }
+    EXPECT_FALSE(inside && outside);
   }
 }
 

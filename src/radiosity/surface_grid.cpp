@@ -18,6 +18,7 @@ SurfaceGrid::SurfaceGrid(const std::vector<RadiositySurface>& surfaces, double m
     }
   cell_ = longest_edge > 0 ? longest_edge : 1;
   origin_ = bounds.lower;
+  bounds_ = bounds;
   for (uint32_t i = 0; i < surfaces.size(); ++i) {
     Bounds3 box;
     for (const Vec3& corner : surfaces[i].corners) box.extend(corner);

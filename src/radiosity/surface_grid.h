@@ -23,6 +23,7 @@ class SurfaceGrid {
   SurfaceGrid(const std::vector<RadiositySurface>& surfaces, double margin);
 
   double cell_size() const { return cell_; }
+  const Bounds3& bounds() const { return bounds_; }  // of every surface
   bool empty() const { return cells_.empty(); }
 
   // Calls visit(index) for every surface listed in a cell that box (grown by the margin)
@@ -49,6 +50,7 @@ class SurfaceGrid {
 
   double cell_ = 1, margin_ = 0;
   Vec3 origin_;
+  Bounds3 bounds_;
   std::unordered_map<uint64_t, std::vector<uint32_t>> cells_;
 };
 

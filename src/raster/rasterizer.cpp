@@ -78,11 +78,13 @@ int clip_against_plane(const ClipVertex* in, int count, bool far_plane, int vary
 
 }  // namespace
 
-Rasterizer::Rasterizer(int width, int height) : width_(width), height_(height) {
+Rasterizer::Rasterizer(int width, int height) : Rasterizer(width, height, 0, 0, width, height) {}
+
+Rasterizer::Rasterizer(int width, int height, int x0, int y0, int x1, int y1) : width_(width), height_(height) {
   if (width < 1 || height < 1)
     throw std::invalid_argument("rasterizer: the image must be at least 1 x 1 pixels, not " + std::to_string(width) +
                                 " x " + std::to_string(height));
-  set_region(0, 0, width, height);
+  set_region(x0, y0, x1, y1);
 }
 
 void Rasterizer::set_region(int x0, int y0, int x1, int y1) {

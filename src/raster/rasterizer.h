@@ -105,6 +105,9 @@ class Rasterizer {
   // x0 ≤ x < x1, y0 ≤ y < y1 (tiles, --crop); the depth buffer covers only the region.
   // Throws std::invalid_argument for a width or height below 1.
   Rasterizer(int width, int height);
+  // The same with a region from the start: a tile's rasterizer holds a tile-sized depth buffer
+  // only (a full-image one per tile made large images quadratic). Throws like set_region.
+  Rasterizer(int width, int height, int x0, int y0, int x1, int y1);
   // Throws std::invalid_argument unless 0 ≤ x0 ≤ x1 ≤ width and 0 ≤ y0 ≤ y1 ≤ height. The
   // depth buffer is resized and cleared.
   void set_region(int x0, int y0, int x1, int y1);

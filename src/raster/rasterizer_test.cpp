@@ -384,6 +384,25 @@ TEST(Raster, DepthTestKeepsTheNearerTriangleInEitherOrder) {
   EXPECT_EQ(rasterizer.depth_at(0, 31), kInfinity);
 }
 
+TEST(Raster, RegionGivenAtConstructionDrawsAsSetRegionDoes) {
+  const int size = 64;
+  const RasterVertex v[3] = {screen_vertex(3, 5, size, size, 0.1), screen_vertex(60, 9, size, size, 0.2),
+                             screen_vertex(20, 61, size, size, 0.3)};
+  Rasterizer tiled(size, size, 16, 8, 48, 40);
+  Rasterizer whole(size, size);
+  whole.set_region(16, 8, 48, 40);
+  std::vector<std::pair<int, int>> from_tiled, from_whole;
+  tiled.draw_triangle(v[0], v[1], v[2], 0, [&](const Fragment& f) { return from_tiled.emplace_back(f.x, f.y), true; });
+  whole.draw_triangle(v[0], v[1], v[2], 0, [&](const Fragment& f) { return from_whole.emplace_back(f.x, f.y), true; });
+  EXPECT_EQ(from_tiled, from_whole);
+  EXPECT_GT(from_tiled.size(), 100u);
+  for (const auto& [x, y] : from_tiled) {
+    EXPECT_TRUE(x >= 16 && x < 48 && y >= 8 && y < 40);
+    EXPECT_EQ(tiled.depth_at(x, y), whole.depth_at(x, y));
+  }
+  EXPECT_THROW(Rasterizer(size, size, 0, 0, size + 1, size), std::invalid_argument);
+}
+
 TEST(Raster, ShadeReturningFalseLeavesTheDepthBuffer) {
   const int size = 16;
   Rasterizer rasterizer(size, size);

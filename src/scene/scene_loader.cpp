@@ -203,7 +203,8 @@ class SceneReader {
                                                  : RadiosityDisplay::elements;
     settings.subdivision_threshold = node.number("subdivision_threshold", 0.0, Range::unit());
     settings.min_element_size = node.number("min_element_size", 0.0, Range::non_negative());
-    const double element_size = settings.element_size > 0 ? settings.element_size : settings.patch_size;
+    // The element size the mesh will use when one is given (element_size, else patch_size / 2).
+    const double element_size = settings.element_size > 0 ? settings.element_size : settings.patch_size / 2;
     if (settings.min_element_size > 0 && element_size > 0 && settings.min_element_size > element_size)
       node.at("min_element_size").fail("min_element_size must not exceed element_size");
     settings.memory_limit_mib = node.number("memory_limit_mib", 0.0, Range::non_negative());
