@@ -31,7 +31,7 @@ run sphere_field_10584 scenes/sphere-field-10584.json --accel list bvh grid octr
 # Issue 6: the scanline rasterizer on every model (one thread, its own framing; see benchmarks.md).
 echo "bench: raster" >&2
 "$candela" bench --raster "$models"/*.obj --json "$out/raster.json" > "$out/raster.txt"
-# Issue 7: radiosity at scale, the Cornell box meshed to 11,741 elements (3,537 patches), solved
+# Issue 7: radiosity at scale, the Cornell box meshed to 11,771 elements (3,346 patches), solved
 # progressively to 0.1% unshot with 1 and 2 threads (see benchmarks.md, "Radiosity").
 echo "bench: radiosity" >&2
 "$candela" bench --radiosity scenes/cornell-box.json --set radiosity.patch_size=1 \
