@@ -297,6 +297,28 @@ TEST_F(Cli, BadCameraSelectionsAreRefusedAndNothingIsWritten) {
   EXPECT_EQ(file_count(), 1);  // views.json alone
 }
 
+TEST_F(Cli, ExportSolutionWritesOneRowPerElementOnceForSeveralViews) {
+  std::string output;
+  ASSERT_EQ(run("render '" CANDELA_SOURCE_DIR "/scenes/cornell-box.json' -q --camera all --set radiosity.patch_size=5 "
+                "--set radiosity.element_size=2.5 --set radiosity.hemicube_resolution=20 --set radiosity.threshold=0.05 "
+                "--set camera.width=8 --set camera.height=8 --export-solution s.csv --stats s.json -o room.png",
+                output),
+            0)
+      << output;
+  std::ifstream csv(directory_ / "s.csv");
+  std::string line;
+  ASSERT_TRUE(std::getline(csv, line));
+  EXPECT_EQ(line, "id,patch,area,cx,cy,cz,nx,ny,nz,e_r,e_g,e_b,rho_r,rho_g,rho_b,b_r,b_g,b_b");
+  std::size_t rows = 0;
+  while (std::getline(csv, line)) ++rows;
+  std::ifstream stats(directory_ / "s-front.json");
+  const nlohmann::json facts = nlohmann::json::parse(stats);
+  EXPECT_EQ(rows, facts["radiosity"]["elements"].get<std::size_t>());
+  EXPECT_EQ(facts["radiosity"]["exported_to"], "s.csv");
+  // Three views, three statistics files, one export.
+  EXPECT_EQ(file_count(), 7u);
+}
+
 TEST_F(Cli, ExportSolutionIsCheckedBeforeRendering) {
   write("views.json", kViewsScene);
   std::string output;
