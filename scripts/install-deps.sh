@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   nlohmann-json3-dev libcli11-dev libtbb-dev libstb-dev libopenexr-dev libtinyobjloader-dev
-  libeigen3-dev libfmt-dev libgtest-dev libbenchmark-dev libembree-dev
+  libeigen3-dev libfmt-dev libgtest-dev libbenchmark-dev libembree-dev libnanoflann-dev
 )
 
 missing=()

@@ -1,0 +1,91 @@
+#include "meshless/meshless_basis.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace candela {
+
+MeshlessBasis::MeshlessBasis(const std::vector<Site>& sites, const std::vector<double>& radii, BasisKind kind,
+                             RadialKernel kernel, double shepard_power)
+    : sites_(sites), radii_(radii), kind_(kind), kernel_(kernel), shepard_power_(shepard_power), index_(sites) {
+  if (radii.size() != sites.size())
+    throw std::invalid_argument("meshless basis: " + std::to_string(radii.size()) + " radii for " +
+                                std::to_string(sites.size()) + " sites");
+  if (!(shepard_power >= 0)) throw std::invalid_argument("meshless basis: the Shepard power must be >= 0");
+  for (uint32_t i = 0; i < radii.size(); ++i) {
+    if (!(radii[i] > 0)) throw std::invalid_argument("meshless basis: radius " + std::to_string(i) + " is not > 0");
+    if (std::isinf(radii[i])) unbounded_.push_back(i);
+    else largest_radius_ = std::max(largest_radius_, radii[i]);
+  }
+}
+
+void MeshlessBasis::evaluate(const Site& p, std::vector<std::pair<uint32_t, double>>& weights) const {
+  weights.clear();
+  // Every element whose support can reach p lies within the largest support in Euclidean terms
+  // (the site distance is never below the Euclidean one).
+  const double reach = kind_ == BasisKind::radial && kernel_ == RadialKernel::gaussian ? 4 * largest_radius_ : largest_radius_;
+  thread_local std::vector<uint32_t> candidates;
+  candidates.clear();
+  index_.within_euclidean(p.position, reach, candidates);
+  if (!unbounded_.empty()) {
+    candidates.insert(candidates.end(), unbounded_.begin(), unbounded_.end());
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  }
+  double total = 0;
+  for (const uint32_t i : candidates) {
+    const Site& centre = sites_[i];
+    const double r = radii_[i];
+    double value = 0;
+    switch (kind_) {
+      case BasisKind::radial: {
+        const double t = site_distance(p, centre) / r;  // 002 eq. 4.7 with the site distance
+        if (kernel_ == RadialKernel::gaussian) value = t < 4 ? std::exp(-0.5 * t * t) : 0.0;
+        else value = cubic_kernel(t);
+        break;
+      }
+      case BasisKind::normalized:  // 002 eq. 4.9
+        value = cubic_kernel(length(p.position - centre.position) / r) * std::max(0.0, dot(p.normal, centre.normal));
+        break;
+      case BasisKind::shepard: {  // 002 eqs. 4.10–4.11, Franke–Little weights
+        const double d = site_distance(p, centre);
+        if (!(d < r)) break;
+        if (d == 0) {
+          // At a centre the weight is infinite: φ = 1 there (ties between coincident centres
+          // share it).
+          value = std::numeric_limits<double>::infinity();
+          break;
+        }
+        value = std::isinf(r) ? std::pow(d, -shepard_power_) : std::pow((r - d) / (r * d), shepard_power_);
+        break;
+      }
+    }
+    if (value > 0) {
+      weights.emplace_back(i, value);
+      total += value;
+    }
+  }
+  if (kind_ == BasisKind::radial || weights.empty()) return;
+  if (std::isinf(total)) {
+    // Shepard at a centre: the infinite weights share 1, the rest get 0.
+    std::size_t at_centre = 0;
+    for (const auto& [i, value] : weights) at_centre += std::isinf(value);
+    std::erase_if(weights, [](const auto& entry) { return !std::isinf(entry.second); });
+    for (auto& entry : weights) entry.second = 1.0 / static_cast<double>(at_centre);
+    return;
+  }
+  for (auto& entry : weights) entry.second /= total;
+}
+
+double MeshlessBasis::sum(const Site& p) const {
+  std::vector<std::pair<uint32_t, double>> weights;
+  evaluate(p, weights);
+  double total = 0;
+  for (const auto& [i, value] : weights) total += value;
+  return total;
+}
+
+}  // namespace candela

@@ -1,0 +1,59 @@
+// The three finite-element bases of the meshless method over a set of sites (seed 002 §3.3, §4.2;
+// SPEC §11), evaluated at any site p of the scene through a k-d tree (SiteIndex):
+//
+//   radial      φ_i(p) = Ψ(||p, p_i|| / r_i) with the Gaussian Ψ(t) = exp(−t²/2) cut at t ≥ 4
+//               (002 eqs. 4.6–4.7), or its cubic stand-in K(t) = 2t³ − 3t² + 1 for t ≤ 1, else 0
+//               (eq. 4.8). Neither interpolating nor a partition of unity.
+//   normalized  φ_i(p) = Ψ_i(p) / Σ_j Ψ_j(p) with Ψ_j(p) = K(|ṗ − ṗ_j| / r_j) · max(0, p⃗·p⃗_j)
+//               (eq. 4.9 in 3.28): a partition of unity wherever some Ψ_j(p) > 0.
+//   shepard     φ_i(p) = w_i(p) / Σ_j w_j(p), w_i = ||p, p_i||^−k (eqs. 4.10–4.11, k = 2) within the
+//               element's support ||p, p_i|| < r_i (002 eq. 4.5: φ_i vanishes beyond r_i). So that
+//               φ_i falls to 0 continuously at the support's edge we use Franke and Little's form
+//               w_i = ((r_i − d)/(r_i d))^k, d = ||p, p_i||, which is d^−k near p_i; interpolating
+//               (φ_i(p_i) = 1) and a partition of unity.
+//
+// evaluate() returns the non-zero φ_i(p) as (i, φ_i) pairs in increasing i; an empty result means no
+// element covers p.
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "meshless/site.h"
+#include "meshless/site_index.h"
+
+namespace candela {
+
+enum class BasisKind { radial, normalized, shepard };
+enum class RadialKernel { gaussian, cubic };
+
+class MeshlessBasis {
+ public:
+  // sites and radii (r_i > 0, one per site; an infinite radius is allowed and means "the whole
+  // scene") must outlive the basis. Throws std::invalid_argument for mismatched sizes, a radius
+  // that is not > 0, or shepard_power < 0.
+  MeshlessBasis(const std::vector<Site>& sites, const std::vector<double>& radii, BasisKind kind,
+                RadialKernel kernel = RadialKernel::gaussian, double shepard_power = 2);
+
+  BasisKind kind() const { return kind_; }
+  void evaluate(const Site& p, std::vector<std::pair<uint32_t, double>>& weights) const;
+
+  // Σ_i φ_i(p): 1 for the partitions of unity wherever p is covered.
+  double sum(const Site& p) const;
+
+ private:
+  const std::vector<Site>& sites_;
+  const std::vector<double>& radii_;
+  BasisKind kind_;
+  RadialKernel kernel_;
+  double shepard_power_;
+  double largest_radius_ = 0;  // the finite ones
+  std::vector<uint32_t> unbounded_;  // sites of infinite radius: candidates everywhere
+  SiteIndex index_;
+};
+
+// K(t) = 2t³ − 3t² + 1 on [0, 1], 0 beyond (002 eq. 4.8).
+inline double cubic_kernel(double t) { return t >= 1 ? 0.0 : (2 * t - 3) * t * t + 1; }
+
+}  // namespace candela

@@ -1,0 +1,133 @@
+#include "meshless/site_sampling.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+#include "math/constants.h"
+#include "math/pcg32.h"
+#include "meshless/site_index.h"
+#include "scene/scene.h"
+
+namespace candela {
+
+namespace {
+
+// Keeps sites at least Δ apart (site distance) in the order offered: a hash grid of cells Δ wide
+// holds the kept ones, and since ||p, q|| ≥ |ṗ − q̇| only the 27 cells around a candidate can hold
+// one closer than Δ.
+class SpacingFilter {
+ public:
+  explicit SpacingFilter(double spacing) : spacing_(spacing) {}
+
+  bool try_keep(const Site& site) {
+    const int64_t cx = cell(site.position.x), cy = cell(site.position.y), cz = cell(site.position.z);
+    for (int64_t x = cx - 1; x <= cx + 1; ++x)
+      for (int64_t y = cy - 1; y <= cy + 1; ++y)
+        for (int64_t z = cz - 1; z <= cz + 1; ++z) {
+          const auto found = cells_.find(key(x, y, z));
+          if (found == cells_.end()) continue;
+          for (const Site& kept : found->second)
+            if (site_distance(site, kept) < spacing_) return false;
+        }
+    cells_[key(cx, cy, cz)].push_back(site);
+    return true;
+  }
+
+ private:
+  int64_t cell(double value) const { return static_cast<int64_t>(std::floor(value / spacing_)); }
+  static uint64_t key(int64_t x, int64_t y, int64_t z) {
+    return (static_cast<uint64_t>(x) & 0x1FFFFF) | (static_cast<uint64_t>(y) & 0x1FFFFF) << 21 |
+           (static_cast<uint64_t>(z) & 0x1FFFFF) << 42;
+  }
+  double spacing_;
+  std::unordered_map<uint64_t, std::vector<Site>> cells_;
+};
+
+// The site where a ray first hits the scene, its normal turned toward the ray's origin.
+std::optional<std::pair<Site, uint32_t>> site_along(const Scene& scene, const Ray& ray) {
+  Intersection hit;
+  if (!scene.intersect(ray, hit)) return std::nullopt;
+  const Vec3 normal = face_forward(hit.surface.geometric_normal, -ray.direction);
+  return std::pair{Site{hit.surface.position, normal}, hit.primitive};
+}
+
+// A cosine-distributed direction about n (Malley's method).
+Vec3 cosine_direction(const Vec3& n, Pcg32& random) {
+  const double u = random.next_double(), v = random.next_double();
+  const double r = std::sqrt(u), phi = 2 * kPi * v;
+  Vec3 b1, b2;
+  orthonormal_basis(n, b1, b2);
+  return normalize(b1 * (r * std::cos(phi)) + b2 * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0, 1 - u)));
+}
+
+}  // namespace
+
+void assign_radii(SiteSet& set, int neighbours) {
+  if (neighbours < 1) throw std::invalid_argument("site radii: neighbours must be >= 1");
+  const SiteIndex index(set.sites);
+  set.radius.assign(set.sites.size(), 0.0);
+  set.effective_area.assign(set.sites.size(), 0.0);
+  tbb::parallel_for(std::size_t(0), set.sites.size(), [&](std::size_t i) {
+    // 002 §4.2.7 and eq. 5.5: h_i, the site distance holding the m nearest other sites.
+    const double h = index.mth_nearest_site_distance(set.sites[i], static_cast<std::size_t>(neighbours), static_cast<uint32_t>(i));
+    set.radius[i] = h;
+    set.effective_area[i] = std::isfinite(h) ? kPi * h * h / (neighbours + 1) : 0.0;
+  });
+}
+
+SiteSet sample_sites(const Scene& scene, const SiteSamplingSettings& settings) {
+  if (settings.grid < 1) throw std::invalid_argument("site sampling: grid must be >= 1");
+  if (settings.rounds < 0) throw std::invalid_argument("site sampling: rounds must be >= 0");
+  if (!(settings.spacing >= 0) || !std::isfinite(settings.spacing))
+    throw std::invalid_argument("site sampling: spacing must be finite and >= 0");
+  if (settings.neighbours < 1) throw std::invalid_argument("site sampling: neighbours must be >= 1");
+  SiteSet set;
+  const Bounds3 bounds = scene.bounds();
+  const double scene_size = bounds.empty() || !bounds.is_finite() ? 1.0 : std::max(length(bounds.diagonal()), 1e-300);
+  set.spacing = settings.spacing > 0 ? settings.spacing : scene_size / 50;
+  SpacingFilter filter(set.spacing);
+  const auto offer = [&](const std::optional<std::pair<Site, uint32_t>>& candidate) {
+    if (!candidate || !filter.try_keep(candidate->first)) return;
+    if (set.sites.size() >= settings.max_sites)
+      throw std::invalid_argument("site sampling: more than " + std::to_string(settings.max_sites) +
+                                  " sites; raise the spacing Δ");
+    set.sites.push_back(candidate->first);
+    set.primitive.push_back(candidate->second);
+  };
+
+  // 1. Camera rays through a regular grid over the image.
+  const Camera& camera = *scene.camera;
+  const int grid = settings.grid;
+  std::vector<std::optional<std::pair<Site, uint32_t>>> found(static_cast<std::size_t>(grid) * grid);
+  tbb::parallel_for(0, grid * grid, [&](int k) {
+    const double x = (k % grid + 0.5) * camera.width() / grid, y = (k / grid + 0.5) * camera.height() / grid;
+    found[static_cast<std::size_t>(k)] = site_along(scene, camera.generate_ray(x, y));
+  });
+  for (const auto& candidate : found) offer(candidate);
+  set.camera_sites = set.sites.size();
+
+  // 2–3. Rounds of secondary rays about the normals, pruned as they are added.
+  for (int round = 0; round < settings.rounds; ++round) {
+    const std::size_t shooters = set.sites.size();
+    found.assign(shooters, std::nullopt);
+    tbb::parallel_for(std::size_t(0), shooters, [&](std::size_t i) {
+      Pcg32 random(settings.seed + 0x9E3779B97F4A7C15ull * static_cast<uint64_t>(round + 1), i);
+      const Site& site = set.sites[i];
+      Ray ray;
+      ray.direction = cosine_direction(site.normal, random);
+      ray.origin = site.position + site.normal * scene.ray_offset(site.position);
+      found[i] = site_along(scene, ray);
+    });
+    for (const auto& candidate : found) offer(candidate);
+  }
+  assign_radii(set, settings.neighbours);
+  return set;
+}
+
+}  // namespace candela
