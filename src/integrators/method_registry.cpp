@@ -4,6 +4,7 @@
 #include <string>
 
 #include "integrators/local.h"
+#include "integrators/meshless_method.h"
 #include "integrators/radiosity_method.h"
 #include "integrators/raster_method.h"
 #include "integrators/whitted.h"
@@ -22,6 +23,8 @@ const std::array kEntries = {
                 []() -> std::unique_ptr<Method> { return std::make_unique<RasterMethod>(); }},
     MethodEntry{"radiosity", "classic radiosity: hemicube form factors, progressive refinement with substructuring (000 §6)",
                 []() -> std::unique_ptr<Method> { return std::make_unique<RadiosityMethod>(); }},
+    MethodEntry{"meshless", "meshless finite-element radiosity: sites, radial / normalized / Shepard bases (002)",
+                []() -> std::unique_ptr<Method> { return std::make_unique<MeshlessMethod>(); }},
 };
 }  // namespace
 

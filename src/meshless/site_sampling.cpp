@@ -49,12 +49,25 @@ class SpacingFilter {
   std::unordered_map<uint64_t, std::vector<Site>> cells_;
 };
 
+// A site found by a ray, with what its surface is made of there.
+struct FoundSite {
+  Site site;
+  uint32_t primitive = 0;
+  Color albedo, emission;
+};
+
 // The site where a ray first hits the scene, its normal turned toward the ray's origin.
-std::optional<std::pair<Site, uint32_t>> site_along(const Scene& scene, const Ray& ray) {
+std::optional<FoundSite> site_along(const Scene& scene, const Ray& ray) {
   Intersection hit;
   if (!scene.intersect(ray, hit)) return std::nullopt;
-  const Vec3 normal = face_forward(hit.surface.geometric_normal, -ray.direction);
-  return std::pair{Site{hit.surface.position, normal}, hit.primitive};
+  FoundSite found;
+  found.site = {hit.surface.position, face_forward(hit.surface.geometric_normal, -ray.direction)};
+  found.primitive = hit.primitive;
+  const Material& material = scene.material_of(hit);
+  const SurfaceProperties properties = material.at(hit.surface);
+  for (int c = 0; c < 3; ++c) found.albedo[c] = std::clamp(properties.kd[c], 0.0, 1.0);
+  found.emission = material.emission;
+  return found;
 }
 
 // A cosine-distributed direction about n (Malley's method).
@@ -92,19 +105,21 @@ SiteSet sample_sites(const Scene& scene, const SiteSamplingSettings& settings) {
   const double scene_size = bounds.empty() || !bounds.is_finite() ? 1.0 : std::max(length(bounds.diagonal()), 1e-300);
   set.spacing = settings.spacing > 0 ? settings.spacing : scene_size / 50;
   SpacingFilter filter(set.spacing);
-  const auto offer = [&](const std::optional<std::pair<Site, uint32_t>>& candidate) {
-    if (!candidate || !filter.try_keep(candidate->first)) return;
+  const auto offer = [&](const std::optional<FoundSite>& candidate) {
+    if (!candidate || !filter.try_keep(candidate->site)) return;
     if (set.sites.size() >= settings.max_sites)
       throw std::invalid_argument("site sampling: more than " + std::to_string(settings.max_sites) +
                                   " sites; raise the spacing Δ");
-    set.sites.push_back(candidate->first);
-    set.primitive.push_back(candidate->second);
+    set.sites.push_back(candidate->site);
+    set.primitive.push_back(candidate->primitive);
+    set.albedo.push_back(candidate->albedo);
+    set.emission.push_back(candidate->emission);
   };
 
   // 1. Camera rays through a regular grid over the image.
   const Camera& camera = *scene.camera;
   const int grid = settings.grid;
-  std::vector<std::optional<std::pair<Site, uint32_t>>> found(static_cast<std::size_t>(grid) * grid);
+  std::vector<std::optional<FoundSite>> found(static_cast<std::size_t>(grid) * grid);
   tbb::parallel_for(0, grid * grid, [&](int k) {
     const double x = (k % grid + 0.5) * camera.width() / grid, y = (k / grid + 0.5) * camera.height() / grid;
     found[static_cast<std::size_t>(k)] = site_along(scene, camera.generate_ray(x, y));

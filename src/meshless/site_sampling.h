@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "math/vector.h"
 #include "meshless/site.h"
 
 namespace candela {
@@ -41,6 +42,8 @@ struct SiteSet {
   std::vector<double> radius;          // r_i = h_i
   std::vector<double> effective_area;  // A_i = π h_i² / (m + 1)
   std::vector<uint32_t> primitive;     // the primitive each site lies on
+  std::vector<Color> albedo;           // β(ṗ_i) = the material's kd there, clamped to [0, 1]
+  std::vector<Color> emission;         // the material's emitted exitance E there
   double spacing = 0;                  // Δ used
   std::size_t camera_sites = 0;        // kept from the camera grid
 };

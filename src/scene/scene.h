@@ -84,6 +84,27 @@ struct RadiositySettings {
   double memory_limit_mib = 0;
 };
 
+// The meshless method's settings (SPEC §11, seed 002): scene key "meshless".
+enum class MeshlessBasisKind { radial, normalized, shepard };
+enum class MeshlessKernel { gaussian, cubic };
+enum class MeshlessDisplay { global, direct, indirect, hybrid };
+enum class MeshlessAreas { integrated, thesis };
+
+struct MeshlessSettings {
+  MeshlessBasisKind basis = MeshlessBasisKind::normalized;
+  MeshlessKernel kernel = MeshlessKernel::gaussian;  // the radial basis's mother function
+  double spacing = 0;     // Δ: no two sites closer (site distance); 0: the scene's size / 50
+  int neighbours = 10;    // m: the radius holds the m nearest sites
+  int grid = 64;          // camera rays per image side for the first sites
+  int rounds = 4;         // rounds of secondary rays
+  MeshlessAreas effective_area = MeshlessAreas::integrated;
+  double tolerance = 1e-4;     // the iteration stops when no coefficient changes by more (relative)
+  int max_iterations = 1000;
+  MeshlessDisplay display = MeshlessDisplay::global;
+  double shepard_power = 2;
+  int max_sites = 50000;       // refused beyond: the transfer matrix grows as n²
+};
+
 // One entry of the scene file's "shapes" array.
 struct SceneObject {
   std::string name;
@@ -127,6 +148,7 @@ class Scene {
   LocalSettings local;
   RasterSettings raster;
   RadiositySettings radiosity;
+  MeshlessSettings meshless;
   AntialiasingSettings antialiasing;  // the "aa" object
   std::vector<std::string> warnings;
 

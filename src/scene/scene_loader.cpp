@@ -166,11 +166,41 @@ class SceneReader {
       raster->finish();
     }
     if (const auto radiosity = root_.get("radiosity")) read_radiosity(*radiosity);
+    if (const auto meshless = root_.get("meshless")) read_meshless(*meshless);
     if (const auto local = root_.get("local")) {
       scene_->local.shadows = local->boolean("shadows", true);
       local->finish();
     }
     if (const auto aa = root_.get("aa")) read_antialiasing(*aa);
+  }
+
+  // The meshless method's settings (SPEC §11, seed 002); ranges checked, unknown keys refused.
+  void read_meshless(const JsonNode& node) {
+    MeshlessSettings& settings = scene_->meshless;
+    node.expect_object();
+    const std::string basis = node.choice("basis", "normalized", {"radial", "normalized", "shepard"});
+    settings.basis = basis == "radial"       ? MeshlessBasisKind::radial
+                     : basis == "normalized" ? MeshlessBasisKind::normalized
+                                             : MeshlessBasisKind::shepard;
+    settings.kernel = node.choice("kernel", "gaussian", {"gaussian", "cubic"}) == "gaussian" ? MeshlessKernel::gaussian
+                                                                                            : MeshlessKernel::cubic;
+    settings.spacing = node.number("spacing", 0.0, Range::non_negative());
+    settings.neighbours = node.integer("neighbours", 10, {1, 1000, false, false});
+    settings.grid = node.integer("grid", 64, {1, 4096, false, false});
+    settings.rounds = node.integer("rounds", 4, {0, 1000, false, false});
+    settings.effective_area = node.choice("effective_area", "integrated", {"integrated", "thesis"}) == "integrated"
+                                  ? MeshlessAreas::integrated
+                                  : MeshlessAreas::thesis;
+    settings.tolerance = node.number("tolerance", 1e-4, {0, 1, true, false});
+    settings.max_iterations = node.integer("max_iterations", 1000, {1, 1 << 20, false, false});
+    const std::string display = node.choice("display", "global", {"global", "direct", "indirect", "hybrid"});
+    settings.display = display == "global"     ? MeshlessDisplay::global
+                       : display == "direct"   ? MeshlessDisplay::direct
+                       : display == "indirect" ? MeshlessDisplay::indirect
+                                               : MeshlessDisplay::hybrid;
+    settings.shepard_power = node.number("shepard_power", 2.0, {0, 16, false, false});
+    settings.max_sites = node.integer("max_sites", 50000, {1, 1 << 22, false, false});
+    node.finish();
   }
 
   // The radiosity method's settings (SPEC §10, 000 §6); ranges checked, unknown keys refused.

@@ -1,0 +1,170 @@
+#include "integrators/meshless_method.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "meshless/effective_area.h"
+#include "meshless/meshless_basis.h"
+#include "scene/light.h"
+#include "scene/scene.h"
+
+namespace candela {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+BasisKind basis_kind(MeshlessBasisKind kind) {
+  switch (kind) {
+    case MeshlessBasisKind::radial: return BasisKind::radial;
+    case MeshlessBasisKind::normalized: return BasisKind::normalized;
+    case MeshlessBasisKind::shepard: return BasisKind::shepard;
+  }
+  return BasisKind::normalized;
+}
+
+const char* basis_name(MeshlessBasisKind kind) {
+  switch (kind) {
+    case MeshlessBasisKind::radial: return "radial";
+    case MeshlessBasisKind::normalized: return "normalized";
+    case MeshlessBasisKind::shepard: return "shepard";
+  }
+  return "?";
+}
+
+// What a surface point reflects of the lights directly: ρ Σ I·max(0, n·L)·V (opaque shadows).
+Color direct_light(const Scene& scene, const Vec3& point, const Vec3& normal, const Color& albedo) {
+  if (albedo.is_black()) return Color();
+  Color sum;
+  const Vec3 origin = point + normal * scene.ray_offset(point);
+  for (const auto& light : scene.lights) {
+    LightSample sample;
+    if (!light->illuminate(point, sample)) continue;
+    const double cosine = dot(normal, sample.direction);
+    if (!(cosine > 0)) continue;
+    Ray shadow;
+    shadow.origin = origin;
+    shadow.direction = sample.direction;
+    shadow.t_max = std::isinf(sample.distance) ? kInfinity : sample.distance * (1 - 1e-9);
+    if (scene.occluded(shadow)) continue;
+    sum += sample.intensity * cosine;
+  }
+  return albedo * sum;
+}
+
+}  // namespace
+
+MeshlessSolution solve_meshless(const Scene& scene, nlohmann::json* facts) {
+  const MeshlessSettings& settings = scene.meshless;
+  MeshlessSolution solution;
+  auto start = std::chrono::steady_clock::now();
+  SiteSamplingSettings sampling;
+  sampling.grid = settings.grid;
+  sampling.rounds = settings.rounds;
+  sampling.spacing = settings.spacing;
+  sampling.neighbours = settings.neighbours;
+  sampling.seed = scene.render.seed;
+  sampling.max_sites = static_cast<std::size_t>(settings.max_sites);
+  solution.sites = sample_sites(scene, sampling);
+  solution.sampling_seconds = seconds_since(start);
+  const SiteSet& sites = solution.sites;
+
+  start = std::chrono::steady_clock::now();
+  const MeshlessBasis basis(sites.sites, sites.radius, basis_kind(settings.basis),
+                            settings.kernel == MeshlessKernel::gaussian ? RadialKernel::gaussian : RadialKernel::cubic,
+                            settings.shepard_power);
+  std::vector<double> areas = sites.effective_area;  // the thesis's πh²/(m + 1)
+  if (settings.effective_area == MeshlessAreas::integrated)
+    areas = integrate_effective_areas(scene, basis, sites.sites.size(), sites.spacing / 4);
+  solution.area_seconds = seconds_since(start);
+
+  start = std::chrono::steady_clock::now();
+  solution.eta.resize(sites.sites.size());
+  tbb::parallel_for(std::size_t(0), sites.sites.size(), [&](std::size_t i) {
+    solution.eta[i] = sites.emission[i] + direct_light(scene, sites.sites[i].position, sites.sites[i].normal, sites.albedo[i]);
+  });
+  solution.matrix = compute_transfer_matrix(scene, sites.sites, areas);
+  solution.transfer = solve_transfer(solution.matrix, sites.albedo, solution.eta, settings.tolerance,
+                                     static_cast<std::size_t>(settings.max_iterations));
+  solution.solve_seconds = seconds_since(start);
+  if (facts) {
+    double area_sum = 0;
+    for (const double a : areas) area_sum += a;
+    *facts = {{"basis", basis_name(settings.basis)},
+              {"sites", sites.sites.size()},
+              {"camera_sites", sites.camera_sites},
+              {"spacing", sites.spacing},
+              {"neighbours", settings.neighbours},
+              {"effective_area", settings.effective_area == MeshlessAreas::integrated ? "integrated" : "thesis"},
+              {"effective_area_sum", area_sum},
+              {"transfer_entries", solution.matrix.entries()},
+              {"transfer_density", solution.matrix.density()},
+              {"transfer_memory_mib", static_cast<double>(solution.matrix.bytes()) / 1048576.0},
+              {"transfer_seconds", solution.matrix.seconds},
+              {"visibility_rays", solution.matrix.visibility_rays},
+              {"iterations", solution.transfer.iterations},
+              {"converged", solution.transfer.converged},
+              {"final_change", solution.transfer.final_change},
+              {"sampling_seconds", solution.sampling_seconds},
+              {"area_seconds", solution.area_seconds},
+              {"solve_seconds", solution.solve_seconds}};
+  }
+  return solution;
+}
+
+void MeshlessMethod::render(const Scene& scene, const RenderRequest& request, Film& film,
+                            RunStatistics& statistics) const {
+  nlohmann::json facts;
+  const MeshlessSolution solution = solve_meshless(scene, &facts);
+  const MeshlessSettings& settings = scene.meshless;
+  const MeshlessBasis basis(solution.sites.sites, solution.sites.radius, basis_kind(settings.basis),
+                            settings.kernel == MeshlessKernel::gaussian ? RadialKernel::gaussian : RadialKernel::cubic,
+                            settings.shepard_power);
+  const Camera& camera = *scene.camera;
+  const PixelRect region = request.region;
+  const auto start = std::chrono::steady_clock::now();
+  tbb::parallel_for(region.y0, region.y1, [&](int y) {
+    std::vector<std::pair<uint32_t, double>> weights;
+    for (int x = region.x0; x < region.x1; ++x) {
+      const Ray ray = camera.generate_ray(x + 0.5, y + 0.5);
+      Intersection hit;
+      Color color = scene.background_along(ray.direction);
+      if (scene.intersect(ray, hit)) {
+        const Site p{hit.surface.position, face_forward(hit.surface.geometric_normal, -ray.direction)};
+        basis.evaluate(p, weights);
+        Color global, direct;
+        for (const auto& [i, phi] : weights) {
+          global += solution.transfer.lambda[i] * phi;
+          direct += solution.eta[i] * phi;
+        }
+        switch (settings.display) {
+          case MeshlessDisplay::global: color = global; break;
+          case MeshlessDisplay::direct: color = direct; break;
+          case MeshlessDisplay::indirect: color = global - direct; break;
+          case MeshlessDisplay::hybrid: {
+            const Material& material = scene.material_of(hit);
+            const SurfaceProperties properties = material.at(hit.surface);
+            Color albedo;
+            for (int c = 0; c < 3; ++c) albedo[c] = std::clamp(properties.kd[c], 0.0, 1.0);
+            color = material.emission + direct_light(scene, p.position, p.normal, albedo) + (global - direct);
+            break;
+          }
+        }
+        if (weights.empty() && settings.display != MeshlessDisplay::hybrid) color = scene.background_along(ray.direction);
+      }
+      film.at(x - region.x0, y - region.y0) = color;
+    }
+  });
+  const auto pixel_count = static_cast<uint64_t>(region.width()) * region.height();
+  statistics.rays.primary += pixel_count;
+  statistics.pixels += pixel_count;
+  facts["display_seconds"] = seconds_since(start);
+  statistics.extra["meshless"] = std::move(facts);
+}
+
+}  // namespace candela

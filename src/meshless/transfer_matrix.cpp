@@ -1,0 +1,124 @@
+#include "meshless/transfer_matrix.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "math/constants.h"
+#include "scene/scene.h"
+
+namespace candela {
+
+double TransferMatrix::density() const {
+  const double n = static_cast<double>(S.rows());
+  return n > 0 ? static_cast<double>(S.nonZeros()) / (n * n) : 0.0;
+}
+
+std::size_t TransferMatrix::bytes() const {
+  return static_cast<std::size_t>(S.nonZeros()) * (sizeof(float) + sizeof(int32_t)) +
+         static_cast<std::size_t>(S.rows() + 1) * sizeof(int32_t);
+}
+
+TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Site>& sites,
+                                       const std::vector<double>& effective_area, std::size_t max_entries) {
+  if (effective_area.size() != sites.size())
+    throw std::invalid_argument("transfer matrix: " + std::to_string(effective_area.size()) + " areas for " +
+                                std::to_string(sites.size()) + " sites");
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t n = sites.size();
+  TransferMatrix result;
+  std::vector<std::vector<std::pair<int32_t, float>>> rows(n);
+  std::atomic<uint64_t> rays{0};
+  std::atomic<std::size_t> kept{0};
+  std::atomic<bool> too_many{false};
+  tbb::parallel_for(std::size_t(0), n, [&](std::size_t j) {
+    if (too_many.load(std::memory_order_relaxed)) return;
+    const Site& receiver = sites[j];
+    const double receiver_offset = scene.ray_offset(receiver.position);
+    uint64_t row_rays = 0;
+    std::vector<std::pair<int32_t, float>>& row = rows[j];
+    for (std::size_t k = 0; k < n; ++k) {
+      if (k == j || !(effective_area[k] > 0)) continue;
+      const Site& sender = sites[k];
+      const Vec3 between = receiver.position - sender.position;  // v_kj · d
+      const double d2 = dot(between, between);
+      if (!(d2 > 0)) continue;
+      const double d = std::sqrt(d2);
+      const Vec3 v = between / d;
+      const double cos_sender = dot(v, sender.normal), cos_receiver = -dot(v, receiver.normal);
+      if (!(cos_sender > 0) || !(cos_receiver > 0)) continue;
+      // 002 eq. 5.2 times A_k, clamped at 1 for close pairs (see the header).
+      const double transfer = std::min(1.0, cos_sender * cos_receiver * effective_area[k] / (kPi * d2));
+      // V: a shadow ray from the receiver toward the sender, both ends off their surfaces.
+      Ray ray;
+      ray.origin = receiver.position + receiver.normal * receiver_offset;
+      const Vec3 target = sender.position + sender.normal * scene.ray_offset(sender.position);
+      const Vec3 to_target = target - ray.origin;
+      const double distance = length(to_target);
+      if (!(distance > 0)) continue;
+      ray.direction = to_target / distance;
+      ray.t_max = distance * (1 - 1e-9);
+      ++row_rays;
+      if (scene.occluded(ray)) continue;
+      row.emplace_back(static_cast<int32_t>(k), static_cast<float>(transfer));
+    }
+    rays += row_rays;
+    if (max_entries > 0 && (kept += row.size()) > max_entries) too_many = true;
+  });
+  if (too_many)
+    throw std::invalid_argument("transfer matrix: more than " + std::to_string(max_entries) +
+                                " entries; raise meshless.spacing (fewer sites)");
+  std::vector<Eigen::Triplet<float, int32_t>> triplets;
+  std::size_t total = 0;
+  for (const auto& row : rows) total += row.size();
+  triplets.reserve(total);
+  for (std::size_t j = 0; j < n; ++j)
+    for (const auto& [k, value] : rows[j]) triplets.emplace_back(static_cast<int32_t>(j), k, value);
+  rows.clear();
+  result.S.resize(static_cast<int32_t>(n), static_cast<int32_t>(n));
+  result.S.setFromTriplets(triplets.begin(), triplets.end());
+  result.visibility_rays = rays;
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+TransferSolution solve_transfer(const TransferMatrix& transfer, const std::vector<Color>& albedo,
+                                const std::vector<Color>& eta, double tolerance, std::size_t max_iterations) {
+  const auto n = static_cast<std::size_t>(transfer.S.rows());
+  if (albedo.size() != n || eta.size() != n)
+    throw std::invalid_argument("meshless solve: " + std::to_string(n) + " sites, " + std::to_string(albedo.size()) +
+                                " albedos, " + std::to_string(eta.size()) + " direct terms");
+  TransferSolution solution;
+  solution.lambda = eta;
+  std::vector<Color> next(n);
+  for (std::size_t iteration = 0; iteration < max_iterations; ++iteration) {
+    // λ' = η + Q S λ, each row by one thread.
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t j) {
+      Color gathered;
+      for (Eigen::SparseMatrix<float, Eigen::RowMajor, int32_t>::InnerIterator entry(transfer.S, static_cast<int32_t>(j)); entry; ++entry)
+        gathered += solution.lambda[static_cast<std::size_t>(entry.col())] * static_cast<double>(entry.value());
+      next[j] = eta[j] + albedo[j] * gathered;
+    });
+    double change = 0, largest = 0;
+    for (std::size_t j = 0; j < n; ++j)
+      for (int c = 0; c < 3; ++c) {
+        change = std::max(change, std::fabs(next[j][c] - solution.lambda[j][c]));
+        largest = std::max(largest, std::fabs(next[j][c]));
+      }
+    solution.lambda.swap(next);
+    solution.iterations = iteration + 1;
+    solution.final_change = largest > 0 ? change / largest : 0;
+    if (solution.final_change <= tolerance) {
+      solution.converged = true;
+      break;
+    }
+  }
+  return solution;
+}
+
+}  // namespace candela

@@ -1,0 +1,136 @@
+// Issue 8 end to end: the meshless method (seed 002, SPEC §11) inside whole scenes.
+#include <gtest/gtest.h>
+
+#include "render_support.h"
+
+#include <cmath>
+#include <string>
+
+#include "integrators/local.h"
+#include "integrators/meshless_method.h"
+#include "meshless/transfer_matrix.h"
+#include "scene/scene_loader.h"
+
+namespace candela {
+namespace {
+
+// The camera inside a closed sphere of radius 2 that emits E = 1 and reflects ρ = 0.5.
+std::unique_ptr<Scene> furnace(const std::string& meshless) {
+  return load_scene_text(R"({"format": "candela/1",
+    "camera": {"eye": [0, 0, 0], "target": [0, 0, -1], "fov": 60, "width": 24, "height": 24},
+    "render": {"method": "meshless"}, "meshless": )" + meshless + R"(,
+    "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 2, "material": {"kd": 0.5, "emission": 1}}]})",
+                         "furnace.json", ".");
+}
+
+// Issue 8: "a closed sphere (furnace) gives L = E/(1−ρ) within 2%" — in every coefficient and every
+// pixel, for both partitions of unity.
+TEST(MeshlessMethod, FurnaceGivesEOverOneMinusRho) {
+  for (const std::string basis : {"normalized", "shepard"}) {
+    const auto scene = furnace(R"({"basis": ")" + basis + R"(", "spacing": 0.3, "grid": 24, "rounds": 6})");
+    nlohmann::json facts;
+    const MeshlessSolution solution = solve_meshless(*scene, &facts);
+    ASSERT_GT(solution.sites.sites.size(), 100u);
+    EXPECT_TRUE(solution.transfer.converged);
+    for (const Color& lambda : solution.transfer.lambda) EXPECT_NEAR(lambda.g, 2, 0.04) << basis;
+    // The effective areas of a partition of unity cover the sphere (002 eq. 5.4); the tessellated
+    // sphere is 0.2 % smaller.
+    EXPECT_NEAR(facts["effective_area_sum"].get<double>(), 16 * kPi, 0.01 * 16 * kPi);
+    RunStatistics statistics;
+    const Film film = testing::render_scene(*scene, "meshless", 2, statistics);
+    for (int y = 0; y < film.height(); ++y)
+      for (int x = 0; x < film.width(); ++x) EXPECT_NEAR(film.at(x, y).g, 2, 0.04) << basis;
+    EXPECT_EQ(statistics.extra["meshless"]["basis"], basis);
+  }
+}
+
+// The thesis's effective areas πh²/(m + 1) overestimate on evenly spread sites, and the furnace
+// shows it: more than E/(1 − ρ).
+TEST(MeshlessMethod, ThesisEffectiveAreasOverestimate) {
+  const auto scene = furnace(R"({"effective_area": "thesis", "spacing": 0.3, "grid": 24, "rounds": 6})");
+  nlohmann::json facts;
+  const MeshlessSolution solution = solve_meshless(*scene, &facts);
+  EXPECT_GT(facts["effective_area_sum"].get<double>(), 1.03 * 16 * kPi);
+  double mean = 0;
+  for (const Color& lambda : solution.transfer.lambda) mean += lambda.g / static_cast<double>(solution.transfer.lambda.size());
+  EXPECT_GT(mean, 2.05);
+}
+
+// Inside a sphere every pair of sites sees the other with cos θ_k cos θ_j / (π d²) = 1/(4πR²):
+// each row of S sums to the covered area over the sphere's, ≈ 1.
+TEST(MeshlessTransfer, RowsOfAClosedSphereSumToOne) {
+  const auto scene = furnace(R"({"spacing": 0.3, "grid": 24, "rounds": 6})");
+  const MeshlessSolution solution = solve_meshless(*scene);
+  const auto& S = solution.matrix.S;
+  for (int32_t j = 0; j < S.rows(); ++j) {
+    double sum = 0;
+    for (Eigen::SparseMatrix<float, Eigen::RowMajor, int32_t>::InnerIterator entry(S, j); entry; ++entry) sum += entry.value();
+    EXPECT_NEAR(sum, 1, 0.02) << j;
+  }
+  EXPECT_GT(solution.matrix.density(), 0.99);  // everything sees everything but itself
+  EXPECT_EQ(solution.matrix.visibility_rays, solution.matrix.entries());
+}
+
+TEST(MeshlessTransfer, SolveIteratesToTheFixedPoint) {
+  // Two sites passing 0.5 of their radiosity to each other with albedo 0.8 and 0.5:
+  // λ0 = 1 + 0.8·0.5·λ1, λ1 = 0 + 0.5·0.5·λ0 → λ0 = 1/0.9, λ1 = 0.25/0.9.
+  TransferMatrix transfer;
+  transfer.S.resize(2, 2);
+  std::vector<Eigen::Triplet<float, int32_t>> entries{{0, 1, 0.5f}, {1, 0, 0.5f}};
+  transfer.S.setFromTriplets(entries.begin(), entries.end());
+  const TransferSolution solution = solve_transfer(transfer, {Color(0.8), Color(0.5)}, {Color(1.0), Color(0.0)}, 1e-12, 200);
+  EXPECT_TRUE(solution.converged);
+  EXPECT_NEAR(solution.lambda[0].r, 1 / 0.9, 1e-10);
+  EXPECT_NEAR(solution.lambda[1].r, 0.25 / 0.9, 1e-10);
+  EXPECT_THROW(solve_transfer(transfer, {Color(0.8)}, {Color(1.0), Color(0.0)}, 1e-6, 10), std::invalid_argument);
+}
+
+// The hybrid display traces the direct light per pixel: on a lone plane under a point light there
+// is no indirect light, and it equals the local model's diffuse term exactly.
+TEST(MeshlessMethod, HybridDirectLightIsTheLocalModelsDiffuseTerm) {
+  const std::string text = R"({"format": "candela/1",
+    "camera": {"eye": [0, 0, 6], "target": [0, 0, 0], "fov": 50, "width": 16, "height": 16},
+    "meshless": {"display": "hybrid", "spacing": 0.5, "grid": 16, "rounds": 1},
+    "lights": [{"type": "point", "position": [1, 1, 3], "intensity": 4, "attenuation": "inverse-square"}],
+    "shapes": [{"type": "quad", "corner": [-3, -3, 0], "edge_u": [6, 0, 0], "edge_v": [0, 6, 0], "material": {"kd": 0.6, "ks": 0}}]})";
+  const auto scene = load_scene_text(text, "plane.json", ".");
+  RunStatistics statistics;
+  const Film meshless = testing::render_scene(*scene, "meshless", 2, statistics);
+  const Film local = testing::render_scene(*scene, "local", 2, statistics);
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < 16; ++x) EXPECT_NEAR(meshless.at(x, y).g, local.at(x, y).g, 1e-12) << x << ", " << y;
+}
+
+TEST(MeshlessMethod, ImageDoesNotDependOnTheThreadCount) {
+  const auto scene = load_scene_text(R"({"format": "candela/1",
+    "camera": {"eye": [5, 4, 9.5], "target": [5, 4, 0], "fov": 60, "width": 20, "height": 20},
+    "meshless": {"spacing": 1, "grid": 20, "rounds": 2},
+    "lights": [{"type": "point", "position": [5, 7, 5], "intensity": 10}],
+    "shapes": [{"type": "box", "min": [0, 0, 0], "max": [10, 8, 10], "material": {"kd": 0.6}},
+               {"type": "box", "min": [3, 0, 3], "max": [5, 2, 5], "material": {"kd": [0.8, 0.2, 0.2]}}]})",
+                                     "room.json", ".");
+  RunStatistics statistics;
+  const Film one = testing::render_scene(*scene, "meshless", 1, statistics);
+  const Film two = testing::render_scene(*scene, "meshless", 2, statistics);
+  for (int y = 0; y < 20; ++y)
+    for (int x = 0; x < 20; ++x) {
+      EXPECT_EQ(one.at(x, y).r, two.at(x, y).r);
+      EXPECT_EQ(one.at(x, y).g, two.at(x, y).g);
+    }
+  EXPECT_GT(statistics.extra["meshless"]["transfer_entries"].get<std::size_t>(), 0u);
+}
+
+TEST(MeshlessMethod, SettingsAreCheckedAndUnknownKeysRefused) {
+  const auto load = [](const std::string& meshless) { return furnace(meshless); };
+  EXPECT_EQ(load("{}")->meshless.basis, MeshlessBasisKind::normalized);
+  EXPECT_EQ(load(R"({"basis": "shepard"})")->meshless.basis, MeshlessBasisKind::shepard);
+  EXPECT_EQ(load(R"({"display": "indirect"})")->meshless.display, MeshlessDisplay::indirect);
+  EXPECT_THROW(load(R"({"basis": "wavelet"})"), std::exception);
+  EXPECT_THROW(load(R"({"neighbours": 0})"), std::exception);
+  EXPECT_THROW(load(R"({"spacing": -1})"), std::exception);
+  EXPECT_THROW(load(R"({"tolerance": 0})"), std::exception);
+  EXPECT_THROW(load(R"({"spacng": 1})"), std::exception);
+}
+
+}  // namespace
+}  // namespace candela
