@@ -143,7 +143,7 @@ TEST_F(Cli, BadArgumentsExitWithTwo) {
   EXPECT_EQ(run("render -o out.bmp", output), 2);
   EXPECT_NE(output.find("unsupported extension"), std::string::npos) << output;
   EXPECT_EQ(run("render --method teleport -o out.png", output), 2);
-  EXPECT_NE(output.find("unknown method \"teleport\" (expected one of: local, whitted, raster, radiosity)"), std::string::npos) << output;
+  EXPECT_NE(output.find("unknown method \"teleport\" (expected one of: local, whitted, raster, radiosity, meshless)"), std::string::npos) << output;
   EXPECT_EQ(run("render --crop 0,0,9999,10 -o out.png", output), 2);
   EXPECT_EQ(run("render --set camera.width=abc -o out.png", output), 2);
   EXPECT_NE(output.find("camera.width"), std::string::npos) << output;
