@@ -88,17 +88,23 @@ TEST(MeshlessTransfer, SolveIteratesToTheFixedPoint) {
 // The hybrid display traces the direct light per pixel: on a lone plane under a point light there
 // is no indirect light, and it equals the local model's diffuse term exactly.
 TEST(MeshlessMethod, HybridDirectLightIsTheLocalModelsDiffuseTerm) {
-  const std::string text = R"({"format": "candela/1",
-    "camera": {"eye": [0, 0, 6], "target": [0, 0, 0], "fov": 50, "width": 16, "height": 16},
-    "meshless": {"display": "hybrid", "spacing": 0.5, "grid": 16, "rounds": 1},
-    "lights": [{"type": "point", "position": [1, 1, 3], "intensity": 4, "attenuation": "inverse-square"}],
-    "shapes": [{"type": "quad", "corner": [-3, -3, 0], "edge_u": [6, 0, 0], "edge_v": [0, 6, 0], "material": {"kd": 0.6, "ks": 0}}]})";
-  const auto scene = load_scene_text(text, "plane.json", ".");
-  RunStatistics statistics;
-  const Film meshless = testing::render_scene(*scene, "meshless", 2, statistics);
-  const Film local = testing::render_scene(*scene, "local", 2, statistics);
-  for (int y = 0; y < 16; ++y)
-    for (int x = 0; x < 16; ++x) EXPECT_NEAR(meshless.at(x, y).g, local.at(x, y).g, 1e-12) << x << ", " << y;
+  // A point light and an area light (its samples² shadow rays), each alone.
+  for (const std::string& light :
+       {std::string(R"({"type": "point", "position": [1, 1, 3], "intensity": 4, "attenuation": "inverse-square"})"),
+        std::string(R"({"type": "area", "corner": [-1, -1, 3], "edge_u": [0, 2, 0], "edge_v": [2, 0, 0], "exitance": 6, "samples": 6})")}) {
+    const std::string text = R"({"format": "candela/1",
+      "camera": {"eye": [0, 0, 6], "target": [0, 0, 0], "fov": 50, "width": 16, "height": 16},
+      "meshless": {"display": "hybrid", "spacing": 0.5, "grid": 16, "rounds": 1},
+      "lights": [)" + light + R"(],
+      "shapes": [{"type": "quad", "corner": [-3, -3, 0], "edge_u": [6, 0, 0], "edge_v": [0, 6, 0], "material": {"kd": 0.6, "ks": 0}}]})";
+    const auto scene = load_scene_text(text, "plane.json", ".");
+    RunStatistics statistics;
+    const Film meshless = testing::render_scene(*scene, "meshless", 2, statistics);
+    const Film local = testing::render_scene(*scene, "local", 2, statistics);
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 16; ++x) EXPECT_NEAR(meshless.at(x, y).g, local.at(x, y).g, 1e-12) << x << ", " << y;
+    EXPECT_GT(local.at(8, 8).g, 0);
+  }
 }
 
 TEST(MeshlessMethod, ImageDoesNotDependOnTheThreadCount) {

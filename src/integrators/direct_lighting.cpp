@@ -87,18 +87,20 @@ Color local_illumination(const Scene& scene, const Intersection& hit, const Surf
   const double offset = scene.ray_offset(surface.position);
   const Vec3 shadow_origin = surface.position + geometric * offset;
   for (const auto& light : scene.lights) {
-    LightSample sample;
-    if (!light->illuminate(surface.position, sample)) continue;
-    // 001's I_lum: only where N·L > 0; a light behind the surface itself casts no light on it.
-    if (dot(N, sample.direction) <= 0 || dot(geometric, sample.direction) <= 0) continue;
-    Color s(1);
-    if (shadows) {
-      const double reach = std::isfinite(sample.distance) ? sample.distance - 2 * offset
-                                                          : kInfinity;
-      s = shadow_transmittance(scene, shadow_origin, sample.direction, reach, context, tree_parent);
-      if (s.is_black()) continue;
+    // Each of the light's samples (one, or an area light's samples²) with its own shadow ray.
+    for (int index = 0; index < light->sample_count(); ++index) {
+      LightSample sample;
+      if (!light->illuminate_sample(surface.position, index, sample)) continue;
+      // 001's I_lum: only where N·L > 0; a light behind the surface itself casts no light on it.
+      if (dot(N, sample.direction) <= 0 || dot(geometric, sample.direction) <= 0) continue;
+      Color s(1);
+      if (shadows) {
+        const double reach = std::isfinite(sample.distance) ? sample.distance - 2 * offset : kInfinity;
+        s = shadow_transmittance(scene, shadow_origin, sample.direction, reach, context, tree_parent);
+        if (s.is_black()) continue;
+      }
+      result += direct_term(material, at, N, V, sample.direction, sample.intensity * s);
     }
-    result += direct_term(material, at, N, V, sample.direction, sample.intensity * s);
   }
   return result;
 }

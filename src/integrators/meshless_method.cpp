@@ -37,23 +37,25 @@ const char* basis_name(MeshlessBasisKind kind) {
   return "?";
 }
 
-// What a surface point reflects of the lights directly: ρ Σ I·max(0, n·L)·V (opaque shadows).
+// What a surface point reflects of the lights directly: ρ Σ I·max(0, n·L)·V over every light sample
+// (opaque shadows).
 Color direct_light(const Scene& scene, const Vec3& point, const Vec3& normal, const Color& albedo) {
   if (albedo.is_black()) return Color();
   Color sum;
   const Vec3 origin = point + normal * scene.ray_offset(point);
-  for (const auto& light : scene.lights) {
-    LightSample sample;
-    if (!light->illuminate(point, sample)) continue;
-    const double cosine = dot(normal, sample.direction);
-    if (!(cosine > 0)) continue;
-    Ray shadow;
-    shadow.origin = origin;
-    shadow.direction = sample.direction;
-    shadow.t_max = std::isinf(sample.distance) ? kInfinity : sample.distance * (1 - 1e-9);
-    if (scene.occluded(shadow)) continue;
-    sum += sample.intensity * cosine;
-  }
+  for (const auto& light : scene.lights)
+    for (int index = 0; index < light->sample_count(); ++index) {  // an area light's samples²
+      LightSample sample;
+      if (!light->illuminate_sample(point, index, sample)) continue;
+      const double cosine = dot(normal, sample.direction);
+      if (!(cosine > 0)) continue;
+      Ray shadow;
+      shadow.origin = origin;
+      shadow.direction = sample.direction;
+      shadow.t_max = std::isinf(sample.distance) ? kInfinity : sample.distance * (1 - 1e-9);
+      if (scene.occluded(shadow)) continue;
+      sum += sample.intensity * cosine;
+    }
   return albedo * sum;
 }
 

@@ -17,9 +17,19 @@ struct LightSample {
 class Light {
  public:
   virtual ~Light() = default;
-  // False when the point receives nothing (outside a spot cone).
+  // False when the point receives nothing (outside a spot cone). A light made of many points
+  // (an area light) answers here as one point at its centre carrying all of it; methods that
+  // trace shadows use the samples below instead.
   virtual bool illuminate(const Vec3& point, LightSample& sample) const = 0;
   virtual std::string_view type_name() const = 0;
+
+  // The light as sample_count() point samples whose intensities add up to what it sends: one for
+  // the point-like lights, a fixed stratified set for an area light (the same for every point,
+  // so images do not depend on anything but the point).
+  virtual int sample_count() const { return 1; }
+  virtual bool illuminate_sample(const Vec3& point, int index, LightSample& sample) const {
+    return index == 0 && illuminate(point, sample);
+  }
 };
 
 }  // namespace candela

@@ -3,6 +3,7 @@
 #include <array>
 
 #include "scene/directional_light.h"
+#include "scene/area_light.h"
 #include "scene/point_light.h"
 #include "scene/spot_light.h"
 
@@ -84,6 +85,16 @@ std::unique_ptr<Light> make_spot(const JsonNode& node, Color&) {
                                      exponent, read_attenuation(node));
 }
 
+std::unique_ptr<Light> make_area(const JsonNode& node, Color&) {
+  const Vec3 corner = node.vec3("corner");
+  const Vec3 edge_u = node.vec3("edge_u"), edge_v = node.vec3("edge_v");
+  if (!(length(cross(edge_u, edge_v)) > 0)) node.at("edge_v").fail("must not be parallel to edge_u (the light needs an area)");
+  const Color exitance = node.color("exitance", Color(1), Range::non_negative());
+  const int samples = node.integer("samples", 4, {1, 64, false, false});
+  const bool two_sided = node.boolean("two_sided", false);
+  return std::make_unique<AreaLight>(corner, edge_u, edge_v, exitance, samples, two_sided);
+}
+
 const std::array kEntries = {
     LightEntry{"ambient", "uniform ambient light Ia (000 §2.4)",
                R"({"type": "ambient", "intensity": 0.3})", make_ambient},
@@ -96,6 +107,9 @@ const std::array kEntries = {
     LightEntry{"spot", "cone of light: cutoff and falloff_start angles in degrees, exponent",
                R"({"type": "spot", "position": [0, 5, 0], "target": [0, 0, 0], "intensity": 2, "cutoff": 30, "falloff_start": 20, "exponent": 1, "attenuation": "none"})",
                make_spot},
+    LightEntry{"area", "Lambertian parallelogram corner + s·edge_u + t·edge_v emitting exitance from edge_u × edge_v; samples² shadow rays",
+               R"({"type": "area", "corner": [-0.5, 4, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "exitance": 10, "samples": 4})",
+               make_area},
 };
 
 }  // namespace
