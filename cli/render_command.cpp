@@ -1,6 +1,7 @@
 // candela render [SCENE] [-o FILE] [--method M] [--threads N] [--seed S] [--set k=v]...
 //                [--stats FILE.json] [--quiet] [--crop x0,y0,x1,y1] [--pixel X,Y]
 //                [--aa-map FILE.png] [--camera NAME[,NAME...]]... [--export-solution FILE]
+//                [--show-sites FILE.png]
 #include <fmt/format.h>
 #include <unistd.h>
 #include <tbb/global_control.h>
@@ -38,6 +39,7 @@ struct RenderOptions {
   std::vector<int> pixel;
   std::vector<std::string> cameras;  // --camera values in the order given, each NAME or NAME,NAME...
   std::string export_solution;
+  std::string show_sites;
 };
 
 PixelRect region_of(const RenderOptions& options, const Camera& camera) {
@@ -219,6 +221,12 @@ int run_render(RenderOptions& options) {
       throw BadArgument("--aa-map " + options.aa_map_path + ": expected a .png file");
     check_writable(options.aa_map_path, "--aa-map");
   }
+  if (!options.show_sites.empty()) {
+    ImageFormat sites_format;
+    if (!image_format_for_path(options.show_sites, sites_format))
+      throw BadArgument("--show-sites " + options.show_sites + ": unsupported extension (expected .png, .exr or .pfm)");
+    check_writable(options.show_sites, "--show-sites");
+  }
   if (!options.export_solution.empty()) {
     SolutionFormat solution_format;
     if (!solution_format_for_path(options.export_solution, solution_format))
@@ -254,6 +262,8 @@ int run_render(RenderOptions& options) {
   // Only radiosity computes a view-independent solution; anything else would silently ignore it.
   if (!options.export_solution.empty() && entry->name != "radiosity")
     throw BadArgument("--export-solution needs --method radiosity (the method is " + std::string(entry->name) + ")");
+  if (!options.show_sites.empty() && entry->name != "meshless")
+    throw BadArgument("--show-sites needs --method meshless (the method is " + std::string(entry->name) + ")");
   const std::vector<View> views = select_views(camera_requests, *scene);
   // One method object renders every view, so what it keeps between renders (a radiosity
   // solution) is computed once.
@@ -274,6 +284,8 @@ int run_render(RenderOptions& options) {
     if (!options.stats_path.empty()) check_writable(path_for_view(options.stats_path, view, views.size()), "--stats");
     if (!options.aa_map_path.empty())
       check_writable(path_for_view(options.aa_map_path, view, views.size()), "--aa-map");
+    if (!options.show_sites.empty())
+      check_writable(path_for_view(options.show_sites, view, views.size()), "--show-sites");
   }
 
   for (std::size_t v = 0; v < views.size(); ++v) {
@@ -297,6 +309,7 @@ int run_render(RenderOptions& options) {
     request.quiet = options.quiet;
     // The solution is the same for every view: written once, with the first.
     if (v == 0) request.export_solution = options.export_solution;
+    if (!options.show_sites.empty()) request.show_sites = path_for_view(options.show_sites, view, views.size());
     Stopwatch render_timer;
     method->render(*scene, request, film, statistics);
     statistics.add_phase("render", render_timer.seconds());
@@ -355,6 +368,8 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
       ->take_all();
   command->add_option("--export-solution", options->export_solution,
                       "radiosity: also write the solution (.csv, .ply or .gltf)");
+  command->add_option("--show-sites", options->show_sites,
+                      "meshless: also write the image with the element centres (sites) drawn over it");
   command->callback([options, &run]() {
     run = [options]() { return run_reporting_bad_input([&] { return run_render(*options); }); };
   });

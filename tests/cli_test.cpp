@@ -335,6 +335,39 @@ TEST_F(Cli, ExportSolutionIsCheckedBeforeRendering) {
   EXPECT_EQ(file_count(), 1);  // views.json alone
 }
 
+// Seed 002 Figure 4.7: the meshless sites drawn over the image.
+TEST_F(Cli, ShowSitesDrawsTheMeshlessSitesOverTheImage) {
+  write("room.json", R"({"format": "candela/1",
+    "camera": {"eye": [5, 4, 9.5], "target": [5, 4, 0], "fov": 60, "width": 24, "height": 24},
+    "meshless": {"spacing": 1.5, "grid": 12, "rounds": 1},
+    "lights": [{"type": "point", "position": [5, 7, 5], "intensity": 10}],
+    "shapes": [{"type": "box", "min": [0, 0, 0], "max": [10, 8, 10], "material": {"kd": 0.6}}]})");
+  std::string output;
+  ASSERT_EQ(run("render room.json -q --method meshless --show-sites sites.pfm -o room.pfm", output), 0) << output;
+  const auto read_pfm = [&](const std::string& name) {
+    std::ifstream in(directory_ / name, std::ios::binary);
+    std::string magic;
+    int width = 0, height = 0;
+    double scale = 0;
+    in >> magic >> width >> height >> scale;
+    in.get();
+    std::vector<float> pixels(static_cast<std::size_t>(width) * height * 3);
+    in.read(reinterpret_cast<char*>(pixels.data()), static_cast<std::streamsize>(pixels.size() * sizeof(float)));
+    return pixels;
+  };
+  const std::vector<float> image = read_pfm("room.pfm"), sites = read_pfm("sites.pfm");
+  ASSERT_EQ(image.size(), sites.size());
+  std::size_t dots = 0, same = 0;
+  for (std::size_t i = 0; i < image.size(); i += 3) {
+    if (sites[i] != image[i] && sites[i + 1] == 0 && sites[i + 2] == 0) ++dots;  // pure red
+    if (sites[i] == image[i] && sites[i + 1] == image[i + 1] && sites[i + 2] == image[i + 2]) ++same;
+  }
+  EXPECT_GT(dots, 20u);
+  EXPECT_EQ(dots + same, image.size() / 3);  // every other pixel is the image's
+  EXPECT_EQ(run("render room.json -q --method whitted --show-sites s.png -o w.png", output), 2);
+  EXPECT_NE(output.find("--show-sites needs --method meshless"), std::string::npos) << output;
+}
+
 TEST_F(Cli, BenchWritesTheTableJsonAndRayDump) {
   std::string output;
   ASSERT_EQ(run("bench --sphere 200 --accel list --threads 1 2 --width 8 --height 4 --rays 50 --repeat 1 "

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "io/image_writer.h"
 #include "meshless/effective_area.h"
 #include "meshless/meshless_basis.h"
 #include "scene/light.h"
@@ -57,6 +58,42 @@ Color direct_light(const Scene& scene, const Vec3& point, const Vec3& normal, co
       sum += sample.intensity * cosine;
     }
   return albedo * sum;
+}
+
+// Seed 002 Figure 4.7: the image with every site the eye can see drawn as a red dot (3 × 3
+// pixels, 1 × 1 below 256 pixels wide), as bright as the brightest pixel so that it survives any
+// tone mapping. A site is seen when the segment from it to the eye is clear.
+Film with_sites_drawn(const Scene& scene, const SiteSet& sites, const PixelRect& region, const Film& image) {
+  Film result = image;
+  const Camera& camera = *scene.camera;
+  double brightest = 1;
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x)
+      brightest = std::max({brightest, image.at(x, y).r, image.at(x, y).g, image.at(x, y).b});
+  const Vec3 eye = camera.eye_position();
+  const double far = 4 * length(scene.bounds().diagonal()) + 4 * length(eye) + 1;
+  const Eigen::Matrix4d clip_from_world = camera.view_projection(far * 1e-7, far);
+  const int radius = camera.width() >= 256 ? 1 : 0;
+  for (const Site& site : sites.sites) {
+    const Eigen::Vector4d clip = clip_from_world * Eigen::Vector4d(site.position.x, site.position.y, site.position.z, 1);
+    if (!(clip.w() > 0)) continue;
+    // The rasterizer's convention: x = (ndc_x + 1)/2·width, y = (1 − ndc_y)/2·height.
+    const double px = (clip.x() / clip.w() + 1) / 2 * camera.width(), py = (1 - clip.y() / clip.w()) / 2 * camera.height();
+    Ray to_eye;
+    to_eye.origin = site.position + site.normal * scene.ray_offset(site.position);
+    const Vec3 toward = eye - to_eye.origin;
+    const double distance = length(toward);
+    if (!(distance > 0)) continue;
+    to_eye.direction = toward / distance;
+    to_eye.t_max = distance;
+    if (scene.occluded(to_eye)) continue;
+    const int cx = static_cast<int>(std::floor(px)), cy = static_cast<int>(std::floor(py));
+    for (int y = cy - radius; y <= cy + radius; ++y)
+      for (int x = cx - radius; x <= cx + radius; ++x)
+        if (x >= region.x0 && x < region.x1 && y >= region.y0 && y < region.y1)
+          result.at(x - region.x0, y - region.y0) = Color(brightest, 0, 0);
+  }
+  return result;
 }
 
 }  // namespace
@@ -162,6 +199,10 @@ void MeshlessMethod::render(const Scene& scene, const RenderRequest& request, Fi
       film.at(x - region.x0, y - region.y0) = color;
     }
   });
+  if (!request.show_sites.empty()) {
+    write_image(with_sites_drawn(scene, solution.sites, region, film), request.show_sites, scene.display);
+    facts["sites_image"] = request.show_sites;
+  }
   const auto pixel_count = static_cast<uint64_t>(region.width()) * region.height();
   statistics.rays.primary += pixel_count;
   statistics.pixels += pixel_count;

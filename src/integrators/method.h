@@ -24,6 +24,9 @@ struct RenderRequest {
   // Where a method that computes a view-independent solution writes it (radiosity: .csv, .ply
   // or .gltf, radiosity/solution_export.h); empty: nowhere. Other methods ignore it.
   std::string export_solution = {};
+  // Where the meshless method writes the image with its sites drawn over it (seed 002 Figure 4.7);
+  // empty: nowhere. Other methods ignore it.
+  std::string show_sites = {};
 };
 
 class Method {
