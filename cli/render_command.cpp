@@ -1,7 +1,7 @@
 // candela render [SCENE] [-o FILE] [--method M] [--threads N] [--seed S] [--set k=v]...
 //                [--stats FILE.json] [--quiet] [--crop x0,y0,x1,y1] [--pixel X,Y]
 //                [--aa-map FILE.png] [--camera NAME[,NAME...]]... [--export-solution FILE]
-//                [--show-sites FILE.png]
+//                [--show-sites FILE.png] [--relight LIGHTS.json]
 #include <fmt/format.h>
 #include <unistd.h>
 #include <tbb/global_control.h>
@@ -17,6 +17,7 @@
 #include "integrators/ray_tracing_method.h"
 #include "io/image_writer.h"
 #include "radiosity/solution_export.h"
+#include "scene/scene_loader.h"
 #include "scene_options.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -40,6 +41,7 @@ struct RenderOptions {
   std::vector<std::string> cameras;  // --camera values in the order given, each NAME or NAME,NAME...
   std::string export_solution;
   std::string show_sites;
+  std::string relight;
 };
 
 PixelRect region_of(const RenderOptions& options, const Camera& camera) {
@@ -163,11 +165,15 @@ std::vector<std::string> split_camera_names(const std::vector<std::string>& valu
 }
 
 // With several views each output gets the camera's name: out.png → out-front.png.
-std::string path_for_view(const std::string& path, const View& view, std::size_t view_count) {
-  if (path.empty() || view_count == 1) return path;
+// out.png → out-NAME.png (empty stays empty).
+std::string path_with_suffix(const std::string& path, const std::string& name) {
+  if (path.empty()) return path;
   const std::filesystem::path original(path);
-  return (original.parent_path() / (original.stem().string() + "-" + view.name + original.extension().string()))
-      .string();
+  return (original.parent_path() / (original.stem().string() + "-" + name + original.extension().string())).string();
+}
+
+std::string path_for_view(const std::string& path, const View& view, std::size_t view_count) {
+  return view_count == 1 ? path : path_with_suffix(path, view.name);
 }
 
 void write_statistics(const RunStatistics& statistics, const std::string& path) {
@@ -234,6 +240,9 @@ int run_render(RenderOptions& options) {
                         ": unsupported extension (expected .csv, .ply or .gltf)");
     check_writable(options.export_solution, "--export-solution");
   }
+  // 002 §5.3: light set-ups rendered from one geometry; read (and refused) before anything else.
+  std::vector<LightSetup> relight_frames;
+  if (!options.relight.empty()) relight_frames = load_light_setups(options.relight);
   const std::vector<std::string> camera_requests = split_camera_names(options.cameras);
   std::optional<tbb::global_control> thread_limit;
   if (options.threads > 0)
@@ -264,7 +273,14 @@ int run_render(RenderOptions& options) {
     throw BadArgument("--export-solution needs --method radiosity (the method is " + std::string(entry->name) + ")");
   if (!options.show_sites.empty() && entry->name != "meshless")
     throw BadArgument("--show-sites needs --method meshless (the method is " + std::string(entry->name) + ")");
+  if (!relight_frames.empty() && entry->name != "meshless")
+    throw BadArgument("--relight needs --method meshless (the method is " + std::string(entry->name) + ")");
   const std::vector<View> views = select_views(camera_requests, *scene);
+  if (!relight_frames.empty() && views.size() != 1) throw BadArgument("--relight renders one camera, not " + std::to_string(views.size()));
+  for (const LightSetup& frame : relight_frames) {
+    check_writable(path_with_suffix(options.output, frame.name), "-o");
+    if (!options.stats_path.empty()) check_writable(path_with_suffix(options.stats_path, frame.name), "--stats");
+  }
   // One method object renders every view, so what it keeps between renders (a radiosity
   // solution) is computed once.
   const std::unique_ptr<Method> method = entry->create();
@@ -333,6 +349,38 @@ int run_render(RenderOptions& options) {
                 << statistics.summary();
     if (!stats_path.empty()) write_statistics(statistics, stats_path);
   }
+
+  // Relighting: each frame's lights in place of the scene's, the same method object, so the
+  // meshless geometry (sites, areas, transfer matrix) is reused and only η and λ are redone.
+  for (LightSetup& frame : relight_frames) {
+    std::swap(scene->lights, frame.lights);
+    std::swap(scene->ambient, frame.ambient);
+    const CurrentCamera current(*scene, views.front());
+    Film film(regions.front().width(), regions.front().height());
+    RunStatistics statistics;
+    statistics.threads = threads;
+    RenderRequest request;
+    request.region = regions.front();
+    request.quiet = options.quiet;
+    Stopwatch render_timer;
+    method->render(*scene, request, film, statistics);
+    statistics.add_phase("render", render_timer.seconds());
+    std::swap(scene->lights, frame.lights);
+    std::swap(scene->ambient, frame.ambient);
+    const std::string output = path_with_suffix(options.output, frame.name);
+    Stopwatch write_timer;
+    write_image(film, output, scene->display);
+    statistics.add_phase("write", write_timer.seconds());
+    statistics.extra["scene"] = scene->source;
+    statistics.extra["relight_frame"] = frame.name;
+    statistics.extra["method"] = std::string(method->name());
+    statistics.extra["output"] = output;
+    if (!options.quiet)
+      std::cerr << fmt::format("candela: relit frame {} in {:.3f} s (lighting {:.3f} s), wrote {}\n", frame.name,
+                               render_timer.seconds(),
+                               statistics.extra["meshless"].value("lighting_seconds", 0.0), output);
+    if (!options.stats_path.empty()) write_statistics(statistics, path_with_suffix(options.stats_path, frame.name));
+  }
   return 0;
 }
 
@@ -368,6 +416,9 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
       ->take_all();
   command->add_option("--export-solution", options->export_solution,
                       "radiosity: also write the solution (.csv, .ply or .gltf)");
+  command->add_option("--relight", options->relight,
+                      "meshless: also render each light set-up of FILE ({\"frames\": [{\"name\", \"lights\"}]}) from the "
+                      "same sites and transfer matrix, -o out.png -> out-NAME.png");
   command->add_option("--show-sites", options->show_sites,
                       "meshless: also write the image with the element centres (sites) drawn over it");
   command->callback([options, &run]() {

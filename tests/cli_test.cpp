@@ -368,6 +368,44 @@ TEST_F(Cli, ShowSitesDrawsTheMeshlessSitesOverTheImage) {
   EXPECT_NE(output.find("--show-sites needs --method meshless"), std::string::npos) << output;
 }
 
+// 002 §5.3: several light set-ups from one set of sites and one transfer matrix.
+TEST_F(Cli, RelightRendersEachLightSetUpFromOneGeometry) {
+  const std::string light = R"({"type": "point", "position": [5, 7, 5], "intensity": 10})";
+  write("room.json", R"({"format": "candela/1",
+    "camera": {"eye": [5, 4, 9.5], "target": [5, 4, 0], "fov": 60, "width": 16, "height": 16},
+    "meshless": {"spacing": 1.5, "grid": 12, "rounds": 1},
+    "lights": [)" + light + R"(],
+    "shapes": [{"type": "box", "min": [0, 0, 0], "max": [10, 8, 10], "material": {"kd": 0.6}}]})");
+  write("lights.json", R"({"frames": [
+    {"name": "same", "lights": [)" + light + R"(]},
+    {"name": "low", "lights": [{"type": "point", "position": [2, 1, 5], "intensity": 10}]},
+    {"name": "area", "ambient": 0.1, "lights": [{"type": "area", "corner": [4, 7.9, 4], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2], "exitance": 20}]}]})");
+  std::string output;
+  ASSERT_EQ(run("render room.json -q --method meshless --relight lights.json --stats s.json -o room.pfm", output), 0)
+      << output;
+  const auto bytes = [&](const std::string& name) {
+    std::ifstream in(directory_ / name, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(bytes("room-same.pfm"), bytes("room.pfm"));  // the scene's own lights again
+  EXPECT_NE(bytes("room-low.pfm"), bytes("room.pfm"));
+  EXPECT_NE(bytes("room-area.pfm"), bytes("room.pfm"));
+  for (const std::string frame : {"same", "low", "area"}) {
+    std::ifstream stats(directory_ / ("s-" + frame + ".json"));
+    const nlohmann::json facts = nlohmann::json::parse(stats);
+    EXPECT_TRUE(facts["meshless"]["geometry_reused"].get<bool>()) << frame;
+    EXPECT_EQ(facts["relight_frame"], frame);
+  }
+  // Refused before anything is written: a located error in the set-ups, another method.
+  write("bad.json", R"({"frames": [{"name": "x", "lights": [{"type": "laser"}]}]})");
+  EXPECT_EQ(run("render room.json -q --method meshless --relight bad.json -o r2.png", output), 2);
+  EXPECT_NE(output.find("bad.json:1:"), std::string::npos) << output;
+  EXPECT_EQ(run("render room.json -q --method whitted --relight lights.json -o r3.png", output), 2);
+  EXPECT_NE(output.find("--relight needs --method meshless"), std::string::npos) << output;
+  EXPECT_FALSE(std::filesystem::exists(directory_ / "r2.png"));
+  EXPECT_FALSE(std::filesystem::exists(directory_ / "r3-low.png"));
+}
+
 TEST_F(Cli, BenchWritesTheTableJsonAndRayDump) {
   std::string output;
   ASSERT_EQ(run("bench --sphere 200 --accel list --threads 1 2 --width 8 --height 4 --rays 50 --repeat 1 "

@@ -2,6 +2,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -96,11 +98,45 @@ Film with_sites_drawn(const Scene& scene, const SiteSet& sites, const PixelRect&
   return result;
 }
 
+
+RadialKernel radial_kernel(const MeshlessSettings& settings) {
+  return settings.kernel == MeshlessKernel::gaussian ? RadialKernel::gaussian : RadialKernel::cubic;
+}
+
+// What a solution depends on besides the scene object: the meshless settings that shape the
+// geometry (not the display, the tolerance or the lights) and the seed.
+std::string geometry_key(const Scene& scene) {
+  const MeshlessSettings& m = scene.meshless;
+  return fmt::format("{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}", scene.unique_id, static_cast<int>(m.basis),
+                     static_cast<int>(m.kernel), m.spacing, m.neighbours, m.grid, m.rounds,
+                     static_cast<int>(m.effective_area), m.shepard_power, m.max_sites, scene.render.seed);
+}
+
+nlohmann::json geometry_facts(const Scene& scene, const MeshlessGeometry& geometry) {
+  const MeshlessSettings& settings = scene.meshless;
+  double area_sum = 0;
+  for (const double a : geometry.areas) area_sum += a;
+  return {{"basis", basis_name(settings.basis)},
+          {"sites", geometry.sites.sites.size()},
+          {"camera_sites", geometry.sites.camera_sites},
+          {"spacing", geometry.sites.spacing},
+          {"neighbours", settings.neighbours},
+          {"effective_area", settings.effective_area == MeshlessAreas::integrated ? "integrated" : "thesis"},
+          {"effective_area_sum", area_sum},
+          {"transfer_entries", geometry.matrix.entries()},
+          {"transfer_density", geometry.matrix.density()},
+          {"transfer_memory_mib", static_cast<double>(geometry.matrix.bytes()) / 1048576.0},
+          {"transfer_seconds", geometry.matrix.seconds},
+          {"visibility_rays", geometry.matrix.visibility_rays},
+          {"sampling_seconds", geometry.sampling_seconds},
+          {"area_seconds", geometry.area_seconds}};
+}
+
 }  // namespace
 
-MeshlessSolution solve_meshless(const Scene& scene, nlohmann::json* facts) {
+std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene) {
   const MeshlessSettings& settings = scene.meshless;
-  MeshlessSolution solution;
+  auto geometry = std::make_shared<MeshlessGeometry>();
   auto start = std::chrono::steady_clock::now();
   SiteSamplingSettings sampling;
   sampling.grid = settings.grid;
@@ -109,61 +145,91 @@ MeshlessSolution solve_meshless(const Scene& scene, nlohmann::json* facts) {
   sampling.neighbours = settings.neighbours;
   sampling.seed = scene.render.seed;
   sampling.max_sites = static_cast<std::size_t>(settings.max_sites);
-  solution.sites = sample_sites(scene, sampling);
-  solution.sampling_seconds = seconds_since(start);
-  const SiteSet& sites = solution.sites;
+  geometry->sites = sample_sites(scene, sampling);
+  geometry->sampling_seconds = seconds_since(start);
+  const SiteSet& sites = geometry->sites;
 
   start = std::chrono::steady_clock::now();
-  const MeshlessBasis basis(sites.sites, sites.radius, basis_kind(settings.basis),
-                            settings.kernel == MeshlessKernel::gaussian ? RadialKernel::gaussian : RadialKernel::cubic,
-                            settings.shepard_power);
-  std::vector<double> areas = sites.effective_area;  // the thesis's πh²/(m + 1)
+  // The basis refers to the geometry's own sites and radii, which stay where they are: the
+  // geometry is held by a pointer and never moved.
+  geometry->basis = std::make_unique<MeshlessBasis>(sites.sites, sites.radius, basis_kind(settings.basis),
+                                                    radial_kernel(settings), settings.shepard_power);
+  geometry->areas = sites.effective_area;  // the thesis's πh²/(m + 1)
   if (settings.effective_area == MeshlessAreas::integrated)
-    areas = integrate_effective_areas(scene, basis, sites.sites.size(), sites.spacing / 4);
-  solution.area_seconds = seconds_since(start);
+    geometry->areas = integrate_effective_areas(scene, *geometry->basis, sites.sites.size(), sites.spacing / 4);
+  geometry->area_seconds = seconds_since(start);
+  geometry->matrix = compute_transfer_matrix(scene, sites.sites, geometry->areas);
+  return geometry;
+}
 
-  start = std::chrono::steady_clock::now();
-  solution.eta.resize(sites.sites.size());
+MeshlessLighting light_meshless(const Scene& scene, const MeshlessGeometry& geometry) {
+  const MeshlessSettings& settings = scene.meshless;
+  const SiteSet& sites = geometry.sites;
+  const auto start = std::chrono::steady_clock::now();
+  MeshlessLighting lighting;
+  lighting.eta.resize(sites.sites.size());
   tbb::parallel_for(std::size_t(0), sites.sites.size(), [&](std::size_t i) {
-    solution.eta[i] = sites.emission[i] + direct_light(scene, sites.sites[i].position, sites.sites[i].normal, sites.albedo[i]);
+    lighting.eta[i] = sites.emission[i] + direct_light(scene, sites.sites[i].position, sites.sites[i].normal, sites.albedo[i]);
   });
-  solution.matrix = compute_transfer_matrix(scene, sites.sites, areas);
-  solution.transfer = solve_transfer(solution.matrix, sites.albedo, solution.eta, settings.tolerance,
+  lighting.transfer = solve_transfer(geometry.matrix, sites.albedo, lighting.eta, settings.tolerance,
                                      static_cast<std::size_t>(settings.max_iterations));
-  solution.solve_seconds = seconds_since(start);
+  lighting.seconds = seconds_since(start);
+  return lighting;
+}
+
+namespace {
+
+void add_lighting_facts(const MeshlessLighting& lighting, nlohmann::json& facts) {
+  facts["iterations"] = lighting.transfer.iterations;
+  facts["converged"] = lighting.transfer.converged;
+  facts["final_change"] = lighting.transfer.final_change;
+  facts["lighting_seconds"] = lighting.seconds;  // direct light and the iteration: a relit frame's cost
+}
+
+}  // namespace
+
+MeshlessSolution solve_meshless(const Scene& scene, nlohmann::json* facts) {
+  const std::shared_ptr<MeshlessGeometry> geometry = build_meshless_geometry(scene);
+  MeshlessLighting lighting = light_meshless(scene, *geometry);
   if (facts) {
-    double area_sum = 0;
-    for (const double a : areas) area_sum += a;
-    *facts = {{"basis", basis_name(settings.basis)},
-              {"sites", sites.sites.size()},
-              {"camera_sites", sites.camera_sites},
-              {"spacing", sites.spacing},
-              {"neighbours", settings.neighbours},
-              {"effective_area", settings.effective_area == MeshlessAreas::integrated ? "integrated" : "thesis"},
-              {"effective_area_sum", area_sum},
-              {"transfer_entries", solution.matrix.entries()},
-              {"transfer_density", solution.matrix.density()},
-              {"transfer_memory_mib", static_cast<double>(solution.matrix.bytes()) / 1048576.0},
-              {"transfer_seconds", solution.matrix.seconds},
-              {"visibility_rays", solution.matrix.visibility_rays},
-              {"iterations", solution.transfer.iterations},
-              {"converged", solution.transfer.converged},
-              {"final_change", solution.transfer.final_change},
-              {"sampling_seconds", solution.sampling_seconds},
-              {"area_seconds", solution.area_seconds},
-              {"solve_seconds", solution.solve_seconds}};
+    *facts = geometry_facts(scene, *geometry);
+    add_lighting_facts(lighting, *facts);
   }
+  MeshlessSolution solution;
+  solution.sites = geometry->sites;
+  solution.matrix = geometry->matrix;
+  solution.eta = std::move(lighting.eta);
+  solution.transfer = std::move(lighting.transfer);
   return solution;
+}
+
+std::shared_ptr<const MeshlessGeometry> MeshlessMethod::geometry_for(const Scene& scene, bool& reused) const {
+  const std::string key = geometry_key(scene);
+  std::lock_guard lock(cache_mutex_);
+  reused = cached_ && cached_key_ == key;
+  if (reused) return cached_;
+  cached_ = build_meshless_geometry(scene);
+  cached_key_ = key;
+  return cached_;
 }
 
 void MeshlessMethod::render(const Scene& scene, const RenderRequest& request, Film& film,
                             RunStatistics& statistics) const {
-  nlohmann::json facts;
-  const MeshlessSolution solution = solve_meshless(scene, &facts);
+  // The sites, areas and transfer matrix are kept between renders of the same scene (other views,
+  // other light set-ups: --relight); the direct light and the iteration are redone every time.
+  bool reused = false;
+  const std::shared_ptr<const MeshlessGeometry> geometry = geometry_for(scene, reused);
+  const MeshlessLighting lighting = light_meshless(scene, *geometry);
+  nlohmann::json facts = geometry_facts(scene, *geometry);
+  add_lighting_facts(lighting, facts);
+  facts["geometry_reused"] = reused;
   const MeshlessSettings& settings = scene.meshless;
-  const MeshlessBasis basis(solution.sites.sites, solution.sites.radius, basis_kind(settings.basis),
-                            settings.kernel == MeshlessKernel::gaussian ? RadialKernel::gaussian : RadialKernel::cubic,
-                            settings.shepard_power);
+  const MeshlessBasis& basis = *geometry->basis;
+  const struct {
+    const SiteSet& sites;
+    const std::vector<Color>& eta;
+    const TransferSolution& transfer;
+  } solution{geometry->sites, lighting.eta, lighting.transfer};
   const Camera& camera = *scene.camera;
   const PixelRect region = request.region;
   const auto start = std::chrono::steady_clock::now();

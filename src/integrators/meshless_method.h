@@ -21,28 +21,61 @@
 
 #include <nlohmann/json.hpp>
 
+#include <memory>
+#include <mutex>
+#include <string>
+
 #include "integrators/method.h"
+#include "meshless/meshless_basis.h"
 #include "meshless/site_sampling.h"
 #include "meshless/transfer_matrix.h"
 
 namespace candela {
+
+// What does not depend on the lights: the sites, the basis over them, the effective areas and
+// the transfer matrix S (002 §5.3: relighting reuses them).
+struct MeshlessGeometry {
+  SiteSet sites;
+  std::unique_ptr<MeshlessBasis> basis;  // over sites.sites and sites.radius
+  std::vector<double> areas;             // A_k
+  TransferMatrix matrix;                 // S
+  double sampling_seconds = 0, area_seconds = 0;
+};
+
+// What the lights give: η (emitted and directly reflected) and λ.
+struct MeshlessLighting {
+  std::vector<Color> eta;
+  TransferSolution transfer;
+  double seconds = 0;  // direct light and iteration
+};
+
+std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene);
+MeshlessLighting light_meshless(const Scene& scene, const MeshlessGeometry& geometry);
 
 struct MeshlessSolution {
   SiteSet sites;
   std::vector<Color> eta;      // η: emitted and directly reflected
   TransferSolution transfer;   // λ
   TransferMatrix matrix;       // S
-  double sampling_seconds = 0, area_seconds = 0, solve_seconds = 0;
 };
 
-// Samples, builds and solves (quiet: no progress output); fills facts for --stats when given.
+// Samples, builds and solves; fills facts for --stats when given.
 MeshlessSolution solve_meshless(const Scene& scene, nlohmann::json* facts = nullptr);
 
+// Keeps the last scene's geometry (recognised by Scene::unique_id and the settings that shape it)
+// and reuses it when called again for the same scene: other views, or other lights
+// (candela render --relight, which swaps the scene's lights between renders).
 class MeshlessMethod final : public Method {
  public:
   std::string_view name() const override { return "meshless"; }
   void render(const Scene& scene, const RenderRequest& request, Film& film,
               RunStatistics& statistics) const override;
+
+ private:
+  std::shared_ptr<const MeshlessGeometry> geometry_for(const Scene& scene, bool& reused) const;
+  mutable std::mutex cache_mutex_;
+  mutable std::shared_ptr<const MeshlessGeometry> cached_;
+  mutable std::string cached_key_;
 };
 
 }  // namespace candela

@@ -30,6 +30,22 @@ namespace {
 
 constexpr const char* kFormat = "candela/1";
 
+// A "lights" array: each entry by the light registry; ambient entries add to ambient.
+void read_light_list(const JsonNode& lights, Color& ambient, std::vector<std::unique_ptr<Light>>& out) {
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const JsonNode node = lights.element(i);
+    node.expect_object();
+    const JsonNode type = node.at("type");
+    const LightEntry* entry = find_light(type.as_string());
+    if (!entry)
+      type.fail("unknown light \"" + type.as_string() + "\" (expected one of: " + entry_names(light_entries()) + ")");
+    auto light = entry->create(node, ambient);
+    node.allow({"name"});
+    node.finish();
+    if (light) out.push_back(std::move(light));
+  }
+}
+
 class SceneReader {
  public:
   SceneReader(const JsonDocument& document, const std::string& base_directory)
@@ -289,20 +305,7 @@ class SceneReader {
   }
 
   void read_lights() {
-    const auto lights = root_.get("lights");
-    if (!lights) return;
-    for (std::size_t i = 0; i < lights->size(); ++i) {
-      const JsonNode node = lights->element(i);
-      node.expect_object();
-      const JsonNode type = node.at("type");
-      const LightEntry* entry = find_light(type.as_string());
-      if (!entry)
-        type.fail("unknown light \"" + type.as_string() + "\" (expected one of: " + entry_names(light_entries()) + ")");
-      auto light = entry->create(node, scene_->ambient);
-      node.allow({"name"});
-      node.finish();
-      if (light) scene_->lights.push_back(std::move(light));
-    }
+    if (const auto lights = root_.get("lights")) read_light_list(*lights, scene_->ambient, scene_->lights);
   }
 
   uint32_t material_for(const JsonNode& shape) {
@@ -390,6 +393,40 @@ std::unique_ptr<Scene> load_scene_file(const std::string& path,
   if (in.bad()) throw InputError({path, 0, 0, {}}, "cannot read the scene file");
   const std::string directory = std::filesystem::path(path).parent_path().string();
   return load_scene_text(text.str(), path, directory.empty() ? "." : directory, overrides);
+}
+
+std::vector<LightSetup> load_light_setups(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError({path, 0, 0, {}}, "cannot open the light set-ups file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return load_light_setups_text(text.str(), path);
+}
+
+std::vector<LightSetup> load_light_setups_text(const std::string& text, const std::string& name) {
+  const JsonDocument document = JsonDocument::parse(text, name);
+  const JsonNode root(document, document.root(), "");
+  root.expect_object();
+  const JsonNode frames = root.at("frames");
+  if (frames.size() == 0) frames.fail("needs at least one frame");
+  std::vector<LightSetup> setups;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const JsonNode frame = frames.element(i);
+    frame.expect_object();
+    LightSetup setup;
+    setup.name = frame.string("name", "frame" + std::to_string(i));
+    if (setup.name.empty() || setup.name.find_first_not_of(
+                                  "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") != std::string::npos)
+      frame.at("name").fail("must be letters, digits, '_' or '-' (it goes into file names)");
+    for (const LightSetup& earlier : setups)
+      if (earlier.name == setup.name) frame.at("name").fail("\"" + setup.name + "\" names an earlier frame too");
+    setup.ambient = frame.color("ambient", Color(0), Range::non_negative());
+    read_light_list(frame.at("lights"), setup.ambient, setup.lights);
+    frame.finish();
+    setups.push_back(std::move(setup));
+  }
+  root.finish();
+  return setups;
 }
 
 std::unique_ptr<Scene> load_default_scene(const std::vector<std::string>& overrides) {

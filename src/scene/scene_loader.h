@@ -18,6 +18,18 @@ std::unique_ptr<Scene> load_scene_file(const std::string& path,
 std::unique_ptr<Scene> load_scene_text(const std::string& text, const std::string& name,
                                        const std::string& base_directory,
                                        const std::vector<std::string>& overrides = {});
+// Light set-ups for relighting (candela render --relight FILE): a JSON object
+// {"frames": [{"name": "noon", "ambient": 0.1, "lights": [... as a scene's "lights" ...]}, ...]}.
+// Names (default frameN) are unique and made of letters, digits, '_' and '-'. Throws InputError
+// with file, line, column and JSON path.
+struct LightSetup {
+  std::string name;
+  std::vector<std::unique_ptr<Light>> lights;
+  Color ambient;
+};
+std::vector<LightSetup> load_light_setups(const std::string& path);
+std::vector<LightSetup> load_light_setups_text(const std::string& text, const std::string& name);
+
 // The built-in default scene (the two-mirror scene of 000 §5.9).
 std::unique_ptr<Scene> load_default_scene(const std::vector<std::string>& overrides = {});
 const std::string& default_scene_text();
