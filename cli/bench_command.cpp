@@ -4,6 +4,7 @@
 // candela bench --raster [MESH.obj ...] [--sphere N] [--terrain N] [--width W] [--height H] [--fov DEG]
 //               [--repeat R] [--min-time S] [--json FILE] [--quiet]
 // candela bench --radiosity [SCENE.json] [--set key=value]... [--threads N...] [--json FILE] [--quiet]
+// candela bench --meshless [SCENE.json] [--set key=value]... [--threads N...] [--json FILE] [--quiet]
 // Reproducible ray-set throughput (SPEC §14) with the ray sets and checksums of
 // shared/BENCH-RAYS.md. "embree" is Embree's own triangle test (the reference speed).
 // --raster measures the scanline rasterizer instead (bench/raster_bench.h): every mesh given,
@@ -15,6 +16,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -28,6 +30,7 @@
 #include "bench/bench_runner.h"
 #include "bench/raster_bench.h"
 #include "commands.h"
+#include "integrators/meshless_method.h"
 #include "integrators/radiosity_method.h"
 #include "scene/scene_loader.h"
 #include "util/atomic_file.h"
@@ -58,6 +61,7 @@ struct BenchCommandOptions {
   bool quiet = false;
   bool raster = false;
   bool radiosity = false;
+  bool meshless = false;
   std::vector<std::string> overrides;  // --set key=value (scene files)
   // Whether the option was on the command line (the raster bench has its own defaults).
   bool width_given = false, height_given = false, min_time_given = false;
@@ -241,17 +245,21 @@ nlohmann::json machine_facts() {
   return {{"cpu", model}, {"hardware_threads", std::thread::hardware_concurrency()}};
 }
 
-int run_radiosity_bench_command(const BenchCommandOptions& options) {
-  if (options.raster) throw BadArgument("give one of --raster and --radiosity");
+// --radiosity and --meshless: solve one scene file once per thread count, a table row and the
+// solver's facts per run. run_one(scene, facts) solves and returns the table row's cells.
+int run_scene_solve_bench(const BenchCommandOptions& options, const std::string& mode, const std::string& header,
+                          const std::function<std::string(const Scene&, nlohmann::json&)>& run_one) {
+  if (options.raster || (options.radiosity && options.meshless))
+    throw BadArgument("give one of --raster, --radiosity and --meshless");
   if (!options.accelerators.empty() || !options.eye.empty() || !options.lookat.empty() || !options.light.empty() ||
       options.rays != 0 || !options.dump_directory.empty() || options.sphere || options.terrain ||
       options.width_given || options.height_given || options.min_time_given || options.fov_given ||
       options.repeat_given || options.seed_given)
-    throw BadArgument("--radiosity takes SCENE, --set, --threads, --json and --quiet only");
-  if (options.inputs.size() > 1) throw BadArgument("--radiosity takes at most one SCENE");
+    throw BadArgument("--" + mode + " takes SCENE, --set, --threads, --json and --quiet only");
+  if (options.inputs.size() > 1) throw BadArgument("--" + mode + " takes at most one SCENE");
   const std::string scene_path = options.inputs.empty() ? std::string() : options.inputs.front();
   if (!scene_path.empty() && !is_scene_file(scene_path))
-    throw BadArgument("--radiosity measures a scene file (.json), not " + scene_path);
+    throw BadArgument("--" + mode + " measures a scene file (.json), not " + scene_path);
   std::vector<int> thread_counts;
   for (const int threads : options.threads) {
     if (threads < 1 || threads > 1024) throw BadArgument("--threads values must lie in [1, 1024]");
@@ -266,30 +274,22 @@ int run_radiosity_bench_command(const BenchCommandOptions& options) {
       scene_path.empty() ? load_default_scene(options.overrides) : load_scene_file(scene_path, options.overrides);
   for (const auto& warning : scene->warnings) std::cerr << "candela: warning: " << warning << "\n";
   nlohmann::json runs = nlohmann::json::array();
-  std::cout << fmt::format("scene: {}\n", scene_path.empty() ? "(built-in default)" : scene_path);
-  std::cout << fmt::format("{:>7} {:>8} {:>9} {:>7} {:>10} {:>9} {:>9} {:>9} {:>13} {:>10} {:>9} {:>9}\n", "threads",
-                           "patches", "elements", "steps", "unshot", "converged", "mesh s", "solve s",
-                           "form factors", "FF/s", "FF MiB", "peak MiB");
+  std::cout << fmt::format("scene: {}\n", scene_path.empty() ? "(built-in default)" : scene_path) << header << "\n";
   for (const int threads : thread_counts) {
-    if (!options.quiet) std::cerr << fmt::format("candela: bench: radiosity, {} thread(s)\n", threads);
+    if (!options.quiet) std::cerr << fmt::format("candela: bench: {}, {} thread(s)\n", mode, threads);
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
     nlohmann::json facts;
     Stopwatch total;
-    const RadiositySolveResult result = solve_radiosity(*scene, options.quiet, &facts);
+    const std::string row = run_one(*scene, facts);
     facts["total_seconds"] = total.seconds();
     facts["threads"] = threads;
     // The process's peak so far: with several thread counts, the largest run's up to this one.
     const double peak_mib = static_cast<double>(peak_memory_bytes()) / 1048576.0;
     facts["peak_memory_mib"] = peak_mib;
-    std::cout << fmt::format("{:>7} {:>8} {:>9} {:>7} {:>9.4f}% {:>9} {:>9.3f} {:>9.3f} {:>13} {:>10.4g} {:>9.1f} {:>9.1f}\n",
-                             threads, result.mesh.patches.size(), result.mesh.elements.size(), result.steps,
-                             100 * result.unshot_fraction, result.converged ? "yes" : "no", result.mesh_seconds,
-                             result.solve_seconds, result.form_factors,
-                             facts.value("form_factors_per_second", 0.0), result.form_factor_bytes / 1048576.0,
-                             peak_mib);
+    std::cout << fmt::format("{:>7} {} {:>9.1f}\n", threads, row, peak_mib);
     runs.push_back(std::move(facts));
   }
-  return write_json({{"radiosity",
+  return write_json({{mode,
                       {{"scene", scene_path.empty() ? "(built-in default)" : scene_path},
                        {"overrides", options.overrides},
                        {"machine", machine_facts()},
@@ -297,10 +297,41 @@ int run_radiosity_bench_command(const BenchCommandOptions& options) {
                     options);
 }
 
+int run_radiosity_bench_command(const BenchCommandOptions& options) {
+  const std::string header = fmt::format("{:>7} {:>8} {:>9} {:>7} {:>10} {:>9} {:>9} {:>9} {:>13} {:>10} {:>9} {:>9}",
+                                         "threads", "patches", "elements", "steps", "unshot", "converged", "mesh s",
+                                         "solve s", "form factors", "FF/s", "FF MiB", "peak MiB");
+  return run_scene_solve_bench(options, "radiosity", header, [&](const Scene& scene, nlohmann::json& facts) {
+    const RadiositySolveResult result = solve_radiosity(scene, options.quiet, &facts);
+    return fmt::format("{:>8} {:>9} {:>7} {:>9.4f}% {:>9} {:>9.3f} {:>9.3f} {:>13} {:>10.4g} {:>9.1f}",
+                       result.mesh.patches.size(), result.mesh.elements.size(), result.steps,
+                       100 * result.unshot_fraction, result.converged ? "yes" : "no", result.mesh_seconds,
+                       result.solve_seconds, result.form_factors, facts.value("form_factors_per_second", 0.0),
+                       result.form_factor_bytes / 1048576.0);
+  });
+}
+
+// Issue 8: the meshless method's sites, transfer matrix (entries, density, memory, time) and
+// solution time, to see how they grow with the number of sites.
+int run_meshless_bench_command(const BenchCommandOptions& options) {
+  const std::string header = fmt::format("{:>7} {:>7} {:>12} {:>8} {:>9} {:>10} {:>10} {:>10} {:>6} {:>9} {:>9}",
+                                         "threads", "sites", "entries", "density", "S MiB", "sample s", "areas s",
+                                         "S s", "iters", "solve s", "peak MiB");
+  return run_scene_solve_bench(options, "meshless", header, [&](const Scene& scene, nlohmann::json& facts) {
+    const MeshlessSolution solution = solve_meshless(scene, &facts);
+    return fmt::format("{:>7} {:>12} {:>8.4f} {:>9.1f} {:>10.3f} {:>10.3f} {:>10.3f} {:>6} {:>9.3f}",
+                       solution.sites.sites.size(), solution.matrix.entries(), solution.matrix.density(),
+                       solution.matrix.bytes() / 1048576.0, facts.value("sampling_seconds", 0.0),
+                       facts.value("area_seconds", 0.0), solution.matrix.seconds, solution.transfer.iterations,
+                       facts.value("lighting_seconds", 0.0));
+  });
+}
+
 int run_bench_command(const BenchCommandOptions& given) {
   if (given.radiosity) return run_radiosity_bench_command(given);
+  if (given.meshless) return run_meshless_bench_command(given);
   if (given.raster) return run_raster_bench_command(given);
-  if (!given.overrides.empty()) throw BadArgument("--set applies to --radiosity only");
+  if (!given.overrides.empty()) throw BadArgument("--set applies to --radiosity and --meshless only");
   if (given.inputs.size() > 1) throw BadArgument("give exactly one of MESH, --sphere N or --terrain N");
   BenchCommandOptions options = given;
   if (!given.inputs.empty()) options.mesh_path = given.inputs.front();
@@ -345,6 +376,9 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
                       "any number of meshes (default: every .obj of ../shared/models)");
   command->add_flag("--raster", options->raster,
                     "Measure the scanline rasterizer (item buffer, depth, Gouraud, Phong passes) instead of rays");
+  command->add_flag("--meshless", options->meshless,
+                    "Sample, build and solve a scene's meshless radiosity (SCENE, default: the built-in scene) once per "
+                    "--threads count; sites, transfer entries, density, memory and times");
   command->add_flag("--radiosity", options->radiosity,
                     "Mesh and solve a scene's radiosity (SCENE, default: the built-in scene) once per --threads "
                     "value and report steps, form factors per second and memory");

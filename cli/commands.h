@@ -13,6 +13,7 @@ namespace candela::cli {
 void add_render_command(CLI::App& app, std::function<int()>& run);
 void add_info_command(CLI::App& app, std::function<int()>& run);
 void add_bench_command(CLI::App& app, std::function<int()>& run);
+void add_validate_command(CLI::App& app, std::function<int()>& run);
 
 // Prints "candela: error: ..." to stderr.
 void print_error(const std::string& message);

@@ -156,7 +156,7 @@ std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene) {
                                                     radial_kernel(settings), settings.shepard_power);
   geometry->areas = sites.effective_area;  // the thesis's πh²/(m + 1)
   if (settings.effective_area == MeshlessAreas::integrated)
-    geometry->areas = integrate_effective_areas(scene, *geometry->basis, sites.sites.size(), sites.spacing / 4);
+    geometry->areas = integrate_effective_areas(scene, *geometry->basis, sites, sites.spacing / 4);
   geometry->area_seconds = seconds_since(start);
   geometry->matrix = compute_transfer_matrix(scene, sites.sites, geometry->areas);
   return geometry;
@@ -182,6 +182,7 @@ namespace {
 void add_lighting_facts(const MeshlessLighting& lighting, nlohmann::json& facts) {
   facts["iterations"] = lighting.transfer.iterations;
   facts["converged"] = lighting.transfer.converged;
+  facts["diverged"] = lighting.transfer.diverged;
   facts["final_change"] = lighting.transfer.final_change;
   facts["lighting_seconds"] = lighting.seconds;  // direct light and the iteration: a relit frame's cost
 }

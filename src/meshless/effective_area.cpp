@@ -11,8 +11,13 @@
 
 namespace candela {
 
-std::vector<double> integrate_effective_areas(const Scene& scene, const MeshlessBasis& basis, std::size_t site_count,
+std::vector<double> integrate_effective_areas(const Scene& scene, const MeshlessBasis& basis, const SiteSet& sites,
                                               double cell, int segments) {
+  const std::size_t site_count = sites.sites.size();
+  // The sides sites lie on, per object: bit 0 the geometric normal's side, bit 1 the other.
+  std::vector<uint8_t> sides_with_sites(scene.objects.size(), 0);
+  for (std::size_t i = 0; i < site_count && i < sites.object.size(); ++i)
+    if (sites.object[i] < sides_with_sites.size()) sides_with_sites[sites.object[i]] |= sites.side[i] > 0 ? 1 : 2;
   if (!(cell > 0) || !std::isfinite(cell)) throw std::invalid_argument("effective areas: the cell size must be > 0");
   if (segments < 3) throw std::invalid_argument("effective areas: segments must be >= 3");
   TessellationRequest request;
@@ -36,10 +41,16 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
     const Vec3 du = (b - a) / n, dv = (c - a) / n;
     std::vector<std::pair<uint32_t, double>> sums;
     std::vector<std::pair<uint32_t, double>> weights;
+    const uint8_t sides = triangles.objects[t] < sides_with_sites.size() ? sides_with_sites[triangles.objects[t]] : 0;
+    if (sides == 0) return;
     const auto sample = [&](const Vec3& point) {
-      for (const Vec3& side : {normal, -normal}) {
-        basis.evaluate({point, side}, weights);
-        for (const auto& [k, phi] : weights) sums.emplace_back(k, phi * weight);
+      for (const int side : {1, 2}) {
+        if (!(sides & side)) continue;
+        basis.evaluate({point, side == 1 ? normal : -normal}, weights);
+        double total = 0;
+        for (const auto& entry : weights) total += entry.second;
+        if (!(total > 0)) continue;
+        for (const auto& [k, phi] : weights) sums.emplace_back(k, phi / total * weight);
       }
     };
     for (int i = 0; i < n; ++i)

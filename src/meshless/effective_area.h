@@ -4,22 +4,28 @@
 //   - the thesis's A_k = π h_k²/(m + 1) (eq. 5.5, meshless/site_sampling.h), which supposes the
 //     surface flat and the sites evenly spread within h_k, and overestimates by 5–10 % on
 //     evenly spread sites (tested);
-//   - integrate_effective_areas: eq. 5.3 itself by the midpoint rule over the scene's surfaces
-//     cut into triangles no longer than `cell` on a side. Each side of a surface is a set of
-//     sites of its own (a wall lit from both sides has elements on both), so every sample counts
-//     with both normals.
+//   - integrate_effective_areas: eq. 5.3 by the midpoint rule over the scene's surfaces cut into
+//     triangles no longer than `cell` on a side, over the sides that sites lie on: each side of
+//     each object is a set of sites of its own (a wall seen from both sides has elements on both),
+//     and a side no site lies on — a disc's underside, a room's outer walls — is no part of the
+//     solution, however far an element's support reaches. The weights are the basis's own
+//     normalised, φ_k / Σ_j φ_j: for the partitions of unity that is φ_k itself, and for the
+//     radial basis (not a partition of unity; ∫ φ_k is about 2π r_k², twenty times the element's
+//     share of the surface at m = 10) it is the share of the surface element k stands for, so
+//     the areas still add up to the surface (eq. 5.4).
 #pragma once
 
 #include <vector>
 
 #include "meshless/meshless_basis.h"
+#include "meshless/site_sampling.h"
 
 namespace candela {
 
 class Scene;
 
 // Throws std::invalid_argument unless cell > 0 and segments ≥ 3.
-std::vector<double> integrate_effective_areas(const Scene& scene, const MeshlessBasis& basis, std::size_t site_count,
+std::vector<double> integrate_effective_areas(const Scene& scene, const MeshlessBasis& basis, const SiteSet& sites,
                                               double cell, int segments = 64);
 
 }  // namespace candela

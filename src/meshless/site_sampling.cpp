@@ -52,7 +52,8 @@ class SpacingFilter {
 // A site found by a ray, with what its surface is made of there.
 struct FoundSite {
   Site site;
-  uint32_t primitive = 0;
+  uint32_t primitive = 0, object = 0;
+  int8_t side = 1;
   Color albedo, emission;
 };
 
@@ -63,6 +64,8 @@ std::optional<FoundSite> site_along(const Scene& scene, const Ray& ray) {
   FoundSite found;
   found.site = {hit.surface.position, face_forward(hit.surface.geometric_normal, -ray.direction)};
   found.primitive = hit.primitive;
+  found.object = scene.primitives[hit.primitive].object;
+  found.side = dot(found.site.normal, hit.surface.geometric_normal) > 0 ? int8_t{1} : int8_t{-1};
   const Material& material = scene.material_of(hit);
   const SurfaceProperties properties = material.at(hit.surface);
   for (int c = 0; c < 3; ++c) found.albedo[c] = std::clamp(properties.kd[c], 0.0, 1.0);
@@ -114,6 +117,8 @@ SiteSet sample_sites(const Scene& scene, const SiteSamplingSettings& settings) {
     set.primitive.push_back(candidate->primitive);
     set.albedo.push_back(candidate->albedo);
     set.emission.push_back(candidate->emission);
+    set.object.push_back(candidate->object);
+    set.side.push_back(candidate->side);
   };
 
   // 1. Camera rays through a regular grid over the image.

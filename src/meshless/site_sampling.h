@@ -44,6 +44,10 @@ struct SiteSet {
   std::vector<uint32_t> primitive;     // the primitive each site lies on
   std::vector<Color> albedo;           // β(ṗ_i) = the material's kd there, clamped to [0, 1]
   std::vector<Color> emission;         // the material's emitted exitance E there
+  std::vector<uint32_t> object;        // the scene object each site lies on
+  // +1 when the site's normal is the surface's geometric normal, −1 when it was turned (the
+  // side the site lies on, which effective areas integrate over).
+  std::vector<int8_t> side;
   double spacing = 0;                  // Δ used
   std::size_t camera_sites = 0;        // kept from the camera grid
 };

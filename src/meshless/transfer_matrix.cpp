@@ -67,6 +67,13 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
       if (scene.occluded(ray)) continue;
       row.emplace_back(static_cast<int32_t>(k), static_cast<float>(transfer));
     }
+    // A receiver sees at most its hemisphere: Σ_k F A_k ≤ 1 (000 eq. 6-6 for closed scenes). Near a
+    // corner eq. 5.2 overshoots (the sites across it are closer than their areas are wide); such
+    // a row is scaled back to 1, or the iteration would diverge.
+    double row_sum = 0;
+    for (const auto& entry : row) row_sum += entry.second;
+    if (row_sum > 1)
+      for (auto& entry : row) entry.second = static_cast<float>(entry.second / row_sum);
     rays += row_rays;
     if (max_entries > 0 && (kept += row.size()) > max_entries) too_many = true;
   });
@@ -95,6 +102,8 @@ TransferSolution solve_transfer(const TransferMatrix& transfer, const std::vecto
                                 " albedos, " + std::to_string(eta.size()) + " direct terms");
   TransferSolution solution;
   solution.lambda = eta;
+  double largest_eta = 0;
+  for (const Color& e : eta) largest_eta = std::max({largest_eta, std::fabs(e.r), std::fabs(e.g), std::fabs(e.b)});
   std::vector<Color> next(n);
   for (std::size_t iteration = 0; iteration < max_iterations; ++iteration) {
     // λ' = η + Q S λ, each row by one thread.
@@ -113,6 +122,11 @@ TransferSolution solve_transfer(const TransferMatrix& transfer, const std::vecto
     solution.lambda.swap(next);
     solution.iterations = iteration + 1;
     solution.final_change = largest > 0 ? change / largest : 0;
+    // Diverging (a row of R summing past 1) or overflowed: stop and say so.
+    if (!std::isfinite(largest) || !std::isfinite(change) || largest > 1e12 * std::max(largest_eta, 1e-300)) {
+      solution.diverged = true;
+      break;
+    }
     if (solution.final_change <= tolerance) {
       solution.converged = true;
       break;

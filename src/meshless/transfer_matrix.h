@@ -8,7 +8,9 @@
 // side of a room's corner, which the spacing Δ does not keep apart since their site distance is
 // infinite), so S_jk is clamped at 1 — no element passes a site more than all it sends. (A disc
 // form factor cos cos A/(πd² + A) also stays bounded, but it undercounts near neighbours on curved
-// surfaces: 2.3 % low in the sphere furnace against 0.5 % for eq. 5.2.)
+// surfaces: 2.3 % low in the sphere furnace against 0.5 % for eq. 5.2.) A row whose entries add up
+// past 1 — more than the receiver's hemisphere, which happens only near such corners — is scaled
+// back to 1.
 // V is a shadow ray between the sites, each end moved off its surface along its normal.
 //
 // The solution (002 §5.2.4): λ ← η + Q S λ, per channel, from λ = η, until no coefficient changes by
@@ -48,6 +50,7 @@ struct TransferSolution {
   std::vector<Color> lambda;
   std::size_t iterations = 0;
   bool converged = false;
+  bool diverged = false;    // λ grew past 10¹² × max η or overflowed: the iteration stopped
   double final_change = 0;  // the last iteration's largest change over the largest λ
 };
 

@@ -1,0 +1,59 @@
+// candela validate sphere-disk --out DIR [--quick]: the built-in validation cases (SPEC §13).
+//   sphere-disk  the sphere over a disc of seed 002 chapter 7 (validate/sphere_disk.h): the
+//                reference by quadrature and the meshless FE solution for each basis at Δ = 3 and
+//                Δ = 1; CSV, PNG plots and errors.json in DIR (see docs/validation/sphere-disk.md).
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "commands.h"
+#include "validate/sphere_disk.h"
+
+namespace candela::cli {
+
+namespace {
+
+struct ValidateOptions {
+  std::string name;
+  std::string out;
+  bool quick = false;
+  bool quiet = false;
+};
+
+int run_validate(const ValidateOptions& options) {
+  if (options.name != "sphere-disk")
+    throw BadArgument(fmt::format("unknown validation case '{}' (known: sphere-disk)", options.name));
+  namespace fs = std::filesystem;
+  std::error_code error;
+  fs::create_directories(options.out, error);
+  if (error || !fs::is_directory(options.out))
+    throw BadArgument(fmt::format("--out: cannot create the directory '{}'{}", options.out,
+                                  error ? ": " + error.message() : ""));
+  SphereDiskRun run;
+  run.quick = options.quick;
+  const nlohmann::json errors = run_sphere_disk_validation(options.out, run, options.quiet ? nullptr : &std::cout);
+  if (!options.quiet)
+    std::cout << fmt::format("least RMS error: {} (delta 3), {} (delta 1); written to {}\n",
+                             errors["least_rms"]["delta3"].get<std::string>(),
+                             errors["least_rms"]["delta1"].get<std::string>(), options.out);
+  return 0;
+}
+
+}  // namespace
+
+void add_validate_command(CLI::App& app, std::function<int()>& run) {
+  auto options = std::make_shared<ValidateOptions>();
+  CLI::App* command = app.add_subcommand("validate", "Run a built-in validation case (sphere-disk)");
+  command->add_option("name", options->name, "The case: sphere-disk")->required();
+  command->add_option("--out", options->out, "Directory for the CSV files, plots and errors.json")->required();
+  command->add_flag("--quick", options->quick, "Coarser reference and sampling (for tests)");
+  command->add_flag("-q,--quiet", options->quiet, "No progress lines");
+  command->callback([options, &run]() {
+    run = [options]() { return run_reporting_bad_input([&] { return run_validate(*options); }); };
+  });
+}
+
+}  // namespace candela::cli

@@ -1,0 +1,34 @@
+// A small line-plot rasterizer for the validation cases (SPEC §13): one or more panels side by side,
+// each with axes, tick marks labelled with numbers (a built-in 3×5 pixel font of digits, '.', '-'),
+// one coloured polyline per curve and a legend of coloured boxes. It draws into a Film (linear RGB
+// in [0, 1]) that io/image_writer.h writes as PNG; there is no text other than the tick numbers, so
+// the legend's meaning is told where the plot is shown (docs/validation/).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "camera/film.h"
+#include "math/vector.h"
+
+namespace candela {
+
+struct PlotCurve {
+  std::vector<double> x, y;  // the same length; drawn as a polyline in the order given
+  Color color;
+  int width = 1;             // line width in pixels
+  bool dashed = false;
+};
+
+struct PlotPanel {
+  std::vector<PlotCurve> curves;
+  double x_min = 0, x_max = 1;  // the x range shown
+  double y_min = 0, y_max = 0;  // the y range shown; y_max <= y_min: from the curves (with 0)
+  double x_tick = 0, y_tick = 0;  // tick spacing; 0: about five ticks
+};
+
+// Panels side by side, each panel_width × panel_height pixels; the legend (one box per curve of
+// the first panel, in order) sits in the first panel's top right corner.
+Film draw_line_plot(const std::vector<PlotPanel>& panels, int panel_width = 480, int panel_height = 360);
+
+}  // namespace candela
