@@ -34,31 +34,37 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
     const double area = 0.5 * length(face);
     if (!(area > 0)) return;
     const Vec3 normal = face / (2 * area);
+    const uint8_t sides = triangles.objects[t] < sides_with_sites.size() ? sides_with_sites[triangles.objects[t]] : 0;
+    if (sides == 0) return;
     // n × n similar sub-triangles (n² of them: n(n+1)/2 upright, n(n−1)/2 inverted), area/n² each.
     const double longest = std::max({length(b - a), length(c - b), length(a - c)});
     const int n = std::max(1, static_cast<int>(std::ceil(longest / cell)));
     const double weight = area / (static_cast<double>(n) * n);
     const Vec3 du = (b - a) / n, dv = (c - a) / n;
-    std::vector<std::pair<uint32_t, double>> sums;
-    std::vector<std::pair<uint32_t, double>> weights;
-    const uint8_t sides = triangles.objects[t] < sides_with_sites.size() ? sides_with_sites[triangles.objects[t]] : 0;
-    if (sides == 0) return;
-    const auto sample = [&](const Vec3& point) {
-      for (const int side : {1, 2}) {
-        if (!(sides & side)) continue;
-        basis.evaluate({point, side == 1 ? normal : -normal}, weights);
-        double total = 0;
-        for (const auto& entry : weights) total += entry.second;
-        if (!(total > 0)) continue;
-        for (const auto& [k, phi] : weights) sums.emplace_back(k, phi / total * weight);
-      }
-    };
-    for (int i = 0; i < n; ++i)
+    // Rows of sub-triangles in parallel too (a room's walls are a few large triangles), each row
+    // into its own list, joined in order.
+    std::vector<std::vector<std::pair<uint32_t, double>>> rows(static_cast<std::size_t>(n));
+    tbb::parallel_for(0, n, [&](int i) {
+      std::vector<std::pair<uint32_t, double>>& sums = rows[static_cast<std::size_t>(i)];
+      std::vector<std::pair<uint32_t, double>> weights;
+      const auto sample = [&](const Vec3& point) {
+        for (const int side : {1, 2}) {
+          if (!(sides & side)) continue;
+          basis.evaluate({point, side == 1 ? normal : -normal}, weights);
+          double total = 0;
+          for (const auto& entry : weights) total += entry.second;
+          if (!(total > 0)) continue;
+          for (const auto& [k, phi] : weights) sums.emplace_back(k, phi / total * weight);
+        }
+      };
       for (int j = 0; i + j < n; ++j) {
         const Vec3 corner = a + du * i + dv * j;
-        sample(corner + (du + dv) / 3.0);                                // upright
-        if (i + j + 1 < n) sample(corner + du + dv - (du + dv) / 3.0);   // inverted
+        sample(corner + (du + dv) / 3.0);                               // upright
+        if (i + j + 1 < n) sample(corner + du + dv - (du + dv) / 3.0);  // inverted
       }
+    });
+    std::vector<std::pair<uint32_t, double>> sums;
+    for (auto& row : rows) sums.insert(sums.end(), row.begin(), row.end());
     contributions[t] = std::move(sums);
   });
   std::vector<double> areas(site_count, 0.0);
