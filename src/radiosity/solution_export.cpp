@@ -146,12 +146,23 @@ void write_solution_csv(const RadiositySolveResult& solution, std::ostream& out)
   out.write(text.data(), static_cast<std::streamsize>(text.size()));
 }
 
-void write_solution_ply(const RadiositySolveResult& solution, const DisplaySettings& display,
-                        std::ostream& out) {
+namespace {
+
+// The vertices the mesh exports carry: the display's vertex radiosities (hidden elements kept
+// apart), checked to be indexable by the formats' 32-bit signed indices.
+VertexRadiosity mesh_vertices(const RadiositySolveResult& solution) {
   require_consistent(solution);
-  const VertexRadiosity vertices =
+  VertexRadiosity vertices =
       compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity, solution.element_hidden);
   require_int_indexable(vertices);
+  return vertices;
+}
+
+}  // namespace
+
+void write_solution_ply(const RadiositySolveResult& solution, const DisplaySettings& display,
+                        std::ostream& out) {
+  const VertexRadiosity vertices = mesh_vertices(solution);
   // The same bytes the PNG output would hold for these radiosities (tone_map.h's to_display).
   const std::vector<uint8_t> display_colors = to_display(vertex_film(vertices), display);
 
@@ -192,10 +203,7 @@ void write_solution_ply(const RadiositySolveResult& solution, const DisplaySetti
 
 void write_solution_gltf(const RadiositySolveResult& solution, const DisplaySettings& display,
                          std::ostream& out) {
-  require_consistent(solution);
-  const VertexRadiosity vertices =
-      compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity, solution.element_hidden);
-  require_int_indexable(vertices);
+  const VertexRadiosity vertices = mesh_vertices(solution);
   const std::size_t vertex_count = vertices.positions.size();
   const std::size_t index_count = vertices.element_vertices.size() * 3;
 
