@@ -26,7 +26,7 @@ void MeshlessBasis::evaluate(const Site& p, std::vector<std::pair<uint32_t, doub
   weights.clear();
   // Every element whose support can reach p lies within the largest support in Euclidean terms
   // (the site distance is never below the Euclidean one).
-  const double reach = kind_ == BasisKind::radial && kernel_ == RadialKernel::gaussian ? 4 * largest_radius_ : largest_radius_;
+  const double reach = largest_radius_;  // every basis's support is r_i (002 eq. 4.5)
   thread_local std::vector<uint32_t> candidates;
   candidates.clear();
   index_.within_euclidean(p.position, reach, candidates);
@@ -42,8 +42,9 @@ void MeshlessBasis::evaluate(const Site& p, std::vector<std::pair<uint32_t, doub
     double value = 0;
     switch (kind_) {
       case BasisKind::radial: {
-        const double t = site_distance(p, centre) / r;  // 002 eq. 4.7 with the site distance
-        if (kernel_ == RadialKernel::gaussian) value = t < 4 ? std::exp(-0.5 * t * t) : 0.0;
+        const double t = site_distance(p, centre) / r;
+        // 002 eq. 4.7 with r_0 = r_i / 4 (see the header): exp(−½(4t)²), cut at t = 1.
+        if (kernel_ == RadialKernel::gaussian) value = t < 1 ? std::exp(-8 * t * t) : 0.0;
         else value = cubic_kernel(t);
         break;
       }

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "math/constants.h"
@@ -97,6 +98,20 @@ TEST(MeshlessBasis, PartitionsOfUnitySumToOneAtRandomSites) {
   }
 }
 
+// With r_0 = r_i / 4 the radial basis is close to a partition of unity where sites are evenly
+// spread (about 1.4), not the 2(m + 1) of r_0 = r_i.
+TEST(MeshlessBasis, RadialBasisSumsToAboutOneAndAHalf) {
+  const SiteSet set = plane_sites(30, 13);
+  const MeshlessBasis radial(set.sites, set.radius, BasisKind::radial);
+  Pcg32 random(17, 3);
+  double sum = 0;
+  for (int k = 0; k < 200; ++k) sum += radial.sum({{0.2 + 0.6 * random.next_double(), 0.2 + 0.6 * random.next_double(), 0}, {0, 0, 1}});
+  sum /= 200;
+  RecordProperty("mean_sum", std::to_string(sum));
+  EXPECT_GT(sum, 1.0);
+  EXPECT_LT(sum, 2.0);
+}
+
 TEST(MeshlessBasis, ShepardInterpolatesItsCentres) {
   const SiteSet set = plane_sites(10, 9);
   const MeshlessBasis shepard(set.sites, set.radius, BasisKind::shepard);
@@ -126,14 +141,14 @@ TEST(MeshlessBasis, RadialKernelsHaveTheSeedsShape) {
   const MeshlessBasis gaussian(sites, radii, BasisKind::radial, RadialKernel::gaussian);
   const MeshlessBasis cubic(sites, radii, BasisKind::radial, RadialKernel::cubic);
   std::vector<std::pair<uint32_t, double>> weights;
-  // 002 eq. 4.7 at site distance 2 r: exp(−2); cut at 4 r.
-  gaussian.evaluate({{2, 0, 0}, {0, 0, 1}}, weights);
+  // 002 eq. 4.7 with r_0 = r/4 at site distance r/2 = 2 r_0: exp(−2); cut at 4 r_0 = r.
+  gaussian.evaluate({{0.5, 0, 0}, {0, 0, 1}}, weights);
   ASSERT_EQ(weights.size(), 1u);
   EXPECT_DOUBLE_EQ(weights[0].second, std::exp(-2.0));
-  gaussian.evaluate({{4.01, 0, 0}, {0, 0, 1}}, weights);
+  gaussian.evaluate({{1.01, 0, 0}, {0, 0, 1}}, weights);
   EXPECT_TRUE(weights.empty());
   // The site distance, not the Euclidean one: a normal 60° away doubles it.
-  gaussian.evaluate({{1, 0, 0}, {0, std::sin(kPi / 3), 0.5}}, weights);
+  gaussian.evaluate({{0.25, 0, 0}, {0, std::sin(kPi / 3), 0.5}}, weights);
   ASSERT_EQ(weights.size(), 1u);
   EXPECT_NEAR(weights[0].second, std::exp(-2.0), 1e-12);
   cubic.evaluate({{0.5, 0, 0}, {0, 0, 1}}, weights);
