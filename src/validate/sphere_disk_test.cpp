@@ -100,13 +100,12 @@ TEST(SphereDisk, CurveErrors) {
 
 // Issue 8: "the sphere-disc error falls from Δ = 3 to Δ = 1 for every basis" — on a disc of radius
 // 15 instead of 40 (a seventh of the area, so of the sites and the time; the light, sphere and
-// spacings as in the thesis). The radial basis is left out: its iteration diverges (see
-// docs/validation/sphere-disk.md), so it has no error to fall.
+// spacings as in the thesis). Every basis, the radial one included.
 TEST(SphereDisk, FiniteElementErrorFallsWithDensity) {
   SphereDiskScene scene;
   scene.disc_radius = 15;
   const ReferenceSolution reference(scene, coarse(30));
-  for (const BasisKind kind : {BasisKind::normalized, BasisKind::shepard}) {
+  for (const BasisKind kind : {BasisKind::radial, BasisKind::normalized, BasisKind::shepard}) {
     double rms[2] = {0, 0};
     int index = 0;
     for (const double spacing : {3.0, 1.0}) {
@@ -121,7 +120,9 @@ TEST(SphereDisk, FiniteElementErrorFallsWithDensity) {
       rms[index++] = curve_errors(curves.disc_mean, reference.disc_total, curves.sphere_mean, reference.sphere_total).rms;
     }
     EXPECT_LT(rms[1], rms[0]) << basis_label(kind) << ": " << rms[0] << " -> " << rms[1];
-    EXPECT_LT(rms[1], 0.2) << basis_label(kind);  // Δ = 1: the shadow edge u = r, smoothed over ~Δ, dominates
+    // Δ = 1: the shadow edge u = r, smoothed over ~Δ, dominates; the radial basis, not a partition
+    // of unity, is off by its Σφ ≈ 1.4 besides.
+    EXPECT_LT(rms[1], kind == BasisKind::radial ? 0.5 : 0.2) << basis_label(kind);
   }
 }
 
