@@ -44,7 +44,8 @@ SiteIndex& SiteIndex::operator=(SiteIndex&&) noexcept = default;
 void SiteIndex::within_euclidean(const Vec3& point, double radius, std::vector<uint32_t>& out) const {
   if (!tree_ || !(radius >= 0)) return;
   const double query[3] = {point.x, point.y, point.z};
-  std::vector<std::pair<uint32_t, double>> matches;
+  // Called per pixel and per integration sample: the match list is kept per thread.
+  thread_local std::vector<std::pair<uint32_t, double>> matches;
   // nanoflann's L2 adaptor works in squared distances; a hair more so that points exactly at the
   // radius are kept despite rounding.
   tree_->tree.radiusSearch(query, radius * radius * (1 + 1e-12), matches, nanoflann::SearchParams(32, 0, false));
