@@ -7,6 +7,7 @@
 #include <string>
 
 #include "integrators/local.h"
+#include "integrators/method_registry.h"
 #include "integrators/meshless_method.h"
 #include "meshless/transfer_matrix.h"
 #include "scene/scene_loader.h"
@@ -124,6 +125,46 @@ TEST(MeshlessMethod, HybridDirectLightIsTheLocalModelsDiffuseTerm) {
   }
 }
 
+// An emissive quad drawn where an area light is (how docs/scene-format.md says to show one) must
+// not shadow the light: the direct term reaches the floor as in the local model.
+TEST(MeshlessMethod, AreaLightUnderItsOwnEmissiveQuadIsNotShadowed) {
+  const auto scene = load_scene_text(R"({"format": "candela/1",
+    "camera": {"eye": [1.5, 6, 1.5], "target": [1.5, 0, 1.5], "up": [0, 0, 1], "fov": 30, "width": 16, "height": 16},
+    "meshless": {"display": "hybrid", "spacing": 0.5, "grid": 16, "rounds": 1},
+    "lights": [{"type": "area", "corner": [-0.5, 3, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "exitance": 4}],
+    "shapes": [{"type": "quad", "corner": [-3, 0, -3], "edge_u": [0, 0, 6], "edge_v": [6, 0, 0], "material": {"kd": 0.6, "ks": 0}},
+               {"type": "quad", "corner": [-0.5, 3, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "material": {"kd": 0, "emission": 0}}]})",
+                                     "lamp.json", ".");
+  RunStatistics statistics;
+  const Film meshless = testing::render_scene(*scene, "meshless", 2, statistics);
+  const Film local = testing::render_scene(*scene, "local", 2, statistics);
+  EXPECT_GT(local.at(8, 8).g, 0);
+  EXPECT_NEAR(meshless.at(8, 8).g, local.at(8, 8).g, 0.05 * local.at(8, 8).g);
+}
+
+// The sites are sampled through the camera, so a second view with another camera samples its own:
+// its image is the one a fresh render of that view gives.
+TEST(MeshlessMethod, AnotherCameraSamplesItsOwnSites) {
+  const std::string shapes = R"("meshless": {"spacing": 1, "grid": 12, "rounds": 1},
+    "lights": [{"type": "point", "position": [5, 7, 5], "intensity": 10}],
+    "shapes": [{"type": "box", "min": [0, 0, 0], "max": [10, 8, 10], "material": {"kd": 0.6}},
+               {"type": "box", "min": [3, 0, 3], "max": [5, 2, 5], "material": {"kd": [0.8, 0.2, 0.2]}}]})";
+  const auto front = load_scene_text(R"({"format": "candela/1",
+    "camera": {"eye": [5, 4, 9.5], "target": [5, 4, 0], "fov": 60, "width": 12, "height": 12}, )" + shapes, "a.json", ".");
+  const auto side = load_scene_text(R"({"format": "candela/1",
+    "camera": {"eye": [9.5, 6, 5], "target": [0, 2, 5], "fov": 60, "width": 12, "height": 12}, )" + shapes, "b.json", ".");
+  const auto method = find_method("meshless")->create();
+  Film first(12, 12), second(12, 12), fresh(12, 12);
+  RunStatistics statistics;
+  method->render(*front, {{0, 0, 12, 12}, true}, first, statistics);
+  std::swap(front->camera, side->camera);  // the same scene object, seen from the side
+  method->render(*front, {{0, 0, 12, 12}, true}, second, statistics);
+  EXPECT_FALSE(statistics.extra["meshless"]["geometry_reused"].get<bool>());
+  find_method("meshless")->create()->render(*front, {{0, 0, 12, 12}, true}, fresh, statistics);
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 12; ++x) EXPECT_EQ(second.at(x, y).g, fresh.at(x, y).g);
+}
+
 TEST(MeshlessMethod, ImageDoesNotDependOnTheThreadCount) {
   const auto scene = load_scene_text(R"({"format": "candela/1",
     "camera": {"eye": [5, 4, 9.5], "target": [5, 4, 0], "fov": 60, "width": 20, "height": 20},
@@ -153,6 +194,8 @@ TEST(MeshlessMethod, SettingsAreCheckedAndUnknownKeysRefused) {
   EXPECT_THROW(load(R"({"spacing": -1})"), std::exception);
   EXPECT_THROW(load(R"({"tolerance": 0})"), std::exception);
   EXPECT_THROW(load(R"({"spacng": 1})"), std::exception);
+  // A spacing far too small for the scene is refused, not left to take hours and gigabytes.
+  EXPECT_THROW(solve_meshless(*load(R"({"spacing": 1e-9})")), std::invalid_argument);
 }
 
 }  // namespace

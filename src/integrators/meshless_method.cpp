@@ -45,7 +45,8 @@ const char* basis_name(MeshlessBasisKind kind) {
 Color direct_light(const Scene& scene, const Vec3& point, const Vec3& normal, const Color& albedo) {
   if (albedo.is_black()) return Color();
   Color sum;
-  const Vec3 origin = point + normal * scene.ray_offset(point);
+  const double offset = scene.ray_offset(point);
+  const Vec3 origin = point + normal * offset;
   for (const auto& light : scene.lights)
     for (int index = 0; index < light->sample_count(); ++index) {  // an area light's samples²
       LightSample sample;
@@ -55,7 +56,10 @@ Color direct_light(const Scene& scene, const Vec3& point, const Vec3& normal, co
       Ray shadow;
       shadow.origin = origin;
       shadow.direction = sample.direction;
-      shadow.t_max = std::isinf(sample.distance) ? kInfinity : sample.distance * (1 - 1e-9);
+      // Short of the light by the offset at both ends, as the local model: an emissive quad drawn
+      // where an area light is must not shadow it.
+      shadow.t_max = std::isinf(sample.distance) ? kInfinity : sample.distance - 2 * offset;
+      if (!(shadow.t_max > 0)) continue;
       if (scene.occluded(shadow)) continue;
       sum += sample.intensity * cosine;
     }
@@ -64,7 +68,7 @@ Color direct_light(const Scene& scene, const Vec3& point, const Vec3& normal, co
 
 // Seed 002 Figure 4.7: the image with every site the eye can see drawn as a red dot (3 × 3
 // pixels, 1 × 1 below 256 pixels wide), as bright as the brightest pixel so that it survives any
-// tone mapping. A site is seen when the segment from it to the eye is clear.
+// tone mapping.
 Film with_sites_drawn(const Scene& scene, const SiteSet& sites, const PixelRect& region, const Film& image) {
   Film result = image;
   const Camera& camera = *scene.camera;
@@ -72,8 +76,7 @@ Film with_sites_drawn(const Scene& scene, const SiteSet& sites, const PixelRect&
   for (int y = 0; y < image.height(); ++y)
     for (int x = 0; x < image.width(); ++x)
       brightest = std::max({brightest, image.at(x, y).r, image.at(x, y).g, image.at(x, y).b});
-  const Vec3 eye = camera.eye_position();
-  const double far = 4 * length(scene.bounds().diagonal()) + 4 * length(eye) + 1;
+  const double far = 4 * length(scene.bounds().diagonal()) + 4 * length(camera.eye_position()) + 1;
   const Eigen::Matrix4d clip_from_world = camera.view_projection(far * 1e-7, far);
   const int radius = camera.width() >= 256 ? 1 : 0;
   for (const Site& site : sites.sites) {
@@ -81,14 +84,14 @@ Film with_sites_drawn(const Scene& scene, const SiteSet& sites, const PixelRect&
     if (!(clip.w() > 0)) continue;
     // The rasterizer's convention: x = (ndc_x + 1)/2·width, y = (1 − ndc_y)/2·height.
     const double px = (clip.x() / clip.w() + 1) / 2 * camera.width(), py = (1 - clip.y() / clip.w()) / 2 * camera.height();
-    Ray to_eye;
-    to_eye.origin = site.position + site.normal * scene.ray_offset(site.position);
-    const Vec3 toward = eye - to_eye.origin;
-    const double distance = length(toward);
-    if (!(distance > 0)) continue;
-    to_eye.direction = toward / distance;
-    to_eye.t_max = distance;
-    if (scene.occluded(to_eye)) continue;
+    // Seen when the camera ray through that image point first hits the surface at the site
+    // (perspective and orthographic cameras alike).
+    const Ray view = camera.generate_ray(px, py);
+    const double along = dot(site.position - view.origin, view.direction);
+    if (!(along > 0)) continue;
+    Intersection hit;
+    if (!scene.intersect(view, hit)) continue;
+    if (std::fabs(hit.surface.t - along) > 1e-6 * (along + length(scene.bounds().diagonal()))) continue;
     const int cx = static_cast<int>(std::floor(px)), cy = static_cast<int>(std::floor(py));
     for (int y = cy - radius; y <= cy + radius; ++y)
       for (int x = cx - radius; x <= cx + radius; ++x)
@@ -107,9 +110,14 @@ RadialKernel radial_kernel(const MeshlessSettings& settings) {
 // geometry (not the display, the tolerance or the lights) and the seed.
 std::string geometry_key(const Scene& scene) {
   const MeshlessSettings& m = scene.meshless;
-  return fmt::format("{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}", scene.unique_id, static_cast<int>(m.basis),
-                     static_cast<int>(m.kernel), m.spacing, m.neighbours, m.grid, m.rounds,
-                     static_cast<int>(m.effective_area), m.shepard_power, m.max_sites, scene.render.seed);
+  // The sites are sampled through the camera: another view samples its own.
+  const Camera& camera = *scene.camera;
+  const Vec3 eye = camera.eye_position(), gaze = camera.view_direction();
+  return fmt::format("{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{},{},{}|{},{},{}|{}x{}", scene.unique_id,
+                     static_cast<int>(m.basis), static_cast<int>(m.kernel), m.spacing, m.neighbours, m.grid, m.rounds,
+                     static_cast<int>(m.effective_area), m.shepard_power, m.max_sites, scene.render.seed,
+                     static_cast<const void*>(&camera), eye.x, eye.y, eye.z, gaze.x, gaze.y, gaze.z, camera.width(),
+                     camera.height());
 }
 
 nlohmann::json geometry_facts(const Scene& scene, const MeshlessGeometry& geometry) {
@@ -158,7 +166,8 @@ std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene) {
   if (settings.effective_area == MeshlessAreas::integrated)
     geometry->areas = integrate_effective_areas(scene, *geometry->basis, sites, sites.spacing / 4);
   geometry->area_seconds = seconds_since(start);
-  geometry->matrix = compute_transfer_matrix(scene, sites.sites, geometry->areas);
+  // Eigen's compressed storage indexes entries with 32 bits.
+  geometry->matrix = compute_transfer_matrix(scene, sites.sites, geometry->areas, std::size_t{INT32_MAX} - 1);
   return geometry;
 }
 

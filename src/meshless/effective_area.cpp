@@ -20,10 +20,28 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
     if (sites.object[i] < sides_with_sites.size()) sides_with_sites[sites.object[i]] |= sites.side[i] > 0 ? 1 : 2;
   if (!(cell > 0) || !std::isfinite(cell)) throw std::invalid_argument("effective areas: the cell size must be > 0");
   if (segments < 3) throw std::invalid_argument("effective areas: segments must be >= 3");
+  // Planes are cut where the elements can reach: around the scene's finite shapes and every site
+  // grown by the largest finite radius (a floor plane under a small object holds sites far
+  // beyond the object's box).
   TessellationRequest request;
   request.max_segments = segments;
   request.clip = scene.bounds();
+  double reach = 0;
+  for (const double r : sites.radius)
+    if (std::isfinite(r)) reach = std::max(reach, r);
+  for (const Site& site : sites.sites) {
+    request.clip.extend(site.position - Vec3(reach, reach, reach));
+    request.clip.extend(site.position + Vec3(reach, reach, reach));
+  }
   const TessellatedScene triangles = tessellate_scene(scene, request);
+  // At most about kMaxSamples midpoints: a spacing small for the scene widens the cells rather
+  // than taking hours and gigabytes (each sub-triangle has about cell²/2 of area).
+  constexpr double kMaxSamples = 4e6;
+  double surface = 0;
+  for (std::size_t t = 0; t < triangles.triangle_count(); ++t)
+    surface += 0.5 * length(cross(triangles.corner_positions[3 * t + 1] - triangles.corner_positions[3 * t],
+                                  triangles.corner_positions[3 * t + 2] - triangles.corner_positions[3 * t]));
+  cell = std::max(cell, std::sqrt(2 * surface / kMaxSamples));
   // Per triangle in parallel, each thread summing into its own vector; the per-triangle sums are
   // added in triangle order afterwards, so the result does not depend on the thread count.
   std::vector<std::vector<std::pair<uint32_t, double>>> contributions(triangles.triangle_count());
@@ -38,7 +56,7 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
     if (sides == 0) return;
     // n × n similar sub-triangles (n² of them: n(n+1)/2 upright, n(n−1)/2 inverted), area/n² each.
     const double longest = std::max({length(b - a), length(c - b), length(a - c)});
-    const int n = std::max(1, static_cast<int>(std::ceil(longest / cell)));
+    const int n = static_cast<int>(std::clamp(std::ceil(longest / cell), 1.0, 1e5));
     const double weight = area / (static_cast<double>(n) * n);
     const Vec3 du = (b - a) / n, dv = (c - a) / n;
     // Rows of sub-triangles in parallel too (a room's walls are a few large triangles), each row
@@ -63,9 +81,16 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
         if (i + j + 1 < n) sample(corner + du + dv - (du + dv) / 3.0);  // inverted
       }
     });
+    // One sum per site for the triangle (sorted by site, added in row order: thread-independent).
     std::vector<std::pair<uint32_t, double>> sums;
     for (auto& row : rows) sums.insert(sums.end(), row.begin(), row.end());
-    contributions[t] = std::move(sums);
+    std::stable_sort(sums.begin(), sums.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    std::vector<std::pair<uint32_t, double>> merged;
+    for (const auto& [k, value] : sums) {
+      if (!merged.empty() && merged.back().first == k) merged.back().second += value;
+      else merged.emplace_back(k, value);
+    }
+    contributions[t] = std::move(merged);
   });
   std::vector<double> areas(site_count, 0.0);
   for (const auto& sums : contributions)

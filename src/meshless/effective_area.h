@@ -24,7 +24,8 @@ namespace candela {
 
 class Scene;
 
-// Throws std::invalid_argument unless cell > 0 and segments ≥ 3.
+// cell widens when the surfaces would need more than about 4 million midpoints. Throws
+// std::invalid_argument unless cell > 0 and segments ≥ 3.
 std::vector<double> integrate_effective_areas(const Scene& scene, const MeshlessBasis& basis, const SiteSet& sites,
                                               double cell, int segments = 64);
 

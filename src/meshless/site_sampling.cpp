@@ -2,6 +2,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -107,6 +109,9 @@ SiteSet sample_sites(const Scene& scene, const SiteSamplingSettings& settings) {
   const Bounds3 bounds = scene.bounds();
   const double scene_size = bounds.empty() || !bounds.is_finite() ? 1.0 : std::max(length(bounds.diagonal()), 1e-300);
   set.spacing = settings.spacing > 0 ? settings.spacing : scene_size / 50;
+  if (set.spacing < 1e-7 * scene_size)
+    throw std::invalid_argument(fmt::format("site sampling: the spacing {:g} is below 1e-7 of the scene's size {:g}; "
+                                            "raise meshless.spacing", set.spacing, scene_size));
   SpacingFilter filter(set.spacing);
   const auto offer = [&](const std::optional<FoundSite>& candidate) {
     if (!candidate || !filter.try_keep(candidate->site)) return;
