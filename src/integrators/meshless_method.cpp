@@ -76,7 +76,8 @@ Film with_sites_drawn(const Scene& scene, const SiteSet& sites, const PixelRect&
   for (int y = 0; y < image.height(); ++y)
     for (int x = 0; x < image.width(); ++x)
       brightest = std::max({brightest, image.at(x, y).r, image.at(x, y).g, image.at(x, y).b});
-  const double far = 4 * length(scene.bounds().diagonal()) + 4 * length(camera.eye_position()) + 1;
+  const double scene_size = length(scene.bounds().diagonal());
+  const double far = 4 * scene_size + 4 * length(camera.eye_position()) + 1;
   const Eigen::Matrix4d clip_from_world = camera.view_projection(far * 1e-7, far);
   const int radius = camera.width() >= 256 ? 1 : 0;
   for (const Site& site : sites.sites) {
@@ -91,7 +92,7 @@ Film with_sites_drawn(const Scene& scene, const SiteSet& sites, const PixelRect&
     if (!(along > 0)) continue;
     Intersection hit;
     if (!scene.intersect(view, hit)) continue;
-    if (std::fabs(hit.surface.t - along) > 1e-6 * (along + length(scene.bounds().diagonal()))) continue;
+    if (std::fabs(hit.surface.t - along) > 1e-6 * (along + scene_size)) continue;
     const int cx = static_cast<int>(std::floor(px)), cy = static_cast<int>(std::floor(py));
     for (int y = cy - radius; y <= cy + radius; ++y)
       for (int x = cx - radius; x <= cx + radius; ++x)
@@ -263,9 +264,7 @@ void MeshlessMethod::render(const Scene& scene, const RenderRequest& request, Fi
           case MeshlessDisplay::indirect: color = global - direct; break;
           case MeshlessDisplay::hybrid: {
             const Material& material = scene.material_of(hit);
-            const SurfaceProperties properties = material.at(hit.surface);
-            Color albedo;
-            for (int c = 0; c < 3; ++c) albedo[c] = std::clamp(properties.kd[c], 0.0, 1.0);
+            const Color albedo = material.at(hit.surface).diffuse_albedo();
             color = material.emission + direct_light(scene, p.position, p.normal, albedo) + (global - direct);
             break;
           }

@@ -70,7 +70,7 @@ std::optional<FoundSite> site_along(const Scene& scene, const Ray& ray) {
   found.side = dot(found.site.normal, hit.surface.geometric_normal) > 0 ? int8_t{1} : int8_t{-1};
   const Material& material = scene.material_of(hit);
   const SurfaceProperties properties = material.at(hit.surface);
-  for (int c = 0; c < 3; ++c) found.albedo[c] = std::clamp(properties.kd[c], 0.0, 1.0);
+  found.albedo = properties.diffuse_albedo();
   found.emission = material.emission;
   return found;
 }

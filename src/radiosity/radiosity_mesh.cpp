@@ -82,7 +82,7 @@ RadiositySurface make_surface(const Scene& scene, const CornerTriangle& triangle
   hit.dpdv = cross(surface.normal, hit.dpdu);
   const Material& material = scene.materials[surface.material];
   const SurfaceProperties properties = material.at(hit);
-  for (int c = 0; c < 3; ++c) surface.reflectance[c] = std::clamp(properties.kd[c], 0.0, 1.0);
+  surface.reflectance = properties.diffuse_albedo();
   surface.emission = material.emission;
   return surface;
 }

@@ -3,6 +3,8 @@
 // once per hit into SurfaceProperties.
 #pragma once
 
+#include <algorithm>
+
 #include <memory>
 #include <string>
 
@@ -42,6 +44,14 @@ struct BumpMap {
 struct SurfaceProperties {
   Color ka, kd;
   double ks = 0, shininess = 1, kr = 0, kt = 0, ior = 1, roughness = 0.3;
+
+  // kd clamped to [0, 1] per channel: the diffuse reflectance ρ (the albedo β) of the radiosity
+  // methods, which must not reflect more than arrives.
+  Color diffuse_albedo() const {
+    Color albedo;
+    for (int c = 0; c < 3; ++c) albedo[c] = std::clamp(kd[c], 0.0, 1.0);
+    return albedo;
+  }
 };
 
 struct Material {
