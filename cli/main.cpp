@@ -31,6 +31,9 @@ int main(int argc, char** argv) {
   candela::cli::add_info_command(app, run);
   candela::cli::add_bench_command(app, run);
   candela::cli::add_validate_command(app, run);
+  candela::cli::add_compare_command(app, run);
+  candela::cli::add_probe_command(app, run);
+  candela::cli::add_report_command(app, run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

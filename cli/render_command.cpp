@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <cmath>
+#include <iterator>
 #include <optional>
 
 #include "commands.h"
@@ -42,7 +44,43 @@ struct RenderOptions {
   std::string export_solution;
   std::string show_sites;
   std::string relight;
+  // The path tracer's progressive run (SPEC §12).
+  std::optional<int> spp;
+  std::optional<double> time;
+  std::string checkpoint;
+  std::optional<double> checkpoint_every;
+  std::string resume;
 };
+
+// FNV-1a: a checkpoint remembers which scene text it was made from.
+uint64_t text_hash(const std::string& text) {
+  uint64_t hash = 1469598103934665603ULL;
+  for (const char c : text) {
+    hash ^= static_cast<unsigned char>(c);
+    hash *= 1099511628211ULL;
+  }
+  return hash;
+}
+
+// What ties a path-tracing checkpoint to this run: the scene file's bytes and the --set
+// overrides, except those that only say how long to go on (path.spp, path.time and
+// path.checkpoint_interval may change between a run and its continuation).
+std::string scene_fingerprint(const SceneOptions& scene) {
+  std::string text;
+  if (scene.scene_path.empty()) {
+    text = default_scene_text();
+  } else {
+    std::ifstream in(scene.scene_path, std::ios::binary);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  std::string overrides;
+  for (const std::string& o : scene.overrides) {
+    const bool progress_only = o.rfind("path.spp=", 0) == 0 || o.rfind("path.time=", 0) == 0 ||
+                               o.rfind("path.checkpoint_interval=", 0) == 0;
+    if (!progress_only) overrides += o + "\n";
+  }
+  return fmt::format("scene {:016x} overrides {:016x}", text_hash(text), text_hash(overrides));
+}
 
 PixelRect region_of(const RenderOptions& options, const Camera& camera) {
   PixelRect region{0, 0, camera.width(), camera.height()};
@@ -251,6 +289,23 @@ int run_render(RenderOptions& options) {
       tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
 
   if (!options.accelerator.empty()) options.scene.overrides.push_back("render.accelerator=" + options.accelerator);
+  if (options.spp) {
+    if (*options.spp < 1) throw BadArgument("--spp must be >= 1");
+    options.scene.overrides.push_back("path.spp=" + std::to_string(*options.spp));
+  }
+  if (options.time) {
+    if (!(*options.time > 0) || !std::isfinite(*options.time)) throw BadArgument("--time must be a number of seconds > 0");
+    options.scene.overrides.push_back(fmt::format("path.time={}", *options.time));
+    // Only the time limits the run unless --spp says otherwise.
+    if (!options.spp) options.scene.overrides.push_back("path.spp=0");
+  }
+  if (options.checkpoint_every) {
+    if (!(*options.checkpoint_every > 0)) throw BadArgument("--checkpoint-every must be a number of seconds > 0");
+    options.scene.overrides.push_back(fmt::format("path.checkpoint_interval={}", *options.checkpoint_every));
+  }
+  if (!options.checkpoint.empty()) check_writable(options.checkpoint, "--checkpoint");
+  if (!options.resume.empty() && !std::filesystem::is_regular_file(options.resume))
+    throw BadArgument("--resume " + options.resume + ": no such checkpoint file");
   Stopwatch load_timer;
   std::unique_ptr<Scene> scene = options.scene.load();
   const double build_seconds = scene->accelerator_build_seconds();
@@ -273,9 +328,16 @@ int run_render(RenderOptions& options) {
     throw BadArgument("--export-solution needs --method radiosity (the method is " + std::string(entry->name) + ")");
   if (!options.show_sites.empty() && entry->name != "meshless")
     throw BadArgument("--show-sites needs --method meshless (the method is " + std::string(entry->name) + ")");
+  const bool progressive_options = options.spp || options.time || !options.checkpoint.empty() ||
+                                   options.checkpoint_every || !options.resume.empty();
+  if (progressive_options && entry->name != "path")
+    throw BadArgument("--spp, --time, --checkpoint, --checkpoint-every and --resume need --method path (the method is " +
+                      std::string(entry->name) + ")");
   if (!relight_frames.empty() && entry->name != "meshless")
     throw BadArgument("--relight needs --method meshless (the method is " + std::string(entry->name) + ")");
   const std::vector<View> views = select_views(camera_requests, *scene);
+  if (!options.resume.empty() && views.size() != 1)
+    throw BadArgument("--resume continues one camera's image, not " + std::to_string(views.size()));
   if (!relight_frames.empty() && views.size() != 1) throw BadArgument("--relight renders one camera, not " + std::to_string(views.size()));
   for (const LightSetup& frame : relight_frames) {
     check_writable(path_with_suffix(options.output, frame.name), "-o");
@@ -302,7 +364,10 @@ int run_render(RenderOptions& options) {
       check_writable(path_for_view(options.aa_map_path, view, views.size()), "--aa-map");
     if (!options.show_sites.empty())
       check_writable(path_for_view(options.show_sites, view, views.size()), "--show-sites");
+    if (!options.checkpoint.empty())
+      check_writable(path_for_view(options.checkpoint, view, views.size()), "--checkpoint");
   }
+  const std::string fingerprint = entry->name == "path" ? scene_fingerprint(options.scene) : std::string();
 
   for (std::size_t v = 0; v < views.size(); ++v) {
     const View& view = views[v];
@@ -326,6 +391,9 @@ int run_render(RenderOptions& options) {
     // The solution is the same for every view: written once, with the first.
     if (v == 0) request.export_solution = options.export_solution;
     if (!options.show_sites.empty()) request.show_sites = path_for_view(options.show_sites, view, views.size());
+    request.checkpoint = path_for_view(options.checkpoint, view, views.size());
+    request.resume = options.resume;
+    request.fingerprint = fingerprint + " camera " + view.name;
     Stopwatch render_timer;
     method->render(*scene, request, film, statistics);
     statistics.add_phase("render", render_timer.seconds());
@@ -421,6 +489,15 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
                       "same sites and transfer matrix, -o out.png -> out-NAME.png");
   command->add_option("--show-sites", options->show_sites,
                       "meshless: also write the image with the element centres (sites) drawn over it");
+  command->add_option("--spp", options->spp, "path: samples per pixel (passes; setting path.spp)");
+  command->add_option("--time", options->time,
+                      "path: render passes for this many seconds (setting path.time; with --spp, whichever comes first)");
+  command->add_option("--checkpoint", options->checkpoint,
+                      "path: write the progressive state to FILE every --checkpoint-every seconds and at the end");
+  command->add_option("--checkpoint-every", options->checkpoint_every,
+                      "path: seconds between checkpoints (setting path.checkpoint_interval, default 60)");
+  command->add_option("--resume", options->resume,
+                      "path: continue from a checkpoint of the same scene and settings (to --spp / --time more)");
   command->callback([options, &run]() {
     run = [options]() { return run_reporting_bad_input([&] { return run_render(*options); }); };
   });

@@ -144,7 +144,7 @@ TEST_F(Cli, BadArgumentsExitWithTwo) {
   EXPECT_EQ(run("render -o out.bmp", output), 2);
   EXPECT_NE(output.find("unsupported extension"), std::string::npos) << output;
   EXPECT_EQ(run("render --method teleport -o out.png", output), 2);
-  EXPECT_NE(output.find("unknown method \"teleport\" (expected one of: local, whitted, raster, radiosity, meshless)"), std::string::npos) << output;
+  EXPECT_NE(output.find("unknown method \"teleport\" (expected one of: local, whitted, raster, radiosity, meshless, path)"), std::string::npos) << output;
   EXPECT_EQ(run("render --crop 0,0,9999,10 -o out.png", output), 2);
   EXPECT_EQ(run("render --set camera.width=abc -o out.png", output), 2);
   EXPECT_NE(output.find("camera.width"), std::string::npos) << output;
@@ -560,6 +560,64 @@ TEST_F(Cli, ValidateSphereDiskWritesCsvPlotsAndErrors) {
   EXPECT_EQ(run("validate sphere-disk --quick --out file/sub", output), 2) << output;
   EXPECT_NE(output.find("--out"), std::string::npos) << output;
   EXPECT_EQ(run("validate no-such-case --out x", output), 2) << output;
+}
+
+}  // namespace
+}  // namespace candela
+
+namespace candela {
+namespace {
+
+
+// Issue 9: "--checkpoint FILE ... and --resume FILE continuing to the same result as an
+// uninterrupted run (a test compares)" — byte for byte, through the command line.
+TEST_F(Cli, PathResumeGivesTheUninterruptedImageByteForByte) {
+  const std::string size = "-q --method path --set camera.width=24 --set camera.height=18 ";
+  std::string output;
+  ASSERT_EQ(run("render " + size + "--spp 5 -o full.pfm", output), 0) << output;
+  ASSERT_EQ(run("render " + size + "--spp 2 --checkpoint state.ckpt -o part.pfm", output), 0) << output;
+  ASSERT_TRUE(fs::exists(directory_ / "state.ckpt"));
+  ASSERT_EQ(run("render " + size + "--spp 5 --resume state.ckpt --checkpoint state.ckpt -o resumed.pfm --stats s.json",
+                output),
+            0)
+      << output;
+  EXPECT_EQ(file_bytes(directory_ / "resumed.pfm"), file_bytes(directory_ / "full.pfm"));
+  EXPECT_NE(file_bytes(directory_ / "part.pfm"), file_bytes(directory_ / "full.pfm"));
+  std::ifstream stats_file(directory_ / "s.json");
+  const auto stats = nlohmann::json::parse(stats_file);
+  EXPECT_EQ(stats["path"]["spp"], 5);
+  EXPECT_EQ(stats["path"]["resumed_from_spp"], 2);
+  EXPECT_EQ(stats["path"]["passes_this_run"], 3);
+
+  // Another scene (a changed setting) cannot continue it; nothing is written.
+  ASSERT_NE(run("render " + size + "--set camera.fov=30 --spp 5 --resume state.ckpt -o other.pfm", output), 0);
+  EXPECT_NE(output.find("another scene or other settings"), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(directory_ / "other.pfm"));
+  // Fewer samples than the checkpoint holds: refused.
+  ASSERT_NE(run("render " + size + "--spp 4 --resume state.ckpt -o fewer.pfm", output), 0);
+  EXPECT_NE(output.find("already holds 5 samples per pixel"), std::string::npos) << output;
+}
+
+TEST_F(Cli, PathOptionsNeedThePathMethod) {
+  std::string output;
+  EXPECT_EQ(run("render -q --set camera.width=8 --set camera.height=6 --spp 4 -o out.png", output), 2) << output;
+  EXPECT_NE(output.find("need --method path"), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(directory_ / "out.png"));
+  EXPECT_NE(run("render -q --method path --resume missing.ckpt -o out.png", output), 0);
+  EXPECT_NE(output.find("no such checkpoint"), std::string::npos) << output;
+}
+
+TEST_F(Cli, PathTimeLimitRendersAtLeastOnePass) {
+  std::string output;
+  ASSERT_EQ(run("render -q --method path --set camera.width=16 --set camera.height=12 --time 0.3 -o out.png "
+                "--stats s.json",
+                output),
+            0)
+      << output;
+  std::ifstream stats_file(directory_ / "s.json");
+  const auto stats = nlohmann::json::parse(stats_file);
+  EXPECT_GE(stats["path"]["spp"].get<int>(), 1);
+  EXPECT_GE(stats["path"]["seconds_all_runs"].get<double>(), 0.3);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "geometry/surface_sampling.h"
 #include "geometry/tessellation.h"
 #include "math/constants.h"
 
@@ -88,6 +89,33 @@ bool Box::occluded(const Ray& ray) const {
 }
 
 Bounds3 Box::bounds() const { return {lower_, upper_}; }
+
+double Box::area() const {
+  const Vec3 e = upper_ - lower_;
+  return 2 * (e.x * e.y + e.y * e.z + e.z * e.x);
+}
+
+bool Box::sample_area(const Vec2& u, SurfaceSample& sample) const {
+  const Vec3 e = upper_ - lower_;
+  // Faces numbered as in nearest_t: axis k lower is k, upper is k + 3.
+  const double face_areas[6] = {e.y * e.z, e.z * e.x, e.x * e.y, e.y * e.z, e.z * e.x, e.x * e.y};
+  double choice = u.x;
+  const int face = pick_by_area(face_areas, choice);
+  if (face == 6) return false;
+  const int axis = face % 3;
+  const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+  Vec3 p;
+  p[axis] = face >= 3 ? upper_[axis] : lower_[axis];
+  p[a1] = lower_[a1] + e[a1] * choice;
+  p[a2] = lower_[a2] + e[a2] * u.y;
+  sample.position = p;
+  sample.normal = Vec3{};
+  sample.normal[axis] = face >= 3 ? 1.0 : -1.0;
+  sample.pdf = 1 / area();
+  return true;
+}
+
+double Box::pdf_area(const SurfaceHit&) const { return 1 / area(); }
 
 void Box::tessellate(const TessellationSettings&, TriangleMesh& mesh) const {
   MeshAppender out(mesh);

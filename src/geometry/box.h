@@ -21,6 +21,10 @@ class Box final : public Shape {
   // Two triangles per face, counter-clockwise seen from outside, uv as on a hit; the faces
   // share the 8 corner vertices.
   void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const override;
+  // Sampling (SPEC §12): uniform in area, a face picked by its area, the point exactly on it.
+  double area() const override;
+  bool sample_area(const Vec2& u, SurfaceSample& sample) const override;
+  double pdf_area(const SurfaceHit& hit) const override;
 
   const Vec3& lower() const { return lower_; }
   const Vec3& upper() const { return upper_; }

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "geometry/disc.h"
+#include "geometry/surface_sampling.h"
 #include "geometry/tessellation.h"
 #include "math/constants.h"
 
@@ -95,6 +96,45 @@ Bounds3 Cone::bounds() const {
   bounds.extend(disc_bounds(cap_, frame_.axis(), cap_radius_));
   return bounds;
 }
+
+double Cone::area() const {
+  const double r0 = base_radius_, r1 = cap_radius_;
+  const double side = kPi * (r0 + r1) * std::hypot(frame_.height(), r1 - r0);
+  return capped_ ? side + kPi * (r0 * r0 + r1 * r1) : side;
+}
+
+bool Cone::sample_area(const Vec2& u, SurfaceSample& sample) const {
+  const double r0 = base_radius_, r1 = cap_radius_, height = frame_.height();
+  const double part_areas[3] = {kPi * (r0 + r1) * std::hypot(height, r1 - r0), capped_ ? kPi * r0 * r0 : 0,
+                                capped_ ? kPi * r1 * r1 : 0};
+  double choice = u.x;
+  const int part = pick_by_area(part_areas, choice);
+  if (part == 3) return false;
+  // The frame's own x and y axes (AxialFrame builds them by this same call).
+  Vec3 x_axis, y_axis;
+  orthonormal_basis(frame_.axis(), x_axis, y_axis);
+  const Vec3& axis = frame_.axis();
+  if (part == 0) {
+    // The side's area below height z is proportional to r(z)² − r0², so r = sqrt(r0² + u (r1² −
+    // r0²)); then z = h (r − r0)/(r1 − r0) = h u (r0 + r1)/(r + r0), which needs no r1 ≠ r0.
+    const double r = std::sqrt(r0 * r0 + choice * (r1 * r1 - r0 * r0));
+    const double z = r + r0 > 0 ? std::min(height, height * choice * (r0 + r1) / (r + r0)) : 0;
+    const double side_radius = std::max(0.0, r0 + slope_ * z);
+    const double phi = 2 * kPi * u.y;
+    const Vec3 radial = x_axis * std::cos(phi) + y_axis * std::sin(phi);
+    sample.position = frame_.base() + axis * z + radial * side_radius;
+    sample.normal = side_radius > 0 ? normalize(radial - axis * slope_) : (slope_ < 0 ? axis : -axis);
+  } else {
+    const bool top = part == 2;
+    const Vec2 d = concentric_disc({choice, u.y});
+    sample.position = (top ? cap_ : frame_.base()) + (x_axis * d.x + y_axis * d.y) * (top ? r1 : r0);
+    sample.normal = top ? axis : -axis;
+  }
+  sample.pdf = 1 / area();
+  return true;
+}
+
+double Cone::pdf_area(const SurfaceHit&) const { return 1 / area(); }
 
 void Cone::tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const {
   MeshAppender out(mesh);

@@ -27,6 +27,12 @@ class Cone final : public Shape {
   // cone, whose apex is one vertex), and when capped each end of radius > 0 as a fan of
   // segments triangles; uv as on a hit. The rims are shared with the caps (watertight).
   void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const override;
+  // Sampling (SPEC §12): uniform in area; the side or a cap picked by area. On the side the
+  // angle is uniform and the radius at the sampled height is sqrt(r0² + u (r1² − r0²)) (the
+  // side's area up to a height grows as the square of the radius there), inverted exactly.
+  double area() const override;
+  bool sample_area(const Vec2& u, SurfaceSample& sample) const override;
+  double pdf_area(const SurfaceHit& hit) const override;
 
   const Vec3& base() const { return frame_.base(); }
   const Vec3& cap() const { return cap_; }

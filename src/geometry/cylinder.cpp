@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "geometry/disc.h"
+#include "geometry/surface_sampling.h"
 #include "geometry/tessellation.h"
 #include "math/constants.h"
 
@@ -78,6 +79,38 @@ Bounds3 Cylinder::bounds() const {
   bounds.extend(disc_bounds(cap_, frame_.axis(), radius_));
   return bounds;
 }
+
+double Cylinder::area() const {
+  const double side = 2 * kPi * radius_ * frame_.height();
+  return capped_ ? side + 2 * kPi * radius_ * radius_ : side;
+}
+
+bool Cylinder::sample_area(const Vec2& u, SurfaceSample& sample) const {
+  const double cap_area = capped_ ? kPi * radius_ * radius_ : 0;
+  const double part_areas[3] = {2 * kPi * radius_ * frame_.height(), cap_area, cap_area};
+  double choice = u.x;
+  const int part = pick_by_area(part_areas, choice);
+  if (part == 3) return false;
+  // The frame's own x and y axes (AxialFrame builds them by this same call).
+  Vec3 x_axis, y_axis;
+  orthonormal_basis(frame_.axis(), x_axis, y_axis);
+  const Vec3& axis = frame_.axis();
+  if (part == 0) {
+    const double phi = 2 * kPi * u.y;
+    const Vec3 radial = x_axis * std::cos(phi) + y_axis * std::sin(phi);
+    sample.position = frame_.base() + axis * (choice * frame_.height()) + radial * radius_;
+    sample.normal = radial;
+  } else {
+    const bool top = part == 2;
+    const Vec2 d = concentric_disc({choice, u.y});
+    sample.position = (top ? cap_ : frame_.base()) + (x_axis * d.x + y_axis * d.y) * radius_;
+    sample.normal = top ? axis : -axis;
+  }
+  sample.pdf = 1 / area();
+  return true;
+}
+
+double Cylinder::pdf_area(const SurfaceHit&) const { return 1 / area(); }
 
 void Cylinder::tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const {
   MeshAppender out(mesh);

@@ -25,6 +25,11 @@ class Cylinder final : public Shape {
   // The side as one band of segments quads, and when capped each cap as a fan of segments
   // triangles about its centre; uv as on a hit. The rims are shared with the caps (watertight).
   void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const override;
+  // Sampling (SPEC §12): uniform in area; the side or a cap picked by area, the side by
+  // (angle, height) uniform, a cap by the concentric map.
+  double area() const override;
+  bool sample_area(const Vec2& u, SurfaceSample& sample) const override;
+  double pdf_area(const SurfaceHit& hit) const override;
 
   const Vec3& base() const { return frame_.base(); }
   const Vec3& cap() const { return cap_; }

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "geometry/flat_surface.h"
+#include "geometry/surface_sampling.h"
 #include "geometry/tessellation.h"
 #include "math/constants.h"
 
@@ -65,6 +66,27 @@ void Disc::tessellate(const TessellationSettings& settings, TriangleMesh& mesh) 
                           circle_points(center_, u_axis_, v_axis_, inner_radius_, circle)},
                          /*wrap_rings=*/false, out);
 }
+
+double Disc::area() const { return kPi * (radius_ * radius_ - inner_radius_ * inner_radius_); }
+
+bool Disc::sample_area(const Vec2& u, SurfaceSample& sample) const {
+  const Vec2 unit = concentric_disc(u);
+  double x = unit.x * radius_, y = unit.y * radius_;
+  if (inner_radius_ > 0) {
+    const double rho_squared = unit.x * unit.x + unit.y * unit.y;
+    const double rho = std::sqrt(rho_squared);
+    const double r = std::sqrt(inner_radius_ * inner_radius_ + rho_squared * (radius_ * radius_ - inner_radius_ * inner_radius_));
+    const double scale = rho > 0 ? r / rho : 0;
+    x = rho > 0 ? unit.x * scale : inner_radius_;
+    y = unit.y * scale;
+  }
+  sample.position = center_ + u_axis_ * x + v_axis_ * y;
+  sample.normal = normal_;
+  sample.pdf = 1 / area();
+  return true;
+}
+
+double Disc::pdf_area(const SurfaceHit&) const { return 1 / area(); }
 
 void fill_cap_hit(bool top, const Vec3& axis, const Vec3& radial, const Vec3& tangent, double phi,
                   double r, double cap_radius, SurfaceHit& hit) {

@@ -21,6 +21,11 @@ class Disc final : public Shape {
   // One ring of segments cells between the rim and the inner rim (a fan about one centre
   // vertex when inner_radius is 0), uv as on a hit.
   void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const override;
+  // Sampling (SPEC §12): uniform in area by the concentric map, its radius ρ ∈ [0, 1] taken to
+  // sqrt(inner² + ρ²(radius² − inner²)) on an annulus (still area preserving).
+  double area() const override;
+  bool sample_area(const Vec2& u, SurfaceSample& sample) const override;
+  double pdf_area(const SurfaceHit& hit) const override;
 
   const Vec3& center() const { return center_; }
   const Vec3& normal() const { return normal_; }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "geometry/flat_surface.h"
+#include "geometry/surface_sampling.h"
 #include "geometry/tessellation.h"
 #include "math/constants.h"
 
@@ -51,7 +52,36 @@ Polygon::Polygon(std::vector<Vec3> vertices) : vertices_(std::move(vertices)) {
     upper = {std::max(upper.x, u), std::max(upper.y, v)};
   }
   uv_extent_ = {upper.x - uv_lower_.x, upper.y - uv_lower_.y};
+  // The triangles the polygon is sampled over (ear clipping handles concave polygons).
+  TriangleMesh mesh;
+  tessellate(TessellationSettings{}, mesh);
+  std::vector<double> areas;
+  for (const auto& triangle : mesh.triangles) {
+    const std::array<Vec3, 3> corners{mesh.positions[triangle[0]], mesh.positions[triangle[1]],
+                                      mesh.positions[triangle[2]]};
+    const double triangle_area = 0.5 * length(cross(corners[1] - corners[0], corners[2] - corners[0]));
+    if (!(triangle_area > 0)) continue;
+    sample_triangles_.push_back(corners);
+    areas.push_back(triangle_area);
+    area_ += triangle_area;
+  }
+  triangle_choice_ = Distribution1D(std::move(areas));
 }
+
+bool Polygon::sample_area(const Vec2& u, SurfaceSample& sample) const {
+  std::size_t index = 0;
+  double probability = 0, remapped = 0;
+  if (!triangle_choice_.sample_discrete(u.x, index, probability, &remapped)) return false;
+  const std::array<Vec3, 3>& corners = sample_triangles_[index];
+  const Vec2 b = uniform_triangle({remapped, u.y});
+  sample.position = corners[0] * b.x + corners[1] * b.y + corners[2] * (1 - b.x - b.y);
+  // The polygon's own normal, as intersect reports it (the triangles lie in its plane).
+  sample.normal = normal_;
+  sample.pdf = 1 / area_;
+  return true;
+}
+
+double Polygon::pdf_area(const SurfaceHit&) const { return area_ > 0 ? 1 / area_ : 0; }
 
 bool Polygon::contains_projected(double u, double v) const {
   // 000 Figure 42b: translate so the hit point is the origin and count the edges crossing the

@@ -1,8 +1,10 @@
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "geometry/shape.h"
+#include "sampling/piecewise_constant.h"
 
 namespace candela {
 
@@ -28,6 +30,12 @@ class Polygon final : public Shape {
   // between two collinear edges is kept (it is a corner of a neighbouring triangle) but never
   // clipped as an ear of zero area. O(vertices³) at worst, which polygons of a scene file afford.
   void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const override;
+  // Sampling (SPEC §12): uniform in area over the triangles of tessellate (so convex or not),
+  // one picked by its area, then a uniform point in it. area() is the sum of those triangles'
+  // areas (|Newell's vector| / 2 for a simple polygon).
+  double area() const override { return area_; }
+  bool sample_area(const Vec2& u, SurfaceSample& sample) const override;
+  double pdf_area(const SurfaceHit& hit) const override;
 
   const std::vector<Vec3>& vertices() const { return vertices_; }
   const Vec3& normal() const { return normal_; }
@@ -48,6 +56,10 @@ class Polygon final : public Shape {
   Vec2 uv_lower_;
   Vec2 uv_extent_;
   Bounds3 bounds_;
+  // The triangles of tessellate, chosen by area when sampling.
+  std::vector<std::array<Vec3, 3>> sample_triangles_;
+  Distribution1D triangle_choice_;
+  double area_ = 0;
 };
 
 }  // namespace candela

@@ -67,4 +67,13 @@ void Quad::tessellate(const TessellationSettings&, TriangleMesh& mesh) const {
   out.triangle({origin, opposite, along_v}, {Vec2{0, 0}, Vec2{1, 1}, Vec2{0, 1}});
 }
 
+bool Quad::sample_area(const Vec2& u, SurfaceSample& sample) const {
+  sample.position = corner_ + edge_u_ * u.x + edge_v_ * u.y;
+  sample.normal = normal_;
+  sample.pdf = 1 / area_;
+  return true;
+}
+
+double Quad::pdf_area(const SurfaceHit&) const { return 1 / area_; }
+
 }  // namespace candela

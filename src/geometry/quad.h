@@ -24,7 +24,10 @@ class Quad final : public Shape {
   const Vec3& edge_u() const { return edge_u_; }
   const Vec3& edge_v() const { return edge_v_; }
   const Vec3& normal() const { return normal_; }
-  double area() const { return area_; }
+  // Sampling (SPEC §12): uniform in area, the point corner + u.x·edge_u + u.y·edge_v.
+  double area() const override { return area_; }
+  bool sample_area(const Vec2& u, SurfaceSample& sample) const override;
+  double pdf_area(const SurfaceHit& hit) const override;
 
  private:
   // The hit distance and (u, v), or infinity for none.

@@ -11,6 +11,14 @@ namespace candela {
 
 struct TriangleMesh;
 
+// A point drawn on a shape's surface for next-event estimation toward an emitter (SPEC §12).
+struct SurfaceSample {
+  Vec3 position;
+  Vec3 normal;      // unit, the geometric normal (outward / the declared side), as intersect reports
+  double pdf = 0;   // density of the point: per unit area (sample_area) or per unit solid angle
+                    // seen from the reference point (sample_from)
+};
+
 // How finely a curved shape becomes triangles (SPEC §9 the rasterizer, §10 radiosity meshing).
 struct TessellationSettings {
   // Divisions of a full turn: sphere longitudes (and half as many latitudes), cylinder, cone,
@@ -46,6 +54,24 @@ class Shape {
   // parametrisation; corner normals are left to the caller (compute_corner_normals with a
   // crease angle, SPEC §9). Vertices on the surface; curved shapes by settings.segments.
   virtual void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const;
+
+  // Sampling for area emitters (SPEC §12: quads, discs, spheres, mesh triangles...).
+  // The surface area in world units; 0 when the shape cannot be sampled (the plane, unbounded).
+  virtual double area() const { return 0; }
+  // A point with density per unit area (uniform in area for the untransformed shapes; a
+  // transformed shape's density follows its transform's local area scale). False when the shape
+  // cannot be sampled.
+  virtual bool sample_area(const Vec2& u, SurfaceSample& sample) const;
+  // The area density sample_area draws a point with, at a hit on this shape (hit as intersect
+  // fills it).
+  virtual double pdf_area(const SurfaceHit& hit) const;
+  // A point seen from reference with density per unit solid angle about reference (the sphere
+  // samples the cone it subtends; the default converts sample_area's density by d²/|cos θ|).
+  // False when nothing is sampled (or the point coincides with reference / is seen edge-on).
+  virtual bool sample_from(const Vec3& reference, const Vec2& u, SurfaceSample& sample) const;
+  // The solid-angle density sample_from draws the direction from reference toward hit with
+  // (hit on this shape, found along that direction). Must match sample_from exactly (MIS).
+  virtual double pdf_from(const Vec3& reference, const SurfaceHit& hit) const;
 };
 
 }  // namespace candela

@@ -1,5 +1,6 @@
 #include "geometry/sphere.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -79,6 +80,82 @@ void Sphere::tessellate(const TessellationSettings& settings, TriangleMesh& mesh
                              radius_ * sin_theta, circle);
   }
   append_revolution_grid(rings, /*wrap_rings=*/false, out);
+}
+
+}  // namespace candela
+
+namespace candela {
+
+double Sphere::area() const { return 4 * kPi * radius_ * radius_; }
+
+bool Sphere::sample_area(const Vec2& u, SurfaceSample& sample) const {
+  // z = 1 − 2 u.x, so 1 − z² = 4 u.x (1 − u.x) without cancellation at the poles.
+  const double z = 1 - 2 * u.x;
+  const double r = 2 * std::sqrt(std::max(0.0, u.x * (1 - u.x)));
+  const double phi = 2 * kPi * u.y;
+  const Vec3 n{r * std::cos(phi), r * std::sin(phi), z};
+  sample.normal = normalize(n);
+  sample.position = center_ + sample.normal * radius_;
+  sample.pdf = 1 / area();
+  return true;
+}
+
+double Sphere::pdf_area(const SurfaceHit&) const { return 1 / area(); }
+
+namespace {
+// A reference counts as outside (cone sampling) only beyond the surface by more than rounding:
+// a shading point on the sphere itself, computed a few ulps outside, is sampled by area (from
+// there the cone is the tangent half-space and its points lie at the reference).
+bool is_outside(double distance_squared, double radius_squared) {
+  return distance_squared > radius_squared * (1 + 1e-9);
+}
+
+// 1 − cos θ_max of the cone a sphere subtends from a point at squared distance
+// distance_squared > r² from its centre: sin²θ_max / (1 + cos θ_max), without cancellation.
+double one_minus_cos_max(double radius_squared, double distance_squared) {
+  const double sin2_max = radius_squared / distance_squared;
+  const double cos_max = std::sqrt(std::max(0.0, 1 - sin2_max));
+  return sin2_max / (1 + cos_max);
+}
+}  // namespace
+
+bool Sphere::sample_from(const Vec3& reference, const Vec2& u, SurfaceSample& sample) const {
+  const Vec3 to_center = center_ - reference;
+  const double distance_squared = length_squared(to_center);
+  const double radius_squared = radius_ * radius_;
+  if (!is_outside(distance_squared, radius_squared)) return Shape::sample_from(reference, u, sample);
+  const double distance = std::sqrt(distance_squared);
+  const double sin_max = radius_ / distance;
+  const double cone = one_minus_cos_max(radius_squared, distance_squared);
+  // θ uniform in the cone's solid angle: 1 − cos θ = u.x (1 − cos θ_max).
+  const double one_minus_cos = u.x * cone;
+  const double cos_theta = 1 - one_minus_cos;
+  const double sin_theta = std::sqrt(std::max(0.0, one_minus_cos * (2 - one_minus_cos)));
+  // pbrt-v4: the angle α at the centre between the reference and the point on the near side.
+  // In the triangle reference–centre–point the angle at the point is π − β with
+  // sin β = sin θ / sin θ_max (law of sines), so α = β − θ; both its sine and cosine are
+  // formed without cancellation, unlike intersecting the sampled ray with the sphere.
+  const double s = std::min(1.0, sin_theta / sin_max);
+  const double c = std::sqrt(std::max(0.0, 1 - s * s));
+  const double cos_alpha = sin_theta * s + cos_theta * c;
+  const double sin_alpha = std::max(0.0, s * cos_theta - c * sin_theta);
+  const double phi = 2 * kPi * u.y;
+  const Vec3 axis = to_center / distance;
+  Vec3 x_axis, y_axis;
+  orthonormal_basis(axis, x_axis, y_axis);
+  const Vec3 n = (x_axis * std::cos(phi) + y_axis * std::sin(phi)) * sin_alpha - axis * cos_alpha;
+  sample.normal = normalize(n);
+  sample.position = center_ + sample.normal * radius_;
+  sample.pdf = 1 / (2 * kPi * cone);
+  return std::isfinite(sample.pdf);
+}
+
+double Sphere::pdf_from(const Vec3& reference, const SurfaceHit& hit) const {
+  const double distance_squared = length_squared(center_ - reference);
+  const double radius_squared = radius_ * radius_;
+  if (!is_outside(distance_squared, radius_squared)) return Shape::pdf_from(reference, hit);
+  const double pdf = 1 / (2 * kPi * one_minus_cos_max(radius_squared, distance_squared));
+  return std::isfinite(pdf) ? pdf : 0;
 }
 
 }  // namespace candela

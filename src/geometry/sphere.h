@@ -18,6 +18,17 @@ class Sphere final : public Shape {
   // each pole, whose corner u is the middle of its triangle's longitude band.
   void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const override;
 
+  // Sampling (SPEC §12): uniform in area; from a reference outside, the cone of directions the
+  // sphere subtends uniformly (pbrt-v4's construction of the point, robust near the silhouette),
+  // from inside or on the surface (to within 1e-9 relative, so that a shading point on the
+  // sphere computed just outside by rounding counts as on it) the area density converted to
+  // solid angle.
+  double area() const override;
+  bool sample_area(const Vec2& u, SurfaceSample& sample) const override;
+  double pdf_area(const SurfaceHit& hit) const override;
+  bool sample_from(const Vec3& reference, const Vec2& u, SurfaceSample& sample) const override;
+  double pdf_from(const Vec3& reference, const SurfaceHit& hit) const override;
+
   const Vec3& center() const { return center_; }
   double radius() const { return radius_; }
 

@@ -130,6 +130,45 @@ Bounds3 Torus::bounds() const {
   return {center_ - extent, center_ + extent};
 }
 
+double Torus::area() const {
+  if (minor_radius_ > major_radius_) return 0;
+  return 4 * kPi * kPi * major_radius_ * minor_radius_;
+}
+
+bool Torus::sample_area(const Vec2& u, SurfaceSample& sample) const {
+  const double R = major_radius_, r = minor_radius_;
+  if (r > R) return false;
+  // Solve R θ + r sin θ = 2π R u.y for θ in [0, 2π] (increasing since R + r cos θ >= 0).
+  const double target = 2 * kPi * R * u.y;
+  double low = 0, high = 2 * kPi;
+  double theta = 2 * kPi * u.y;
+  for (int iteration = 0; iteration < 64; ++iteration) {
+    const double value = R * theta + r * std::sin(theta) - target;
+    if (value == 0) break;
+    if (value < 0) low = theta; else high = theta;
+    const double derivative = R + r * std::cos(theta);
+    double next = derivative > 0 ? theta - value / derivative : 0.5 * (low + high);
+    if (!(next > low && next < high)) next = 0.5 * (low + high);
+    if (std::fabs(next - theta) <= 1e-15 * 2 * kPi) {
+      theta = next;
+      break;
+    }
+    theta = next;
+  }
+  const double phi = 2 * kPi * u.x;
+  const double cos_theta = std::cos(theta), sin_theta = std::sin(theta);
+  const Vec3 radial = x_axis_ * std::cos(phi) + y_axis_ * std::sin(phi);
+  sample.position = center_ + radial * (R + r * cos_theta) + axis_ * (r * sin_theta);
+  sample.normal = normalize(radial * cos_theta + axis_ * sin_theta);
+  sample.pdf = 1 / area();
+  return true;
+}
+
+double Torus::pdf_area(const SurfaceHit&) const {
+  const double a = area();
+  return a > 0 ? 1 / a : 0;
+}
+
 void Torus::tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const {
   MeshAppender out(mesh);
   const int ring_divisions = turn_divisions(settings);

@@ -26,6 +26,15 @@ class Torus final : public Shape {
   // usually the thinner, and the error of both falls as 1 / segments²), uv as on a hit;
   // both seams (u and v) are shared vertices, so the mesh is closed.
   void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const override;
+  // Sampling (SPEC §12), exact and uniform in area for a ring or horn torus (r <= R): the angle
+  // about the axis uniform, the tube angle θ with density (R + r cos θ)/(2πR), whose cdf
+  // (Rθ + r sin θ)/(2πR) is inverted by safeguarded Newton steps (bisection when a step leaves
+  // the bracket; at most 64 iterations, converging to rounding in about five). A spindle torus
+  // (r > R) intersects itself and its intersect() normal does not follow the (θ, φ)
+  // parametrisation, so it is not sampled: area() 0, sample_area false.
+  double area() const override;
+  bool sample_area(const Vec2& u, SurfaceSample& sample) const override;
+  double pdf_area(const SurfaceHit& hit) const override;
 
   const Vec3& center() const { return center_; }
   const Vec3& axis() const { return axis_; }

@@ -1,9 +1,11 @@
 #include "geometry/transformed_shape.h"
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
+#include "geometry/box.h"
 #include "geometry/tessellation.h"
 #include "geometry/triangle_mesh.h"
 
@@ -12,7 +14,82 @@ namespace candela {
 TransformedShape::TransformedShape(std::unique_ptr<Shape> shape, const Transform& object_to_world)
     : shape_(std::move(shape)),
       object_to_world_(object_to_world),
-      world_to_object_(object_to_world.inverse()) {}
+      world_to_object_(object_to_world.inverse()) {
+  const Eigen::Matrix3d linear = object_to_world_.matrix().topLeftCorner<3, 3>();
+  determinant_ = std::fabs(linear.determinant());
+  const double object_area = shape_->area();
+  if (!(object_area > 0)) return;
+  // A similarity: MᵀM = s² I, world areas are s² = |det M|^{2/3} times the object's.
+  const Eigen::Matrix3d gram = linear.transpose() * linear;
+  const double scale_squared = gram.trace() / 3;
+  if ((gram - scale_squared * Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() <= 1e-12 * scale_squared) {
+    area_ = object_area * std::cbrt(determinant_ * determinant_);
+    return;
+  }
+  // A box: six planar faces, each scaled by its own constant factor.
+  if (const auto* box = dynamic_cast<const Box*>(shape_.get())) {
+    const Vec3 e = box->upper() - box->lower();
+    for (int axis = 0; axis < 3; ++axis) {
+      Vec3 n;
+      n[axis] = 1;
+      area_ += 2 * e[(axis + 1) % 3] * e[(axis + 2) % 3] * area_scale(n);
+    }
+    return;
+  }
+  // Otherwise the mean of area_scale / object density over a midpoint grid of the unit square:
+  // exact (to rounding) when the factor is constant (planar shapes), else an estimate.
+  const auto grid_mean = [&](int cells, bool& constant) {
+    double sum = 0, first = 0;
+    int count = 0;
+    constant = true;
+    for (int i = 0; i < cells; ++i) {
+      for (int j = 0; j < cells; ++j) {
+        SurfaceSample sample;
+        if (!shape_->sample_area({(i + 0.5) / cells, (j + 0.5) / cells}, sample) || !(sample.pdf > 0)) continue;
+        const double value = area_scale(sample.normal) / sample.pdf;
+        if (count == 0) first = value;
+        if (std::fabs(value - first) > 1e-12 * first) constant = false;
+        sum += value;
+        ++count;
+      }
+    }
+    return count > 0 ? sum / count : 0.0;
+  };
+  bool constant = false;
+  area_ = grid_mean(16, constant);
+  if (!constant) area_ = grid_mean(256, constant);
+}
+
+double TransformedShape::area_scale(const Vec3& object_normal) const {
+  return determinant_ * length(object_to_world_.normal(object_normal)) / length(object_normal);
+}
+
+bool TransformedShape::sample_area(const Vec2& u, SurfaceSample& sample) const {
+  SurfaceSample object;
+  if (!shape_->sample_area(u, object)) return false;
+  const double scale = area_scale(object.normal);
+  if (!(scale > 0)) return false;
+  sample.position = object_to_world_.point(object.position);
+  sample.normal = normalize(object_to_world_.normal(object.normal));
+  sample.pdf = object.pdf / scale;
+  return sample.pdf > 0 && std::isfinite(sample.pdf);
+}
+
+double TransformedShape::pdf_area(const SurfaceHit& hit) const {
+  // The hit as the object-space shape reported it.
+  SurfaceHit object;
+  object.t = hit.t;
+  object.position = hit.object_position;
+  object.object_position = hit.object_position;
+  object.geometric_normal = hit.object_normal();
+  object.shading_normal = object.geometric_normal;
+  object.uv = hit.uv;
+  object.dpdu = hit.object_dpdu();
+  object.dpdv = hit.object_dpdv();
+  const double scale = area_scale(object.geometric_normal);
+  if (!(scale > 0)) return 0;
+  return shape_->pdf_area(object) / scale;
+}
 
 Ray TransformedShape::to_object(const Ray& ray, double& scale) const {
   Ray local;
@@ -32,12 +109,14 @@ bool TransformedShape::intersect(const Ray& ray, SurfaceHit& hit) const {
   hit.t /= scale;
   hit.object_position = hit.position;
   hit.position = object_to_world_.point(hit.position);
+  // The object-space normal is kept before the world one replaces it (pdf_area and the
+  // spherical texture mapping read it).
+  hit.object_normal_ = hit.geometric_normal;
   hit.geometric_normal = normalize(object_to_world_.normal(hit.geometric_normal));
   hit.shading_normal = normalize(object_to_world_.normal(hit.shading_normal));
   hit.transformed = true;
   hit.object_dpdu_ = hit.dpdu;
   hit.object_dpdv_ = hit.dpdv;
-  hit.object_normal_ = hit.geometric_normal;
   hit.dpdu = object_to_world_.vector(hit.dpdu);
   hit.dpdv = object_to_world_.vector(hit.dpdv);
   return true;

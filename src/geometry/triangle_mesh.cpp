@@ -346,6 +346,31 @@ void MeshTriangle::tessellate(const TessellationSettings&, TriangleMesh& mesh) c
   out.triangle({out.vertex(corners[0]), out.vertex(corners[1]), out.vertex(corners[2])}, uvs);
 }
 
+double MeshTriangle::area() const {
+  if (degenerate_) return 0;
+  return 0.5 * length(mesh_->face_cross(index_));
+}
+
+bool MeshTriangle::sample_area(const Vec2& u, SurfaceSample& sample) const {
+  const double triangle_area = area();
+  if (!(triangle_area > 0)) return false;
+  const auto& tri = mesh_->triangles[index_];
+  const Vec3& p0 = mesh_->positions[tri[0]];
+  const Vec3& p1 = mesh_->positions[tri[1]];
+  const Vec3& p2 = mesh_->positions[tri[2]];
+  const double root = std::sqrt(u.x);
+  const double b0 = 1 - root, b1 = u.y * root;
+  sample.position = p0 * b0 + p1 * b1 + p2 * (1 - b0 - b1);
+  sample.normal = normalize(cross(p1 - p0, p2 - p0));  // as fill_triangle_hit
+  sample.pdf = 1 / triangle_area;
+  return true;
+}
+
+double MeshTriangle::pdf_area(const SurfaceHit&) const {
+  const double triangle_area = area();
+  return triangle_area > 0 ? 1 / triangle_area : 0;
+}
+
 std::vector<std::unique_ptr<Shape>> make_triangles(std::shared_ptr<const TriangleMesh> mesh,
                                                    std::size_t* skipped_degenerate) {
   if (!mesh) throw std::invalid_argument("make_triangles needs a mesh");

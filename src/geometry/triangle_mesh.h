@@ -123,6 +123,12 @@ class MeshTriangle final : public Shape {
   // Its one triangle (none when degenerate), in the mesh's winding and with the mesh's corner
   // uvs (or kDefaultCornerUvs); the mesh's corner normals are not copied (Shape::tessellate).
   void tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const override;
+  // Sampling (SPEC §12): uniform in area (barycentrics b0 = 1 − √u.x, b1 = u.y √u.x), the
+  // normal the geometric one intersect reports; a degenerate triangle has area 0 and is not
+  // sampled.
+  double area() const override;
+  bool sample_area(const Vec2& u, SurfaceSample& sample) const override;
+  double pdf_area(const SurfaceHit& hit) const override;
 
   const TriangleMesh& mesh() const { return *mesh_; }
   const std::shared_ptr<const TriangleMesh>& shared_mesh() const { return mesh_; }

@@ -1,4 +1,5 @@
 #include "integrators/meshless_method.h"
+#include "integrators/solution_field.h"
 
 #include <tbb/parallel_for.h>
 
@@ -283,6 +284,41 @@ void MeshlessMethod::render(const Scene& scene, const RenderRequest& request, Fi
   statistics.pixels += pixel_count;
   facts["display_seconds"] = seconds_since(start);
   statistics.extra["meshless"] = std::move(facts);
+}
+
+namespace {
+
+// The global display's field: Σ λ_i φ_i at the hit, the normal turned toward the ray's origin.
+class MeshlessField final : public SolutionField {
+ public:
+  MeshlessField(const Scene& scene, std::shared_ptr<const MeshlessGeometry> geometry, MeshlessLighting lighting)
+      : scene_(scene), geometry_(std::move(geometry)), lighting_(std::move(lighting)) {}
+  bool exitance(const Ray& ray, const Intersection& hit, Color& exitance) const override {
+    const Site p{hit.surface.position, face_forward(hit.surface.geometric_normal, -ray.direction)};
+    thread_local std::vector<std::pair<uint32_t, double>> weights;
+    geometry_->basis->evaluate(p, weights);
+    if (weights.empty()) return false;
+    exitance = Color();
+    for (const auto& [i, phi] : weights) exitance += lighting_.transfer.lambda[i] * phi;
+    return true;
+  }
+  // η's direct term for a white receiver: the same light samples and shadows.
+  Color direct_irradiance(const Vec3& point, const Vec3& normal) const override {
+    return direct_light(scene_, point, normal, Color(1));
+  }
+
+ private:
+  const Scene& scene_;
+  std::shared_ptr<const MeshlessGeometry> geometry_;
+  MeshlessLighting lighting_;
+};
+
+}  // namespace
+
+std::unique_ptr<SolutionField> make_meshless_field(const Scene& scene) {
+  std::shared_ptr<const MeshlessGeometry> geometry = build_meshless_geometry(scene);
+  MeshlessLighting lighting = light_meshless(scene, *geometry);
+  return std::make_unique<MeshlessField>(scene, std::move(geometry), std::move(lighting));
 }
 
 }  // namespace candela

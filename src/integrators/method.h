@@ -27,6 +27,13 @@ struct RenderRequest {
   // Where the meshless method writes the image with its sites drawn over it (seed 002 Figure 4.7);
   // empty: nowhere. Other methods ignore it.
   std::string show_sites = {};
+  // The path tracer's progressive run (SPEC §12, §15): the file it writes its state to every
+  // path.checkpoint_interval seconds and when it ends, the checkpoint it continues from, and what
+  // ties a checkpoint to the scene that made it (the caller's part: the scene file's contents and
+  // overrides; the method adds its own settings). Empty: none. Other methods ignore them.
+  std::string checkpoint = {};
+  std::string resume = {};
+  std::string fingerprint = {};
 };
 
 class Method {

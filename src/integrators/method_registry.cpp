@@ -5,6 +5,7 @@
 
 #include "integrators/local.h"
 #include "integrators/meshless_method.h"
+#include "integrators/path_tracer.h"
 #include "integrators/radiosity_method.h"
 #include "integrators/raster_method.h"
 #include "integrators/whitted.h"
@@ -25,6 +26,8 @@ const std::array kEntries = {
                 []() -> std::unique_ptr<Method> { return std::make_unique<RadiosityMethod>(); }},
     MethodEntry{"meshless", "meshless finite-element radiosity: sites, radial / normalized / Shepard bases (002)",
                 []() -> std::unique_ptr<Method> { return std::make_unique<MeshlessMethod>(); }},
+    MethodEntry{"path", "path-traced reference: next-event estimation, MIS, Russian roulette, progressive passes (SPEC §12)",
+                []() -> std::unique_ptr<Method> { return std::make_unique<PathMethod>(); }},
 };
 }  // namespace
 

@@ -95,6 +95,9 @@ struct Color {
 
 constexpr Color operator*(double s, const Color& c) { return c * s; }
 
+// Rec. 709 / sRGB luminance Y of a linear colour.
+constexpr double luminance(const Color& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
 inline std::ostream& operator<<(std::ostream& os, const Color& c) {
   return os << '[' << c.r << ", " << c.g << ", " << c.b << ']';
 }

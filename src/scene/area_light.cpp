@@ -42,4 +42,8 @@ bool AreaLight::illuminate_sample(const Vec3& point, int index, LightSample& sam
   return from(point, corner_ + edge_u_ * s + edge_v_ * t, area_ / (samples_ * samples_), sample);
 }
 
+bool AreaLight::illuminate_random(const Vec3& point, const Vec2& u, LightSample& sample) const {
+  return from(point, corner_ + edge_u_ * u.x + edge_v_ * u.y, area_, sample);
+}
+
 }  // namespace candela

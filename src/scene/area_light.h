@@ -23,6 +23,8 @@ class AreaLight final : public Light {
   bool illuminate(const Vec3& point, LightSample& sample) const override;
   bool illuminate_sample(const Vec3& point, int index, LightSample& sample) const override;
   int sample_count() const override { return samples_ * samples_; }
+  // A uniform point of the parallelogram carrying the whole area.
+  bool illuminate_random(const Vec3& point, const Vec2& u, LightSample& sample) const override;
   std::string_view type_name() const override { return "area"; }
   double area() const { return area_; }
 

@@ -30,6 +30,13 @@ class Light {
   virtual bool illuminate_sample(const Vec3& point, int index, LightSample& sample) const {
     return index == 0 && illuminate(point, sample);
   }
+  // One random point of the light (u uniform in [0, 1)²) carrying the whole light, so that its
+  // expectation over u is what the sample_count() samples give together: the path tracer's
+  // next-event estimate (SPEC §12). Point-like lights answer with their one sample.
+  virtual bool illuminate_random(const Vec3& point, const Vec2& u, LightSample& sample) const {
+    (void)u;
+    return illuminate(point, sample);
+  }
 };
 
 }  // namespace candela

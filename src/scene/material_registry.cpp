@@ -76,6 +76,10 @@ Material read_classic(const JsonNode& node, const LoadContext& context, Specular
   material.shininess = constant_texture(20.0);
   if (material.specular_model == SpecularModel::cook_torrance) {
     if (const auto m = node.get("roughness")) material.roughness = read_scalar_texture(*m, context, Range::positive());
+    // The path tracer's facet distribution (docs/materials.md, "Path tracing").
+    material.microfacet = node.choice("microfacet", "beckmann", {"beckmann", "ggx"}) == "ggx"
+                              ? MicrofacetDistribution::ggx
+                              : MicrofacetDistribution::beckmann;
   } else if (const auto n = node.get("n")) {
     material.shininess = read_scalar_texture(*n, context, Range::non_negative());
   }

@@ -27,6 +27,7 @@ Color Scene::background_along(const Vec3& direction) const {
 
 void Scene::prepare() {
   for (Material& material : materials) material.prepare();
+  if (environment) environment->prepare_sampling();
   const AcceleratorEntry* entry = find_accelerator(render.accelerator);
   if (!entry) throw std::invalid_argument("unknown accelerator " + render.accelerator);  // checked by the loader
   const auto start = std::chrono::steady_clock::now();

@@ -105,6 +105,15 @@ struct MeshlessSettings {
   int max_sites = 50000;       // refused beyond: the transfer matrix grows as n²
 };
 
+// The path-traced reference (SPEC §12): scene key "path".
+struct PathSettings {
+  int spp = 64;         // passes of one sample per pixel; 0: as many as `time` allows
+  double time = 0;      // seconds; > 0: stop after the pass that reaches it (or at spp, if set)
+  int max_depth = 0;    // bounces at most; 0: unlimited (Russian roulette ends every path)
+  int roulette_depth = 3;  // Russian roulette from this bounce on
+  double checkpoint_interval = 60;  // seconds between checkpoints (candela render --checkpoint)
+};
+
 // One entry of the scene file's "shapes" array.
 struct SceneObject {
   std::string name;
@@ -149,6 +158,7 @@ class Scene {
   RasterSettings raster;
   RadiositySettings radiosity;
   MeshlessSettings meshless;
+  PathSettings path;
   AntialiasingSettings antialiasing;  // the "aa" object
   std::vector<std::string> warnings;
 

@@ -183,11 +183,25 @@ class SceneReader {
     }
     if (const auto radiosity = root_.get("radiosity")) read_radiosity(*radiosity);
     if (const auto meshless = root_.get("meshless")) read_meshless(*meshless);
+    if (const auto path = root_.get("path")) read_path(*path);
     if (const auto local = root_.get("local")) {
       scene_->local.shadows = local->boolean("shadows", true);
       local->finish();
     }
     if (const auto aa = root_.get("aa")) read_antialiasing(*aa);
+  }
+
+  // The path tracer's settings (SPEC §12); ranges checked, unknown keys refused.
+  void read_path(const JsonNode& node) {
+    PathSettings& settings = scene_->path;
+    node.expect_object();
+    settings.spp = node.integer("spp", 64, {0, 1 << 24, false, false});
+    settings.time = node.number("time", 0.0, Range::non_negative());
+    if (settings.spp == 0 && !(settings.time > 0)) node.at("spp").fail("spp 0 (no limit) needs a time limit: path.time > 0");
+    settings.max_depth = node.integer("max_depth", 0, {0, 1024, false, false});
+    settings.roulette_depth = node.integer("roulette_depth", 3, {0, 1024, false, false});
+    settings.checkpoint_interval = node.number("checkpoint_interval", 60.0, {0, 1e9, true, false});
+    node.finish();
   }
 
   // The meshless method's settings (SPEC §11, seed 002); ranges checked, unknown keys refused.

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "math/vector.h"
+#include "sampling/piecewise_constant.h"
 #include "shading/texture_image.h"
 
 namespace candela {
@@ -18,6 +19,18 @@ class Environment {
   // The radiance seen looking along the unit direction (away from the scene).
   virtual Color radiance(const Vec3& unit_direction) const = 0;
   virtual std::string_view type_name() const = 0;
+
+  // Importance sampling for the path tracer's next-event estimation (SPEC §12): a unit
+  // direction (away from the scene) with its solid-angle density, roughly proportional to the
+  // radiance (a piecewise-constant distribution over the map's texels; uniform on the sphere for
+  // a constant colour). Sets radiance to radiance(direction). False when nothing can be sampled
+  // (a black map).
+  virtual bool sample(const Vec2& u, Vec3& direction, double& pdf, Color& radiance) const;
+  // The density sample() draws the unit direction with (must match it exactly: MIS).
+  virtual double pdf(const Vec3& unit_direction) const;
+  // Call once after construction (Scene::prepare does): builds the sampling distribution.
+  // Until then the image maps sample nothing (sample false, pdf 0).
+  virtual void prepare_sampling() {}
 };
 
 // The same colour in every direction.
@@ -27,6 +40,9 @@ class ConstantEnvironment final : public Environment {
   Color radiance(const Vec3&) const override { return color_; }
   std::string_view type_name() const override { return "constant"; }
   const Color& color() const { return color_; }
+  // Uniform on the sphere (1/(4π)); nothing for black.
+  bool sample(const Vec2& u, Vec3& direction, double& pdf, Color& radiance) const override;
+  double pdf(const Vec3& unit_direction) const override;
 
  private:
   Color color_;
@@ -82,10 +98,21 @@ class CubeMapEnvironment final : public Environment {
   // The face and (s, t) a direction looks up (needs not be unit length, must be non-zero).
   static FaceCoordinates face_coordinates(const Vec3& direction);
 
+  // Sampling (SPEC §12): a texel of the six faces with probability ∝ weight × its solid angle
+  // (weight: the largest luminance among the texel and its 8 neighbours on the face, which the
+  // bilinear lookup reaches, plus 1e-3 of the mean so the density is positive everywhere), then
+  // a point uniform on the texel's face rectangle, pushed out to the sphere. The density is
+  // exact: p(texel)/(texel face area) · |P|³ for P the point on the face plane at distance 1.
+  bool sample(const Vec2& u, Vec3& direction, double& pdf, Color& radiance) const override;
+  double pdf(const Vec3& unit_direction) const override;
+  void prepare_sampling() override;
+
  private:
   std::array<std::shared_ptr<const TextureImage>, 6> faces_;
   Color multiplier_;
   CubeLayout layout_;
+  // Columns along s, rows along (face + t) / 6 (t from the top row); empty until prepared.
+  Distribution2D distribution_;
 };
 
 // A latitude/longitude panorama (the common "lat-long" or equirectangular HDRI): the image's
@@ -109,10 +136,20 @@ class EquirectangularEnvironment final : public Environment {
   // (u, v) as in the comment above (v from the top row); for a unit direction.
   Vec2 panorama_coordinates(const Vec3& unit_direction) const;
 
+  // Sampling (SPEC §12, pbrt's infinite area light): a piecewise-constant density over (u, v)
+  // with one cell a texel, weight ∝ (the largest luminance among the texel and its neighbours,
+  // plus 1e-3 of the mean) × sin θ at the row's centre; the solid-angle density is
+  // p(u, v) / (2π² sin θ), exact.
+  bool sample(const Vec2& u, Vec3& direction, double& pdf, Color& radiance) const override;
+  double pdf(const Vec3& unit_direction) const override;
+  void prepare_sampling() override;
+
  private:
   std::shared_ptr<const TextureImage> image_;
   Vec3 up_, forward_, right_;
   Color multiplier_;
+  // Columns along u, rows along v (from the top row); empty until prepared.
+  Distribution2D distribution_;
 };
 
 }  // namespace candela

@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "shading/bsdf.h"
 #include "shading/texture.h"
 
 namespace candela {
@@ -63,6 +64,9 @@ struct Material {
   SpecularModel specular_model = SpecularModel::phong;
   std::shared_ptr<const Texture> roughness;  // Cook-Torrance m: rms slope of the facets
   Color fresnel_ior{1.5, 1.5, 1.5};          // Cook-Torrance: index of refraction per channel
+  // Path tracing (shading/material_bsdf.h): the facet distribution of the cook_torrance
+  // microfacet lobe, Beckmann (the local model's D) or GGX; the local model always uses Beckmann.
+  MicrofacetDistribution microfacet = MicrofacetDistribution::beckmann;
   std::shared_ptr<const Texture> kr;         // global specular reflection (000 eq. 5-2)
   std::shared_ptr<const Texture> kt;         // global specular transmission (refraction)
   std::shared_ptr<const Texture> ior;        // index of refraction for kt (000 eq. 5-6)

@@ -3,30 +3,16 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
+
+#include "io/pixel_font.h"
 
 namespace candela {
 
 namespace {
 
-// 3×5 glyphs, rows top first, bit 2 the left column.
-constexpr std::array<std::array<uint8_t, 5>, 12> kGlyphs{{
-    {7, 5, 5, 5, 7},  // 0
-    {2, 6, 2, 2, 7},  // 1
-    {7, 1, 7, 4, 7},  // 2
-    {7, 1, 7, 1, 7},  // 3
-    {5, 5, 7, 1, 1},  // 4
-    {7, 4, 7, 1, 7},  // 5
-    {7, 4, 7, 5, 7},  // 6
-    {7, 1, 1, 1, 1},  // 7
-    {7, 5, 7, 5, 7},  // 8
-    {7, 5, 7, 1, 7},  // 9
-    {0, 0, 0, 0, 2},  // .
-    {0, 0, 7, 0, 0},  // -
-}};
 constexpr int kScale = 2;  // font pixels per glyph pixel
-constexpr int kGlyphAdvance = 4 * kScale;
+constexpr int kGlyphAdvance = kPixelFontAdvance * kScale;
 
 class Canvas {
  public:
@@ -56,14 +42,10 @@ class Canvas {
   }
   void text(int x, int y, const std::string& s, const Color& c) {  // top-left corner at (x, y)
     for (const char ch : s) {
-      int g = -1;
-      if (ch >= '0' && ch <= '9') g = ch - '0';
-      if (ch == '.') g = 10;
-      if (ch == '-') g = 11;
-      if (g >= 0)
-        for (int row = 0; row < 5; ++row)
-          for (int col = 0; col < 3; ++col)
-            if (kGlyphs[g][row] & (4 >> col)) fill(x + col * kScale, y + row * kScale, x + (col + 1) * kScale, y + (row + 1) * kScale, c);
+      if (const PixelGlyph* glyph = pixel_font_glyph(ch))
+        for (int row = 0; row < kPixelFontHeight; ++row)
+          for (int col = 0; col < kPixelFontWidth; ++col)
+            if ((*glyph)[row] & (4 >> col)) fill(x + col * kScale, y + row * kScale, x + (col + 1) * kScale, y + (row + 1) * kScale, c);
       x += kGlyphAdvance;
     }
   }

@@ -1,0 +1,174 @@
+// candela probe SCENE --method path|radiosity|meshless (--points pts.csv | --grid ...) -o out.csv
+//   Irradiance and radiance at sensor points (integrators/probe.h; like Radiance's rtrace -I).
+//   --grid cx,cy,cz,ux,uy,uz,vx,vy,vz  a work plane: the parallelogram corner + s·u + t·v, with
+//   --grid-size NU,NV points at its cells' centres facing u × v, and --image FILE.png a
+//   false-colour picture of the illuminance with its scale.
+#include <fmt/format.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <optional>
+
+#include "commands.h"
+#include "integrators/probe.h"
+#include "io/false_colour.h"
+#include "io/image_writer.h"
+#include "scene_options.h"
+#include "util/atomic_file.h"
+#include "util/error.h"
+#include "util/statistics.h"
+
+namespace candela::cli {
+
+namespace {
+
+struct ProbeOptions {
+  SceneOptions scene;
+  std::string method = "path";
+  std::string points_path;
+  std::vector<double> grid;
+  std::vector<int> grid_size{20, 20};
+  std::string image;
+  std::string output;
+  int samples = 256;
+  std::optional<int64_t> seed;
+  double efficacy = kDefaultLuminousEfficacy;
+  int threads = 0;
+  bool quiet = false;
+};
+
+std::string csv_number(double value) { return fmt::format("{:.9g}", value); }
+
+int run_probe(ProbeOptions& options) {
+  if (options.points_path.empty() == options.grid.empty())
+    throw BadArgument("give either --points FILE or --grid cx,cy,cz,ux,uy,uz,vx,vy,vz");
+  if (options.samples < 1) throw BadArgument("--samples must be >= 1");
+  if (!(options.efficacy > 0) || !std::isfinite(options.efficacy)) throw BadArgument("--efficacy must be > 0");
+  if (options.threads < 0) throw BadArgument("--threads must be >= 0 (0: all cores)");
+  ImageFormat format;
+  if (!image_format_for_path(options.output, format) && options.output.size() > 4 &&
+      options.output.substr(options.output.size() - 4) != ".csv")
+    throw BadArgument("-o " + options.output + ": expected a .csv file");
+  if (!options.image.empty()) {
+    if (options.grid.empty()) throw BadArgument("--image needs --grid (a picture of the work plane)");
+    ImageFormat image_format;
+    if (!image_format_for_path(options.image, image_format) || image_format != ImageFormat::png)
+      throw BadArgument("--image " + options.image + ": expected a .png file");
+  }
+  std::vector<ProbePoint> points;
+  int nu = 0, nv = 0;
+  if (!options.grid.empty()) {
+    if (options.grid.size() != 9) throw BadArgument("--grid expects 9 numbers: cx,cy,cz,ux,uy,uz,vx,vy,vz");
+    for (const double v : options.grid)
+      if (!std::isfinite(v)) throw BadArgument("--grid: every number must be finite");
+    if (options.grid_size.size() != 2 || options.grid_size[0] < 1 || options.grid_size[1] < 1 ||
+        int64_t(options.grid_size[0]) * options.grid_size[1] > 4'000'000)
+      throw BadArgument("--grid-size expects NU,NV >= 1 (at most 4,000,000 points)");
+    const Vec3 corner{options.grid[0], options.grid[1], options.grid[2]};
+    const Vec3 u{options.grid[3], options.grid[4], options.grid[5]}, v{options.grid[6], options.grid[7], options.grid[8]};
+    if (!(length(cross(u, v)) > 0)) throw BadArgument("--grid: the edges u and v must span a plane");
+    nu = options.grid_size[0];
+    nv = options.grid_size[1];
+    points = grid_probe_points(corner, u, v, nu, nv);
+  } else {
+    points = read_probe_points(options.points_path);
+  }
+  std::optional<tbb::global_control> thread_limit;
+  if (options.threads > 0)
+    thread_limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(options.threads));
+
+  Stopwatch timer;
+  std::unique_ptr<Scene> scene = options.scene.load();
+  for (const auto& warning : scene->warnings) std::cerr << "candela: warning: " << warning << "\n";
+  ProbeSettings settings;
+  settings.method = options.method;
+  settings.samples = options.samples;
+  settings.seed = options.seed ? uint64_t(*options.seed) : scene->render.seed;
+  settings.quiet = options.quiet;
+  if (settings.method != "path" && settings.method != "radiosity" && settings.method != "meshless")
+    throw BadArgument("--method " + settings.method + " cannot be probed (expected one of: " + kProbeMethods + ")");
+  nlohmann::json facts;
+  const std::vector<ProbeResult> results = probe(*scene, points, settings, &facts);
+
+  std::string csv = "x,y,z,nx,ny,nz,irradiance_r,irradiance_g,irradiance_b,radiance_r,radiance_g,radiance_b,illuminance_lux\n";
+  std::vector<double> illuminance(results.size());
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    const ProbePoint& p = points[i];
+    const ProbeResult& r = results[i];
+    illuminance[i] = options.efficacy * luminance(r.irradiance);
+    csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_number(p.position.x), csv_number(p.position.y),
+                       csv_number(p.position.z), csv_number(p.normal.x), csv_number(p.normal.y),
+                       csv_number(p.normal.z), csv_number(r.irradiance.r), csv_number(r.irradiance.g),
+                       csv_number(r.irradiance.b), csv_number(r.radiance.r), csv_number(r.radiance.g),
+                       csv_number(r.radiance.b), csv_number(illuminance[i]));
+  }
+  write_atomically(options.output, [&](const std::string& temporary) {
+    std::ofstream out(temporary);
+    out << csv;
+    out.close();
+    if (!out) throw std::runtime_error("cannot write " + options.output);
+  });
+  if (!options.image.empty()) {
+    // The grid's rows run along v from the corner; the picture shows the last row at the top.
+    std::vector<double> values(illuminance.size());
+    double high = 0;
+    for (int j = 0; j < nv; ++j)
+      for (int i = 0; i < nu; ++i) {
+        const double value = illuminance[std::size_t(j) * nu + i];
+        values[std::size_t(nv - 1 - j) * nu + i] = value;
+        if (std::isfinite(value)) high = std::max(high, value);
+      }
+    if (!(high > 0)) high = 1;
+    const Film picture = false_colour_image(values, nu, nv, 0, high, ColourMap::viridis);
+    write_image(picture, options.image, DisplaySettings{});
+    if (!options.quiet) std::cout << fmt::format("illuminance scale: 0 to {} lux\n", format_scale_value(high));
+  }
+  if (!options.quiet) {
+    double low = std::numeric_limits<double>::infinity(), high = 0, sum = 0;
+    for (const double v : illuminance) {
+      low = std::min(low, v);
+      high = std::max(high, v);
+      sum += v;
+    }
+    std::cout << fmt::format("probed {} points with {} ({} samples each) in {:.2f} s: illuminance min {:.4g}, mean {:.4g}, "
+                             "max {:.4g} lux (efficacy {} lm/W); wrote {}\n",
+                             points.size(), settings.method, settings.samples, timer.seconds(), low,
+                             sum / double(illuminance.size()), high, options.efficacy, options.output);
+    if (facts.contains("rays_without_solution") && facts["rays_without_solution"].get<uint64_t>() > 0)
+      std::cerr << fmt::format("candela: warning: {} probe rays hit surfaces the {} solution does not cover (counted as 0)\n",
+                               facts["rays_without_solution"].get<uint64_t>(), settings.method);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_probe_command(CLI::App& app, std::function<int()>& run) {
+  auto options = std::make_shared<ProbeOptions>();
+  CLI::App* command = app.add_subcommand("probe", "Irradiance and radiance at sensor points or over a work plane");
+  command->add_option("scene", options->scene.scene_path, "Scene file (candela/1 JSON)")->required();
+  command->add_option("--method", options->method, std::string("Method: ") + kProbeMethods + " (default path)");
+  command->add_option("--points", options->points_path, "CSV of sensor points: x,y,z,nx,ny,nz per line");
+  command->add_option("--grid", options->grid, "Work plane: corner and edges cx,cy,cz,ux,uy,uz,vx,vy,vz (normal u × v)")
+      ->delimiter(',');
+  command->add_option("--grid-size", options->grid_size, "Points along u and v: NU,NV (default 20,20)")->delimiter(',');
+  command->add_option("--image", options->image, "With --grid: a false-colour PNG of the illuminance with its scale");
+  command->add_option("-o,--output", options->output, "Output CSV")->required();
+  command->add_option("--samples", options->samples, "Estimates (path) or hemisphere rays per point (default 256)");
+  command->add_option("--seed", options->seed, "Random seed (default: render.seed)");
+  command->add_option("--efficacy", options->efficacy, "Luminous efficacy in lm/W for the lux column (default 179, Radiance's)");
+  command->add_option("--threads", options->threads, "Worker threads (default: all cores)");
+  command->add_option("--set", options->scene.overrides, "Override a scene setting: key=value")
+      ->expected(1)
+      ->allow_extra_args(false)
+      ->take_all();
+  command->add_flag("-q,--quiet", options->quiet, "No progress and no summary");
+  command->callback([options, &run]() {
+    run = [options]() { return run_reporting_bad_input([&] { return run_probe(*options); }); };
+  });
+}
+
+}  // namespace candela::cli

@@ -1,0 +1,182 @@
+// candela report SCENE [--methods M,M,...] -o DIR [--reference-spp N | --reference FILE] [--spp N]
+//                     [--equal-time] [--set k=v]... [--threads N] [-q]
+// The cross-method report (SPEC §13): the scene rendered by each method, every image measured
+// against a path-traced reference, written to DIR as index.html (self-contained, relative image
+// paths), report.json and the images (validate/cross_method_report.h). See docs/report.md.
+#include <fmt/format.h>
+#include <tbb/global_control.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "commands.h"
+#include "integrators/method_registry.h"
+#include "scene/scene.h"
+#include "scene_options.h"
+#include "validate/cross_method_report.h"
+#include "validate/image_comparison.h"
+
+namespace candela::cli {
+
+namespace {
+
+struct ReportOptions {
+  SceneOptions scene;
+  std::string methods = "whitted,radiosity,meshless,path";
+  std::string output;
+  int reference_spp = 1024;
+  std::string reference;
+  std::optional<int> spp;
+  bool equal_time = false;
+  int threads = 0;
+  bool quiet = false;
+};
+
+std::vector<std::string> parse_methods(const std::string& list) {
+  std::vector<std::string> methods;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = list.find(',', start);
+    const std::string name = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (name.empty()) throw BadArgument("--methods " + list + ": empty method name");
+    if (!find_method(name))
+      throw BadArgument("--methods: unknown method \"" + name + "\" (expected one of: " + method_names() + ")");
+    if (std::find(methods.begin(), methods.end(), name) != methods.end())
+      throw BadArgument("--methods: " + name + " is named twice");
+    methods.push_back(name);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return methods;
+}
+
+// DIR is created when missing; it must be a folder that accepts new files.
+void prepare_directory(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (fs::exists(path, error) && !fs::is_directory(path, error))
+    throw BadArgument("-o " + path + " is a file, not a folder");
+  if (!fs::exists(path, error)) {
+    fs::create_directories(path, error);
+    if (error) throw BadArgument("-o " + path + ": cannot create the folder (" + error.message() + ")");
+  }
+  if (::access(path.c_str(), W_OK) != 0) throw BadArgument("-o " + path + ": the folder is not writable");
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+int run_report(ReportOptions& options) {
+  const std::vector<std::string> methods = parse_methods(options.methods);
+  if (options.reference_spp < 1) throw BadArgument("--reference-spp must be >= 1");
+  if (options.spp && *options.spp < 1) throw BadArgument("--spp must be >= 1");
+  if (options.output.empty()) throw BadArgument("-o DIR is required");
+  if (!std::filesystem::is_regular_file(options.scene.scene_path))
+    throw BadArgument("SCENE " + options.scene.scene_path + ": no such file");
+  std::optional<LinearImage> reference;
+  if (!options.reference.empty()) {
+    try {
+      reference = read_linear_image(options.reference);
+    } catch (const std::exception& e) {
+      throw BadArgument(std::string("--reference: ") + e.what());
+    }
+    if (reference->srgb_decoded)
+      throw BadArgument("--reference " + options.reference +
+                        ": an 8-bit (sRGB) image; the reference must be linear (.exr or .pfm)");
+  }
+  std::optional<tbb::global_control> thread_limit;
+  if (options.threads > 0)
+    thread_limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(options.threads));
+  const int threads =
+      static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+
+  std::unique_ptr<Scene> scene = options.scene.load();
+  for (const auto& warning : scene->warnings) std::cerr << "candela: warning: " << warning << "\n";
+
+  CrossMethodOptions settings;
+  settings.methods = methods;
+  settings.output_directory = options.output;
+  settings.reference_spp = options.reference_spp;
+  if (reference) {
+    const Film& film = reference->film;
+    if (film.width() != scene->camera->width() || film.height() != scene->camera->height())
+      throw BadArgument(fmt::format("--reference {} is {}x{}, the scene's image {}x{}", options.reference, film.width(),
+                                    film.height(), scene->camera->width(), scene->camera->height()));
+    // The file holds what `candela render -o x.exr` writes: the image times 2^exposure.
+    const double undo = std::exp2(-scene->display.exposure);
+    Film image(film.width(), film.height());
+    for (int y = 0; y < film.height(); ++y)
+      for (int x = 0; x < film.width(); ++x) image.at(x, y) = film.at(x, y) * undo;
+    settings.reference_image = std::move(image);
+    settings.reference_file = options.reference;
+  }
+  settings.path_spp = options.spp;
+  settings.equal_time = options.equal_time;
+  settings.quiet = options.quiet;
+  settings.scene_path = options.scene.scene_path;
+  settings.scene_text = read_text(options.scene.scene_path);
+  settings.overrides = options.scene.overrides;
+  settings.threads = threads;
+  if (!options.quiet) settings.log = [](const std::string& line) { std::cerr << "candela: report: " << line << "\n"; };
+
+  prepare_directory(options.output);
+  const CrossMethodReport report = run_cross_method_report(*scene, settings);
+
+  if (!options.quiet) {
+    std::cerr << fmt::format("candela: report: wrote {}/index.html ({} methods against {})\n", options.output,
+                             report.entries.size(),
+                             report.reference_rendered ? fmt::format("path at {} spp", report.reference_spp)
+                                                       : options.reference);
+    std::cerr << fmt::format("  {:<34} {:>9} {:>11} {:>11} {:>9}\n", "method", "time (s)", "RMSE", "rel. MSE",
+                             "PSNR");
+    for (const CrossMethodEntry& entry : report.entries)
+      std::cerr << fmt::format("  {:<34} {:>9.3f} {:>11.4g} {:>11.4g} {:>9.2f}\n", entry.label, entry.seconds,
+                               entry.errors.rmse, entry.errors.relative_mse, entry.errors.psnr);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_report_command(CLI::App& app, std::function<int()>& run) {
+  auto options = std::make_shared<ReportOptions>();
+  CLI::App* command = app.add_subcommand(
+      "report", "Render a scene with several methods and write an HTML report of their errors against a path-traced "
+                "reference");
+  command->add_option("scene", options->scene.scene_path, "Scene file (candela/1 JSON)")->required();
+  command->add_option("--methods", options->methods,
+                      "Comma-separated methods to compare (default whitted,radiosity,meshless,path; any of: " +
+                          method_names() + ")");
+  command->add_option("-o,--output", options->output, "Folder for index.html, report.json and the images (created)")
+      ->required();
+  auto* reference_spp = command->add_option(
+      "--reference-spp", options->reference_spp,
+      "Samples per pixel of the path-traced reference (default 1024)");
+  command->add_option("--reference", options->reference,
+                      "Use this linear image (.exr or .pfm, the scene's size) as the reference instead of rendering one")
+      ->excludes(reference_spp);
+  command->add_option("--spp", options->spp, "Samples per pixel of the \"path\" entry (default: the scene's path.spp)");
+  command->add_flag("--equal-time", options->equal_time,
+                    "Also render path limited to each other method's render time, and report its errors");
+  command->add_option("--set", options->scene.overrides, "Override a scene setting: key=value, e.g. camera.width=640")
+      ->expected(1)
+      ->allow_extra_args(false)
+      ->take_all();
+  command->add_option("--threads", options->threads, "Worker threads (default: all cores)");
+  command->add_flag("-q,--quiet", options->quiet, "No progress and no summary");
+  command->callback([options, &run]() {
+    run = [options]() { return run_reporting_bad_input([&] { return run_report(*options); }); };
+  });
+}
+
+}  // namespace candela::cli

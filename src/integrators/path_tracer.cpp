@@ -1,0 +1,360 @@
+#include "integrators/path_tracer.h"
+
+#include <fmt/format.h>
+#include <tbb/blocked_range2d.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "integrators/path_checkpoint.h"
+#include "math/constants.h"
+#include "shading/bsdf.h"
+#include "shading/bump.h"
+#include "shading/material_bsdf.h"
+#include "util/error.h"
+#include "util/progress.h"
+
+namespace candela {
+
+namespace {
+
+// Paths end here even when Russian roulette keeps them going (a closed mirror box).
+constexpr int kDepthCap = 1024;
+
+// Veach's power heuristic (β = 2) for the strategy with density a against one with density b.
+double power_heuristic(double a, double b) {
+  const double a2 = a * a, b2 = b * b;
+  return a2 + b2 > 0 ? a2 / (a2 + b2) : 0.0;
+}
+
+bool is_finite(const Color& c) { return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b); }
+
+// A secondary ray starts off the surface on the side it leaves by (SPEC §8's offset).
+Vec3 offset_origin(const Scene& scene, const Vec3& position, const Vec3& geometric_normal, const Vec3& direction) {
+  const Vec3 side = dot(direction, geometric_normal) >= 0 ? geometric_normal : -geometric_normal;
+  return position + side * scene.ray_offset(position);
+}
+
+// Whether nothing lies between the point (leaving along L) and distance further (infinity: the
+// environment). The segment stops short of its end by the offset there, so an emissive quad drawn
+// where an area light is does not shadow it.
+bool unoccluded(const Scene& scene, const Vec3& position, const Vec3& geometric_normal, const Vec3& L,
+                double distance, RayCounts& rays) {
+  ++rays.shadow;
+  Ray shadow{offset_origin(scene, position, geometric_normal, L), L};
+  if (std::isfinite(distance)) {
+    shadow.t_max = distance - 2 * scene.ray_offset(position + L * distance);
+    if (!(shadow.t_max > 0)) return true;
+  }
+  return !scene.occluded(shadow);
+}
+
+// Whether nothing lies between the point and a point sampled on a surface: both ends are lifted
+// off their surfaces (the far one toward the near side), so that a segment reaching a sphere's
+// silhouette at a grazing angle does not clip the sphere just before its end.
+bool unoccluded_surface(const Scene& scene, const Vec3& position, const Vec3& geometric_normal, const Vec3& target,
+                        const Vec3& target_normal, RayCounts& rays) {
+  ++rays.shadow;
+  const Vec3 toward = dot(target_normal, position - target) >= 0 ? target_normal : -target_normal;
+  const Vec3 end = target + toward * scene.ray_offset(target);
+  const Vec3 origin = offset_origin(scene, position, geometric_normal, end - position);
+  const Vec3 segment = end - origin;
+  const double distance = length(segment);
+  if (!(distance > 0)) return true;
+  return !scene.occluded(Ray{origin, segment / distance, 0, distance});
+}
+
+// One next-event estimate at a surface point: a light chosen by the sampler, a point or direction
+// on it, weighted against BSDF sampling (MIS) where a BSDF-sampled ray could have found it too.
+Color sample_light(const Scene& scene, const LightSampler& lights, const Vec3& position, const Vec3& geometric_normal,
+                   const Vec3& shading_normal, const Bsdf& bsdf, const Vec3& wo, Pcg32& rng, RayCounts& rays) {
+  if (lights.empty()) return {};
+  const LightSampler::Choice choice = lights.choose(rng.next_double());
+  const Vec2 u{rng.next_double(), rng.next_double()};
+  switch (choice.kind) {
+    case LightSampler::Kind::scene_light: {
+      LightSample sample;
+      if (!scene.lights[choice.index]->illuminate_random(position, u, sample)) return {};
+      const Color f = bsdf.evaluate(wo, sample.direction);
+      if (f.is_black()) return {};
+      if (!unoccluded(scene, position, geometric_normal, sample.direction, sample.distance, rays)) return {};
+      // A point-like light: no BSDF-sampled ray can hit it, so no MIS.
+      return f * sample.intensity * (kPi * std::fabs(dot(shading_normal, sample.direction)) / choice.probability);
+    }
+    case LightSampler::Kind::surface: {
+      const Primitive& primitive = scene.primitives[choice.index];
+      SurfaceSample sample;
+      if (!primitive.shape->sample_from(position, u, sample) || !(sample.pdf > 0)) return {};
+      const Vec3 to_light = sample.position - position;
+      const double distance = length(to_light);
+      if (!(distance > 0)) return {};
+      const Vec3 L = to_light / distance;
+      const Color f = bsdf.evaluate(wo, L);
+      if (f.is_black()) return {};
+      if (!unoccluded_surface(scene, position, geometric_normal, sample.position, sample.normal, rays)) return {};
+      const double light_pdf = choice.probability * sample.pdf;
+      const double weight = power_heuristic(light_pdf, bsdf.pdf(wo, L));
+      const Color& emission = scene.materials[primitive.material].emission;
+      return f * emission * (std::fabs(dot(shading_normal, L)) * weight / light_pdf);
+    }
+    case LightSampler::Kind::environment: {
+      Vec3 L;
+      double pdf = 0;
+      Color radiance;
+      if (!lights.environment()->sample(u, L, pdf, radiance) || !(pdf > 0)) return {};
+      const Color f = bsdf.evaluate(wo, L);
+      if (f.is_black()) return {};
+      if (!unoccluded(scene, position, geometric_normal, L, kInfinity, rays)) return {};
+      const double light_pdf = choice.probability * pdf;
+      const double weight = power_heuristic(light_pdf, bsdf.pdf(wo, L));
+      return f * scene.background_along(L) * (std::fabs(dot(shading_normal, L)) * weight / light_pdf);
+    }
+  }
+  return {};
+}
+
+// Where a path stands between bounces.
+struct PathState {
+  Ray ray;
+  Color beta{1};
+  bool specular = true;   // the last bounce was a delta (or this is the camera ray): no MIS on hits
+  double bsdf_pdf = 0;    // the density the last bounce sampled ray.direction with
+  Vec3 previous;          // where the last bounce happened
+  double eta_scale = 1;   // Russian roulette looks at beta without the 1/η² of refractions
+  int depth = 0;
+};
+
+// Follows a path from its current ray to its end, adding what it gathers.
+Color continue_path(const Scene& scene, const LightSampler& lights, PathState state, Pcg32& rng, RayCounts& rays) {
+  Color L;
+  const int max_depth = scene.path.max_depth > 0 ? scene.path.max_depth : kDepthCap;
+  for (;; ++state.depth) {
+    Intersection hit;
+    if (!scene.intersect(state.ray, hit)) {
+      const Color background = scene.background_along(state.ray.direction);
+      if (!background.is_black()) {
+        double weight = 1;
+        if (!state.specular && lights.environment()) {
+          const double light_pdf = lights.environment_probability() * lights.environment()->pdf(state.ray.direction);
+          weight = power_heuristic(state.bsdf_pdf, light_pdf);
+        }
+        L += state.beta * background * weight;
+      }
+      break;
+    }
+    const SurfaceHit& surface = hit.surface;
+    const Material& material = scene.material_of(hit);
+    // Emission leaves both sides of a surface, as in the local model and the meshless method.
+    if (!material.emission.is_black()) {
+      double weight = 1;
+      if (!state.specular) {
+        const double choice = lights.surface_probability(hit.primitive);
+        if (choice > 0) {
+          const double light_pdf = choice * scene.primitives[hit.primitive].shape->pdf_from(state.previous, surface);
+          weight = power_heuristic(state.bsdf_pdf, light_pdf);
+        }
+      }
+      L += state.beta * material.emission * weight;
+    }
+    if (state.depth >= max_depth) break;
+
+    SurfaceHit shading = surface;
+    // 000 §4.2.1: the bump tilts the shading normal only.
+    shading.shading_normal = bumped_normal(material.bump, surface);
+    const SurfaceProperties at = material.at(shading);
+    const Bsdf bsdf = make_bsdf(material, at, shading, shading.shading_normal);
+    const Vec3 wo = -state.ray.direction;
+    if (bsdf.has_non_delta())
+      L += state.beta * sample_light(scene, lights, surface.position, surface.geometric_normal,
+                                     shading.shading_normal, bsdf, wo, rng, rays);
+
+    BsdfSample sample;
+    const double u_lobe = rng.next_double();
+    const Vec2 u{rng.next_double(), rng.next_double()};
+    if (!bsdf.sample(wo, u_lobe, u, sample) || sample.weight.is_black() || !is_finite(sample.weight)) break;
+    state.beta *= sample.weight;
+    state.specular = sample.delta;
+    state.bsdf_pdf = sample.pdf;
+    state.previous = surface.position;
+    if (sample.transmission) {
+      state.eta_scale *= sample.eta * sample.eta;
+      ++rays.refracted;
+    } else {
+      ++rays.reflected;
+    }
+    state.ray = Ray{offset_origin(scene, surface.position, surface.geometric_normal, sample.wi), sample.wi};
+    // Russian roulette: survive with q ≤ 0.95 proportional to the throughput, which is divided by q.
+    if (state.depth + 1 >= scene.path.roulette_depth) {
+      const double q = std::min(0.95, state.beta.max_component() * state.eta_scale);
+      if (!(rng.next_double() < q)) break;
+      state.beta = state.beta / q;
+    }
+  }
+  return L;
+}
+
+uint64_t mix64(uint64_t z) {  // splitmix64's finaliser
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+}  // namespace
+
+Pcg32 path_pixel_rng(uint64_t seed, uint64_t pass, uint32_t x, uint32_t y) {
+  return Pcg32(mix64(seed * 0x9e3779b97f4a7c15ULL + pass), (static_cast<uint64_t>(y) << 32) | x);
+}
+
+Color path_radiance(const Scene& scene, const LightSampler& lights, const Ray& ray, Pcg32& rng, RayCounts& rays) {
+  PathState state;
+  state.ray = ray;
+  return continue_path(scene, lights, state, rng, rays);
+}
+
+Color path_irradiance(const Scene& scene, const LightSampler& lights, const Vec3& point, const Vec3& normal,
+                      Pcg32& rng, RayCounts& rays) {
+  Bsdf bsdf(ShadingFrame::from_normal(normal), normal);
+  BsdfLobe white;
+  white.type = LobeType::lambert;
+  white.weight = Color(1);
+  bsdf.add(white);
+  // The virtual surface faces the hemisphere of the normal: wo along it.
+  Color E = sample_light(scene, lights, point, normal, normal, bsdf, normal, rng, rays);
+  BsdfSample sample;
+  const double u_lobe = rng.next_double();
+  const Vec2 u{rng.next_double(), rng.next_double()};
+  if (!bsdf.sample(normal, u_lobe, u, sample) || sample.weight.is_black()) return E;
+  PathState state;
+  state.ray = Ray{offset_origin(scene, point, normal, sample.wi), sample.wi};
+  state.beta = sample.weight;
+  state.specular = false;
+  state.bsdf_pdf = sample.pdf;
+  state.previous = point;
+  state.depth = 1;
+  ++rays.reflected;
+  E += continue_path(scene, lights, state, rng, rays);
+  return E;
+}
+
+void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& film,
+                        RunStatistics& statistics) const {
+  const PixelRect region = request.region;
+  const int width = region.width(), height = region.height();
+  const PathSettings& settings = scene.path;
+  // Everything besides the scene file that changes a sample: a checkpoint made with other values
+  // cannot be continued.
+  const std::string fingerprint =
+      fmt::format("{}|path max_depth={} roulette_depth={} seed={} image={}x{}", request.fingerprint,
+                  settings.max_depth, settings.roulette_depth, scene.render.seed, scene.camera->width(),
+                  scene.camera->height());
+
+  PathCheckpoint state;
+  state.fingerprint = fingerprint;
+  state.region = region;
+  state.sums.assign(std::size_t(width) * height, Color());
+  if (!request.resume.empty()) {
+    PathCheckpoint resumed = read_path_checkpoint(request.resume);
+    const SourceLocation where{request.resume, 0, 0, {}};
+    if (resumed.fingerprint != fingerprint)
+      throw InputError(where, "the checkpoint was made for another scene or other settings (" + resumed.fingerprint +
+                                  "), not this one (" + fingerprint + ")");
+    const PixelRect& r = resumed.region;
+    if (r.x0 != region.x0 || r.y0 != region.y0 || r.x1 != region.x1 || r.y1 != region.y1)
+      throw InputError(where, fmt::format("the checkpoint covers pixels [{},{})×[{},{}), not [{},{})×[{},{})", r.x0,
+                                          r.x1, r.y0, r.y1, region.x0, region.x1, region.y0, region.y1));
+    if (settings.spp > 0 && resumed.passes > uint64_t(settings.spp))
+      throw InputError(where, fmt::format("the checkpoint already holds {} samples per pixel, more than path.spp = {}",
+                                          resumed.passes, settings.spp));
+    state = std::move(resumed);
+  }
+  const uint64_t first_pass = state.passes;
+  const uint64_t last_pass = settings.spp > 0 ? uint64_t(settings.spp) : UINT64_MAX;
+  const bool timed = settings.time > 0;
+
+  const LightSampler lights(scene);
+  if (lights.empty() && !request.quiet)
+    statistics.extra["path_warning"] = "nothing emits light: no lights, emissive surfaces, environment or background";
+
+  tbb::enumerable_thread_specific<RayCounts> counts;
+  tbb::enumerable_thread_specific<uint64_t> invalid;
+  const int tile = std::max(1, scene.render.tile_size);
+  const uint64_t progress_total = settings.spp > 0 ? last_pass - first_pass : static_cast<uint64_t>(std::ceil(settings.time));
+  ProgressReporter progress("path", progress_total, settings.spp > 0 ? "passes" : "s", request.quiet);
+  Stopwatch timer, since_checkpoint;
+  int checkpoints = 0;
+  uint64_t seconds_reported = 0;
+  const auto save = [&] {
+    if (request.checkpoint.empty()) return;
+    RayCounts rays = state.rays;
+    for (const RayCounts& c : counts) rays += c;
+    PathCheckpoint snapshot{state.fingerprint, state.region, state.passes, state.seconds + timer.seconds(), rays, {}};
+    snapshot.sums = state.sums;
+    write_path_checkpoint(request.checkpoint, snapshot);
+    ++checkpoints;
+    since_checkpoint = Stopwatch();
+  };
+  while (state.passes < last_pass) {
+    const uint64_t pass = state.passes;
+    tbb::parallel_for(tbb::blocked_range2d<int>(0, height, tile, 0, width, tile), [&](const tbb::blocked_range2d<int>& block) {
+      RayCounts& rays = counts.local();
+      for (int j = block.rows().begin(); j < block.rows().end(); ++j)
+        for (int i = block.cols().begin(); i < block.cols().end(); ++i) {
+          const auto x = static_cast<uint32_t>(region.x0 + i), y = static_cast<uint32_t>(region.y0 + j);
+          Pcg32 rng = path_pixel_rng(scene.render.seed, pass, x, y);
+          // A box-filtered pixel: one uniform point of its square per pass.
+          const double sx = x + rng.next_double(), sy = y + rng.next_double();
+          ++rays.primary;
+          const Color value = path_radiance(scene, lights, scene.camera->generate_ray(sx, sy), rng, rays);
+          // A non-finite sample (an exploded weight) is dropped, not allowed to poison the pixel.
+          if (is_finite(value))
+            state.sums[std::size_t(j) * width + i] += value;
+          else
+            ++invalid.local();
+        }
+    });
+    ++state.passes;
+    progress.set_detail(fmt::format("{} spp", state.passes));
+    if (settings.spp > 0) {
+      progress.advance();
+    } else {
+      const auto whole = static_cast<uint64_t>(timer.seconds());
+      if (whole > seconds_reported) {
+        progress.advance(std::min(whole, progress_total) - std::min(seconds_reported, progress_total));
+        seconds_reported = whole;
+      }
+    }
+    if (timed && timer.seconds() >= settings.time) break;
+    if (!request.checkpoint.empty() && since_checkpoint.seconds() >= settings.checkpoint_interval &&
+        state.passes < last_pass)
+      save();
+  }
+  progress.finish();
+  save();  // the final state, so that a later run can go on from it
+
+  const double scale = state.passes > 0 ? 1.0 / double(state.passes) : 0.0;
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i) film.at(i, j) = state.sums[std::size_t(j) * width + i] * scale;
+
+  RayCounts rays;
+  for (const RayCounts& c : counts) rays += c;
+  uint64_t dropped = 0;
+  for (const uint64_t d : invalid) dropped += d;
+  statistics.rays += rays;
+  statistics.pixels += uint64_t(width) * height;
+  nlohmann::json facts = {{"spp", state.passes},
+                          {"passes_this_run", state.passes - first_pass},
+                          {"max_depth", settings.max_depth},
+                          {"roulette_depth", settings.roulette_depth},
+                          {"emissive_primitives", lights.emissive_primitive_count()},
+                          {"scene_lights", scene.lights.size()},
+                          {"environment", lights.environment() != nullptr},
+                          {"dropped_samples", dropped},
+                          {"checkpoints_written", checkpoints},
+                          {"seconds_all_runs", state.seconds + timer.seconds()}};
+  if (!request.resume.empty()) facts["resumed_from_spp"] = first_pass;
+  statistics.extra["path"] = facts;
+}
+
+}  // namespace candela

@@ -1,0 +1,42 @@
+// The path-traced reference (SPEC §12; 002 §2, the rendering equation): unidirectional path
+// tracing with next-event estimation, multiple importance sampling of lights and BSDFs (power
+// heuristic) and Russian roulette, in progressive passes of one sample per pixel.
+//
+// Units: like every Candela method the image holds π × radiance (W/m², "exitance units"), so a
+// diffuse surface shows its radiosity B, an emitter its exitance E, and a ray leaving the scene
+// the background/environment colour — the values the local, radiosity and meshless methods show
+// for the same scene. Inside, f is the physical BSDF (a white Lambert surface has 1/π), emitters
+// give E, the environment its colour, and a point-like light of intensity I (Ip·f_at, the
+// irradiance it gives at normal incidence) contributes π·f·I·cos θ.
+#pragma once
+
+#include "integrators/light_sampler.h"
+#include "integrators/method.h"
+#include "math/pcg32.h"
+
+namespace candela {
+
+struct PathCounts {
+  RayCounts rays;
+};
+
+// The estimate of one camera ray (display units), with its random stream.
+Color path_radiance(const Scene& scene, const LightSampler& lights, const Ray& ray, Pcg32& rng, RayCounts& rays);
+
+// The radiance a surface point with a white Lambert surface (ρ = 1) facing `normal` would
+// reflect, times π: the irradiance at (point, normal) in display units (candela probe). Every
+// light arriving over the hemisphere counts, by next-event estimation and BSDF sampling with MIS.
+Color path_irradiance(const Scene& scene, const LightSampler& lights, const Vec3& point, const Vec3& normal,
+                      Pcg32& rng, RayCounts& rays);
+
+// The stream of pass `pass` at image pixel (x, y): independent of the thread and of the region.
+Pcg32 path_pixel_rng(uint64_t seed, uint64_t pass, uint32_t x, uint32_t y);
+
+class PathMethod final : public Method {
+ public:
+  std::string_view name() const override { return "path"; }
+  void render(const Scene& scene, const RenderRequest& request, Film& film,
+              RunStatistics& statistics) const override;
+};
+
+}  // namespace candela

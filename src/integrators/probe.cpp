@@ -1,0 +1,177 @@
+#include "integrators/probe.h"
+
+#include <fmt/format.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <fstream>
+#include <stdexcept>
+
+#include "integrators/light_sampler.h"
+#include "integrators/path_tracer.h"
+#include "integrators/solution_field.h"
+#include "math/constants.h"
+#include "sampling/warps.h"
+#include "shading/bsdf.h"
+#include "util/error.h"
+#include "util/progress.h"
+
+namespace candela {
+
+namespace {
+
+// The stream of sample `sample` at probe point `index`: apart from every image pixel's stream
+// (the top bit of the sequence is set).
+Pcg32 probe_rng(uint64_t seed, uint64_t sample, std::size_t index) {
+  return path_pixel_rng(seed, sample, static_cast<uint32_t>(index & 0xffffffffu),
+                        static_cast<uint32_t>((uint64_t(index) >> 32) | 0x80000000u));
+}
+
+Vec3 sensor_origin(const Scene& scene, const ProbePoint& point) {
+  return point.position + point.normal * scene.ray_offset(point.position);
+}
+
+ProbeResult probe_path(const Scene& scene, const LightSampler& lights, const ProbePoint& point, std::size_t index,
+                       const ProbeSettings& settings, RayCounts& rays) {
+  Color irradiance, radiance;
+  const Ray look{sensor_origin(scene, point), point.normal};
+  for (int s = 0; s < settings.samples; ++s) {
+    Pcg32 rng = probe_rng(settings.seed, uint64_t(s), index);
+    irradiance += path_irradiance(scene, lights, point.position, point.normal, rng, rays);
+    radiance += path_radiance(scene, lights, look, rng, rays);
+  }
+  // path_irradiance is in display units already irradiance; path_radiance is π × radiance.
+  return {irradiance / settings.samples, radiance / (settings.samples * kPi)};
+}
+
+ProbeResult probe_field(const Scene& scene, const SolutionField& field, const ProbePoint& point, std::size_t index,
+                        const ProbeSettings& settings, uint64_t& uncovered, RayCounts& rays) {
+  const ShadingFrame frame = ShadingFrame::from_normal(point.normal);
+  const Vec3 origin = sensor_origin(scene, point);
+  const auto seen = [&](const Ray& ray) {
+    Intersection hit;
+    if (!scene.intersect(ray, hit)) return scene.background_along(ray.direction);
+    Color b;
+    if (field.exitance(ray, hit, b)) return b;
+    ++uncovered;
+    return Color();
+  };
+  // Stratified: k × k cells of the square, one jittered cosine-distributed ray in each.
+  const int k = std::max(1, static_cast<int>(std::ceil(std::sqrt(double(settings.samples)))));
+  Pcg32 rng = probe_rng(settings.seed, 0, index);
+  Color sum;
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i) {
+      const Vec2 u{(i + rng.next_double()) / k, (j + rng.next_double()) / k};
+      const Vec3 direction = frame.to_world(square_to_cosine_hemisphere(u));
+      ++rays.reflected;
+      sum += seen(Ray{origin, normalize(direction)});
+    }
+  // E = ∫ (B/π) cos dω = mean of B under the pdf cos θ/π.
+  const Color irradiance = sum / double(k * k) + field.direct_irradiance(point.position, point.normal);
+  ++rays.primary;
+  const Color radiance = seen(Ray{origin, point.normal}) / kPi;
+  return {irradiance, radiance};
+}
+
+[[noreturn]] void fail(const std::string& path, int line, int column, const std::string& message) {
+  throw InputError({path, line, column, {}}, message);
+}
+
+}  // namespace
+
+std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>& points, const ProbeSettings& settings,
+                               nlohmann::json* facts) {
+  if (settings.samples < 1) throw std::invalid_argument("probe: samples must be >= 1");
+  std::unique_ptr<SolutionField> field;
+  std::unique_ptr<LightSampler> lights;
+  if (settings.method == "path") {
+    lights = std::make_unique<LightSampler>(scene);
+  } else if (settings.method == "radiosity") {
+    field = make_radiosity_field(scene, settings.quiet);
+  } else if (settings.method == "meshless") {
+    field = make_meshless_field(scene);
+  } else {
+    throw std::invalid_argument("probe: method \"" + settings.method + "\" cannot be probed (expected one of: " +
+                                kProbeMethods + ")");
+  }
+  std::vector<ProbeResult> results(points.size());
+  tbb::enumerable_thread_specific<RayCounts> counts;
+  tbb::enumerable_thread_specific<uint64_t> uncovered;
+  ProgressReporter progress("probe", points.size(), "points", settings.quiet);
+  tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t i) {
+    results[i] = lights ? probe_path(scene, *lights, points[i], i, settings, counts.local())
+                        : probe_field(scene, *field, points[i], i, settings, uncovered.local(), counts.local());
+    progress.advance();
+  });
+  progress.finish();
+  if (facts) {
+    RayCounts rays;
+    for (const RayCounts& c : counts) rays += c;
+    uint64_t missing = 0;
+    for (const uint64_t m : uncovered) missing += m;
+    (*facts)["method"] = settings.method;
+    (*facts)["points"] = points.size();
+    (*facts)["samples"] = settings.samples;
+    (*facts)["rays"] = rays.total();
+    if (field) (*facts)["rays_without_solution"] = missing;
+  }
+  return results;
+}
+
+std::vector<ProbePoint> read_probe_points(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) fail(path, 0, 0, "cannot open the points file");
+  std::vector<ProbePoint> points;
+  std::string line;
+  int line_number = 0;
+  bool first = true;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const std::size_t start = line.find_first_not_of(" \t");
+    if (start == std::string::npos || line[start] == '#') continue;
+    const bool header = first && line.find_first_of("0123456789") == std::string::npos;
+    first = false;
+    if (header) continue;  // "x,y,z,nx,ny,nz"
+    double values[6];
+    std::size_t at = 0;
+    for (int k = 0; k < 6; ++k) {
+      const std::size_t comma = line.find(',', at);
+      if (k < 5 && comma == std::string::npos)
+        fail(path, line_number, int(line.size()) + 1, fmt::format("expected 6 values x,y,z,nx,ny,nz, found {}", k + 1));
+      if (k == 5 && comma != std::string::npos)
+        fail(path, line_number, int(comma) + 1, "more than 6 values (expected x,y,z,nx,ny,nz)");
+      const std::string field = line.substr(at, k < 5 ? comma - at : std::string::npos);
+      const int column = int(at) + 1;
+      std::size_t used = 0;
+      try {
+        values[k] = std::stod(field, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || field.find_first_not_of(" \t", used) != std::string::npos)
+        fail(path, line_number, column, "\"" + field + "\" is not a number");
+      if (!std::isfinite(values[k])) fail(path, line_number, column, "the value must be finite");
+      at = comma + 1;
+    }
+    const Vec3 normal{values[3], values[4], values[5]};
+    const double norm = length(normal);
+    if (!(norm > 0) || !std::isfinite(norm)) fail(path, line_number, 1, "the normal (nx,ny,nz) must not be zero");
+    points.push_back({{values[0], values[1], values[2]}, normal / norm});
+  }
+  if (points.empty()) fail(path, line_number, 0, "no points (expected lines x,y,z,nx,ny,nz)");
+  return points;
+}
+
+std::vector<ProbePoint> grid_probe_points(const Vec3& corner, const Vec3& u, const Vec3& v, int nu, int nv) {
+  const Vec3 normal = normalize(cross(u, v));
+  std::vector<ProbePoint> points;
+  points.reserve(std::size_t(nu) * nv);
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) points.push_back({corner + u * ((i + 0.5) / nu) + v * ((j + 0.5) / nv), normal});
+  return points;
+}
+
+}  // namespace candela

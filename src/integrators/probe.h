@@ -1,0 +1,67 @@
+// `candela probe` (SPEC "Product surface", issue 9 item 4): irradiance and radiance at given points
+// and normals, by the path tracer, classic radiosity or the meshless method — Radiance's rtrace -I
+// for lighting designers' sensor points and work planes.
+//
+// At a sensor point x facing n:
+//   irradiance E = ∫ L(x, ω) cos θ dω over n's hemisphere (W/m² in the scene's units), found
+//     path       as the light a white Lambert surface at x would reflect (next-event estimation
+//                and BSDF sampling with MIS, whole paths), averaged over `samples` estimates;
+//     radiosity, meshless   by `samples` stratified cosine-distributed rays: each ray's radiance is
+//                the solution's exitance B at its hit over π (the background's where it leaves),
+//                so E = mean of B; plus, for the meshless method, the direct light of the scene's
+//                point/spot/directional/area lights at x with shadows (rays never hit them);
+//   radiance L = the radiance arriving at x from direction n (looking along n, what a luminance
+//     meter at x aimed along n reads): B/π at the hit of the ray from x along n.
+// The sensor is not part of the scene: it shadows nothing, and rays leave x offset along n.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "scene/scene.h"
+
+namespace candela {
+
+struct ProbePoint {
+  Vec3 position;
+  Vec3 normal;  // unit
+};
+
+struct ProbeResult {
+  Color irradiance;  // W/m²
+  Color radiance;    // W/(m²·sr)
+};
+
+struct ProbeSettings {
+  std::string method = "path";  // path, radiosity or meshless
+  int samples = 256;            // estimates per point (path) or hemisphere rays (the others)
+  uint64_t seed = 0;
+  bool quiet = true;
+};
+
+// The methods probe() answers for.
+inline constexpr const char* kProbeMethods = "path, radiosity, meshless";
+
+// Throws std::invalid_argument for another method. Fills facts (when not null) with what the
+// solution measured and how many rays found no solution (off the radiosity mesh, no site near).
+std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>& points, const ProbeSettings& settings,
+                               nlohmann::json* facts = nullptr);
+
+// Points from a CSV file: one "x,y,z,nx,ny,nz" per line; blank lines and lines starting with '#'
+// are skipped, as is a first line naming the columns. Throws InputError (file, line, column) for
+// anything else: a missing or extra value, a number that does not parse or is not finite, a zero
+// normal. Normals are normalised.
+std::vector<ProbePoint> read_probe_points(const std::string& path);
+
+// A work plane: nu × nv points at the centres of the cells of the parallelogram corner + s·u + t·v
+// (s, t ∈ [0, 1]), row by row (t outer), all facing normalize(u × v).
+std::vector<ProbePoint> grid_probe_points(const Vec3& corner, const Vec3& u, const Vec3& v, int nu, int nv);
+
+// Illuminance in lux from irradiance in W/m² of white light: efficacy × luminance (Radiance's
+// convention: 179 lm/W, "white" light of its RGB primaries).
+inline constexpr double kDefaultLuminousEfficacy = 179.0;
+
+}  // namespace candela

@@ -1,0 +1,138 @@
+#include "io/false_colour.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "io/pixel_font.h"
+#include "shading/texture_image.h"  // srgb_decode
+
+namespace candela {
+
+namespace {
+
+double clamp_unit(double t) { return std::isnan(t) ? 0.0 : std::clamp(t, 0.0, 1.0); }
+
+Color lerp(const Color& a, const Color& b, double t) { return a + (b - a) * t; }
+
+Color clamp_colour(const Color& c) {
+  return {std::clamp(c.r, 0.0, 1.0), std::clamp(c.g, 0.0, 1.0), std::clamp(c.b, 0.0, 1.0)};
+}
+
+Color display_to_linear(const Color& c) { return {srgb_decode(c.r), srgb_decode(c.g), srgb_decode(c.b)}; }
+
+// Bar geometry (see the header).
+constexpr int kBarGap = 3;
+constexpr int kBarRows = 16;
+constexpr int kTickRows = 3;
+constexpr int kLabelGap = 2;
+constexpr int kBottomMargin = 3;
+
+int label_scale(int width) { return width >= 160 ? 2 : 1; }
+
+}  // namespace
+
+Color colour_map_viridis(double t) {
+  t = clamp_unit(t);
+  // Coefficients of t^0 .. t^6 per channel (Matt Zucconi's fit, CC0).
+  static constexpr double kCoefficients[7][3] = {
+      {0.2777273272234177, 0.005407344544966578, 0.3340998053353061},
+      {0.1050930431085774, 1.404613529898575, 1.384590162594685},
+      {-0.3308618287255563, 0.214847559468213, 0.09509516302823659},
+      {-4.634230498983486, -5.799100973351585, -19.33244095627987},
+      {6.228269936347081, 14.17993336680509, 56.69055260068105},
+      {4.776384997670288, -13.74514537774601, -65.35303263337234},
+      {-5.435455855934631, 4.645852612178535, 26.3124352495832},
+  };
+  Color c;
+  for (int channel = 0; channel < 3; ++channel) {
+    double value = 0;
+    for (int power = 6; power >= 0; --power) value = value * t + kCoefficients[power][channel];
+    c[channel] = value;
+  }
+  return clamp_colour(c);
+}
+
+Color colour_map_diverging(double t) {
+  t = clamp_unit(t);
+  const Color blue(0.230, 0.299, 0.754), white(1.0), red(0.706, 0.016, 0.150);
+  return t <= 0.5 ? lerp(blue, white, t / 0.5) : lerp(white, red, (t - 0.5) / 0.5);
+}
+
+Color colour_map(ColourMap map, double t) {
+  switch (map) {
+    case ColourMap::viridis: return colour_map_viridis(t);
+    case ColourMap::diverging: return colour_map_diverging(t);
+  }
+  return colour_map_viridis(t);
+}
+
+int colour_bar_height(int width) {
+  return kBarGap + kBarRows + kTickRows + kLabelGap + kPixelFontHeight * label_scale(width) + kBottomMargin;
+}
+
+std::string format_scale_value(double value) {
+  if (value == 0) return "0";
+  const std::string general = fmt::format("{:.3g}", value);
+  const std::string exponent = fmt::format("{:.2e}", value);
+  // {:.3g} switches to exponent notation itself outside 1e-5 .. 1e3; keep the shorter.
+  return general.size() <= exponent.size() ? general : exponent;
+}
+
+Film false_colour_image(const std::vector<double>& values, int width, int height, double low, double high,
+                        ColourMap map) {
+  if (width <= 0 || height <= 0)
+    throw std::invalid_argument(fmt::format("false-colour image size must be positive, got {}x{}", width, height));
+  if (values.size() != std::size_t(width) * std::size_t(height))
+    throw std::invalid_argument(fmt::format("false-colour image of {}x{} pixels given {} values", width, height,
+                                            values.size()));
+  if (!std::isfinite(low) || !std::isfinite(high) || !(low < high))
+    throw std::invalid_argument(fmt::format("false-colour scale {} .. {} must be finite with low < high", low, high));
+  const int band = colour_bar_height(width);
+  Film film(width, height + band);
+  const double range = high - low;
+  const Color no_data = display_to_linear(Color(kNoDataGrey));
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const double value = values[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+      film.at(x, y) = std::isfinite(value) ? display_to_linear(colour_map(map, (value - low) / range)) : no_data;
+    }
+  // The band: black, then the bar.
+  const int bar_top = height + kBarGap;
+  for (int x = 0; x < width; ++x) {
+    const double t = width == 1 ? 0.5 : double(x) / (width - 1);
+    const Color colour = display_to_linear(colour_map(map, t));
+    for (int y = bar_top; y < bar_top + kBarRows; ++y) film.at(x, y) = colour;
+  }
+  // Ticks and labels: low (left), high (right), middle (centre) while they do not overlap.
+  const Color white(1.0);
+  const int scale = label_scale(width);
+  const int tick_top = bar_top + kBarRows, label_top = tick_top + kTickRows + kLabelGap;
+  const std::string low_label = format_scale_value(low), high_label = format_scale_value(high);
+  const std::string middle_label = format_scale_value(low + range / 2);
+  const int low_width = pixel_text_width(low_label, scale), high_width = pixel_text_width(high_label, scale);
+  const int middle_width = pixel_text_width(middle_label, scale);
+  const int space = kPixelFontAdvance * scale;  // at least one character's advance between labels
+  const auto tick = [&](int x) {
+    for (int y = tick_top; y < tick_top + kTickRows; ++y)
+      for (int dx = 0; dx < scale; ++dx)
+        if (x + dx >= 0 && x + dx < width) film.at(x + dx, y) = white;
+  };
+  tick(0);
+  draw_pixel_text(film, 0, label_top, low_label, white, scale);
+  const bool high_fits = low_width + space + high_width <= width;
+  if (high_fits) {
+    tick(width - scale);
+    draw_pixel_text(film, width - high_width, label_top, high_label, white, scale);
+  }
+  const int middle_x = (width - middle_width) / 2;
+  if (high_fits && middle_x >= low_width + space && middle_x + middle_width + space <= width - high_width) {
+    tick(width / 2 - scale / 2);
+    draw_pixel_text(film, middle_x, label_top, middle_label, white, scale);
+  }
+  return film;
+}
+
+}  // namespace candela

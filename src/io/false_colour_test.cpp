@@ -1,0 +1,123 @@
+#include "io/false_colour.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "camera/tone_map.h"
+#include "io/image_writer.h"
+#include "io/pixel_font.h"
+#include "scratch_directory.h"
+#include "shading/texture_image.h"
+
+namespace candela {
+namespace {
+
+void expect_colour_near(const Color& actual, const Color& expected, double tolerance) {
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(actual[c], expected[c], tolerance) << "channel " << c;
+}
+
+Color display(const Color& linear) { return {srgb_encode(linear.r), srgb_encode(linear.g), srgb_encode(linear.b)}; }
+
+TEST(FalseColour, ViridisEndpointsMatchThePublishedMap) {
+  // matplotlib's viridis: #440154 at 0, #21918c at 0.5, #fde725 at 1.
+  expect_colour_near(colour_map_viridis(0), Color(0x44, 0x01, 0x54) / 255.0, 0.02);
+  expect_colour_near(colour_map_viridis(0.5), Color(0x21, 0x91, 0x8c) / 255.0, 0.02);
+  expect_colour_near(colour_map_viridis(1), Color(0xfd, 0xe7, 0x25) / 255.0, 0.02);
+  // Clamped outside [0, 1]; NaN reads as 0.
+  EXPECT_EQ(colour_map_viridis(-3), colour_map_viridis(0));
+  EXPECT_EQ(colour_map_viridis(7), colour_map_viridis(1));
+  EXPECT_EQ(colour_map_viridis(std::numeric_limits<double>::quiet_NaN()), colour_map_viridis(0));
+  // Luminance rises monotonically (a perceptual map).
+  for (int i = 1; i <= 100; ++i)
+    EXPECT_GT(luminance(colour_map_viridis(i / 100.0)), luminance(colour_map_viridis((i - 1) / 100.0))) << i;
+}
+
+TEST(FalseColour, DivergingIsBlueWhiteRed) {
+  const Color blue = colour_map_diverging(0), white = colour_map_diverging(0.5), red = colour_map_diverging(1);
+  EXPECT_GT(blue.b, blue.r);
+  EXPECT_EQ(white, Color(1));
+  EXPECT_GT(red.r, red.b);
+  EXPECT_EQ(colour_map(ColourMap::diverging, 0.25), colour_map_diverging(0.25));
+  EXPECT_EQ(colour_map(ColourMap::viridis, 0.25), colour_map_viridis(0.25));
+}
+
+TEST(FalseColour, FormatsScaleValuesCompactly) {
+  EXPECT_EQ(format_scale_value(0), "0");
+  EXPECT_EQ(format_scale_value(0.0123), "0.0123");
+  EXPECT_EQ(format_scale_value(0.5), "0.5");
+  EXPECT_EQ(format_scale_value(-2), "-2");
+  EXPECT_EQ(format_scale_value(1.234e-5), "1.23e-05");
+  EXPECT_EQ(format_scale_value(12345), "1.23e+04");
+  for (const double value : {0.0123, 1.234e-5, -12345.0, 3.0})
+    for (const char c : format_scale_value(value)) EXPECT_NE(pixel_font_glyph(c), nullptr) << c;
+}
+
+TEST(FalseColour, ImageHasTheBarBelowWithTheMapsEndColours) {
+  constexpr int width = 200, height = 10;
+  std::vector<double> values(std::size_t(width) * height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) values[std::size_t(y) * width + x] = x * 0.01;  // 0 .. 1.99
+  values[5] = std::numeric_limits<double>::quiet_NaN();  // no data at (5, 0)
+  const Film film = false_colour_image(values, width, height, 0.0, 1.0, ColourMap::viridis);
+  ASSERT_EQ(film.width(), width);
+  ASSERT_EQ(film.height(), height + colour_bar_height(width));
+  // Pixels: the map at (value − low)/(high − low), clamped; NaN grey. Linear in the Film.
+  expect_colour_near(display(film.at(0, 3)), colour_map_viridis(0), 1e-9);
+  expect_colour_near(display(film.at(50, 3)), colour_map_viridis(0.5), 1e-9);
+  expect_colour_near(display(film.at(150, 3)), colour_map_viridis(1), 1e-9);
+  expect_colour_near(display(film.at(5, 0)), Color(kNoDataGrey), 1e-9);
+  // The bar: its first and last columns are the map's ends; the row above it is background.
+  const int bar_row = height + 3 + 8;
+  expect_colour_near(display(film.at(0, bar_row)), colour_map_viridis(0), 1e-9);
+  expect_colour_near(display(film.at(width - 1, bar_row)), colour_map_viridis(1), 1e-9);
+  EXPECT_EQ(film.at(width / 2, height), Color(0));
+  // Labels are drawn in white somewhere under the bar.
+  int white = 0;
+  for (int y = height + 3 + 16; y < film.height(); ++y)
+    for (int x = 0; x < width; ++x) white += film.at(x, y) == Color(1);
+  EXPECT_GT(white, 30);
+}
+
+TEST(FalseColour, PngKeepsTheMapsColours) {
+  const testing::ScratchDirectory directory("candela-false-colour");
+  const std::vector<double> values = {-1, 0, 1, 0.5};
+  const Film film = false_colour_image(values, 4, 1, -1, 1, ColourMap::diverging);
+  const std::string path = (directory.path() / "map.png").string();
+  write_image(film, path, DisplaySettings{});
+  const TextureImage png = TextureImage::load(path, ColorEncoding::linear);  // the stored codes / 255
+  ASSERT_EQ(png.width(), 4);
+  ASSERT_EQ(png.height(), 1 + colour_bar_height(4));
+  const int top = png.height() - 1;  // TextureImage counts rows from the bottom
+  for (int x = 0; x < 4; ++x)
+    expect_colour_near(png.texel(x, top), colour_map_diverging((values[std::size_t(x)] + 1) / 2), 0.5 / 255 + 1e-6);
+}
+
+TEST(FalseColour, RefusesBadArguments) {
+  EXPECT_THROW(false_colour_image({1, 2}, 3, 1, 0, 1, ColourMap::viridis), std::invalid_argument);
+  EXPECT_THROW(false_colour_image({1}, 1, 1, 1, 1, ColourMap::viridis), std::invalid_argument);
+  EXPECT_THROW(false_colour_image({1}, 1, 1, 0, std::numeric_limits<double>::infinity(), ColourMap::viridis),
+               std::invalid_argument);
+  EXPECT_THROW(false_colour_image({}, 0, 0, 0, 1, ColourMap::viridis), std::invalid_argument);
+  // A one-pixel image still gets its bar (labels that do not fit are left out).
+  const Film tiny = false_colour_image({0.5}, 1, 1, 0, 1, ColourMap::viridis);
+  EXPECT_EQ(tiny.height(), 1 + colour_bar_height(1));
+}
+
+TEST(PixelFont, HasTheGlyphsNumbersNeed) {
+  for (const char c : std::string("0123456789.-+e")) EXPECT_NE(pixel_font_glyph(c), nullptr) << c;
+  EXPECT_EQ(pixel_font_glyph('x'), nullptr);
+  EXPECT_EQ(pixel_text_width("12", 1), 7);
+  EXPECT_EQ(pixel_text_width("", 2), 0);
+  Film film(8, 6);
+  draw_pixel_text(film, 0, 0, "1", Color(1), 1);
+  // '1' is {2, 6, 2, 2, 7}: the middle column lit in every row, the bottom row full.
+  for (int y = 0; y < 5; ++y) EXPECT_EQ(film.at(1, y), Color(1)) << y;
+  EXPECT_EQ(film.at(0, 4), Color(1));
+  EXPECT_EQ(film.at(0, 0), Color(0));
+  draw_pixel_text(film, 6, 4, "8", Color(1), 2);  // clipped at the edges, no crash
+}
+
+}  // namespace
+}  // namespace candela

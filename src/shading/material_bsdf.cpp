@@ -1,0 +1,49 @@
+#include "shading/material_bsdf.h"
+
+namespace candela {
+
+Bsdf make_bsdf(const Material& material, const SurfaceProperties& at, const SurfaceHit& hit,
+               const Vec3& shading_normal) {
+  const Vec3& geometric = hit.geometric_normal;
+  const Vec3 normal = dot(shading_normal, geometric) < 0 ? -shading_normal : shading_normal;
+  Bsdf bsdf(ShadingFrame::from_normal(normal), geometric);
+
+  BsdfLobe diffuse;
+  diffuse.type = LobeType::lambert;
+  diffuse.weight = at.diffuse_albedo();
+  bsdf.add(diffuse);
+
+  if (at.ks > 0) {
+    BsdfLobe specular;
+    specular.weight = Color(at.ks);
+    if (material.specular_model == SpecularModel::cook_torrance) {
+      specular.type = LobeType::microfacet;
+      specular.alpha = at.roughness;
+      specular.distribution = material.microfacet;
+      specular.fresnel_ior = material.fresnel_ior;
+    } else {
+      // Phong and Blinn-Phong both become the normalized Phong lobe about the mirror
+      // direction, with the material's exponent as given.
+      specular.type = LobeType::phong;
+      specular.exponent = at.shininess;
+    }
+    bsdf.add(specular);
+  }
+  if (at.kr > 0) {
+    BsdfLobe mirror;
+    mirror.type = LobeType::mirror;
+    mirror.weight = Color(at.kr);
+    bsdf.add(mirror);
+  }
+  if (at.kt > 0) {
+    BsdfLobe glass;
+    glass.type = LobeType::dielectric;
+    glass.weight = Color(at.kt);
+    glass.ior = at.ior;
+    bsdf.add(glass);
+  }
+  bsdf.conserve_energy();
+  return bsdf;
+}
+
+}  // namespace candela

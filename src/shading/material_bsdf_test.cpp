@@ -1,0 +1,158 @@
+// The classic material's parameters as BSDF lobes (material_bsdf.h), and the scene key
+// "microfacet".
+#include "shading/material_bsdf.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "scene/scene.h"
+#include "scene/scene_loader.h"
+#include "util/error.h"
+
+namespace candela {
+namespace {
+
+SurfaceHit flat_hit() {
+  SurfaceHit hit;
+  hit.geometric_normal = {0, 0, 1};
+  hit.shading_normal = {0, 0, 1};
+  return hit;
+}
+
+Bsdf bsdf_of(const Material& material, const Vec3& shading_normal = {0, 0, 1}) {
+  const SurfaceHit hit = flat_hit();
+  return make_bsdf(material, material.at(hit), hit, shading_normal);
+}
+
+TEST(MaterialBsdf, DefaultMaterialIsLambert) {
+  const Bsdf bsdf = bsdf_of(Material());
+  ASSERT_EQ(bsdf.lobe_count(), 1);
+  EXPECT_EQ(bsdf.lobe(0).type, LobeType::lambert);
+  EXPECT_EQ(bsdf.lobe(0).weight, Color(0.8));
+}
+
+TEST(MaterialBsdf, DiffuseAlbedoIsClampedKd) {
+  Material material;
+  material.kd = constant_texture(Color(1.5, 0.5, 0));
+  const Bsdf bsdf = bsdf_of(material);
+  ASSERT_EQ(bsdf.lobe_count(), 1);
+  EXPECT_EQ(bsdf.lobe(0).weight, Color(1, 0.5, 0));
+}
+
+TEST(MaterialBsdf, PhongAndBlinnPhongBecomeTheNormalizedPhongLobe) {
+  for (const auto model : {SpecularModel::phong, SpecularModel::blinn_phong}) {
+    Material material;
+    material.specular_model = model;
+    material.kd = constant_texture(Color(0.3, 0.2, 0.1));
+    material.ks = constant_texture(0.5);
+    material.shininess = constant_texture(40.0);
+    const Bsdf bsdf = bsdf_of(material);
+    ASSERT_EQ(bsdf.lobe_count(), 2);
+    EXPECT_EQ(bsdf.lobe(0).type, LobeType::lambert);
+    EXPECT_EQ(bsdf.lobe(0).weight, Color(0.3, 0.2, 0.1));
+    EXPECT_EQ(bsdf.lobe(1).type, LobeType::phong);
+    EXPECT_EQ(bsdf.lobe(1).weight, Color(0.5));
+    EXPECT_EQ(bsdf.lobe(1).exponent, 40.0);
+  }
+}
+
+TEST(MaterialBsdf, CookTorranceBecomesMicrofacet) {
+  Material material;
+  material.specular_model = SpecularModel::cook_torrance;
+  material.kd = constant_texture(0.2);
+  material.ks = constant_texture(0.6);
+  material.roughness = constant_texture(0.25);
+  material.fresnel_ior = Color(1.2, 1.5, 2.0);
+  Bsdf bsdf = bsdf_of(material);
+  ASSERT_EQ(bsdf.lobe_count(), 2);
+  EXPECT_EQ(bsdf.lobe(1).type, LobeType::microfacet);
+  EXPECT_EQ(bsdf.lobe(1).weight, Color(0.6));
+  EXPECT_EQ(bsdf.lobe(1).alpha, 0.25);
+  EXPECT_EQ(bsdf.lobe(1).distribution, MicrofacetDistribution::beckmann);
+  EXPECT_EQ(bsdf.lobe(1).fresnel_ior, Color(1.2, 1.5, 2.0));
+  material.microfacet = MicrofacetDistribution::ggx;
+  bsdf = bsdf_of(material);
+  EXPECT_EQ(bsdf.lobe(1).distribution, MicrofacetDistribution::ggx);
+}
+
+TEST(MaterialBsdf, KrIsAMirrorAndKtADielectric) {
+  Material material;
+  material.kd = constant_texture(0.0);
+  material.kr = constant_texture(0.3);
+  material.kt = constant_texture(0.6);
+  material.ior = constant_texture(1.33);
+  material.prepare();
+  const Bsdf bsdf = bsdf_of(material);
+  ASSERT_EQ(bsdf.lobe_count(), 2);  // the black Lambert lobe is dropped
+  EXPECT_EQ(bsdf.lobe(0).type, LobeType::mirror);
+  EXPECT_EQ(bsdf.lobe(0).weight, Color(0.3));
+  EXPECT_EQ(bsdf.lobe(1).type, LobeType::dielectric);
+  EXPECT_EQ(bsdf.lobe(1).weight, Color(0.6));
+  EXPECT_EQ(bsdf.lobe(1).ior, 1.33);
+  EXPECT_FALSE(bsdf.has_non_delta());
+}
+
+TEST(MaterialBsdf, WeightsAboveOneAreScaledDown) {
+  Material material;
+  material.kd = constant_texture(Color(0.8, 0.4, 0.2));
+  material.ks = constant_texture(0.4);
+  material.kr = constant_texture(0.2);
+  material.prepare();
+  const Bsdf bsdf = bsdf_of(material);
+  ASSERT_EQ(bsdf.lobe_count(), 3);
+  // Red: 0.8 + 0.4 + 0.2 = 1.4 → scaled to 1; green 1.0 and blue 0.8 stay.
+  EXPECT_NEAR(bsdf.lobe(0).weight.r, 0.8 / 1.4, 1e-15);
+  EXPECT_NEAR(bsdf.lobe(1).weight.r, 0.4 / 1.4, 1e-15);
+  EXPECT_NEAR(bsdf.lobe(2).weight.r, 0.2 / 1.4, 1e-15);
+  EXPECT_NEAR(bsdf.lobe(0).weight.g, 0.4, 1e-15);
+  EXPECT_NEAR(bsdf.lobe(1).weight.b, 0.4, 1e-15);
+}
+
+TEST(MaterialBsdf, ShadingNormalIsTurnedToTheGeometricSide) {
+  const Vec3 tilted = normalize(Vec3{0.2, 0, -1});  // a shading normal given on the back side
+  const Bsdf bsdf = bsdf_of(Material(), tilted);
+  EXPECT_GT(dot(bsdf.frame().n, bsdf.geometric_normal()), 0);
+  EXPECT_NEAR(bsdf.frame().n.x, -tilted.x, 1e-15);
+  EXPECT_NEAR(length(bsdf.frame().s), 1, 1e-12);
+  EXPECT_NEAR(dot(bsdf.frame().s, bsdf.frame().n), 0, 1e-12);
+  EXPECT_NEAR(dot(bsdf.frame().t, bsdf.frame().n), 0, 1e-12);
+  EXPECT_NEAR(dot(bsdf.frame().s, bsdf.frame().t), 0, 1e-12);
+}
+
+const char* kScene = R"({
+  "format": "candela/1",
+  "camera": {"eye": [0, 0, 5], "target": [0, 0, 0], "width": 4, "height": 3},
+  "materials": {"m": MATERIAL},
+  "shapes": [{"type": "sphere", "radius": 1, "material": "m"}]
+})";
+
+std::string scene_with(const std::string& material) {
+  std::string text = kScene;
+  text.replace(text.find("MATERIAL"), 8, material);
+  return text;
+}
+
+TEST(MaterialBsdf, SceneKeyMicrofacet) {
+  const auto ggx =
+      load_scene_text(scene_with(R"({"type": "cook-torrance", "microfacet": "ggx"})"), "t.json", ".");
+  EXPECT_EQ(ggx->materials[ggx->primitives[0].material].microfacet, MicrofacetDistribution::ggx);
+  const auto fallback = load_scene_text(scene_with(R"({"type": "cook-torrance"})"), "t.json", ".");
+  EXPECT_EQ(fallback->materials[fallback->primitives[0].material].microfacet,
+            MicrofacetDistribution::beckmann);
+  try {
+    load_scene_text(scene_with(R"({"type": "cook-torrance", "microfacet": "phong"})"), "t.json", ".");
+    ADD_FAILURE() << "a bad distribution loaded";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.location().file, "t.json");
+    EXPECT_EQ(e.location().line, 4);
+    EXPECT_NE(e.location().json_path.find("microfacet"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("beckmann, ggx"), std::string::npos) << e.what();
+  }
+  // Only the Cook-Torrance model has facets.
+  EXPECT_THROW(load_scene_text(scene_with(R"({"type": "phong", "microfacet": "ggx"})"), "t.json", "."),
+               InputError);
+}
+
+}  // namespace
+}  // namespace candela

@@ -1,0 +1,126 @@
+// Issue 9 item 4: `candela probe` — irradiance and radiance at sensor points by the path tracer,
+// classic radiosity and the meshless method, against Howell's point-to-rectangle form factor.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <string>
+
+#include "integrators/probe.h"
+#include "math/constants.h"
+#include "scene/scene_loader.h"
+#include "scratch_directory.h"
+
+namespace candela {
+namespace {
+
+// Howell: plane element to a parallel rectangle, the normal through a corner (A = a/c, B = b/c).
+double point_to_parallel_rectangle_corner(double a, double b, double c) {
+  const double A = a / c, B = b / c;
+  return (A / std::sqrt(1 + A * A) * std::atan(B / std::sqrt(1 + A * A)) +
+          B / std::sqrt(1 + B * B) * std::atan(A / std::sqrt(1 + B * B))) /
+         (2 * kPi);
+}
+
+// An emitting 2 × 2 square (E = 3, facing down) one unit above the origin, and nothing else; the
+// camera below it looking up, so the meshless method puts its sites on it.
+std::unique_ptr<Scene> lamp_scene() {
+  return load_scene_text(R"({"format": "candela/1",
+    "camera": {"eye": [0, -1, 0], "target": [0, 1, 0], "up": [0, 0, -1], "fov": 120, "width": 32, "height": 32},
+    "radiosity": {"patch_size": 0.5},
+    "meshless": {"spacing": 0.1, "grid": 32, "rounds": 0},
+    "shapes": [{"type": "quad", "corner": [-1, 1, -1], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2],
+                "material": {"kd": 0, "emission": 3}}]})",
+                         "lamp.json", ".");
+}
+
+TEST(Probe, EveryMethodFindsTheIrradianceUnderAnEmittingSquare) {
+  const auto scene = lamp_scene();
+  const double expected = 3 * 4 * point_to_parallel_rectangle_corner(1, 1, 1);  // E × F, F = 0.5541
+  // Under the centre, and under a corner of the square (the normal through the corner: one rectangle).
+  const std::vector<ProbePoint> points = {{{0, 0, 0}, {0, 1, 0}}, {{1, 0, 1}, {0, 1, 0}}};
+  for (const std::string method : {"path", "radiosity", "meshless"}) {
+    ProbeSettings settings;
+    settings.method = method;
+    settings.samples = 16384;
+    nlohmann::json facts;
+    const std::vector<ProbeResult> results = probe(*scene, points, settings, &facts);
+    ASSERT_EQ(results.size(), 2u);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(results[0].irradiance[c], expected, 0.01 * expected) << method;
+      const double corner = 3 * point_to_parallel_rectangle_corner(2, 2, 1);
+      EXPECT_NEAR(results[1].irradiance[c], corner, 0.02 * corner) << method;
+      // Looking straight up at the lamp: its radiance E/π.
+      EXPECT_NEAR(results[0].radiance[c], 3 / kPi, 1e-6 * 3) << method;
+    }
+    EXPECT_EQ(facts["points"], 2);
+    if (method != "path") {
+      EXPECT_EQ(facts["rays_without_solution"], 0) << method;
+    }
+  }
+}
+
+TEST(Probe, PointLightsCountForPathAndMeshlessButNotForRadiosity) {
+  // A point light of intensity 2 (no attenuation) above a sensor facing up: irradiance 2·cos θ.
+  const auto scene = load_scene_text(R"({"format": "candela/1",
+    "camera": {"eye": [0, 3, 3], "target": [0, 0, 0], "width": 8, "height": 8},
+    "lights": [{"type": "point", "position": [0, 2, 0], "intensity": 2}],
+    "shapes": [{"type": "quad", "corner": [-5, -1, -5], "edge_u": [0, 0, 10], "edge_v": [10, 0, 0], "material": {"kd": 0}}]})",
+                                     "light.json", ".");
+  const std::vector<ProbePoint> points = {{{0, 0, 0}, {0, 1, 0}}, {{0, 0, 0}, {0, 0.6, 0.8}}};
+  ProbeSettings settings;
+  settings.samples = 16;
+  for (const std::string method : {"path", "meshless"}) {
+    settings.method = method;
+    const auto results = probe(*scene, points, settings);
+    EXPECT_NEAR(results[0].irradiance.g, 2.0, 1e-9) << method;
+    EXPECT_NEAR(results[1].irradiance.g, 2.0 * 0.6, 1e-9) << method;
+  }
+  settings.method = "radiosity";
+  EXPECT_EQ(probe(*scene, points, settings)[0].irradiance.g, 0.0);
+  settings.method = "whitted";
+  EXPECT_THROW(probe(*scene, points, settings), std::invalid_argument);
+}
+
+TEST(Probe, ReadsPointsAndNamesTheLineAndColumnOfBadOnes) {
+  const testing::ScratchDirectory directory("probe-points");
+  const auto file = [&](const std::string& text) {
+    const std::string path = (directory.path() / "pts.csv").string();
+    std::ofstream(path) << text;
+    return path;
+  };
+  const auto points = read_probe_points(file("x,y,z,nx,ny,nz\n# a comment\n\n1,2,3,0,0,2\r\n-1, 0.5 ,1e-3,1,1,0\n"));
+  ASSERT_EQ(points.size(), 2u);
+  EXPECT_EQ(points[0].position.y, 2);
+  EXPECT_EQ(points[0].normal.z, 1);
+  EXPECT_NEAR(points[1].normal.x, std::sqrt(0.5), 1e-15);
+  EXPECT_EQ(points[1].position.z, 1e-3);
+  const auto expect_error = [&](const std::string& text, const std::string& where, const std::string& what) {
+    try {
+      read_probe_points(file(text));
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  expect_error("1,2,3,0,1,0\n1,2,x,0,1,0\n", "pts.csv:2:5", "not a number");
+  expect_error("1,2,3,0,1\n", "pts.csv:1:", "expected 6 values");
+  expect_error("1,2,3,0,1,0,7\n", "pts.csv:1:", "more than 6 values");
+  expect_error("1,2,3,0,0,0\n", "pts.csv:1:", "must not be zero");
+  expect_error("1,2,3,0,inf,0\n", "pts.csv:1:", "finite");
+  expect_error("# nothing\n", "pts.csv", "no points");
+}
+
+TEST(Probe, GridPointsSitAtCellCentresFacingUCrossV) {
+  const auto points = grid_probe_points({0, 1, 0}, {2, 0, 0}, {0, 0, -1}, 2, 4);
+  ASSERT_EQ(points.size(), 8u);
+  EXPECT_EQ(points[0].position.x, 0.5);
+  EXPECT_EQ(points[0].position.z, -0.125);
+  EXPECT_EQ(points[7].position.x, 1.5);
+  EXPECT_EQ(points[7].position.z, -0.875);
+  EXPECT_EQ(points[3].normal.y, 1);  // (2,0,0) × (0,0,-1) = (0,2,0)
+}
+
+}  // namespace
+}  // namespace candela
