@@ -6,7 +6,6 @@
 // difference with its colour bar beneath (io/false_colour.h). PNG and other 8-bit files are
 // decoded from sRGB to linear first; EXR and PFM are compared as stored. See docs/compare.md.
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -18,6 +17,7 @@
 #include <string>
 
 #include "commands.h"
+#include "output_paths.h"
 #include "io/false_colour.h"
 #include "io/image_writer.h"
 #include "util/atomic_file.h"
@@ -31,18 +31,6 @@ struct CompareOptions {
   std::string image, reference, mask, diff, diff_metric = "abs", json;
   std::optional<double> diff_scale;
 };
-
-// The output's folder must exist and be writable; checked before any work.
-void check_output(const std::string& path, const char* option) {
-  namespace fs = std::filesystem;
-  const fs::path parent = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
-  std::error_code error;
-  if (!fs::is_directory(parent, error))
-    throw BadArgument(fmt::format("{} {}: the folder {} does not exist", option, path, parent.string()));
-  if (::access(parent.c_str(), W_OK) != 0)
-    throw BadArgument(fmt::format("{} {}: the folder {} is not writable", option, path, parent.string()));
-  if (fs::is_directory(path, error)) throw BadArgument(fmt::format("{} {} is a folder", option, path));
-}
 
 LinearImage read(const std::string& path, const char* role) {
   try {
@@ -113,9 +101,9 @@ int run_compare(const CompareOptions& options) {
     ImageFormat format;
     if (!image_format_for_path(options.diff, format))
       throw BadArgument("--diff " + options.diff + ": unsupported extension (expected .png, .exr or .pfm)");
-    check_output(options.diff, "--diff");
+    check_writable(options.diff, "--diff");
   }
-  if (!options.json.empty()) check_output(options.json, "--json");
+  if (!options.json.empty()) check_writable(options.json, "--json");
 
   const LinearImage image = read(options.image, "A");
   const LinearImage reference = read(options.reference, "B (reference)");

@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "commands.h"
+#include "output_paths.h"
 #include "integrators/probe.h"
 #include "io/false_colour.h"
 #include "io/image_writer.h"
@@ -48,15 +49,17 @@ int run_probe(ProbeOptions& options) {
   if (options.samples < 1) throw BadArgument("--samples must be >= 1");
   if (!(options.efficacy > 0) || !std::isfinite(options.efficacy)) throw BadArgument("--efficacy must be > 0");
   if (options.threads < 0) throw BadArgument("--threads must be >= 0 (0: all cores)");
-  ImageFormat format;
-  if (!image_format_for_path(options.output, format) && options.output.size() > 4 &&
-      options.output.substr(options.output.size() - 4) != ".csv")
+  if (options.method != "path" && options.method != "radiosity" && options.method != "meshless")
+    throw BadArgument("--method " + options.method + " cannot be probed (expected one of: " + kProbeMethods + ")");
+  if (options.output.size() < 5 || options.output.substr(options.output.size() - 4) != ".csv")
     throw BadArgument("-o " + options.output + ": expected a .csv file");
+  check_writable(options.output, "-o");
   if (!options.image.empty()) {
     if (options.grid.empty()) throw BadArgument("--image needs --grid (a picture of the work plane)");
     ImageFormat image_format;
     if (!image_format_for_path(options.image, image_format) || image_format != ImageFormat::png)
       throw BadArgument("--image " + options.image + ": expected a .png file");
+    check_writable(options.image, "--image");
   }
   std::vector<ProbePoint> points;
   int nu = 0, nv = 0;
@@ -88,8 +91,6 @@ int run_probe(ProbeOptions& options) {
   settings.samples = options.samples;
   settings.seed = options.seed ? uint64_t(*options.seed) : scene->render.seed;
   settings.quiet = options.quiet;
-  if (settings.method != "path" && settings.method != "radiosity" && settings.method != "meshless")
-    throw BadArgument("--method " + settings.method + " cannot be probed (expected one of: " + kProbeMethods + ")");
   nlohmann::json facts;
   const std::vector<ProbeResult> results = probe(*scene, points, settings, &facts);
 

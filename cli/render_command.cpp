@@ -3,7 +3,6 @@
 //                [--aa-map FILE.png] [--camera NAME[,NAME...]]... [--export-solution FILE]
 //                [--show-sites FILE.png] [--relight LIGHTS.json]
 #include <fmt/format.h>
-#include <unistd.h>
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -15,6 +14,7 @@
 #include <optional>
 
 #include "commands.h"
+#include "output_paths.h"
 #include "integrators/method_registry.h"
 #include "integrators/ray_tracing_method.h"
 #include "io/image_writer.h"
@@ -92,18 +92,6 @@ PixelRect region_of(const RenderOptions& options, const Camera& camera) {
     throw BadArgument(fmt::format("--crop {},{},{},{} must satisfy 0 <= x0 < x1 <= {} and 0 <= y0 < y1 <= {}",
                                   region.x0, region.y0, region.x1, region.y1, camera.width(), camera.height()));
   return region;
-}
-
-// The file's folder must exist and accept new files (outputs are renamed into place there).
-void check_writable(const std::string& path, const char* option) {
-  namespace fs = std::filesystem;
-  const fs::path parent = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
-  std::error_code error;
-  if (!fs::is_directory(parent, error))
-    throw BadArgument(std::string(option) + " " + path + ": the folder " + parent.string() + " does not exist");
-  if (::access(parent.c_str(), W_OK) != 0)
-    throw BadArgument(std::string(option) + " " + path + ": the folder " + parent.string() + " is not writable");
-  if (fs::is_directory(path, error)) throw BadArgument(std::string(option) + " " + path + " is a folder");
 }
 
 // --aa-map: grey levels proportional to the samples each pixel used, white the most used (a

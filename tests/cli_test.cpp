@@ -622,3 +622,82 @@ TEST_F(Cli, PathTimeLimitRendersAtLeastOnePass) {
 
 }  // namespace
 }  // namespace candela
+
+namespace candela {
+namespace {
+
+// A lamp (E = 3, 2 × 2, facing down) one unit above the origin: irradiance 3 × 0.5541 under its
+// centre (Howell's form factor, tests/probe_test.cpp).
+const char* kLampScene = R"({"format": "candela/1",
+  "camera": {"eye": [0, -1, 0], "target": [0, 1, 0], "up": [0, 0, -1], "fov": 120, "width": 16, "height": 16},
+  "radiosity": {"patch_size": 0.5},
+  "shapes": [{"type": "quad", "corner": [-1, 1, -1], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2],
+              "material": {"kd": 0, "emission": 3}}]})";
+
+std::vector<std::vector<double>> read_csv_rows(const std::filesystem::path& path, std::string& header) {
+  std::ifstream in(path);
+  std::getline(in, header);
+  std::vector<std::vector<double>> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::stringstream fields(line);
+    std::string field;
+    while (std::getline(fields, field, ',')) row.push_back(std::stod(field));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST_F(Cli, ProbeWritesIrradianceRadianceAndIlluminanceAtPoints) {
+  write("lamp.json", kLampScene);
+  write("pts.csv", "x,y,z,nx,ny,nz\n0,0,0,0,1,0\n0,0,0,0,-1,0\n");
+  std::string output;
+  ASSERT_EQ(run("probe lamp.json --method radiosity --points pts.csv --samples 4096 -o out.csv", output), 0) << output;
+  std::string header;
+  const auto rows = read_csv_rows(directory_ / "out.csv", header);
+  EXPECT_EQ(header,
+            "x,y,z,nx,ny,nz,irradiance_r,irradiance_g,irradiance_b,radiance_r,radiance_g,radiance_b,illuminance_lux");
+  ASSERT_EQ(rows.size(), 2u);
+  ASSERT_EQ(rows[0].size(), 13u);
+  EXPECT_NEAR(rows[0][6], 3 * 0.55411, 0.01 * 3 * 0.55411);
+  EXPECT_NEAR(rows[0][9], 3 / M_PI, 1e-6);
+  EXPECT_NEAR(rows[0][12], 179 * rows[0][7], 1e-6 * rows[0][12]);  // white light: Y = the channels
+  EXPECT_EQ(rows[1][6], 0);  // facing away from the lamp
+  EXPECT_NE(output.find("probed 2 points with radiosity"), std::string::npos) << output;
+}
+
+TEST_F(Cli, ProbeGridWritesAFalseColourImageOfTheIlluminance) {
+  write("lamp.json", kLampScene);
+  std::string output;
+  ASSERT_EQ(run("probe lamp.json --grid -2,0,2,4,0,0,0,0,-4 --grid-size 8,6 --samples 64 -o grid.csv --image grid.png",
+                output),
+            0)
+      << output;
+  std::string header;
+  const auto rows = read_csv_rows(directory_ / "grid.csv", header);
+  ASSERT_EQ(rows.size(), 48u);
+  EXPECT_EQ(rows[0][4], 1);  // (4,0,0) × (0,0,-4) faces +y, up at the lamp
+  EXPECT_GT(rows[3 * 8 + 3][6], rows[0][6]);  // brighter under the lamp than at the corner
+  ASSERT_TRUE(fs::exists(directory_ / "grid.png"));
+  EXPECT_NE(output.find("illuminance scale: 0 to"), std::string::npos) << output;
+}
+
+TEST_F(Cli, ProbeRefusesBadPointsWithTheirLocationAndWritesNothing) {
+  write("lamp.json", kLampScene);
+  write("pts.csv", "0,0,0,0,1,0\n1,2,three,0,1,0\n");
+  std::string output;
+  EXPECT_EQ(run("probe lamp.json --points pts.csv -o out.csv", output), 2);
+  EXPECT_NE(output.find("pts.csv:2:5: \"three\" is not a number"), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(directory_ / "out.csv"));
+  EXPECT_EQ(run("probe lamp.json --method whitted --points pts.csv -o out.csv", output), 2);
+  EXPECT_NE(output.find("cannot be probed"), std::string::npos) << output;
+  EXPECT_EQ(run("probe lamp.json -o out.csv", output), 2);
+  EXPECT_NE(output.find("either --points"), std::string::npos) << output;
+  EXPECT_EQ(run("probe lamp.json --points pts.csv --grid 0,0,0,1,0,0,0,0,1 -o out.csv", output), 2);
+  EXPECT_EQ(run("probe lamp.json --points pts.csv --image x.png -o out.csv", output), 2);
+  EXPECT_NE(output.find("--image needs --grid"), std::string::npos) << output;
+}
+
+}  // namespace
+}  // namespace candela
