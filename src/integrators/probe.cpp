@@ -45,33 +45,77 @@ ProbeResult probe_path(const Scene& scene, const LightSampler& lights, const Pro
   return {irradiance / settings.samples, radiance / (settings.samples * kPi)};
 }
 
-ProbeResult probe_field(const Scene& scene, const SolutionField& field, const ProbePoint& point, std::size_t index,
-                        const ProbeSettings& settings, uint64_t& uncovered, RayCounts& rays) {
+// Veach's power heuristic (β = 2).
+double power_heuristic(double a, double b) {
+  const double a2 = a * a, b2 = b * b;
+  return a2 + b2 > 0 ? a2 / (a2 + b2) : 0.0;
+}
+
+// E = ∫ (B/π) cos θ dω by two strategies combined with MIS (the power heuristic): k × k stratified
+// cosine-distributed rays (density cos θ/π), and as many points drawn on the emissive surfaces by
+// the path tracer's light sampler (a small lamp is otherwise found by few rays). A point on an
+// emitter counts only when the ray toward it hits that primitive first.
+ProbeResult probe_field(const Scene& scene, const SolutionField& field, const LightSampler& lights,
+                        const ProbePoint& point, std::size_t index, const ProbeSettings& settings, uint64_t& uncovered,
+                        RayCounts& rays) {
   const ShadingFrame frame = ShadingFrame::from_normal(point.normal);
   const Vec3 origin = sensor_origin(scene, point);
-  const auto seen = [&](const Ray& ray) {
-    Intersection hit;
-    if (!scene.intersect(ray, hit)) return scene.background_along(ray.direction);
+  // The exitance the ray sees (the background's value where it leaves) and the hit's primitive.
+  const auto seen = [&](const Ray& ray, Intersection& hit, bool& found) {
+    found = scene.intersect(ray, hit);
+    if (!found) return scene.background_along(ray.direction);
     Color b;
     if (field.exitance(ray, hit, b)) return b;
     ++uncovered;
     return Color();
   };
-  // Stratified: k × k cells of the square, one jittered cosine-distributed ray in each.
+  // The density the light strategy gives the direction toward hit.
+  const auto light_pdf = [&](const Intersection& hit) {
+    const double choice = lights.surface_probability(hit.primitive);
+    return choice > 0 ? choice * scene.primitives[hit.primitive].shape->pdf_from(point.position, hit.surface) : 0.0;
+  };
   const int k = std::max(1, static_cast<int>(std::ceil(std::sqrt(double(settings.samples)))));
+  const int n = k * k;
   Pcg32 rng = probe_rng(settings.seed, 0, index);
   Color sum;
   for (int j = 0; j < k; ++j)
     for (int i = 0; i < k; ++i) {
       const Vec2 u{(i + rng.next_double()) / k, (j + rng.next_double()) / k};
-      const Vec3 direction = frame.to_world(square_to_cosine_hemisphere(u));
+      const Vec3 local = square_to_cosine_hemisphere(u);
+      const Vec3 direction = normalize(frame.to_world(local));
       ++rays.reflected;
-      sum += seen(Ray{origin, normalize(direction)});
+      Intersection hit;
+      bool found = false;
+      const Color b = seen(Ray{origin, direction}, hit, found);
+      const double p_cosine = cosine_hemisphere_pdf(local);
+      const double weight = found ? power_heuristic(p_cosine, light_pdf(hit)) : 1.0;
+      // (B/π)·cos/pdf with pdf = cos/π: B.
+      sum += b * weight;
     }
-  // E = ∫ (B/π) cos dω = mean of B under the pdf cos θ/π.
-  const Color irradiance = sum / double(k * k) + field.direct_irradiance(point.position, point.normal);
+  if (!lights.empty())
+    for (int s = 0; s < n; ++s) {
+      const LightSampler::Choice choice = lights.choose(rng.next_double());
+      const Vec2 u{rng.next_double(), rng.next_double()};
+      if (choice.kind != LightSampler::Kind::surface) continue;  // only surfaces carry a solution
+      SurfaceSample sample;
+      if (!scene.primitives[choice.index].shape->sample_from(point.position, u, sample) || !(sample.pdf > 0)) continue;
+      const Vec3 direction = normalize(sample.position - origin);
+      const double cosine = dot(direction, point.normal);
+      if (!(cosine > 0)) continue;
+      ++rays.shadow;
+      Intersection hit;
+      bool found = false;
+      const Color b = seen(Ray{origin, direction}, hit, found);
+      if (!found || hit.primitive != choice.index) continue;  // hidden, or missed by rounding
+      const double p_light = choice.probability * sample.pdf;
+      const double weight = power_heuristic(p_light, cosine * kInvPi);
+      sum += b * (kInvPi * cosine * weight / p_light);
+    }
+  const Color irradiance = sum / double(n) + field.direct_irradiance(point.position, point.normal);
   ++rays.primary;
-  const Color radiance = seen(Ray{origin, point.normal}) / kPi;
+  Intersection hit;
+  bool found = false;
+  const Color radiance = seen(Ray{origin, point.normal}, hit, found) / kPi;
   return {irradiance, radiance};
 }
 
@@ -85,14 +129,12 @@ std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>
                                nlohmann::json* facts) {
   if (settings.samples < 1) throw std::invalid_argument("probe: samples must be >= 1");
   std::unique_ptr<SolutionField> field;
-  std::unique_ptr<LightSampler> lights;
-  if (settings.method == "path") {
-    lights = std::make_unique<LightSampler>(scene);
-  } else if (settings.method == "radiosity") {
+  const LightSampler lights(scene);
+  if (settings.method == "radiosity") {
     field = make_radiosity_field(scene, settings.quiet);
   } else if (settings.method == "meshless") {
     field = make_meshless_field(scene);
-  } else {
+  } else if (settings.method != "path") {
     throw std::invalid_argument("probe: method \"" + settings.method + "\" cannot be probed (expected one of: " +
                                 kProbeMethods + ")");
   }
@@ -101,8 +143,8 @@ std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>
   tbb::enumerable_thread_specific<uint64_t> uncovered;
   ProgressReporter progress("probe", points.size(), "points", settings.quiet);
   tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t i) {
-    results[i] = lights ? probe_path(scene, *lights, points[i], i, settings, counts.local())
-                        : probe_field(scene, *field, points[i], i, settings, uncovered.local(), counts.local());
+    results[i] = field ? probe_field(scene, *field, lights, points[i], i, settings, uncovered.local(), counts.local())
+                       : probe_path(scene, lights, points[i], i, settings, counts.local());
     progress.advance();
   });
   progress.finish();

@@ -6,10 +6,11 @@
 //   irradiance E = ∫ L(x, ω) cos θ dω over n's hemisphere (W/m² in the scene's units), found
 //     path       as the light a white Lambert surface at x would reflect (next-event estimation
 //                and BSDF sampling with MIS, whole paths), averaged over `samples` estimates;
-//     radiosity, meshless   by `samples` stratified cosine-distributed rays: each ray's radiance is
-//                the solution's exitance B at its hit over π (the background's where it leaves),
-//                so E = mean of B; plus, for the meshless method, the direct light of the scene's
-//                point/spot/directional/area lights at x with shadows (rays never hit them);
+//     radiosity, meshless   ∫ (B/π) cos θ dω with B the solution's exitance at each ray's hit (the
+//                background's value where it leaves), by `samples` stratified cosine-distributed
+//                rays and as many points on the emissive surfaces, combined by MIS; plus, for the
+//                meshless method, the direct light of the scene's point/spot/directional/area
+//                lights at x with shadows (rays never hit them);
 //   radiance L = the radiance arriving at x from direction n (looking along n, what a luminance
 //     meter at x aimed along n reads): B/π at the hit of the ray from x along n.
 // The sensor is not part of the scene: it shadows nothing, and rays leave x offset along n.
