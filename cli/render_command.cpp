@@ -62,24 +62,27 @@ uint64_t text_hash(const std::string& text) {
   return hash;
 }
 
-// What ties a path-tracing checkpoint to this run: the scene file's bytes and the --set
-// overrides, except those that only say how long to go on (path.spp, path.time and
-// path.checkpoint_interval may change between a run and its continuation).
-std::string scene_fingerprint(const SceneOptions& scene) {
-  std::string text;
-  if (scene.scene_path.empty()) {
-    text = default_scene_text();
-  } else {
-    std::ifstream in(scene.scene_path, std::ios::binary);
-    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
+// What ties a path-tracing checkpoint to this run: the scene file's bytes, the bytes of every file
+// it referenced (meshes, textures, maps) and the --set overrides, except those that only say how
+// long to go on (path.spp, path.time and path.checkpoint_interval may change between a run and
+// its continuation) or how to find the hits (render.accelerator: every accelerator gives the
+// same hits).
+std::string scene_fingerprint(const SceneOptions& options, const Scene& scene) {
+  const auto file_text = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  const std::string text = options.scene_path.empty() ? default_scene_text() : file_text(options.scene_path);
+  std::string referenced;
+  for (const std::string& file : scene.input_files) referenced += fmt::format("{:016x}", text_hash(file_text(file)));
   std::string overrides;
-  for (const std::string& o : scene.overrides) {
-    const bool progress_only = o.rfind("path.spp=", 0) == 0 || o.rfind("path.time=", 0) == 0 ||
-                               o.rfind("path.checkpoint_interval=", 0) == 0;
-    if (!progress_only) overrides += o + "\n";
+  for (const std::string& o : options.overrides) {
+    const bool irrelevant = o.rfind("path.spp=", 0) == 0 || o.rfind("path.time=", 0) == 0 ||
+                            o.rfind("path.checkpoint_interval=", 0) == 0 || o.rfind("render.accelerator=", 0) == 0;
+    if (!irrelevant) overrides += o + "\n";
   }
-  return fmt::format("scene {:016x} overrides {:016x}", text_hash(text), text_hash(overrides));
+  return fmt::format("scene {:016x} files {:016x} overrides {:016x}", text_hash(text), text_hash(referenced),
+                     text_hash(overrides));
 }
 
 PixelRect region_of(const RenderOptions& options, const Camera& camera) {
@@ -278,7 +281,7 @@ int run_render(RenderOptions& options) {
 
   if (!options.accelerator.empty()) options.scene.overrides.push_back("render.accelerator=" + options.accelerator);
   if (options.spp) {
-    if (*options.spp < 1) throw BadArgument("--spp must be >= 1");
+    if (*options.spp < 1 || *options.spp > (1 << 24)) throw BadArgument("--spp must be in [1, 16777216]");
     options.scene.overrides.push_back("path.spp=" + std::to_string(*options.spp));
   }
   if (options.time) {
@@ -355,7 +358,7 @@ int run_render(RenderOptions& options) {
     if (!options.checkpoint.empty())
       check_writable(path_for_view(options.checkpoint, view, views.size()), "--checkpoint");
   }
-  const std::string fingerprint = entry->name == "path" ? scene_fingerprint(options.scene) : std::string();
+  const std::string fingerprint = entry->name == "path" ? scene_fingerprint(options.scene, *scene) : std::string();
 
   for (std::size_t v = 0; v < views.size(); ++v) {
     const View& view = views[v];
@@ -385,6 +388,10 @@ int run_render(RenderOptions& options) {
     Stopwatch render_timer;
     method->render(*scene, request, film, statistics);
     statistics.add_phase("render", render_timer.seconds());
+    // A method's warning about its result (the path tracer: nothing emits light).
+    const auto& method_facts = statistics.extra[std::string(method->name())];
+    if (method_facts.is_object() && method_facts.contains("warning"))
+      std::cerr << "candela: warning: " << method_facts["warning"].get<std::string>() << "\n";
 
     Stopwatch write_timer;
     write_image(film, output, scene->display);

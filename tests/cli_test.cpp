@@ -701,3 +701,27 @@ TEST_F(Cli, ProbeRefusesBadPointsWithTheirLocationAndWritesNothing) {
 
 }  // namespace
 }  // namespace candela
+
+namespace candela {
+namespace {
+
+// The fingerprint covers the files a scene references (an edited mesh cannot be continued), not
+// the accelerator (every accelerator finds the same hits).
+TEST_F(Cli, PathCheckpointNoticesAChangedMeshButNotTheAccelerator) {
+  write("tri.obj", "v -1 0 -1\nv 1 0 -1\nv 0 0 1\nf 1 3 2\n");
+  write("scene.json", R"({"format": "candela/1",
+    "camera": {"eye": [0, 2, 2], "target": [0, 0, 0], "width": 12, "height": 10},
+    "lights": [{"type": "point", "position": [0, 2, 0], "intensity": 2}],
+    "shapes": [{"type": "mesh", "file": "tri.obj", "material": {"kd": 0.5}}]})");
+  std::string output;
+  ASSERT_EQ(run("render scene.json -q --method path --spp 2 --checkpoint a.ckpt -o a.pfm", output), 0) << output;
+  EXPECT_EQ(run("render scene.json -q --method path --spp 3 --accel bvh --resume a.ckpt -o b.pfm", output), 0)
+      << output;
+  write("tri.obj", "v -1 0 -1\nv 1 0 -1\nv 0 0 2\nf 1 3 2\n");
+  EXPECT_EQ(run("render scene.json -q --method path --spp 3 --resume a.ckpt -o c.pfm", output), 2) << output;
+  EXPECT_NE(output.find("another scene or other settings"), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(directory_ / "c.pfm"));
+}
+
+}  // namespace
+}  // namespace candela

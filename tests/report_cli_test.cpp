@@ -213,6 +213,18 @@ TEST_F(ReportCli, AFailingMethodWritesNoPage) {
   EXPECT_NE(output.find("meshless"), std::string::npos) << output;
   EXPECT_FALSE(fs::exists(directory_ / "out" / "index.html"));
   EXPECT_FALSE(fs::exists(directory_ / "out" / "report.json"));
+
+  // A good report, then a failing run into the same folder: the old page would describe the new
+  // reference it did not measure, so it must be gone.
+  ASSERT_EQ(candela("report room.json --methods whitted --reference-spp 4 --threads 2 -q -o again", output), 0)
+      << output;
+  ASSERT_TRUE(fs::exists(directory_ / "again" / "index.html"));
+  EXPECT_NE(candela("report room.json --methods whitted,meshless --reference-spp 2 --threads 2 -q "
+                    "--set meshless.max_sites=2 -o again",
+                    output),
+            0);
+  EXPECT_FALSE(fs::exists(directory_ / "again" / "index.html"));
+  EXPECT_FALSE(fs::exists(directory_ / "again" / "report.json"));
 }
 
 }  // namespace

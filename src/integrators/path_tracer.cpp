@@ -274,8 +274,6 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
   const bool timed = settings.time > 0;
 
   const LightSampler lights(scene);
-  if (lights.empty() && !request.quiet)
-    statistics.extra["path_warning"] = "nothing emits light: no lights, emissive surfaces, environment or background";
 
   tbb::enumerable_thread_specific<RayCounts> counts;
   tbb::enumerable_thread_specific<uint64_t> invalid;
@@ -354,6 +352,8 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
                           {"checkpoints_written", checkpoints},
                           {"seconds_all_runs", state.seconds + timer.seconds()}};
   if (!request.resume.empty()) facts["resumed_from_spp"] = first_pass;
+  if (lights.empty())
+    facts["warning"] = "nothing emits light (no lights, emissive surfaces, environment or background): the image is black";
   statistics.extra["path"] = facts;
 }
 

@@ -21,11 +21,12 @@ namespace candela {
 
 namespace {
 
-// The stream of sample `sample` at probe point `index`: apart from every image pixel's stream
-// (the top bit of the sequence is set).
+// The stream of sample `sample` at probe point `index`: apart from the image pixels' streams (a
+// seed of its own; PCG32 drops the sequence's top bit, so a flag there would not do).
 Pcg32 probe_rng(uint64_t seed, uint64_t sample, std::size_t index) {
-  return path_pixel_rng(seed, sample, static_cast<uint32_t>(index & 0xffffffffu),
-                        static_cast<uint32_t>((uint64_t(index) >> 32) | 0x80000000u));
+  constexpr uint64_t kProbeSeed = 0x50524f4245ULL;  // "PROBE"
+  return path_pixel_rng(seed ^ kProbeSeed, sample, static_cast<uint32_t>(index & 0xffffffffu),
+                        static_cast<uint32_t>(uint64_t(index) >> 32));
 }
 
 Vec3 sensor_origin(const Scene& scene, const ProbePoint& point) {
@@ -190,6 +191,8 @@ std::vector<ProbePoint> read_probe_points(const std::string& path) {
       std::size_t used = 0;
       try {
         values[k] = std::stod(field, &used);
+      } catch (const std::out_of_range&) {
+        fail(path, line_number, column, "\"" + field + "\" is out of the range of a double");
       } catch (const std::exception&) {
         used = 0;
       }

@@ -687,9 +687,14 @@ class RadiosityField final : public SolutionField {
       : solution_(std::move(solution)),
         vertices_(compute_vertex_radiosity(solution_.mesh.elements, solution_.element_radiosity,
                                            solution_.element_hidden)) {}
-  bool exitance(const Ray&, const Intersection& hit, Color& exitance) const override {
+  bool exitance(const Ray& ray, const Intersection& hit, Color& exitance) const override {
     const uint32_t element = solution_.mesh.element_at(hit.primitive, hit.surface.position);
     if (element == UINT32_MAX) return false;
+    // Patches are one-sided (000 §6): nothing leaves a patch's back.
+    if (dot(ray.direction, solution_.mesh.elements[element].normal) > 0) {
+      exitance = Color();
+      return true;
+    }
     exitance = ray_traced_radiosity(solution_, vertices_, element, hit);
     return true;
   }

@@ -139,6 +139,9 @@ class Scene {
   // view-independent solution between views (radiosity) recognises its scene by.
   const uint64_t unique_id;
   std::string source;  // file name, or "<built-in>"
+  // The files the scene file referenced (meshes, textures, environment maps), in load order:
+  // what besides the scene file decides the image (path-tracing checkpoints hash them).
+  std::vector<std::string> input_files;
   // The camera methods render through: the "camera" object, unless the caller swapped in one
   // of the named cameras for a view (candela render --camera).
   std::unique_ptr<Camera> camera;

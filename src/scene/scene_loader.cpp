@@ -58,6 +58,7 @@ class SceneReader {
     scene_ = scene.get();
     context_.materials = &scene->materials;
     context_.warnings = &scene->warnings;
+    context_.input_files = &scene->input_files;
     root_.expect_object();
     const JsonNode format = root_.at("format");
     if (format.as_string() != kFormat)

@@ -259,6 +259,11 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
   const uint64_t seed = scene.render.seed;
   const PathSettings path_settings = scene.path;
   const fs::path directory(options.output_directory);
+  // A page left from an earlier report would describe images this run is about to replace: it
+  // goes first, so that a run that fails leaves no page at all.
+  std::error_code ignored;
+  fs::remove(directory / "index.html", ignored);
+  fs::remove(directory / "report.json", ignored);
 
   CrossMethodReport report;
   report.scene_path = options.scene_path;
@@ -319,14 +324,22 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
   // Errors and the difference pictures, all on one scale.
   if (options.log) options.log("comparing with the reference");
   std::vector<std::vector<double>> differences;
-  double largest = 0;
+  std::vector<double> all;
   for (CrossMethodEntry& entry : report.entries) {
     entry.errors = compare_images(entry.image, report.reference.image);
     differences.push_back(difference_values(entry.image, report.reference.image, DifferenceMetric::absolute));
     for (const double value : differences.back())
-      if (std::isfinite(value)) largest = std::max(largest, value);
+      if (std::isfinite(value)) all.push_back(value);
   }
-  report.difference_scale = largest > 0 ? largest : 1.0;  // identical images: 0 .. 1
+  // The 99th percentile of every difference: a few pixels along the lamp's edges (10× the rest)
+  // would otherwise leave every picture dark; larger values take the top colour.
+  double scale = 0;
+  if (!all.empty()) {
+    const auto at = all.begin() + static_cast<std::ptrdiff_t>(0.99 * double(all.size() - 1));
+    std::nth_element(all.begin(), at, all.end());
+    scale = *at;
+  }
+  report.difference_scale = scale > 0 ? scale : 1.0;  // identical images: 0 .. 1
   for (std::size_t i = 0; i < report.entries.size(); ++i) {
     const Film picture =
         false_colour_image(differences[i], width, height, 0.0, report.difference_scale, ColourMap::viridis);
