@@ -26,7 +26,6 @@ if [ ! -f "$reference" ] || [ "${RENDER_REFERENCE:-0}" = 1 ]; then
   if [ -f "$work/reference.ckpt" ]; then resume=(--resume "$work/reference.ckpt"); fi
   "$candela" render "$scene" --method path --spp "$spp" "${resume[@]}" --checkpoint "$work/reference.ckpt" \
     --checkpoint-every 60 -q -o "$reference" --stats "$work/reference-stats.json"
-  "$candela" render "$scene" --method path --spp "$spp" --resume "$work/reference.ckpt" -q -o "$work/reference.png"
 fi
 
 report() {  # name, then candela report options
@@ -48,5 +47,5 @@ report radiosity-ray-cast --methods radiosity --equal-time --set radiosity.form_
 for basis in normalized shepard radial; do
   report "meshless-$basis" --methods meshless --equal-time --set meshless.basis="$basis" --set meshless.spacing=0.35
 done
-cp "$work/reference.png" "$docs/reference.png"
+cp "$work/radiosity-hemicube/reference.png" "$docs/reference.png"
 echo "validation: reports in $work, pictures and report.json files in $docs"

@@ -105,8 +105,9 @@ TEST(Furnace, MeshlessGivesEOverOneMinusRhoInASphere) {
     const auto scene =
         sphere_furnace("meshless", R"("meshless": {"basis": ")" + basis + R"(", "spacing": 0.3, "grid": 24, "rounds": 6},)");
     const Film film = testing::render_scene(*scene, "meshless", 2);
-    // Issue 8's bound is 2 % at ρ = 0.5; here ρ reaches 0.8 and the interpolation error is
-    // multiplied by 1/(1 − ρ): 3 %.
+    // Not 1 %: the effective areas are integrated over the tessellated sphere, a few tenths of a
+    // percent short, so the rows of S sum to s ≈ 0.996 and B = E/(1 − ρs) falls short by
+    // ρ(1 − s)/(1 − ρ) — 1.5 % at ρ = 0.8 (measured 2.3 % at spacing 0.3, 1.5 % at 0.2).
     const double tolerance = 0.03;
     for (const Color& pixel : film.pixels())
       for (int c = 0; c < 3; ++c) ASSERT_NEAR(pixel[c], kExpected[c], tolerance * kExpected[c]) << basis;

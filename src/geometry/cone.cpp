@@ -5,6 +5,7 @@
 
 #include "geometry/disc.h"
 #include "geometry/surface_sampling.h"
+#include "sampling/warps.h"
 #include "geometry/tessellation.h"
 #include "math/constants.h"
 
@@ -126,7 +127,7 @@ bool Cone::sample_area(const Vec2& u, SurfaceSample& sample) const {
     sample.normal = side_radius > 0 ? normalize(radial - axis * slope_) : (slope_ < 0 ? axis : -axis);
   } else {
     const bool top = part == 2;
-    const Vec2 d = concentric_disc({choice, u.y});
+    const Vec2 d = square_to_uniform_disk_concentric({choice, u.y});
     sample.position = (top ? cap_ : frame_.base()) + (x_axis * d.x + y_axis * d.y) * (top ? r1 : r0);
     sample.normal = top ? axis : -axis;
   }

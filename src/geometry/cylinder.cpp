@@ -5,6 +5,7 @@
 
 #include "geometry/disc.h"
 #include "geometry/surface_sampling.h"
+#include "sampling/warps.h"
 #include "geometry/tessellation.h"
 #include "math/constants.h"
 
@@ -102,7 +103,7 @@ bool Cylinder::sample_area(const Vec2& u, SurfaceSample& sample) const {
     sample.normal = radial;
   } else {
     const bool top = part == 2;
-    const Vec2 d = concentric_disc({choice, u.y});
+    const Vec2 d = square_to_uniform_disk_concentric({choice, u.y});
     sample.position = (top ? cap_ : frame_.base()) + (x_axis * d.x + y_axis * d.y) * radius_;
     sample.normal = top ? axis : -axis;
   }

@@ -6,6 +6,7 @@
 
 #include "geometry/flat_surface.h"
 #include "geometry/surface_sampling.h"
+#include "sampling/warps.h"
 #include "geometry/tessellation.h"
 #include "math/constants.h"
 
@@ -73,7 +74,7 @@ bool Polygon::sample_area(const Vec2& u, SurfaceSample& sample) const {
   double probability = 0, remapped = 0;
   if (!triangle_choice_.sample_discrete(u.x, index, probability, &remapped)) return false;
   const std::array<Vec3, 3>& corners = sample_triangles_[index];
-  const Vec2 b = uniform_triangle({remapped, u.y});
+  const Vec2 b = square_to_uniform_triangle({remapped, u.y});
   sample.position = corners[0] * b.x + corners[1] * b.y + corners[2] * (1 - b.x - b.y);
   // The polygon's own normal, as intersect reports it (the triangles lie in its plane).
   sample.normal = normal_;

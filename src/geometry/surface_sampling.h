@@ -1,7 +1,6 @@
 // Small helpers the shapes share to sample points uniformly in area (SPEC §12, Shape::sample_area):
-// choosing one part of a composite surface by its area and reusing the random number, and the
-// concentric disc and uniform triangle maps (as in sampling/warps.h, kept inline here so that
-// geometry needs nothing but itself).
+// choosing one part of a composite surface by its area and reusing the random number (the warps
+// themselves are sampling/warps.h).
 #pragma once
 
 #include <algorithm>
@@ -38,27 +37,6 @@ int pick_by_area(const double (&areas)[count], double& u) {
   // Rounding left u past the last boundary: the last part of positive area.
   u = kBelowOne;
   return last;
-}
-
-// Shirley–Chiu concentric map of [0, 1)² onto the unit disc (area preserving).
-inline Vec2 concentric_disc(const Vec2& u) {
-  const double a = 2 * u.x - 1, b = 2 * u.y - 1;
-  if (a == 0 && b == 0) return {0, 0};
-  double r, phi;
-  if (std::fabs(a) > std::fabs(b)) {
-    r = a;
-    phi = (kPi / 4) * (b / a);
-  } else {
-    r = b;
-    phi = kPi / 2 - (kPi / 4) * (a / b);
-  }
-  return {r * std::cos(phi), r * std::sin(phi)};
-}
-
-// Barycentrics (b0, b1) uniform on a triangle (b2 = 1 − b0 − b1).
-inline Vec2 uniform_triangle(const Vec2& u) {
-  const double root = std::sqrt(u.x);
-  return {1 - root, u.y * root};
 }
 
 }  // namespace candela
