@@ -23,6 +23,7 @@
 #include "scene_options.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
+#include "util/hash.h"
 
 namespace candela::cli {
 
@@ -52,16 +53,6 @@ struct RenderOptions {
   std::string resume;
 };
 
-// FNV-1a: a checkpoint remembers which scene text it was made from.
-uint64_t text_hash(const std::string& text) {
-  uint64_t hash = 1469598103934665603ULL;
-  for (const char c : text) {
-    hash ^= static_cast<unsigned char>(c);
-    hash *= 1099511628211ULL;
-  }
-  return hash;
-}
-
 // What ties a path-tracing checkpoint to this run: the scene file's bytes, the bytes of every file
 // it referenced (meshes, textures, maps) and the --set overrides, except those that only say how
 // long to go on (path.spp, path.time and path.checkpoint_interval may change between a run and
@@ -74,15 +65,15 @@ std::string scene_fingerprint(const SceneOptions& options, const Scene& scene) {
   };
   const std::string text = options.scene_path.empty() ? default_scene_text() : file_text(options.scene_path);
   std::string referenced;
-  for (const std::string& file : scene.input_files) referenced += fmt::format("{:016x}", text_hash(file_text(file)));
+  for (const std::string& file : scene.input_files) referenced += fmt::format("{:016x}", fnv1a_64(file_text(file)));
   std::string overrides;
   for (const std::string& o : options.overrides) {
     const bool irrelevant = o.rfind("path.spp=", 0) == 0 || o.rfind("path.time=", 0) == 0 ||
                             o.rfind("path.checkpoint_interval=", 0) == 0 || o.rfind("render.accelerator=", 0) == 0;
     if (!irrelevant) overrides += o + "\n";
   }
-  return fmt::format("scene {:016x} files {:016x} overrides {:016x}", text_hash(text), text_hash(referenced),
-                     text_hash(overrides));
+  return fmt::format("scene {:016x} files {:016x} overrides {:016x}", fnv1a_64(text), fnv1a_64(referenced),
+                     fnv1a_64(overrides));
 }
 
 PixelRect region_of(const RenderOptions& options, const Camera& camera) {

@@ -7,6 +7,7 @@
 
 #include "util/atomic_file.h"
 #include "util/error.h"
+#include "util/hash.h"
 
 namespace candela {
 
@@ -14,16 +15,6 @@ namespace {
 
 constexpr char kMagic[] = "CANDELA-PATH-CHECKPOINT 1\n";
 constexpr std::size_t kMagicSize = sizeof(kMagic) - 1;
-
-// FNV-1a over the bytes: catches a truncated or damaged file (not an adversary).
-uint64_t fnv1a(const std::string& bytes) {
-  uint64_t hash = 1469598103934665603ULL;
-  for (const char c : bytes) {
-    hash ^= static_cast<unsigned char>(c);
-    hash *= 1099511628211ULL;
-  }
-  return hash;
-}
 
 template <typename T>
 void put(std::string& out, const T& value) {
@@ -80,7 +71,7 @@ void write_path_checkpoint(const std::string& path, const PathCheckpoint& checkp
     put(bytes, sum.g);
     put(bytes, sum.b);
   }
-  put(bytes, fnv1a(bytes));
+  put(bytes, fnv1a_64(bytes));
   write_atomically(path, [&](const std::string& temporary) {
     std::ofstream out(temporary, std::ios::binary);
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
@@ -123,7 +114,7 @@ PathCheckpoint read_path_checkpoint(const std::string& path) {
   }
   const std::size_t body = reader.position();
   const auto checksum = reader.get<uint64_t>();
-  if (checksum != fnv1a(bytes.substr(0, body))) reader.fail("the checkpoint is corrupt (checksum mismatch)");
+  if (checksum != fnv1a_64(bytes.substr(0, body))) reader.fail("the checkpoint is corrupt (checksum mismatch)");
   if (reader.position() != bytes.size()) reader.fail("the checkpoint has trailing bytes");
   return checkpoint;
 }

@@ -10,6 +10,7 @@
 
 #include "integrators/path_checkpoint.h"
 #include "math/constants.h"
+#include "sampling/multiple_importance.h"
 #include "shading/bsdf.h"
 #include "shading/bump.h"
 #include "shading/material_bsdf.h"
@@ -22,12 +23,6 @@ namespace {
 
 // Paths end here even when Russian roulette keeps them going (a closed mirror box).
 constexpr int kDepthCap = 1024;
-
-// Veach's power heuristic (β = 2) for the strategy with density a against one with density b.
-double power_heuristic(double a, double b) {
-  const double a2 = a * a, b2 = b * b;
-  return a2 + b2 > 0 ? a2 / (a2 + b2) : 0.0;
-}
 
 bool is_finite(const Color& c) { return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b); }
 

@@ -12,6 +12,7 @@
 #include "integrators/path_tracer.h"
 #include "integrators/solution_field.h"
 #include "math/constants.h"
+#include "sampling/multiple_importance.h"
 #include "sampling/warps.h"
 #include "shading/bsdf.h"
 #include "util/error.h"
@@ -44,12 +45,6 @@ ProbeResult probe_path(const Scene& scene, const LightSampler& lights, const Pro
   }
   // path_irradiance is in display units already irradiance; path_radiance is π × radiance.
   return {irradiance / settings.samples, radiance / (settings.samples * kPi)};
-}
-
-// Veach's power heuristic (β = 2).
-double power_heuristic(double a, double b) {
-  const double a2 = a * a, b2 = b * b;
-  return a2 + b2 > 0 ? a2 / (a2 + b2) : 0.0;
 }
 
 // E = ∫ (B/π) cos θ dω by two strategies combined with MIS (the power heuristic): k × k stratified
