@@ -13,6 +13,7 @@
 #include "render_support.h"
 #include "scene/scene_loader.h"
 #include "scratch_directory.h"
+#include "shading/bsdf.h"
 
 namespace candela {
 namespace {
@@ -77,6 +78,25 @@ TEST(PathTracer, IrradianceUnderAnEmittingSquareIsEmissionTimesTheFormFactor) {
   expect_estimate(irradiance(*scene, {0, 0, 0}, {0, 1, 0}, 4000), expected, "square");
 }
 
+// The same square as two mesh triangles, and as a unit quad placed by a transform (rotated and
+// scaled): the emitter sampling of mesh triangles and transformed shapes gives the same irradiance.
+TEST(PathTracer, TrianglesAndTransformedQuadsEmitLikeTheSquare) {
+  const double expected = 3 * 4 * point_to_parallel_rectangle_corner(0.5, 0.5, 1);
+  const auto triangles = scene_from(R"("camera": {"eye": [0, -3, 0], "target": [0, 0, 0], "up": [0, 0, 1], "width": 4, "height": 4},
+    "materials": {"lamp": {"kd": 0, "emission": 3}},
+    "shapes": [{"type": "triangle", "vertices": [[-0.5, 1, -0.5], [0.5, 1, -0.5], [0.5, 1, 0.5]], "material": "lamp"},
+               {"type": "triangle", "vertices": [[-0.5, 1, -0.5], [0.5, 1, 0.5], [-0.5, 1, 0.5]], "material": "lamp"}])");
+  expect_estimate(irradiance(*triangles, {0, 0, 0}, {0, 1, 0}, 4000), expected, "triangles");
+  const auto transformed = scene_from(R"("camera": {"eye": [0, -3, 0], "target": [0, 0, 0], "up": [0, 0, 1], "width": 4, "height": 4},
+    "shapes": [{"type": "quad", "corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0],
+                "transform": [{"scale": [2, 0.5, 1]}, {"translate": [-1, -0.25, 0]}, {"rotate": {"angle": 90, "axis": [1, 0, 0]}},
+                              {"translate": [0, 1, 0]}],
+                "material": {"kd": 0, "emission": 3}}])");
+  // A 2 × 0.5 rectangle one unit up, centred: 4 corner rectangles of 1 × 0.25.
+  expect_estimate(irradiance(*transformed, {0, 0, 0}, {0, 1, 0}, 4000),
+                  3 * 4 * point_to_parallel_rectangle_corner(1, 0.25, 1), "transformed quad");
+}
+
 // Coaxial disc of radius r at height h: F = r²/(h² + r²); a sphere of radius r whose centre lies
 // at distance d on the normal: F = (r/d)².
 TEST(PathTracer, IrradianceFromADiscAndASphereMatchesTheirFormFactors) {
@@ -100,6 +120,35 @@ TEST(PathTracer, UniformSkyGivesUnitIrradianceAndTheFloorItsAlbedo) {
   const Film film = testing::render_scene(*scene, "path");
   const Estimate floor = estimate(film.width() * film.height(), [&](int i) { return film.pixels()[i]; });
   expect_estimate(floor, 0.5, "floor");
+}
+
+// Under the latitude-longitude sky of scenes/textures/sky.exr, the irradiance of a point facing up
+// (or tilted) is ∫ L cos θ dω over its hemisphere, L = the map's value / π (the map holds display
+// units, π × radiance, as the background colour does) — here by a dense midpoint quadrature of the
+// map's own radiance(), against the path tracer's importance-sampled environment with MIS.
+TEST(PathTracer, IrradianceUnderAnEnvironmentMapMatchesQuadrature) {
+  const auto scene = load_scene_text(R"({"format": "candela/1",
+    "camera": {"eye": [0, 0, 3], "target": [0, 0, 0], "width": 4, "height": 4},
+    "environment": {"type": "equirectangular", "file": "textures/sky.exr", "up": [0, 1, 0], "forward": [0, 0, -1]},
+    "shapes": [{"type": "sphere", "center": [0, -100, 0], "radius": 1, "material": {"kd": 0.5}}]})",
+                                     "sky.json", CANDELA_SOURCE_DIR "/scenes");
+  for (const Vec3 normal : {Vec3{0, 1, 0}, normalize(Vec3{1, 1, 0.3})}) {
+    const ShadingFrame frame = ShadingFrame::from_normal(normal);
+    Color exact;
+    const int n = 400;  // θ × φ cells
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const double theta = (i + 0.5) / n * kPi / 2, phi = (j + 0.5) / n * 2 * kPi;
+        const Vec3 local{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+        exact += scene->background_along(frame.to_world(local)) *
+                 (std::cos(theta) * std::sin(theta) * (kPi / 2 / n) * (2 * kPi / n) / kPi);
+      }
+    const Estimate e = irradiance(*scene, {0, 0, 0}, normal, 20000);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(e.mean[c], exact[c], 4 * e.error[c] + 1e-4 * exact[c]) << c;
+      EXPECT_NEAR(e.mean[c], exact[c], 0.01 * exact[c]) << c;
+    }
+  }
 }
 
 // A lossless mirror or glass sphere in a uniform environment is invisible: every path carries the
