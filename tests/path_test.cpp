@@ -222,6 +222,22 @@ TEST(PathTracer, ResumingACheckpointGivesTheUninterruptedImage) {
   EXPECT_EQ(read_path_checkpoint(checkpoint).passes, 7u);
 }
 
+// "--checkpoint FILE every N seconds": with an interval shorter than a pass, a checkpoint follows
+// every pass but the last, and the final state is written once more at the end.
+TEST(PathTracer, CheckpointsAreWrittenEveryIntervalAndAtTheEnd) {
+  const testing::ScratchDirectory directory("path-interval");
+  auto scene = small_box(4);
+  scene->path.checkpoint_interval = 1e-9;
+  const auto method = find_method("path")->create();
+  Film film(scene->camera->width(), scene->camera->height());
+  RenderRequest request{{0, 0, film.width(), film.height()}, true};
+  request.checkpoint = (directory.path() / "every.ckpt").string();
+  RunStatistics statistics;
+  method->render(*scene, request, film, statistics);
+  EXPECT_EQ(statistics.extra["path"]["checkpoints_written"], 4);  // after passes 1, 2, 3 and at the end
+  EXPECT_EQ(read_path_checkpoint(request.checkpoint).passes, 4u);
+}
+
 TEST(PathCheckpoint, RoundTripsExactlyAndRefusesDamage) {
   const testing::ScratchDirectory directory("path-checkpoint");
   const std::string file = (directory.path() / "c.checkpoint").string();
