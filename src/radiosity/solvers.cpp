@@ -11,6 +11,8 @@
 #include <sstream>
 #include <utility>
 
+#include "util/memory.h"
+
 namespace candela {
 namespace {
 
@@ -49,21 +51,6 @@ std::string format_number(double value) {
   std::ostringstream text;
   text << value;
   return text.str();
-}
-
-// MemTotal of /proc/meminfo in bytes; 0 when it cannot be read.
-uint64_t physical_memory_bytes() {
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key, unit;
-  uint64_t kibibytes = 0;
-  while (meminfo >> key) {
-    if (key == "MemTotal:") {
-      if (meminfo >> kibibytes >> unit && unit == "kB") return kibibytes * 1024;
-      return 0;
-    }
-    meminfo.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
-  }
-  return 0;
 }
 
 // The elements of each patch in index order, and the patch areas as sums of element areas.
