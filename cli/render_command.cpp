@@ -22,6 +22,7 @@
 #include "scene/scene_loader.h"
 #include "scene_options.h"
 #include "util/atomic_file.h"
+#include "util/cancellation.h"
 #include "util/error.h"
 #include "util/hash.h"
 
@@ -206,6 +207,29 @@ void write_statistics(const RunStatistics& statistics, const std::string& path) 
   });
 }
 
+// After Ctrl-C, once the image in progress (and its statistics) is written: says what it holds,
+// where the path tracer's checkpoint is, and what was skipped. Returns the exit status.
+int report_interrupted(const RunStatistics& statistics, const std::string& output, std::size_t skipped) {
+  const nlohmann::json& extra = statistics.extra;
+  const bool partial = extra.value("interrupted", false);
+  std::string message = partial ? "interrupted: partial result" : "interrupted: finished result";
+  if (partial && extra.contains("completed") && extra["completed"].is_string())
+    message += " (" + extra["completed"].get<std::string>() + ")";
+  message += " written to " + output;
+  if (extra.contains("checkpoint") && extra["checkpoint"].is_string())
+    message += "; checkpoint " + extra["checkpoint"].get<std::string>() + " (continue with --resume " +
+               extra["checkpoint"].get<std::string>() + ")";
+  if (skipped > 0) message += fmt::format("; {} more image{} not rendered", skipped, skipped == 1 ? "" : "s");
+  std::cerr << "candela: " << message << "\n";
+  return kInterruptedExitCode;
+}
+
+// Ctrl-C between images: nothing of the next one is begun.
+int report_interrupted_before(std::size_t skipped, const char* what) {
+  std::cerr << fmt::format("candela: interrupted: {} more {}{} not rendered\n", skipped, what, skipped == 1 ? "" : "s");
+  return kInterruptedExitCode;
+}
+
 int print_pixel_ray_trees(const RenderOptions& options, Scene& scene, const std::vector<View>& views,
                           const Method& method) {
   for (const View& view : views) {
@@ -351,8 +375,13 @@ int run_render(RenderOptions& options) {
   }
   const std::string fingerprint = entry->name == "path" ? scene_fingerprint(options.scene, *scene) : std::string();
 
+  // SPEC §15: from here on Ctrl-C (or SIGTERM) stops the method early; what it finished is written
+  // as usual, the views and frames after it are skipped, and the exit status is 130. A second
+  // Ctrl-C ends the process at once.
+  install_interrupt_handler();
   for (std::size_t v = 0; v < views.size(); ++v) {
     const View& view = views[v];
+    if (cancel_requested()) return report_interrupted_before(views.size() - v, "view");
     const std::string output = path_for_view(options.output, view, views.size());
     const std::string stats_path = path_for_view(options.stats_path, view, views.size());
     const std::string aa_map_path = path_for_view(options.aa_map_path, view, views.size());
@@ -402,11 +431,14 @@ int run_render(RenderOptions& options) {
                                method->name(), views.size() > 1 ? ", camera " + view.name : std::string())
                 << statistics.summary();
     if (!stats_path.empty()) write_statistics(statistics, stats_path);
+    if (cancel_requested()) return report_interrupted(statistics, output, views.size() - v - 1 + relight_frames.size());
   }
 
   // Relighting: each frame's lights in place of the scene's, the same method object, so the
   // meshless geometry (sites, areas, transfer matrix) is reused and only η and λ are redone.
-  for (LightSetup& frame : relight_frames) {
+  for (std::size_t f = 0; f < relight_frames.size(); ++f) {
+    LightSetup& frame = relight_frames[f];
+    if (cancel_requested()) return report_interrupted_before(relight_frames.size() - f, "frame");
     std::swap(scene->lights, frame.lights);
     std::swap(scene->ambient, frame.ambient);
     const CurrentCamera current(*scene, views.front());
@@ -434,6 +466,7 @@ int run_render(RenderOptions& options) {
                                render_timer.seconds(),
                                statistics.extra["meshless"].value("lighting_seconds", 0.0), output);
     if (!options.stats_path.empty()) write_statistics(statistics, path_with_suffix(options.stats_path, frame.name));
+    if (cancel_requested()) return report_interrupted(statistics, output, relight_frames.size() - f - 1);
   }
   return 0;
 }

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "math/pcg32.h"
+#include "util/cancellation.h"
 
 namespace candela {
 
@@ -62,12 +63,15 @@ bool exceeds(const Color& threshold, const Color& c00, const Color& c10, const C
   return false;
 }
 
+// Once cancel_requested() (Ctrl-C), tiles not yet begun are skipped: they keep the film's black and
+// get no tile_done.
 template <typename PixelFunction>
 void for_each_tile(int width, int height, int tile, const std::function<void()>& tile_done,
                    const PixelFunction& pixel) {
   const int tiles_x = (width + tile - 1) / tile;
   const int64_t count = sampling_tile_count(width, height, tile);
   tbb::parallel_for(int64_t(0), count, [&](int64_t index) {
+    if (cancel_requested()) return;  // Ctrl-C: the tiles not begun stay black
     const int x_begin = static_cast<int>(index % tiles_x) * tile;
     const int y_begin = static_cast<int>(index / tiles_x) * tile;
     const int x_end = std::min(x_begin + tile, width);
@@ -123,6 +127,7 @@ void sample_corners(const AntialiasingSettings& settings, uint64_t seed, const S
   const Lattice lattice{1, settings.jitter, seed, region.image_width, region.image_height};
   std::vector<Color> corners(std::size_t(width + 1) * (height + 1));
   tbb::parallel_for(0, height + 1, [&](int j) {
+    if (cancel_requested()) return;
     for (int i = 0; i <= width; ++i) {
       double x, y;
       lattice.position(region.x0 + i, region.y0 + j, x, y);

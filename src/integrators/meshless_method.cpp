@@ -14,6 +14,7 @@
 #include "meshless/meshless_basis.h"
 #include "scene/light.h"
 #include "scene/scene.h"
+#include "util/cancellation.h"
 
 namespace candela {
 
@@ -144,7 +145,11 @@ nlohmann::json geometry_facts(const Scene& scene, const MeshlessGeometry& geomet
 
 }  // namespace
 
-std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene) {
+namespace {
+
+// build_meshless_geometry; when cancellable, null once Ctrl-C arrives between its phases
+// (sampling, areas, transfer matrix).
+std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, bool cancellable) {
   const MeshlessSettings& settings = scene.meshless;
   auto geometry = std::make_shared<MeshlessGeometry>();
   auto start = std::chrono::steady_clock::now();
@@ -157,6 +162,7 @@ std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene) {
   sampling.max_sites = static_cast<std::size_t>(settings.max_sites);
   geometry->sites = sample_sites(scene, sampling);
   geometry->sampling_seconds = seconds_since(start);
+  if (cancellable && cancel_requested()) return nullptr;
   const SiteSet& sites = geometry->sites;
 
   start = std::chrono::steady_clock::now();
@@ -168,10 +174,15 @@ std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene) {
   if (settings.effective_area == MeshlessAreas::integrated)
     geometry->areas = integrate_effective_areas(scene, *geometry->basis, sites, sites.spacing / 4);
   geometry->area_seconds = seconds_since(start);
+  if (cancellable && cancel_requested()) return nullptr;
   // Eigen's compressed storage indexes entries with 32 bits.
   geometry->matrix = compute_transfer_matrix(scene, sites.sites, geometry->areas, std::size_t{INT32_MAX} - 1);
   return geometry;
 }
+
+}  // namespace
+
+std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene) { return build_geometry(scene, false); }
 
 MeshlessLighting light_meshless(const Scene& scene, const MeshlessGeometry& geometry) {
   const MeshlessSettings& settings = scene.meshless;
@@ -220,7 +231,9 @@ std::shared_ptr<const MeshlessGeometry> MeshlessMethod::geometry_for(const Scene
   std::lock_guard lock(cache_mutex_);
   reused = cached_ && cached_key_ == key;
   if (reused) return cached_;
-  cached_ = build_meshless_geometry(scene);
+  std::shared_ptr<const MeshlessGeometry> geometry = build_geometry(scene, true);
+  if (!geometry) return nullptr;  // Ctrl-C: nothing kept
+  cached_ = std::move(geometry);
   cached_key_ = key;
   return cached_;
 }
@@ -231,6 +244,14 @@ void MeshlessMethod::render(const Scene& scene, const RenderRequest& request, Fi
   // other light set-ups: --relight); the direct light and the iteration are redone every time.
   bool reused = false;
   const std::shared_ptr<const MeshlessGeometry> geometry = geometry_for(scene, reused);
+  // Ctrl-C before λ exists: the film stays black.
+  const auto interrupted = [&](const char* completed) {
+    statistics.extra["interrupted"] = true;
+    statistics.extra["completed"] = completed;
+    statistics.extra["meshless"] = {{"interrupted", true}};
+  };
+  if (!geometry) return interrupted("transfer matrix not finished");
+  if (cancel_requested()) return interrupted("sites and transfer matrix; no lighting");
   const MeshlessLighting lighting = light_meshless(scene, *geometry);
   nlohmann::json facts = geometry_facts(scene, *geometry);
   add_lighting_facts(lighting, facts);
@@ -284,6 +305,10 @@ void MeshlessMethod::render(const Scene& scene, const RenderRequest& request, Fi
   statistics.pixels += pixel_count;
   facts["display_seconds"] = seconds_since(start);
   statistics.extra["meshless"] = std::move(facts);
+  if (cancel_requested()) {  // Ctrl-C during the lighting or the display: λ exists and is shown whole
+    statistics.extra["interrupted"] = true;
+    statistics.extra["completed"] = "sites, transfer matrix and lighting";
+  }
 }
 
 namespace {

@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "integrators/path_checkpoint.h"
@@ -14,6 +15,7 @@
 #include "shading/bsdf.h"
 #include "shading/bump.h"
 #include "shading/material_bsdf.h"
+#include "util/cancellation.h"
 #include "util/error.h"
 #include "util/progress.h"
 
@@ -288,9 +290,23 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
     ++checkpoints;
     since_checkpoint = Stopwatch();
   };
+  // A pass goes to its own buffer and is added to the sums only once every pixel has it: a pass
+  // cut short by Ctrl-C is dropped, so the sums (and the checkpoint) always hold whole passes.
+  std::vector<Color> pass_values(state.sums.size());
+  const tbb::blocked_range2d<int> blocks(0, height, tile, 0, width, tile);
+  bool interrupted = false;
   while (state.passes < last_pass) {
+    if (cancel_requested()) {
+      interrupted = true;
+      break;
+    }
     const uint64_t pass = state.passes;
-    tbb::parallel_for(tbb::blocked_range2d<int>(0, height, tile, 0, width, tile), [&](const tbb::blocked_range2d<int>& block) {
+    std::atomic<bool> cut_short{false};
+    tbb::parallel_for(blocks, [&](const tbb::blocked_range2d<int>& block) {
+      if (cancel_requested()) {
+        cut_short.store(true, std::memory_order_relaxed);
+        return;
+      }
       RayCounts& rays = counts.local();
       for (int j = block.rows().begin(); j < block.rows().end(); ++j)
         for (int i = block.cols().begin(); i < block.cols().end(); ++i) {
@@ -301,11 +317,22 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
           ++rays.primary;
           const Color value = path_radiance(scene, lights, scene.camera->generate_ray(sx, sy), rng, rays);
           // A non-finite sample (an exploded weight) is dropped, not allowed to poison the pixel.
-          if (is_finite(value))
-            state.sums[std::size_t(j) * width + i] += value;
-          else
+          if (is_finite(value)) {
+            pass_values[std::size_t(j) * width + i] = value;
+          } else {
+            pass_values[std::size_t(j) * width + i] = Color();
             ++invalid.local();
+          }
         }
+    });
+    if (cut_short.load()) {  // some blocks were skipped: the pass is not whole
+      interrupted = true;
+      break;
+    }
+    tbb::parallel_for(blocks, [&](const tbb::blocked_range2d<int>& block) {
+      for (int j = block.rows().begin(); j < block.rows().end(); ++j)
+        for (int i = block.cols().begin(); i < block.cols().end(); ++i)
+          state.sums[std::size_t(j) * width + i] += pass_values[std::size_t(j) * width + i];
     });
     ++state.passes;
     progress.set_detail(fmt::format("{} spp", state.passes));
@@ -347,6 +374,12 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
                           {"checkpoints_written", checkpoints},
                           {"seconds_all_runs", state.seconds + timer.seconds()}};
   if (!request.resume.empty()) facts["resumed_from_spp"] = first_pass;
+  if (interrupted) {  // Ctrl-C: the mean of the whole passes, which the checkpoint holds too
+    statistics.extra["interrupted"] = true;
+    statistics.extra["completed"] = fmt::format("{} passes{}", state.passes - first_pass,
+                                                first_pass > 0 ? fmt::format(" ({} in all)", state.passes) : "");
+    if (!request.checkpoint.empty()) statistics.extra["checkpoint"] = request.checkpoint;
+  }
   if (lights.empty())
     facts["warning"] = "nothing emits light (no lights, emissive surfaces, environment or background): the image is black";
   statistics.extra["path"] = facts;

@@ -18,6 +18,7 @@
 #include "radiosity/solvers.h"
 #include "radiosity/vertex_radiosity.h"
 #include "raster/rasterizer.h"
+#include "util/cancellation.h"
 #include "util/progress.h"
 #include "radiosity/solution_export.h"
 
@@ -98,6 +99,7 @@ void fill_form_factor_rows(const Scene& scene, const std::vector<RadiositySurfac
     const auto table = std::make_shared<const DeltaFormFactors>(settings.hemicube_resolution);
     tbb::enumerable_thread_specific<std::unique_ptr<HemicubeFormFactors>> hemicubes;
     tbb::parallel_for(std::size_t(0), rows.size(), [&](std::size_t k) {
+      if (cancel_requested()) return;  // Ctrl-C: the rows not begun stay zero
       auto& hemicube = hemicubes.local();
       if (!hemicube) hemicube = std::make_unique<HemicubeFormFactors>(table);
       thread_local std::vector<double> row;
@@ -115,6 +117,7 @@ void fill_form_factor_rows(const Scene& scene, const std::vector<RadiositySurfac
     RayCastSettings ray_cast;
     ray_cast.source_samples_per_side = settings.ray_cast_samples;
     tbb::parallel_for(std::size_t(0), rows.size(), [&](std::size_t k) {
+      if (cancel_requested()) return;
       const std::size_t i = rows[k];
       Pcg32 random(scene.render.seed, i);  // one stream per row
       const RadiositySurface& surface = surfaces[i];
@@ -216,7 +219,8 @@ ElementSolution shoot_progressively(const RadiosityMesh& mesh, const ElementToPa
   std::size_t shooter = patch_count;
   double fraction = unshot_fraction(shooter);
   std::size_t steps = 0;
-  while (fraction > settings.threshold && shooter < patch_count && steps < static_cast<std::size_t>(settings.max_steps)) {
+  while (fraction > settings.threshold && shooter < patch_count && steps < static_cast<std::size_t>(settings.max_steps) &&
+         !cancel_requested()) {  // Ctrl-C: the solution so far
     const Color shot = unshot[shooter];
     unshot[shooter] = Color();
     const float* column = element_to_patch.col(static_cast<Eigen::Index>(shooter)).data();  // contiguous
@@ -337,15 +341,20 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
       form_factor_seconds += form_factor_time.seconds();
     }
     reciprocity = measure_reciprocity(mesh.patches, patch_rows);
-    const RadiositySystem patches = mesh.patch_system();
-    const FormFactorSource patch_source(std::move(patch_rows));
-    const RadiositySolution solution =
-        settings.solver == RadiositySolver::gaussian
-            ? solve_gaussian_elimination(patches, patch_source, form_factor_memory_limit(settings))
-            : solve_gauss_seidel(patches, patch_source, settings.threshold, static_cast<std::size_t>(settings.max_steps));
-    patch_radiosity = solution.radiosity;
-    patch_steps = solution.iterations;
-    patch_converged = solution.converged;
+    if (cancel_requested()) {  // Ctrl-C: not solved, B = E
+      for (const RadiositySurface& patch : mesh.patches) patch_radiosity.push_back(patch.emission);
+      patch_converged = false;
+    } else {
+      const RadiositySystem patches = mesh.patch_system();
+      const FormFactorSource patch_source(std::move(patch_rows));
+      const RadiositySolution solution =
+          settings.solver == RadiositySolver::gaussian
+              ? solve_gaussian_elimination(patches, patch_source, form_factor_memory_limit(settings))
+              : solve_gauss_seidel(patches, patch_source, settings.threshold, static_cast<std::size_t>(settings.max_steps));
+      patch_radiosity = solution.radiosity;
+      patch_steps = solution.iterations;
+      patch_converged = solution.converged;
+    }
   }
 
   // The element rows, then solutions and adaptive subdivision (000 §6.7.2) until no neighbours
@@ -361,6 +370,8 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
                           own_patch, element_to_patch, element_sums);
     form_factor_seconds += form_factor_time.seconds();
   }
+  // Ctrl-C before every row was computed: the rows not begun are zero.
+  const bool form_factors_complete = !cancel_requested();
   std::size_t form_factor_rows = (progressive ? 0 : patch_count) + mesh.elements.size();
   const double min_element_size = settings.min_element_size > 0 ? settings.min_element_size : mesh.element_size / 8;
   ProgressReporter progress("radiosity", 1000, "per mille of convergence", quiet);
@@ -374,7 +385,7 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
       solution.steps = patch_steps;
       solution.converged = patch_converged;
     }
-    if (!(settings.subdivision_threshold > 0)) break;
+    if (!(settings.subdivision_threshold > 0) || cancel_requested()) break;
     const std::vector<bool> split =
         elements_to_split(mesh, solution.radiosity, element_sums, settings.subdivision_threshold, min_element_size);
     const auto split_count = static_cast<std::size_t>(std::count(split.begin(), split.end(), true));
@@ -480,6 +491,12 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
     };
     out["row_sum"] = summary(progressive ? element_sums : patch_sums);
     if (!progressive) out["element_row_sum"] = summary(element_sums);
+    if (cancel_requested()) {
+      out["interrupted"] = true;
+      out["completed"] = !form_factors_complete ? std::string("form factors not finished")
+                         : progressive ? fmt::format("{} shots, unshot {:.3g}%", result.steps, 100 * result.unshot_fraction)
+                                       : fmt::format("{} sweeps", result.steps);
+    }
   }
   return result;
 }
@@ -618,6 +635,7 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
   if (reused) return cached_;
   auto solved = std::make_shared<Solved>();
   solved->result = solve_with_statistics(scene, quiet, &solved->facts);
+  if (solved->facts.contains("interrupted")) return solved;  // Ctrl-C: not a solution to keep
   cached_ = solved;
   cached_key_ = key;
   return solved;
@@ -630,6 +648,10 @@ void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, F
   const RadiositySolveResult& solution = solved->result;
   nlohmann::json facts = solved->facts;
   facts["solution_reused"] = reused;
+  if (facts.contains("interrupted")) {  // Ctrl-C: the solution so far is displayed
+    statistics.extra["interrupted"] = true;
+    statistics.extra["completed"] = facts["completed"];
+  }
   if (!request.export_solution.empty()) {
     export_solution(solution, request.export_solution, scene.display);
     facts["exported_to"] = request.export_solution;

@@ -1,10 +1,12 @@
 #include "integrators/raster_method.h"
 
+#include <fmt/format.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -15,6 +17,7 @@
 #include "shading/cook_torrance.h"
 #include "shading/local_model.h"
 #include "shading/optics.h"
+#include "util/cancellation.h"
 #include "util/error.h"
 #include "util/progress.h"
 
@@ -312,7 +315,9 @@ void RasterMethod::render(const Scene& scene, const RenderRequest& request, Film
   }
   ProgressReporter progress("raster", static_cast<uint64_t>(tiles_x) * tiles_y, "tiles", request.quiet);
   tbb::enumerable_thread_specific<RasterStatistics> tile_statistics;
+  std::atomic<int> tiles_done{0};
   tbb::parallel_for(0, tiles_x * tiles_y, [&](int index) {
+    if (cancel_requested()) return;  // Ctrl-C: the tiles not begun stay black
     const int x0 = region.x0 + (index % tiles_x) * tile, y0 = region.y0 + (index / tiles_x) * tile;
     const int x1 = std::min(x0 + tile, region.x1), y1 = std::min(y0 + tile, region.y1);
     const int w = x1 - x0;
@@ -349,9 +354,14 @@ void RasterMethod::render(const Scene& scene, const RenderRequest& request, Film
     const RasterStatistics& own = rasterizer.statistics();
     total.fragments += own.fragments;
     total.written += own.written;
+    tiles_done.fetch_add(1, std::memory_order_relaxed);
     progress.advance();
   });
   progress.finish();
+  if (cancel_requested()) {
+    statistics.extra["interrupted"] = true;
+    statistics.extra["completed"] = fmt::format("{} of {} tiles", tiles_done.load(), tiles_x * tiles_y);
+  }
   const double raster_seconds = raster_time.seconds();
   RayCounts shadow_rays;
   for (const TraceContext& context : contexts) shadow_rays += context.counts;

@@ -1,12 +1,15 @@
 #include "integrators/ray_tracing_method.h"
 
+#include <fmt/format.h>
 #include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "camera/antialiasing.h"
 
+#include "util/cancellation.h"
 #include "util/progress.h"
 
 namespace candela {
@@ -29,9 +32,16 @@ void RayTracingMethod::render(const Scene& scene, const RenderRequest& request, 
     return trace_primary(scene, scene.camera->generate_ray(x, y), context);
   };
   const SamplingRegion sampling{region.x0, region.y0, scene.camera->width(), scene.camera->height()};
-  SamplingResult result = sample_image(scene.antialiasing, scene.render.seed, sampling, tile, radiance, film,
-                                       [&] { progress.advance(); });
+  std::atomic<int64_t> tiles_done{0};
+  SamplingResult result = sample_image(scene.antialiasing, scene.render.seed, sampling, tile, radiance, film, [&] {
+    tiles_done.fetch_add(1, std::memory_order_relaxed);
+    progress.advance();
+  });
   progress.finish();
+  if (cancel_requested()) {  // Ctrl-C: the tiles not rendered are black
+    statistics.extra["interrupted"] = true;
+    statistics.extra["completed"] = fmt::format("{} of {} tiles", tiles_done.load(), tile_count);
+  }
   RayCounts total;
   for (const TraceContext& context : contexts) total += context.counts;
   statistics.rays += total;

@@ -20,7 +20,18 @@ Film read_pfm(const std::string& path) {
   if (!in || (magic != "PF" && magic != "Pf") || width <= 0 || height <= 0 || scale == 0)
     throw std::runtime_error(path + ": not a PFM file");
   const int channels = magic == "PF" ? 3 : 1;
-  std::vector<uint32_t> data(std::size_t(width) * height * channels);
+  // The header's size must fit in what is left of the file: refuse before allocating (a
+  // 20-byte file announcing 2^31 × 2^31 pixels would otherwise ask for exabytes).
+  const std::size_t values = std::size_t(width) * std::size_t(height) * std::size_t(channels);
+  const std::streampos data_start = in.tellg();
+  in.seekg(0, std::ios::end);
+  const std::streampos file_end = in.tellg();
+  in.seekg(data_start);
+  if (!in || data_start < 0 || file_end < data_start ||
+      values > static_cast<std::size_t>(file_end - data_start) / 4)
+    throw std::runtime_error(path + ": truncated PFM data (the header announces " + std::to_string(width) + "×" +
+                             std::to_string(height) + " pixels, more than the file holds)");
+  std::vector<uint32_t> data(values);
   in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(data.size() * 4));
   if (!in) throw std::runtime_error(path + ": truncated PFM data");
   const bool file_little_endian = scale < 0;

@@ -1,5 +1,6 @@
 #include "scene/obj_import.h"
 
+#include <fmt/format.h>
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
@@ -7,7 +8,10 @@
 #include <cctype>
 #include <cmath>
 #include <cstddef>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <system_error>
 
 namespace candela {
@@ -69,6 +73,30 @@ bool finite_color(const Color& c) {
   return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b);
 }
 
+// tinyobjloader reads "nan" and "inf" in a vertex as 0 without a word: the first vertex
+// coordinate that is not a finite number (nan, inf, 1e400), as "vertex N (line L): 'text'", or "".
+std::string first_non_finite_vertex(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::size_t line_number = 0, vertex = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    std::size_t at = line.find_first_not_of(" \t");
+    if (at == std::string::npos || line[at] != 'v' || at + 1 >= line.size() ||
+        (line[at + 1] != ' ' && line[at + 1] != '\t'))
+      continue;
+    ++vertex;
+    std::istringstream tokens(line.substr(at + 1));
+    std::string token;
+    for (int k = 0; k < 3 && tokens >> token; ++k) {
+      const double value = std::strtod(token.c_str(), nullptr);
+      if (!std::isfinite(value))
+        return "vertex " + std::to_string(vertex) + " (line " + std::to_string(line_number) + "): '" + token + "'";
+    }
+  }
+  return "";
+}
+
 }  // namespace
 
 ObjImport import_obj(const std::string& path, const SourceLocation& referenced_from) {
@@ -117,6 +145,9 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
       result.warnings.push_back(warning);
   }
 
+  if (const std::string bad = first_non_finite_vertex(path); !bad.empty())
+    throw fail("OBJ file " + quoted(path) + ": " + bad + " has a non-finite coordinate");
+
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
   auto mesh = std::make_shared<TriangleMesh>();
 
@@ -129,6 +160,12 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
     if (!is_finite(p))
       throw fail("OBJ file " + quoted(path) + ": vertex " + std::to_string(i + 1) +
                  " has a non-finite coordinate");
+    // The scene file's limit (scene/json_node.cpp): beyond it squared distances lose all
+    // precision and ray offsets stop working.
+    const double magnitude = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+    if (magnitude > 1e16)
+      throw fail("OBJ file " + quoted(path) + ": vertex " + std::to_string(i + 1) +
+                 ": magnitude above 1e16 is not supported (found " + fmt::format("{}", magnitude) + ")");
     mesh->positions.push_back(p);
   }
   const std::size_t normal_count = attrib.normals.size() / 3;

@@ -97,10 +97,11 @@ ShapeBuild triangles_of(const JsonNode& node, std::shared_ptr<TriangleMesh> mesh
   build.shapes = placed_triangles(node, mesh, transform, skipped);
   build.materials.assign(build.shapes.size(), -1);
   build.transform_applied = true;
+  // A zero-area (or overflowing) triangle is skipped, not refused (SPEC §15): the entry stays,
+  // with no primitive.
   if (skipped > 0)
-    context.warnings->push_back(fmt::format("{}: skipped {} degenerate triangle(s)",
+    context.warnings->push_back(fmt::format("{}: skipped {} degenerate triangle(s) (zero area)",
                                             node.location().describe(), skipped));
-  if (build.shapes.empty()) node.fail("every triangle is degenerate (zero area)");
   return build;
 }
 

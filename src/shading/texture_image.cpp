@@ -134,6 +134,21 @@ void check_size(const std::filesystem::path& path, long long width, long long he
     fail(path, std::to_string(width) + "×" + std::to_string(height) + " pixels is over the limit of 2^28 pixels");
 }
 
+// No image format Candela reads packs more than 2^14 pixels into one byte of file (1-bit PNG
+// at deflate's best ratio of 1032:1 gives about 8300; GIF's LZW about 2700; JPEG, HDR, PSD and
+// TGA run lengths far fewer). A header announcing more is corrupt: refuse it before stb or
+// OpenEXR allocate the announced size (fuzz/image_fuzzer found a 60-byte BMP announcing
+// 16384 × 16384 pixels, read as 4 GiB of zeros).
+constexpr unsigned long long kMaxPixelsPerFileByte = 1ull << 14;
+
+void check_plausible_size(const std::filesystem::path& path, long long width, long long height,
+                          std::uintmax_t file_bytes) {
+  const unsigned long long pixels = static_cast<unsigned long long>(width) * static_cast<unsigned long long>(height);
+  if (pixels / kMaxPixelsPerFileByte > file_bytes)
+    fail(path, "the header announces " + std::to_string(width) + "×" + std::to_string(height) + " pixels but the file has only " +
+                   std::to_string(file_bytes) + " bytes (corrupt or truncated)");
+}
+
 std::string lower_case_extension(const std::filesystem::path& path) {
   std::string extension = path.extension().string();
   if (!extension.empty()) extension.erase(0, 1);  // the dot
@@ -162,6 +177,54 @@ std::vector<unsigned char> read_file_bytes(const std::filesystem::path& path) {
   in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size));
   if (!in) fail(path, "read error");
   return bytes;
+}
+
+// stb_image 2.27 (Debian 12) writes past its 257-entry Huffman size table when a JPEG DHT
+// table's 16 code counts add up to more than 256 (fixed in stb_image 2.28: "bad DHT header").
+// Walk the markers as stb does and refuse such a table before stb sees it (found by
+// fuzz/image_fuzzer).
+void check_jpeg_huffman_tables(const std::filesystem::path& path, const std::vector<unsigned char>& bytes) {
+  // stb takes any run of 0xFF fill bytes before the start-of-image marker D8 as SOI.
+  const std::size_t size = bytes.size();
+  std::size_t i = 0;
+  if (size < 2 || bytes[0] != 0xFF) return;  // not a JPEG
+  while (i < size && bytes[i] == 0xFF) ++i;
+  if (i >= size || bytes[i] != 0xD8) return;
+  ++i;
+  const auto length_at = [&](std::size_t at) { return at + 1 < size ? (std::size_t(bytes[at]) << 8) | bytes[at + 1] : 0; };
+  while (i < size) {
+    if (bytes[i] != 0xFF) {  // stb skips stray bytes looking for the next marker
+      ++i;
+      continue;
+    }
+    while (i < size && bytes[i] == 0xFF) ++i;  // fill bytes
+    if (i >= size) return;
+    const unsigned char marker = bytes[i++];
+    if (marker == 0xD9) return;                                           // end of image
+    if (marker == 0x00 || marker == 0x01 || (marker >= 0xD0 && marker <= 0xD8)) continue;  // no length
+    const std::size_t length = length_at(i);
+    if (length < 2) return;  // stb refuses it
+    if (marker == 0xC4) {  // DHT: as stb reads it, tables until the length is used up
+      long long left = static_cast<long long>(length) - 2;
+      std::size_t at = i + 2;
+      while (left > 0) {
+        if (at >= size) return;
+        // stb reads bytes past the end of the file as 0 and goes on: count them the same way.
+        std::size_t symbols = 0;
+        for (std::size_t k = 1; k <= 16; ++k) symbols += at + k < size ? bytes[at + k] : 0;
+        if (symbols > 256)
+          fail(path, "corrupt JPEG: a Huffman table (DHT) declares " + std::to_string(symbols) +
+                         " codes, more than the 256 possible");
+        at += 17 + symbols;
+        left -= static_cast<long long>(17 + symbols);
+      }
+    }
+    i += length;
+    if (marker == 0xDA) {  // start of scan: skip the entropy-coded data to the next marker
+      while (i + 1 < size && !(bytes[i] == 0xFF && bytes[i + 1] != 0x00 && !(bytes[i + 1] >= 0xD0 && bytes[i + 1] <= 0xD7)))
+        ++i;
+    }
+  }
 }
 
 std::string stb_reason() {
@@ -197,8 +260,10 @@ TextureImage load_with_stb(const std::filesystem::path& path, ColorEncoding enco
   const std::vector<unsigned char> bytes = read_file_bytes(path);
   const int length = static_cast<int>(bytes.size());
   int width = 0, height = 0, channels_in_file = 0;
+  check_jpeg_huffman_tables(path, bytes);
   if (!stbi_info_from_memory(bytes.data(), length, &width, &height, &channels_in_file)) fail(path, stb_reason());
   check_size(path, width, height);
+  check_plausible_size(path, width, height, bytes.size());
 
   // Asking for 3 channels makes stb replicate grey and drop alpha.
   constexpr int kRgb = 3;
@@ -244,6 +309,9 @@ TextureImage load_exr(const std::filesystem::path& path, ColorEncoding encoding)
     const long long width = static_cast<long long>(window.max.x) - window.min.x + 1;
     const long long height = static_cast<long long>(window.max.y) - window.min.y + 1;
     check_size(path, width, height);
+    std::error_code size_error;
+    const std::uintmax_t file_bytes = std::filesystem::file_size(path, size_error);
+    if (!size_error) check_plausible_size(path, width, height, file_bytes);
 
     // R, G, B (a missing one reads as 0), else a luminance-only Y image as grey.
     const Imf::ChannelList& channels = file.header().channels();

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "camera/film.h"
+#include "io/image_reader.h"
 #include "io/image_writer.h"
 #include "shading/image_texture.h"
 
@@ -337,6 +338,59 @@ TEST_F(TextureImageFiles, ImagesOverTwoToThe28PixelsAreRefusedBeforeDecoding) {
   const std::string zero = "PF\n0 4\n-1.0\n";
   write_bytes(path("zero.pfm"), zero.data(), zero.size());
   EXPECT_NE(load_error(path("zero.pfm")).find("no pixels"), std::string::npos);
+}
+
+// Fuzzing regression (fuzz/image_fuzzer): a PFM header within the 2^28-pixel limit but with no
+// data made read_pfm allocate what the header announced (16384 × 16384 × 3 floats, 3 GiB)
+// before finding the file truncated. It must refuse from the file size, naming the file.
+TEST_F(TextureImageFiles, FuzzPfmHeaderLargerThanTheFileIsRefusedBeforeAllocating) {
+  const std::string header_only = "PF\n16384 16384\n-1.0\n";
+  write_bytes(path("header-only.pfm"), header_only.data(), header_only.size());
+  const std::string message = load_error(path("header-only.pfm"));
+  EXPECT_NE(message.find("header-only.pfm"), std::string::npos) << message;
+  EXPECT_NE(message.find("truncated PFM data"), std::string::npos) << message;
+  // read_pfm on its own (no 2^28 check in front): 2^31-1 squared announced in a 30-byte file.
+  const std::string absurd = "Pf\n2147483647 2147483647\n1\n";
+  write_bytes(path("absurd.pfm"), absurd.data(), absurd.size());
+  try {
+    (void)read_pfm(path("absurd.pfm").string());
+    ADD_FAILURE() << "read_pfm accepted a header larger than the file";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("truncated PFM data"), std::string::npos) << e.what();
+  }
+}
+
+// Fuzzing regression (fuzz/image_fuzzer): a 54-byte BMP header announcing 16384 × 16384
+// pixels (exactly 2^28, within the limit) and no pixel data was decoded by stb_image as 4 GiB
+// of zeros. A header announcing far more pixels than the file could hold is refused.
+TEST_F(TextureImageFiles, FuzzTinyFileAnnouncingAHugeImageIsRefused) {
+  const std::string bmp("BM\x36\0\0\0\0\0\0\0\x36\0\0\0"             // file header, 54 bytes
+                        "\x28\0\0\0\0\x40\0\0\0\x40\0\0\x01\0\x18\0"  // 40, 16384, 16384, 1 plane, 24 bits
+                        "\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0",
+                        54);
+  write_bytes(path("huge.bmp"), bmp.data(), bmp.size());
+  const std::string message = load_error(path("huge.bmp"));
+  EXPECT_NE(message.find("huge.bmp"), std::string::npos) << message;
+  EXPECT_NE(message.find("16384×16384"), std::string::npos) << message;
+  EXPECT_NE(message.find("corrupt or truncated"), std::string::npos) << message;
+}
+
+// Fuzzing regression (fuzz/image_fuzzer): a JPEG whose Huffman table (DHT) declares 512 codes
+// made stb_image 2.27 write past its 257-entry size table (UBSan: index 257 out of bounds).
+TEST_F(TextureImageFiles, FuzzJpegHuffmanTableWithOver256CodesIsRefused) {
+  const std::string jpeg = std::string("\xFF\xD8\xFF\xC4\x00\x13\x00", 7) + std::string(16, '\x20');
+  write_bytes(path("bad-dht.jpg"), jpeg.data(), jpeg.size());
+  const std::string message = load_error(path("bad-dht.jpg"));
+  EXPECT_NE(message.find("bad-dht.jpg"), std::string::npos) << message;
+  EXPECT_NE(message.find("Huffman table (DHT) declares 512 codes"), std::string::npos) << message;
+  // The same table cut short by the end of the file (stb reads the missing counts as 0).
+  const std::string cut = std::string("\xFF\xD8\xFF\xC4\x00\x13\x00\x20\x20\x20\x01\xFF\xD8", 13);
+  write_bytes(path("cut-dht.jpg"), cut.data(), cut.size());
+  EXPECT_NE(load_error(path("cut-dht.jpg")).find("declares 568 codes"), std::string::npos);
+  // stb takes 0xFF fill bytes before the start-of-image marker: FF FF … FF D8 is a JPEG too.
+  const std::string filled = std::string(9, '\xFF') + std::string("\xD8\xFF\xC4\x00\x13\x00\x20\x20\x20\x01\xFF\xD8", 12);
+  write_bytes(path("filled-dht.jpg"), filled.data(), filled.size());
+  EXPECT_NE(load_error(path("filled-dht.jpg")).find("Huffman table (DHT) declares"), std::string::npos);
 }
 
 // --- lookups -----------------------------------------------------------------------------------
