@@ -54,10 +54,11 @@ struct RenderOptions {
   std::string resume;
 };
 
-// What ties a path-tracing checkpoint to this run: the scene file's bytes, the bytes of every file
-// it referenced (meshes, textures, maps) and the --set overrides, except those that only say how
-// long to go on (path.spp, path.time and path.checkpoint_interval may change between a run and
-// its continuation) or how to find the hits (render.accelerator: every accelerator gives the
+// What ties a checkpoint (path tracing, progressive radiosity) to this run: the scene file's
+// bytes, the bytes of every file it referenced (meshes, textures, maps) and the --set overrides,
+// except those that only say how long to go on (path.spp, path.time, path.checkpoint_interval,
+// radiosity.threshold, radiosity.max_steps, radiosity.memory_limit_mib may change between a run
+// and its continuation) or how to find the hits (render.accelerator: every accelerator gives the
 // same hits).
 std::string scene_fingerprint(const SceneOptions& options, const Scene& scene) {
   const auto file_text = [](const std::string& path) {
@@ -70,7 +71,9 @@ std::string scene_fingerprint(const SceneOptions& options, const Scene& scene) {
   std::string overrides;
   for (const std::string& o : options.overrides) {
     const bool irrelevant = o.rfind("path.spp=", 0) == 0 || o.rfind("path.time=", 0) == 0 ||
-                            o.rfind("path.checkpoint_interval=", 0) == 0 || o.rfind("render.accelerator=", 0) == 0;
+                            o.rfind("path.checkpoint_interval=", 0) == 0 || o.rfind("render.accelerator=", 0) == 0 ||
+                            o.rfind("radiosity.threshold=", 0) == 0 || o.rfind("radiosity.max_steps=", 0) == 0 ||
+                            o.rfind("radiosity.memory_limit_mib=", 0) == 0;
     if (!irrelevant) overrides += o + "\n";
   }
   return fmt::format("scene {:016x} files {:016x} overrides {:016x}", fnv1a_64(text), fnv1a_64(referenced),
@@ -334,10 +337,11 @@ int run_render(RenderOptions& options) {
     throw BadArgument("--export-solution needs --method radiosity (the method is " + std::string(entry->name) + ")");
   if (!options.show_sites.empty() && entry->name != "meshless")
     throw BadArgument("--show-sites needs --method meshless (the method is " + std::string(entry->name) + ")");
-  const bool progressive_options = options.spp || options.time || !options.checkpoint.empty() ||
-                                   options.checkpoint_every || !options.resume.empty();
-  if (progressive_options && entry->name != "path")
-    throw BadArgument("--spp, --time, --checkpoint, --checkpoint-every and --resume need --method path (the method is " +
+  if ((options.spp || options.time) && entry->name != "path")
+    throw BadArgument("--spp and --time need --method path (the method is " + std::string(entry->name) + ")");
+  const bool checkpoint_options = !options.checkpoint.empty() || options.checkpoint_every || !options.resume.empty();
+  if (checkpoint_options && entry->name != "path" && entry->name != "radiosity")
+    throw BadArgument("--checkpoint, --checkpoint-every and --resume need --method path or radiosity (the method is " +
                       std::string(entry->name) + ")");
   if (!relight_frames.empty() && entry->name != "meshless")
     throw BadArgument("--relight needs --method meshless (the method is " + std::string(entry->name) + ")");
@@ -373,7 +377,8 @@ int run_render(RenderOptions& options) {
     if (!options.checkpoint.empty())
       check_writable(path_for_view(options.checkpoint, view, views.size()), "--checkpoint");
   }
-  const std::string fingerprint = entry->name == "path" ? scene_fingerprint(options.scene, *scene) : std::string();
+  const bool checkpointed = entry->name == "path" || entry->name == "radiosity";
+  const std::string fingerprint = checkpointed ? scene_fingerprint(options.scene, *scene) : std::string();
 
   // SPEC §15: from here on Ctrl-C (or SIGTERM) stops the method early; what it finished is written
   // as usual, the views and frames after it are skipped, and the exit status is 130. A second
@@ -404,7 +409,9 @@ int run_render(RenderOptions& options) {
     if (!options.show_sites.empty()) request.show_sites = path_for_view(options.show_sites, view, views.size());
     request.checkpoint = path_for_view(options.checkpoint, view, views.size());
     request.resume = options.resume;
-    request.fingerprint = fingerprint + " camera " + view.name;
+    // A radiosity solution is the same for every view; a path-traced image is not.
+    request.fingerprint = entry->name == "path" ? fingerprint + " camera " + view.name : fingerprint;
+    if (options.checkpoint_every) request.checkpoint_interval = *options.checkpoint_every;
     Stopwatch render_timer;
     method->render(*scene, request, film, statistics);
     statistics.add_phase("render", render_timer.seconds());

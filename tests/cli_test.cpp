@@ -725,3 +725,33 @@ TEST_F(Cli, PathCheckpointNoticesAChangedMeshButNotTheAccelerator) {
 
 }  // namespace
 }  // namespace candela
+
+namespace candela {
+namespace {
+
+// Issue 10: "progressive radiosity checkpoints and resumes to the same result as an uninterrupted
+// run (a test compares)" — 40 shots, a checkpoint, then on to the scene's threshold.
+TEST_F(Cli, RadiosityResumeGivesTheUninterruptedImageByteForByte) {
+  const std::string scene = std::string(CANDELA_SOURCE_DIR) + "/scenes/cornell-box.json";
+  const std::string common = "render '" + scene + "' -q --method radiosity --set camera.width=32 --set camera.height=32 "
+                             "--set radiosity.patch_size=3 --set radiosity.element_size=1.5 ";
+  std::string output;
+  ASSERT_EQ(run(common + "-o full.pfm --stats full.json", output), 0) << output;
+  ASSERT_EQ(run(common + "--set radiosity.max_steps=40 --checkpoint r.ckpt -o part.pfm", output), 0) << output;
+  ASSERT_EQ(run(common + "--resume r.ckpt --checkpoint r.ckpt -o resumed.pfm --stats resumed.json", output), 0) << output;
+  EXPECT_EQ(file_bytes(directory_ / "resumed.pfm"), file_bytes(directory_ / "full.pfm"));
+  EXPECT_NE(file_bytes(directory_ / "part.pfm"), file_bytes(directory_ / "full.pfm"));
+  std::ifstream full_file(directory_ / "full.json"), resumed_file(directory_ / "resumed.json");
+  const auto full = nlohmann::json::parse(full_file), resumed = nlohmann::json::parse(resumed_file);
+  EXPECT_EQ(resumed["radiosity"]["resumed_from_shots"], 40);
+  EXPECT_EQ(resumed["radiosity"]["steps"], full["radiosity"]["steps"]);
+  // Other settings that shape the solution cannot continue it; the direct solvers have no checkpoints.
+  EXPECT_EQ(run(common + "--set radiosity.hemicube_resolution=50 --resume r.ckpt -o other.pfm", output), 2);
+  EXPECT_NE(output.find("another scene or other settings"), std::string::npos) << output;
+  EXPECT_EQ(run(common + "--set radiosity.solver=gauss-seidel --checkpoint g.ckpt -o g.pfm", output), 2);
+  EXPECT_NE(output.find("checkpoints are for radiosity.solver"), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(directory_ / "g.pfm"));
+}
+
+}  // namespace
+}  // namespace candela

@@ -34,6 +34,9 @@ struct RenderRequest {
   std::string checkpoint = {};
   std::string resume = {};
   std::string fingerprint = {};
+  // Seconds between checkpoints; 0: the method's default (path.checkpoint_interval; 60 for
+  // progressive radiosity, which also checkpoints to `checkpoint` and resumes from `resume`).
+  double checkpoint_interval = 0;
 };
 
 class Method {

@@ -1,5 +1,7 @@
 #include "integrators/radiosity_method.h"
 #include "integrators/solution_field.h"
+#include "radiosity/radiosity_checkpoint.h"
+#include "util/error.h"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -191,9 +193,20 @@ struct ElementSolution {
 // in a closed scene, which a hemicube at the shooter with reciprocity (F_qj = F_jq A_j / A_q) does
 // not give elements near the shooter (a furnace then shows ±17%); B_q += ΔRad_q, and the unshot
 // radiosity of q's patch grows by the area-weighted mean of its elements' gains.
+// Checkpointing a progressive solution (issue 10): where its state goes every `interval`
+// seconds and when the shooting ends (converged, out of steps or interrupted), and the state it
+// starts from instead of B = E, ΔB = E.
+struct ProgressiveRun {
+  std::string checkpoint;
+  const RadiosityCheckpoint* resume = nullptr;
+  std::string fingerprint;
+  double interval = 60;
+  int checkpoints_written = 0;
+};
+
 ElementSolution shoot_progressively(const RadiosityMesh& mesh, const ElementToPatch& element_to_patch,
                                     const RadiositySettings& settings, ProgressReporter& progress,
-                                    uint64_t& progress_done) {
+                                    uint64_t& progress_done, ProgressiveRun* run) {
   const std::size_t patch_count = mesh.patches.size(), element_count = mesh.elements.size();
   ElementSolution result;
   std::vector<Color>& radiosity = result.radiosity;
@@ -216,9 +229,25 @@ ElementSolution shoot_progressively(const RadiosityMesh& mesh, const ElementToPa
     }
     return emitted_flux > 0 ? flux / emitted_flux : 0.0;
   };
+  std::size_t steps = 0;
+  if (run && run->resume) {
+    const RadiosityCheckpoint& state = *run->resume;
+    if (state.radiosity.size() != element_count || state.unshot.size() != patch_count)
+      throw std::invalid_argument(fmt::format("the checkpoint holds {} elements and {} patches, this mesh {} and {}",
+                                              state.radiosity.size(), state.unshot.size(), element_count, patch_count));
+    radiosity = state.radiosity;
+    unshot = state.unshot;
+    steps = static_cast<std::size_t>(state.steps);
+  }
+  Stopwatch since_checkpoint;
+  const auto save = [&] {
+    if (!run || run->checkpoint.empty()) return;
+    write_radiosity_checkpoint(run->checkpoint, {run->fingerprint, steps, radiosity, unshot});
+    ++run->checkpoints_written;
+    since_checkpoint = Stopwatch();
+  };
   std::size_t shooter = patch_count;
   double fraction = unshot_fraction(shooter);
-  std::size_t steps = 0;
   while (fraction > settings.threshold && shooter < patch_count && steps < static_cast<std::size_t>(settings.max_steps) &&
          !cancel_requested()) {  // Ctrl-C: the solution so far
     const Color shot = unshot[shooter];
@@ -238,7 +267,9 @@ ElementSolution shoot_progressively(const RadiosityMesh& mesh, const ElementToPa
     const auto done = static_cast<uint64_t>(1000 * progressive_convergence_progress(fraction, settings.threshold));
     progress.set_detail(fmt::format("unshot {:.3g}% after {} steps", 100 * fraction, steps));
     if (done > progress_done) progress.advance(done - progress_done), progress_done = done;
+    if (run && !run->checkpoint.empty() && since_checkpoint.seconds() >= run->interval) save();
   }
+  save();  // the final state: a later run goes on from it (after Ctrl-C, or with a lower threshold)
   result.steps = steps;
   result.unshot_fraction = fraction;
   result.converged = fraction <= settings.threshold;
@@ -291,7 +322,8 @@ std::vector<bool> elements_to_split(const RadiosityMesh& mesh, const std::vector
   return split;
 }
 
-RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohmann::json* statistics) {
+RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohmann::json* statistics,
+                                           ProgressiveRun* run = nullptr) {
   RadiositySolveResult result;
   const RadiositySettings& settings = scene.radiosity;
   Stopwatch mesh_time;
@@ -379,7 +411,7 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
   for (;;) {
     uint64_t progress_done = 0;
     if (progressive) {
-      solution = shoot_progressively(mesh, element_to_patch, settings, progress, progress_done);
+      solution = shoot_progressively(mesh, element_to_patch, settings, progress, progress_done, run);
     } else {
       solution.radiosity = gather_from_patches(mesh, element_to_patch, patch_radiosity);
       solution.steps = patch_steps;
@@ -627,14 +659,51 @@ std::string solution_key(const Scene& scene) {
 
 }  // namespace
 
-std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(const Scene& scene, bool quiet,
+std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(const Scene& scene,
+                                                                            const RenderRequest& request,
                                                                             bool& reused) const {
   const std::string key = solution_key(scene);
   std::lock_guard lock(cache_mutex_);
-  reused = cached_ && cached_key_ == key;
+  // A checkpoint to write or resume from asks for this run's own solve.
+  const bool checkpointing = !request.checkpoint.empty() || !request.resume.empty();
+  reused = !checkpointing && cached_ && cached_key_ == key;
   if (reused) return cached_;
   auto solved = std::make_shared<Solved>();
-  solved->result = solve_with_statistics(scene, quiet, &solved->facts);
+  ProgressiveRun run;
+  RadiosityCheckpoint resumed;
+  if (checkpointing) {
+    const SourceLocation where{!request.resume.empty() ? request.resume : request.checkpoint, 0, 0, {}};
+    if (scene.radiosity.solver != RadiositySolver::progressive || scene.radiosity.subdivision_threshold > 0)
+      throw InputError(where, "checkpoints are for radiosity.solver \"progressive\" without adaptive subdivision "
+                              "(radiosity.subdivision_threshold 0)");
+    run.checkpoint = request.checkpoint;
+    // Every setting that shapes the mesh, the form factors or the display — not threshold,
+    // max_steps or memory_limit_mib, which only say how far to go (a resumed run may go further).
+    const RadiositySettings& r = scene.radiosity;
+    run.fingerprint = fmt::format("{}|radiosity {} {} {} {} {} {} {} {} {}", request.fingerprint,
+                                  static_cast<int>(r.form_factors), r.hemicube_resolution, r.ray_cast_samples,
+                                  r.patch_size, r.element_size, r.segments, r.ambient, r.split_at_contacts,
+                                  scene.render.seed);
+    if (request.checkpoint_interval > 0) run.interval = request.checkpoint_interval;
+    if (!request.resume.empty()) {
+      resumed = read_radiosity_checkpoint(request.resume);
+      if (resumed.fingerprint != run.fingerprint)
+        throw InputError(where, "the checkpoint was made for another scene or other settings (" + resumed.fingerprint +
+                                    "), not this one (" + run.fingerprint + ")");
+      run.resume = &resumed;
+    }
+  }
+  try {
+    solved->result = solve_with_statistics(scene, request.quiet, &solved->facts, checkpointing ? &run : nullptr);
+  } catch (const std::invalid_argument& e) {
+    if (!run.resume) throw;
+    throw InputError({request.resume, 0, 0, {}}, e.what());
+  }
+  if (checkpointing) {
+    solved->facts["checkpoints_written"] = run.checkpoints_written;
+    if (run.resume) solved->facts["resumed_from_shots"] = resumed.steps;
+  }
+  if (checkpointing) return solved;  // not kept: the next render may resume from elsewhere
   if (solved->facts.contains("interrupted")) return solved;  // Ctrl-C: not a solution to keep
   cached_ = solved;
   cached_key_ = key;
@@ -644,7 +713,7 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
 void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, Film& film,
                              RunStatistics& statistics) const {
   bool reused = false;
-  const std::shared_ptr<const Solved> solved = solution_for(scene, request.quiet, reused);
+  const std::shared_ptr<const Solved> solved = solution_for(scene, request, reused);
   const RadiositySolveResult& solution = solved->result;
   nlohmann::json facts = solved->facts;
   facts["solution_reused"] = reused;

@@ -70,7 +70,9 @@ class RadiosityMethod final : public Method {
   };
   // The cached solution when the scene and its settings are the ones last solved (reused set),
   // else a new one, which replaces it.
-  std::shared_ptr<const Solved> solution_for(const Scene& scene, bool quiet, bool& reused) const;
+  // With a checkpoint to write or resume from (request.checkpoint / resume: progressive solver
+  // only) the solve is this run's own and not kept.
+  std::shared_ptr<const Solved> solution_for(const Scene& scene, const RenderRequest& request, bool& reused) const;
 
   mutable std::mutex cache_mutex_;
   mutable std::shared_ptr<const Solved> cached_;

@@ -1,0 +1,28 @@
+// Progressive radiosity's state on disk (issue 10: "progressive radiosity checkpoints and resumes
+// to the same result as an uninterrupted run"): the element radiosities B and the patches' unshot
+// radiosities ΔB after some number of shots. The mesh and the form factors are not stored: they
+// follow from the scene and its settings and are computed again on resume (the fingerprint ties
+// the state to them); the shots then continue from exactly this state, so the result is the
+// uninterrupted run's, bit for bit. File format: util/checkpoint_file.h.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "math/vector.h"
+
+namespace candela {
+
+struct RadiosityCheckpoint {
+  std::string fingerprint;
+  uint64_t steps = 0;             // shots so far
+  std::vector<Color> radiosity;   // B per element
+  std::vector<Color> unshot;      // ΔB per patch
+};
+
+void write_radiosity_checkpoint(const std::string& path, const RadiosityCheckpoint& checkpoint);
+// InputError naming the file when it is missing, damaged or another kind of checkpoint.
+RadiosityCheckpoint read_radiosity_checkpoint(const std::string& path);
+
+}  // namespace candela
