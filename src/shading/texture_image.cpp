@@ -227,6 +227,28 @@ void check_jpeg_huffman_tables(const std::filesystem::path& path, const std::vec
   }
 }
 
+// stb_image 2.27 reads the width, height and maximum of a binary PNM (P5, P6) into an int
+// without an overflow check: more than 9 digits is undefined behaviour (found by
+// fuzz/image_fuzzer). Refuse such a header before stb reads it, skipping whitespace and '#'
+// comments as stb does.
+void check_pnm_header(const std::filesystem::path& path, const std::vector<unsigned char>& bytes) {
+  if (bytes.size() < 2 || bytes[0] != 'P' || (bytes[1] != '5' && bytes[1] != '6')) return;  // not a PNM
+  std::size_t i = 2;
+  const auto space = [](unsigned char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r'; };
+  for (int field = 0; field < 3; ++field) {
+    while (i < bytes.size() && (space(bytes[i]) || bytes[i] == '#')) {
+      if (bytes[i] == '#')
+        while (i < bytes.size() && bytes[i] != '\n' && bytes[i] != '\r') ++i;
+      else
+        ++i;
+    }
+    std::size_t digits = 0;
+    while (i < bytes.size() && bytes[i] >= '0' && bytes[i] <= '9') ++i, ++digits;
+    if (digits > 9) fail(path, "corrupt PNM header: a number of " + std::to_string(digits) + " digits (at most 9)");
+    if (digits == 0) return;  // stb refuses it itself
+  }
+}
+
 std::string stb_reason() {
   const char* reason = stbi_failure_reason();
   return std::string("stb_image: ") + (reason ? reason : "unknown failure");
@@ -261,6 +283,7 @@ TextureImage load_with_stb(const std::filesystem::path& path, ColorEncoding enco
   const int length = static_cast<int>(bytes.size());
   int width = 0, height = 0, channels_in_file = 0;
   check_jpeg_huffman_tables(path, bytes);
+  check_pnm_header(path, bytes);
   if (!stbi_info_from_memory(bytes.data(), length, &width, &height, &channels_in_file)) fail(path, stb_reason());
   check_size(path, width, height);
   check_plausible_size(path, width, height, bytes.size());

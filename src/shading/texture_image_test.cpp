@@ -393,6 +393,15 @@ TEST_F(TextureImageFiles, FuzzJpegHuffmanTableWithOver256CodesIsRefused) {
   EXPECT_NE(load_error(path("filled-dht.jpg")).find("Huffman table (DHT) declares"), std::string::npos);
 }
 
+// fuzz/image_fuzzer: stb 2.27 overflows an int reading a binary PNM's width of many digits.
+TEST_F(TextureImageFiles, FuzzPnmHeaderWithAHugeNumberIsRefused) {
+  const std::string pnm = "P6\n" + std::string(60, '7') + " 3:\n255\n";
+  write_bytes(path("huge.ppm"), pnm.data(), pnm.size());
+  const std::string message = load_error(path("huge.ppm"));
+  EXPECT_NE(message.find("huge.ppm"), std::string::npos) << message;
+  EXPECT_NE(message.find("corrupt PNM header: a number of 60 digits"), std::string::npos) << message;
+}
+
 // --- lookups -----------------------------------------------------------------------------------
 
 // 4×2, texel (x, y) = (x + 4y, 10x, 100y): every texel different, averages exact.
