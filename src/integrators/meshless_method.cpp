@@ -1,5 +1,6 @@
 #include "integrators/meshless_method.h"
 #include "integrators/solution_field.h"
+#include "util/memory.h"
 
 #include <tbb/parallel_for.h>
 
@@ -147,6 +148,16 @@ nlohmann::json geometry_facts(const Scene& scene, const MeshlessGeometry& geomet
 
 namespace {
 
+// The most transfer entries S may keep: Eigen's 32-bit index, and half the machine's memory at
+// 16 bytes an entry while S is built (a row's (index, value) pairs, then the compressed copy) —
+// past it the build stops and is refused naming meshless.spacing (SPEC §15).
+std::size_t transfer_entry_limit() {
+  const std::size_t index_limit = std::size_t{INT32_MAX} - 1;
+  const uint64_t physical = physical_memory_bytes();
+  if (physical == 0) return index_limit;
+  return std::min<std::size_t>(index_limit, static_cast<std::size_t>(physical / 2 / 16));
+}
+
 // build_meshless_geometry; when cancellable, null once Ctrl-C arrives between its phases
 // (sampling, areas, transfer matrix).
 std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, bool cancellable) {
@@ -175,8 +186,7 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, bool cancel
     geometry->areas = integrate_effective_areas(scene, *geometry->basis, sites, sites.spacing / 4);
   geometry->area_seconds = seconds_since(start);
   if (cancellable && cancel_requested()) return nullptr;
-  // Eigen's compressed storage indexes entries with 32 bits.
-  geometry->matrix = compute_transfer_matrix(scene, sites.sites, geometry->areas, std::size_t{INT32_MAX} - 1);
+  geometry->matrix = compute_transfer_matrix(scene, sites.sites, geometry->areas, transfer_entry_limit());
   return geometry;
 }
 
