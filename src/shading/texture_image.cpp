@@ -14,6 +14,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "io/image_reader.h"
 
@@ -141,10 +142,27 @@ void check_size(const std::filesystem::path& path, long long width, long long he
 // 16384 × 16384 pixels, read as 4 GiB of zeros).
 constexpr unsigned long long kMaxPixelsPerFileByte = 1ull << 14;
 
+// BMP (at best RLE8: 255 pixels in 2 bytes), TGA and PSD (run lengths of 128 in 2 bytes) and
+// binary PNM (a byte a sample) pack no more than 256 pixels into a byte: stb decodes a 2 KB TGA
+// announcing 4112² pixels as 50 MB of garbage instead of refusing it (found by fuzz/image_fuzzer).
+constexpr unsigned long long kMaxPixelsPerFileByteUncompressed = 256;
+
+// The limit for the format stb will find in these bytes (by the magic numbers stb tests; TGA has
+// none and is what stb tries last).
+unsigned long long max_pixels_per_file_byte(const std::vector<unsigned char>& bytes) {
+  const auto starts = [&](std::string_view magic) {
+    return bytes.size() >= magic.size() && std::equal(magic.begin(), magic.end(), bytes.begin(),
+                                                      [](char a, unsigned char b) { return static_cast<unsigned char>(a) == b; });
+  };
+  const bool compressed = starts("\x89PNG") || starts("GIF8") || starts("#?") || starts("S\x80\xF6\x34") ||
+                          (bytes.size() >= 2 && bytes[0] == 0xFF);  // JPEG (fill bytes, then D8)
+  return compressed ? kMaxPixelsPerFileByte : kMaxPixelsPerFileByteUncompressed;
+}
+
 void check_plausible_size(const std::filesystem::path& path, long long width, long long height,
-                          std::uintmax_t file_bytes) {
+                          std::uintmax_t file_bytes, unsigned long long max_per_byte = kMaxPixelsPerFileByte) {
   const unsigned long long pixels = static_cast<unsigned long long>(width) * static_cast<unsigned long long>(height);
-  if (pixels / kMaxPixelsPerFileByte > file_bytes)
+  if (pixels / max_per_byte > file_bytes)
     fail(path, "the header announces " + std::to_string(width) + "×" + std::to_string(height) + " pixels but the file has only " +
                    std::to_string(file_bytes) + " bytes (corrupt or truncated)");
 }
@@ -286,7 +304,7 @@ TextureImage load_with_stb(const std::filesystem::path& path, ColorEncoding enco
   check_pnm_header(path, bytes);
   if (!stbi_info_from_memory(bytes.data(), length, &width, &height, &channels_in_file)) fail(path, stb_reason());
   check_size(path, width, height);
-  check_plausible_size(path, width, height, bytes.size());
+  check_plausible_size(path, width, height, bytes.size(), max_pixels_per_file_byte(bytes));
 
   // Asking for 3 channels makes stb replicate grey and drop alpha.
   constexpr int kRgb = 3;

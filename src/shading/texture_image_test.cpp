@@ -393,6 +393,25 @@ TEST_F(TextureImageFiles, FuzzJpegHuffmanTableWithOver256CodesIsRefused) {
   EXPECT_NE(load_error(path("filled-dht.jpg")).find("Huffman table (DHT) declares"), std::string::npos);
 }
 
+// fuzz/image_fuzzer: a 2 KB TGA announcing 4112 × 4112 pixels, which stb decodes as garbage; TGA
+// packs at most 256 pixels into a byte. An honest small TGA still loads.
+TEST_F(TextureImageFiles, FuzzSmallTgaAnnouncingAHugeImageIsRefused) {
+  std::string tga(18, '\0');
+  tga[2] = 2;                       // uncompressed true-colour
+  tga[12] = 0x10, tga[13] = 0x10;   // width 4112
+  tga[14] = 0x10, tga[15] = 0x10;   // height 4112
+  tga[16] = 24;                     // bits per pixel
+  tga += std::string(2000, '\x7f');
+  write_bytes(path("huge.tga"), tga.data(), tga.size());
+  const std::string message = load_error(path("huge.tga"));
+  EXPECT_NE(message.find("announces 4112×4112 pixels"), std::string::npos) << message;
+  std::string small(18, '\0');
+  small[2] = 2, small[12] = 2, small[14] = 2, small[16] = 24;
+  small += std::string(12, '\x40');
+  write_bytes(path("small.tga"), small.data(), small.size());
+  EXPECT_EQ(TextureImage::load(path("small.tga")).width(), 2);
+}
+
 // fuzz/image_fuzzer: stb 2.27 overflows an int reading a binary PNM's width of many digits.
 TEST_F(TextureImageFiles, FuzzPnmHeaderWithAHugeNumberIsRefused) {
   const std::string pnm = "P6\n" + std::string(60, '7') + " 3:\n255\n";
