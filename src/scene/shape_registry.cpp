@@ -1,6 +1,9 @@
 #include "scene/shape_registry.h"
 
+#include <algorithm>
 #include <array>
+#include <cctype>
+#include <filesystem>
 #include <fmt/format.h>
 
 #include "geometry/box.h"
@@ -13,7 +16,9 @@
 #include "geometry/sphere.h"
 #include "geometry/torus.h"
 #include "geometry/triangle_mesh.h"
+#include "scene/gltf_import.h"
 #include "scene/obj_import.h"
+#include "scene/ply_import.h"
 #include "shading/image_texture.h"
 
 #include "util/registry.h"
@@ -151,14 +156,29 @@ ShapeBuild make_mesh(const JsonNode& node, const Transform& transform, LoadConte
   const std::string path = context.resolve(file.as_string()).string();
   const std::string normals = node.choice("normals", "flat", {"flat", "smooth", "file"});
   const double crease = node.number("crease_angle", 180.0, {0, 180, false, false});
-  ObjImport imported = import_obj(path, file.location());
+  // The reader by file extension (any case); all three return the same ObjImport result.
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  ObjImport imported;
+  if (extension == ".obj") {
+    imported = import_obj(path, file.location());
+  } else if (extension == ".ply") {
+    imported = import_ply(path, file.location());
+  } else if (extension == ".gltf" || extension == ".glb") {
+    imported = import_gltf(path, file.location());
+  } else {
+    file.fail(fmt::format("'{}': unknown mesh file extension '{}' (expected .obj, .ply, .gltf or .glb)", path,
+                          extension));
+  }
   for (const auto& warning : imported.warnings) context.warnings->push_back(warning);
   if (normals == "flat") {
     imported.mesh->corner_normals.clear();
   } else if (normals == "smooth") {
     compute_corner_normals(*imported.mesh, crease);
   } else if (imported.mesh->corner_normals.empty()) {
-    node.at("normals").fail("the OBJ file has no vertex normals (vn) on every face");
+    node.at("normals").fail(extension == ".obj" ? "the OBJ file has no vertex normals (vn) on every face"
+                                                : "the mesh file has no vertex normals");
   }
   // MTL materials become scene materials; triangles without one use the entry's material.
   std::vector<int> material_index;
@@ -228,7 +248,7 @@ const std::array kEntries = {
     ShapeEntry{"torus", "centre, axis, major and minor radius (quartic)",
                R"({"type": "torus", "center": [0, 0, 0], "axis": [0, 1, 0], "major_radius": 1, "minor_radius": 0.25})",
                make_torus},
-    ShapeEntry{"mesh", "OBJ (+MTL) triangle mesh; normals flat, smooth (crease_angle) or from the file",
+    ShapeEntry{"mesh", "OBJ (+MTL), PLY or glTF 2.0 triangle mesh; normals flat, smooth (crease_angle) or from the file",
                R"({"type": "mesh", "file": "meshes/cube.obj", "normals": "smooth", "crease_angle": 60})",
                make_mesh},
 };

@@ -1,0 +1,262 @@
+#include "scene/ply_import.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "../../tests/scratch_directory.h"
+#include "geometry/triangle_mesh.h"
+#include "scene/scene.h"
+#include "scene/scene_loader.h"
+
+namespace candela {
+namespace {
+
+const SourceLocation kFrom{"scene.json", 3, 7, "shapes[0].file"};
+
+std::string write(const std::filesystem::path& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out << bytes;
+  return path.string();
+}
+
+std::string error_of(const std::string& path) {
+  try {
+    (void)import_ply(path, kFrom);
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.location().json_path, "shapes[0].file");
+    return e.message();
+  }
+  ADD_FAILURE() << "no error for " << path;
+  return "";
+}
+
+// A unit cube of 8 vertices and 6 quads (outward, counter-clockwise), with an extra vertex
+// property, an extra element and comments.
+const char* kAsciiCube = R"(ply
+format ascii 1.0
+comment made by hand
+obj_info nothing
+element vertex 8
+property float x
+property float y
+property float z
+property uchar confidence
+element edge 1
+property int vertex1
+property int vertex2
+element face 6
+property list uchar int vertex_indices
+property uchar flags
+end_header
+0 0 0 9
+1 0 0 9
+1 1 0 9
+0 1 0 9
+0 0 1 9
+1 0 1 9
+1 1 1 9
+0 1 1 9
+0 1
+4 0 3 2 1 0
+4 4 5 6 7 0
+4 0 1 5 4 0
+4 2 3 7 6 0
+4 1 2 6 5 0
+4 3 0 4 7 0
+)";
+
+TEST(PlyImport, AsciiCubeQuadsBecomeTwoTrianglesEach) {
+  testing::ScratchDirectory scratch("ply");
+  const auto result = import_ply(write(scratch.path() / "cube.ply", kAsciiCube), kFrom);
+  ASSERT_TRUE(result.mesh);
+  EXPECT_EQ(result.mesh->positions.size(), 8u);
+  EXPECT_EQ(result.mesh->triangles.size(), 12u);
+  EXPECT_EQ(result.triangle_material, std::vector<int>(12, -1));
+  EXPECT_TRUE(result.mesh->corner_normals.empty());
+  EXPECT_TRUE(result.mesh->corner_uvs.empty());
+  EXPECT_TRUE(result.materials.empty());
+  const Vec3 centre{0.5, 0.5, 0.5};
+  for (std::size_t t = 0; t < 12; ++t)
+    EXPECT_GT(dot(result.mesh->face_cross(t), result.mesh->triangle_bounds(t).center() - centre), 0) << t;
+  EXPECT_NO_THROW(result.mesh->validate());
+}
+
+// Two triangles (a quad split) with normals and uvs; an extra list property in each face and
+// an extra element holding a list, to be skipped by size.
+struct Builder {
+  bool big = false;
+  std::string bytes;
+  template <typename T>
+  void put(T value) {
+    char raw[sizeof(T)];
+    std::memcpy(raw, &value, sizeof(T));
+    if (big) std::reverse(raw, raw + sizeof(T));
+    bytes.append(raw, sizeof(T));
+  }
+};
+
+std::string binary_quad(bool big) {
+  Builder b{big, std::string("ply\nformat ") + (big ? "binary_big_endian" : "binary_little_endian") +
+                     " 1.0\n"
+                     "element vertex 4\nproperty double x\nproperty float y\nproperty float z\n"
+                     "property float nx\nproperty float ny\nproperty float nz\n"
+                     "property float s\nproperty float t\nproperty int16 extra\n"
+                     "element material 2\nproperty list uint8 float32 values\n"
+                     "element face 1\nproperty list uint8 uint32 vertex_indices\n"
+                     "property list ushort short tags\nend_header\n"};
+  const float corners[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (const auto& c : corners) {
+    b.put<double>(c[0]);
+    b.put<float>(c[1]);
+    b.put<float>(0);
+    b.put<float>(0);
+    b.put<float>(0);
+    b.put<float>(2);  // normals normalised on import
+    b.put<float>(c[0]);
+    b.put<float>(c[1]);
+    b.put<std::int16_t>(-5);
+  }
+  b.put<std::uint8_t>(3);
+  for (int k = 0; k < 3; ++k) b.put<float>(0.5f);
+  b.put<std::uint8_t>(0);
+  b.put<std::uint8_t>(4);
+  for (std::uint32_t i : {0u, 1u, 2u, 3u}) b.put<std::uint32_t>(i);
+  b.put<std::uint16_t>(2);
+  b.put<std::int16_t>(7);
+  b.put<std::int16_t>(8);
+  return b.bytes;
+}
+
+void expect_quad(const ObjImport& result) {
+  ASSERT_TRUE(result.mesh);
+  const TriangleMesh& mesh = *result.mesh;
+  ASSERT_EQ(mesh.positions.size(), 4u);
+  ASSERT_EQ(mesh.triangles.size(), 2u);
+  EXPECT_EQ(mesh.positions[2].x, 1);
+  EXPECT_EQ(mesh.positions[2].y, 1);
+  EXPECT_EQ(mesh.triangles[1][0], 0u);
+  EXPECT_EQ(mesh.triangles[1][1], 2u);
+  EXPECT_EQ(mesh.triangles[1][2], 3u);
+  ASSERT_EQ(mesh.corner_normals.size(), 2u);
+  EXPECT_DOUBLE_EQ(mesh.corner_normals[0][1].z, 1.0);
+  ASSERT_EQ(mesh.corner_uvs.size(), 2u);
+  EXPECT_DOUBLE_EQ(mesh.corner_uvs[1][1].x, 1.0);
+  EXPECT_DOUBLE_EQ(mesh.corner_uvs[1][2].y, 1.0);
+  EXPECT_NO_THROW(mesh.validate());
+}
+
+TEST(PlyImport, BinaryLittleEndianWithNormalsAndUvs) {
+  testing::ScratchDirectory scratch("ply");
+  expect_quad(import_ply(write(scratch.path() / "le.ply", binary_quad(false)), kFrom));
+}
+
+TEST(PlyImport, BinaryBigEndianWithNormalsAndUvs) {
+  testing::ScratchDirectory scratch("ply");
+  expect_quad(import_ply(write(scratch.path() / "be.ply", binary_quad(true)), kFrom));
+}
+
+TEST(PlyImport, TruncatedBinaryGivesTheFileAndByteOffset) {
+  testing::ScratchDirectory scratch("ply");
+  const std::string whole = binary_quad(false);
+  const std::string path = write(scratch.path() / "cut.ply", whole.substr(0, whole.size() - 3));
+  const std::string message = error_of(path);
+  EXPECT_NE(message.find(path), std::string::npos) << message;
+  EXPECT_NE(message.find("byte"), std::string::npos) << message;
+}
+
+TEST(PlyImport, HugeCountsAreRefusedBeforeAllocating) {
+  testing::ScratchDirectory scratch("ply");
+  const std::string path = write(scratch.path() / "huge.ply",
+                                 "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\n"
+                                 "property float x\nproperty float y\nproperty float z\nend_header\n0000");
+  const std::string message = error_of(path);
+  EXPECT_NE(message.find("1000000000"), std::string::npos) << message;
+  const std::string ascii = write(scratch.path() / "huge-ascii.ply",
+                                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                  "property float z\nelement face 18446744073709551615\n"
+                                  "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n");
+  EXPECT_NE(error_of(ascii).find("face"), std::string::npos);
+  const std::string list = write(scratch.path() / "huge-list.ply",
+                                 "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\n"
+                                 "property float y\nproperty float z\nelement face 1\n"
+                                 "property list uint int vertex_indices\nend_header\n\xff\xff\xff\x7f");
+  EXPECT_NE(error_of(list).find("runs past the end"), std::string::npos);
+}
+
+TEST(PlyImport, BadIndexGivesTheLine) {
+  testing::ScratchDirectory scratch("ply");
+  const std::string path = write(scratch.path() / "bad.ply",
+                                 "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                 "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                                 "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n");
+  const std::string message = error_of(path);
+  EXPECT_NE(message.find(path), std::string::npos) << message;
+  EXPECT_NE(message.find("line 13"), std::string::npos) << message;
+  EXPECT_NE(message.find("vertex 3"), std::string::npos) << message;
+}
+
+TEST(PlyImport, NonFiniteCoordinateNamesTheVertex) {
+  testing::ScratchDirectory scratch("ply");
+  const std::string path = write(scratch.path() / "nan.ply",
+                                 "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                 "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                                 "end_header\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n");
+  const std::string message = error_of(path);
+  EXPECT_NE(message.find("vertex 1 has a non-finite coordinate"), std::string::npos) << message;
+  EXPECT_NE(message.find("line 11"), std::string::npos) << message;
+}
+
+TEST(PlyImport, MalformedHeadersAndMissingFiles) {
+  testing::ScratchDirectory scratch("ply");
+  EXPECT_NE(error_of((scratch.path() / "none.ply").string()).find("not found"), std::string::npos);
+  EXPECT_NE(error_of(write(scratch.path() / "a.ply", "plx\n")).find("'ply'"), std::string::npos);
+  EXPECT_NE(error_of(write(scratch.path() / "b.ply", "ply\nformat ascii 1.0\nelement vertex 1\n"))
+                .find("end_header"),
+            std::string::npos);
+  EXPECT_NE(error_of(write(scratch.path() / "c.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n"))
+                .find("line 3"),
+            std::string::npos);
+  EXPECT_NE(error_of(write(scratch.path() / "d.ply",
+                           "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+                           "property float z\nend_header\n0 0 0\n"))
+                .find("no triangles"),
+            std::string::npos);
+}
+
+TEST(PlyImport, LoadedSceneHasTheTriangles) {
+  testing::ScratchDirectory scratch("ply");
+  write(scratch.path() / "cube.ply", kAsciiCube);
+  const auto scene = load_scene_text(R"({"format": "candela/1",
+    "camera": {"eye": [3, 3, 3], "target": [0, 0, 0], "fov": 50, "width": 8, "height": 8},
+    "shapes": [{"type": "mesh", "file": "cube.ply", "transform": [{"translate": [1, 0, 0]}],
+                "material": {"kd": 0.5}}]})",
+                                     "ply.json", scratch.path().string());
+  EXPECT_EQ(scene->primitives.size(), 12u);
+  EXPECT_DOUBLE_EQ(scene->bounds().lower.x, 1.0);
+  EXPECT_DOUBLE_EQ(scene->bounds().upper.x, 2.0);
+  EXPECT_DOUBLE_EQ(scene->bounds().upper.z, 1.0);
+}
+
+TEST(PlyImport, UnknownMeshExtensionIsRefused) {
+  testing::ScratchDirectory scratch("ply");
+  write(scratch.path() / "cube.stl", "solid");
+  try {
+    (void)load_scene_text(R"({"format": "candela/1",
+      "camera": {"eye": [3, 3, 3], "target": [0, 0, 0], "fov": 50, "width": 8, "height": 8},
+      "shapes": [{"type": "mesh", "file": "cube.stl"}]})",
+                          "stl.json", scratch.path().string());
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.message().find(".obj, .ply, .gltf or .glb"), std::string::npos) << e.message();
+  }
+}
+
+}  // namespace
+}  // namespace candela
