@@ -336,12 +336,7 @@ class GltfReader {
 }  // namespace
 
 ObjImport import_gltf(const std::string& path, const SourceLocation& referenced_from) {
-  std::error_code ec;
-  const std::filesystem::file_status status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status))
-    throw InputError(referenced_from, "glTF file '" + path + "' not found");
-  if (!std::filesystem::is_regular_file(status))
-    throw InputError(referenced_from, "glTF file '" + path + "' is not a regular file");
+  require_mesh_file(path, "glTF", referenced_from);
   std::string extension = std::filesystem::path(path).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });

@@ -99,16 +99,21 @@ std::string first_non_finite_vertex(const std::string& path) {
 
 }  // namespace
 
+void require_mesh_file(const std::string& path, const std::string& format, const SourceLocation& referenced_from) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status))
+    throw InputError(referenced_from, format + " file " + quoted(path) + " not found");
+  if (!std::filesystem::is_regular_file(status))
+    throw InputError(referenced_from, format + " file " + quoted(path) + " is not a regular file");
+}
+
 ObjImport import_obj(const std::string& path, const SourceLocation& referenced_from) {
   const auto fail = [&](const std::string& message) -> InputError {
     return InputError(referenced_from, message);
   };
 
-  std::error_code ec;
-  const std::filesystem::file_status status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status)) throw fail("OBJ file " + quoted(path) + " not found");
-  if (!std::filesystem::is_regular_file(status))
-    throw fail("OBJ file " + quoted(path) + " is not a regular file");
+  require_mesh_file(path, "OBJ", referenced_from);
 
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;

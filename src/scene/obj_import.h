@@ -50,4 +50,8 @@ struct ObjImport {
 // files named by mtllib are searched for in the OBJ's directory.
 ObjImport import_obj(const std::string& path, const SourceLocation& referenced_from);
 
+// The check every mesh reader (OBJ, PLY, glTF) makes first: InputError at referenced_from,
+// "<format> file 'PATH' not found" or "... is not a regular file".
+void require_mesh_file(const std::string& path, const std::string& format, const SourceLocation& referenced_from);
+
 }  // namespace candela

@@ -455,12 +455,7 @@ class PlyReader {
 }  // namespace
 
 ObjImport import_ply(const std::string& path, const SourceLocation& referenced_from) {
-  std::error_code ec;
-  const std::filesystem::file_status status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status))
-    throw InputError(referenced_from, "PLY file '" + path + "' not found");
-  if (!std::filesystem::is_regular_file(status))
-    throw InputError(referenced_from, "PLY file '" + path + "' is not a regular file");
+  require_mesh_file(path, "PLY", referenced_from);
   std::ifstream in(path, std::ios::binary);
   std::ostringstream bytes;
   bytes << in.rdbuf();
