@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace candela::testing {
@@ -30,5 +31,12 @@ class ScratchDirectory {
  private:
   std::filesystem::path path_;
 };
+
+// Writes bytes to path (binary) and returns the path as a string, for the readers under test.
+inline std::string write_file(const std::filesystem::path& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary);
+  out << bytes;
+  return path.string();
+}
 
 }  // namespace candela::testing

@@ -21,11 +21,7 @@ namespace {
 
 const SourceLocation kFrom{"scene.json", 3, 7, "shapes[0].file"};
 
-std::string write(const std::filesystem::path& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out << bytes;
-  return path.string();
-}
+using testing::write_file;
 
 std::string base64(const std::string& bytes) {
   static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -112,7 +108,7 @@ std::string error_of(const std::string& path) {
 TEST(GltfImport, EmbeddedBufferWithUint16Indices) {
   testing::ScratchDirectory scratch("gltf");
   const auto result =
-      import_gltf(write(scratch.path() / "square.gltf", square_json(data_uri(square_buffer()))), kFrom);
+      import_gltf(write_file(scratch.path() / "square.gltf", square_json(data_uri(square_buffer()))), kFrom);
   ASSERT_TRUE(result.mesh);
   EXPECT_EQ(result.mesh->positions.size(), 4u);
   ASSERT_EQ(result.mesh->triangles.size(), 2u);
@@ -124,9 +120,9 @@ TEST(GltfImport, EmbeddedBufferWithUint16Indices) {
 
 TEST(GltfImport, ExternalBufferAndNodeTransform) {
   testing::ScratchDirectory scratch("gltf");
-  write(scratch.path() / "square.bin", square_buffer());
+  write_file(scratch.path() / "square.bin", square_buffer());
   const auto result = import_gltf(
-      write(scratch.path() / "square.gltf",
+      write_file(scratch.path() / "square.gltf",
             square_json("square.bin", R"({"children": [1], "translation": [0, 0, 5]}, {"mesh": 0, "scale": [2, 2, 2]})")),
       kFrom);
   ASSERT_TRUE(result.mesh);
@@ -139,7 +135,7 @@ TEST(GltfImport, ExternalBufferAndNodeTransform) {
 
 TEST(GltfImport, BinaryGlb) {
   testing::ScratchDirectory scratch("gltf");
-  const auto result = import_gltf(write(scratch.path() / "square.glb", glb(square_json(""), square_buffer())), kFrom);
+  const auto result = import_gltf(write_file(scratch.path() / "square.glb", glb(square_json(""), square_buffer())), kFrom);
   ASSERT_TRUE(result.mesh);
   EXPECT_EQ(result.mesh->triangles.size(), 2u);
 }
@@ -147,7 +143,7 @@ TEST(GltfImport, BinaryGlb) {
 TEST(GltfImport, OtherPrimitiveModesAreSkippedWithAWarning) {
   testing::ScratchDirectory scratch("gltf");
   const auto result =
-      import_gltf(write(scratch.path() / "points.gltf",
+      import_gltf(write_file(scratch.path() / "points.gltf",
                         square_json(data_uri(square_buffer()), R"({"mesh": 0})",
                                     R"(, {"attributes": {"POSITION": 0}, "mode": 0})")),
                   kFrom);
@@ -159,21 +155,21 @@ TEST(GltfImport, OtherPrimitiveModesAreSkippedWithAWarning) {
 TEST(GltfImport, BadInputsAreRefusedNamingTheFile) {
   testing::ScratchDirectory scratch("gltf");
   const std::string nan =
-      write(scratch.path() / "nan.gltf", square_json(data_uri(square_buffer(std::numeric_limits<float>::quiet_NaN()))));
+      write_file(scratch.path() / "nan.gltf", square_json(data_uri(square_buffer(std::numeric_limits<float>::quiet_NaN()))));
   std::string message = error_of(nan);
   EXPECT_NE(message.find(nan), std::string::npos) << message;
   EXPECT_NE(message.find("vertex 1 has a non-finite position"), std::string::npos) << message;
 
-  const std::string index = write(scratch.path() / "index.gltf", square_json(data_uri(square_buffer(0, 9))));
+  const std::string index = write_file(scratch.path() / "index.gltf", square_json(data_uri(square_buffer(0, 9))));
   message = error_of(index);
   EXPECT_NE(message.find("refers to vertex 9"), std::string::npos) << message;
 
-  const std::string broken = write(scratch.path() / "broken.gltf", "{\"asset\": ");
+  const std::string broken = write_file(scratch.path() / "broken.gltf", "{\"asset\": ");
   message = error_of(broken);
   EXPECT_NE(message.find(broken), std::string::npos) << message;
 
   const std::string short_glb = glb(square_json(""), square_buffer());
-  const std::string cut = write(scratch.path() / "cut.glb", short_glb.substr(0, short_glb.size() - 20));
+  const std::string cut = write_file(scratch.path() / "cut.glb", short_glb.substr(0, short_glb.size() - 20));
   message = error_of(cut);
   EXPECT_NE(message.find(cut), std::string::npos) << message;
 
@@ -182,7 +178,7 @@ TEST(GltfImport, BadInputsAreRefusedNamingTheFile) {
 
 TEST(GltfImport, LoadedSceneHasTheTriangles) {
   testing::ScratchDirectory scratch("gltf");
-  write(scratch.path() / "square.glb", glb(square_json(""), square_buffer()));
+  write_file(scratch.path() / "square.glb", glb(square_json(""), square_buffer()));
   const auto scene = load_scene_text(R"({"format": "candela/1",
     "camera": {"eye": [0.5, 0.5, 3], "target": [0.5, 0.5, 0], "fov": 50, "width": 8, "height": 8},
     "shapes": [{"type": "mesh", "file": "square.glb", "material": {"kd": 0.5}}]})",

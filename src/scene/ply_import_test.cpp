@@ -20,11 +20,7 @@ namespace {
 
 const SourceLocation kFrom{"scene.json", 3, 7, "shapes[0].file"};
 
-std::string write(const std::filesystem::path& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out << bytes;
-  return path.string();
-}
+using testing::write_file;
 
 std::string error_of(const std::string& path) {
   try {
@@ -74,7 +70,7 @@ end_header
 
 TEST(PlyImport, AsciiCubeQuadsBecomeTwoTrianglesEach) {
   testing::ScratchDirectory scratch("ply");
-  const auto result = import_ply(write(scratch.path() / "cube.ply", kAsciiCube), kFrom);
+  const auto result = import_ply(write_file(scratch.path() / "cube.ply", kAsciiCube), kFrom);
   ASSERT_TRUE(result.mesh);
   EXPECT_EQ(result.mesh->positions.size(), 8u);
   EXPECT_EQ(result.mesh->triangles.size(), 12u);
@@ -154,18 +150,18 @@ void expect_quad(const ObjImport& result) {
 
 TEST(PlyImport, BinaryLittleEndianWithNormalsAndUvs) {
   testing::ScratchDirectory scratch("ply");
-  expect_quad(import_ply(write(scratch.path() / "le.ply", binary_quad(false)), kFrom));
+  expect_quad(import_ply(write_file(scratch.path() / "le.ply", binary_quad(false)), kFrom));
 }
 
 TEST(PlyImport, BinaryBigEndianWithNormalsAndUvs) {
   testing::ScratchDirectory scratch("ply");
-  expect_quad(import_ply(write(scratch.path() / "be.ply", binary_quad(true)), kFrom));
+  expect_quad(import_ply(write_file(scratch.path() / "be.ply", binary_quad(true)), kFrom));
 }
 
 TEST(PlyImport, TruncatedBinaryGivesTheFileAndByteOffset) {
   testing::ScratchDirectory scratch("ply");
   const std::string whole = binary_quad(false);
-  const std::string path = write(scratch.path() / "cut.ply", whole.substr(0, whole.size() - 3));
+  const std::string path = write_file(scratch.path() / "cut.ply", whole.substr(0, whole.size() - 3));
   const std::string message = error_of(path);
   EXPECT_NE(message.find(path), std::string::npos) << message;
   EXPECT_NE(message.find("byte"), std::string::npos) << message;
@@ -173,17 +169,17 @@ TEST(PlyImport, TruncatedBinaryGivesTheFileAndByteOffset) {
 
 TEST(PlyImport, HugeCountsAreRefusedBeforeAllocating) {
   testing::ScratchDirectory scratch("ply");
-  const std::string path = write(scratch.path() / "huge.ply",
+  const std::string path = write_file(scratch.path() / "huge.ply",
                                  "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\n"
                                  "property float x\nproperty float y\nproperty float z\nend_header\n0000");
   const std::string message = error_of(path);
   EXPECT_NE(message.find("1000000000"), std::string::npos) << message;
-  const std::string ascii = write(scratch.path() / "huge-ascii.ply",
+  const std::string ascii = write_file(scratch.path() / "huge-ascii.ply",
                                   "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                                   "property float z\nelement face 18446744073709551615\n"
                                   "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n");
   EXPECT_NE(error_of(ascii).find("face"), std::string::npos);
-  const std::string list = write(scratch.path() / "huge-list.ply",
+  const std::string list = write_file(scratch.path() / "huge-list.ply",
                                  "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\n"
                                  "property float y\nproperty float z\nelement face 1\n"
                                  "property list uint int vertex_indices\nend_header\n\xff\xff\xff\x7f");
@@ -192,7 +188,7 @@ TEST(PlyImport, HugeCountsAreRefusedBeforeAllocating) {
 
 TEST(PlyImport, BadIndexGivesTheLine) {
   testing::ScratchDirectory scratch("ply");
-  const std::string path = write(scratch.path() / "bad.ply",
+  const std::string path = write_file(scratch.path() / "bad.ply",
                                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                                  "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
                                  "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n");
@@ -204,7 +200,7 @@ TEST(PlyImport, BadIndexGivesTheLine) {
 
 TEST(PlyImport, NonFiniteCoordinateNamesTheVertex) {
   testing::ScratchDirectory scratch("ply");
-  const std::string path = write(scratch.path() / "nan.ply",
+  const std::string path = write_file(scratch.path() / "nan.ply",
                                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                                  "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
                                  "end_header\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n");
@@ -216,14 +212,14 @@ TEST(PlyImport, NonFiniteCoordinateNamesTheVertex) {
 TEST(PlyImport, MalformedHeadersAndMissingFiles) {
   testing::ScratchDirectory scratch("ply");
   EXPECT_NE(error_of((scratch.path() / "none.ply").string()).find("not found"), std::string::npos);
-  EXPECT_NE(error_of(write(scratch.path() / "a.ply", "plx\n")).find("'ply'"), std::string::npos);
-  EXPECT_NE(error_of(write(scratch.path() / "b.ply", "ply\nformat ascii 1.0\nelement vertex 1\n"))
+  EXPECT_NE(error_of(write_file(scratch.path() / "a.ply", "plx\n")).find("'ply'"), std::string::npos);
+  EXPECT_NE(error_of(write_file(scratch.path() / "b.ply", "ply\nformat ascii 1.0\nelement vertex 1\n"))
                 .find("end_header"),
             std::string::npos);
-  EXPECT_NE(error_of(write(scratch.path() / "c.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n"))
+  EXPECT_NE(error_of(write_file(scratch.path() / "c.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n"))
                 .find("line 3"),
             std::string::npos);
-  EXPECT_NE(error_of(write(scratch.path() / "d.ply",
+  EXPECT_NE(error_of(write_file(scratch.path() / "d.ply",
                            "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
                            "property float z\nend_header\n0 0 0\n"))
                 .find("no triangles"),
@@ -232,7 +228,7 @@ TEST(PlyImport, MalformedHeadersAndMissingFiles) {
 
 TEST(PlyImport, LoadedSceneHasTheTriangles) {
   testing::ScratchDirectory scratch("ply");
-  write(scratch.path() / "cube.ply", kAsciiCube);
+  write_file(scratch.path() / "cube.ply", kAsciiCube);
   const auto scene = load_scene_text(R"({"format": "candela/1",
     "camera": {"eye": [3, 3, 3], "target": [0, 0, 0], "fov": 50, "width": 8, "height": 8},
     "shapes": [{"type": "mesh", "file": "cube.ply", "transform": [{"translate": [1, 0, 0]}],
@@ -246,7 +242,7 @@ TEST(PlyImport, LoadedSceneHasTheTriangles) {
 
 TEST(PlyImport, UnknownMeshExtensionIsRefused) {
   testing::ScratchDirectory scratch("ply");
-  write(scratch.path() / "cube.stl", "solid");
+  write_file(scratch.path() / "cube.stl", "solid");
   try {
     (void)load_scene_text(R"({"format": "candela/1",
       "camera": {"eye": [3, 3, 3], "target": [0, 0, 0], "fov": 50, "width": 8, "height": 8},
