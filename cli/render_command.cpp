@@ -15,6 +15,7 @@
 
 #include "commands.h"
 #include "output_paths.h"
+#include "distributed/cluster.h"
 #include "integrators/method_registry.h"
 #include "integrators/ray_tracing_method.h"
 #include "io/image_writer.h"
@@ -257,7 +258,23 @@ int print_pixel_ray_trees(const RenderOptions& options, Scene& scene, const std:
   return 0;
 }
 
-int run_render(RenderOptions& options) {
+// Everything a render needs, checked and loaded before the first image is begun.
+struct RenderJob {
+  std::optional<tbb::global_control> thread_limit;
+  int threads = 0;
+  std::vector<LightSetup> relight_frames;
+  double load_seconds = 0, build_seconds = 0;
+  std::unique_ptr<Scene> scene;
+  const MethodEntry* entry = nullptr;
+  std::vector<View> views;
+  std::unique_ptr<Method> method;
+  std::vector<PixelRect> regions;
+  std::string fingerprint;
+};
+
+// Checks the options, loads the scene and makes the method; throws on bad input. Ranks other
+// than 0 (issue 11) check no outputs: only rank 0 writes.
+void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs) {
   if (options.output.empty()) options.output = default_output(options);
   ImageFormat format;
   if (!image_format_for_path(options.output, format))
@@ -266,6 +283,9 @@ int run_render(RenderOptions& options) {
   if (options.seed && (*options.seed < 0 || *options.seed > (int64_t(1) << 53)))
     throw BadArgument("--seed must be in [0, 2^53]");
   // Fail before the work, not after it: every output must be writable.
+  const auto check_writable = [&](const std::string& path, const char* option) {
+    if (writes_outputs) cli::check_writable(path, option);
+  };
   check_writable(options.output, "-o");
   if (!options.stats_path.empty()) check_writable(options.stats_path, "--stats");
   if (!options.aa_map_path.empty()) {
@@ -288,13 +308,13 @@ int run_render(RenderOptions& options) {
     check_writable(options.export_solution, "--export-solution");
   }
   // 002 §5.3: light set-ups rendered from one geometry; read (and refused) before anything else.
-  std::vector<LightSetup> relight_frames;
+  std::vector<LightSetup>& relight_frames = job.relight_frames;
   if (!options.relight.empty()) relight_frames = load_light_setups(options.relight);
   const std::vector<std::string> camera_requests = split_camera_names(options.cameras);
-  std::optional<tbb::global_control> thread_limit;
+  std::optional<tbb::global_control>& thread_limit = job.thread_limit;  // lives as long as the job
   if (options.threads > 0)
     thread_limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(options.threads));
-  const int threads = static_cast<int>(
+  job.threads = static_cast<int>(
       tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
 
   if (!options.accelerator.empty()) options.scene.overrides.push_back("render.accelerator=" + options.accelerator);
@@ -316,16 +336,18 @@ int run_render(RenderOptions& options) {
   if (!options.resume.empty() && !std::filesystem::is_regular_file(options.resume))
     throw BadArgument("--resume " + options.resume + ": no such checkpoint file");
   Stopwatch load_timer;
-  std::unique_ptr<Scene> scene = options.scene.load();
-  const double build_seconds = scene->accelerator_build_seconds();
-  const double load_seconds = load_timer.seconds() - build_seconds;
+  job.scene = options.scene.load();
+  const std::unique_ptr<Scene>& scene = job.scene;
+  job.build_seconds = scene->accelerator_build_seconds();
+  job.load_seconds = load_timer.seconds() - job.build_seconds;
   for (const auto& warning : scene->warnings) std::cerr << "candela: warning: " << warning << "\n";
   if (!options.method.empty()) {
     scene->render.method = options.method;
     scene->render.method_location = {"--method", 0, 0, {}};
   }
   if (options.seed) scene->render.seed = static_cast<uint64_t>(*options.seed);
-  const MethodEntry* entry = find_method(scene->render.method);
+  job.entry = find_method(scene->render.method);
+  const MethodEntry* entry = job.entry;
   if (!entry) {
     SourceLocation where = scene->render.method_location;
     if (where.file.empty()) where = {scene->source, 0, 0, "render.method"};
@@ -345,7 +367,8 @@ int run_render(RenderOptions& options) {
                       std::string(entry->name) + ")");
   if (!relight_frames.empty() && entry->name != "meshless")
     throw BadArgument("--relight needs --method meshless (the method is " + std::string(entry->name) + ")");
-  const std::vector<View> views = select_views(camera_requests, *scene);
+  job.views = select_views(camera_requests, *scene);
+  const std::vector<View>& views = job.views;
   if (!options.resume.empty() && views.size() != 1)
     throw BadArgument("--resume continues one camera's image, not " + std::to_string(views.size()));
   if (!relight_frames.empty() && views.size() != 1) throw BadArgument("--relight renders one camera, not " + std::to_string(views.size()));
@@ -355,12 +378,15 @@ int run_render(RenderOptions& options) {
   }
   // One method object renders every view, so what it keeps between renders (a radiosity
   // solution) is computed once.
-  const std::unique_ptr<Method> method = entry->create();
-
-  if (!options.pixel.empty()) return print_pixel_ray_trees(options, *scene, views, *method);
+  job.method = entry->create();
+  if (!options.pixel.empty()) {  // printed instead of rendering: checked here, printed by the caller
+    const auto* tracer = dynamic_cast<const RayTracingMethod*>(job.method.get());
+    if (!tracer) throw BadArgument("--pixel needs a ray-tracing method (local or whitted)");
+    return;
+  }
 
   // Every view's region and outputs are checked before the first image is rendered.
-  std::vector<PixelRect> regions;
+  std::vector<PixelRect>& regions = job.regions;
   for (const View& view : views) {
     try {
       regions.push_back(region_of(options, view.camera(*scene)));
@@ -378,15 +404,66 @@ int run_render(RenderOptions& options) {
       check_writable(path_for_view(options.checkpoint, view, views.size()), "--checkpoint");
   }
   const bool checkpointed = entry->name == "path" || entry->name == "radiosity";
-  const std::string fingerprint = checkpointed ? scene_fingerprint(options.scene, *scene) : std::string();
+  job.fingerprint = checkpointed ? scene_fingerprint(options.scene, *scene) : std::string();
+
+}
+
+// Distributed runs (issue 11): every rank prepares the same job; then they agree, so that a rank
+// whose set-up failed does not leave the others waiting for it. An error on rank 0 is reported by
+// rank 0 alone (the others had the same input); an error only elsewhere is reported by that rank.
+void prepare_everywhere(RenderOptions& options, RenderJob& job, Cluster& cluster) {
+  std::exception_ptr error;
+  try {
+    prepare_render(options, job, cluster.root());
+  } catch (...) {
+    if (!cluster.distributed()) throw;
+    error = std::current_exception();
+  }
+  if (!cluster.distributed() || cluster.all(!error)) return;
+  Bytes root_failed(1, std::byte{cluster.root() && error ? uint8_t{1} : uint8_t{0}});
+  cluster.broadcast(root_failed);
+  if (cluster.root()) {
+    if (error) std::rethrow_exception(error);
+    print_error("another rank could not set up the render (its error is above)");
+    throw PeerFailure(2);
+  }
+  if (error && root_failed[0] == std::byte{0}) {
+    try {
+      std::rethrow_exception(error);
+    } catch (const std::exception& e) {
+      std::cerr << fmt::format("candela: error (rank {}): {}\n", cluster.rank(), e.what());
+    }
+  }
+  throw PeerFailure(2);
+}
+
+int run_render(RenderOptions& options) {
+  Cluster& cluster = world_cluster();
+  // Only rank 0 prints progress and summaries and writes files.
+  if (!cluster.root()) options.quiet = true;
+  RenderJob job;
+  prepare_everywhere(options, job, cluster);
+  Scene* scene = job.scene.get();
+  const MethodEntry* entry = job.entry;
+  const std::vector<View>& views = job.views;
+  const Method* method = job.method.get();
+  const std::vector<PixelRect>& regions = job.regions;
+  const std::string& fingerprint = job.fingerprint;
+  const int threads = job.threads;
+  std::vector<LightSetup>& relight_frames = job.relight_frames;
+  const double load_seconds = job.load_seconds, build_seconds = job.build_seconds;
+  if (!options.pixel.empty()) return cluster.root() ? print_pixel_ray_trees(options, *scene, views, *method) : 0;
 
   // SPEC §15: from here on Ctrl-C (or SIGTERM) stops the method early; what it finished is written
   // as usual, the views and frames after it are skipped, and the exit status is 130. A second
   // Ctrl-C ends the process at once.
   install_interrupt_handler();
+  // With several ranks they stop together: Ctrl-C on any of them counts (a collective).
+  const auto interrupted = [&] { return cluster.distributed() ? cancelled_anywhere(cluster) : cancel_requested(); };
+  const bool root = cluster.root();
   for (std::size_t v = 0; v < views.size(); ++v) {
     const View& view = views[v];
-    if (cancel_requested()) return report_interrupted_before(views.size() - v, "view");
+    if (interrupted()) return root ? report_interrupted_before(views.size() - v, "view") : kInterruptedExitCode;
     const std::string output = path_for_view(options.output, view, views.size());
     const std::string stats_path = path_for_view(options.stats_path, view, views.size());
     const std::string aa_map_path = path_for_view(options.aa_map_path, view, views.size());
@@ -412,13 +489,18 @@ int run_render(RenderOptions& options) {
     // A radiosity solution is the same for every view; a path-traced image is not.
     request.fingerprint = entry->name == "path" ? fingerprint + " camera " + view.name : fingerprint;
     if (options.checkpoint_every) request.checkpoint_interval = *options.checkpoint_every;
+    request.cluster = &cluster;
     Stopwatch render_timer;
     method->render(*scene, request, film, statistics);
     statistics.add_phase("render", render_timer.seconds());
     // A method's warning about its result (the path tracer: nothing emits light).
     const auto& method_facts = statistics.extra[std::string(method->name())];
-    if (method_facts.is_object() && method_facts.contains("warning"))
+    if (root && method_facts.is_object() && method_facts.contains("warning"))
       std::cerr << "candela: warning: " << method_facts["warning"].get<std::string>() << "\n";
+    if (!root) {  // rank 0 holds the image and writes everything
+      if (interrupted()) return kInterruptedExitCode;
+      continue;
+    }
 
     Stopwatch write_timer;
     write_image(film, output, scene->display);
@@ -437,15 +519,16 @@ int run_render(RenderOptions& options) {
       std::cerr << fmt::format("candela: wrote {} ({}x{}, {}{})\n", output, film.width(), film.height(),
                                method->name(), views.size() > 1 ? ", camera " + view.name : std::string())
                 << statistics.summary();
+    statistics.extra["ranks"] = cluster.size();
     if (!stats_path.empty()) write_statistics(statistics, stats_path);
-    if (cancel_requested()) return report_interrupted(statistics, output, views.size() - v - 1 + relight_frames.size());
+    if (interrupted()) return report_interrupted(statistics, output, views.size() - v - 1 + relight_frames.size());
   }
 
   // Relighting: each frame's lights in place of the scene's, the same method object, so the
   // meshless geometry (sites, areas, transfer matrix) is reused and only η and λ are redone.
   for (std::size_t f = 0; f < relight_frames.size(); ++f) {
     LightSetup& frame = relight_frames[f];
-    if (cancel_requested()) return report_interrupted_before(relight_frames.size() - f, "frame");
+    if (interrupted()) return root ? report_interrupted_before(relight_frames.size() - f, "frame") : kInterruptedExitCode;
     std::swap(scene->lights, frame.lights);
     std::swap(scene->ambient, frame.ambient);
     const CurrentCamera current(*scene, views.front());
@@ -455,11 +538,16 @@ int run_render(RenderOptions& options) {
     RenderRequest request;
     request.region = regions.front();
     request.quiet = options.quiet;
+    request.cluster = &cluster;
     Stopwatch render_timer;
     method->render(*scene, request, film, statistics);
     statistics.add_phase("render", render_timer.seconds());
     std::swap(scene->lights, frame.lights);
     std::swap(scene->ambient, frame.ambient);
+    if (!root) {
+      if (interrupted()) return kInterruptedExitCode;
+      continue;
+    }
     const std::string output = path_with_suffix(options.output, frame.name);
     Stopwatch write_timer;
     write_image(film, output, scene->display);
@@ -473,7 +561,7 @@ int run_render(RenderOptions& options) {
                                render_timer.seconds(),
                                statistics.extra["meshless"].value("lighting_seconds", 0.0), output);
     if (!options.stats_path.empty()) write_statistics(statistics, path_with_suffix(options.stats_path, frame.name));
-    if (cancel_requested()) return report_interrupted(statistics, output, relight_frames.size() - f - 1);
+    if (interrupted()) return report_interrupted(statistics, output, relight_frames.size() - f - 1);
   }
   return 0;
 }

@@ -1,4 +1,7 @@
 #include "integrators/meshless_method.h"
+
+#include "distributed/cluster.h"
+#include "integrators/distributed_tiles.h"
 #include "integrators/solution_field.h"
 #include "util/memory.h"
 
@@ -160,7 +163,9 @@ std::size_t transfer_entry_limit() {
 
 // build_meshless_geometry; when cancellable, null once Ctrl-C arrives between its phases
 // (sampling, areas, transfer matrix).
-std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, bool cancellable) {
+std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, bool cancellable, Cluster* cluster = nullptr) {
+  // Every rank stops at the same phase (a collective when distributed).
+  const auto stop = [&] { return cancellable && (cluster ? cancelled_anywhere(*cluster) : cancel_requested()); };
   const MeshlessSettings& settings = scene.meshless;
   auto geometry = std::make_shared<MeshlessGeometry>();
   auto start = std::chrono::steady_clock::now();
@@ -173,7 +178,7 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, bool cancel
   sampling.max_sites = static_cast<std::size_t>(settings.max_sites);
   geometry->sites = sample_sites(scene, sampling);
   geometry->sampling_seconds = seconds_since(start);
-  if (cancellable && cancel_requested()) return nullptr;
+  if (stop()) return nullptr;
   const SiteSet& sites = geometry->sites;
 
   start = std::chrono::steady_clock::now();
@@ -185,8 +190,8 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, bool cancel
   if (settings.effective_area == MeshlessAreas::integrated)
     geometry->areas = integrate_effective_areas(scene, *geometry->basis, sites, sites.spacing / 4);
   geometry->area_seconds = seconds_since(start);
-  if (cancellable && cancel_requested()) return nullptr;
-  geometry->matrix = compute_transfer_matrix(scene, sites.sites, geometry->areas, transfer_entry_limit());
+  if (stop()) return nullptr;
+  geometry->matrix = compute_transfer_matrix(scene, sites.sites, geometry->areas, transfer_entry_limit(), cluster);
   return geometry;
 }
 
@@ -236,12 +241,13 @@ MeshlessSolution solve_meshless(const Scene& scene, nlohmann::json* facts) {
   return solution;
 }
 
-std::shared_ptr<const MeshlessGeometry> MeshlessMethod::geometry_for(const Scene& scene, bool& reused) const {
+std::shared_ptr<const MeshlessGeometry> MeshlessMethod::geometry_for(const Scene& scene, bool& reused,
+                                                                    Cluster* cluster) const {
   const std::string key = geometry_key(scene);
   std::lock_guard lock(cache_mutex_);
   reused = cached_ && cached_key_ == key;
   if (reused) return cached_;
-  std::shared_ptr<const MeshlessGeometry> geometry = build_geometry(scene, true);
+  std::shared_ptr<const MeshlessGeometry> geometry = build_geometry(scene, true, cluster);
   if (!geometry) return nullptr;  // Ctrl-C: nothing kept
   cached_ = std::move(geometry);
   cached_key_ = key;
@@ -253,7 +259,8 @@ void MeshlessMethod::render(const Scene& scene, const RenderRequest& request, Fi
   // The sites, areas and transfer matrix are kept between renders of the same scene (other views,
   // other light set-ups: --relight); the direct light and the iteration are redone every time.
   bool reused = false;
-  const std::shared_ptr<const MeshlessGeometry> geometry = geometry_for(scene, reused);
+  Cluster* cluster = request.cluster && request.cluster->distributed() ? request.cluster : nullptr;
+  const std::shared_ptr<const MeshlessGeometry> geometry = geometry_for(scene, reused, cluster);
   // Ctrl-C before λ exists: the film stays black.
   const auto interrupted = [&](const char* completed) {
     statistics.extra["interrupted"] = true;
@@ -261,7 +268,7 @@ void MeshlessMethod::render(const Scene& scene, const RenderRequest& request, Fi
     statistics.extra["meshless"] = {{"interrupted", true}};
   };
   if (!geometry) return interrupted("transfer matrix not finished");
-  if (cancel_requested()) return interrupted("sites and transfer matrix; no lighting");
+  if (cluster ? cancelled_anywhere(*cluster) : cancel_requested()) return interrupted("sites and transfer matrix; no lighting");
   const MeshlessLighting lighting = light_meshless(scene, *geometry);
   nlohmann::json facts = geometry_facts(scene, *geometry);
   add_lighting_facts(lighting, facts);
@@ -276,9 +283,11 @@ void MeshlessMethod::render(const Scene& scene, const RenderRequest& request, Fi
   const Camera& camera = *scene.camera;
   const PixelRect region = request.region;
   const auto start = std::chrono::steady_clock::now();
-  tbb::parallel_for(region.y0, region.y1, [&](int y) {
+  // The pixels of area into target (area-sized).
+  const auto draw = [&](const PixelRect& area, Film& target) {
+  tbb::parallel_for(area.y0, area.y1, [&](int y) {
     std::vector<std::pair<uint32_t, double>> weights;
-    for (int x = region.x0; x < region.x1; ++x) {
+    for (int x = area.x0; x < area.x1; ++x) {
       const Ray ray = camera.generate_ray(x + 0.5, y + 0.5);
       Intersection hit;
       Color color = scene.background_along(ray.direction);
@@ -303,10 +312,22 @@ void MeshlessMethod::render(const Scene& scene, const RenderRequest& request, Fi
         }
         if (weights.empty() && settings.display != MeshlessDisplay::hybrid) color = scene.background_along(ray.direction);
       }
-      film.at(x - region.x0, y - region.y0) = color;
+      target.at(x - area.x0, y - area.y0) = color;
     }
   });
-  if (!request.show_sites.empty()) {
+  };
+  if (request.cluster && request.cluster->distributed()) {
+    // The view in tiles across the ranks (issue 11); every rank holds the same λ.
+    const TiledRender run = render_tiles_across_ranks(*request.cluster, region, [&](const PixelRect& tile) {
+      RenderedTile rendered{Film(tile.width(), tile.height()), {}};
+      draw(tile, rendered.film);
+      return rendered;
+    }, film);
+    statistics.extra["distributed"] = distributed_facts(*request.cluster, run.tiles_by_rank, "tiles");
+  } else {
+    draw(region, film);
+  }
+  if (!request.show_sites.empty() && (!cluster || cluster->root())) {  // rank 0 writes
     write_image(with_sites_drawn(scene, solution.sites, region, film), request.show_sites, scene.display);
     facts["sites_image"] = request.show_sites;
   }

@@ -72,7 +72,7 @@ class MeshlessMethod final : public Method {
               RunStatistics& statistics) const override;
 
  private:
-  std::shared_ptr<const MeshlessGeometry> geometry_for(const Scene& scene, bool& reused) const;
+  std::shared_ptr<const MeshlessGeometry> geometry_for(const Scene& scene, bool& reused, Cluster* cluster) const;
   mutable std::mutex cache_mutex_;
   mutable std::shared_ptr<const MeshlessGeometry> cached_;
   mutable std::string cached_key_;

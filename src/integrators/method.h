@@ -11,6 +11,8 @@
 
 namespace candela {
 
+class Cluster;
+
 // The pixels to render: [x0, x1) × [y0, y1) of the camera's image.
 struct PixelRect {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
@@ -37,6 +39,11 @@ struct RenderRequest {
   // Seconds between checkpoints; 0: the method's default (path.checkpoint_interval; 60 for
   // progressive radiosity, which also checkpoints to `checkpoint` and resumes from `resume`).
   double checkpoint_interval = 0;
+  // The ranks to split the work across (issue 11, docs/distributed.md); null or one rank: this
+  // process alone. Every rank calls render with the same scene and request; rank 0's film holds
+  // the image, and only rank 0 writes files (checkpoints, exports). Statistics are totals over
+  // the ranks.
+  Cluster* cluster = nullptr;
 };
 
 class Method {

@@ -9,6 +9,9 @@
 #include <atomic>
 #include <cmath>
 
+#include "distributed/cluster.h"
+#include "distributed/task_farm.h"
+#include "integrators/distributed_tiles.h"
 #include "integrators/path_checkpoint.h"
 #include "math/constants.h"
 #include "sampling/multiple_importance.h"
@@ -251,7 +254,12 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
   state.fingerprint = fingerprint;
   state.region = region;
   state.sums.assign(std::size_t(width) * height, Color());
-  if (!request.resume.empty()) {
+  Cluster* cluster = request.cluster && request.cluster->distributed() ? request.cluster : nullptr;
+  // Only rank 0 reads the checkpoint (the others are given sums with each tile); a bad one stops
+  // every rank.
+  std::exception_ptr resume_error;
+  try {
+  if (!request.resume.empty() && (!cluster || cluster->root())) {
     PathCheckpoint resumed = read_path_checkpoint(request.resume);
     const SourceLocation where{request.resume, 0, 0, {}};
     if (resumed.fingerprint != fingerprint)
@@ -266,6 +274,11 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
                                           resumed.passes, settings.spp));
     state = std::move(resumed);
   }
+  } catch (...) {
+    if (!cluster) throw;
+    resume_error = std::current_exception();
+  }
+  if (cluster) settle_root_outcome(*cluster, resume_error);
   const uint64_t first_pass = state.passes;
   const uint64_t last_pass = settings.spp > 0 ? uint64_t(settings.spp) : UINT64_MAX;
   const bool timed = settings.time > 0;
@@ -276,12 +289,13 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
   tbb::enumerable_thread_specific<uint64_t> invalid;
   const int tile = std::max(1, scene.render.tile_size);
   const uint64_t progress_total = settings.spp > 0 ? last_pass - first_pass : static_cast<uint64_t>(std::ceil(settings.time));
-  ProgressReporter progress("path", progress_total, settings.spp > 0 ? "passes" : "s", request.quiet);
+  ProgressReporter progress("path", progress_total, settings.spp > 0 ? "passes" : "s",
+                            request.quiet || (cluster && !cluster->root()));
   Stopwatch timer, since_checkpoint;
   int checkpoints = 0;
   uint64_t seconds_reported = 0;
   const auto save = [&] {
-    if (request.checkpoint.empty()) return;
+    if (request.checkpoint.empty() || (cluster && !cluster->root())) return;  // rank 0 writes
     RayCounts rays = state.rays;
     for (const RayCounts& c : counts) rays += c;
     PathCheckpoint snapshot{state.fingerprint, state.region, state.passes, state.seconds + timer.seconds(), rays, {}};
@@ -292,10 +306,143 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
   };
   // A pass goes to its own buffer and is added to the sums only once every pixel has it: a pass
   // cut short by Ctrl-C is dropped, so the sums (and the checkpoint) always hold whole passes.
-  std::vector<Color> pass_values(state.sums.size());
-  const tbb::blocked_range2d<int> blocks(0, height, tile, 0, width, tile);
   bool interrupted = false;
-  while (state.passes < last_pass) {
+  uint64_t dropped_across_ranks = 0;
+  // A pass's value at one pixel: one uniform point of its square (box filter), the path's radiance.
+  const auto sample_pixel = [&](uint64_t pass, int i, int j, RayCounts& rays) {
+    const auto x = static_cast<uint32_t>(region.x0 + i), y = static_cast<uint32_t>(region.y0 + j);
+    Pcg32 rng = path_pixel_rng(scene.render.seed, pass, x, y);
+    const double sx = x + rng.next_double(), sy = y + rng.next_double();
+    ++rays.primary;
+    return path_radiance(scene, lights, scene.camera->generate_ray(sx, sy), rng, rays);
+  };
+  const auto after_pass = [&](uint64_t passes_done) {
+    progress.set_detail(fmt::format("{} spp", passes_done));
+    if (settings.spp > 0) {
+      progress.advance();
+    } else {
+      const auto whole = static_cast<uint64_t>(timer.seconds());
+      if (whole > seconds_reported) {
+        progress.advance(std::min(whole, progress_total) - std::min(seconds_reported, progress_total));
+        seconds_reported = whole;
+      }
+    }
+  };
+  nlohmann::json distributed;
+  if (cluster) {
+    // Across ranks (issue 11): rounds of passes; in a round every tile goes to some rank with its
+    // sums so far, which adds the round's passes pixel by pixel in pass order — the very
+    // additions one process makes — and sends the sums back. Rank 0 decides each round (how many
+    // passes, or stop: spp reached, time up, Ctrl-C), keeps the sums and writes the checkpoints. A
+    // round cut short is dropped, so the sums always hold whole passes.
+    const std::vector<PixelRect> tiles = distributed_tiles({0, 0, width, height});
+    std::vector<uint64_t> tiles_by_rank(static_cast<std::size_t>(cluster->size()), 0);
+    uint64_t passes_per_round = 1, rounds = 0;
+    for (;;) {
+      // The plan of the next round, from rank 0: its first pass and pass count (0: stop).
+      ByteWriter plan_writer;
+      if (cluster->root()) {
+        uint64_t count = 0;
+        if (cancel_requested()) {
+          interrupted = true;
+        } else if (state.passes < last_pass && !(timed && timer.seconds() >= settings.time)) {
+          count = std::min(passes_per_round, last_pass - state.passes);
+        }
+        plan_writer.put<uint64_t>(state.passes);
+        plan_writer.put<uint64_t>(count);
+      }
+      Bytes plan = plan_writer.take();
+      cluster->broadcast(plan);
+      ByteReader plan_reader(plan);
+      const auto round_first = plan_reader.get<uint64_t>(), round_count = plan_reader.get<uint64_t>();
+      if (round_count == 0) break;
+      Stopwatch round_time;
+      std::vector<Color> round_sums = cluster->root() ? state.sums : std::vector<Color>();
+      bool whole = true;
+      uint64_t round_dropped = 0;
+      TaskFarm farm;
+      farm.task_count = tiles.size();
+      farm.input = [&](std::size_t task) {
+        const PixelRect& t = tiles[task];
+        ByteWriter writer;
+        for (int j = t.y0; j < t.y1; ++j)
+          for (int i = t.x0; i < t.x1; ++i) writer.put(state.sums[std::size_t(j) * width + i]);
+        return writer.take();
+      };
+      farm.work = [&](std::size_t task, std::span<const std::byte> input) {
+        const PixelRect& t = tiles[task];
+        std::vector<Color> sums(std::size_t(t.width()) * t.height());
+        ByteReader reader(input);
+        for (Color& sum : sums) sum = reader.get<Color>();
+        std::atomic<uint64_t> tile_dropped{0};
+        std::atomic<bool> cut_short{false};
+        for (uint64_t pass = round_first; pass < round_first + round_count; ++pass) {
+          if (cancel_requested()) {
+            cut_short = true;
+            break;
+          }
+          tbb::parallel_for(tbb::blocked_range2d<int>(t.y0, t.y1, tile, t.x0, t.x1, tile),
+                            [&](const tbb::blocked_range2d<int>& block) {
+            RayCounts& rays = counts.local();
+            for (int j = block.rows().begin(); j < block.rows().end(); ++j)
+              for (int i = block.cols().begin(); i < block.cols().end(); ++i) {
+                const Color value = sample_pixel(pass, i, j, rays);
+                // A non-finite sample is dropped (adds zero), as in one process.
+                Color& sum = sums[std::size_t(j - t.y0) * t.width() + (i - t.x0)];
+                if (is_finite(value)) {
+                  sum += value;
+                } else {
+                  sum += Color();
+                  ++tile_dropped;
+                }
+              }
+          });
+        }
+        ByteWriter writer;
+        writer.put<uint8_t>(cut_short ? 0 : 1);
+        writer.put<uint64_t>(tile_dropped.load());
+        writer.put_array(sums);
+        return writer.take();
+      };
+      farm.collect = [&](std::size_t task, Bytes result) {
+        const PixelRect& t = tiles[task];
+        ByteReader reader(result);
+        if (reader.get<uint8_t>() == 0) whole = false;
+        round_dropped += reader.get<uint64_t>();
+        const std::vector<Color> sums = reader.get_array<Color>();
+        for (int j = t.y0; j < t.y1; ++j)
+          for (int i = t.x0; i < t.x1; ++i)
+            round_sums[std::size_t(j) * width + i] = sums[std::size_t(j - t.y0) * t.width() + (i - t.x0)];
+      };
+      farm.stop = [] { return cancel_requested(); };
+      const TaskFarmReport report = run_task_farm(*cluster, farm);
+      ++rounds;
+      if (!cluster->root()) continue;
+      for (std::size_t r = 0; r < report.tasks_by_rank.size(); ++r) tiles_by_rank[r] += report.tasks_by_rank[r];
+      if (report.tasks_done < tiles.size() || !whole) {  // Ctrl-C during the round: dropped
+        interrupted = true;
+        continue;  // the next plan says stop
+      }
+      state.sums.swap(round_sums);
+      dropped_across_ranks += round_dropped;
+      for (uint64_t pass = 0; pass < round_count; ++pass) after_pass(++state.passes);
+      // Rounds of about a second (fewer broadcasts and tile exchanges), no longer than the time
+      // left or the checkpoint interval allow; the image does not depend on it.
+      const double per_pass = round_time.seconds() / double(round_count);
+      double budget = 1.0;
+      if (timed) budget = std::min(budget, settings.time - timer.seconds());
+      if (!request.checkpoint.empty()) budget = std::min(budget, settings.checkpoint_interval);
+      passes_per_round = per_pass > 0 ? std::clamp<uint64_t>(static_cast<uint64_t>(budget / per_pass), 1, 256) : 256;
+      if (!request.checkpoint.empty() && since_checkpoint.seconds() >= settings.checkpoint_interval &&
+          state.passes < last_pass)
+        save();
+    }
+    distributed = distributed_facts(*cluster, tiles_by_rank, "tiles");
+    distributed["rounds"] = rounds;
+  }
+  std::vector<Color> pass_values(cluster ? 0 : state.sums.size());
+  const tbb::blocked_range2d<int> blocks(0, height, tile, 0, width, tile);
+  while (!cluster && state.passes < last_pass) {
     if (cancel_requested()) {
       interrupted = true;
       break;
@@ -310,12 +457,7 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
       RayCounts& rays = counts.local();
       for (int j = block.rows().begin(); j < block.rows().end(); ++j)
         for (int i = block.cols().begin(); i < block.cols().end(); ++i) {
-          const auto x = static_cast<uint32_t>(region.x0 + i), y = static_cast<uint32_t>(region.y0 + j);
-          Pcg32 rng = path_pixel_rng(scene.render.seed, pass, x, y);
-          // A box-filtered pixel: one uniform point of its square per pass.
-          const double sx = x + rng.next_double(), sy = y + rng.next_double();
-          ++rays.primary;
-          const Color value = path_radiance(scene, lights, scene.camera->generate_ray(sx, sy), rng, rays);
+          const Color value = sample_pixel(pass, i, j, rays);
           // A non-finite sample (an exploded weight) is dropped, not allowed to poison the pixel.
           if (is_finite(value)) {
             pass_values[std::size_t(j) * width + i] = value;
@@ -334,17 +476,7 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
         for (int i = block.cols().begin(); i < block.cols().end(); ++i)
           state.sums[std::size_t(j) * width + i] += pass_values[std::size_t(j) * width + i];
     });
-    ++state.passes;
-    progress.set_detail(fmt::format("{} spp", state.passes));
-    if (settings.spp > 0) {
-      progress.advance();
-    } else {
-      const auto whole = static_cast<uint64_t>(timer.seconds());
-      if (whole > seconds_reported) {
-        progress.advance(std::min(whole, progress_total) - std::min(seconds_reported, progress_total));
-        seconds_reported = whole;
-      }
-    }
+    after_pass(++state.passes);
     if (timed && timer.seconds() >= settings.time) break;
     if (!request.checkpoint.empty() && since_checkpoint.seconds() >= settings.checkpoint_interval &&
         state.passes < last_pass)
@@ -359,7 +491,8 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
 
   RayCounts rays;
   for (const RayCounts& c : counts) rays += c;
-  uint64_t dropped = 0;
+  if (cluster) sum_across_ranks(*cluster, rays);
+  uint64_t dropped = dropped_across_ranks;
   for (const uint64_t d : invalid) dropped += d;
   statistics.rays += rays;
   statistics.pixels += uint64_t(width) * height;
@@ -374,6 +507,7 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
                           {"checkpoints_written", checkpoints},
                           {"seconds_all_runs", state.seconds + timer.seconds()}};
   if (!request.resume.empty()) facts["resumed_from_spp"] = first_pass;
+  if (cluster) statistics.extra["distributed"] = distributed;
   if (interrupted) {  // Ctrl-C: the mean of the whole passes, which the checkpoint holds too
     statistics.extra["interrupted"] = true;
     statistics.extra["completed"] = fmt::format("{} passes{}", state.passes - first_pass,

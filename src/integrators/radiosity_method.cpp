@@ -12,8 +12,12 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <span>
 #include <string>
 
+#include "distributed/cluster.h"
+#include "distributed/task_farm.h"
+#include "integrators/distributed_tiles.h"
 #include "radiosity/delta_form_factors.h"
 #include "radiosity/hemicube_form_factors.h"
 #include "radiosity/ray_cast_form_factors.h"
@@ -89,14 +93,11 @@ void check_form_factor_memory(uint64_t required, const RadiositySettings& settin
 //   hemicube  000 §6.4: the row of a hemicube at the centroid over the targets;
 //   ray-cast  per target, Lambert's exact unoccluded point-to-polygon form factor times the
 //             fraction of ray_cast_samples² rays that reach it (radiosity/ray_cast_form_factors.h).
-template <typename Matrix, typename Skipped>
-void fill_form_factor_rows(const Scene& scene, const std::vector<RadiositySurface>& surfaces,
-                           const std::vector<uint32_t>& rows, const std::vector<RadiositySurface>& targets,
-                           const FormFactorGeometry& geometry, Skipped skipped, Matrix& matrix,
-                           std::vector<double>& sums_by_row) {
-  using Scalar = typename Matrix::Scalar;
+template <typename Sink, typename Skipped>
+void compute_form_factor_rows(const Scene& scene, const std::vector<RadiositySurface>& surfaces,
+                              std::span<const uint32_t> rows, const std::vector<RadiositySurface>& targets,
+                              const FormFactorGeometry& geometry, Skipped skipped, Sink write, std::span<double> sums) {
   const RadiositySettings& settings = scene.radiosity;
-  std::vector<double> sums(rows.size());
   if (settings.form_factors == RadiosityFormFactors::hemicube) {
     const auto table = std::make_shared<const DeltaFormFactors>(settings.hemicube_resolution);
     tbb::enumerable_thread_specific<std::unique_ptr<HemicubeFormFactors>> hemicubes;
@@ -108,7 +109,7 @@ void fill_form_factor_rows(const Scene& scene, const std::vector<RadiositySurfac
       const std::size_t i = rows[k];
       const RadiositySurface& surface = surfaces[i];
       hemicube->compute_row(geometry, surface.centroid, surface.normal, tangent_of(surface), static_cast<uint32_t>(skipped(i)), row);
-      for (std::size_t j = 0; j < row.size(); ++j) matrix(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = static_cast<Scalar>(row[j]);
+      for (std::size_t j = 0; j < row.size(); ++j) write(k, j, row[j]);
       sums[k] = row_sum(row);
     });
   } else {
@@ -128,10 +129,62 @@ void fill_form_factor_rows(const Scene& scene, const std::vector<RadiositySurfac
         double form_factor = 0;
         if (j != skipped(i))
           form_factor = point_to_element_form_factor(surface.centroid, surface.normal, sources[j], &scene.accelerator(), ray_cast, random);
-        matrix(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = static_cast<Scalar>(form_factor);
+        write(k, j, form_factor);
         sum += form_factor;
       }
       sums[k] = sum;
+    });
+  }
+}
+
+// Form factors from the centroids of surfaces[rows[k]] to every target (F_i→j), into row rows[k]
+// of matrix (float: the element rows are the largest thing the solver keeps), in parallel: each
+// row by one thread into its own place (ray casting with a random stream per row index), so the
+// result does not depend on the thread count. A surface's row skips the target `skipped(i)`.
+//   hemicube  000 §6.4: the row of a hemicube at the centroid over the targets;
+//   ray-cast  per target, Lambert's exact unoccluded point-to-polygon form factor times the
+//             fraction of ray_cast_samples² rays that reach it (radiosity/ray_cast_form_factors.h).
+// With several ranks (issue 11) the rows go out in chunks (dynamic scheduling) and every rank
+// ends with every row, converted to the matrix's scalar where it was computed: the same values as
+// one process, so every rank's solve — and its solution — is that of one process.
+template <typename Matrix, typename Skipped>
+void fill_form_factor_rows(const Scene& scene, const std::vector<RadiositySurface>& surfaces,
+                           const std::vector<uint32_t>& rows, const std::vector<RadiositySurface>& targets,
+                           const FormFactorGeometry& geometry, Skipped skipped, Matrix& matrix,
+                           std::vector<double>& sums_by_row, Cluster* cluster) {
+  using Scalar = typename Matrix::Scalar;
+  std::vector<double> sums(rows.size());
+  if (!cluster || !cluster->distributed()) {
+    compute_form_factor_rows(scene, surfaces, rows, targets, geometry, skipped, [&](std::size_t k, std::size_t j, double value) {
+      matrix(static_cast<Eigen::Index>(rows[k]), static_cast<Eigen::Index>(j)) = static_cast<Scalar>(value);
+    }, sums);
+  } else {
+    // Chunks of about 8 a rank's worth of threads, at most 64 rows: enough to balance, few messages.
+    const std::size_t chunk = std::clamp<std::size_t>(rows.size() / (std::size_t(cluster->size()) * 8), 1, 64);
+    const std::size_t tasks = (rows.size() + chunk - 1) / chunk;
+    const std::size_t columns = targets.size();
+    run_task_farm_everywhere(*cluster, tasks, [&](std::size_t task) {
+      const std::size_t first = task * chunk, count = std::min(chunk, rows.size() - first);
+      std::vector<Scalar> values(count * columns, Scalar(0));
+      std::vector<double> chunk_sums(count);
+      compute_form_factor_rows(scene, surfaces, std::span<const uint32_t>(rows).subspan(first, count), targets, geometry,
+                               skipped, [&](std::size_t k, std::size_t j, double value) {
+        values[k * columns + j] = static_cast<Scalar>(value);
+      }, chunk_sums);
+      ByteWriter writer;
+      writer.put_array(values);
+      writer.put_array(chunk_sums);
+      return writer.take();
+    }, [&](std::size_t task, std::span<const std::byte> result) {
+      const std::size_t first = task * chunk;
+      ByteReader reader(result);
+      const std::vector<Scalar> values = reader.get_array<Scalar>();
+      const std::vector<double> chunk_sums = reader.get_array<double>();
+      for (std::size_t k = 0; k < chunk_sums.size(); ++k) {
+        for (std::size_t j = 0; j < columns; ++j)
+          matrix(static_cast<Eigen::Index>(rows[first + k]), static_cast<Eigen::Index>(j)) = values[k * columns + j];
+        sums[first + k] = chunk_sums[k];
+      }
     });
   }
   for (std::size_t k = 0; k < rows.size(); ++k) sums_by_row[rows[k]] = sums[k];
@@ -206,7 +259,7 @@ struct ProgressiveRun {
 
 ElementSolution shoot_progressively(const RadiosityMesh& mesh, const ElementToPatch& element_to_patch,
                                     const RadiositySettings& settings, ProgressReporter& progress,
-                                    uint64_t& progress_done, ProgressiveRun* run) {
+                                    uint64_t& progress_done, ProgressiveRun* run, Cluster* cluster) {
   const std::size_t patch_count = mesh.patches.size(), element_count = mesh.elements.size();
   ElementSolution result;
   std::vector<Color>& radiosity = result.radiosity;
@@ -241,7 +294,7 @@ ElementSolution shoot_progressively(const RadiosityMesh& mesh, const ElementToPa
   }
   Stopwatch since_checkpoint;
   const auto save = [&] {
-    if (!run || run->checkpoint.empty()) return;
+    if (!run || run->checkpoint.empty()) return;  // (rank 0 alone is given a checkpoint path)
     write_radiosity_checkpoint(run->checkpoint, {run->fingerprint, steps, radiosity, unshot});
     ++run->checkpoints_written;
     since_checkpoint = Stopwatch();
@@ -249,7 +302,8 @@ ElementSolution shoot_progressively(const RadiosityMesh& mesh, const ElementToPa
   std::size_t shooter = patch_count;
   double fraction = unshot_fraction(shooter);
   while (fraction > settings.threshold && shooter < patch_count && steps < static_cast<std::size_t>(settings.max_steps) &&
-         !cancel_requested()) {  // Ctrl-C: the solution so far
+         !(cluster ? steps % 16 == 0 && cancelled_anywhere(*cluster) : cancel_requested())) {
+    // Ctrl-C: the solution so far (several ranks agree every 16 shots, so they shoot alike)
     const Color shot = unshot[shooter];
     unshot[shooter] = Color();
     const float* column = element_to_patch.col(static_cast<Eigen::Index>(shooter)).data();  // contiguous
@@ -323,7 +377,7 @@ std::vector<bool> elements_to_split(const RadiosityMesh& mesh, const std::vector
 }
 
 RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohmann::json* statistics,
-                                           ProgressiveRun* run = nullptr) {
+                                           ProgressiveRun* run = nullptr, Cluster* cluster = nullptr) {
   RadiositySolveResult result;
   const RadiositySettings& settings = scene.radiosity;
   Stopwatch mesh_time;
@@ -333,6 +387,9 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
   mesh_settings.element_size = settings.element_size;
   mesh_settings.split_at_contacts = settings.split_at_contacts;
   const bool progressive = settings.solver == RadiositySolver::progressive;
+  // Whether Ctrl-C arrived; with several ranks, whether it reached any (a collective), so that all
+  // of them take the same branch.
+  const auto stopped = [&] { return cluster ? cancelled_anywhere(*cluster) : cancel_requested(); };
   const std::string fewer = "raise radiosity.patch_size or radiosity.element_size (fewer patches and elements)";
   {
     // Refused before the mesh is built (it can take gigabytes itself): the fewest patches and
@@ -369,11 +426,11 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
     {
       Stopwatch form_factor_time;
       fill_form_factor_rows(scene, mesh.patches, all_rows(patch_count), mesh.patches, mesh.patch_geometry,
-                            [](std::size_t i) { return i; }, patch_rows, patch_sums);
+                            [](std::size_t i) { return i; }, patch_rows, patch_sums, cluster);
       form_factor_seconds += form_factor_time.seconds();
     }
     reciprocity = measure_reciprocity(mesh.patches, patch_rows);
-    if (cancel_requested()) {  // Ctrl-C: not solved, B = E
+    if (stopped()) {  // Ctrl-C: not solved, B = E
       for (const RadiositySurface& patch : mesh.patches) patch_radiosity.push_back(patch.emission);
       patch_converged = false;
     } else {
@@ -399,11 +456,11 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
   {
     Stopwatch form_factor_time;
     fill_form_factor_rows(scene, mesh.elements, all_rows(mesh.elements.size()), mesh.patches, mesh.patch_geometry,
-                          own_patch, element_to_patch, element_sums);
+                          own_patch, element_to_patch, element_sums, cluster);
     form_factor_seconds += form_factor_time.seconds();
   }
   // Ctrl-C before every row was computed: the rows not begun are zero.
-  const bool form_factors_complete = !cancel_requested();
+  const bool form_factors_complete = !stopped();
   std::size_t form_factor_rows = (progressive ? 0 : patch_count) + mesh.elements.size();
   const double min_element_size = settings.min_element_size > 0 ? settings.min_element_size : mesh.element_size / 8;
   ProgressReporter progress("radiosity", 1000, "per mille of convergence", quiet);
@@ -411,13 +468,13 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
   for (;;) {
     uint64_t progress_done = 0;
     if (progressive) {
-      solution = shoot_progressively(mesh, element_to_patch, settings, progress, progress_done, run);
+      solution = shoot_progressively(mesh, element_to_patch, settings, progress, progress_done, run, cluster);
     } else {
       solution.radiosity = gather_from_patches(mesh, element_to_patch, patch_radiosity);
       solution.steps = patch_steps;
       solution.converged = patch_converged;
     }
-    if (!(settings.subdivision_threshold > 0) || cancel_requested()) break;
+    if (!(settings.subdivision_threshold > 0) || stopped()) break;
     const std::vector<bool> split =
         elements_to_split(mesh, solution.radiosity, element_sums, settings.subdivision_threshold, min_element_size);
     const auto split_count = static_cast<std::size_t>(std::count(split.begin(), split.end(), true));
@@ -443,7 +500,7 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
     {
       Stopwatch form_factor_time;
       fill_form_factor_rows(scene, mesh.elements, new_rows, mesh.patches, mesh.patch_geometry, own_patch, refined,
-                            refined_sums);
+                            refined_sums, cluster);
       form_factor_seconds += form_factor_time.seconds();
     }
     element_sums = std::move(refined_sums);
@@ -663,6 +720,7 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
                                                                             const RenderRequest& request,
                                                                             bool& reused) const {
   const std::string key = solution_key(scene);
+  Cluster* cluster = request.cluster && request.cluster->distributed() ? request.cluster : nullptr;
   std::lock_guard lock(cache_mutex_);
   // A checkpoint to write or resume from asks for this run's own solve.
   const bool checkpointing = !request.checkpoint.empty() || !request.resume.empty();
@@ -685,16 +743,45 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
                                   r.patch_size, r.element_size, r.segments, r.ambient, r.split_at_contacts,
                                   scene.render.seed);
     if (request.checkpoint_interval > 0) run.interval = request.checkpoint_interval;
+    // Every rank shoots the same way from the same state; rank 0 alone reads the checkpoint and
+    // sends it to the others, and alone writes checkpoints.
+    const bool root = !cluster || cluster->root();
+    if (!root) run.checkpoint.clear();
     if (!request.resume.empty()) {
-      resumed = read_radiosity_checkpoint(request.resume);
-      if (resumed.fingerprint != run.fingerprint)
-        throw InputError(where, "the checkpoint was made for another scene or other settings (" + resumed.fingerprint +
-                                    "), not this one (" + run.fingerprint + ")");
+      std::exception_ptr error;
+      try {
+        if (root) {
+          resumed = read_radiosity_checkpoint(request.resume);
+          if (resumed.fingerprint != run.fingerprint)
+            throw InputError(where, "the checkpoint was made for another scene or other settings (" +
+                                        resumed.fingerprint + "), not this one (" + run.fingerprint + ")");
+        }
+      } catch (...) {
+        if (!cluster) throw;
+        error = std::current_exception();
+      }
+      if (cluster) {
+        settle_root_outcome(*cluster, error);
+        ByteWriter writer;
+        if (root) {
+          writer.put<uint64_t>(resumed.steps);
+          writer.put_array(resumed.radiosity);
+          writer.put_array(resumed.unshot);
+        }
+        Bytes state = writer.take();
+        cluster->broadcast(state);
+        ByteReader reader(state);
+        resumed.fingerprint = run.fingerprint;
+        resumed.steps = reader.get<uint64_t>();
+        resumed.radiosity = reader.get_array<Color>();
+        resumed.unshot = reader.get_array<Color>();
+      }
       run.resume = &resumed;
     }
   }
   try {
-    solved->result = solve_with_statistics(scene, request.quiet, &solved->facts, checkpointing ? &run : nullptr);
+    solved->result = solve_with_statistics(scene, request.quiet || (cluster && !cluster->root()), &solved->facts,
+                                           checkpointing ? &run : nullptr, cluster);
   } catch (const std::invalid_argument& e) {
     if (!run.resume) throw;
     throw InputError({request.resume, 0, 0, {}}, e.what());
@@ -721,7 +808,7 @@ void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, F
     statistics.extra["interrupted"] = true;
     statistics.extra["completed"] = facts["completed"];
   }
-  if (!request.export_solution.empty()) {
+  if (!request.export_solution.empty() && (!request.cluster || request.cluster->root())) {  // rank 0 writes
     export_solution(solution, request.export_solution, scene.display);
     facts["exported_to"] = request.export_solution;
   }
@@ -729,16 +816,16 @@ void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, F
   const Camera& camera = *scene.camera;
   Stopwatch display_time;
   const RadiosityDisplay display = scene.radiosity.display;
-  if (display == RadiosityDisplay::gouraud) {
-    display_gouraud(scene, solution, region, film);
-  } else {
+  const VertexRadiosity vertices =
+      display == RadiosityDisplay::ray_traced
+          ? compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity, solution.element_hidden)
+          : VertexRadiosity();
+  // The pixels of area into target (area-sized).
+  const auto draw = [&](const PixelRect& area, Film& target) {
+    if (display == RadiosityDisplay::gouraud) return display_gouraud(scene, solution, area, target);
     // Display by ray casting: the radiosity (view independent: B itself) where each pixel's ray hits.
-    const VertexRadiosity vertices =
-        display == RadiosityDisplay::ray_traced
-            ? compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity, solution.element_hidden)
-            : VertexRadiosity();
-    tbb::parallel_for(region.y0, region.y1, [&](int y) {
-      for (int x = region.x0; x < region.x1; ++x) {
+    tbb::parallel_for(area.y0, area.y1, [&](int y) {
+      for (int x = area.x0; x < area.x1; ++x) {
         const Ray ray = camera.generate_ray(x + 0.5, y + 0.5);
         Intersection hit;
         Color color;
@@ -755,9 +842,20 @@ void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, F
         } else {
           color = solution.element_radiosity[element];
         }
-        film.at(x - region.x0, y - region.y0) = color;
+        target.at(x - area.x0, y - area.y0) = color;
       }
     });
+  };
+  if (request.cluster && request.cluster->distributed()) {
+    // The view in tiles across the ranks (issue 11); every rank holds the same solution.
+    const TiledRender run = render_tiles_across_ranks(*request.cluster, region, [&](const PixelRect& tile) {
+      RenderedTile rendered{Film(tile.width(), tile.height()), {}};
+      draw(tile, rendered.film);
+      return rendered;
+    }, film);
+    statistics.extra["distributed"] = distributed_facts(*request.cluster, run.tiles_by_rank, "tiles");
+  } else {
+    draw(region, film);
   }
   const auto pixel_count = static_cast<uint64_t>(region.width()) * region.height();
   if (display != RadiosityDisplay::gouraud) statistics.rays.primary += pixel_count;  // rasterized: none

@@ -8,6 +8,8 @@
 #include <cmath>
 
 #include "camera/antialiasing.h"
+#include "distributed/cluster.h"
+#include "integrators/distributed_tiles.h"
 
 #include "util/cancellation.h"
 #include "util/progress.h"
@@ -19,7 +21,8 @@ void RayTracingMethod::render(const Scene& scene, const RenderRequest& request, 
   const PixelRect region = request.region;
   const int tile = scene.render.tile_size;
   const int64_t tile_count = sampling_tile_count(region.width(), region.height(), tile);
-  ProgressReporter progress("render", static_cast<uint64_t>(tile_count), "tiles", request.quiet);
+  const bool distributed = request.cluster && request.cluster->distributed();
+  ProgressReporter progress("render", static_cast<uint64_t>(tile_count), "tiles", request.quiet || distributed);
   // Counts are per thread and summed at the end; the random stream is reseeded per ray from the
   // pixel that holds the sample point, so values never depend on the thread.
   tbb::enumerable_thread_specific<TraceContext> contexts;
@@ -31,19 +34,62 @@ void RayTracingMethod::render(const Scene& scene, const RenderRequest& request, 
     ++context.counts.primary;
     return trace_primary(scene, scene.camera->generate_ray(x, y), context);
   };
-  const SamplingRegion sampling{region.x0, region.y0, scene.camera->width(), scene.camera->height()};
+  SamplingResult result;
   std::atomic<int64_t> tiles_done{0};
-  SamplingResult result = sample_image(scene.antialiasing, scene.render.seed, sampling, tile, radiance, film, [&] {
-    tiles_done.fetch_add(1, std::memory_order_relaxed);
-    progress.advance();
-  });
+  int64_t tiles_in_all = tile_count;
+  if (distributed) {
+    // Across ranks (issue 11): larger tiles, each sampled like a region of its own — every
+    // sample point's value is a function of the point, so the tiles join into the same image —
+    // with the per-pixel counts (--aa-map, --stats) sent along with the pixels.
+    Cluster& cluster = *request.cluster;
+    const std::size_t pixel_count = std::size_t(region.width()) * region.height();
+    if (cluster.root()) {
+      result.traced_per_pixel.assign(pixel_count, 0);
+      result.samples_per_pixel.assign(pixel_count, 0);
+    }
+    const std::vector<PixelRect> tiles = distributed_tiles(region);
+    tiles_in_all = static_cast<int64_t>(tiles.size());
+    ProgressReporter tile_progress("render", tiles.size(), "tiles", request.quiet || !cluster.root());
+    const TiledRender run = render_tiles_across_ranks(
+        cluster, region,
+        [&](const PixelRect& piece) {
+          RenderedTile rendered{Film(piece.width(), piece.height()), {}};
+          const SamplingRegion sampling{piece.x0, piece.y0, scene.camera->width(), scene.camera->height()};
+          SamplingResult sampled = sample_image(scene.antialiasing, scene.render.seed, sampling, tile, radiance, rendered.film);
+          rendered.counts = std::move(sampled.traced_per_pixel);
+          rendered.counts.insert(rendered.counts.end(), sampled.samples_per_pixel.begin(), sampled.samples_per_pixel.end());
+          return rendered;
+        },
+        film,
+        [&](const PixelRect& piece, const std::vector<uint32_t>& counts) {
+          const std::size_t size = std::size_t(piece.width()) * piece.height();
+          for (int y = piece.y0; y < piece.y1; ++y)
+            for (int x = piece.x0; x < piece.x1; ++x) {
+              const std::size_t from = std::size_t(y - piece.y0) * piece.width() + (x - piece.x0);
+              const std::size_t to = std::size_t(y - region.y0) * region.width() + (x - region.x0);
+              result.traced_per_pixel[to] = counts[from];
+              result.samples_per_pixel[to] = counts[size + from];
+            }
+        },
+        &tile_progress);
+    tile_progress.finish();
+    tiles_done = static_cast<int64_t>(run.tiles_done);
+    statistics.extra["distributed"] = distributed_facts(cluster, run.tiles_by_rank, "tiles");
+  } else {
+    const SamplingRegion sampling{region.x0, region.y0, scene.camera->width(), scene.camera->height()};
+    result = sample_image(scene.antialiasing, scene.render.seed, sampling, tile, radiance, film, [&] {
+      tiles_done.fetch_add(1, std::memory_order_relaxed);
+      progress.advance();
+    });
+  }
   progress.finish();
   if (cancel_requested()) {  // Ctrl-C: the tiles not rendered are black
     statistics.extra["interrupted"] = true;
-    statistics.extra["completed"] = fmt::format("{} of {} tiles", tiles_done.load(), tile_count);
+    statistics.extra["completed"] = fmt::format("{} of {} tiles", tiles_done.load(), tiles_in_all);
   }
   RayCounts total;
   for (const TraceContext& context : contexts) total += context.counts;
+  if (request.cluster) sum_across_ranks(*request.cluster, total);
   statistics.rays += total;
   statistics.pixels += static_cast<uint64_t>(region.width()) * region.height();
   statistics.primary_per_pixel = std::move(result.traced_per_pixel);

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "distributed/task_farm.h"
 #include "math/constants.h"
 #include "scene/scene.h"
 
@@ -25,7 +26,8 @@ std::size_t TransferMatrix::bytes() const {
 }
 
 TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Site>& sites,
-                                       const std::vector<double>& effective_area, std::size_t max_entries) {
+                                       const std::vector<double>& effective_area, std::size_t max_entries,
+                                       Cluster* cluster) {
   if (effective_area.size() != sites.size())
     throw std::invalid_argument("transfer matrix: " + std::to_string(effective_area.size()) + " areas for " +
                                 std::to_string(sites.size()) + " sites");
@@ -36,12 +38,11 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
   std::atomic<uint64_t> rays{0};
   std::atomic<std::size_t> kept{0};
   std::atomic<bool> too_many{false};
-  tbb::parallel_for(std::size_t(0), n, [&](std::size_t j) {
-    if (too_many.load(std::memory_order_relaxed)) return;
+  // Row j: what receiver j gathers from every other site.
+  const auto compute_row = [&](std::size_t j, std::vector<std::pair<int32_t, float>>& row) {
     const Site& receiver = sites[j];
     const double receiver_offset = scene.ray_offset(receiver.position);
     uint64_t row_rays = 0;
-    std::vector<std::pair<int32_t, float>>& row = rows[j];
     for (std::size_t k = 0; k < n; ++k) {
       if (k == j || !(effective_area[k] > 0)) continue;
       const Site& sender = sites[k];
@@ -75,8 +76,52 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
     if (row_sum > 1)
       for (auto& entry : row) entry.second = static_cast<float>(entry.second / row_sum);
     rays += row_rays;
-    if (max_entries > 0 && (kept += row.size()) > max_entries) too_many = true;
-  });
+  };
+  const auto keep = [&](std::size_t entries) {
+    if (max_entries > 0 && (kept += entries) > max_entries) too_many = true;
+  };
+  if (!cluster || !cluster->distributed()) {
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t j) {
+      if (too_many.load(std::memory_order_relaxed)) return;
+      compute_row(j, rows[j]);
+      keep(rows[j].size());
+    });
+  } else {
+    // Across ranks (issue 11): chunks of receivers handed out dynamically, every rank ends with
+    // every row (each rank iterates λ with the whole S), each row exactly as one process has it.
+    const std::size_t chunk = std::clamp<std::size_t>(n / (std::size_t(cluster->size()) * 16), 1, 256);
+    const std::size_t tasks = (n + chunk - 1) / chunk;
+    uint64_t rays_elsewhere = 0;
+    run_task_farm_everywhere(*cluster, tasks, [&](std::size_t task) {
+      const std::size_t first = task * chunk, count = std::min(chunk, n - first);
+      std::vector<std::vector<std::pair<int32_t, float>>> chunk_rows(count);
+      const uint64_t rays_before = rays.load();
+      tbb::parallel_for(std::size_t(0), count, [&](std::size_t k) { compute_row(first + k, chunk_rows[k]); });
+      ByteWriter writer;
+      writer.put<uint64_t>(rays.load() - rays_before);
+      for (const auto& row : chunk_rows) {
+        std::vector<int32_t> columns;
+        std::vector<float> values;
+        for (const auto& [column, value] : row) columns.push_back(column), values.push_back(value);
+        writer.put_array(columns);
+        writer.put_array(values);
+      }
+      return writer.take();
+    }, [&](std::size_t task, std::span<const std::byte> result) {
+      const std::size_t first = task * chunk, count = std::min(chunk, n - first);
+      ByteReader reader(result);
+      rays_elsewhere += reader.get<uint64_t>();
+      for (std::size_t k = 0; k < count; ++k) {
+        const std::vector<int32_t> columns = reader.get_array<int32_t>();
+        const std::vector<float> values = reader.get_array<float>();
+        auto& row = rows[first + k];
+        row.clear();
+        for (std::size_t e = 0; e < columns.size(); ++e) row.emplace_back(columns[e], values[e]);
+        keep(rows[first + k].size());
+      }
+    });
+    rays = rays_elsewhere;  // every row's rays, wherever it was computed
+  }
   if (too_many)
     throw std::invalid_argument("transfer matrix: more than " + std::to_string(max_entries) +
                                 " entries; raise meshless.spacing (fewer sites)");

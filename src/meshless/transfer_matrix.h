@@ -29,6 +29,7 @@
 
 namespace candela {
 
+class Cluster;
 class Scene;
 
 struct TransferMatrix {
@@ -43,8 +44,11 @@ struct TransferMatrix {
 // S for the sites with effective areas A_k; the scene's accelerator answers visibility. Rows in
 // parallel, each by one thread into its own place: the result does not depend on the thread count.
 // max_entries refuses (std::invalid_argument naming the spacing) before more would be kept.
+// With a cluster of several ranks the rows are computed across them and every rank gets all of
+// S, the same as one process computes (issue 11).
 TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Site>& sites,
-                                       const std::vector<double>& effective_area, std::size_t max_entries = 0);
+                                       const std::vector<double>& effective_area, std::size_t max_entries = 0,
+                                       Cluster* cluster = nullptr);
 
 struct TransferSolution {
   std::vector<Color> lambda;

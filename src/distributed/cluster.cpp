@@ -1,0 +1,289 @@
+#include "distributed/cluster.h"
+
+#include "util/cancellation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <cstdlib>
+#include <list>
+#include <stdexcept>
+#include <string>
+#include <thread>
+
+#ifdef CANDELA_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace candela {
+
+namespace {
+
+// Sleeps that grow from 20 µs to 1 ms while nothing arrives: a few microseconds of latency on a
+// busy exchange, next to no processor time on a long wait.
+class [[maybe_unused]] Backoff {
+ public:
+  void pause() {
+    std::this_thread::sleep_for(std::chrono::microseconds(delay_));
+    delay_ = std::min(delay_ * 2, 1000);
+  }
+
+ private:
+  int delay_ = 20;
+};
+
+[[maybe_unused]] double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// MPI counts are ints: larger payloads go in pieces.
+[[maybe_unused]] constexpr std::size_t kLargestPiece = std::size_t{1} << 30;
+
+std::logic_error single_process(const char* what) {
+  return std::logic_error(std::string("Cluster::") + what + " needs several ranks");
+}
+
+int environment_integer(const char* name) {
+  const char* value = std::getenv(name);
+  if (!value || !*value) return 0;
+  char* end = nullptr;
+  const long number = std::strtol(value, &end, 10);
+  return (*end == '\0' && number > 0 && number < INT_MAX) ? static_cast<int>(number) : 0;
+}
+
+}  // namespace
+
+#ifdef CANDELA_HAVE_MPI
+
+struct Cluster::Implementation {
+  struct PendingSend {
+    MPI_Request request;
+    Bytes bytes;
+  };
+  std::list<PendingSend> sends;
+
+  // Frees the sends MPI has delivered.
+  void reap() {
+    for (auto it = sends.begin(); it != sends.end();) {
+      int done = 0;
+      MPI_Test(&it->request, &done, MPI_STATUS_IGNORE);
+      it = done ? sends.erase(it) : std::next(it);
+    }
+  }
+  void wait(MPI_Request& request, CommunicationVolume& volume) {
+    const auto start = std::chrono::steady_clock::now();
+    Backoff backoff;
+    for (;;) {
+      int done = 0;
+      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+      if (done) break;
+      reap();
+      backoff.pause();
+    }
+    volume.waiting_seconds += seconds_since(start);
+  }
+};
+
+Cluster::Cluster(std::unique_ptr<Implementation> implementation, int rank, int size)
+    : implementation_(std::move(implementation)), rank_(rank), size_(size) {}
+
+void Cluster::send(int destination, int tag, Bytes bytes) {
+  if (!implementation_) throw single_process("send");
+  if (bytes.size() > static_cast<std::size_t>(INT_MAX))
+    throw std::length_error("distributed message of " + std::to_string(bytes.size()) + " bytes (at most 2 GiB)");
+  implementation_->reap();
+  auto& pending = implementation_->sends.emplace_back();
+  pending.bytes = std::move(bytes);
+  MPI_Isend(pending.bytes.data(), static_cast<int>(pending.bytes.size()), MPI_BYTE, destination, tag, MPI_COMM_WORLD,
+            &pending.request);
+  ++volume_.messages_sent;
+  volume_.bytes_sent += pending.bytes.size();
+}
+
+bool Cluster::try_receive(ClusterMessage& message) {
+  if (!implementation_) throw single_process("try_receive");
+  implementation_->reap();
+  int arrived = 0;
+  MPI_Status status;
+  MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status);
+  if (!arrived) return false;
+  int count = 0;
+  MPI_Get_count(&status, MPI_BYTE, &count);
+  message.source = status.MPI_SOURCE;
+  message.tag = status.MPI_TAG;
+  message.bytes.resize(static_cast<std::size_t>(count));
+  MPI_Recv(message.bytes.data(), count, MPI_BYTE, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  ++volume_.messages_received;
+  volume_.bytes_received += message.bytes.size();
+  return true;
+}
+
+ClusterMessage Cluster::receive() {
+  ClusterMessage message;
+  const auto start = std::chrono::steady_clock::now();
+  Backoff backoff;
+  while (!try_receive(message)) backoff.pause();
+  volume_.waiting_seconds += seconds_since(start);
+  return message;
+}
+
+void Cluster::flush_sends() {
+  if (!implementation_) return;
+  const auto start = std::chrono::steady_clock::now();
+  Backoff backoff;
+  for (implementation_->reap(); !implementation_->sends.empty(); implementation_->reap()) backoff.pause();
+  volume_.waiting_seconds += seconds_since(start);
+}
+
+void Cluster::broadcast(Bytes& bytes, int root) {
+  if (!implementation_) return;
+  uint64_t size = bytes.size();
+  MPI_Request request;
+  MPI_Ibcast(&size, 1, MPI_UINT64_T, root, MPI_COMM_WORLD, &request);
+  implementation_->wait(request, volume_);
+  bytes.resize(size);
+  for (std::size_t offset = 0; offset < size; offset += kLargestPiece) {
+    const auto piece = static_cast<int>(std::min<std::size_t>(kLargestPiece, size - offset));
+    MPI_Ibcast(bytes.data() + offset, piece, MPI_BYTE, root, MPI_COMM_WORLD, &request);
+    implementation_->wait(request, volume_);
+  }
+  ++volume_.collectives;
+  volume_.collective_bytes += size;
+}
+
+namespace {
+
+template <typename T>
+void all_reduce(std::vector<T>& values, MPI_Datatype type, MPI_Op op, Cluster::Implementation& implementation,
+                CommunicationVolume& volume) {
+  std::vector<T> result(values.size());
+  MPI_Request request;
+  MPI_Iallreduce(values.data(), result.data(), static_cast<int>(values.size()), type, op, MPI_COMM_WORLD, &request);
+  implementation.wait(request, volume);
+  values.swap(result);
+  ++volume.collectives;
+  volume.collective_bytes += values.size() * sizeof(T);
+}
+
+}  // namespace
+
+void Cluster::sum(std::vector<uint64_t>& values) {
+  if (implementation_) all_reduce(values, MPI_UINT64_T, MPI_SUM, *implementation_, volume_);
+}
+
+void Cluster::sum(std::vector<double>& values) {
+  if (implementation_) all_reduce(values, MPI_DOUBLE, MPI_SUM, *implementation_, volume_);
+}
+
+bool Cluster::all(bool value) {
+  std::vector<int> flag{value ? 1 : 0};
+  if (implementation_) all_reduce(flag, MPI_INT, MPI_MIN, *implementation_, volume_);
+  return flag[0] != 0;
+}
+
+bool Cluster::any(bool value) {
+  std::vector<int> flag{value ? 1 : 0};
+  if (implementation_) all_reduce(flag, MPI_INT, MPI_MAX, *implementation_, volume_);
+  return flag[0] != 0;
+}
+
+bool built_with_mpi() { return true; }
+
+#else  // one process: every exchange is a logic error, every collective a no-op
+
+struct Cluster::Implementation {};
+
+Cluster::Cluster(std::unique_ptr<Implementation> implementation, int rank, int size)
+    : implementation_(std::move(implementation)), rank_(rank), size_(size) {}
+void Cluster::send(int, int, Bytes) { throw single_process("send"); }
+bool Cluster::try_receive(ClusterMessage&) { throw single_process("try_receive"); }
+ClusterMessage Cluster::receive() { throw single_process("receive"); }
+void Cluster::flush_sends() {}
+void Cluster::broadcast(Bytes&, int) {}
+void Cluster::sum(std::vector<uint64_t>&) {}
+void Cluster::sum(std::vector<double>&) {}
+bool Cluster::all(bool value) { return value; }
+bool Cluster::any(bool value) { return value; }
+bool built_with_mpi() { return false; }
+
+#endif
+
+Cluster::Cluster() = default;
+Cluster::~Cluster() = default;
+
+int launched_rank_count() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE", "MPI_LOCALNRANKS"}) {
+    const int size = environment_integer(name);
+    if (size > 0) return size;
+  }
+  return 1;
+}
+
+namespace {
+
+std::unique_ptr<Cluster>& world_slot() {
+  static std::unique_ptr<Cluster> world;
+  return world;
+}
+
+}  // namespace
+
+Cluster& world_cluster() {
+  std::unique_ptr<Cluster>& world = world_slot();
+  if (!world) world = std::make_unique<Cluster>();
+  return *world;
+}
+
+bool cancelled_anywhere(Cluster& cluster) {
+  const bool cancelled = cluster.any(cancel_requested());
+  if (cancelled && !cancel_requested()) request_cancellation();
+  return cancelled;
+}
+
+void settle_root_outcome(Cluster& cluster, std::exception_ptr root_error) {
+  Bytes outcome(1, std::byte{root_error ? uint8_t{1} : uint8_t{0}});
+  cluster.broadcast(outcome);
+  if (outcome[0] == std::byte{0}) return;
+  if (cluster.root()) std::rethrow_exception(root_error);
+  throw PeerFailure(2);
+}
+
+MpiSession::MpiSession([[maybe_unused]] int& argc, [[maybe_unused]] char**& argv) {
+  const int launched = launched_rank_count();
+  if (launched <= 1) return;
+#ifdef CANDELA_HAVE_MPI
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  if (provided < MPI_THREAD_FUNNELED) {
+    MPI_Finalize();
+    throw std::runtime_error("the MPI library does not allow threads (MPI_THREAD_FUNNELED)");
+  }
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  world_slot() = std::make_unique<Cluster>(std::make_unique<Cluster::Implementation>(), rank, size);
+#else
+  throw std::runtime_error("started as " + std::to_string(launched) +
+                           " MPI ranks, but this candela was built without MPI: every rank would render the whole "
+                           "image alone (install libopenmpi-dev and rebuild: scripts/install-deps.sh does)");
+#endif
+}
+
+MpiSession::~MpiSession() {
+#ifdef CANDELA_HAVE_MPI
+  if (world_slot() && world_slot()->distributed()) {
+    world_slot()->flush_sends();
+    world_slot().reset();
+    MPI_Finalize();
+  }
+#endif
+}
+
+void MpiSession::abort(int exit_code) {
+#ifdef CANDELA_HAVE_MPI
+  if (world_slot() && world_slot()->distributed()) MPI_Abort(MPI_COMM_WORLD, exit_code);
+#endif
+  std::exit(exit_code);
+}
+
+}  // namespace candela

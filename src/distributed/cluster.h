@@ -1,0 +1,121 @@
+// The processes one run is split across (issue 11: MPI, not a home-made protocol): the ranks of
+// MPI_COMM_WORLD when Candela is built with MPI and started by an MPI launcher (mpirun), one
+// process otherwise — the same binary runs either way.
+//
+// Every wait (a message, a broadcast, a reduction, the last sends) polls with short sleeps rather
+// than MPI's own blocking calls: Open MPI spins a core while it waits, and a rank waiting for its
+// next tile would take that core from the threads of the rank still rendering on the same node.
+// What crosses is counted (CommunicationVolume), so docs/distributed.md can model larger runs.
+#pragma once
+
+#include <cstdint>
+#include <exception>
+#include <stdexcept>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "distributed/byte_stream.h"
+
+namespace candela {
+
+struct CommunicationVolume {
+  uint64_t messages_sent = 0, bytes_sent = 0;
+  uint64_t messages_received = 0, bytes_received = 0;
+  uint64_t collectives = 0, collective_bytes = 0;  // broadcasts and reductions, payload counted once
+  double waiting_seconds = 0;                       // polling for messages and collectives
+};
+
+struct ClusterMessage {
+  int source = 0;
+  int tag = 0;
+  Bytes bytes;
+};
+
+class Cluster {
+ public:
+  // One process: rank 0 of 1.
+  Cluster();
+  ~Cluster();
+  Cluster(const Cluster&) = delete;
+  Cluster& operator=(const Cluster&) = delete;
+
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  bool root() const { return rank_ == 0; }
+  bool distributed() const { return size_ > 1; }
+  const CommunicationVolume& volume() const { return volume_; }
+
+  // Point to point (distributed only). send returns at once; the bytes are kept until delivered.
+  void send(int destination, int tag, Bytes bytes);
+  // A message from anyone, if one has arrived.
+  bool try_receive(ClusterMessage& message);
+  // Waits for a message from anyone.
+  ClusterMessage receive();
+  // Waits until every send has been delivered.
+  void flush_sends();
+
+  // Collectives: every rank calls them in the same order. On one process they return at once.
+  void broadcast(Bytes& bytes, int root = 0);
+  void sum(std::vector<uint64_t>& values);  // every rank ends with the sums
+  void sum(std::vector<double>& values);
+  bool all(bool value);                     // whether every rank passed true
+  bool any(bool value);
+
+  // The MPI start-up (MpiSession) makes the world cluster of a launched run.
+  struct Implementation;
+  explicit Cluster(std::unique_ptr<Implementation> implementation, int rank, int size);
+
+ private:
+  std::unique_ptr<Implementation> implementation_;
+  int rank_ = 0, size_ = 1;
+  CommunicationVolume volume_;
+};
+
+// Whether this build can run across ranks (Open MPI found when it was configured).
+bool built_with_mpi();
+
+// The ranks the process was launched as, read from the launcher's environment (Open MPI, MPICH,
+// PMIx, Slurm); 1 when not launched by one.
+int launched_rank_count();
+
+// Starts MPI when the process was launched by mpirun with more than one rank (MPI_Init_thread,
+// funnelled: only the main thread calls MPI) and ends it when it goes. Without a launcher nothing
+// of MPI is touched. A launch of several ranks of a build without MPI is refused (each would
+// render the whole image and write the same files): std::runtime_error.
+class MpiSession {
+ public:
+  MpiSession(int& argc, char**& argv);
+  ~MpiSession();
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+  // Ends the whole run at once with this exit status (MPI_Abort): for an error on one rank once
+  // the ranks are working together, when the others would wait for it for ever.
+  [[noreturn]] void abort(int exit_code);
+};
+
+// The cluster of this process: the MPI world while an MpiSession with several ranks lives,
+// otherwise one process.
+Cluster& world_cluster();
+
+// Thrown on the ranks that did nothing wrong when another rank failed where all of them must go on
+// together (the failing rank reports the error): the command ends with exit_code, printing nothing.
+class PeerFailure : public std::runtime_error {
+ public:
+  explicit PeerFailure(int exit_code) : std::runtime_error("another rank failed"), exit_code_(exit_code) {}
+  int exit_code() const { return exit_code_; }
+
+ private:
+  int exit_code_;
+};
+
+// Whether Ctrl-C reached any rank (a collective): then every rank's flag is set, so that all of
+// them stop at the same point. One process: cancel_requested().
+bool cancelled_anywhere(Cluster& cluster);
+
+// Where rank 0 alone did something that could fail (read a checkpoint): every rank calls it,
+// rank 0 with what it caught (null: success). If rank 0 failed, it rethrows its error and the
+// other ranks throw PeerFailure(2); otherwise it returns everywhere.
+void settle_root_outcome(Cluster& cluster, std::exception_ptr root_error);
+
+}  // namespace candela

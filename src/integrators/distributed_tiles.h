@@ -1,0 +1,53 @@
+// An image region rendered across the ranks of a cluster (issue 11): square tiles handed out
+// dynamically (distributed/task_farm.h), each rendered whole by one rank with its threads, its
+// pixels sent to rank 0 bit for bit. A pixel's value depends only on the pixel (per-pixel random
+// streams, SPEC §6), so the gathered image is the single-process image.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "camera/film.h"
+#include "distributed/cluster.h"
+#include "integrators/method.h"
+#include "util/progress.h"
+#include "util/statistics.h"
+
+namespace candela {
+
+// The side of a distributed tile in pixels: large enough that a tile's pixels keep a rank's
+// threads busy and its message is worth sending, small enough for 16 tiles a rank at 512².
+inline constexpr int kDistributedTileSize = 64;
+
+struct RenderedTile {
+  Film film{0, 0};
+  std::vector<uint32_t> counts;  // method-defined per-pixel counters (tile-sized arrays), or none
+};
+
+struct TiledRender {
+  uint64_t tiles = 0;       // in the region
+  uint64_t tiles_done = 0;  // rank 0: gathered (fewer after Ctrl-C)
+  std::vector<uint64_t> tiles_by_rank;
+};
+
+// The tiles of a region, row by row.
+std::vector<PixelRect> distributed_tiles(const PixelRect& region, int tile_size = kDistributedTileSize);
+
+// Every rank calls it. On rank 0 film (region-sized) receives every tile and place_counts, when
+// set, each tile's counts; other ranks' film is left as it was. progress (rank 0) advances a tile
+// at a time.
+TiledRender render_tiles_across_ranks(Cluster& cluster, const PixelRect& region,
+                                      const std::function<RenderedTile(const PixelRect& tile)>& render_tile,
+                                      Film& film,
+                                      const std::function<void(const PixelRect&, const std::vector<uint32_t>&)>& place_counts = {},
+                                      ProgressReporter* progress = nullptr);
+
+// Adds up every rank's ray counts (a collective: every rank calls it); all ranks get the total.
+void sum_across_ranks(Cluster& cluster, RayCounts& rays);
+
+// The "distributed" facts of --stats: ranks, what each did, what crossed.
+nlohmann::json distributed_facts(const Cluster& cluster, const std::vector<uint64_t>& tasks_by_rank,
+                                 const char* task_name);
+
+}  // namespace candela
