@@ -75,6 +75,6 @@ int main(int argc, char** argv) {
     }
     // Once the ranks work together an error on one would leave the others waiting: it ends all.
     std::cerr << fmt::format("candela: error (rank {} of {}): {}\n", cluster.rank(), cluster.size(), e.what());
-    session->abort(1);
+    candela::abort_all_ranks(1);
   }
 }

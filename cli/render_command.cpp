@@ -333,7 +333,8 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
     options.scene.overrides.push_back(fmt::format("path.checkpoint_interval={}", *options.checkpoint_every));
   }
   if (!options.checkpoint.empty()) check_writable(options.checkpoint, "--checkpoint");
-  if (!options.resume.empty() && !std::filesystem::is_regular_file(options.resume))
+  // Rank 0 alone reads the checkpoint: it need not be on the other ranks' disks.
+  if (!options.resume.empty() && writes_outputs && !std::filesystem::is_regular_file(options.resume))
     throw BadArgument("--resume " + options.resume + ": no such checkpoint file");
   Stopwatch load_timer;
   job.scene = options.scene.load();
@@ -379,6 +380,8 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   // One method object renders every view, so what it keeps between renders (a radiosity
   // solution) is computed once.
   job.method = entry->create();
+  if (!options.aa_map_path.empty() && !dynamic_cast<const RayTracingMethod*>(job.method.get()))
+    throw BadArgument("--aa-map needs a ray-tracing method (local or whitted)");
   if (!options.pixel.empty()) {  // printed instead of rendering: checked here, printed by the caller
     const auto* tracer = dynamic_cast<const RayTracingMethod*>(job.method.get());
     if (!tracer) throw BadArgument("--pixel needs a ray-tracing method (local or whitted)");
@@ -453,6 +456,7 @@ int run_render(RenderOptions& options) {
   std::vector<LightSetup>& relight_frames = job.relight_frames;
   const double load_seconds = job.load_seconds, build_seconds = job.build_seconds;
   if (!options.pixel.empty()) return cluster.root() ? print_pixel_ray_trees(options, *scene, views, *method) : 0;
+  const auto render_all = [&]() -> int {
 
   // SPEC §15: from here on Ctrl-C (or SIGTERM) stops the method early; what it finished is written
   // as usual, the views and frames after it are skipped, and the exit status is 130. A second
@@ -564,6 +568,21 @@ int run_render(RenderOptions& options) {
     if (interrupted()) return report_interrupted(statistics, output, relight_frames.size() - f - 1);
   }
   return 0;
+  };
+  if (!cluster.distributed()) return render_all();
+  // Once the ranks render together, bad input found by some of them (not agreed by all) would
+  // leave the others waiting: it ends every rank.
+  try {
+    return render_all();
+  } catch (const InputError& e) {
+    if (cluster.failure_agreed()) throw;
+    std::cerr << fmt::format("candela: error (rank {}): {}\n", cluster.rank(), e.what());
+    abort_all_ranks(2);
+  } catch (const BadArgument& e) {
+    if (cluster.failure_agreed()) throw;
+    std::cerr << fmt::format("candela: error (rank {}): {}\n", cluster.rank(), e.what());
+    abort_all_ranks(2);
+  }
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <vector>
 
 #ifdef CANDELA_HAVE_MPI
 #include <mpi.h>
@@ -61,6 +62,11 @@ struct Cluster::Implementation {
     Bytes bytes;
   };
   std::list<PendingSend> sends;
+  struct PendingReceive {
+    MPI_Request request;
+    ClusterMessage message;
+  };
+  std::list<PendingReceive> receives;
 
   // Frees the sends MPI has delivered.
   void reap() {
@@ -100,29 +106,50 @@ void Cluster::send(int destination, int tag, Bytes bytes) {
   volume_.bytes_sent += pending.bytes.size();
 }
 
-bool Cluster::try_receive(ClusterMessage& message) {
+bool Cluster::try_receive(int tag, ClusterMessage& message) {
   if (!implementation_) throw single_process("try_receive");
-  implementation_->reap();
-  int arrived = 0;
-  MPI_Status status;
-  MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status);
-  if (!arrived) return false;
-  int count = 0;
-  MPI_Get_count(&status, MPI_BYTE, &count);
-  message.source = status.MPI_SOURCE;
-  message.tag = status.MPI_TAG;
-  message.bytes.resize(static_cast<std::size_t>(count));
-  MPI_Recv(message.bytes.data(), count, MPI_BYTE, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-  ++volume_.messages_received;
-  volume_.bytes_received += message.bytes.size();
-  return true;
+  Implementation& state = *implementation_;
+  state.reap();
+  // Start receiving every message that has come in...
+  for (;;) {
+    int arrived = 0;
+    MPI_Message handle;
+    MPI_Status status;
+    MPI_Improbe(MPI_ANY_SOURCE, tag, MPI_COMM_WORLD, &arrived, &handle, &status);
+    if (!arrived) break;
+    int count = 0;
+    MPI_Get_count(&status, MPI_BYTE, &count);
+    auto& pending = state.receives.emplace_back();
+    pending.message.source = status.MPI_SOURCE;
+    pending.message.tag = status.MPI_TAG;
+    pending.message.bytes.resize(static_cast<std::size_t>(count));
+    MPI_Imrecv(pending.message.bytes.data(), count, MPI_BYTE, &handle, &pending.request);
+  }
+  // ... and hand out the first one delivered whole, none before an earlier one of its source.
+  std::vector<int> sources_waiting;
+  for (auto it = state.receives.begin(); it != state.receives.end(); ++it) {
+    if (it->message.tag != tag) continue;
+    if (std::find(sources_waiting.begin(), sources_waiting.end(), it->message.source) != sources_waiting.end()) continue;
+    int done = 0;
+    MPI_Test(&it->request, &done, MPI_STATUS_IGNORE);
+    if (!done) {
+      sources_waiting.push_back(it->message.source);
+      continue;
+    }
+    message = std::move(it->message);
+    state.receives.erase(it);
+    ++volume_.messages_received;
+    volume_.bytes_received += message.bytes.size();
+    return true;
+  }
+  return false;
 }
 
-ClusterMessage Cluster::receive() {
+ClusterMessage Cluster::receive(int tag) {
   ClusterMessage message;
   const auto start = std::chrono::steady_clock::now();
   Backoff backoff;
-  while (!try_receive(message)) backoff.pause();
+  while (!try_receive(tag, message)) backoff.pause();
   volume_.waiting_seconds += seconds_since(start);
   return message;
 }
@@ -196,8 +223,8 @@ struct Cluster::Implementation {};
 Cluster::Cluster(std::unique_ptr<Implementation> implementation, int rank, int size)
     : implementation_(std::move(implementation)), rank_(rank), size_(size) {}
 void Cluster::send(int, int, Bytes) { throw single_process("send"); }
-bool Cluster::try_receive(ClusterMessage&) { throw single_process("try_receive"); }
-ClusterMessage Cluster::receive() { throw single_process("receive"); }
+bool Cluster::try_receive(int, ClusterMessage&) { throw single_process("try_receive"); }
+ClusterMessage Cluster::receive(int) { throw single_process("receive"); }
 void Cluster::flush_sends() {}
 void Cluster::broadcast(Bytes&, int) {}
 void Cluster::sum(std::vector<uint64_t>&) {}
@@ -244,6 +271,7 @@ void settle_root_outcome(Cluster& cluster, std::exception_ptr root_error) {
   Bytes outcome(1, std::byte{root_error ? uint8_t{1} : uint8_t{0}});
   cluster.broadcast(outcome);
   if (outcome[0] == std::byte{0}) return;
+  cluster.agree_failure();
   if (cluster.root()) std::rethrow_exception(root_error);
   throw PeerFailure(2);
 }
@@ -279,7 +307,7 @@ MpiSession::~MpiSession() {
 #endif
 }
 
-void MpiSession::abort(int exit_code) {
+void abort_all_ranks(int exit_code) {
 #ifdef CANDELA_HAVE_MPI
   if (world_slot() && world_slot()->distributed()) MPI_Abort(MPI_COMM_WORLD, exit_code);
 #endif

@@ -48,10 +48,19 @@ class Cluster {
 
   // Point to point (distributed only). send returns at once; the bytes are kept until delivered.
   void send(int destination, int tag, Bytes bytes);
-  // A message from anyone, if one has arrived.
-  bool try_receive(ClusterMessage& message);
-  // Waits for a message from anyone.
-  ClusterMessage receive();
+  // A message with this tag from anyone, if one has arrived whole. Messages are taken in as they
+  // arrive (MPI_Improbe, MPI_Imrecv), so a large one still being delivered holds up nothing else;
+  // those of one source come out in the order sent.
+  bool try_receive(int tag, ClusterMessage& message);
+  // Waits for a message with this tag from anyone.
+  ClusterMessage receive(int tag);
+  // A number for the next exchange (a task farm): every rank counts the same exchanges in the same
+  // order, so tags made from it keep one exchange's messages out of the next one's.
+  uint64_t next_exchange() { return exchanges_++; }
+  // Whether every rank knows of a failure and stops with it (settle_root_outcome): then an error
+  // may end the command normally on each rank, without aborting the others.
+  bool failure_agreed() const { return failure_agreed_; }
+  void agree_failure() { failure_agreed_ = true; }
   // Waits until every send has been delivered.
   void flush_sends();
 
@@ -69,6 +78,8 @@ class Cluster {
  private:
   std::unique_ptr<Implementation> implementation_;
   int rank_ = 0, size_ = 1;
+  uint64_t exchanges_ = 0;
+  bool failure_agreed_ = false;
   CommunicationVolume volume_;
 };
 
@@ -89,14 +100,15 @@ class MpiSession {
   ~MpiSession();
   MpiSession(const MpiSession&) = delete;
   MpiSession& operator=(const MpiSession&) = delete;
-  // Ends the whole run at once with this exit status (MPI_Abort): for an error on one rank once
-  // the ranks are working together, when the others would wait for it for ever.
-  [[noreturn]] void abort(int exit_code);
 };
 
 // The cluster of this process: the MPI world while an MpiSession with several ranks lives,
 // otherwise one process.
 Cluster& world_cluster();
+
+// Ends every rank of the run at once with this exit status (MPI_Abort; one process: exit): for an
+// error on some ranks once they work together, when the others would wait for them for ever.
+[[noreturn]] void abort_all_ranks(int exit_code);
 
 // Thrown on the ranks that did nothing wrong when another rank failed where all of them must go on
 // together (the failing rank reports the error): the command ends with exit_code, printing nothing.

@@ -10,30 +10,48 @@ namespace candela {
 
 namespace {
 
-// Message tags of the farm.
-enum Tag : int {
-  kRequest = 101,  // a worker wants a task (empty)
-  kResult = 102,   // task number, result bytes; also asks for the next task
-  kTask = 103,     // task number, input bytes
-  kNoMore = 104,   // no task for this request (empty)
+// What a message of the farm is, its first byte. A farm's messages carry two tags of its own
+// (farm_tags): the next farm's requests, sent by a rank that finished this one early, wait for it.
+enum Kind : uint8_t {
+  kRequest = 1,  // a worker wants a task
+  kResult = 2,   // task number, result bytes; also asks for the next task
+  kTask = 3,     // task number, input bytes
+  kNoMore = 4,   // no task for this request
 };
+
+struct FarmTags {
+  int to_coordinator, to_worker;
+};
+
+FarmTags farm_tags(Cluster& cluster) {
+  const auto base = 1000 + 2 * static_cast<int>(cluster.next_exchange() % 8000);  // below MPI's least tag bound, 32767
+  return {base, base + 1};
+}
 
 // How many requests a worker keeps outstanding: the task it works on and the next one.
 constexpr int kRequestsInFlight = 2;
 
-// A task number, then the payload.
-Bytes numbered(std::size_t task, std::span<const std::byte> payload) {
-  Bytes bytes(sizeof(uint64_t) + payload.size());
+// The kind, a task number, then the payload.
+Bytes message_of(Kind kind, std::size_t task = 0, std::span<const std::byte> payload = {}) {
+  Bytes bytes(1 + sizeof(uint64_t) + payload.size());
+  bytes[0] = std::byte{kind};
   const uint64_t number = task;
-  std::memcpy(bytes.data(), &number, sizeof number);
-  if (!payload.empty()) std::memcpy(bytes.data() + sizeof number, payload.data(), payload.size());
+  std::memcpy(bytes.data() + 1, &number, sizeof number);
+  if (!payload.empty()) std::memcpy(bytes.data() + 1 + sizeof number, payload.data(), payload.size());
   return bytes;
 }
 
-std::size_t number_of(const Bytes& bytes) { return ByteReader(bytes).get<uint64_t>(); }
+Kind kind_of(const Bytes& bytes) {
+  if (bytes.size() < 1 + sizeof(uint64_t)) throw std::runtime_error("task farm: a message shorter than its header");
+  return static_cast<Kind>(bytes[0]);
+}
+
+std::size_t number_of(const Bytes& bytes) {
+  return ByteReader(std::span<const std::byte>(bytes).subspan(1)).get<uint64_t>();
+}
 
 std::span<const std::byte> payload_of(const Bytes& bytes) {
-  return std::span<const std::byte>(bytes).subspan(sizeof(uint64_t));
+  return std::span<const std::byte>(bytes).subspan(1 + sizeof(uint64_t));
 }
 
 TaskFarmReport run_alone(const TaskFarm& farm) {
@@ -50,7 +68,7 @@ TaskFarmReport run_alone(const TaskFarm& farm) {
 }
 
 // Rank 0: the coordinator (this thread) and a working thread that share the next task number.
-TaskFarmReport run_coordinator(Cluster& cluster, const TaskFarm& farm) {
+TaskFarmReport run_coordinator(Cluster& cluster, const TaskFarm& farm, const FarmTags& tags) {
   TaskFarmReport report;
   report.tasks_by_rank.assign(static_cast<std::size_t>(cluster.size()), 0);
   std::mutex mutex;  // guards next, stopped, farm.input, farm.collect and local_results
@@ -113,9 +131,9 @@ TaskFarmReport run_coordinator(Cluster& cluster, const TaskFarm& farm) {
       if (task && farm.input) input = farm.input(*task);
     }
     if (task) {
-      cluster.send(rank, kTask, numbered(*task, input));
+      cluster.send(rank, tags.to_worker, message_of(kTask, *task, input));
     } else {
-      cluster.send(rank, kNoMore, {});
+      cluster.send(rank, tags.to_worker, message_of(kNoMore));
       --open_requests;
     }
   };
@@ -142,14 +160,15 @@ TaskFarmReport run_coordinator(Cluster& cluster, const TaskFarm& farm) {
       }
     }
     ClusterMessage message;
-    if (cluster.try_receive(message)) {
+    if (cluster.try_receive(tags.to_coordinator, message)) {
       busy = true;
-      if (message.tag == kResult) {
+      const Kind kind = kind_of(message.bytes);
+      if (kind == kResult) {
         std::lock_guard lock(mutex);
         collect(number_of(message.bytes), Bytes(payload_of(message.bytes).begin(), payload_of(message.bytes).end()),
                 message.source);
-      } else if (message.tag != kRequest) {
-        throw std::runtime_error("task farm: unexpected message tag " + std::to_string(message.tag));
+      } else if (kind != kRequest) {
+        throw std::runtime_error("task farm: unexpected message kind " + std::to_string(int(kind)));
       }
       answer(message.source);
     }
@@ -177,17 +196,18 @@ TaskFarmReport run_coordinator(Cluster& cluster, const TaskFarm& farm) {
 
 // Ranks other than 0: ask, work, send the result (asking again), until told "no more" for every
 // outstanding request.
-void run_worker(Cluster& cluster, const TaskFarm& farm) {
-  for (int k = 0; k < kRequestsInFlight; ++k) cluster.send(0, kRequest, {});
+void run_worker(Cluster& cluster, const TaskFarm& farm, const FarmTags& tags) {
+  for (int k = 0; k < kRequestsInFlight; ++k) cluster.send(0, tags.to_coordinator, message_of(kRequest));
   int open_requests = kRequestsInFlight;
   while (open_requests > 0) {
-    const ClusterMessage message = cluster.receive();
+    const ClusterMessage message = cluster.receive(tags.to_worker);
     --open_requests;
-    if (message.tag == kNoMore) continue;
-    if (message.tag != kTask) throw std::runtime_error("task farm: unexpected message tag " + std::to_string(message.tag));
+    const Kind kind = kind_of(message.bytes);
+    if (kind == kNoMore) continue;
+    if (kind != kTask) throw std::runtime_error("task farm: unexpected message kind " + std::to_string(int(kind)));
     const std::size_t task = number_of(message.bytes);
     const Bytes result = farm.work(task, payload_of(message.bytes));
-    cluster.send(0, kResult, numbered(task, result));
+    cluster.send(0, tags.to_coordinator, message_of(kResult, task, result));
     ++open_requests;
   }
   cluster.flush_sends();
@@ -197,8 +217,9 @@ void run_worker(Cluster& cluster, const TaskFarm& farm) {
 
 TaskFarmReport run_task_farm(Cluster& cluster, const TaskFarm& farm) {
   if (!cluster.distributed()) return run_alone(farm);
-  if (cluster.root()) return run_coordinator(cluster, farm);
-  run_worker(cluster, farm);
+  const FarmTags tags = farm_tags(cluster);
+  if (cluster.root()) return run_coordinator(cluster, farm, tags);
+  run_worker(cluster, farm, tags);
   return {};
 }
 

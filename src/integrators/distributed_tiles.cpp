@@ -49,6 +49,7 @@ TiledRender render_tiles_across_ranks(Cluster& cluster, const PixelRect& region,
   result.tiles = tiles.size();
   result.tiles_done = report.tasks_done;
   result.tiles_by_rank = report.tasks_by_rank;
+  result.interrupted = cancelled_anywhere(cluster);
   return result;
 }
 

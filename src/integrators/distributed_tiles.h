@@ -29,6 +29,7 @@ struct TiledRender {
   uint64_t tiles = 0;       // in the region
   uint64_t tiles_done = 0;  // rank 0: gathered (fewer after Ctrl-C)
   std::vector<uint64_t> tiles_by_rank;
+  bool interrupted = false;  // Ctrl-C reached some rank: tiles may be missing or black (every rank agrees)
 };
 
 // The tiles of a region, row by row.

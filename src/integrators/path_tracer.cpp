@@ -341,9 +341,10 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
     for (;;) {
       // The plan of the next round, from rank 0: its first pass and pass count (0: stop).
       ByteWriter plan_writer;
+      const bool cancelled = cancelled_anywhere(*cluster);  // Ctrl-C on any rank stops all
       if (cluster->root()) {
         uint64_t count = 0;
-        if (cancel_requested()) {
+        if (cancelled) {
           interrupted = true;
         } else if (state.passes < last_pass && !(timed && timer.seconds() >= settings.time)) {
           count = std::min(passes_per_round, last_pass - state.passes);

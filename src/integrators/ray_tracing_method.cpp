@@ -37,6 +37,7 @@ void RayTracingMethod::render(const Scene& scene, const RenderRequest& request, 
   SamplingResult result;
   std::atomic<int64_t> tiles_done{0};
   int64_t tiles_in_all = tile_count;
+  bool interrupted = false;
   if (distributed) {
     // Across ranks (issue 11): larger tiles, each sampled like a region of its own — every
     // sample point's value is a function of the point, so the tiles join into the same image —
@@ -74,6 +75,7 @@ void RayTracingMethod::render(const Scene& scene, const RenderRequest& request, 
         &tile_progress);
     tile_progress.finish();
     tiles_done = static_cast<int64_t>(run.tiles_done);
+    interrupted = run.interrupted;
     statistics.extra["distributed"] = distributed_facts(cluster, run.tiles_by_rank, "tiles");
   } else {
     const SamplingRegion sampling{region.x0, region.y0, scene.camera->width(), scene.camera->height()};
@@ -83,7 +85,7 @@ void RayTracingMethod::render(const Scene& scene, const RenderRequest& request, 
     });
   }
   progress.finish();
-  if (cancel_requested()) {  // Ctrl-C: the tiles not rendered are black
+  if (interrupted || cancel_requested()) {  // Ctrl-C: the tiles not rendered are black
     statistics.extra["interrupted"] = true;
     statistics.extra["completed"] = fmt::format("{} of {} tiles", tiles_done.load(), tiles_in_all);
   }
