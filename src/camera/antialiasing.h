@@ -70,6 +70,10 @@ SamplingResult sample_image(const AntialiasingSettings& settings, uint64_t seed,
                             int tile_size, const RadianceFunction& radiance, Film& film,
                             const std::function<void()>& tile_done = {});
 
+// The hash of a lattice point's key (iy << 32 | ix) in the adaptive sampler's cache: every bit
+// of the key reaches the low bits, where the hash table picks its bucket.
+uint64_t lattice_key_hash(uint64_t key);
+
 // Number of tiles sample_image uses for a film of this size.
 int64_t sampling_tile_count(int width, int height, int tile_size);
 

@@ -90,6 +90,18 @@ std::size_t unique_points(std::vector<std::pair<double, double>> points) {
   return std::size_t(std::unique(points.begin(), points.end()) - points.begin());
 }
 
+// The adaptive cache's buckets come from the low bits of the hash: the keys of a 256 × 256
+// lattice must spread over them like random numbers (about 63 % of 2¹⁶ buckets for 2¹⁶ keys),
+// not collapse onto one bucket per column as TBB's identity hash of the key did.
+TEST(Antialiasing, LatticeKeysSpreadOverHashBuckets) {
+  std::vector<bool> bucket_used(1 << 16, false);
+  for (uint64_t iy = 0; iy < 256; ++iy)
+    for (uint64_t ix = 0; ix < 256; ++ix) bucket_used[lattice_key_hash(iy << 32 | ix) & 0xffff] = true;
+  const auto used = std::count(bucket_used.begin(), bucket_used.end(), true);
+  EXPECT_GT(used, 0.6 * (1 << 16));
+  EXPECT_LT(used, 0.66 * (1 << 16));
+}
+
 TEST(Antialiasing, ModeNamesRoundTrip) {
   for (const auto name : {"none", "uniform", "jittered", "corners", "adaptive"}) {
     AntialiasingMode mode;
