@@ -302,8 +302,9 @@ ElementSolution shoot_progressively(const RadiosityMesh& mesh, const ElementToPa
   std::size_t shooter = patch_count;
   double fraction = unshot_fraction(shooter);
   while (fraction > settings.threshold && shooter < patch_count && steps < static_cast<std::size_t>(settings.max_steps) &&
-         !(cluster ? steps % 16 == 0 && cancelled_anywhere(*cluster) : cancel_requested())) {
-    // Ctrl-C: the solution so far (several ranks agree every 16 shots, so they shoot alike)
+         !(cluster ? steps % 256 == 0 && cancelled_anywhere(*cluster) : cancel_requested())) {
+    // Ctrl-C: the solution so far (several ranks agree every 256 shots, so they shoot alike; a
+    // shot takes microseconds, an agreement between nodes tens of them)
     const Color shot = unshot[shooter];
     unshot[shooter] = Color();
     const float* column = element_to_patch.col(static_cast<Eigen::Index>(shooter)).data();  // contiguous
