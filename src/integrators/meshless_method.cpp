@@ -188,7 +188,7 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, bool cancel
                                                     radial_kernel(settings), settings.shepard_power);
   geometry->areas = sites.effective_area;  // the thesis's πh²/(m + 1)
   if (settings.effective_area == MeshlessAreas::integrated)
-    geometry->areas = integrate_effective_areas(scene, *geometry->basis, sites, sites.spacing / 4);
+    geometry->areas = integrate_effective_areas(scene, *geometry->basis, sites, sites.spacing / 4, 64, cluster);
   geometry->area_seconds = seconds_since(start);
   if (stop()) return nullptr;
   geometry->matrix = compute_transfer_matrix(scene, sites.sites, geometry->areas, transfer_entry_limit(), cluster);

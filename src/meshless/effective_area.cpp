@@ -6,13 +6,14 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "distributed/task_farm.h"
 #include "raster/tessellated_scene.h"
 #include "scene/scene.h"
 
 namespace candela {
 
 std::vector<double> integrate_effective_areas(const Scene& scene, const MeshlessBasis& basis, const SiteSet& sites,
-                                              double cell, int segments) {
+                                              double cell, int segments, Cluster* cluster) {
   const std::size_t site_count = sites.sites.size();
   // The sides sites lie on, per object: bit 0 the geometric normal's side, bit 1 the other.
   std::vector<uint8_t> sides_with_sites(scene.objects.size(), 0);
@@ -45,7 +46,7 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
   // Per triangle in parallel, each thread summing into its own vector; the per-triangle sums are
   // added in triangle order afterwards, so the result does not depend on the thread count.
   std::vector<std::vector<std::pair<uint32_t, double>>> contributions(triangles.triangle_count());
-  tbb::parallel_for(std::size_t(0), triangles.triangle_count(), [&](std::size_t t) {
+  const auto integrate_triangle = [&](std::size_t t) {
     const Vec3 a = triangles.corner_positions[3 * t], b = triangles.corner_positions[3 * t + 1],
                c = triangles.corner_positions[3 * t + 2];
     const Vec3 face = cross(b - a, c - a);
@@ -91,7 +92,30 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
       else merged.emplace_back(k, value);
     }
     contributions[t] = std::move(merged);
-  });
+  };
+  if (!cluster || !cluster->distributed()) {
+    tbb::parallel_for(std::size_t(0), triangles.triangle_count(), integrate_triangle);
+  } else {
+    // Across ranks (issue 11): a task per triangle, its per-site sums sent to every rank, which
+    // adds them up in triangle order as one process does.
+    run_task_farm_everywhere(*cluster, triangles.triangle_count(), [&](std::size_t t) {
+      integrate_triangle(t);
+      std::vector<uint32_t> ids;
+      std::vector<double> values;
+      for (const auto& [k, value] : contributions[t]) ids.push_back(k), values.push_back(value);
+      std::vector<std::pair<uint32_t, double>>().swap(contributions[t]);
+      ByteWriter writer;
+      writer.put_array(ids);
+      writer.put_array(values);
+      return writer.take();
+    }, [&](std::size_t t, std::span<const std::byte> result) {
+      ByteReader reader(result);
+      const std::vector<uint32_t> ids = reader.get_array<uint32_t>();
+      const std::vector<double> values = reader.get_array<double>();
+      contributions[t].clear();
+      for (std::size_t e = 0; e < ids.size(); ++e) contributions[t].emplace_back(ids[e], values[e]);
+    });
+  }
   std::vector<double> areas(site_count, 0.0);
   for (const auto& sums : contributions)
     for (const auto& [k, value] : sums) areas[k] += value;
