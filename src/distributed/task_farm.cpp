@@ -225,14 +225,15 @@ TaskFarmReport run_task_farm(Cluster& cluster, const TaskFarm& farm) {
 
 void run_task_farm_everywhere(Cluster& cluster, std::size_t task_count,
                               const std::function<Bytes(std::size_t task)>& work,
-                              const std::function<void(std::size_t task, std::span<const std::byte> result)>& place) {
-  std::vector<Bytes> results(cluster.distributed() && cluster.root() ? task_count : 0);
+                              const std::function<void(std::size_t task, std::span<const std::byte> result)>& place,
+                              const std::function<Bytes(std::size_t task)>& again) {
+  std::vector<Bytes> results(cluster.distributed() && cluster.root() && !again ? task_count : 0);
   TaskFarm farm;
   farm.task_count = task_count;
   farm.work = [&](std::size_t task, std::span<const std::byte>) { return work(task); };
   farm.collect = [&](std::size_t task, Bytes result) {
     place(task, result);
-    if (cluster.distributed()) results[task] = std::move(result);
+    if (cluster.distributed() && !again) results[task] = std::move(result);
   };
   run_task_farm(cluster, farm);
   if (!cluster.distributed()) return;
@@ -246,10 +247,11 @@ void run_task_farm_everywhere(Cluster& cluster, std::size_t task_count,
     if (cluster.root()) {
       ByteWriter writer;
       std::size_t size = 0;
-      while (end < task_count && (end == first || size + results[end].size() <= kBatchBytes)) {
-        size += results[end].size();
-        writer.put_array(results[end]);
-        Bytes().swap(results[end]);
+      while (end < task_count && (end == first || size < kBatchBytes)) {
+        Bytes result = again ? again(end) : std::move(results[end]);
+        size += result.size();
+        writer.put_array(result);
+        if (!again) Bytes().swap(results[end]);
         ++end;
       }
       writer.put<uint64_t>(end);

@@ -49,8 +49,12 @@ TaskFarmReport run_task_farm(Cluster& cluster, const TaskFarm& farm);
 // Tasks whose results every rank needs (rows of a matrix that every rank then solves with): the
 // farm, then rank 0 sends every result to every rank. place(task, result) is called once per task
 // on every rank — on rank 0 as results arrive, elsewhere in task order.
+// When `again` is given, rank 0 does not keep the results it collects: it asks again(task) for the
+// same bytes (rebuilt from what place stored) when it sends them on, so it never holds the rows
+// twice.
 void run_task_farm_everywhere(Cluster& cluster, std::size_t task_count,
                               const std::function<Bytes(std::size_t task)>& work,
-                              const std::function<void(std::size_t task, std::span<const std::byte> result)>& place);
+                              const std::function<void(std::size_t task, std::span<const std::byte> result)>& place,
+                              const std::function<Bytes(std::size_t task)>& again = {});
 
 }  // namespace candela

@@ -11,6 +11,10 @@
 #include <thread>
 
 #include "distributed/cluster.h"
+#include "meshless/site_sampling.h"
+#include "meshless/transfer_matrix.h"
+#include "scene/scene.h"
+#include "scene/scene_loader.h"
 #include "util/cancellation.h"
 
 namespace candela {
@@ -139,6 +143,50 @@ TEST(TaskFarm, EverywhereGivesEveryRankEveryResult) {
       for (std::size_t k = 0; k < placed[task].size(); ++k) EXPECT_EQ(placed[task][k], task * 100 + k);
     }
   }
+}
+
+// With `again`, rank 0 keeps no copy of the results and rebuilds them to pass on: every rank
+// still places the bytes work made.
+TEST(TaskFarm, EverywhereRebuildsResultsOnRankZero) {
+  Cluster& cluster = world_cluster();
+  const std::size_t count = 40;
+  std::vector<uint64_t> placed(count, 0);
+  std::size_t rebuilt = 0;
+  run_task_farm_everywhere(
+      cluster, count, [](std::size_t task) { return number_bytes(task * 7 + 3); },
+      [&](std::size_t task, std::span<const std::byte> result) { placed[task] = read_number(result); },
+      [&](std::size_t task) {
+        ++rebuilt;
+        return number_bytes(placed[task]);
+      });
+  for (std::size_t task = 0; task < count; ++task) EXPECT_EQ(placed[task], task * 7 + 3) << "rank " << cluster.rank();
+  EXPECT_EQ(rebuilt, cluster.distributed() && cluster.root() ? count : 0u);
+}
+
+// The meshless transfer matrix S built by rows across the ranks is, on every rank, the matrix
+// one process builds; past its entry limit it is refused on every rank.
+TEST(TransferMatrix, RowsAcrossRanksAreTheSingleProcessRows) {
+  Cluster& cluster = world_cluster();
+  const std::unique_ptr<Scene> scene = load_scene_file(CANDELA_SOURCE_DIR "/scenes/cornell-box.json");
+  SiteSamplingSettings sampling;
+  sampling.grid = 24;
+  sampling.rounds = 2;
+  const SiteSet sites = sample_sites(*scene, sampling);
+  ASSERT_GT(sites.sites.size(), 100u);
+  const TransferMatrix alone = compute_transfer_matrix(*scene, sites.sites, sites.effective_area);
+  const TransferMatrix shared = compute_transfer_matrix(*scene, sites.sites, sites.effective_area, 0, &cluster);
+  ASSERT_EQ(shared.S.rows(), alone.S.rows());
+  ASSERT_EQ(shared.entries(), alone.entries());
+  EXPECT_EQ(shared.visibility_rays, alone.visibility_rays);
+  for (Eigen::Index j = 0; j < alone.S.outerSize(); ++j) {
+    ASSERT_EQ(shared.S.outerIndexPtr()[j], alone.S.outerIndexPtr()[j]) << "row " << j;
+  }
+  for (std::size_t e = 0; e < alone.entries(); ++e) {
+    ASSERT_EQ(shared.S.innerIndexPtr()[e], alone.S.innerIndexPtr()[e]) << "entry " << e;
+    ASSERT_EQ(shared.S.valuePtr()[e], alone.S.valuePtr()[e]) << "entry " << e;  // bit for bit
+  }
+  EXPECT_THROW(compute_transfer_matrix(*scene, sites.sites, sites.effective_area, alone.entries() / 3, &cluster),
+               std::invalid_argument);
 }
 
 TEST(Cluster, CollectivesAgree) {

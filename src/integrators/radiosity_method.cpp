@@ -163,6 +163,14 @@ void fill_form_factor_rows(const Scene& scene, const std::vector<RadiositySurfac
     const std::size_t chunk = std::clamp<std::size_t>(rows.size() / (std::size_t(cluster->size()) * 8), 1, 64);
     const std::size_t tasks = (rows.size() + chunk - 1) / chunk;
     const std::size_t columns = targets.size();
+    // A chunk's rows and sums as bytes: what a rank sends, and what rank 0 rebuilds from the
+    // matrix to pass on (it keeps no second copy of the rows).
+    const auto chunk_bytes = [&](std::span<const Scalar> values, std::span<const double> chunk_sums) {
+      ByteWriter writer;
+      writer.put_array(values);
+      writer.put_array(chunk_sums);
+      return writer.take();
+    };
     run_task_farm_everywhere(*cluster, tasks, [&](std::size_t task) {
       const std::size_t first = task * chunk, count = std::min(chunk, rows.size() - first);
       std::vector<Scalar> values(count * columns, Scalar(0));
@@ -171,10 +179,7 @@ void fill_form_factor_rows(const Scene& scene, const std::vector<RadiositySurfac
                                skipped, [&](std::size_t k, std::size_t j, double value) {
         values[k * columns + j] = static_cast<Scalar>(value);
       }, chunk_sums);
-      ByteWriter writer;
-      writer.put_array(values);
-      writer.put_array(chunk_sums);
-      return writer.take();
+      return chunk_bytes(values, chunk_sums);
     }, [&](std::size_t task, std::span<const std::byte> result) {
       const std::size_t first = task * chunk;
       ByteReader reader(result);
@@ -185,6 +190,13 @@ void fill_form_factor_rows(const Scene& scene, const std::vector<RadiositySurfac
           matrix(static_cast<Eigen::Index>(rows[first + k]), static_cast<Eigen::Index>(j)) = values[k * columns + j];
         sums[first + k] = chunk_sums[k];
       }
+    }, [&](std::size_t task) {
+      const std::size_t first = task * chunk, count = std::min(chunk, rows.size() - first);
+      std::vector<Scalar> values(count * columns);
+      for (std::size_t k = 0; k < count; ++k)
+        for (std::size_t j = 0; j < columns; ++j)
+          values[k * columns + j] = matrix(static_cast<Eigen::Index>(rows[first + k]), static_cast<Eigen::Index>(j));
+      return chunk_bytes(values, std::span<const double>(sums).subspan(first, count));
     });
   }
   for (std::size_t k = 0; k < rows.size(); ++k) sums_by_row[rows[k]] = sums[k];

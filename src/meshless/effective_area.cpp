@@ -98,23 +98,27 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
   } else {
     // Across ranks (issue 11): a task per triangle, its per-site sums sent to every rank, which
     // adds them up in triangle order as one process does.
-    run_task_farm_everywhere(*cluster, triangles.triangle_count(), [&](std::size_t t) {
-      integrate_triangle(t);
+    const auto triangle_bytes = [&](std::size_t t) {
       std::vector<uint32_t> ids;
       std::vector<double> values;
       for (const auto& [k, value] : contributions[t]) ids.push_back(k), values.push_back(value);
-      std::vector<std::pair<uint32_t, double>>().swap(contributions[t]);
       ByteWriter writer;
       writer.put_array(ids);
       writer.put_array(values);
       return writer.take();
+    };
+    run_task_farm_everywhere(*cluster, triangles.triangle_count(), [&](std::size_t t) {
+      integrate_triangle(t);
+      Bytes bytes = triangle_bytes(t);
+      std::vector<std::pair<uint32_t, double>>().swap(contributions[t]);
+      return bytes;
     }, [&](std::size_t t, std::span<const std::byte> result) {
       ByteReader reader(result);
       const std::vector<uint32_t> ids = reader.get_array<uint32_t>();
       const std::vector<double> values = reader.get_array<double>();
       contributions[t].clear();
       for (std::size_t e = 0; e < ids.size(); ++e) contributions[t].emplace_back(ids[e], values[e]);
-    });
+    }, triangle_bytes);
   }
   std::vector<double> areas(site_count, 0.0);
   for (const auto& sums : contributions)

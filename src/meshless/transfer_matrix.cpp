@@ -91,15 +91,17 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
     // every row (each rank iterates λ with the whole S), each row exactly as one process has it.
     const std::size_t chunk = std::clamp<std::size_t>(n / (std::size_t(cluster->size()) * 16), 1, 256);
     const std::size_t tasks = (n + chunk - 1) / chunk;
-    uint64_t rays_elsewhere = 0;
-    run_task_farm_everywhere(*cluster, tasks, [&](std::size_t task) {
-      const std::size_t first = task * chunk, count = std::min(chunk, n - first);
-      std::vector<std::vector<std::pair<int32_t, float>>> chunk_rows(count);
-      const uint64_t rays_before = rays.load();
-      tbb::parallel_for(std::size_t(0), count, [&](std::size_t k) { compute_row(first + k, chunk_rows[k]); });
+    std::vector<uint64_t> task_rays(tasks, 0), task_entries(tasks, 0);
+    // A chunk's rows as bytes: what a rank sends, and what rank 0 rebuilds from `rows` to pass on.
+    // The header holds the chunk's entry count as computed: past the limit rank 0 keeps no rows,
+    // and every rank must still count them to refuse the matrix alike.
+    const auto chunk_bytes = [](uint64_t chunk_rays, uint64_t chunk_entries,
+                                const std::vector<std::pair<int32_t, float>>* chunk_rows, std::size_t count) {
       ByteWriter writer;
-      writer.put<uint64_t>(rays.load() - rays_before);
-      for (const auto& row : chunk_rows) {
+      writer.put<uint64_t>(chunk_rays);
+      writer.put<uint64_t>(chunk_entries);
+      for (std::size_t k = 0; k < count; ++k) {
+        const auto& row = chunk_rows[k];
         std::vector<int32_t> columns;
         std::vector<float> values;
         for (const auto& [column, value] : row) columns.push_back(column), values.push_back(value);
@@ -107,19 +109,36 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
         writer.put_array(values);
       }
       return writer.take();
+    };
+    run_task_farm_everywhere(*cluster, tasks, [&](std::size_t task) {
+      const std::size_t first = task * chunk, count = std::min(chunk, n - first);
+      std::vector<std::vector<std::pair<int32_t, float>>> chunk_rows(count);
+      const uint64_t rays_before = rays.load();
+      tbb::parallel_for(std::size_t(0), count, [&](std::size_t k) { compute_row(first + k, chunk_rows[k]); });
+      std::size_t entries = 0;
+      for (const auto& row : chunk_rows) entries += row.size();
+      return chunk_bytes(rays.load() - rays_before, entries, chunk_rows.data(), count);
     }, [&](std::size_t task, std::span<const std::byte> result) {
       const std::size_t first = task * chunk, count = std::min(chunk, n - first);
       ByteReader reader(result);
-      rays_elsewhere += reader.get<uint64_t>();
+      task_rays[task] = reader.get<uint64_t>();
+      task_entries[task] = reader.get<uint64_t>();
+      keep(task_entries[task]);
       for (std::size_t k = 0; k < count; ++k) {
         const std::vector<int32_t> columns = reader.get_array<int32_t>();
         const std::vector<float> values = reader.get_array<float>();
         auto& row = rows[first + k];
         row.clear();
+        // Past the limit nothing more is kept (the build is refused below): memory stays bounded.
+        if (too_many) continue;
         for (std::size_t e = 0; e < columns.size(); ++e) row.emplace_back(columns[e], values[e]);
-        keep(rows[first + k].size());
       }
+    }, [&](std::size_t task) {
+      const std::size_t first = task * chunk, count = std::min(chunk, n - first);
+      return chunk_bytes(task_rays[task], task_entries[task], rows.data() + first, count);
     });
+    uint64_t rays_elsewhere = 0;
+    for (const uint64_t r : task_rays) rays_elsewhere += r;
     rays = rays_elsewhere;  // every row's rays, wherever it was computed
   }
   if (too_many)
