@@ -53,6 +53,18 @@ TiledRender render_tiles_across_ranks(Cluster& cluster, const PixelRect& region,
   return result;
 }
 
+void draw_across_ranks(Cluster* cluster, const PixelRect& region,
+                       const std::function<void(const PixelRect& area, Film& target)>& draw, Film& film,
+                       RunStatistics& statistics) {
+  if (!cluster || !cluster->distributed()) return draw(region, film);
+  const TiledRender run = render_tiles_across_ranks(*cluster, region, [&](const PixelRect& tile) {
+    RenderedTile rendered{Film(tile.width(), tile.height()), {}};
+    draw(tile, rendered.film);
+    return rendered;
+  }, film);
+  statistics.extra["distributed"] = distributed_facts(*cluster, run.tiles_by_rank, "tiles");
+}
+
 void sum_across_ranks(Cluster& cluster, RayCounts& rays) {
   std::vector<uint64_t> counts{rays.primary, rays.shadow, rays.reflected, rays.refracted};
   cluster.sum(counts);

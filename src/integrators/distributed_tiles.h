@@ -44,6 +44,13 @@ TiledRender render_tiles_across_ranks(Cluster& cluster, const PixelRect& region,
                                       const std::function<void(const PixelRect&, const std::vector<uint32_t>&)>& place_counts = {},
                                       ProgressReporter* progress = nullptr);
 
+// A view drawn by draw(area, target) (target area-sized): on one process (cluster null or of one
+// rank) the whole region at once; with several ranks in tiles across them, with the
+// "distributed" facts in statistics. Every rank calls it.
+void draw_across_ranks(Cluster* cluster, const PixelRect& region,
+                       const std::function<void(const PixelRect& area, Film& target)>& draw, Film& film,
+                       RunStatistics& statistics);
+
 // Adds up every rank's ray counts (a collective: every rank calls it); all ranks get the total.
 void sum_across_ranks(Cluster& cluster, RayCounts& rays);
 

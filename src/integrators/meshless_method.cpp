@@ -285,48 +285,38 @@ void MeshlessMethod::render(const Scene& scene, const RenderRequest& request, Fi
   const auto start = std::chrono::steady_clock::now();
   // The pixels of area into target (area-sized).
   const auto draw = [&](const PixelRect& area, Film& target) {
-  tbb::parallel_for(area.y0, area.y1, [&](int y) {
-    std::vector<std::pair<uint32_t, double>> weights;
-    for (int x = area.x0; x < area.x1; ++x) {
-      const Ray ray = camera.generate_ray(x + 0.5, y + 0.5);
-      Intersection hit;
-      Color color = scene.background_along(ray.direction);
-      if (scene.intersect(ray, hit)) {
-        const Site p{hit.surface.position, face_forward(hit.surface.geometric_normal, -ray.direction)};
-        basis.evaluate(p, weights);
-        Color global, direct;
-        for (const auto& [i, phi] : weights) {
-          global += solution.transfer.lambda[i] * phi;
-          direct += solution.eta[i] * phi;
-        }
-        switch (settings.display) {
-          case MeshlessDisplay::global: color = global; break;
-          case MeshlessDisplay::direct: color = direct; break;
-          case MeshlessDisplay::indirect: color = global - direct; break;
-          case MeshlessDisplay::hybrid: {
-            const Material& material = scene.material_of(hit);
-            const Color albedo = material.at(hit.surface).diffuse_albedo();
-            color = material.emission + direct_light(scene, p.position, p.normal, albedo) + (global - direct);
-            break;
+    tbb::parallel_for(area.y0, area.y1, [&](int y) {
+      std::vector<std::pair<uint32_t, double>> weights;
+      for (int x = area.x0; x < area.x1; ++x) {
+        const Ray ray = camera.generate_ray(x + 0.5, y + 0.5);
+        Intersection hit;
+        Color color = scene.background_along(ray.direction);
+        if (scene.intersect(ray, hit)) {
+          const Site p{hit.surface.position, face_forward(hit.surface.geometric_normal, -ray.direction)};
+          basis.evaluate(p, weights);
+          Color global, direct;
+          for (const auto& [i, phi] : weights) {
+            global += solution.transfer.lambda[i] * phi;
+            direct += solution.eta[i] * phi;
           }
+          switch (settings.display) {
+            case MeshlessDisplay::global: color = global; break;
+            case MeshlessDisplay::direct: color = direct; break;
+            case MeshlessDisplay::indirect: color = global - direct; break;
+            case MeshlessDisplay::hybrid: {
+              const Material& material = scene.material_of(hit);
+              const Color albedo = material.at(hit.surface).diffuse_albedo();
+              color = material.emission + direct_light(scene, p.position, p.normal, albedo) + (global - direct);
+              break;
+            }
+          }
+          if (weights.empty() && settings.display != MeshlessDisplay::hybrid) color = scene.background_along(ray.direction);
         }
-        if (weights.empty() && settings.display != MeshlessDisplay::hybrid) color = scene.background_along(ray.direction);
+        target.at(x - area.x0, y - area.y0) = color;
       }
-      target.at(x - area.x0, y - area.y0) = color;
-    }
-  });
+    });
   };
-  if (request.cluster && request.cluster->distributed()) {
-    // The view in tiles across the ranks (issue 11); every rank holds the same λ.
-    const TiledRender run = render_tiles_across_ranks(*request.cluster, region, [&](const PixelRect& tile) {
-      RenderedTile rendered{Film(tile.width(), tile.height()), {}};
-      draw(tile, rendered.film);
-      return rendered;
-    }, film);
-    statistics.extra["distributed"] = distributed_facts(*request.cluster, run.tiles_by_rank, "tiles");
-  } else {
-    draw(region, film);
-  }
+  draw_across_ranks(request.cluster, region, draw, film, statistics);  // issue 11: every rank holds the same λ
   if (!request.show_sites.empty() && (!cluster || cluster->root())) {  // rank 0 writes
     write_image(with_sites_drawn(scene, solution.sites, region, film), request.show_sites, scene.display);
     facts["sites_image"] = request.show_sites;

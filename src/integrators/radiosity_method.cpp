@@ -859,17 +859,7 @@ void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, F
       }
     });
   };
-  if (request.cluster && request.cluster->distributed()) {
-    // The view in tiles across the ranks (issue 11); every rank holds the same solution.
-    const TiledRender run = render_tiles_across_ranks(*request.cluster, region, [&](const PixelRect& tile) {
-      RenderedTile rendered{Film(tile.width(), tile.height()), {}};
-      draw(tile, rendered.film);
-      return rendered;
-    }, film);
-    statistics.extra["distributed"] = distributed_facts(*request.cluster, run.tiles_by_rank, "tiles");
-  } else {
-    draw(region, film);
-  }
+  draw_across_ranks(request.cluster, region, draw, film, statistics);  // issue 11: every rank holds the same solution
   const auto pixel_count = static_cast<uint64_t>(region.width()) * region.height();
   if (display != RadiosityDisplay::gouraud) statistics.rays.primary += pixel_count;  // rasterized: none
   statistics.pixels += pixel_count;
