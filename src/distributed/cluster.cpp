@@ -247,7 +247,8 @@ Cluster::Cluster() = default;
 Cluster::~Cluster() = default;
 
 int launched_rank_count() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE", "MPI_LOCALNRANKS"}) {
+  // Open MPI's mpirun sets the first; MPICH's Hydra and Slurm's PMI-2 (srun --mpi=pmi2) the second.
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}) {
     const int size = environment_integer(name);
     if (size > 0) return size;
   }

@@ -86,8 +86,8 @@ class Cluster {
 // Whether this build can run across ranks (Open MPI found when it was configured).
 bool built_with_mpi();
 
-// The ranks the process was launched as, read from the launcher's environment (Open MPI, MPICH,
-// PMIx, Slurm); 1 when not launched by one.
+// The ranks the process was launched as, read from the launcher's environment (Open MPI's
+// OMPI_COMM_WORLD_SIZE, PMI_SIZE of MPICH and Slurm's PMI-2); 1 when not launched by one.
 int launched_rank_count();
 
 // Starts MPI when the process was launched by mpirun with more than one rank (MPI_Init_thread,
