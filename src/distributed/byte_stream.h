@@ -60,7 +60,7 @@ class ByteReader {
     const auto count = get<uint64_t>();
     if (count > (bytes_.size() - at_) / sizeof(T)) throw std::runtime_error("distributed message: array past its end");
     std::vector<T> values(count);
-    std::memcpy(values.data(), bytes_.data() + at_, count * sizeof(T));
+    if (count > 0) std::memcpy(values.data(), bytes_.data() + at_, count * sizeof(T));  // (data() may be null)
     at_ += count * sizeof(T);
     return values;
   }
