@@ -136,6 +136,28 @@ TEST_F(Distributed, MeshlessTransferRowsAcrossRanksGiveTheSameImage) {
   EXPECT_EQ(json("m.json")["meshless"]["visibility_rays"], two["meshless"]["visibility_rays"]);
 }
 
+// 002 §5.3 relighting reuses the sites and S: each frame, and the sites picture (written by rank
+// 0 alone), as one process makes them.
+TEST_F(Distributed, MeshlessRelightFramesAndSitesPicture) {
+  const std::string light = R"({"type": "point", "position": [5, 7, 5], "intensity": 10})";
+  std::ofstream(directory_.path() / "room.json") << R"({"format": "candela/1",
+    "camera": {"eye": [5, 4, 9.5], "target": [5, 4, 0], "fov": 60, "width": 40, "height": 30},
+    "meshless": {"spacing": 1.5, "grid": 12, "rounds": 1},
+    "lights": [)" + light + R"(],
+    "shapes": [{"type": "box", "min": [0, 0, 0], "max": [10, 8, 10], "material": {"kd": 0.6}}]})";
+  std::ofstream(directory_.path() / "lights.json") << R"({"frames": [
+    {"name": "low", "lights": [{"type": "point", "position": [2, 1, 5], "intensity": 10}]},
+    {"name": "area", "ambient": 0.1, "lights": [{"type": "area", "corner": [4, 7.9, 4], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2], "exitance": 20}]}]})";
+  std::string output;
+  const std::string relight = "render room.json -q --method meshless --relight lights.json";
+  ASSERT_EQ(run(0, relight + " -o one.pfm --show-sites one-sites.png", output), 0) << output;
+  ASSERT_EQ(run(2, relight + " -o two.pfm --show-sites two-sites.png", output), 0) << output;
+  for (const char* name : {".pfm", "-low.pfm", "-area.pfm", "-sites.png"}) {
+    ASSERT_FALSE(bytes(std::string("one") + name).empty()) << name;
+    EXPECT_EQ(bytes(std::string("one") + name), bytes(std::string("two") + name)) << name;
+  }
+}
+
 TEST_F(Distributed, SeveralCamerasEachByteIdentical) {
   std::string output;
   ASSERT_EQ(run(0, "render " + kCornell + " --camera all -o one.pfm", output), 0) << output;
