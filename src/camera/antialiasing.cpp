@@ -164,6 +164,9 @@ class AdaptiveSampler {
         traced_(std::size_t(film.width()) * film.height()) {
     const int64_t scale = int64_t(1) << settings.max_level;
     lattice_ = {scale, settings.jitter, seed, region.image_width * scale, region.image_height * scale};
+    // Room for the corners and some subdivision from the start: growing the table while every
+    // thread inserts costs more than the tracing near edges.
+    cache_.rehash(std::size_t(film.width() + 1) * (film.height() + 1) * 2);
   }
 
   Color pixel(int px, int py) {
