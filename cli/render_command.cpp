@@ -440,12 +440,8 @@ void prepare_everywhere(RenderOptions& options, RenderJob& job, Cluster& cluster
   throw PeerFailure(2);
 }
 
-int run_render(RenderOptions& options) {
-  Cluster& cluster = world_cluster();
-  // Only rank 0 prints progress and summaries and writes files.
-  if (!cluster.root()) options.quiet = true;
-  RenderJob job;
-  prepare_everywhere(options, job, cluster);
+// Renders every view and relight frame of a prepared job; rank 0 writes. Returns the exit status.
+int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster) {
   Scene* scene = job.scene.get();
   const MethodEntry* entry = job.entry;
   const std::vector<View>& views = job.views;
@@ -455,15 +451,13 @@ int run_render(RenderOptions& options) {
   const int threads = job.threads;
   std::vector<LightSetup>& relight_frames = job.relight_frames;
   const double load_seconds = job.load_seconds, build_seconds = job.build_seconds;
-  if (!options.pixel.empty()) return cluster.root() ? print_pixel_ray_trees(options, *scene, views, *method) : 0;
-  const auto render_all = [&]() -> int {
 
   // SPEC §15: from here on Ctrl-C (or SIGTERM) stops the method early; what it finished is written
   // as usual, the views and frames after it are skipped, and the exit status is 130. A second
   // Ctrl-C ends the process at once.
   install_interrupt_handler();
   // With several ranks they stop together: Ctrl-C on any of them counts (a collective).
-  const auto interrupted = [&] { return cluster.distributed() ? cancelled_anywhere(cluster) : cancel_requested(); };
+  const auto interrupted = [&] { return cancelled_anywhere(cluster); };
   const bool root = cluster.root();
   for (std::size_t v = 0; v < views.size(); ++v) {
     const View& view = views[v];
@@ -568,20 +562,32 @@ int run_render(RenderOptions& options) {
     if (interrupted()) return report_interrupted(statistics, output, relight_frames.size() - f - 1);
   }
   return 0;
-  };
-  if (!cluster.distributed()) return render_all();
-  // Once the ranks render together, bad input found by some of them (not agreed by all) would
-  // leave the others waiting: it ends every rank.
+}
+
+// Bad input found by some ranks once they render together (not agreed by all) would leave the
+// others waiting: it ends every rank.
+[[noreturn]] void end_every_rank(const Cluster& cluster, const std::exception& error) {
+  std::cerr << fmt::format("candela: error (rank {}): {}\n", cluster.rank(), error.what());
+  abort_all_ranks(2);
+}
+
+int run_render(RenderOptions& options) {
+  Cluster& cluster = world_cluster();
+  // Only rank 0 prints progress and summaries and writes files.
+  if (!cluster.root()) options.quiet = true;
+  RenderJob job;
+  prepare_everywhere(options, job, cluster);
+  if (!options.pixel.empty())
+    return cluster.root() ? print_pixel_ray_trees(options, *job.scene, job.views, *job.method) : 0;
+  if (!cluster.distributed()) return render_views(options, job, cluster);
   try {
-    return render_all();
+    return render_views(options, job, cluster);
   } catch (const InputError& e) {
     if (cluster.failure_agreed()) throw;
-    std::cerr << fmt::format("candela: error (rank {}): {}\n", cluster.rank(), e.what());
-    abort_all_ranks(2);
+    end_every_rank(cluster, e);
   } catch (const BadArgument& e) {
     if (cluster.failure_agreed()) throw;
-    std::cerr << fmt::format("candela: error (rank {}): {}\n", cluster.rank(), e.what());
-    abort_all_ranks(2);
+    end_every_rank(cluster, e);
   }
 }
 

@@ -35,7 +35,6 @@ class ByteWriter {
     put_array(std::span<const T>(values));
   }
   Bytes take() { return std::move(bytes_); }
-  std::size_t size() const { return bytes_.size(); }
 
  private:
   Bytes bytes_;
@@ -64,8 +63,6 @@ class ByteReader {
     at_ += count * sizeof(T);
     return values;
   }
-  bool at_end() const { return at_ == bytes_.size(); }
-
  private:
   void need(std::size_t size) const {
     if (size > bytes_.size() - at_) throw std::runtime_error("distributed message: shorter than expected");

@@ -1,7 +1,5 @@
 #include "distributed/cluster.h"
 
-#include "util/cancellation.h"
-
 #include <algorithm>
 #include <chrono>
 #include <climits>
@@ -9,8 +7,10 @@
 #include <list>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
+
+#include "distributed/backoff.h"
+#include "util/cancellation.h"
 
 #ifdef CANDELA_HAVE_MPI
 #include <mpi.h>
@@ -19,27 +19,6 @@
 namespace candela {
 
 namespace {
-
-// Waits that yield a few times, then sleep from 20 µs up to 1 ms while nothing arrives: a few
-// microseconds of latency on a busy exchange, next to no processor time on a long wait.
-class [[maybe_unused]] Backoff {
- public:
-  void pause() {
-    // The first few waits only yield: a collective between ranks of one node completes in
-    // microseconds, less than the shortest sleep the kernel gives (~60 µs).
-    if (yields_ < 64) {
-      ++yields_;
-      std::this_thread::yield();
-      return;
-    }
-    std::this_thread::sleep_for(std::chrono::microseconds(delay_));
-    delay_ = std::min(delay_ * 2, 1000);
-  }
-
- private:
-  int yields_ = 0;
-  int delay_ = 20;
-};
 
 [[maybe_unused]] double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -222,8 +201,6 @@ bool Cluster::any(bool value) {
   return flag[0] != 0;
 }
 
-bool built_with_mpi() { return true; }
-
 #else  // one process: every exchange is a logic error, every collective a no-op
 
 struct Cluster::Implementation {};
@@ -239,7 +216,6 @@ void Cluster::sum(std::vector<uint64_t>&) {}
 void Cluster::sum(std::vector<double>&) {}
 bool Cluster::all(bool value) { return value; }
 bool Cluster::any(bool value) { return value; }
-bool built_with_mpi() { return false; }
 
 #endif
 
@@ -275,6 +251,8 @@ bool cancelled_anywhere(Cluster& cluster) {
   if (cancelled && !cancel_requested()) request_cancellation();
   return cancelled;
 }
+
+bool cancelled_anywhere(Cluster* cluster) { return cluster ? cancelled_anywhere(*cluster) : cancel_requested(); }
 
 void settle_root_outcome(Cluster& cluster, std::exception_ptr root_error) {
   Bytes outcome(1, std::byte{root_error ? uint8_t{1} : uint8_t{0}});

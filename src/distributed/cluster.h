@@ -2,9 +2,8 @@
 // MPI_COMM_WORLD when Candela is built with MPI and started by an MPI launcher (mpirun), one
 // process otherwise — the same binary runs either way.
 //
-// Every wait (a message, a broadcast, a reduction, the last sends) polls with short sleeps rather
-// than MPI's own blocking calls: Open MPI spins a core while it waits, and a rank waiting for its
-// next tile would take that core from the threads of the rank still rendering on the same node.
+// Every wait (a message, a broadcast, a reduction, the last sends) polls with a Backoff
+// (distributed/backoff.h) rather than MPI's own blocking calls.
 // What crosses is counted (CommunicationVolume), so docs/distributed.md can model larger runs.
 #pragma once
 
@@ -83,9 +82,6 @@ class Cluster {
   CommunicationVolume volume_;
 };
 
-// Whether this build can run across ranks (Open MPI found when it was configured).
-bool built_with_mpi();
-
 // The ranks the process was launched as, read from the launcher's environment (Open MPI's
 // OMPI_COMM_WORLD_SIZE, PMI_SIZE of MPICH and Slurm's PMI-2); 1 when not launched by one.
 int launched_rank_count();
@@ -124,6 +120,8 @@ class PeerFailure : public std::runtime_error {
 // Whether Ctrl-C reached any rank (a collective): then every rank's flag is set, so that all of
 // them stop at the same point. One process: cancel_requested().
 bool cancelled_anywhere(Cluster& cluster);
+// The same where a null cluster stands for this process alone.
+bool cancelled_anywhere(Cluster* cluster);
 
 // Where rank 0 alone did something that could fail (read a checkpoint): every rank calls it,
 // rank 0 with what it caught (null: success). If rank 0 failed, it rethrows its error and the

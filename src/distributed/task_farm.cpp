@@ -6,6 +6,8 @@
 #include <optional>
 #include <thread>
 
+#include "distributed/backoff.h"
+
 namespace candela {
 
 namespace {
@@ -137,7 +139,7 @@ TaskFarmReport run_coordinator(Cluster& cluster, const TaskFarm& farm, const Far
       --open_requests;
     }
   };
-  int idle_polls = 0;
+  Backoff idle;
   try {
   for (;;) {
     bool busy = false;
@@ -173,10 +175,9 @@ TaskFarmReport run_coordinator(Cluster& cluster, const TaskFarm& farm, const Far
       answer(message.source);
     }
     if (busy) {
-      idle_polls = 0;
+      idle.reset();
     } else {
-      // Nothing to do: sleep a little longer each time, up to a millisecond.
-      std::this_thread::sleep_for(std::chrono::microseconds(std::min(1000, 20 << std::min(idle_polls++, 6))));
+      idle.pause();
     }
   }
   } catch (...) {  // a broken message: stop the working thread before leaving

@@ -3,7 +3,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "geometry/shape.h"
 #include "math/constants.h"
+#include "sampling/warps.h"
 
 namespace candela {
 
@@ -33,6 +35,13 @@ AxialFrame::Around AxialFrame::around(const Vec3& point) const {
   result.radial = x_axis_ * cos_phi + y_axis_ * sin_phi;
   result.tangent = y_axis_ * cos_phi - x_axis_ * sin_phi;
   return result;
+}
+
+void AxialFrame::sample_end_disc(const Vec3& centre, bool cap, double radius, const Vec2& u,
+                                 SurfaceSample& sample) const {
+  const Vec2 d = square_to_uniform_disk_concentric(u);
+  sample.position = centre + (x_axis_ * d.x + y_axis_ * d.y) * radius;
+  sample.normal = cap ? axis_ : -axis_;
 }
 
 }  // namespace candela

@@ -3,10 +3,14 @@
 // translation, so ray distances are the same in both frames.
 #pragma once
 
+#include <cmath>
+
 #include "geometry/surface_hit.h"
 #include "math/ray.h"
 
 namespace candela {
+
+struct SurfaceSample;
 
 class AxialFrame {
  public:
@@ -32,8 +36,17 @@ class AxialFrame {
   };
   Around around(const Vec3& point) const;
 
+  // The unit direction at angle phi about the axis, from x_axis toward y_axis.
+  Vec3 radial(double phi) const { return x_axis_ * std::cos(phi) + y_axis_ * std::sin(phi); }
+  // Area sampling of an end disc: a uniform point (u on the unit square) of the disc of this
+  // radius about the axis at centre (the base or the cap point), facing away from the body (+axis
+  // at the cap, −axis at the base). Leaves sample.pdf to the caller.
+  void sample_end_disc(const Vec3& centre, bool cap, double radius, const Vec2& u, SurfaceSample& sample) const;
+
   const Vec3& base() const { return base_; }
   const Vec3& axis() const { return axis_; }  // unit, base to cap
+  const Vec3& x_axis() const { return x_axis_; }  // with y_axis, orthonormal_basis(axis)
+  const Vec3& y_axis() const { return y_axis_; }
   double height() const { return height_; }
 
  private:

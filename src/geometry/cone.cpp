@@ -5,7 +5,6 @@
 
 #include "geometry/disc.h"
 #include "geometry/surface_sampling.h"
-#include "sampling/warps.h"
 #include "geometry/tessellation.h"
 #include "math/constants.h"
 
@@ -111,9 +110,6 @@ bool Cone::sample_area(const Vec2& u, SurfaceSample& sample) const {
   double choice = u.x;
   const int part = pick_by_area(part_areas, choice);
   if (part == 3) return false;
-  // The frame's own x and y axes (AxialFrame builds them by this same call).
-  Vec3 x_axis, y_axis;
-  orthonormal_basis(frame_.axis(), x_axis, y_axis);
   const Vec3& axis = frame_.axis();
   if (part == 0) {
     // The side's area below height z is proportional to r(z)² − r0², so r = sqrt(r0² + u (r1² −
@@ -121,15 +117,12 @@ bool Cone::sample_area(const Vec2& u, SurfaceSample& sample) const {
     const double r = std::sqrt(r0 * r0 + choice * (r1 * r1 - r0 * r0));
     const double z = r + r0 > 0 ? std::min(height, height * choice * (r0 + r1) / (r + r0)) : 0;
     const double side_radius = std::max(0.0, r0 + slope_ * z);
-    const double phi = 2 * kPi * u.y;
-    const Vec3 radial = x_axis * std::cos(phi) + y_axis * std::sin(phi);
+    const Vec3 radial = frame_.radial(2 * kPi * u.y);
     sample.position = frame_.base() + axis * z + radial * side_radius;
     sample.normal = side_radius > 0 ? normalize(radial - axis * slope_) : (slope_ < 0 ? axis : -axis);
   } else {
     const bool top = part == 2;
-    const Vec2 d = square_to_uniform_disk_concentric({choice, u.y});
-    sample.position = (top ? cap_ : frame_.base()) + (x_axis * d.x + y_axis * d.y) * (top ? r1 : r0);
-    sample.normal = top ? axis : -axis;
+    frame_.sample_end_disc(top ? cap_ : frame_.base(), top, top ? r1 : r0, {choice, u.y}, sample);
   }
   sample.pdf = 1 / area();
   return true;
@@ -140,10 +133,7 @@ double Cone::pdf_area(const SurfaceHit&) const { return 1 / area(); }
 void Cone::tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const {
   MeshAppender out(mesh);
   const std::vector<Vec2> circle = unit_circle(turn_divisions(settings));
-  // The frame's own x and y axes (AxialFrame builds them by this same call).
-  Vec3 x_axis, y_axis;
-  orthonormal_basis(frame_.axis(), x_axis, y_axis);
-  append_truncated_cone(frame_.base(), frame_.axis(), frame_.height(), x_axis, y_axis, base_radius_, cap_radius_, capped_, circle, out);
+  append_truncated_cone(frame_.base(), frame_.axis(), frame_.height(), frame_.x_axis(), frame_.y_axis(), base_radius_, cap_radius_, capped_, circle, out);
 }
 
 }  // namespace candela

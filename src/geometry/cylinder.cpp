@@ -5,7 +5,6 @@
 
 #include "geometry/disc.h"
 #include "geometry/surface_sampling.h"
-#include "sampling/warps.h"
 #include "geometry/tessellation.h"
 #include "math/constants.h"
 
@@ -92,20 +91,13 @@ bool Cylinder::sample_area(const Vec2& u, SurfaceSample& sample) const {
   double choice = u.x;
   const int part = pick_by_area(part_areas, choice);
   if (part == 3) return false;
-  // The frame's own x and y axes (AxialFrame builds them by this same call).
-  Vec3 x_axis, y_axis;
-  orthonormal_basis(frame_.axis(), x_axis, y_axis);
-  const Vec3& axis = frame_.axis();
   if (part == 0) {
-    const double phi = 2 * kPi * u.y;
-    const Vec3 radial = x_axis * std::cos(phi) + y_axis * std::sin(phi);
-    sample.position = frame_.base() + axis * (choice * frame_.height()) + radial * radius_;
+    const Vec3 radial = frame_.radial(2 * kPi * u.y);
+    sample.position = frame_.base() + frame_.axis() * (choice * frame_.height()) + radial * radius_;
     sample.normal = radial;
   } else {
     const bool top = part == 2;
-    const Vec2 d = square_to_uniform_disk_concentric({choice, u.y});
-    sample.position = (top ? cap_ : frame_.base()) + (x_axis * d.x + y_axis * d.y) * radius_;
-    sample.normal = top ? axis : -axis;
+    frame_.sample_end_disc(top ? cap_ : frame_.base(), top, radius_, {choice, u.y}, sample);
   }
   sample.pdf = 1 / area();
   return true;
@@ -116,10 +108,7 @@ double Cylinder::pdf_area(const SurfaceHit&) const { return 1 / area(); }
 void Cylinder::tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const {
   MeshAppender out(mesh);
   const std::vector<Vec2> circle = unit_circle(turn_divisions(settings));
-  // The frame's own x and y axes (AxialFrame builds them by this same call).
-  Vec3 x_axis, y_axis;
-  orthonormal_basis(frame_.axis(), x_axis, y_axis);
-  append_truncated_cone(frame_.base(), frame_.axis(), frame_.height(), x_axis, y_axis, radius_, radius_, capped_, circle, out);
+  append_truncated_cone(frame_.base(), frame_.axis(), frame_.height(), frame_.x_axis(), frame_.y_axis(), radius_, radius_, capped_, circle, out);
 }
 
 }  // namespace candela

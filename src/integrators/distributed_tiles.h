@@ -16,6 +16,11 @@
 
 namespace candela {
 
+// The request's cluster when it has several ranks; null when this process renders alone.
+inline Cluster* several_ranks(const RenderRequest& request) {
+  return request.cluster && request.cluster->distributed() ? request.cluster : nullptr;
+}
+
 // The side of a distributed tile in pixels: large enough that a tile's pixels keep a rank's
 // threads busy and its message is worth sending, small enough for 16 tiles a rank at 512².
 inline constexpr int kDistributedTileSize = 64;

@@ -165,7 +165,7 @@ std::size_t transfer_entry_limit() {
 // (sampling, areas, transfer matrix).
 std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, bool cancellable, Cluster* cluster = nullptr) {
   // Every rank stops at the same phase (a collective when distributed).
-  const auto stop = [&] { return cancellable && (cluster ? cancelled_anywhere(*cluster) : cancel_requested()); };
+  const auto stop = [&] { return cancellable && cancelled_anywhere(cluster); };
   const MeshlessSettings& settings = scene.meshless;
   auto geometry = std::make_shared<MeshlessGeometry>();
   auto start = std::chrono::steady_clock::now();
@@ -259,7 +259,7 @@ void MeshlessMethod::render(const Scene& scene, const RenderRequest& request, Fi
   // The sites, areas and transfer matrix are kept between renders of the same scene (other views,
   // other light set-ups: --relight); the direct light and the iteration are redone every time.
   bool reused = false;
-  Cluster* cluster = request.cluster && request.cluster->distributed() ? request.cluster : nullptr;
+  Cluster* cluster = several_ranks(request);
   const std::shared_ptr<const MeshlessGeometry> geometry = geometry_for(scene, reused, cluster);
   // Ctrl-C before λ exists: the film stays black.
   const auto interrupted = [&](const char* completed) {
@@ -268,7 +268,7 @@ void MeshlessMethod::render(const Scene& scene, const RenderRequest& request, Fi
     statistics.extra["meshless"] = {{"interrupted", true}};
   };
   if (!geometry) return interrupted("transfer matrix not finished");
-  if (cluster ? cancelled_anywhere(*cluster) : cancel_requested()) return interrupted("sites and transfer matrix; no lighting");
+  if (cancelled_anywhere(cluster)) return interrupted("sites and transfer matrix; no lighting");
   const MeshlessLighting lighting = light_meshless(scene, *geometry);
   nlohmann::json facts = geometry_facts(scene, *geometry);
   add_lighting_facts(lighting, facts);

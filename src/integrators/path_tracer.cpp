@@ -254,7 +254,7 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
   state.fingerprint = fingerprint;
   state.region = region;
   state.sums.assign(std::size_t(width) * height, Color());
-  Cluster* cluster = request.cluster && request.cluster->distributed() ? request.cluster : nullptr;
+  Cluster* cluster = several_ranks(request);
   // Only rank 0 reads the checkpoint (the others are given sums with each tile); a bad one stops
   // every rank.
   std::exception_ptr resume_error;
@@ -304,10 +304,14 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
     ++checkpoints;
     since_checkpoint = Stopwatch();
   };
-  // A pass goes to its own buffer and is added to the sums only once every pixel has it: a pass
-  // cut short by Ctrl-C is dropped, so the sums (and the checkpoint) always hold whole passes.
   bool interrupted = false;
   uint64_t dropped_across_ranks = 0;
+  // Between passes (rounds across ranks): a checkpoint when the interval is up and passes remain.
+  const auto save_if_due = [&] {
+    if (!request.checkpoint.empty() && since_checkpoint.seconds() >= settings.checkpoint_interval &&
+        state.passes < last_pass)
+      save();
+  };
   // A pass's value at one pixel: one uniform point of its square (box filter), the path's radiance.
   const auto sample_pixel = [&](uint64_t pass, int i, int j, RayCounts& rays) {
     const auto x = static_cast<uint32_t>(region.x0 + i), y = static_cast<uint32_t>(region.y0 + j);
@@ -376,7 +380,7 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
         ByteReader reader(input);
         for (Color& sum : sums) sum = reader.get<Color>();
         std::atomic<uint64_t> tile_dropped{0};
-        std::atomic<bool> cut_short{false};
+        bool cut_short = false;
         for (uint64_t pass = round_first; pass < round_first + round_count; ++pass) {
           if (cancel_requested()) {
             cut_short = true;
@@ -436,54 +440,53 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
       if (timed) budget = std::min(budget, settings.time - timer.seconds());
       if (!request.checkpoint.empty()) budget = std::min(budget, settings.checkpoint_interval);
       passes_per_round = per_pass > 0 ? std::clamp<uint64_t>(static_cast<uint64_t>(budget / per_pass), 1, 256) : 256;
-      if (!request.checkpoint.empty() && since_checkpoint.seconds() >= settings.checkpoint_interval &&
-          state.passes < last_pass)
-        save();
+      save_if_due();
     }
     distributed = distributed_facts(*cluster, tiles_by_rank, "tiles");
     distributed["rounds"] = rounds;
-  }
-  std::vector<Color> pass_values(cluster ? 0 : state.sums.size());
-  const tbb::blocked_range2d<int> blocks(0, height, tile, 0, width, tile);
-  while (!cluster && state.passes < last_pass) {
-    if (cancel_requested()) {
-      interrupted = true;
-      break;
-    }
-    const uint64_t pass = state.passes;
-    std::atomic<bool> cut_short{false};
-    tbb::parallel_for(blocks, [&](const tbb::blocked_range2d<int>& block) {
+  } else {
+    // A pass goes to its own buffer and is added to the sums only once every pixel has it: a pass
+    // cut short by Ctrl-C is dropped, so the sums (and the checkpoint) always hold whole passes.
+    std::vector<Color> pass_values(state.sums.size());
+    const tbb::blocked_range2d<int> blocks(0, height, tile, 0, width, tile);
+    while (state.passes < last_pass) {
       if (cancel_requested()) {
-        cut_short.store(true, std::memory_order_relaxed);
-        return;
+        interrupted = true;
+        break;
       }
-      RayCounts& rays = counts.local();
-      for (int j = block.rows().begin(); j < block.rows().end(); ++j)
-        for (int i = block.cols().begin(); i < block.cols().end(); ++i) {
-          const Color value = sample_pixel(pass, i, j, rays);
-          // A non-finite sample (an exploded weight) is dropped, not allowed to poison the pixel.
-          if (is_finite(value)) {
-            pass_values[std::size_t(j) * width + i] = value;
-          } else {
-            pass_values[std::size_t(j) * width + i] = Color();
-            ++invalid.local();
-          }
+      const uint64_t pass = state.passes;
+      std::atomic<bool> cut_short{false};
+      tbb::parallel_for(blocks, [&](const tbb::blocked_range2d<int>& block) {
+        if (cancel_requested()) {
+          cut_short.store(true, std::memory_order_relaxed);
+          return;
         }
-    });
-    if (cut_short.load()) {  // some blocks were skipped: the pass is not whole
-      interrupted = true;
-      break;
+        RayCounts& rays = counts.local();
+        for (int j = block.rows().begin(); j < block.rows().end(); ++j)
+          for (int i = block.cols().begin(); i < block.cols().end(); ++i) {
+            const Color value = sample_pixel(pass, i, j, rays);
+            // A non-finite sample (an exploded weight) is dropped, not allowed to poison the pixel.
+            if (is_finite(value)) {
+              pass_values[std::size_t(j) * width + i] = value;
+            } else {
+              pass_values[std::size_t(j) * width + i] = Color();
+              ++invalid.local();
+            }
+          }
+      });
+      if (cut_short.load()) {  // some blocks were skipped: the pass is not whole
+        interrupted = true;
+        break;
+      }
+      tbb::parallel_for(blocks, [&](const tbb::blocked_range2d<int>& block) {
+        for (int j = block.rows().begin(); j < block.rows().end(); ++j)
+          for (int i = block.cols().begin(); i < block.cols().end(); ++i)
+            state.sums[std::size_t(j) * width + i] += pass_values[std::size_t(j) * width + i];
+      });
+      after_pass(++state.passes);
+      if (timed && timer.seconds() >= settings.time) break;
+      save_if_due();
     }
-    tbb::parallel_for(blocks, [&](const tbb::blocked_range2d<int>& block) {
-      for (int j = block.rows().begin(); j < block.rows().end(); ++j)
-        for (int i = block.cols().begin(); i < block.cols().end(); ++i)
-          state.sums[std::size_t(j) * width + i] += pass_values[std::size_t(j) * width + i];
-    });
-    after_pass(++state.passes);
-    if (timed && timer.seconds() >= settings.time) break;
-    if (!request.checkpoint.empty() && since_checkpoint.seconds() >= settings.checkpoint_interval &&
-        state.passes < last_pass)
-      save();
   }
   progress.finish();
   save();  // the final state, so that a later run can go on from it

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -402,7 +403,7 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
   const bool progressive = settings.solver == RadiositySolver::progressive;
   // Whether Ctrl-C arrived; with several ranks, whether it reached any (a collective), so that all
   // of them take the same branch.
-  const auto stopped = [&] { return cluster ? cancelled_anywhere(*cluster) : cancel_requested(); };
+  const auto stopped = [&] { return cancelled_anywhere(cluster); };
   const std::string fewer = "raise radiosity.patch_size or radiosity.element_size (fewer patches and elements)";
   {
     // Refused before the mesh is built (it can take gigabytes itself): the fewest patches and
@@ -606,8 +607,23 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
 // 000 §6.5: the elements drawn as triangles through the scanline rasterizer with their vertex
 // radiosities as colours, interpolated perspective-correctly (Gouraud); pixels no element covers
 // show the background. Tiles of 32 × 32 pixels, each drawn by one thread from the same inputs with
-// its own depth buffer, so the image does not depend on the thread count.
-void display_gouraud(const Scene& scene, const RadiositySolveResult& solution, const PixelRect& region, Film& film) {
+// its own depth buffer, so the image does not depend on the thread count. The elements are
+// projected once, in the constructor; draw fills any region from them (tiles across ranks, issue
+// 11, do not redo it).
+class GouraudDisplay {
+ public:
+  GouraudDisplay(const Scene& scene, const RadiositySolveResult& solution);
+  void draw(const PixelRect& region, Film& film) const;
+
+ private:
+  const Scene& scene_;
+  std::vector<std::array<RasterVertex, 3>> triangles_;
+  // The screen bounds of each triangle; unbounded when a corner is behind the near plane.
+  std::vector<ScreenBounds> bounds_on_screen_;
+};
+
+GouraudDisplay::GouraudDisplay(const Scene& scene, const RadiositySolveResult& solution)
+    : scene_(scene) {
   const Camera& camera = *scene.camera;
   const std::vector<RadiositySurface>& elements = solution.mesh.elements;
   const VertexRadiosity vertices =
@@ -619,20 +635,23 @@ void display_gouraud(const Scene& scene, const RadiositySolveResult& solution, c
     for (const Vec3& corner : element.corners) bounds.extend(corner);
   const double far = 2 * length(bounds.diagonal()) + 1;
   const Eigen::Matrix4d clip_from_world = camera.view_projection(far * 1e-8, far);
-  std::vector<std::array<RasterVertex, 3>> triangles(elements.size());
-  // The screen bounds of each triangle; unbounded when a corner is behind the near plane.
-  std::vector<ScreenBounds> bounds_on_screen(elements.size());
+  triangles_.resize(elements.size());
+  bounds_on_screen_.resize(elements.size());
   for (std::size_t q = 0; q < elements.size(); ++q) {
     for (std::size_t k = 0; k < 3; ++k) {
       const Vec3& p = elements[q].corners[k];
-      RasterVertex& vertex = triangles[q][k];
+      RasterVertex& vertex = triangles_[q][k];
       vertex.clip = clip_from_world * Eigen::Vector4d(p.x, p.y, p.z, 1);
       const Color& b = vertices.radiosity[vertices.element_vertices[q][k]];
       vertex.varyings[0] = b.r, vertex.varyings[1] = b.g, vertex.varyings[2] = b.b;
     }
-    bounds_on_screen[q] = screen_bounds(triangles[q][0].clip, triangles[q][1].clip, triangles[q][2].clip,
-                                        camera.width(), camera.height());
+    bounds_on_screen_[q] = screen_bounds(triangles_[q][0].clip, triangles_[q][1].clip, triangles_[q][2].clip,
+                                         camera.width(), camera.height());
   }
+}
+
+void GouraudDisplay::draw(const PixelRect& region, Film& film) const {
+  const Camera& camera = *scene_.camera;
   const int tile = 32;
   const int tiles_x = (region.width() + tile - 1) / tile, tiles_y = (region.height() + tile - 1) / tile;
   tbb::parallel_for(0, tiles_x * tiles_y, [&](int index) {
@@ -642,10 +661,10 @@ void display_gouraud(const Scene& scene, const RadiositySolveResult& solution, c
     Rasterizer rasterizer(camera.width(), camera.height(), x0, y0, x1, y1);  // cleared
     std::vector<Color> colors(std::size_t(w) * (y1 - y0));
     std::vector<bool> covered(colors.size(), false);
-    for (std::size_t q = 0; q < elements.size(); ++q) {
-      const ScreenBounds& box = bounds_on_screen[q];
+    for (std::size_t q = 0; q < triangles_.size(); ++q) {
+      const ScreenBounds& box = bounds_on_screen_[q];
       if (box.upper_x < x0 || box.lower_x > x1 || box.upper_y < y0 || box.lower_y > y1) continue;  // misses the tile
-      rasterizer.draw_triangle(triangles[q][0], triangles[q][1], triangles[q][2], 3, [&](const Fragment& fragment) {
+      rasterizer.draw_triangle(triangles_[q][0], triangles_[q][1], triangles_[q][2], 3, [&](const Fragment& fragment) {
         const std::size_t pixel = std::size_t(fragment.y - y0) * w + (fragment.x - x0);
         colors[pixel] = {fragment.varyings[0], fragment.varyings[1], fragment.varyings[2]};
         covered[pixel] = true;
@@ -656,7 +675,7 @@ void display_gouraud(const Scene& scene, const RadiositySolveResult& solution, c
       for (int x = x0; x < x1; ++x) {
         const std::size_t pixel = std::size_t(y - y0) * w + (x - x0);
         film.at(x - region.x0, y - region.y0) =
-            covered[pixel] ? colors[pixel] : scene.background_along(camera.generate_ray(x + 0.5, y + 0.5).direction);
+            covered[pixel] ? colors[pixel] : scene_.background_along(camera.generate_ray(x + 0.5, y + 0.5).direction);
       }
   });
 }
@@ -733,7 +752,7 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
                                                                             const RenderRequest& request,
                                                                             bool& reused) const {
   const std::string key = solution_key(scene);
-  Cluster* cluster = request.cluster && request.cluster->distributed() ? request.cluster : nullptr;
+  Cluster* cluster = several_ranks(request);
   std::lock_guard lock(cache_mutex_);
   // A checkpoint to write or resume from asks for this run's own solve.
   const bool checkpointing = !request.checkpoint.empty() || !request.resume.empty();
@@ -833,9 +852,11 @@ void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, F
       display == RadiosityDisplay::ray_traced
           ? compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity, solution.element_hidden)
           : VertexRadiosity();
+  std::optional<GouraudDisplay> gouraud;
+  if (display == RadiosityDisplay::gouraud) gouraud.emplace(scene, solution);
   // The pixels of area into target (area-sized).
   const auto draw = [&](const PixelRect& area, Film& target) {
-    if (display == RadiosityDisplay::gouraud) return display_gouraud(scene, solution, area, target);
+    if (gouraud) return gouraud->draw(area, target);
     // Display by ray casting: the radiosity (view independent: B itself) where each pixel's ray hits.
     tbb::parallel_for(area.y0, area.y1, [&](int y) {
       for (int x = area.x0; x < area.x1; ++x) {

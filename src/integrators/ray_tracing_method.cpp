@@ -20,9 +20,12 @@ void RayTracingMethod::render(const Scene& scene, const RenderRequest& request, 
                               RunStatistics& statistics) const {
   const PixelRect region = request.region;
   const int tile = scene.render.tile_size;
-  const int64_t tile_count = sampling_tile_count(region.width(), region.height(), tile);
-  const bool distributed = request.cluster && request.cluster->distributed();
-  ProgressReporter progress("render", static_cast<uint64_t>(tile_count), "tiles", request.quiet || distributed);
+  Cluster* cluster = several_ranks(request);
+  // Across ranks the tiles are the larger ones handed out; rank 0 shows their progress.
+  const int64_t tile_count = sampling_tile_count(region.width(), region.height(),
+                                                 cluster ? kDistributedTileSize : tile);
+  ProgressReporter progress("render", static_cast<uint64_t>(tile_count), "tiles",
+                            request.quiet || (cluster && !cluster->root()));
   // Counts are per thread and summed at the end; the random stream is reseeded per ray from the
   // pixel that holds the sample point, so values never depend on the thread.
   tbb::enumerable_thread_specific<TraceContext> contexts;
@@ -36,23 +39,18 @@ void RayTracingMethod::render(const Scene& scene, const RenderRequest& request, 
   };
   SamplingResult result;
   std::atomic<int64_t> tiles_done{0};
-  int64_t tiles_in_all = tile_count;
   bool interrupted = false;
-  if (distributed) {
+  if (cluster) {
     // Across ranks (issue 11): larger tiles, each sampled like a region of its own — every
     // sample point's value is a function of the point, so the tiles join into the same image —
     // with the per-pixel counts (--aa-map, --stats) sent along with the pixels.
-    Cluster& cluster = *request.cluster;
     const std::size_t pixel_count = std::size_t(region.width()) * region.height();
-    if (cluster.root()) {
+    if (cluster->root()) {
       result.traced_per_pixel.assign(pixel_count, 0);
       result.samples_per_pixel.assign(pixel_count, 0);
     }
-    const std::vector<PixelRect> tiles = distributed_tiles(region);
-    tiles_in_all = static_cast<int64_t>(tiles.size());
-    ProgressReporter tile_progress("render", tiles.size(), "tiles", request.quiet || !cluster.root());
     const TiledRender run = render_tiles_across_ranks(
-        cluster, region,
+        *cluster, region,
         [&](const PixelRect& piece) {
           RenderedTile rendered{Film(piece.width(), piece.height()), {}};
           const SamplingRegion sampling{piece.x0, piece.y0, scene.camera->width(), scene.camera->height()};
@@ -72,11 +70,10 @@ void RayTracingMethod::render(const Scene& scene, const RenderRequest& request, 
               result.samples_per_pixel[to] = counts[size + from];
             }
         },
-        &tile_progress);
-    tile_progress.finish();
+        &progress);
     tiles_done = static_cast<int64_t>(run.tiles_done);
     interrupted = run.interrupted;
-    statistics.extra["distributed"] = distributed_facts(cluster, run.tiles_by_rank, "tiles");
+    statistics.extra["distributed"] = distributed_facts(*cluster, run.tiles_by_rank, "tiles");
   } else {
     const SamplingRegion sampling{region.x0, region.y0, scene.camera->width(), scene.camera->height()};
     result = sample_image(scene.antialiasing, scene.render.seed, sampling, tile, radiance, film, [&] {
@@ -87,11 +84,11 @@ void RayTracingMethod::render(const Scene& scene, const RenderRequest& request, 
   progress.finish();
   if (interrupted || cancel_requested()) {  // Ctrl-C: the tiles not rendered are black
     statistics.extra["interrupted"] = true;
-    statistics.extra["completed"] = fmt::format("{} of {} tiles", tiles_done.load(), tiles_in_all);
+    statistics.extra["completed"] = fmt::format("{} of {} tiles", tiles_done.load(), tile_count);
   }
   RayCounts total;
   for (const TraceContext& context : contexts) total += context.counts;
-  if (request.cluster) sum_across_ranks(*request.cluster, total);
+  if (cluster) sum_across_ranks(*cluster, total);
   statistics.rays += total;
   statistics.pixels += static_cast<uint64_t>(region.width()) * region.height();
   statistics.primary_per_pixel = std::move(result.traced_per_pixel);

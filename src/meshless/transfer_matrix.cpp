@@ -25,6 +25,17 @@ std::size_t TransferMatrix::bytes() const {
          static_cast<std::size_t>(S.rows() + 1) * sizeof(int32_t);
 }
 
+namespace {
+
+// One entry of a row of S: a flat pair, so rows cross between ranks as arrays.
+struct Entry {
+  int32_t column;
+  float value;
+};
+using Row = std::vector<Entry>;
+
+}  // namespace
+
 TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Site>& sites,
                                        const std::vector<double>& effective_area, std::size_t max_entries,
                                        Cluster* cluster) {
@@ -34,12 +45,12 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
   const auto start = std::chrono::steady_clock::now();
   const std::size_t n = sites.size();
   TransferMatrix result;
-  std::vector<std::vector<std::pair<int32_t, float>>> rows(n);
+  std::vector<Row> rows(n);
   std::atomic<uint64_t> rays{0};
   std::atomic<std::size_t> kept{0};
   std::atomic<bool> too_many{false};
-  // Row j: what receiver j gathers from every other site.
-  const auto compute_row = [&](std::size_t j, std::vector<std::pair<int32_t, float>>& row) {
+  // Row j: what receiver j gathers from every other site; returns the visibility rays it traced.
+  const auto compute_row = [&](std::size_t j, Row& row) -> uint64_t {
     const Site& receiver = sites[j];
     const double receiver_offset = scene.ray_offset(receiver.position);
     uint64_t row_rays = 0;
@@ -66,16 +77,16 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
       ray.t_max = distance * (1 - 1e-9);
       ++row_rays;
       if (scene.occluded(ray)) continue;
-      row.emplace_back(static_cast<int32_t>(k), static_cast<float>(transfer));
+      row.push_back({static_cast<int32_t>(k), static_cast<float>(transfer)});
     }
     // A receiver sees at most its hemisphere: Σ_k F A_k ≤ 1 (000 eq. 6-6 for closed scenes). Near a
     // corner eq. 5.2 overshoots (the sites across it are closer than their areas are wide); such
     // a row is scaled back to 1, or the iteration would diverge.
     double row_sum = 0;
-    for (const auto& entry : row) row_sum += entry.second;
+    for (const Entry& entry : row) row_sum += entry.value;
     if (row_sum > 1)
-      for (auto& entry : row) entry.second = static_cast<float>(entry.second / row_sum);
-    rays += row_rays;
+      for (Entry& entry : row) entry.value = static_cast<float>(entry.value / row_sum);
+    return row_rays;
   };
   const auto keep = [&](std::size_t entries) {
     if (max_entries > 0 && (kept += entries) > max_entries) too_many = true;
@@ -83,7 +94,7 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
   if (!cluster || !cluster->distributed()) {
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t j) {
       if (too_many.load(std::memory_order_relaxed)) return;
-      compute_row(j, rows[j]);
+      rays += compute_row(j, rows[j]);
       keep(rows[j].size());
     });
   } else {
@@ -95,29 +106,21 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
     // A chunk's rows as bytes: what a rank sends, and what rank 0 rebuilds from `rows` to pass on.
     // The header holds the chunk's entry count as computed: past the limit rank 0 keeps no rows,
     // and every rank must still count them to refuse the matrix alike.
-    const auto chunk_bytes = [](uint64_t chunk_rays, uint64_t chunk_entries,
-                                const std::vector<std::pair<int32_t, float>>* chunk_rows, std::size_t count) {
+    const auto chunk_bytes = [](uint64_t chunk_rays, uint64_t chunk_entries, const Row* chunk_rows, std::size_t count) {
       ByteWriter writer;
       writer.put<uint64_t>(chunk_rays);
       writer.put<uint64_t>(chunk_entries);
-      for (std::size_t k = 0; k < count; ++k) {
-        const auto& row = chunk_rows[k];
-        std::vector<int32_t> columns;
-        std::vector<float> values;
-        for (const auto& [column, value] : row) columns.push_back(column), values.push_back(value);
-        writer.put_array(columns);
-        writer.put_array(values);
-      }
+      for (std::size_t k = 0; k < count; ++k) writer.put_array(chunk_rows[k]);
       return writer.take();
     };
     run_task_farm_everywhere(*cluster, tasks, [&](std::size_t task) {
       const std::size_t first = task * chunk, count = std::min(chunk, n - first);
-      std::vector<std::vector<std::pair<int32_t, float>>> chunk_rows(count);
-      const uint64_t rays_before = rays.load();
-      tbb::parallel_for(std::size_t(0), count, [&](std::size_t k) { compute_row(first + k, chunk_rows[k]); });
+      std::vector<Row> chunk_rows(count);
+      std::atomic<uint64_t> chunk_rays{0};
+      tbb::parallel_for(std::size_t(0), count, [&](std::size_t k) { chunk_rays += compute_row(first + k, chunk_rows[k]); });
       std::size_t entries = 0;
-      for (const auto& row : chunk_rows) entries += row.size();
-      return chunk_bytes(rays.load() - rays_before, entries, chunk_rows.data(), count);
+      for (const Row& row : chunk_rows) entries += row.size();
+      return chunk_bytes(chunk_rays.load(), entries, chunk_rows.data(), count);
     }, [&](std::size_t task, std::span<const std::byte> result) {
       const std::size_t first = task * chunk, count = std::min(chunk, n - first);
       ByteReader reader(result);
@@ -125,13 +128,9 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
       task_entries[task] = reader.get<uint64_t>();
       keep(task_entries[task]);
       for (std::size_t k = 0; k < count; ++k) {
-        const std::vector<int32_t> columns = reader.get_array<int32_t>();
-        const std::vector<float> values = reader.get_array<float>();
-        auto& row = rows[first + k];
-        row.clear();
+        Row row = reader.get_array<Entry>();
         // Past the limit nothing more is kept (the build is refused below): memory stays bounded.
-        if (too_many) continue;
-        for (std::size_t e = 0; e < columns.size(); ++e) row.emplace_back(columns[e], values[e]);
+        rows[first + k] = too_many ? Row() : std::move(row);
       }
     }, [&](std::size_t task) {
       const std::size_t first = task * chunk, count = std::min(chunk, n - first);
@@ -153,7 +152,7 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
   for (std::size_t j = 0; j < n; ++j) {
     result.S.startVec(static_cast<int32_t>(j));
     for (const auto& [k, value] : rows[j]) result.S.insertBack(static_cast<int32_t>(j), k) = value;
-    std::vector<std::pair<int32_t, float>>().swap(rows[j]);
+    Row().swap(rows[j]);
   }
   result.S.finalize();
   result.visibility_rays = rays;
