@@ -33,15 +33,6 @@ namespace candela {
 
 namespace {
 
-const char* solver_name(RadiositySolver solver) {
-  switch (solver) {
-    case RadiositySolver::progressive: return "progressive";
-    case RadiositySolver::gauss_seidel: return "gauss-seidel";
-    case RadiositySolver::gaussian: return "gaussian";
-  }
-  return "?";
-}
-
 double channel_sum(const Color& c) { return c.r + c.g + c.b; }
 
 // Orients the hemicube around a surface's normal: its first edge (never along the normal).
@@ -559,8 +550,8 @@ RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohm
   result.solve_seconds = solve_time.seconds();
   if (statistics) {
     nlohmann::json& out = *statistics;
-    out = {{"solver", solver_name(settings.solver)},
-           {"form_factors", settings.form_factors == RadiosityFormFactors::hemicube ? "hemicube" : "ray-cast"},
+    out = {{"solver", kRadiositySolverNames.name(settings.solver)},
+           {"form_factors", kRadiosityFormFactorNames.name(settings.form_factors)},
            {"hemicube_resolution", settings.hemicube_resolution},
            {"patches", patch_count},
            {"elements", mesh.elements.size()},
@@ -720,16 +711,6 @@ Color element_outline(const RadiositySolveResult& solution, uint32_t element, co
   return solution.element_radiosity[element];
 }
 
-const char* display_name(RadiosityDisplay display) {
-  switch (display) {
-    case RadiosityDisplay::flat: return "flat";
-    case RadiosityDisplay::gouraud: return "gouraud";
-    case RadiosityDisplay::ray_traced: return "ray-traced";
-    case RadiosityDisplay::elements: return "elements";
-  }
-  return "?";
-}
-
 }  // namespace
 
 RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet) { return solve_with_statistics(scene, quiet, nullptr); }
@@ -884,7 +865,7 @@ void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, F
   const auto pixel_count = static_cast<uint64_t>(region.width()) * region.height();
   if (display != RadiosityDisplay::gouraud) statistics.rays.primary += pixel_count;  // rasterized: none
   statistics.pixels += pixel_count;
-  facts["display"] = display_name(display);
+  facts["display"] = kRadiosityDisplayNames.name(display);
   facts["display_seconds"] = display_time.seconds();
   statistics.extra["radiosity"] = std::move(facts);
 }

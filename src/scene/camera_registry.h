@@ -5,7 +5,7 @@
 #include <string_view>
 
 #include "camera/camera.h"
-#include "scene/json_node.h"
+#include "io/json_node.h"
 
 namespace candela {
 

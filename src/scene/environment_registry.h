@@ -16,7 +16,7 @@
 #include <span>
 #include <string_view>
 
-#include "scene/json_node.h"
+#include "io/json_node.h"
 #include "scene/load_context.h"
 #include "shading/environment.h"
 #include "shading/texture_image.h"

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "math/transform.h"
-#include "scene/json_node.h"
+#include "io/json_node.h"
 
 namespace candela {
 

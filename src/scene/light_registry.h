@@ -4,7 +4,7 @@
 #include <span>
 #include <string_view>
 
-#include "scene/json_node.h"
+#include "io/json_node.h"
 #include "scene/light.h"
 
 namespace candela {

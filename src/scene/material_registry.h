@@ -9,7 +9,7 @@
 #include <span>
 #include <string_view>
 
-#include "scene/json_node.h"
+#include "io/json_node.h"
 #include "scene/load_context.h"
 #include "shading/material.h"
 

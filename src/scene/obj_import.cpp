@@ -165,7 +165,7 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
     if (!is_finite(p))
       throw fail("OBJ file " + quoted(path) + ": vertex " + std::to_string(i + 1) +
                  " has a non-finite coordinate");
-    // The scene file's limit (scene/json_node.cpp): beyond it squared distances lose all
+    // The scene file's limit (io/json_node.cpp): beyond it squared distances lose all
     // precision and ray offsets stop working.
     const double magnitude = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
     if (magnitude > 1e16)

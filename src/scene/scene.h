@@ -13,6 +13,7 @@
 #include "camera/antialiasing.h"
 #include "camera/camera.h"
 #include "camera/tone_map.h"
+#include "radiosity/radiosity_settings.h"  // (until the methods own their settings)
 #include "scene/light.h"
 #include "shading/material.h"
 #include "util/error.h"
@@ -47,41 +48,6 @@ struct RasterSettings {
   int segments = 32;           // tessellation: divisions of a full turn
   double crease_angle = 60;    // degrees: sharper edges keep two normals at a vertex
   bool shadows = false;        // shadow rays from the shaded points (through the accelerator)
-};
-
-// The radiosity method (SPEC §10; 000 §6): the "radiosity" object of the scene file.
-enum class RadiositySolver { progressive, gauss_seidel, gaussian };
-// hemicube: 000 §6.4; ray_cast: Lambert's point-to-polygon form factor times the visible fraction
-// of ray_cast_samples² rays through the accelerator (radiosity/ray_cast_form_factors.h).
-enum class RadiosityFormFactors { hemicube, ray_cast };
-// How the solution is shown (000 §6.5): one radiosity per element, or vertex radiosities
-// interpolated across each element (Gouraud).
-enum class RadiosityDisplay { flat, gouraud, ray_traced, elements };
-
-struct RadiositySettings {
-  RadiositySolver solver = RadiositySolver::progressive;
-  RadiosityFormFactors form_factors = RadiosityFormFactors::hemicube;
-  int hemicube_resolution = 100;  // even, ≥ 2 (000 §6.4)
-  int ray_cast_samples = 4;       // per side of the source: 16 visibility rays per form factor
-  double patch_size = 0;          // the longest patch edge; 0: the scene size / 8
-  double element_size = 0;        // the longest element edge; 0: patch_size / 2
-  int segments = 16;              // tessellation of curved shapes: divisions of a full turn
-  // progressive: stop when the unshot flux is this fraction of the emitted flux (000 §6.6);
-  // gauss-seidel: stop when a sweep changes no radiosity by more than this fraction of max B.
-  double threshold = 0.001;
-  int max_steps = 100000;  // shots (progressive) or sweeps (gauss-seidel) at most
-  bool ambient = true;     // progressive: add the ambient term of 000 §6.6.2 for display
-  RadiosityDisplay display = RadiosityDisplay::gouraud;
-  // Adaptive subdivision (000 §6.7.2): after a solution, every element whose radiosity differs
-  // from a neighbour's by more than this fraction of the largest reflected radiosity is split,
-  // and the scene solved again, until no pair differs by more (0: off) or the elements reach
-  // min_element_size.
-  double subdivision_threshold = 0;
-  double min_element_size = 0;  // 0: element_size / 8
-  // Cut surfaces where other objects meet them before meshing (the remedy for light leaks).
-  bool split_at_contacts = false;
-  // The memory the stored form factors may take (MiB); 0: half the machine's memory.
-  double memory_limit_mib = 0;
 };
 
 // The meshless method's settings (SPEC §11, seed 002): scene key "meshless".

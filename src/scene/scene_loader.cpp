@@ -15,7 +15,7 @@
 #include "camera/pixel_filter.h"
 #include "scene/camera_registry.h"
 #include "scene/environment_registry.h"
-#include "scene/json_node.h"
+#include "io/json_node.h"
 #include "scene/json_transform.h"
 #include "scene/light_registry.h"
 #include "scene/load_context.h"
@@ -182,7 +182,7 @@ class SceneReader {
       scene_->raster.shadows = raster->boolean("shadows", false);
       raster->finish();
     }
-    if (const auto radiosity = root_.get("radiosity")) read_radiosity(*radiosity);
+    if (const auto radiosity = root_.get("radiosity")) scene_->radiosity = read_radiosity_settings(*radiosity);
     if (const auto meshless = root_.get("meshless")) read_meshless(*meshless);
     if (const auto path = root_.get("path")) read_path(*path);
     if (const auto local = root_.get("local")) {
@@ -231,45 +231,6 @@ class SceneReader {
                                                : MeshlessDisplay::hybrid;
     settings.shepard_power = node.number("shepard_power", 2.0, {0, 16, false, false});
     settings.max_sites = node.integer("max_sites", 50000, {1, 1 << 22, false, false});
-    node.finish();
-  }
-
-  // The radiosity method's settings (SPEC §10, 000 §6); ranges checked, unknown keys refused.
-  void read_radiosity(const JsonNode& node) {
-    RadiositySettings& settings = scene_->radiosity;
-    node.expect_object();
-    const std::string solver = node.choice("solver", "progressive", {"progressive", "gauss-seidel", "gaussian"});
-    settings.solver = solver == "progressive"    ? RadiositySolver::progressive
-                      : solver == "gauss-seidel" ? RadiositySolver::gauss_seidel
-                                                 : RadiositySolver::gaussian;
-    settings.form_factors = node.choice("form_factors", "hemicube", {"hemicube", "ray-cast"}) == "hemicube"
-                                ? RadiosityFormFactors::hemicube
-                                : RadiosityFormFactors::ray_cast;
-    settings.ray_cast_samples = node.integer("ray_cast_samples", 4, {1, 64, false, false});
-    // 1024: 12 MiB of item buffers per thread; the error falls as 1/R² (000 §6.4), so more buys nothing.
-    settings.hemicube_resolution = node.integer("hemicube_resolution", 100, {2, 1024, false, false});
-    if (settings.hemicube_resolution % 2 != 0) node.at("hemicube_resolution").fail("hemicube_resolution must be even");
-    settings.patch_size = node.number("patch_size", 0.0, Range::non_negative());
-    settings.element_size = node.number("element_size", 0.0, Range::non_negative());
-    if (settings.patch_size > 0 && settings.element_size > settings.patch_size)
-      node.at("element_size").fail("element_size must not exceed patch_size");
-    settings.segments = node.integer("segments", 16, {3, 4096, false, false});
-    settings.threshold = node.number("threshold", 0.001, {0, 1, true, false});
-    settings.max_steps = node.integer("max_steps", 100000, {1, 1 << 30, false, false});
-    settings.ambient = node.boolean("ambient", true);
-    const std::string display = node.choice("display", "gouraud", {"flat", "gouraud", "ray-traced", "elements"});
-    settings.display = display == "flat"         ? RadiosityDisplay::flat
-                       : display == "gouraud"    ? RadiosityDisplay::gouraud
-                       : display == "ray-traced" ? RadiosityDisplay::ray_traced
-                                                 : RadiosityDisplay::elements;
-    settings.subdivision_threshold = node.number("subdivision_threshold", 0.0, Range::unit());
-    settings.min_element_size = node.number("min_element_size", 0.0, Range::non_negative());
-    // The element size the mesh will use when one is given (element_size, else patch_size / 2).
-    const double element_size = settings.element_size > 0 ? settings.element_size : settings.patch_size / 2;
-    if (settings.min_element_size > 0 && element_size > 0 && settings.min_element_size > element_size)
-      node.at("min_element_size").fail("min_element_size must not exceed element_size");
-    settings.memory_limit_mib = node.number("memory_limit_mib", 0.0, Range::non_negative());
-    settings.split_at_contacts = node.boolean("split_at_contacts", false);
     node.finish();
   }
 

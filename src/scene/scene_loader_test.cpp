@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "scene/json_document.h"
+#include "io/json_document.h"
 
 namespace candela {
 namespace {

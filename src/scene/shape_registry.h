@@ -8,7 +8,7 @@
 
 #include "geometry/shape.h"
 #include "math/transform.h"
-#include "scene/json_node.h"
+#include "io/json_node.h"
 #include "scene/load_context.h"
 
 namespace candela {

@@ -19,7 +19,7 @@
 #include "io/image_writer.h"
 #include "math/constants.h"
 #include "scene/environment_registry.h"
-#include "scene/json_document.h"
+#include "io/json_document.h"
 #include "util/error.h"
 
 namespace candela {

@@ -1,4 +1,4 @@
-#include "scene/json_node.h"
+#include "io/json_node.h"
 
 #include <cmath>
 #include <fmt/format.h>

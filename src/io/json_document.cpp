@@ -1,4 +1,4 @@
-#include "scene/json_document.h"
+#include "io/json_document.h"
 
 #include <algorithm>
 #include <charconv>

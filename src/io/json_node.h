@@ -12,7 +12,8 @@
 
 #include "math/constants.h"
 #include "math/vector.h"
-#include "scene/json_document.h"
+#include "io/json_document.h"
+#include "util/enum_names.h"
 
 namespace candela {
 
@@ -66,6 +67,18 @@ class JsonNode {
   // A string that must be one of the choices.
   std::string choice(std::string_view key, const std::string& fallback,
                      std::initializer_list<std::string_view> choices) const;
+  // A string naming one of the table's values; fails listing the names otherwise.
+  template <typename Enum, std::size_t N>
+  Enum enumeration(std::string_view key, Enum fallback, const EnumNames<Enum, N>& names) const {
+    const auto node = get(key);
+    return node ? node->as_enumeration(names) : fallback;
+  }
+  template <typename Enum, std::size_t N>
+  Enum as_enumeration(const EnumNames<Enum, N>& names) const {
+    const std::string text = as_string();
+    if (const auto value = names.value(text)) return *value;
+    fail("unknown value \"" + text + "\" (expected one of: " + names.names() + ")");
+  }
   // Marks keys that are read elsewhere as known without reading them.
   void allow(std::initializer_list<std::string_view> keys) const;
   // Fails on the first member nobody asked about.
