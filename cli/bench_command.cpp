@@ -32,7 +32,7 @@
 #include "commands.h"
 #include "integrators/meshless_method.h"
 #include "integrators/radiosity_method.h"
-#include "scene/scene_loader.h"
+#include "integrators/scene_loading.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/statistics.h"
@@ -318,7 +318,8 @@ int run_meshless_bench_command(const BenchCommandOptions& options) {
                                          "threads", "sites", "entries", "density", "S MiB", "sample s", "areas s",
                                          "S s", "iters", "solve s", "peak MiB");
   return run_scene_solve_bench(options, "meshless", header, [&](const Scene& scene, nlohmann::json& facts) {
-    const MeshlessSolution solution = solve_meshless(scene, &facts);
+    const MeshlessSolution solution =
+        solve_meshless(scene, read_meshless_settings(scene.plugin_settings.node("meshless")), &facts);
     return fmt::format("{:>7} {:>12} {:>8.4f} {:>9.1f} {:>10.3f} {:>10.3f} {:>10.3f} {:>6} {:>9.3f}",
                        solution.sites.sites.size(), solution.matrix.entries(), solution.matrix.density(),
                        solution.matrix.bytes() / 1048576.0, facts.value("sampling_seconds", 0.0),

@@ -17,7 +17,6 @@
 #include "output_paths.h"
 #include "distributed/cluster.h"
 #include "integrators/method_registry.h"
-#include "integrators/ray_tracing_method.h"
 #include "io/image_writer.h"
 #include "radiosity/solution_export.h"
 #include "scene/scene_loader.h"
@@ -234,6 +233,19 @@ int report_interrupted_before(std::size_t skipped, const char* what) {
   return kInterruptedExitCode;
 }
 
+// "--export-solution needs --method radiosity (the method is whitted)": the methods that can, from
+// their capabilities.
+[[noreturn]] void refuse_option(const std::string& option_needs, bool MethodCapabilities::*capability,
+                                const MethodEntry& entry) {
+  std::vector<std::string_view> able;
+  for (const MethodEntry& candidate : method_entries())
+    if (candidate.capabilities.*capability) able.push_back(candidate.name);
+  std::string names;
+  for (std::size_t i = 0; i < able.size(); ++i)
+    names += (i == 0 ? "" : i + 1 == able.size() ? " or " : ", ") + std::string(able[i]);
+  throw BadArgument(option_needs + " --method " + names + " (the method is " + std::string(entry.name) + ")");
+}
+
 int print_pixel_ray_trees(const RenderOptions& options, Scene& scene, const std::vector<View>& views,
                           const Method& method) {
   for (const View& view : views) {
@@ -243,12 +255,10 @@ int print_pixel_ray_trees(const RenderOptions& options, Scene& scene, const std:
       throw BadArgument(fmt::format("--pixel X,Y must lie in the {}x{} image{}", camera.width(), camera.height(),
                                     views.size() > 1 ? " of camera " + view.name : std::string()));
   }
-  const auto* tracer = dynamic_cast<const RayTracingMethod*>(&method);
-  if (!tracer) throw BadArgument("--pixel needs a ray-tracing method (local or whitted)");
   for (const View& view : views) {
     const CurrentCamera current(scene, view);
     Color radiance;
-    const RayTree tree = tracer->pixel_ray_tree(scene, options.pixel[0], options.pixel[1], radiance);
+    const RayTree tree = method.pixel_ray_tree(scene, options.pixel[0], options.pixel[1], radiance);
     if (views.size() > 1) std::cout << "camera " << view.name << ":\n";
     std::cout << fmt::format("pixel ({}, {}) with method {}: radiance [{:.6g}, {:.6g}, {:.6g}]\n",
                              options.pixel[0], options.pixel[1], method.name(), radiance.r, radiance.g,
@@ -355,19 +365,16 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
     throw InputError(where, "unknown method \"" + scene->render.method + "\" (expected one of: " +
                                 method_names() + ")");
   }
-  // Only radiosity computes a view-independent solution; anything else would silently ignore it.
-  if (!options.export_solution.empty() && entry->name != "radiosity")
-    throw BadArgument("--export-solution needs --method radiosity (the method is " + std::string(entry->name) + ")");
-  if (!options.show_sites.empty() && entry->name != "meshless")
-    throw BadArgument("--show-sites needs --method meshless (the method is " + std::string(entry->name) + ")");
-  if ((options.spp || options.time) && entry->name != "path")
-    throw BadArgument("--spp and --time need --method path (the method is " + std::string(entry->name) + ")");
+  // An output the method cannot give would be silently missing: refused before any work.
+  const MethodCapabilities& can = entry->capabilities;
+  if (!options.export_solution.empty() && !can.solution) refuse_option("--export-solution needs", &MethodCapabilities::solution, *entry);
+  if (!options.show_sites.empty() && !can.sites_image) refuse_option("--show-sites needs", &MethodCapabilities::sites_image, *entry);
+  if ((options.spp || options.time) && !can.progressive_passes)
+    refuse_option("--spp and --time need", &MethodCapabilities::progressive_passes, *entry);
   const bool checkpoint_options = !options.checkpoint.empty() || options.checkpoint_every || !options.resume.empty();
-  if (checkpoint_options && entry->name != "path" && entry->name != "radiosity")
-    throw BadArgument("--checkpoint, --checkpoint-every and --resume need --method path or radiosity (the method is " +
-                      std::string(entry->name) + ")");
-  if (!relight_frames.empty() && entry->name != "meshless")
-    throw BadArgument("--relight needs --method meshless (the method is " + std::string(entry->name) + ")");
+  if (checkpoint_options && !can.checkpoints)
+    refuse_option("--checkpoint, --checkpoint-every and --resume need", &MethodCapabilities::checkpoints, *entry);
+  if (!relight_frames.empty() && !can.relighting) refuse_option("--relight needs", &MethodCapabilities::relighting, *entry);
   job.views = select_views(camera_requests, *scene);
   const std::vector<View>& views = job.views;
   if (!options.resume.empty() && views.size() != 1)
@@ -379,12 +386,11 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   }
   // One method object renders every view, so what it keeps between renders (a radiosity
   // solution) is computed once.
-  job.method = entry->create();
-  if (!options.aa_map_path.empty() && !dynamic_cast<const RayTracingMethod*>(job.method.get()))
-    throw BadArgument("--aa-map needs a ray-tracing method (local or whitted)");
+  job.method = create_method(*entry, *scene);
+  if (!options.aa_map_path.empty() && !can.samples_per_pixel)
+    refuse_option("--aa-map needs", &MethodCapabilities::samples_per_pixel, *entry);
   if (!options.pixel.empty()) {  // printed instead of rendering: checked here, printed by the caller
-    const auto* tracer = dynamic_cast<const RayTracingMethod*>(job.method.get());
-    if (!tracer) throw BadArgument("--pixel needs a ray-tracing method (local or whitted)");
+    if (!can.ray_trees) refuse_option("--pixel needs", &MethodCapabilities::ray_trees, *entry);
     return;
   }
 
@@ -406,8 +412,7 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
     if (!options.checkpoint.empty())
       check_writable(path_for_view(options.checkpoint, view, views.size()), "--checkpoint");
   }
-  const bool checkpointed = entry->name == "path" || entry->name == "radiosity";
-  job.fingerprint = checkpointed ? scene_fingerprint(options.scene, *scene) : std::string();
+  job.fingerprint = can.checkpoints ? scene_fingerprint(options.scene, *scene) : std::string();
 
 }
 
@@ -465,6 +470,21 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
     const std::string output = path_for_view(options.output, view, views.size());
     const std::string stats_path = path_for_view(options.stats_path, view, views.size());
     const std::string aa_map_path = path_for_view(options.aa_map_path, view, views.size());
+    const CurrentCamera current(*scene, view);
+    const PixelRect region = regions[v];
+    RenderRequest request;
+    request.region = region;
+    request.quiet = options.quiet;
+    request.sites_image = !options.show_sites.empty();
+    request.checkpoint = path_for_view(options.checkpoint, view, views.size());
+    request.resume = options.resume;
+    // A view-independent solution (radiosity) is the same for every view; an image is not.
+    request.fingerprint = entry->capabilities.solution ? fingerprint : fingerprint + " camera " + view.name;
+    if (options.checkpoint_every) request.checkpoint_interval = *options.checkpoint_every;
+    request.cluster = &cluster;
+    Stopwatch render_timer;
+    RenderResult result = method->render(*scene, request);
+    const Film& film = result.film;
     RunStatistics statistics;
     statistics.threads = threads;
     // Loading and building are done once, before the first view: they count in its statistics
@@ -473,23 +493,7 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
       statistics.add_phase("load", load_seconds);
       statistics.add_phase("build", build_seconds);
     }
-    const CurrentCamera current(*scene, view);
-    const PixelRect region = regions[v];
-    Film film(region.width(), region.height());
-    RenderRequest request;
-    request.region = region;
-    request.quiet = options.quiet;
-    // The solution is the same for every view: written once, with the first.
-    if (v == 0) request.export_solution = options.export_solution;
-    if (!options.show_sites.empty()) request.show_sites = path_for_view(options.show_sites, view, views.size());
-    request.checkpoint = path_for_view(options.checkpoint, view, views.size());
-    request.resume = options.resume;
-    // A radiosity solution is the same for every view; a path-traced image is not.
-    request.fingerprint = entry->name == "path" ? fingerprint + " camera " + view.name : fingerprint;
-    if (options.checkpoint_every) request.checkpoint_interval = *options.checkpoint_every;
-    request.cluster = &cluster;
-    Stopwatch render_timer;
-    method->render(*scene, request, film, statistics);
+    statistics.absorb(std::move(result.statistics));
     statistics.add_phase("render", render_timer.seconds());
     // A method's warning about its result (the path tracer: nothing emits light).
     const auto& method_facts = statistics.extra[std::string(method->name())];
@@ -503,6 +507,17 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
     Stopwatch write_timer;
     write_image(film, output, scene->display);
     if (!aa_map_path.empty()) write_aa_map(statistics, film.width(), film.height(), aa_map_path);
+    nlohmann::json& method_facts_out = statistics.extra[std::string(method->name())];
+    if (result.sites_image) {
+      const std::string sites_path = path_for_view(options.show_sites, view, views.size());
+      write_image(*result.sites_image, sites_path, scene->display);
+      method_facts_out["sites_image"] = sites_path;
+    }
+    // The solution is the same for every view: written once, with the first.
+    if (v == 0 && !options.export_solution.empty() && result.solution) {
+      export_solution(*result.solution, options.export_solution, scene->display);
+      method_facts_out["exported_to"] = options.export_solution;
+    }
     statistics.add_phase("write", write_timer.seconds());
 
     statistics.extra["scene"] = scene->source;
@@ -530,15 +545,16 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
     std::swap(scene->lights, frame.lights);
     std::swap(scene->ambient, frame.ambient);
     const CurrentCamera current(*scene, views.front());
-    Film film(regions.front().width(), regions.front().height());
-    RunStatistics statistics;
-    statistics.threads = threads;
     RenderRequest request;
     request.region = regions.front();
     request.quiet = options.quiet;
     request.cluster = &cluster;
     Stopwatch render_timer;
-    method->render(*scene, request, film, statistics);
+    RenderResult result = method->render(*scene, request);
+    const Film& film = result.film;
+    RunStatistics statistics;
+    statistics.threads = threads;
+    statistics.absorb(std::move(result.statistics));
     statistics.add_phase("render", render_timer.seconds());
     std::swap(scene->lights, frame.lights);
     std::swap(scene->ambient, frame.ambient);
@@ -557,7 +573,7 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
     if (!options.quiet)
       std::cerr << fmt::format("candela: relit frame {} in {:.3f} s (lighting {:.3f} s), wrote {}\n", frame.name,
                                render_timer.seconds(),
-                               statistics.extra["meshless"].value("lighting_seconds", 0.0), output);
+                               statistics.extra[std::string(method->name())].value("lighting_seconds", 0.0), output);
     if (!options.stats_path.empty()) write_statistics(statistics, path_with_suffix(options.stats_path, frame.name));
     if (interrupted()) return report_interrupted(statistics, output, relight_frames.size() - f - 1);
   }

@@ -1,6 +1,6 @@
 #include "scene_options.h"
 
-#include "scene/scene_loader.h"
+#include "integrators/scene_loading.h"
 
 namespace candela::cli {
 

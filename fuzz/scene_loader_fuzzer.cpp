@@ -7,7 +7,7 @@
 #include <string>
 
 #include "fuzz_support.h"
-#include "scene/scene_loader.h"
+#include "integrators/scene_loading.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -14,7 +14,7 @@ size=(--set camera.width=40 --set camera.height=30)
 render() {  # NAME SCENE ARGS...
   local name="$1" scene="$2"
   shift 2
-  timeout 120 "$candela" render "$scene" -o "$out/$name.pfm" --quiet --threads 2 "${size[@]}" "$@" \
+  timeout -k 5 120 "$candela" render "$scene" -o "$out/$name.pfm" --quiet --threads 2 "${size[@]}" "$@" \
     >"$out/$name.log" 2>&1
   echo "$?" >"$out/$name.status"
 }

@@ -129,9 +129,9 @@ struct Candidate {
 std::vector<Candidate> every_accelerator() {
   std::vector<Candidate> candidates;
   for (const AcceleratorEntry& entry : accelerator_entries())
-    candidates.push_back({std::string(entry.name), entry.create(AcceleratorSettings{})});
+    candidates.push_back({std::string(entry.name), create_default_accelerator(entry)});
   for (const auto kind : {BoundingVolumeKind::sphere, BoundingVolumeKind::box, BoundingVolumeKind::slabs})
-    candidates.push_back({"list+" + std::string(bounding_volume_name(kind)), std::make_unique<PrimitiveList>(kind)});
+    candidates.push_back({"list+" + std::string(kBoundingVolumeNames.name(kind)), std::make_unique<PrimitiveList>(kind)});
   return candidates;
 }
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "render_support.h"
-#include "scene/scene_loader.h"
+#include "integrators/scene_loading.h"
 #include "scratch_directory.h"
 
 namespace candela {

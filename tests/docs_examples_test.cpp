@@ -4,7 +4,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "scene/scene_loader.h"
+#include "integrators/scene_loading.h"
 
 namespace candela {
 namespace {

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "render_support.h"
-#include "scene/scene_loader.h"
+#include "integrators/scene_loading.h"
 
 namespace candela {
 namespace {

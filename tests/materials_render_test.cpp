@@ -15,7 +15,7 @@
 #include "integrators/whitted.h"
 #include "io/image_writer.h"
 #include "render_support.h"
-#include "scene/scene_loader.h"
+#include "integrators/scene_loading.h"
 
 namespace candela {
 namespace {

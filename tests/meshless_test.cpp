@@ -10,10 +10,15 @@
 #include "integrators/method_registry.h"
 #include "integrators/meshless_method.h"
 #include "meshless/transfer_matrix.h"
-#include "scene/scene_loader.h"
+#include "integrators/scene_loading.h"
 
 namespace candela {
 namespace {
+
+// The scene's "meshless" object as the method reads it.
+MeshlessSettings meshless_settings(const Scene& scene) {
+  return read_meshless_settings(scene.plugin_settings.node("meshless"));
+}
 
 // The camera inside a closed sphere of radius 2 that emits E = 1 and reflects ρ = 0.5.
 std::unique_ptr<Scene> furnace(const std::string& meshless) {
@@ -30,7 +35,7 @@ TEST(MeshlessMethod, FurnaceGivesEOverOneMinusRho) {
   for (const std::string basis : {"normalized", "shepard"}) {
     const auto scene = furnace(R"({"basis": ")" + basis + R"(", "spacing": 0.3, "grid": 24, "rounds": 6})");
     nlohmann::json facts;
-    const MeshlessSolution solution = solve_meshless(*scene, &facts);
+    const MeshlessSolution solution = solve_meshless(*scene, meshless_settings(*scene), &facts);
     ASSERT_GT(solution.sites.sites.size(), 100u);
     EXPECT_TRUE(solution.transfer.converged);
     for (const Color& lambda : solution.transfer.lambda) EXPECT_NEAR(lambda.g, 2, 0.04) << basis;
@@ -51,7 +56,7 @@ TEST(MeshlessMethod, FurnaceGivesEOverOneMinusRho) {
 TEST(MeshlessMethod, ThesisEffectiveAreasOverestimate) {
   const auto scene = furnace(R"({"effective_area": "thesis", "spacing": 0.3, "grid": 24, "rounds": 6})");
   nlohmann::json facts;
-  const MeshlessSolution solution = solve_meshless(*scene, &facts);
+  const MeshlessSolution solution = solve_meshless(*scene, meshless_settings(*scene), &facts);
   EXPECT_GT(facts["effective_area_sum"].get<double>(), 1.03 * 16 * kPi);
   const auto& S = solution.matrix.S;
   for (int32_t j = 0; j < S.rows(); ++j) {
@@ -78,7 +83,7 @@ TEST(MeshlessTransfer, DivergenceIsReportedNotConverged) {
 // each row of S sums to the covered area over the sphere's, ≈ 1.
 TEST(MeshlessTransfer, RowsOfAClosedSphereSumToOne) {
   const auto scene = furnace(R"({"spacing": 0.3, "grid": 24, "rounds": 6})");
-  const MeshlessSolution solution = solve_meshless(*scene);
+  const MeshlessSolution solution = solve_meshless(*scene, meshless_settings(*scene));
   const auto& S = solution.matrix.S;
   for (int32_t j = 0; j < S.rows(); ++j) {
     double sum = 0;
@@ -153,14 +158,15 @@ TEST(MeshlessMethod, AnotherCameraSamplesItsOwnSites) {
     "camera": {"eye": [5, 4, 9.5], "target": [5, 4, 0], "fov": 60, "width": 12, "height": 12}, )" + shapes, "a.json", ".");
   const auto side = load_scene_text(R"({"format": "candela/1",
     "camera": {"eye": [9.5, 6, 5], "target": [0, 2, 5], "fov": 60, "width": 12, "height": 12}, )" + shapes, "b.json", ".");
-  const auto method = find_method("meshless")->create();
+  const auto method = create_method(*find_method("meshless"), *front);
   Film first(12, 12), second(12, 12), fresh(12, 12);
   RunStatistics statistics;
-  method->render(*front, {{0, 0, 12, 12}, true}, first, statistics);
+  testing::render_into(*method, *front, {{0, 0, 12, 12}, true}, first, statistics);
   std::swap(front->camera, side->camera);  // the same scene object, seen from the side
-  method->render(*front, {{0, 0, 12, 12}, true}, second, statistics);
+  testing::render_into(*method, *front, {{0, 0, 12, 12}, true}, second, statistics);
   EXPECT_FALSE(statistics.extra["meshless"]["geometry_reused"].get<bool>());
-  find_method("meshless")->create()->render(*front, {{0, 0, 12, 12}, true}, fresh, statistics);
+  testing::render_into(*create_method(*find_method("meshless"), *front), *front, {{0, 0, 12, 12}, true}, fresh,
+                       statistics);
   for (int y = 0; y < 12; ++y)
     for (int x = 0; x < 12; ++x) EXPECT_EQ(second.at(x, y).g, fresh.at(x, y).g);
 }
@@ -186,16 +192,17 @@ TEST(MeshlessMethod, ImageDoesNotDependOnTheThreadCount) {
 
 TEST(MeshlessMethod, SettingsAreCheckedAndUnknownKeysRefused) {
   const auto load = [](const std::string& meshless) { return furnace(meshless); };
-  EXPECT_EQ(load("{}")->meshless.basis, MeshlessBasisKind::normalized);
-  EXPECT_EQ(load(R"({"basis": "shepard"})")->meshless.basis, MeshlessBasisKind::shepard);
-  EXPECT_EQ(load(R"({"display": "indirect"})")->meshless.display, MeshlessDisplay::indirect);
+  EXPECT_EQ(meshless_settings(*load("{}")).basis, BasisKind::normalized);
+  EXPECT_EQ(meshless_settings(*load(R"({"basis": "shepard"})")).basis, BasisKind::shepard);
+  EXPECT_EQ(meshless_settings(*load(R"({"display": "indirect"})")).display, MeshlessDisplay::indirect);
   EXPECT_THROW(load(R"({"basis": "wavelet"})"), std::exception);
   EXPECT_THROW(load(R"({"neighbours": 0})"), std::exception);
   EXPECT_THROW(load(R"({"spacing": -1})"), std::exception);
   EXPECT_THROW(load(R"({"tolerance": 0})"), std::exception);
   EXPECT_THROW(load(R"({"spacng": 1})"), std::exception);
   // A spacing far too small for the scene is refused, not left to take hours and gigabytes.
-  EXPECT_THROW(solve_meshless(*load(R"({"spacing": 1e-9})")), std::invalid_argument);
+  const auto tiny = load(R"({"spacing": 1e-9})");
+  EXPECT_THROW(solve_meshless(*tiny, meshless_settings(*tiny)), std::invalid_argument);
 }
 
 }  // namespace

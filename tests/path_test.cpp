@@ -11,7 +11,7 @@
 #include "integrators/path_checkpoint.h"
 #include "integrators/path_tracer.h"
 #include "render_support.h"
-#include "scene/scene_loader.h"
+#include "integrators/scene_loading.h"
 #include "scratch_directory.h"
 #include "shading/bsdf.h"
 
@@ -47,7 +47,7 @@ Estimate irradiance(const Scene& scene, const Vec3& point, const Vec3& normal, i
   RayCounts rays;
   return estimate(n, [&](int i) {
     Pcg32 rng = path_pixel_rng(7, static_cast<uint64_t>(i), 0, 0);
-    return path_irradiance(scene, lights, point, normal, rng, rays);
+    return path_irradiance(scene, PathSettings{}, lights, point, normal, rng, rays);
   });
 }
 
@@ -203,14 +203,14 @@ TEST(PathTracer, ResumingACheckpointGivesTheUninterruptedImage) {
   const std::string checkpoint = (directory.path() / "box.checkpoint").string();
   const auto render = [&](int spp, const std::string& save, const std::string& resume) {
     const auto scene = small_box(spp);
-    const auto method = find_method("path")->create();
+    const auto method = create_method(*find_method("path"), *scene);
     Film film(scene->camera->width(), scene->camera->height());
     RenderRequest request{{0, 0, film.width(), film.height()}, true};
     request.checkpoint = save;
     request.resume = resume;
     request.fingerprint = "box";
     RunStatistics statistics;
-    method->render(*scene, request, film, statistics);
+    testing::render_into(*method, *scene, request, film, statistics);
     return film;
   };
   const Film uninterrupted = render(7, "", "");
@@ -227,13 +227,12 @@ TEST(PathTracer, ResumingACheckpointGivesTheUninterruptedImage) {
 TEST(PathTracer, CheckpointsAreWrittenEveryIntervalAndAtTheEnd) {
   const testing::ScratchDirectory directory("path-interval");
   auto scene = small_box(4);
-  scene->path.checkpoint_interval = 1e-9;
-  const auto method = find_method("path")->create();
+  const auto method = create_method(*find_method("path"), *scene, {"checkpoint_interval=1e-9"});
   Film film(scene->camera->width(), scene->camera->height());
   RenderRequest request{{0, 0, film.width(), film.height()}, true};
   request.checkpoint = (directory.path() / "every.ckpt").string();
   RunStatistics statistics;
-  method->render(*scene, request, film, statistics);
+  testing::render_into(*method, *scene, request, film, statistics);
   EXPECT_EQ(statistics.extra["path"]["checkpoints_written"], 4);  // after passes 1, 2, 3 and at the end
   EXPECT_EQ(read_path_checkpoint(request.checkpoint).passes, 4u);
 }

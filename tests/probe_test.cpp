@@ -8,7 +8,7 @@
 
 #include "integrators/probe.h"
 #include "math/constants.h"
-#include "scene/scene_loader.h"
+#include "integrators/scene_loading.h"
 #include "scratch_directory.h"
 
 namespace candela {

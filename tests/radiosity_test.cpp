@@ -16,10 +16,15 @@
 #include "integrators/radiosity_method.h"
 #include "integrators/whitted.h"
 #include "radiosity/solvers.h"
-#include "scene/scene_loader.h"
+#include "integrators/scene_loading.h"
 
 namespace candela {
 namespace {
+
+// The scene's "radiosity" object as the method reads it.
+RadiositySettings radiosity_settings(const Scene& scene) {
+  return read_radiosity_settings(scene.plugin_settings.node("radiosity"));
+}
 
 std::unique_ptr<Scene> scene_from(const std::string& body, const std::string& camera) {
   return load_scene_text(R"({"format": "candela/1", "camera": )" + camera + ", " + body + "}", "test.json", ".");
@@ -103,10 +108,10 @@ void expect_furnace(const std::string& radiosity) {
     EXPECT_NEAR(b.b, 2.5, 0.025);
   }
   // Through the whole method: every pixel shows the furnace's radiosity.
-  const auto method = find_method("radiosity")->create();
+  const auto method = create_method(*find_method("radiosity"), *scene);
   Film film(16, 16);
   RunStatistics statistics;
-  method->render(*scene, {{0, 0, 16, 16}, true}, film, statistics);
+  testing::render_into(*method, *scene, {{0, 0, 16, 16}, true}, film, statistics);
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 16; ++x) EXPECT_NEAR(film.at(x, y).g, 2.5, 0.025);
   const auto& facts = statistics.extra["radiosity"];
@@ -156,11 +161,11 @@ TEST(RadiosityMethod, FurnaceGaussianWithRayCastFormFactors) {
 
 TEST(RadiosityMethod, SettingsAreCheckedAndUnknownKeysRefused) {
   const auto load = [](const std::string& radiosity) { return scene_from(furnace_scene(radiosity), kFurnaceCamera); };
-  EXPECT_EQ(load("{}")->radiosity.hemicube_resolution, 100);
-  EXPECT_EQ(load("{}")->radiosity.solver, RadiositySolver::progressive);
-  EXPECT_EQ(load(R"({"solver": "gaussian"})")->radiosity.solver, RadiositySolver::gaussian);
-  EXPECT_EQ(load("{}")->radiosity.form_factors, RadiosityFormFactors::hemicube);
-  EXPECT_EQ(load(R"({"form_factors": "ray-cast"})")->radiosity.form_factors, RadiosityFormFactors::ray_cast);
+  EXPECT_EQ(radiosity_settings(*load("{}")).hemicube_resolution, 100);
+  EXPECT_EQ(radiosity_settings(*load("{}")).solver, RadiositySolver::progressive);
+  EXPECT_EQ(radiosity_settings(*load(R"({"solver": "gaussian"})")).solver, RadiositySolver::gaussian);
+  EXPECT_EQ(radiosity_settings(*load("{}")).form_factors, RadiosityFormFactors::hemicube);
+  EXPECT_EQ(radiosity_settings(*load(R"({"form_factors": "ray-cast"})")).form_factors, RadiosityFormFactors::ray_cast);
   EXPECT_THROW(load(R"({"ray_cast_samples": 0})"), std::exception);
   EXPECT_THROW(load(R"({"hemicube_resolution": 51})"), std::exception);
   EXPECT_THROW(load(R"({"hemicube_resolution": 0})"), std::exception);
@@ -170,13 +175,13 @@ TEST(RadiosityMethod, SettingsAreCheckedAndUnknownKeysRefused) {
   EXPECT_THROW(load(R"({"patch_size": 1, "element_size": 2})"), std::exception);
   EXPECT_THROW(load(R"({"patch_sise": 1})"), std::exception);
   EXPECT_THROW(load(R"({"hemicube_resolution": 2048})"), std::exception);  // 12 MiB per thread at most
-  EXPECT_EQ(load(R"({"hemicube_resolution": 1024})")->radiosity.hemicube_resolution, 1024);
+  EXPECT_EQ(radiosity_settings(*load(R"({"hemicube_resolution": 1024})")).hemicube_resolution, 1024);
   EXPECT_THROW(load(R"({"subdivision_threshold": 1.5})"), std::exception);
   EXPECT_THROW(load(R"({"element_size": 0.5, "min_element_size": 1})"), std::exception);
   EXPECT_THROW(load(R"({"memory_limit_mib": -1})"), std::exception);
-  EXPECT_FALSE(load("{}")->radiosity.split_at_contacts);
-  EXPECT_TRUE(load(R"({"split_at_contacts": true})")->radiosity.split_at_contacts);
-  EXPECT_EQ(load(R"({"display": "ray-traced"})")->radiosity.display, RadiosityDisplay::ray_traced);
+  EXPECT_FALSE(radiosity_settings(*load("{}")).split_at_contacts);
+  EXPECT_TRUE(radiosity_settings(*load(R"({"split_at_contacts": true})")).split_at_contacts);
+  EXPECT_EQ(radiosity_settings(*load(R"({"display": "ray-traced"})")).display, RadiosityDisplay::ray_traced);
 }
 
 // Issue 7: "A full-matrix solve that would not fit in memory is refused with a message naming
@@ -372,11 +377,11 @@ TEST(RadiosityMethod, SplittingAtContactsRemovesTheShadowLeakAroundTheBoxes) {
 TEST(RadiosityMethod, OneSolutionServesEveryView) {
   const auto scene = cornell_box({"camera.width=24", "camera.height=24", "radiosity.hemicube_resolution=30",
                                   "radiosity.threshold=0.02"});
-  const auto method = find_method("radiosity")->create();
+  const auto method = create_method(*find_method("radiosity"), *scene);
   Film first(24, 24), second(24, 24);
   RunStatistics first_statistics, second_statistics;
-  method->render(*scene, {{0, 0, 24, 24}, true}, first, first_statistics);
-  method->render(*scene, {{0, 0, 24, 24}, true}, second, second_statistics);
+  testing::render_into(*method, *scene, {{0, 0, 24, 24}, true}, first, first_statistics);
+  testing::render_into(*method, *scene, {{0, 0, 24, 24}, true}, second, second_statistics);
   EXPECT_FALSE(first_statistics.extra["radiosity"]["solution_reused"].get<bool>());
   EXPECT_TRUE(second_statistics.extra["radiosity"]["solution_reused"].get<bool>());
   for (int y = 0; y < 24; ++y)
@@ -385,22 +390,22 @@ TEST(RadiosityMethod, OneSolutionServesEveryView) {
   const auto other = cornell_box({"camera.width=24", "camera.height=24", "radiosity.hemicube_resolution=30",
                                   "radiosity.threshold=0.02"});
   RunStatistics other_statistics;
-  method->render(*other, {{0, 0, 24, 24}, true}, first, other_statistics);
+  testing::render_into(*method, *other, {{0, 0, 24, 24}, true}, first, other_statistics);
   EXPECT_FALSE(other_statistics.extra["radiosity"]["solution_reused"].get<bool>());
-  // The same scene object with other radiosity settings is solved afresh too.
-  other->radiosity.threshold = 0.05;
-  method->render(*other, {{0, 0, 24, 24}, true}, first, other_statistics);
+  // The same scene object with other radiosity settings (a method made with them) is solved afresh too.
+  const auto changed = create_method(*find_method("radiosity"), *other, {"threshold=0.05"});
+  testing::render_into(*changed, *other, {{0, 0, 24, 24}, true}, first, other_statistics);
   EXPECT_FALSE(other_statistics.extra["radiosity"]["solution_reused"].get<bool>());
-  method->render(*other, {{0, 0, 24, 24}, true}, first, other_statistics);
+  testing::render_into(*changed, *other, {{0, 0, 24, 24}, true}, first, other_statistics);
   EXPECT_TRUE(other_statistics.extra["radiosity"]["solution_reused"].get<bool>());
 }
 
 // 000 §6.5, SPEC §10 "Display": the radiosity.display setting, "gouraud" by default.
 TEST(RadiosityDisplay, SettingDefaultsToGouraudAndIsChecked) {
   const auto load = [](const std::string& radiosity) { return scene_from(furnace_scene(radiosity), kFurnaceCamera); };
-  EXPECT_EQ(load("{}")->radiosity.display, RadiosityDisplay::gouraud);
-  EXPECT_EQ(load(R"({"display": "flat"})")->radiosity.display, RadiosityDisplay::flat);
-  EXPECT_EQ(load(R"({"display": "gouraud"})")->radiosity.display, RadiosityDisplay::gouraud);
+  EXPECT_EQ(radiosity_settings(*load("{}")).display, RadiosityDisplay::gouraud);
+  EXPECT_EQ(radiosity_settings(*load(R"({"display": "flat"})")).display, RadiosityDisplay::flat);
+  EXPECT_EQ(radiosity_settings(*load(R"({"display": "gouraud"})")).display, RadiosityDisplay::gouraud);
   EXPECT_THROW(load(R"({"display": "phong"})"), std::exception);
 }
 
@@ -442,7 +447,7 @@ TEST(RadiosityDisplay, RayTracedViewMatchesGouraud) {
 TEST(RadiosityDisplay, ElementsDisplayOutlinesEveryElement) {
   const auto scene = scene_from(furnace_scene(R"({"display": "elements", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 40, "threshold": 1e-4, "ambient": false})"),
                                 R"({"eye": [1, 1, 1.9], "target": [1, 1, 0], "fov": 80, "width": 64, "height": 64})");
-  EXPECT_EQ(scene->radiosity.display, RadiosityDisplay::elements);
+  EXPECT_EQ(radiosity_settings(*scene).display, RadiosityDisplay::elements);
   RunStatistics statistics;
   const Film film = testing::render_scene(*scene, "radiosity", 2, statistics);
   EXPECT_EQ(statistics.extra["radiosity"]["display"], "elements");

@@ -9,7 +9,7 @@
 
 #include "integrators/method_registry.h"
 #include "render_support.h"
-#include "scene/scene_loader.h"
+#include "integrators/scene_loading.h"
 #include "util/error.h"
 
 namespace candela {

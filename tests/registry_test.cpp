@@ -14,7 +14,7 @@
 #include "scene/camera_registry.h"
 #include "scene/light_registry.h"
 #include "scene/material_registry.h"
-#include "scene/scene_loader.h"
+#include "integrators/scene_loading.h"
 #include "scene/shape_registry.h"
 
 namespace candela {
@@ -96,12 +96,12 @@ TEST_F(RegistryTest, EveryCameraFromItsExample) {
 
 TEST_F(RegistryTest, EveryMethodAndAccelerator) {
   for (const MethodEntry& entry : method_entries()) {
-    const auto method = entry.create();
+    const auto method = create_method(entry, *load_default_scene());
     EXPECT_EQ(method->name(), entry.name);
   }
   EXPECT_EQ(find_method("raytrace"), nullptr);
   for (const AcceleratorEntry& entry : accelerator_entries()) {
-    const auto accelerator = entry.create(AcceleratorSettings{});
+    const auto accelerator = create_default_accelerator(entry);
     EXPECT_EQ(accelerator->name(), entry.name);
   }
 }

@@ -10,7 +10,7 @@
 #include "io/image_reader.h"
 #include "io/image_writer.h"
 #include "render_support.h"
-#include "scene/scene_loader.h"
+#include "integrators/scene_loading.h"
 
 namespace candela {
 namespace {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "geometry/shape.h"
+#include "util/enum_names.h"
 
 namespace candela {
 
@@ -35,18 +36,11 @@ inline bool closer_hit(double t, uint32_t primitive, double best_t, uint32_t bes
   return t < best_t || (t == best_t && primitive < best_primitive);
 }
 
+// What the list tests per scene object before its primitives (accel/bounding_volume.h).
 enum class BoundingVolumeKind { none, sphere, box, slabs };
-
-// Build parameters of every accelerator (scene keys bvh.*, grid.*, octree.*).
-struct AcceleratorSettings {
-  // The list tests each scene object's volume before its primitives (accel/bounding_volume.h).
-  BoundingVolumeKind bounding_volume = BoundingVolumeKind::none;
-  int bvh_max_leaf_primitives = 4;  // a node with more is split (binned SAH)
-  int bvh_bins = 16;
-  double grid_density = 3.0;        // voxels ≈ density × primitives (Cleary & Wyvill; Woo)
-  int octree_max_primitives = 8;    // K: subdivide a voxel holding more (000 §5.7.2)
-  int octree_max_depth = 10;        // D
-};
+inline constexpr auto kBoundingVolumeNames = enum_names<BoundingVolumeKind>(
+    {{BoundingVolumeKind::none, "none"}, {BoundingVolumeKind::sphere, "sphere"}, {BoundingVolumeKind::box, "box"},
+     {BoundingVolumeKind::slabs, "slabs"}});
 
 // Quality figures printed next to timings (STYLE.md habit 8): nodes, leaves, depth, SAH cost…
 struct AcceleratorReport {

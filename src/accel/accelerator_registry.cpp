@@ -2,10 +2,10 @@
 
 #include <array>
 
+#include "accel/bvh.h"
+#include "accel/octree.h"
 #include "accel/primitive_list.h"
 #include "accel/uniform_grid.h"
-#include "accel/octree.h"
-#include "accel/bvh.h"
 #ifdef CANDELA_HAVE_EMBREE
 #include "accel/embree_accelerator.h"
 #endif
@@ -15,34 +15,60 @@
 namespace candela {
 
 namespace {
+
+template <typename Made>
+std::unique_ptr<Accelerator> finished(const JsonNode& settings, std::unique_ptr<Made> accelerator) {
+  settings.finish();  // unknown keys refused, naming the valid ones
+  return accelerator;
+}
+
 const std::array kEntries = {
     AcceleratorEntry{"list", "brute force: every ray against every primitive",
-                     [](const AcceleratorSettings& settings) -> std::unique_ptr<Accelerator> {
-                       return std::make_unique<PrimitiveList>(settings.bounding_volume);
+                     [](const JsonNode& settings, BoundingVolumeKind object_volume) -> std::unique_ptr<Accelerator> {
+                       settings.expect_object();
+                       return finished(settings, std::make_unique<PrimitiveList>(object_volume));
                      }},
     AcceleratorEntry{"grid", "uniform grid: L×M×N voxels from the object count, 3D-DDA traversal",
-                     [](const AcceleratorSettings& settings) -> std::unique_ptr<Accelerator> {
-                       return std::make_unique<UniformGrid>(settings.grid_density);
+                     [](const JsonNode& settings, BoundingVolumeKind) -> std::unique_ptr<Accelerator> {
+                       settings.expect_object();
+                       // voxels ≈ density × primitives (Cleary & Wyvill; Woo)
+                       const double density = settings.number("density", 3.0, {0, 1000, true, false});
+                       return finished(settings, std::make_unique<UniformGrid>(density));
                      }},
     AcceleratorEntry{"octree", "octree: split while a voxel holds more than K objects, ordered traversal",
-                     [](const AcceleratorSettings& settings) -> std::unique_ptr<Accelerator> {
-                       return std::make_unique<Octree>(settings.octree_max_primitives, settings.octree_max_depth);
+                     [](const JsonNode& settings, BoundingVolumeKind) -> std::unique_ptr<Accelerator> {
+                       settings.expect_object();
+                       // K: subdivide a voxel holding more; D: the depth at most (000 §5.7.2)
+                       const int max_primitives = settings.integer("max_primitives", 8, {1, 1 << 20, false, false});
+                       const int max_depth = settings.integer("max_depth", 10, {0, 32, false, false});
+                       return finished(settings, std::make_unique<Octree>(max_primitives, max_depth));
                      }},
     AcceleratorEntry{"bvh", "bounding volume hierarchy: binned SAH build, ordered traversal",
-                     [](const AcceleratorSettings& settings) -> std::unique_ptr<Accelerator> {
-                       return std::make_unique<Bvh>(settings);
+                     [](const JsonNode& settings, BoundingVolumeKind) -> std::unique_ptr<Accelerator> {
+                       settings.expect_object();
+                       BvhSettings bvh;
+                       bvh.max_leaf_primitives = settings.integer("max_leaf_primitives", 4, {1, 64, false, false});
+                       bvh.bins = settings.integer("bins", 16, {2, 256, false, false});
+                       return finished(settings, std::make_unique<Bvh>(bvh));
                      }},
 #ifdef CANDELA_HAVE_EMBREE
     AcceleratorEntry{"embree", "Embree's BVH over the primitives' bounds, hits from Candela's exact tests",
-                     [](const AcceleratorSettings&) -> std::unique_ptr<Accelerator> {
-                       return std::make_unique<EmbreeAccelerator>();
+                     [](const JsonNode& settings, BoundingVolumeKind) -> std::unique_ptr<Accelerator> {
+                       settings.expect_object();
+                       return finished(settings, std::make_unique<EmbreeAccelerator>());
                      }},
 #endif
 };
+
 }  // namespace
 
 std::span<const AcceleratorEntry> accelerator_entries() { return kEntries; }
 
 const AcceleratorEntry* find_accelerator(std::string_view name) { return find_entry<AcceleratorEntry>(kEntries, name); }
+
+std::unique_ptr<Accelerator> create_default_accelerator(const AcceleratorEntry& entry, BoundingVolumeKind object_volume) {
+  const JsonDocument defaults = JsonDocument::parse("{}", "<defaults>");
+  return entry.create(JsonNode(defaults, defaults.root(), std::string(entry.name)), object_volume);
+}
 
 }  // namespace candela

@@ -10,26 +10,6 @@
 
 namespace candela {
 
-bool bounding_volume_from_name(std::string_view name, BoundingVolumeKind& kind) {
-  for (const auto candidate : {BoundingVolumeKind::none, BoundingVolumeKind::sphere, BoundingVolumeKind::box,
-                               BoundingVolumeKind::slabs})
-    if (bounding_volume_name(candidate) == name) {
-      kind = candidate;
-      return true;
-    }
-  return false;
-}
-
-std::string_view bounding_volume_name(BoundingVolumeKind kind) {
-  switch (kind) {
-    case BoundingVolumeKind::none: return "none";
-    case BoundingVolumeKind::sphere: return "sphere";
-    case BoundingVolumeKind::box: return "box";
-    case BoundingVolumeKind::slabs: return "slabs";
-  }
-  return "none";
-}
-
 BoundingSphere BoundingSphere::around(std::span<const Vec3> points) {
   BoundingSphere sphere;
   if (points.empty()) return sphere;

@@ -13,10 +13,6 @@
 
 namespace candela {
 
-// False for an unknown name ("none", "sphere", "box", "slabs").
-bool bounding_volume_from_name(std::string_view name, BoundingVolumeKind& kind);
-std::string_view bounding_volume_name(BoundingVolumeKind kind);
-
 struct BoundingSphere {
   Vec3 center;
   double radius = 0;

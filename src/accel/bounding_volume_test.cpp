@@ -68,12 +68,11 @@ TEST(BoundingVolume, SlabsOfATriangleUseItsVertices) {
 
 TEST(BoundingVolume, NamesRoundTrip) {
   for (const char* name : {"none", "sphere", "box", "slabs"}) {
-    BoundingVolumeKind kind;
-    ASSERT_TRUE(bounding_volume_from_name(name, kind));
-    EXPECT_EQ(bounding_volume_name(kind), name);
+    const auto kind = kBoundingVolumeNames.value(name);
+    ASSERT_TRUE(kind);
+    EXPECT_EQ(kBoundingVolumeNames.name(*kind), name);
   }
-  BoundingVolumeKind kind;
-  EXPECT_FALSE(bounding_volume_from_name("capsule", kind));
+  EXPECT_FALSE(kBoundingVolumeNames.value("capsule"));
 }
 
 }  // namespace

@@ -290,8 +290,7 @@ void* bvh_allocate(std::size_t bytes) {
 
 void bvh_free(void* memory) noexcept { std::free(memory); }
 
-Bvh::Bvh(const AcceleratorSettings& settings)
-    : max_leaf_primitives_(settings.bvh_max_leaf_primitives), bins_(settings.bvh_bins) {
+Bvh::Bvh(const BvhSettings& settings) : max_leaf_primitives_(settings.max_leaf_primitives), bins_(settings.bins) {
   if (max_leaf_primitives_ < 1 || max_leaf_primitives_ > 1024)
     throw std::invalid_argument("bvh.max_leaf_primitives must be in [1, 1024], got " +
                                 std::to_string(max_leaf_primitives_));

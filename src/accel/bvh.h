@@ -59,9 +59,15 @@ struct BvhAllocator {
   bool operator==(const BvhAllocator<U>&) const { return true; }
 };
 
+// The scene file's "bvh" object.
+struct BvhSettings {
+  int max_leaf_primitives = 4;  // a node with more is split (binned SAH)
+  int bins = 16;
+};
+
 class Bvh final : public Accelerator {
  public:
-  explicit Bvh(const AcceleratorSettings& settings = {});
+  explicit Bvh(const BvhSettings& settings = {});
 
   void build(std::span<const Primitive> primitives) override;
   bool intersect(const Ray& ray, Intersection& intersection) const override;

@@ -103,7 +103,7 @@ struct Agreement {
 // Every ray gets the same nearest hit (index, t, normals, uv bit for bit) and the same
 // occlusion answers from the BVH as from the list.
 Agreement expect_same_as_list(const TestScene& scene, const std::vector<Ray>& rays,
-                              const AcceleratorSettings& settings = {}) {
+                              const BvhSettings& settings = {}) {
   PrimitiveList list;
   list.build(scene.primitives);
   Bvh bvh(settings);
@@ -208,11 +208,11 @@ TEST(Bvh, NameAndEmptyScene) {
 }
 
 TEST(Bvh, RejectsInvalidSettings) {
-  AcceleratorSettings settings;
-  settings.bvh_max_leaf_primitives = 0;
+  BvhSettings settings;
+  settings.max_leaf_primitives = 0;
   EXPECT_THROW(Bvh{settings}, std::invalid_argument);
   settings = {};
-  settings.bvh_bins = 1;
+  settings.bins = 1;
   EXPECT_THROW(Bvh{settings}, std::invalid_argument);
 }
 
@@ -243,9 +243,9 @@ TEST(Bvh, OtherSettingsMatchList) {
   const std::vector<Ray> rays = random_rays(rng, scene.bounds(), 1500);
   for (const auto& [max_leaf, bins] : {std::pair{1, 2}, std::pair{2, 64}, std::pair{8, 7}, std::pair{32, 16}}) {
     SCOPED_TRACE(testing::Message() << "max leaf " << max_leaf << ", bins " << bins);
-    AcceleratorSettings settings;
-    settings.bvh_max_leaf_primitives = max_leaf;
-    settings.bvh_bins = bins;
+    BvhSettings settings;
+    settings.max_leaf_primitives = max_leaf;
+    settings.bins = bins;
     EXPECT_GT(expect_same_as_list(scene, rays, settings).hits, 300);
   }
 }

@@ -94,7 +94,7 @@ std::unique_ptr<Accelerator> make_bench_accelerator(std::string_view name) {
   if (name == "embree-exact") return std::make_unique<EmbreeAccelerator>(EmbreeAccelerator::Mode::exact);
 #endif
   const AcceleratorEntry* entry = find_accelerator(name);
-  return entry ? entry->create(AcceleratorSettings{}) : nullptr;
+  return entry ? create_default_accelerator(*entry) : nullptr;
 }
 
 void write_ray_dump(const std::string& directory, const std::string& set, std::span<const BenchRay> rays) {

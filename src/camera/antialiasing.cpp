@@ -16,14 +16,6 @@ namespace candela {
 
 namespace {
 
-constexpr std::array<std::pair<const char*, AntialiasingMode>, 5> kModes{{
-    {"none", AntialiasingMode::none},
-    {"uniform", AntialiasingMode::uniform},
-    {"jittered", AntialiasingMode::jittered},
-    {"corners", AntialiasingMode::corners},
-    {"adaptive", AntialiasingMode::adaptive},
-}};
-
 uint64_t mix64(uint64_t z) {  // splitmix64's finaliser
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
@@ -242,21 +234,6 @@ class AdaptiveSampler {
 };
 
 }  // namespace
-
-bool antialiasing_mode_from_name(std::string_view name, AntialiasingMode& mode) {
-  for (const auto& [entry_name, entry_mode] : kModes)
-    if (name == entry_name) {
-      mode = entry_mode;
-      return true;
-    }
-  return false;
-}
-
-const char* antialiasing_mode_name(AntialiasingMode mode) {
-  for (const auto& [entry_name, entry_mode] : kModes)
-    if (mode == entry_mode) return entry_name;
-  return "?";
-}
 
 int64_t sampling_tile_count(int width, int height, int tile_size) {
   return int64_t((width + tile_size - 1) / tile_size) * ((height + tile_size - 1) / tile_size);

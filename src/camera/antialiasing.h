@@ -21,6 +21,7 @@
 #include <string_view>
 #include <vector>
 
+#include "util/enum_names.h"
 #include "camera/film.h"
 #include "camera/pixel_filter.h"
 #include "math/vector.h"
@@ -39,10 +40,12 @@ struct AntialiasingSettings {
   PixelFilterParameters filter_parameters;
 };
 
-// False for an unknown name.
-bool antialiasing_mode_from_name(std::string_view name, AntialiasingMode& mode);
-const char* antialiasing_mode_name(AntialiasingMode mode);
-inline constexpr const char* kAntialiasingModeNames = "none, uniform, jittered, corners, adaptive";
+inline constexpr auto kAntialiasingModeNames = enum_names<AntialiasingMode>(
+    {{AntialiasingMode::none, "none"},
+     {AntialiasingMode::uniform, "uniform"},
+     {AntialiasingMode::jittered, "jittered"},
+     {AntialiasingMode::corners, "corners"},
+     {AntialiasingMode::adaptive, "adaptive"}});
 
 // Traces one primary ray through image point (x, y) — pixels, (0, 0) the top-left corner of the
 // image — and returns its radiance. Called concurrently from several threads.

@@ -105,11 +105,11 @@ TEST(Antialiasing, LatticeKeysSpreadOverHashBuckets) {
 TEST(Antialiasing, ModeNamesRoundTrip) {
   for (const auto name : {"none", "uniform", "jittered", "corners", "adaptive"}) {
     AntialiasingMode mode;
-    ASSERT_TRUE(antialiasing_mode_from_name(name, mode));
-    EXPECT_STREQ(antialiasing_mode_name(mode), name);
+    ASSERT_TRUE(kAntialiasingModeNames.value(name));
+    mode = *kAntialiasingModeNames.value(name);
+    EXPECT_EQ(kAntialiasingModeNames.name(mode), name);
   }
-  AntialiasingMode mode;
-  EXPECT_FALSE(antialiasing_mode_from_name("supersampled", mode));
+  EXPECT_FALSE(kAntialiasingModeNames.value("supersampled"));
 }
 
 TEST(Antialiasing, NoneTracesThePixelCentres) {
@@ -179,8 +179,8 @@ TEST(Antialiasing, HalfPlaneEdgeErrorShrinksWithN) {
         // Jittered: at most the 2n − 1 sub-cells the edge crosses are wrong, each by 1/n²;
         // uniform centres do better: within 1/n.
         const double bound = mode == AntialiasingMode::uniform ? 1.0 / n : (2.0 * n - 1) / (n * n);
-        EXPECT_LE(error, bound + 1e-9) << antialiasing_mode_name(mode) << " n=" << n << " at " << degrees << "°";
-        std::printf("  %-8s n=%d at %4.0f°: worst pixel error %.4f\n", antialiasing_mode_name(mode), n, degrees,
+        EXPECT_LE(error, bound + 1e-9) << std::string(kAntialiasingModeNames.name(mode)) << " n=" << n << " at " << degrees << "°";
+        std::printf("  %-8s n=%d at %4.0f°: worst pixel error %.4f\n", std::string(kAntialiasingModeNames.name(mode)).c_str(), n, degrees,
                     error);
       }
     }
@@ -286,7 +286,7 @@ TEST(Antialiasing, ImagesDoNotDependOnTheThreadCount) {
       tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
       two = render(settings, scene, 2);
     }
-    const std::string mode = antialiasing_mode_name(settings.mode);
+    const std::string mode = std::string(kAntialiasingModeNames.name(settings.mode));
     ASSERT_EQ(one.film.pixels().size(), two.film.pixels().size());
     EXPECT_EQ(std::memcmp(one.film.pixels().data(), two.film.pixels().data(),
                           one.film.pixels().size() * sizeof(Color)),

@@ -5,6 +5,7 @@
 #include <string_view>
 #include <vector>
 
+#include "util/enum_names.h"
 #include "camera/film.h"
 
 namespace candela {
@@ -14,6 +15,9 @@ enum class OutOfRange {
   scale,      // the whole image divided by its largest value when that exceeds 1 (global)
   normalize,  // per pixel, divided by its largest channel when that exceeds 1 (keeps hue)
 };
+
+inline constexpr auto kOutOfRangeNames = enum_names<OutOfRange>(
+    {{OutOfRange::clamp, "clamp"}, {OutOfRange::scale, "scale"}, {OutOfRange::normalize, "normalize"}});
 
 struct DisplaySettings {
   OutOfRange out_of_range = OutOfRange::clamp;

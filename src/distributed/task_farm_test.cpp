@@ -14,7 +14,7 @@
 #include "meshless/site_sampling.h"
 #include "meshless/transfer_matrix.h"
 #include "scene/scene.h"
-#include "scene/scene_loader.h"
+#include "integrators/scene_loading.h"
 #include "util/cancellation.h"
 
 namespace candela {

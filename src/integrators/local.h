@@ -5,13 +5,24 @@
 #pragma once
 
 #include "integrators/ray_tracing_method.h"
+#include "io/json_node.h"
 
 namespace candela {
 
+// The scene file's "local" object.
+struct LocalSettings {
+  bool shadows = true;
+};
+LocalSettings read_local_settings(const JsonNode& node);
+
 class LocalMethod final : public RayTracingMethod {
  public:
+  explicit LocalMethod(const LocalSettings& settings = {}) : settings_(settings) {}
   std::string_view name() const override { return "local"; }
   Color trace_primary(const Scene& scene, const Ray& ray, TraceContext& context) const override;
+
+ private:
+  LocalSettings settings_;
 };
 
 }  // namespace candela

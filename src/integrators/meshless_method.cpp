@@ -13,7 +13,6 @@
 #include <chrono>
 #include <cmath>
 
-#include "io/image_writer.h"
 #include "meshless/effective_area.h"
 #include "meshless/meshless_basis.h"
 #include "scene/light.h"
@@ -22,28 +21,29 @@
 
 namespace candela {
 
+MeshlessSettings read_meshless_settings(const JsonNode& node) {
+  MeshlessSettings settings;
+  node.expect_object();
+  settings.basis = node.enumeration("basis", settings.basis, kBasisNames);
+  settings.kernel = node.enumeration("kernel", settings.kernel, kRadialKernelNames);
+  settings.spacing = node.number("spacing", settings.spacing, Range::non_negative());
+  settings.neighbours = node.integer("neighbours", settings.neighbours, {1, 1000, false, false});
+  settings.grid = node.integer("grid", settings.grid, {1, 4096, false, false});
+  settings.rounds = node.integer("rounds", settings.rounds, {0, 1000, false, false});
+  settings.effective_area = node.enumeration("effective_area", settings.effective_area, kMeshlessAreaNames);
+  settings.tolerance = node.number("tolerance", settings.tolerance, {0, 1, true, false});
+  settings.max_iterations = node.integer("max_iterations", settings.max_iterations, {1, 1 << 20, false, false});
+  settings.display = node.enumeration("display", settings.display, kMeshlessDisplayNames);
+  settings.shepard_power = node.number("shepard_power", settings.shepard_power, {0, 16, false, false});
+  settings.max_sites = node.integer("max_sites", settings.max_sites, {1, 1 << 22, false, false});
+  node.finish();
+  return settings;
+}
+
 namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-BasisKind basis_kind(MeshlessBasisKind kind) {
-  switch (kind) {
-    case MeshlessBasisKind::radial: return BasisKind::radial;
-    case MeshlessBasisKind::normalized: return BasisKind::normalized;
-    case MeshlessBasisKind::shepard: return BasisKind::shepard;
-  }
-  return BasisKind::normalized;
-}
-
-const char* basis_name(MeshlessBasisKind kind) {
-  switch (kind) {
-    case MeshlessBasisKind::radial: return "radial";
-    case MeshlessBasisKind::normalized: return "normalized";
-    case MeshlessBasisKind::shepard: return "shepard";
-  }
-  return "?";
 }
 
 // What a surface point reflects of the lights directly: ρ Σ I·max(0, n·L)·V over every light sample
@@ -109,14 +109,9 @@ Film with_sites_drawn(const Scene& scene, const SiteSet& sites, const PixelRect&
 }
 
 
-RadialKernel radial_kernel(const MeshlessSettings& settings) {
-  return settings.kernel == MeshlessKernel::gaussian ? RadialKernel::gaussian : RadialKernel::cubic;
-}
-
 // What a solution depends on besides the scene object: the meshless settings that shape the
 // geometry (not the display, the tolerance or the lights) and the seed.
-std::string geometry_key(const Scene& scene) {
-  const MeshlessSettings& m = scene.meshless;
+std::string geometry_key(const Scene& scene, const MeshlessSettings& m) {
   // The sites are sampled through the camera: another view samples its own.
   const Camera& camera = *scene.camera;
   const Vec3 eye = camera.eye_position(), gaze = camera.view_direction();
@@ -127,16 +122,15 @@ std::string geometry_key(const Scene& scene) {
                      camera.height());
 }
 
-nlohmann::json geometry_facts(const Scene& scene, const MeshlessGeometry& geometry) {
-  const MeshlessSettings& settings = scene.meshless;
+nlohmann::json geometry_facts(const MeshlessSettings& settings, const MeshlessGeometry& geometry) {
   double area_sum = 0;
   for (const double a : geometry.areas) area_sum += a;
-  return {{"basis", basis_name(settings.basis)},
+  return {{"basis", kBasisNames.name(settings.basis)},
           {"sites", geometry.sites.sites.size()},
           {"camera_sites", geometry.sites.camera_sites},
           {"spacing", geometry.sites.spacing},
           {"neighbours", settings.neighbours},
-          {"effective_area", settings.effective_area == MeshlessAreas::integrated ? "integrated" : "thesis"},
+          {"effective_area", kMeshlessAreaNames.name(settings.effective_area)},
           {"effective_area_sum", area_sum},
           {"transfer_entries", geometry.matrix.entries()},
           {"transfer_density", geometry.matrix.density()},
@@ -163,10 +157,10 @@ std::size_t transfer_entry_limit() {
 
 // build_meshless_geometry; when cancellable, null once Ctrl-C arrives between its phases
 // (sampling, areas, transfer matrix).
-std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, bool cancellable, Cluster* cluster = nullptr) {
+std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const MeshlessSettings& settings, bool cancellable,
+                                                  Cluster* cluster = nullptr) {
   // Every rank stops at the same phase (a collective when distributed).
   const auto stop = [&] { return cancellable && cancelled_anywhere(cluster); };
-  const MeshlessSettings& settings = scene.meshless;
   auto geometry = std::make_shared<MeshlessGeometry>();
   auto start = std::chrono::steady_clock::now();
   SiteSamplingSettings sampling;
@@ -184,8 +178,8 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, bool cancel
   start = std::chrono::steady_clock::now();
   // The basis refers to the geometry's own sites and radii, which stay where they are: the
   // geometry is held by a pointer and never moved.
-  geometry->basis = std::make_unique<MeshlessBasis>(sites.sites, sites.radius, basis_kind(settings.basis),
-                                                    radial_kernel(settings), settings.shepard_power);
+  geometry->basis = std::make_unique<MeshlessBasis>(sites.sites, sites.radius, settings.basis, settings.kernel,
+                                                    settings.shepard_power);
   geometry->areas = sites.effective_area;  // the thesis's πh²/(m + 1)
   if (settings.effective_area == MeshlessAreas::integrated)
     geometry->areas = integrate_effective_areas(scene, *geometry->basis, sites, sites.spacing / 4, 64, cluster);
@@ -197,10 +191,11 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, bool cancel
 
 }  // namespace
 
-std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene) { return build_geometry(scene, false); }
+std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene, const MeshlessSettings& settings) {
+  return build_geometry(scene, settings, false);
+}
 
-MeshlessLighting light_meshless(const Scene& scene, const MeshlessGeometry& geometry) {
-  const MeshlessSettings& settings = scene.meshless;
+MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& settings, const MeshlessGeometry& geometry) {
   const SiteSet& sites = geometry.sites;
   const auto start = std::chrono::steady_clock::now();
   MeshlessLighting lighting;
@@ -226,11 +221,11 @@ void add_lighting_facts(const MeshlessLighting& lighting, nlohmann::json& facts)
 
 }  // namespace
 
-MeshlessSolution solve_meshless(const Scene& scene, nlohmann::json* facts) {
-  const std::shared_ptr<MeshlessGeometry> geometry = build_meshless_geometry(scene);
-  MeshlessLighting lighting = light_meshless(scene, *geometry);
+MeshlessSolution solve_meshless(const Scene& scene, const MeshlessSettings& settings, nlohmann::json* facts) {
+  const std::shared_ptr<MeshlessGeometry> geometry = build_meshless_geometry(scene, settings);
+  MeshlessLighting lighting = light_meshless(scene, settings, *geometry);
   if (facts) {
-    *facts = geometry_facts(scene, *geometry);
+    *facts = geometry_facts(settings, *geometry);
     add_lighting_facts(lighting, *facts);
   }
   MeshlessSolution solution;
@@ -243,19 +238,21 @@ MeshlessSolution solve_meshless(const Scene& scene, nlohmann::json* facts) {
 
 std::shared_ptr<const MeshlessGeometry> MeshlessMethod::geometry_for(const Scene& scene, bool& reused,
                                                                     Cluster* cluster) const {
-  const std::string key = geometry_key(scene);
+  const std::string key = geometry_key(scene, settings_);
   std::lock_guard lock(cache_mutex_);
   reused = cached_ && cached_key_ == key;
   if (reused) return cached_;
-  std::shared_ptr<const MeshlessGeometry> geometry = build_geometry(scene, true, cluster);
+  std::shared_ptr<const MeshlessGeometry> geometry = build_geometry(scene, settings_, true, cluster);
   if (!geometry) return nullptr;  // Ctrl-C: nothing kept
   cached_ = std::move(geometry);
   cached_key_ = key;
   return cached_;
 }
 
-void MeshlessMethod::render(const Scene& scene, const RenderRequest& request, Film& film,
-                            RunStatistics& statistics) const {
+RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& request) const {
+  RenderResult output(request.region);
+  Film& film = output.film;
+  RunStatistics& statistics = output.statistics;
   // The sites, areas and transfer matrix are kept between renders of the same scene (other views,
   // other light set-ups: --relight); the direct light and the iteration are redone every time.
   bool reused = false;
@@ -266,14 +263,15 @@ void MeshlessMethod::render(const Scene& scene, const RenderRequest& request, Fi
     statistics.extra["interrupted"] = true;
     statistics.extra["completed"] = completed;
     statistics.extra["meshless"] = {{"interrupted", true}};
+    return std::move(output);
   };
   if (!geometry) return interrupted("transfer matrix not finished");
   if (cancelled_anywhere(cluster)) return interrupted("sites and transfer matrix; no lighting");
-  const MeshlessLighting lighting = light_meshless(scene, *geometry);
-  nlohmann::json facts = geometry_facts(scene, *geometry);
+  const MeshlessLighting lighting = light_meshless(scene, settings_, *geometry);
+  nlohmann::json facts = geometry_facts(settings_, *geometry);
   add_lighting_facts(lighting, facts);
   facts["geometry_reused"] = reused;
-  const MeshlessSettings& settings = scene.meshless;
+  const MeshlessSettings& settings = settings_;
   const MeshlessBasis& basis = *geometry->basis;
   const struct {
     const SiteSet& sites;
@@ -317,10 +315,8 @@ void MeshlessMethod::render(const Scene& scene, const RenderRequest& request, Fi
     });
   };
   draw_across_ranks(request.cluster, region, draw, film, statistics);  // issue 11: every rank holds the same λ
-  if (!request.show_sites.empty() && (!cluster || cluster->root())) {  // rank 0 writes
-    write_image(with_sites_drawn(scene, solution.sites, region, film), request.show_sites, scene.display);
-    facts["sites_image"] = request.show_sites;
-  }
+  // Rank 0 holds the whole image (issue 11), and its result is the one written.
+  if (request.sites_image && (!cluster || cluster->root())) output.sites_image = with_sites_drawn(scene, solution.sites, region, film);
   const auto pixel_count = static_cast<uint64_t>(region.width()) * region.height();
   statistics.rays.primary += pixel_count;
   statistics.pixels += pixel_count;
@@ -330,6 +326,7 @@ void MeshlessMethod::render(const Scene& scene, const RenderRequest& request, Fi
     statistics.extra["interrupted"] = true;
     statistics.extra["completed"] = "sites, transfer matrix and lighting";
   }
+  return output;
 }
 
 namespace {
@@ -362,8 +359,9 @@ class MeshlessField final : public SolutionField {
 }  // namespace
 
 std::unique_ptr<SolutionField> make_meshless_field(const Scene& scene) {
-  std::shared_ptr<const MeshlessGeometry> geometry = build_meshless_geometry(scene);
-  MeshlessLighting lighting = light_meshless(scene, *geometry);
+  const MeshlessSettings settings = read_meshless_settings(scene.plugin_settings.node("meshless"));
+  std::shared_ptr<const MeshlessGeometry> geometry = build_meshless_geometry(scene, settings);
+  MeshlessLighting lighting = light_meshless(scene, settings, *geometry);
   return std::make_unique<MeshlessField>(scene, std::move(geometry), std::move(lighting));
 }
 

@@ -26,11 +26,41 @@
 #include <string>
 
 #include "integrators/method.h"
+#include "io/json_node.h"
 #include "meshless/meshless_basis.h"
 #include "meshless/site_sampling.h"
 #include "meshless/transfer_matrix.h"
 
 namespace candela {
+
+// How the solution is shown (see above).
+enum class MeshlessDisplay { global, direct, indirect, hybrid };
+inline constexpr auto kMeshlessDisplayNames = enum_names<MeshlessDisplay>(
+    {{MeshlessDisplay::global, "global"}, {MeshlessDisplay::direct, "direct"}, {MeshlessDisplay::indirect, "indirect"},
+     {MeshlessDisplay::hybrid, "hybrid"}});
+// The sites' effective areas: integrated over the surfaces (meshless/effective_area.h), or the
+// thesis's πh²/(m + 1).
+enum class MeshlessAreas { integrated, thesis };
+inline constexpr auto kMeshlessAreaNames =
+    enum_names<MeshlessAreas>({{MeshlessAreas::integrated, "integrated"}, {MeshlessAreas::thesis, "thesis"}});
+
+// The scene file's "meshless" object (SPEC §11, seed 002).
+struct MeshlessSettings {
+  BasisKind basis = BasisKind::normalized;
+  RadialKernel kernel = RadialKernel::gaussian;  // the radial basis's mother function
+  double spacing = 0;   // Δ: no two sites closer (site distance); 0: the scene's size / 50
+  int neighbours = 10;  // m: the radius holds the m nearest sites
+  int grid = 64;        // camera rays per image side for the first sites
+  int rounds = 4;       // rounds of secondary rays
+  MeshlessAreas effective_area = MeshlessAreas::integrated;
+  double tolerance = 1e-4;  // the iteration stops when no coefficient changes by more (relative)
+  int max_iterations = 1000;
+  MeshlessDisplay display = MeshlessDisplay::global;
+  double shepard_power = 2;
+  int max_sites = 50000;  // refused beyond: the transfer matrix grows as n²
+};
+// Ranges checked, unknown keys refused.
+MeshlessSettings read_meshless_settings(const JsonNode& node);
 
 // What does not depend on the lights: the sites, the basis over them, the effective areas and
 // the transfer matrix S (002 §5.3: relighting reuses them).
@@ -49,8 +79,8 @@ struct MeshlessLighting {
   double seconds = 0;  // direct light and iteration
 };
 
-std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene);
-MeshlessLighting light_meshless(const Scene& scene, const MeshlessGeometry& geometry);
+std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene, const MeshlessSettings& settings);
+MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& settings, const MeshlessGeometry& geometry);
 
 struct MeshlessSolution {
   SiteSet sites;
@@ -60,19 +90,20 @@ struct MeshlessSolution {
 };
 
 // Samples, builds and solves; fills facts for --stats when given.
-MeshlessSolution solve_meshless(const Scene& scene, nlohmann::json* facts = nullptr);
+MeshlessSolution solve_meshless(const Scene& scene, const MeshlessSettings& settings, nlohmann::json* facts = nullptr);
 
 // Keeps the last scene's geometry (recognised by Scene::unique_id and the settings that shape it)
 // and reuses it when called again for the same scene: other views, or other lights
 // (candela render --relight, which swaps the scene's lights between renders).
 class MeshlessMethod final : public Method {
  public:
+  explicit MeshlessMethod(const MeshlessSettings& settings = {}) : settings_(settings) {}
   std::string_view name() const override { return "meshless"; }
-  void render(const Scene& scene, const RenderRequest& request, Film& film,
-              RunStatistics& statistics) const override;
+  RenderResult render(const Scene& scene, const RenderRequest& request) const override;
 
  private:
   std::shared_ptr<const MeshlessGeometry> geometry_for(const Scene& scene, bool& reused, Cluster* cluster) const;
+  MeshlessSettings settings_;
   mutable std::mutex cache_mutex_;
   mutable std::shared_ptr<const MeshlessGeometry> cached_;
   mutable std::string cached_key_;

@@ -1,17 +1,25 @@
-// A rendering method (local, whitted, later raster, radiosity, meshless, path), found by name
-// in the method registry. A method reads the Scene; it never edits it.
+// A rendering method (local, whitted, raster, radiosity, meshless, path), made by the method
+// registry from its settings. A method reads the Scene, never edits it, and writes no file but its
+// checkpoints: it returns its image and extras (RenderResult) for the caller to write.
 #pragma once
 
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
 #include "camera/film.h"
+#include "integrators/ray_tree.h"
 #include "scene/scene.h"
 #include "util/statistics.h"
 
 namespace candela {
 
 class Cluster;
+struct RadiositySolveResult;
 
 // The pixels to render: [x0, x1) × [y0, y1) of the camera's image.
 struct PixelRect {
@@ -23,36 +31,49 @@ struct PixelRect {
 struct RenderRequest {
   PixelRect region;
   bool quiet = false;
-  // Where a method that computes a view-independent solution writes it (radiosity: .csv, .ply
-  // or .gltf, radiosity/solution_export.h); empty: nowhere. Other methods ignore it.
-  std::string export_solution = {};
-  // Where the meshless method writes the image with its sites drawn over it (seed 002 Figure 4.7);
-  // empty: nowhere. Other methods ignore it.
-  std::string show_sites = {};
-  // The path tracer's progressive run (SPEC §12, §15): the file it writes its state to every
-  // path.checkpoint_interval seconds and when it ends, the checkpoint it continues from, and what
-  // ties a checkpoint to the scene that made it (the caller's part: the scene file's contents and
-  // overrides; the method adds its own settings). Empty: none. Other methods ignore them.
+  // Extras to compute besides the image, when the method can give them (MethodCapabilities).
+  bool sites_image = false;  // meshless: the image with its sites drawn (seed 002 Figure 4.7)
+  // The progressive run (path; progressive radiosity; SPEC §12, §15): the file the method writes
+  // its state to every checkpoint_interval seconds and when it ends, the checkpoint it continues
+  // from, and what ties a checkpoint to the scene that made it (the caller's part: the scene
+  // file's contents and overrides; the method adds its own settings). Empty: none.
   std::string checkpoint = {};
   std::string resume = {};
   std::string fingerprint = {};
   // Seconds between checkpoints; 0: the method's default (path.checkpoint_interval; 60 for
-  // progressive radiosity, which also checkpoints to `checkpoint` and resumes from `resume`).
+  // progressive radiosity).
   double checkpoint_interval = 0;
+  // Called after every whole pass of a progressive method with the passes done so far (the
+  // path tracer): where a caller (a test) may ask the run to stop after exactly N passes.
+  std::function<void(uint64_t passes)> after_pass = {};
   // The ranks to split the work across (issue 11, docs/distributed.md); null or one rank: this
-  // process alone. Every rank calls render with the same scene and request; rank 0's film holds
-  // the image, and only rank 0 writes files (checkpoints, exports). Statistics are totals over
-  // the ranks.
+  // process alone. Every rank calls render with the same scene and request; rank 0's result
+  // holds the image, and only rank 0 writes checkpoints. Statistics are totals over the ranks.
   Cluster* cluster = nullptr;
+};
+
+// What a render gives: the image of the request's region, what the run measured, and the extras
+// the method's capabilities promise. The caller decides what to write (candela render).
+struct RenderResult {
+  explicit RenderResult(const PixelRect& region) : film(region.width(), region.height()) {}
+  Film film;
+  RunStatistics statistics;
+  std::optional<Film> sites_image;                        // when requested (RenderRequest::sites_image)
+  std::shared_ptr<const RadiositySolveResult> solution;  // a view-independent solution (radiosity)
 };
 
 class Method {
  public:
   virtual ~Method() = default;
   virtual std::string_view name() const = 0;
-  // Fills film (region-sized) and adds to statistics.
-  virtual void render(const Scene& scene, const RenderRequest& request, Film& film,
-                      RunStatistics& statistics) const = 0;
+  virtual RenderResult render(const Scene& scene, const RenderRequest& request) const = 0;
+  // The ray tree of pixel (x, y) and its radiance, for methods whose capabilities say ray_trees;
+  // the others throw std::logic_error.
+  virtual RayTree pixel_ray_tree(const Scene& scene, int x, int y, Color& radiance) const;
 };
+
+inline RayTree Method::pixel_ray_tree(const Scene&, int, int, Color&) const {
+  throw std::logic_error(std::string(name()) + " traces no ray trees");
+}
 
 }  // namespace candela

@@ -9,26 +9,83 @@
 #include "integrators/radiosity_method.h"
 #include "integrators/raster_method.h"
 #include "integrators/whitted.h"
-
+#include "radiosity/radiosity_settings.h"
 #include "util/registry.h"
 
 namespace candela {
 
 namespace {
+
+MethodCapabilities ray_tracer() {
+  MethodCapabilities capabilities;
+  capabilities.ray_trees = true;
+  capabilities.samples_per_pixel = true;
+  return capabilities;
+}
+
+MethodCapabilities radiosity() {
+  MethodCapabilities capabilities;
+  capabilities.solution = true;
+  capabilities.checkpoints = true;
+  return capabilities;
+}
+
+MethodCapabilities meshless() {
+  MethodCapabilities capabilities;
+  capabilities.sites_image = true;
+  capabilities.relighting = true;
+  return capabilities;
+}
+
+MethodCapabilities path() {
+  MethodCapabilities capabilities;
+  capabilities.progressive_passes = true;
+  capabilities.checkpoints = true;
+  return capabilities;
+}
+
 const std::array kEntries = {
-    MethodEntry{"local", "ray casting with the local model only (001, 000 §2)",
-                []() -> std::unique_ptr<Method> { return std::make_unique<LocalMethod>(); }},
-    MethodEntry{"whitted", "recursive Whitted ray tracing (000 §5, 001)",
-                []() -> std::unique_ptr<Method> { return std::make_unique<WhittedMethod>(); }},
-    MethodEntry{"raster", "scanline z-buffer rasterizer, flat / Gouraud / Phong / dot-product shading (000 §3)",
-                []() -> std::unique_ptr<Method> { return std::make_unique<RasterMethod>(); }},
-    MethodEntry{"radiosity", "classic radiosity: hemicube form factors, progressive refinement with substructuring (000 §6)",
-                []() -> std::unique_ptr<Method> { return std::make_unique<RadiosityMethod>(); }},
+    MethodEntry{"local", "ray casting with the local model only (001, 000 §2)", ray_tracer(),
+                [](const JsonNode& settings) -> std::unique_ptr<Method> {
+                  return std::make_unique<LocalMethod>(read_local_settings(settings));
+                }},
+    MethodEntry{"whitted", "recursive Whitted ray tracing (000 §5, 001)", ray_tracer(),
+                [](const JsonNode& settings) -> std::unique_ptr<Method> {
+                  return std::make_unique<WhittedMethod>(read_whitted_settings(settings));
+                }},
+    MethodEntry{"raster", "scanline z-buffer rasterizer, flat / Gouraud / Phong / dot-product shading (000 §3)", {},
+                [](const JsonNode& settings) -> std::unique_ptr<Method> {
+                  return std::make_unique<RasterMethod>(read_raster_settings(settings));
+                }},
+    MethodEntry{"radiosity",
+                "classic radiosity: hemicube form factors, progressive refinement with substructuring (000 §6)",
+                radiosity(),
+                [](const JsonNode& settings) -> std::unique_ptr<Method> {
+                  return std::make_unique<RadiosityMethod>(read_radiosity_settings(settings));
+                }},
     MethodEntry{"meshless", "meshless finite-element radiosity: sites, radial / normalized / Shepard bases (002)",
-                []() -> std::unique_ptr<Method> { return std::make_unique<MeshlessMethod>(); }},
-    MethodEntry{"path", "path-traced reference: next-event estimation, MIS, Russian roulette, progressive passes (SPEC §12)",
-                []() -> std::unique_ptr<Method> { return std::make_unique<PathMethod>(); }},
+                meshless(),
+                [](const JsonNode& settings) -> std::unique_ptr<Method> {
+                  return std::make_unique<MeshlessMethod>(read_meshless_settings(settings));
+                }},
+    MethodEntry{"path",
+                "path-traced reference: next-event estimation, MIS, Russian roulette, progressive passes (SPEC §12)",
+                path(),
+                [](const JsonNode& settings) -> std::unique_ptr<Method> {
+                  return std::make_unique<PathMethod>(read_path_settings(settings));
+                }},
 };
+
+// kEntries as loader sections: each method's object checked by making the method from it.
+std::array<SettingsSection, kEntries.size()> make_sections() {
+  std::array<SettingsSection, kEntries.size()> sections;
+  for (std::size_t i = 0; i < kEntries.size(); ++i) {
+    const MethodEntry* entry = &kEntries[i];
+    sections[i] = {entry->name, [entry](const JsonNode& node) { entry->create(node); }};
+  }
+  return sections;
+}
+
 }  // namespace
 
 std::span<const MethodEntry> method_entries() { return kEntries; }
@@ -36,5 +93,22 @@ std::span<const MethodEntry> method_entries() { return kEntries; }
 const MethodEntry* find_method(std::string_view name) { return find_entry<MethodEntry>(kEntries, name); }
 
 std::string method_names() { return entry_names<MethodEntry>(kEntries); }
+
+std::unique_ptr<Method> create_method(const MethodEntry& entry, const Scene& scene,
+                                      const std::vector<std::string>& overrides) {
+  if (overrides.empty()) return entry.create(scene.plugin_settings.node(entry.name));
+  // A document of the object alone, the overrides applied to it (errors name the assignment).
+  const JsonNode original = scene.plugin_settings.node(entry.name);
+  JsonDocument document =
+      JsonDocument::parse(nlohmann::json{{std::string(entry.name), original.json()}}.dump(), scene.source);
+  for (const std::string& assignment : overrides) document.apply_override(std::string(entry.name) + "." + assignment);
+  const JsonNode root(document, document.root(), "");
+  return entry.create(root.at(entry.name));
+}
+
+std::span<const SettingsSection> method_settings_sections() {
+  static const std::array<SettingsSection, kEntries.size()> sections = make_sections();
+  return sections;
+}
 
 }  // namespace candela

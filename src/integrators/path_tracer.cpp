@@ -24,6 +24,20 @@
 
 namespace candela {
 
+PathSettings read_path_settings(const JsonNode& node) {
+  PathSettings settings;
+  node.expect_object();
+  settings.spp = node.integer("spp", settings.spp, {0, 1 << 24, false, false});
+  settings.time = node.number("time", settings.time, Range::non_negative());
+  if (settings.spp == 0 && !(settings.time > 0))
+    node.at("spp").fail("spp 0 (no limit) needs a time limit: path.time > 0");
+  settings.max_depth = node.integer("max_depth", settings.max_depth, {0, 1024, false, false});
+  settings.roulette_depth = node.integer("roulette_depth", settings.roulette_depth, {0, 1024, false, false});
+  settings.checkpoint_interval = node.number("checkpoint_interval", settings.checkpoint_interval, {0, 1e9, true, false});
+  node.finish();
+  return settings;
+}
+
 namespace {
 
 // Paths end here even when Russian roulette keeps them going (a closed mirror box).
@@ -127,9 +141,10 @@ struct PathState {
 };
 
 // Follows a path from its current ray to its end, adding what it gathers.
-Color continue_path(const Scene& scene, const LightSampler& lights, PathState state, Pcg32& rng, RayCounts& rays) {
+Color continue_path(const Scene& scene, const PathSettings& settings, const LightSampler& lights, PathState state, Pcg32& rng,
+                    RayCounts& rays) {
   Color L;
-  const int max_depth = scene.path.max_depth > 0 ? scene.path.max_depth : kDepthCap;
+  const int max_depth = settings.max_depth > 0 ? settings.max_depth : kDepthCap;
   for (;; ++state.depth) {
     Intersection hit;
     if (!scene.intersect(state.ray, hit)) {
@@ -186,7 +201,7 @@ Color continue_path(const Scene& scene, const LightSampler& lights, PathState st
     }
     state.ray = Ray{offset_origin(scene, surface.position, surface.geometric_normal, sample.wi), sample.wi};
     // Russian roulette: survive with q ≤ 0.95 proportional to the throughput, which is divided by q.
-    if (state.depth + 1 >= scene.path.roulette_depth) {
+    if (state.depth + 1 >= settings.roulette_depth) {
       const double q = std::min(0.95, state.beta.max_component() * state.eta_scale);
       if (!(rng.next_double() < q)) break;
       state.beta = state.beta / q;
@@ -207,13 +222,15 @@ Pcg32 path_pixel_rng(uint64_t seed, uint64_t pass, uint32_t x, uint32_t y) {
   return Pcg32(mix64(seed * 0x9e3779b97f4a7c15ULL + pass), (static_cast<uint64_t>(y) << 32) | x);
 }
 
-Color path_radiance(const Scene& scene, const LightSampler& lights, const Ray& ray, Pcg32& rng, RayCounts& rays) {
+Color path_radiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights, const Ray& ray,
+                    Pcg32& rng, RayCounts& rays) {
   PathState state;
   state.ray = ray;
-  return continue_path(scene, lights, state, rng, rays);
+  return continue_path(scene, settings, lights, state, rng, rays);
 }
 
-Color path_irradiance(const Scene& scene, const LightSampler& lights, const Vec3& point, const Vec3& normal,
+Color path_irradiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights, const Vec3& point,
+                      const Vec3& normal,
                       Pcg32& rng, RayCounts& rays) {
   Bsdf bsdf(ShadingFrame::from_normal(normal), normal);
   BsdfLobe white;
@@ -234,15 +251,17 @@ Color path_irradiance(const Scene& scene, const LightSampler& lights, const Vec3
   state.previous = point;
   state.depth = 1;
   ++rays.reflected;
-  E += continue_path(scene, lights, state, rng, rays);
+  E += continue_path(scene, settings, lights, state, rng, rays);
   return E;
 }
 
-void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& film,
-                        RunStatistics& statistics) const {
+RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request) const {
+  RenderResult output(request.region);
+  Film& film = output.film;
+  RunStatistics& statistics = output.statistics;
   const PixelRect region = request.region;
   const int width = region.width(), height = region.height();
-  const PathSettings& settings = scene.path;
+  const PathSettings& settings = settings_;
   // Everything besides the scene file that changes a sample: a checkpoint made with other values
   // cannot be continued.
   const std::string fingerprint =
@@ -318,9 +337,10 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
     Pcg32 rng = path_pixel_rng(scene.render.seed, pass, x, y);
     const double sx = x + rng.next_double(), sy = y + rng.next_double();
     ++rays.primary;
-    return path_radiance(scene, lights, scene.camera->generate_ray(sx, sy), rng, rays);
+    return path_radiance(scene, settings, lights, scene.camera->generate_ray(sx, sy), rng, rays);
   };
   const auto after_pass = [&](uint64_t passes_done) {
+    if (request.after_pass) request.after_pass(passes_done);
     progress.set_detail(fmt::format("{} spp", passes_done));
     if (settings.spp > 0) {
       progress.advance();
@@ -523,6 +543,7 @@ void PathMethod::render(const Scene& scene, const RenderRequest& request, Film& 
   if (lights.empty())
     facts["warning"] = "nothing emits light (no lights, emissive surfaces, environment or background): the image is black";
   statistics.extra["path"] = facts;
+  return output;
 }
 
 }  // namespace candela

@@ -12,31 +12,48 @@
 
 #include "integrators/light_sampler.h"
 #include "integrators/method.h"
+#include "io/json_node.h"
 #include "math/pcg32.h"
 
 namespace candela {
+
+// The scene file's "path" object (SPEC §12).
+struct PathSettings {
+  int spp = 64;                     // passes of one sample per pixel; 0: as many as `time` allows
+  double time = 0;                  // seconds; > 0: stop after the pass that reaches it (or at spp, if set)
+  int max_depth = 0;                // bounces at most; 0: unlimited (Russian roulette ends every path)
+  int roulette_depth = 3;           // Russian roulette from this bounce on
+  double checkpoint_interval = 60;  // seconds between checkpoints (candela render --checkpoint)
+};
+// Ranges checked, unknown keys refused; spp 0 needs a time limit.
+PathSettings read_path_settings(const JsonNode& node);
 
 struct PathCounts {
   RayCounts rays;
 };
 
 // The estimate of one camera ray (display units), with its random stream.
-Color path_radiance(const Scene& scene, const LightSampler& lights, const Ray& ray, Pcg32& rng, RayCounts& rays);
+// The depth limits are path.max_depth and path.roulette_depth.
+Color path_radiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights, const Ray& ray,
+                    Pcg32& rng, RayCounts& rays);
 
 // The radiance a surface point with a white Lambert surface (ρ = 1) facing `normal` would
 // reflect, times π: the irradiance at (point, normal) in display units (candela probe). Every
 // light arriving over the hemisphere counts, by next-event estimation and BSDF sampling with MIS.
-Color path_irradiance(const Scene& scene, const LightSampler& lights, const Vec3& point, const Vec3& normal,
-                      Pcg32& rng, RayCounts& rays);
+Color path_irradiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights, const Vec3& point,
+                      const Vec3& normal, Pcg32& rng, RayCounts& rays);
 
 // The stream of pass `pass` at image pixel (x, y): independent of the thread and of the region.
 Pcg32 path_pixel_rng(uint64_t seed, uint64_t pass, uint32_t x, uint32_t y);
 
 class PathMethod final : public Method {
  public:
+  explicit PathMethod(const PathSettings& settings = {}) : settings_(settings) {}
   std::string_view name() const override { return "path"; }
-  void render(const Scene& scene, const RenderRequest& request, Film& film,
-              RunStatistics& statistics) const override;
+  RenderResult render(const Scene& scene, const RenderRequest& request) const override;
+
+ private:
+  PathSettings settings_;
 };
 
 }  // namespace candela

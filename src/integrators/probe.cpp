@@ -34,14 +34,14 @@ Vec3 sensor_origin(const Scene& scene, const ProbePoint& point) {
   return point.position + point.normal * scene.ray_offset(point.position);
 }
 
-ProbeResult probe_path(const Scene& scene, const LightSampler& lights, const ProbePoint& point, std::size_t index,
-                       const ProbeSettings& settings, RayCounts& rays) {
+ProbeResult probe_path(const Scene& scene, const PathSettings& path, const LightSampler& lights, const ProbePoint& point,
+                       std::size_t index, const ProbeSettings& settings, RayCounts& rays) {
   Color irradiance, radiance;
   const Ray look{sensor_origin(scene, point), point.normal};
   for (int s = 0; s < settings.samples; ++s) {
     Pcg32 rng = probe_rng(settings.seed, uint64_t(s), index);
-    irradiance += path_irradiance(scene, lights, point.position, point.normal, rng, rays);
-    radiance += path_radiance(scene, lights, look, rng, rays);
+    irradiance += path_irradiance(scene, path, lights, point.position, point.normal, rng, rays);
+    radiance += path_radiance(scene, path, lights, look, rng, rays);
   }
   // path_irradiance is in display units already irradiance; path_radiance is π × radiance.
   return {irradiance / settings.samples, radiance / (settings.samples * kPi)};
@@ -126,6 +126,8 @@ std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>
   if (settings.samples < 1) throw std::invalid_argument("probe: samples must be >= 1");
   std::unique_ptr<SolutionField> field;
   const LightSampler lights(scene);
+  // The path tracer's depth limits: its object of the scene file.
+  const PathSettings path = read_path_settings(scene.plugin_settings.node("path"));
   if (settings.method == "radiosity") {
     field = make_radiosity_field(scene, settings.quiet);
   } else if (settings.method == "meshless") {
@@ -140,7 +142,7 @@ std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>
   ProgressReporter progress("probe", points.size(), "points", settings.quiet);
   tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t i) {
     results[i] = field ? probe_field(scene, *field, lights, points[i], i, settings, uncovered.local(), counts.local())
-                       : probe_path(scene, lights, points[i], i, settings, counts.local());
+                       : probe_path(scene, path, lights, points[i], i, settings, counts.local());
     progress.advance();
   });
   progress.finish();

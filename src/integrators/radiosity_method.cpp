@@ -27,11 +27,16 @@
 #include "raster/rasterizer.h"
 #include "util/cancellation.h"
 #include "util/progress.h"
-#include "radiosity/solution_export.h"
 
 namespace candela {
 
 namespace {
+
+// (Until the solve takes the method's settings: the scene's "radiosity" object, read again.)
+RadiositySettings radiosity_settings_of(const Scene& scene) {
+  return read_radiosity_settings(scene.plugin_settings.node("radiosity"));
+}
+
 
 double channel_sum(const Color& c) { return c.r + c.g + c.b; }
 
@@ -89,7 +94,7 @@ template <typename Sink, typename Skipped>
 void compute_form_factor_rows(const Scene& scene, const std::vector<RadiositySurface>& surfaces,
                               std::span<const uint32_t> rows, const std::vector<RadiositySurface>& targets,
                               const FormFactorGeometry& geometry, Skipped skipped, Sink write, std::span<double> sums) {
-  const RadiositySettings& settings = scene.radiosity;
+  const RadiositySettings settings = radiosity_settings_of(scene);
   if (settings.form_factors == RadiosityFormFactors::hemicube) {
     const auto table = std::make_shared<const DeltaFormFactors>(settings.hemicube_resolution);
     tbb::enumerable_thread_specific<std::unique_ptr<HemicubeFormFactors>> hemicubes;
@@ -384,7 +389,7 @@ std::vector<bool> elements_to_split(const RadiosityMesh& mesh, const std::vector
 RadiositySolveResult solve_with_statistics(const Scene& scene, bool quiet, nlohmann::json* statistics,
                                            ProgressiveRun* run = nullptr, Cluster* cluster = nullptr) {
   RadiositySolveResult result;
-  const RadiositySettings& settings = scene.radiosity;
+  const RadiositySettings settings = radiosity_settings_of(scene);
   Stopwatch mesh_time;
   RadiosityMeshSettings mesh_settings;
   mesh_settings.segments = settings.segments;
@@ -720,7 +725,7 @@ namespace {
 // What a solution depends on besides the scene object: its radiosity settings (all but the
 // display) and the seed of the ray-cast form factors.
 std::string solution_key(const Scene& scene) {
-  const RadiositySettings& r = scene.radiosity;
+  const RadiositySettings r = radiosity_settings_of(scene);
   return fmt::format("{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}", scene.unique_id, static_cast<int>(r.solver),
                      static_cast<int>(r.form_factors), r.hemicube_resolution, r.ray_cast_samples, r.patch_size,
                      r.element_size, r.segments, r.threshold, r.max_steps, r.ambient, r.subdivision_threshold,
@@ -744,13 +749,13 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
   RadiosityCheckpoint resumed;
   if (checkpointing) {
     const SourceLocation where{!request.resume.empty() ? request.resume : request.checkpoint, 0, 0, {}};
-    if (scene.radiosity.solver != RadiositySolver::progressive || scene.radiosity.subdivision_threshold > 0)
+    if (radiosity_settings_of(scene).solver != RadiositySolver::progressive || radiosity_settings_of(scene).subdivision_threshold > 0)
       throw InputError(where, "checkpoints are for radiosity.solver \"progressive\" without adaptive subdivision "
                               "(radiosity.subdivision_threshold 0)");
     run.checkpoint = request.checkpoint;
     // Every setting that shapes the mesh, the form factors or the display — not threshold,
     // max_steps or memory_limit_mib, which only say how far to go (a resumed run may go further).
-    const RadiositySettings& r = scene.radiosity;
+    const RadiositySettings r = radiosity_settings_of(scene);
     run.fingerprint = fmt::format("{}|radiosity {} {} {} {} {} {} {} {} {}", request.fingerprint,
                                   static_cast<int>(r.form_factors), r.hemicube_resolution, r.ray_cast_samples,
                                   r.patch_size, r.element_size, r.segments, r.ambient, r.split_at_contacts,
@@ -810,8 +815,10 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
   return solved;
 }
 
-void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, Film& film,
-                             RunStatistics& statistics) const {
+RenderResult RadiosityMethod::render(const Scene& scene, const RenderRequest& request) const {
+  RenderResult output(request.region);
+  Film& film = output.film;
+  RunStatistics& statistics = output.statistics;
   bool reused = false;
   const std::shared_ptr<const Solved> solved = solution_for(scene, request, reused);
   const RadiositySolveResult& solution = solved->result;
@@ -821,14 +828,12 @@ void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, F
     statistics.extra["interrupted"] = true;
     statistics.extra["completed"] = facts["completed"];
   }
-  if (!request.export_solution.empty() && (!request.cluster || request.cluster->root())) {  // rank 0 writes
-    export_solution(solution, request.export_solution, scene.display);
-    facts["exported_to"] = request.export_solution;
-  }
+  // The same solution serves every view: the caller may export it (candela render --export-solution).
+  output.solution = std::shared_ptr<const RadiositySolveResult>(solved, &solved->result);
   const PixelRect region = request.region;
   const Camera& camera = *scene.camera;
   Stopwatch display_time;
-  const RadiosityDisplay display = scene.radiosity.display;
+  const RadiosityDisplay display = radiosity_settings_of(scene).display;
   const VertexRadiosity vertices =
       display == RadiosityDisplay::ray_traced
           ? compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity, solution.element_hidden)
@@ -868,6 +873,7 @@ void RadiosityMethod::render(const Scene& scene, const RenderRequest& request, F
   facts["display"] = kRadiosityDisplayNames.name(display);
   facts["display_seconds"] = display_time.seconds();
   statistics.extra["radiosity"] = std::move(facts);
+  return output;
 }
 
 RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet, nlohmann::json* facts) { return solve_with_statistics(scene, quiet, facts); }

@@ -44,6 +44,7 @@
 #include <nlohmann/json.hpp>
 
 #include "integrators/method.h"
+#include "radiosity/radiosity_settings.h"
 #include "radiosity/radiosity_solve_result.h"
 
 namespace candela {
@@ -59,9 +60,9 @@ RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet, nlohmann::j
 // same scene with another camera.
 class RadiosityMethod final : public Method {
  public:
+  explicit RadiosityMethod(const RadiositySettings& settings = {}) : settings_(settings) {}
   std::string_view name() const override { return "radiosity"; }
-  void render(const Scene& scene, const RenderRequest& request, Film& film,
-              RunStatistics& statistics) const override;
+  RenderResult render(const Scene& scene, const RenderRequest& request) const override;
 
  private:
   struct Solved {
@@ -74,6 +75,7 @@ class RadiosityMethod final : public Method {
   // only) the solve is this run's own and not kept.
   std::shared_ptr<const Solved> solution_for(const Scene& scene, const RenderRequest& request, bool& reused) const;
 
+  RadiositySettings settings_;
   mutable std::mutex cache_mutex_;
   mutable std::shared_ptr<const Solved> cached_;
   mutable std::string cached_key_;  // Scene::unique_id and the settings the solution used

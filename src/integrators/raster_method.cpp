@@ -23,6 +23,17 @@
 
 namespace candela {
 
+RasterSettings read_raster_settings(const JsonNode& node) {
+  RasterSettings settings;
+  node.expect_object();
+  settings.shading = node.enumeration("shading", settings.shading, kRasterShadingNames);
+  settings.segments = node.integer("segments", settings.segments, {3, 4096, false, false});
+  settings.crease_angle = node.number("crease_angle", settings.crease_angle, {0, 180, false, false});
+  settings.shadows = node.boolean("shadows", settings.shadows);
+  node.finish();
+  return settings;
+}
+
 namespace {
 
 // Varyings of the per-pixel modes, in this order.
@@ -33,21 +44,11 @@ constexpr int kNormal = 8;           // vertex normal (3), phong
 constexpr int kSurfaceVaryings = 8;  // position, object position, uv
 constexpr int kPerLight = 4;         // dot-product mode: N·L and the specular colour
 
-const char* shading_name(RasterShading shading) {
-  switch (shading) {
-    case RasterShading::flat: return "flat";
-    case RasterShading::gouraud: return "gouraud";
-    case RasterShading::phong: return "phong";
-    case RasterShading::dot_product: return "dotproduct";
-  }
-  return "?";
-}
-
 // Everything the shading of one scene needs, shared by all tiles.
 class RasterShader {
  public:
-  RasterShader(const Scene& scene, const TessellatedScene& triangles)
-      : scene_(scene), triangles_(triangles), settings_(scene.raster),
+  RasterShader(const Scene& scene, const TessellatedScene& triangles, const RasterSettings& settings)
+      : scene_(scene), triangles_(triangles), settings_(settings),
         perspective_(scene.camera->type_name() == "perspective"),
         eye_(scene.camera->eye_position()), view_direction_(scene.camera->view_direction()) {
     if (settings_.shading == RasterShading::dot_product &&
@@ -238,8 +239,10 @@ struct TileBuffers {
 
 }  // namespace
 
-void RasterMethod::render(const Scene& scene, const RenderRequest& request, Film& film,
-                          RunStatistics& statistics) const {
+RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& request) const {
+  RenderResult output(request.region);
+  Film& film = output.film;
+  RunStatistics& statistics = output.statistics;
   const PixelRect region = request.region;
   const Camera& camera = *scene.camera;
   Stopwatch tessellation_time;
@@ -251,8 +254,8 @@ void RasterMethod::render(const Scene& scene, const RenderRequest& request, Film
   const double near = far * 1e-8;
   const Eigen::Matrix4d clip_from_world = camera.view_projection(near, far);
   TessellationRequest tessellation;
-  tessellation.max_segments = scene.raster.segments;
-  tessellation.crease_angle_degrees = scene.raster.crease_angle;
+  tessellation.max_segments = settings_.segments;
+  tessellation.crease_angle_degrees = settings_.crease_angle;
   tessellation.clip = clip;
   tessellation.has_view = true;
   tessellation.clip_from_world = clip_from_world;
@@ -262,7 +265,7 @@ void RasterMethod::render(const Scene& scene, const RenderRequest& request, Film
   const double tessellation_seconds = tessellation_time.seconds();
 
   Stopwatch raster_time;
-  const RasterShader shader(scene, triangles);
+  const RasterShader shader(scene, triangles, settings_);
   const int varying_count = shader.varying_count();
   const std::size_t triangle_count = triangles.triangle_count();
   // Per-vertex work once: clip coordinates and varyings (Gouraud's vertex intensities), the
@@ -270,7 +273,7 @@ void RasterMethod::render(const Scene& scene, const RenderRequest& request, Film
   const std::size_t stride = static_cast<std::size_t>(std::max(varying_count, 1));
   std::vector<Eigen::Vector4d> clip_positions(3 * triangle_count);
   std::vector<double> corner_varyings(varying_count > 0 ? 3 * triangle_count * stride : 0);
-  std::vector<Color> flat_colors(scene.raster.shading == RasterShading::flat ? triangle_count : 0);
+  std::vector<Color> flat_colors(settings_.shading == RasterShading::flat ? triangle_count : 0);
   tbb::enumerable_thread_specific<TraceContext> contexts;
   tbb::parallel_for(std::size_t(0), triangle_count, [&](std::size_t t) {
     TraceContext& context = contexts.local();
@@ -373,13 +376,14 @@ void RasterMethod::render(const Scene& scene, const RenderRequest& request, Film
     written += s.written;
   }
   // Sub-phases of "render", kept out of the phase list so the total is not counted twice.
-  statistics.extra["raster"] = {{"shading", shading_name(scene.raster.shading)},
-                                {"segments", scene.raster.segments},
+  statistics.extra["raster"] = {{"shading", kRasterShadingNames.name(settings_.shading)},
+                                {"segments", settings_.segments},
                                 {"tessellate_seconds", tessellation_seconds},
                                 {"rasterize_and_shade_seconds", raster_seconds},
                                 {"triangles", triangle_count},
                                 {"fragments", fragments},
                                 {"depth_writes", written}};
+  return output;
 }
 
 }  // namespace candela

@@ -20,14 +20,33 @@
 #pragma once
 
 #include "integrators/method.h"
+#include "io/json_node.h"
+#include "util/enum_names.h"
 
 namespace candela {
 
+enum class RasterShading { flat, gouraud, phong, dot_product };
+inline constexpr auto kRasterShadingNames = enum_names<RasterShading>(
+    {{RasterShading::flat, "flat"}, {RasterShading::gouraud, "gouraud"}, {RasterShading::phong, "phong"},
+     {RasterShading::dot_product, "dotproduct"}});
+
+// The scene file's "raster" object.
+struct RasterSettings {
+  RasterShading shading = RasterShading::phong;
+  int segments = 32;         // tessellation: divisions of a full turn
+  double crease_angle = 60;  // degrees: sharper edges keep two normals at a vertex
+  bool shadows = false;      // shadow rays from the shaded points (through the accelerator)
+};
+RasterSettings read_raster_settings(const JsonNode& node);
+
 class RasterMethod final : public Method {
  public:
+  explicit RasterMethod(const RasterSettings& settings = {}) : settings_(settings) {}
   std::string_view name() const override { return "raster"; }
-  void render(const Scene& scene, const RenderRequest& request, Film& film,
-              RunStatistics& statistics) const override;
+  RenderResult render(const Scene& scene, const RenderRequest& request) const override;
+
+ private:
+  RasterSettings settings_;
 };
 
 }  // namespace candela

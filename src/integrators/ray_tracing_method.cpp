@@ -16,8 +16,10 @@
 
 namespace candela {
 
-void RayTracingMethod::render(const Scene& scene, const RenderRequest& request, Film& film,
-                              RunStatistics& statistics) const {
+RenderResult RayTracingMethod::render(const Scene& scene, const RenderRequest& request) const {
+  RenderResult output(request.region);
+  Film& film = output.film;
+  RunStatistics& statistics = output.statistics;
   const PixelRect region = request.region;
   const int tile = scene.render.tile_size;
   Cluster* cluster = several_ranks(request);
@@ -93,7 +95,8 @@ void RayTracingMethod::render(const Scene& scene, const RenderRequest& request, 
   statistics.pixels += static_cast<uint64_t>(region.width()) * region.height();
   statistics.primary_per_pixel = std::move(result.traced_per_pixel);
   statistics.samples_per_pixel = std::move(result.samples_per_pixel);
-  statistics.extra["antialiasing"] = antialiasing_mode_name(scene.antialiasing.mode);
+  statistics.extra["antialiasing"] = std::string(kAntialiasingModeNames.name(scene.antialiasing.mode));
+  return output;
 }
 
 RayTree RayTracingMethod::pixel_ray_tree(const Scene& scene, int x, int y, Color& radiance) const {

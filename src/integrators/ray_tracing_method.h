@@ -19,12 +19,11 @@ struct TraceContext {
 
 class RayTracingMethod : public Method {
  public:
-  void render(const Scene& scene, const RenderRequest& request, Film& film,
-              RunStatistics& statistics) const override;
+  RenderResult render(const Scene& scene, const RenderRequest& request) const override;
   // The radiance along a primary ray, recording the ray tree when context.tree is set.
   virtual Color trace_primary(const Scene& scene, const Ray& ray, TraceContext& context) const = 0;
   // Traces pixel (x, y) alone and returns its ray tree.
-  RayTree pixel_ray_tree(const Scene& scene, int x, int y, Color& radiance) const;
+  RayTree pixel_ray_tree(const Scene& scene, int x, int y, Color& radiance) const override;
 };
 
 }  // namespace candela

@@ -9,6 +9,16 @@
 
 namespace candela {
 
+WhittedSettings read_whitted_settings(const JsonNode& node) {
+  WhittedSettings settings;
+  node.expect_object();
+  settings.max_depth = node.integer("max_depth", settings.max_depth, {0, 64, false, false});
+  settings.min_weight = node.number("min_weight", settings.min_weight, Range::unit());
+  settings.shadows = node.boolean("shadows", settings.shadows);
+  node.finish();
+  return settings;
+}
+
 namespace {
 
 Color trace(const Scene& scene, const Ray& ray, const TreeLimits& limits, RayKind kind, int depth,

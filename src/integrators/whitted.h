@@ -10,8 +10,17 @@
 #pragma once
 
 #include "integrators/ray_tracing_method.h"
+#include "io/json_node.h"
 
 namespace candela {
+
+// The scene file's "whitted" object.
+struct WhittedSettings {
+  int max_depth = 5;         // primary rays are depth 0 (000 §5.5)
+  double min_weight = 1e-3;  // adaptive depth: stop when the product of the k's is below
+  bool shadows = true;
+};
+WhittedSettings read_whitted_settings(const JsonNode& node);
 
 // Where the recursion stops and whether shadow rays are cast.
 struct TreeLimits {
@@ -29,13 +38,15 @@ Color trace_ray_tree(const Scene& scene, const Ray& ray, const TreeLimits& limit
 
 class WhittedMethod final : public RayTracingMethod {
  public:
+  explicit WhittedMethod(const WhittedSettings& settings = {}) : settings_(settings) {}
   std::string_view name() const override { return "whitted"; }
   Color trace_primary(const Scene& scene, const Ray& ray, TraceContext& context) const override {
-    return trace_ray_tree(scene, ray,
-                          {scene.whitted.max_depth, scene.whitted.min_weight, scene.whitted.shadows,
-                           scene.whitted.max_depth},
+    return trace_ray_tree(scene, ray, {settings_.max_depth, settings_.min_weight, settings_.shadows, settings_.max_depth},
                           context);
   }
+
+ private:
+  WhittedSettings settings_;
 };
 
 }  // namespace candela

@@ -6,7 +6,7 @@
 #include <regex>
 
 #include "integrators/local.h"
-#include "scene/scene_loader.h"
+#include "integrators/scene_loading.h"
 
 namespace candela {
 namespace {
@@ -17,6 +17,11 @@ std::unique_ptr<Scene> scene_from(const std::string& body, const std::string& ca
 
 // One pixel looking straight down -z through the image centre.
 const char* kCentreCamera = R"({"eye": [0, 0, 10], "target": [0, 0, 0], "fov": 1, "width": 1, "height": 1})";
+
+// The method as the scene's "whitted" object makes it.
+WhittedMethod whitted_of(const Scene& scene) {
+  return WhittedMethod(read_whitted_settings(scene.plugin_settings.node("whitted")));
+}
 
 Color render_pixel(const Scene& scene, const RayTracingMethod& method) {
   Color radiance;
@@ -37,7 +42,7 @@ TEST(Whitted, LocalModelOnALitPlaneMatchesTheFormula) {
   // R = 2N(N·L) − L = (0, -0.6, 0.8); V = (0, 0, 1): R·V = 0.8.
   const double specular = 0.3 * 0.8 * 0.8;
   const Color expected = Color(0.1 * 0.2) + Color(0.5, 0.25, 1) * (2 / (d + 1) * n_dot_l) + Color(2 / (d + 1) * specular);
-  const Color got = render_pixel(*scene, WhittedMethod());
+  const Color got = render_pixel(*scene, whitted_of(*scene));
   EXPECT_NEAR(got.r, expected.r, 1e-12);
   EXPECT_NEAR(got.g, expected.g, 1e-12);
   EXPECT_NEAR(got.b, expected.b, 1e-12);
@@ -48,7 +53,7 @@ TEST(Whitted, AttenuationModes) {
   const auto with = [&](const std::string& attenuation) {
     const auto scene = scene_from(R"("lights": [{"type": "point", "position": [0, 0, 4], "attenuation": )" +
                                       attenuation + "}], " + shapes, kCentreCamera);
-    return render_pixel(*scene, WhittedMethod()).r;
+    return render_pixel(*scene, whitted_of(*scene)).r;
   };
   EXPECT_NEAR(with("\"none\""), 1.0, 1e-12);
   EXPECT_NEAR(with("\"inverse-square\""), 1.0 / (4 * kPi * 16), 1e-12);
@@ -67,12 +72,12 @@ TEST(Whitted, OpaqueOccluderCastsAShadowAndTransparentOneIsAttenuatedByKt) {
   // The camera looks from the side so the primary ray does not cross the blocker.
   const char* side = R"({"eye": [3, 0, 1], "target": [0, 0, 0], "fov": 0.5, "width": 1, "height": 1})";
   const auto opaque = scene_from(std::regex_replace(base, std::regex("KT"), "0"), side);
-  EXPECT_TRUE(render_pixel(*opaque, WhittedMethod()).is_black());
+  EXPECT_TRUE(render_pixel(*opaque, whitted_of(*opaque)).is_black());
   const auto glass = scene_from(std::regex_replace(base, std::regex("KT"), "0.6"), side);
   const auto open = scene_from(std::regex_replace(base, std::regex("KT"), "1"), side);
-  const double lit = render_pixel(*open, WhittedMethod()).r;
+  const double lit = render_pixel(*open, whitted_of(*open)).r;
   EXPECT_GT(lit, 0);
-  EXPECT_NEAR(render_pixel(*glass, WhittedMethod()).r, 0.6 * lit, 1e-12);
+  EXPECT_NEAR(render_pixel(*glass, whitted_of(*glass)).r, 0.6 * lit, 1e-12);
 }
 
 TEST(Whitted, AbsorptionDarkensLongerPathsThroughGlass) {
@@ -141,8 +146,8 @@ TEST(Whitted, MirrorReflectionAndDepth) {
   const auto depth = [&](int d) {
     return scene_from(std::regex_replace(body, std::regex("DEPTH"), std::to_string(d)), kCentreCamera);
   };
-  EXPECT_TRUE(render_pixel(*depth(0), WhittedMethod()).is_black());
-  const Color one = render_pixel(*depth(1), WhittedMethod());
+  EXPECT_TRUE(render_pixel(*depth(0), whitted_of(*depth(0))).is_black());
+  const Color one = render_pixel(*depth(1), whitted_of(*depth(1)));
   EXPECT_NEAR(one.r, 0.9, 1e-12);
   EXPECT_NEAR(one.g, 0, 1e-12);
 }
@@ -160,7 +165,7 @@ TEST(Whitted, TwoFacingMirrorsDarkenGeometrically) {
     "whitted": {"max_depth": 50, "min_weight": 0.1})",
                                 kCentreCamera);
   Color radiance;
-  const RayTree tree = WhittedMethod().pixel_ray_tree(*scene, 0, 0, radiance);
+  const RayTree tree = whitted_of(*scene).pixel_ray_tree(*scene, 0, 0, radiance);
   EXPECT_EQ(tree.nodes().size(), 4u);
   EXPECT_NE(tree.nodes().back().note.find("pruned"), std::string::npos);
   EXPECT_TRUE(radiance.is_black());
@@ -177,7 +182,7 @@ TEST(Whitted, RefractionThroughASlabKeepsTheDirection) {
                {"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": "white"}])",
                                 R"({"eye": [0.3, 0.2, 10], "target": [0, 0, 0], "fov": 0.01, "width": 1, "height": 1})");
   Color radiance;
-  const RayTree tree = WhittedMethod().pixel_ray_tree(*scene, 0, 0, radiance);
+  const RayTree tree = whitted_of(*scene).pixel_ray_tree(*scene, 0, 0, radiance);
   EXPECT_NEAR(radiance.r, 0.64, 1e-9);
   // The ray that reaches the plane leaves the box parallel to the primary ray.
   const RayTreeNode& primary = tree.nodes().front();
@@ -195,7 +200,7 @@ TEST(Whitted, TotalInternalReflectionInsideGlass) {
     "whitted": {"max_depth": 1})",
                                 R"({"eye": [0, 0, -1], "target": [0.8660254037844386, 0, -0.5], "fov": 0.01, "width": 1, "height": 1})");
   Color radiance;
-  const RayTree tree = WhittedMethod().pixel_ray_tree(*scene, 0, 0, radiance);
+  const RayTree tree = whitted_of(*scene).pixel_ray_tree(*scene, 0, 0, radiance);
   ASSERT_EQ(tree.nodes().size(), 2u);
   EXPECT_EQ(tree.nodes()[1].kind, RayKind::internal_reflection);
   EXPECT_NEAR(tree.nodes()[1].direction.z, -0.5, 1e-9);
@@ -210,9 +215,7 @@ TEST(Whitted, NoShadowAcneOnCurvedSurfaces) {
         R"("lights": [{"type": "point", "position": [0, 0, )" + std::to_string(10 * scale) + R"(]}],
            "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": )" + s + "}]",
         R"({"eye": [0, 0, )" + std::to_string(5 * scale) + R"(], "target": [0, 0, 0], "fov": 15, "width": 32, "height": 32})");
-    Film film(32, 32);
-    RunStatistics statistics;
-    WhittedMethod().render(*scene, {{0, 0, 32, 32}, true}, film, statistics);
+    const Film film = whitted_of(*scene).render(*scene, {{0, 0, 32, 32}, true}).film;
     int dark = 0, lit = 0;
     for (const Color& c : film.pixels()) {
       if (c.r > 0) ++lit;

@@ -269,6 +269,9 @@ void JsonDocument::apply_override(const std::string& assignment) {
       node = &(*node)[index];
     } else if (node->is_object() || node->is_null()) {
       path = child_path(path, segment);
+      // An object the assignment creates is located at the assignment, so that an error about
+      // it (an unknown key such as a misspelt "whited") names the --set, not the file.
+      if (!node->is_object() || !node->contains(segment)) positions_[path] = {0, 0, "--set " + assignment};
       node = &(*node)[segment];
     } else {
       throw InputError(origin, (path.empty() ? std::string("the root") : path) +

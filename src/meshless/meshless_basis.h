@@ -28,11 +28,17 @@
 
 #include "meshless/site.h"
 #include "meshless/site_index.h"
+#include "util/enum_names.h"
 
 namespace candela {
 
 enum class BasisKind { radial, normalized, shepard };
+inline constexpr auto kBasisNames = enum_names<BasisKind>(
+    {{BasisKind::radial, "radial"}, {BasisKind::normalized, "normalized"}, {BasisKind::shepard, "shepard"}});
+// The radial basis's mother function.
 enum class RadialKernel { gaussian, cubic };
+inline constexpr auto kRadialKernelNames =
+    enum_names<RadialKernel>({{RadialKernel::gaussian, "gaussian"}, {RadialKernel::cubic, "cubic"}});
 
 class MeshlessBasis {
  public:

@@ -16,10 +16,10 @@ namespace {
 
 // The camera inside a closed sphere of radius 2: the secondary rounds reach what the camera cannot.
 std::unique_ptr<Scene> inside_sphere() {
-  return load_scene_text(R"({"format": "candela/1",
+  return read_scene_text(R"({"format": "candela/1",
     "camera": {"eye": [0, 0, 0], "target": [0, 0, -1], "fov": 60, "width": 32, "height": 32},
     "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 2}]})",
-                         "test.json", ".");
+                         "test.json", ".", {}, {});
 }
 
 TEST(SiteSampling, CoversAClosedSphereAndKeepsTheSpacing) {

@@ -14,10 +14,10 @@ namespace candela {
 namespace {
 
 std::unique_ptr<Scene> scene_with(const std::string& shapes) {
-  return load_scene_text(
+  return read_scene_text(
       R"({"format": "candela/1", "camera": {"eye": [0, 0, 20], "target": [0, 0, 0], "fov": 40, "width": 8, "height": 8}, "shapes": )" +
           shapes + "}",
-      "test.json", ".");
+      "test.json", ".", {}, {});
 }
 
 double longest_edge(const RadiositySurface& surface) {

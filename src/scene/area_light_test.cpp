@@ -50,12 +50,12 @@ TEST(AreaLight, IrradianceIsTheExitanceTimesThePointToPolygonFormFactor) {
 }
 
 std::unique_ptr<Scene> lit_floor(const std::string& extra_shapes) {
-  return load_scene_text(R"({"format": "candela/1",
+  return read_scene_text(R"({"format": "candela/1",
     "camera": {"eye": [0, 0, 8], "target": [0, 0, 0], "fov": 40, "width": 32, "height": 32},
     "lights": [{"type": "area", "corner": [-0.5, -0.5, 2], "edge_u": [0, 1, 0], "edge_v": [1, 0, 0], "exitance": 5, "samples": 8}],
     "shapes": [{"type": "quad", "corner": [-4, -4, 0], "edge_u": [8, 0, 0], "edge_v": [0, 8, 0], "material": {"kd": 0.5, "ks": 0}})" +
                              extra_shapes + "]}",
-                         "floor.json", ".");
+                         "floor.json", ".", {}, {});
 }
 
 TEST(AreaLight, LocalModelShowsKdTimesIrradianceAndSoftShadows) {
@@ -85,11 +85,11 @@ TEST(AreaLight, LocalModelShowsKdTimesIrradianceAndSoftShadows) {
 }
 
 TEST(AreaLight, BadInputIsALocatedError) {
-  EXPECT_THROW(load_scene_text(R"({"format": "candela/1", "lights": [{"type": "area", "corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [2, 0, 0]}]})",
-                               "bad.json", "."),
+  EXPECT_THROW(read_scene_text(R"({"format": "candela/1", "lights": [{"type": "area", "corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [2, 0, 0]}]})",
+                               "bad.json", ".", {}, {}),
                std::exception);
-  EXPECT_THROW(load_scene_text(R"({"format": "candela/1", "lights": [{"type": "area", "corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0], "samples": 0}]})",
-                               "bad.json", "."),
+  EXPECT_THROW(read_scene_text(R"({"format": "candela/1", "lights": [{"type": "area", "corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0], "samples": 0}]})",
+                               "bad.json", ".", {}, {}),
                std::exception);
 }
 

@@ -179,10 +179,10 @@ TEST(GltfImport, BadInputsAreRefusedNamingTheFile) {
 TEST(GltfImport, LoadedSceneHasTheTriangles) {
   testing::ScratchDirectory scratch("gltf");
   write_file(scratch.path() / "square.glb", glb(square_json(""), square_buffer()));
-  const auto scene = load_scene_text(R"({"format": "candela/1",
+  const auto scene = read_scene_text(R"({"format": "candela/1",
     "camera": {"eye": [0.5, 0.5, 3], "target": [0.5, 0.5, 0], "fov": 50, "width": 8, "height": 8},
     "shapes": [{"type": "mesh", "file": "square.glb", "material": {"kd": 0.5}}]})",
-                                     "gltf.json", scratch.path().string());
+                                     "gltf.json", scratch.path().string(), {}, {});
   EXPECT_EQ(scene->primitives.size(), 2u);
   EXPECT_DOUBLE_EQ(scene->bounds().upper.x, 1.0);
   EXPECT_DOUBLE_EQ(scene->bounds().upper.y, 1.0);

@@ -229,11 +229,11 @@ TEST(PlyImport, MalformedHeadersAndMissingFiles) {
 TEST(PlyImport, LoadedSceneHasTheTriangles) {
   testing::ScratchDirectory scratch("ply");
   write_file(scratch.path() / "cube.ply", kAsciiCube);
-  const auto scene = load_scene_text(R"({"format": "candela/1",
+  const auto scene = read_scene_text(R"({"format": "candela/1",
     "camera": {"eye": [3, 3, 3], "target": [0, 0, 0], "fov": 50, "width": 8, "height": 8},
     "shapes": [{"type": "mesh", "file": "cube.ply", "transform": [{"translate": [1, 0, 0]}],
                 "material": {"kd": 0.5}}]})",
-                                     "ply.json", scratch.path().string());
+                                     "ply.json", scratch.path().string(), {}, {});
   EXPECT_EQ(scene->primitives.size(), 12u);
   EXPECT_DOUBLE_EQ(scene->bounds().lower.x, 1.0);
   EXPECT_DOUBLE_EQ(scene->bounds().upper.x, 2.0);
@@ -244,10 +244,10 @@ TEST(PlyImport, UnknownMeshExtensionIsRefused) {
   testing::ScratchDirectory scratch("ply");
   write_file(scratch.path() / "cube.stl", "solid");
   try {
-    (void)load_scene_text(R"({"format": "candela/1",
+    (void)read_scene_text(R"({"format": "candela/1",
       "camera": {"eye": [3, 3, 3], "target": [0, 0, 0], "fov": 50, "width": 8, "height": 8},
       "shapes": [{"type": "mesh", "file": "cube.stl"}]})",
-                          "stl.json", scratch.path().string());
+                          "stl.json", scratch.path().string(), {}, {});
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(e.message().find(".obj, .ply, .gltf or .glb"), std::string::npos) << e.message();

@@ -31,7 +31,7 @@ void Scene::prepare() {
   const AcceleratorEntry* entry = find_accelerator(render.accelerator);
   if (!entry) throw std::invalid_argument("unknown accelerator " + render.accelerator);  // checked by the loader
   const auto start = std::chrono::steady_clock::now();
-  accelerator_ = entry->create(render.accelerator_settings);
+  accelerator_ = entry->create(plugin_settings.node(entry->name), render.bounding_volume);
   accelerator_->build(primitives);
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   bounds_ = Bounds3();

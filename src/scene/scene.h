@@ -1,5 +1,5 @@
-// Everything a method reads: geometry, materials, lights, camera and settings. Methods never
-// edit it (SPEC "Architecture").
+// Everything a method reads: geometry, materials, lights, camera, and the raw settings objects
+// that each method and accelerator reads itself. Methods never edit it (SPEC "Architecture").
 #pragma once
 
 #include <algorithm>
@@ -10,11 +10,12 @@
 #include <vector>
 
 #include "accel/accelerator.h"
+#include "accel/bounding_volume.h"
 #include "camera/antialiasing.h"
 #include "camera/camera.h"
 #include "camera/tone_map.h"
-#include "radiosity/radiosity_settings.h"  // (until the methods own their settings)
 #include "scene/light.h"
+#include "scene/plugin_settings.h"
 #include "shading/material.h"
 #include "util/error.h"
 
@@ -25,59 +26,10 @@ struct RenderSettings {
   SourceLocation method_location;
   uint64_t seed = 0;
   std::string accelerator = "list";
-  AcceleratorSettings accelerator_settings;
+  // The list accelerator tests each scene object's volume before its primitives.
+  BoundingVolumeKind bounding_volume = BoundingVolumeKind::none;
   double ray_offset = 0;  // 0: derived from the scene's extent (see Scene::ray_offset)
   int tile_size = 16;
-};
-
-struct WhittedSettings {
-  int max_depth = 5;         // primary rays are depth 0 (000 §5.5)
-  double min_weight = 1e-3;  // adaptive depth: stop when the product of the k's is below
-  bool shadows = true;
-};
-
-struct LocalSettings {
-  bool shadows = true;
-};
-
-// The raster method (SPEC §9).
-enum class RasterShading { flat, gouraud, phong, dot_product };
-
-struct RasterSettings {
-  RasterShading shading = RasterShading::phong;
-  int segments = 32;           // tessellation: divisions of a full turn
-  double crease_angle = 60;    // degrees: sharper edges keep two normals at a vertex
-  bool shadows = false;        // shadow rays from the shaded points (through the accelerator)
-};
-
-// The meshless method's settings (SPEC §11, seed 002): scene key "meshless".
-enum class MeshlessBasisKind { radial, normalized, shepard };
-enum class MeshlessKernel { gaussian, cubic };
-enum class MeshlessDisplay { global, direct, indirect, hybrid };
-enum class MeshlessAreas { integrated, thesis };
-
-struct MeshlessSettings {
-  MeshlessBasisKind basis = MeshlessBasisKind::normalized;
-  MeshlessKernel kernel = MeshlessKernel::gaussian;  // the radial basis's mother function
-  double spacing = 0;     // Δ: no two sites closer (site distance); 0: the scene's size / 50
-  int neighbours = 10;    // m: the radius holds the m nearest sites
-  int grid = 64;          // camera rays per image side for the first sites
-  int rounds = 4;         // rounds of secondary rays
-  MeshlessAreas effective_area = MeshlessAreas::integrated;
-  double tolerance = 1e-4;     // the iteration stops when no coefficient changes by more (relative)
-  int max_iterations = 1000;
-  MeshlessDisplay display = MeshlessDisplay::global;
-  double shepard_power = 2;
-  int max_sites = 50000;       // refused beyond: the transfer matrix grows as n²
-};
-
-// The path-traced reference (SPEC §12): scene key "path".
-struct PathSettings {
-  int spp = 64;         // passes of one sample per pixel; 0: as many as `time` allows
-  double time = 0;      // seconds; > 0: stop after the pass that reaches it (or at spp, if set)
-  int max_depth = 0;    // bounces at most; 0: unlimited (Russian roulette ends every path)
-  int roulette_depth = 3;  // Russian roulette from this bounce on
-  double checkpoint_interval = 60;  // seconds between checkpoints (candela render --checkpoint)
 };
 
 // One entry of the scene file's "shapes" array.
@@ -122,12 +74,9 @@ class Scene {
   std::unique_ptr<Environment> environment;  // environment map (000 §4.1.3), or null
   RenderSettings render;
   DisplaySettings display;
-  WhittedSettings whitted;
-  LocalSettings local;
-  RasterSettings raster;
-  RadiositySettings radiosity;
-  MeshlessSettings meshless;
-  PathSettings path;
+  // The methods' and accelerators' own objects of the file ("whitted", "bvh", ...), read by
+  // their registry entries (integrators/method_registry.h, accel/accelerator_registry.h).
+  PluginSettings plugin_settings;
   AntialiasingSettings antialiasing;  // the "aa" object
   std::vector<std::string> warnings;
 

@@ -48,8 +48,9 @@ void read_light_list(const JsonNode& lights, Color& ambient, std::vector<std::un
 
 class SceneReader {
  public:
-  SceneReader(const JsonDocument& document, const std::string& base_directory)
-      : root_(document, document.root(), "") {
+  SceneReader(const JsonDocument& document, const std::string& base_directory,
+              std::span<const SettingsSection> plugin_sections)
+      : root_(document, document.root(), ""), plugin_sections_(plugin_sections) {
     context_.base_directory = base_directory;
   }
 
@@ -133,114 +134,40 @@ class SceneReader {
                             "\" (expected one of: " + entry_names(accelerator_entries()) + ")");
       }
       if (const auto volume = render->get("bounding_volume")) {
-        if (!bounding_volume_from_name(volume->as_string(), scene_->render.accelerator_settings.bounding_volume))
-          volume->fail("unknown bounding volume \"" + volume->as_string() +
-                       "\" (expected one of: none, sphere, box, slabs)");
+        const auto kind = kBoundingVolumeNames.value(volume->as_string());
+        if (!kind)
+          volume->fail("unknown bounding volume \"" + volume->as_string() + "\" (expected one of: " +
+                       kBoundingVolumeNames.names() + ")");
+        scene_->render.bounding_volume = *kind;
       }
       scene_->render.ray_offset = render->number("ray_offset", 0.0, Range::non_negative());
       scene_->render.tile_size = render->integer("tile_size", 16, {1, 4096, false, false});
       render->finish();
     }
     if (const auto film = root_.get("film")) {
-      const std::string mode = film->choice("out_of_range", "clamp", {"clamp", "scale", "normalize"});
-      scene_->display.out_of_range = mode == "clamp" ? OutOfRange::clamp
-                                     : mode == "scale" ? OutOfRange::scale
-                                                       : OutOfRange::normalize;
+      scene_->display.out_of_range = film->enumeration("out_of_range", OutOfRange::clamp, kOutOfRangeNames);
       scene_->display.exposure = film->number("exposure", 0.0, {-64, 64, false, false});
       scene_->display.srgb = film->boolean("srgb", true);
       film->finish();
     }
-    if (const auto whitted = root_.get("whitted")) {
-      scene_->whitted.max_depth = whitted->integer("max_depth", 5, {0, 64, false, false});
-      scene_->whitted.min_weight = whitted->number("min_weight", 1e-3, Range::unit());
-      scene_->whitted.shadows = whitted->boolean("shadows", true);
-      whitted->finish();
-    }
-    AcceleratorSettings& accelerator = scene_->render.accelerator_settings;
-    if (const auto bvh = root_.get("bvh")) {
-      accelerator.bvh_max_leaf_primitives = bvh->integer("max_leaf_primitives", 4, {1, 64, false, false});
-      accelerator.bvh_bins = bvh->integer("bins", 16, {2, 256, false, false});
-      bvh->finish();
-    }
-    if (const auto grid = root_.get("grid")) {
-      accelerator.grid_density = grid->number("density", 3.0, {0, 1000, true, false});
-      grid->finish();
-    }
-    if (const auto octree = root_.get("octree")) {
-      accelerator.octree_max_primitives = octree->integer("max_primitives", 8, {1, 1 << 20, false, false});
-      accelerator.octree_max_depth = octree->integer("max_depth", 10, {0, 32, false, false});
-      octree->finish();
-    }
-    if (const auto raster = root_.get("raster")) {
-      const std::string shading = raster->choice("shading", "phong", {"flat", "gouraud", "phong", "dotproduct"});
-      scene_->raster.shading = shading == "flat"      ? RasterShading::flat
-                               : shading == "gouraud" ? RasterShading::gouraud
-                               : shading == "phong"   ? RasterShading::phong
-                                                      : RasterShading::dot_product;
-      scene_->raster.segments = raster->integer("segments", 32, {3, 4096, false, false});
-      scene_->raster.crease_angle = raster->number("crease_angle", 60.0, {0, 180, false, false});
-      scene_->raster.shadows = raster->boolean("shadows", false);
-      raster->finish();
-    }
-    if (const auto radiosity = root_.get("radiosity")) scene_->radiosity = read_radiosity_settings(*radiosity);
-    if (const auto meshless = root_.get("meshless")) read_meshless(*meshless);
-    if (const auto path = root_.get("path")) read_path(*path);
-    if (const auto local = root_.get("local")) {
-      scene_->local.shadows = local->boolean("shadows", true);
-      local->finish();
-    }
+    // Every accelerator's and method's own object, checked now by its reader (the plugin reads
+    // it again when it is made): an unknown key or a bad value is refused at load time.
+    for (const AcceleratorEntry& entry : accelerator_entries())
+      if (const auto node = root_.get(entry.name)) entry.create(*node, scene_->render.bounding_volume);
+    for (const SettingsSection& section : plugin_sections_)
+      if (const auto node = root_.get(section.key)) section.check(*node);
     if (const auto aa = root_.get("aa")) read_antialiasing(*aa);
-  }
-
-  // The path tracer's settings (SPEC §12); ranges checked, unknown keys refused.
-  void read_path(const JsonNode& node) {
-    PathSettings& settings = scene_->path;
-    node.expect_object();
-    settings.spp = node.integer("spp", 64, {0, 1 << 24, false, false});
-    settings.time = node.number("time", 0.0, Range::non_negative());
-    if (settings.spp == 0 && !(settings.time > 0)) node.at("spp").fail("spp 0 (no limit) needs a time limit: path.time > 0");
-    settings.max_depth = node.integer("max_depth", 0, {0, 1024, false, false});
-    settings.roulette_depth = node.integer("roulette_depth", 3, {0, 1024, false, false});
-    settings.checkpoint_interval = node.number("checkpoint_interval", 60.0, {0, 1e9, true, false});
-    node.finish();
-  }
-
-  // The meshless method's settings (SPEC §11, seed 002); ranges checked, unknown keys refused.
-  void read_meshless(const JsonNode& node) {
-    MeshlessSettings& settings = scene_->meshless;
-    node.expect_object();
-    const std::string basis = node.choice("basis", "normalized", {"radial", "normalized", "shepard"});
-    settings.basis = basis == "radial"       ? MeshlessBasisKind::radial
-                     : basis == "normalized" ? MeshlessBasisKind::normalized
-                                             : MeshlessBasisKind::shepard;
-    settings.kernel = node.choice("kernel", "gaussian", {"gaussian", "cubic"}) == "gaussian" ? MeshlessKernel::gaussian
-                                                                                            : MeshlessKernel::cubic;
-    settings.spacing = node.number("spacing", 0.0, Range::non_negative());
-    settings.neighbours = node.integer("neighbours", 10, {1, 1000, false, false});
-    settings.grid = node.integer("grid", 64, {1, 4096, false, false});
-    settings.rounds = node.integer("rounds", 4, {0, 1000, false, false});
-    settings.effective_area = node.choice("effective_area", "integrated", {"integrated", "thesis"}) == "integrated"
-                                  ? MeshlessAreas::integrated
-                                  : MeshlessAreas::thesis;
-    settings.tolerance = node.number("tolerance", 1e-4, {0, 1, true, false});
-    settings.max_iterations = node.integer("max_iterations", 1000, {1, 1 << 20, false, false});
-    const std::string display = node.choice("display", "global", {"global", "direct", "indirect", "hybrid"});
-    settings.display = display == "global"     ? MeshlessDisplay::global
-                       : display == "direct"   ? MeshlessDisplay::direct
-                       : display == "indirect" ? MeshlessDisplay::indirect
-                                               : MeshlessDisplay::hybrid;
-    settings.shepard_power = node.number("shepard_power", 2.0, {0, 16, false, false});
-    settings.max_sites = node.integer("max_sites", 50000, {1, 1 << 22, false, false});
-    node.finish();
   }
 
   void read_antialiasing(const JsonNode& aa) {
     AntialiasingSettings& settings = scene_->antialiasing;
     aa.expect_object();
     if (const auto mode = aa.get("mode")) {
-      if (!antialiasing_mode_from_name(mode->as_string(), settings.mode))
+      const auto value = kAntialiasingModeNames.value(mode->as_string());
+      if (!value)
         mode->fail("unknown anti-aliasing mode \"" + mode->as_string() + "\" (expected one of: " +
-                   kAntialiasingModeNames + ")");
+                   kAntialiasingModeNames.names() + ")");
+      settings.mode = *value;
     }
     settings.n = aa.integer("n", settings.n, {1, 64, false, false});
     settings.max_level = aa.integer("max_level", settings.max_level, {0, 8, false, false});
@@ -337,38 +264,41 @@ class SceneReader {
   }
 
   JsonNode root_;
+  std::span<const SettingsSection> plugin_sections_;
   Scene* scene_ = nullptr;
   LoadContext context_;
   std::map<std::string, uint32_t> named_materials_;
 };
 
-std::unique_ptr<Scene> load_document(JsonDocument& document, const std::string& base_directory,
-                                     const std::vector<std::string>& overrides) {
-  for (const auto& assignment : overrides) document.apply_override(assignment);
-  SceneReader reader(document, base_directory);
+std::unique_ptr<Scene> load_document(std::shared_ptr<JsonDocument> document, const std::string& base_directory,
+                                     const std::vector<std::string>& overrides,
+                                     std::span<const SettingsSection> plugin_sections) {
+  for (const auto& assignment : overrides) document->apply_override(assignment);
+  SceneReader reader(*document, base_directory, plugin_sections);
   auto scene = reader.read();
-  scene->source = document.file();
+  scene->source = document->file();
+  scene->plugin_settings = PluginSettings(std::move(document));
   return scene;
 }
 
 }  // namespace
 
-std::unique_ptr<Scene> load_scene_text(const std::string& text, const std::string& name,
-                                       const std::string& base_directory,
-                                       const std::vector<std::string>& overrides) {
-  JsonDocument document = JsonDocument::parse(text, name);
-  return load_document(document, base_directory, overrides);
+std::unique_ptr<Scene> read_scene_text(const std::string& text, const std::string& name,
+                                       const std::string& base_directory, const std::vector<std::string>& overrides,
+                                       std::span<const SettingsSection> plugin_sections) {
+  auto document = std::make_shared<JsonDocument>(JsonDocument::parse(text, name));
+  return load_document(std::move(document), base_directory, overrides, plugin_sections);
 }
 
-std::unique_ptr<Scene> load_scene_file(const std::string& path,
-                                       const std::vector<std::string>& overrides) {
+std::unique_ptr<Scene> read_scene_file(const std::string& path, const std::vector<std::string>& overrides,
+                                       std::span<const SettingsSection> plugin_sections) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError({path, 0, 0, {}}, "cannot open the scene file");
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw InputError({path, 0, 0, {}}, "cannot read the scene file");
   const std::string directory = std::filesystem::path(path).parent_path().string();
-  return load_scene_text(text.str(), path, directory.empty() ? "." : directory, overrides);
+  return read_scene_text(text.str(), path, directory.empty() ? "." : directory, overrides, plugin_sections);
 }
 
 std::vector<LightSetup> load_light_setups(const std::string& path) {
@@ -405,8 +335,9 @@ std::vector<LightSetup> load_light_setups_text(const std::string& text, const st
   return setups;
 }
 
-std::unique_ptr<Scene> load_default_scene(const std::vector<std::string>& overrides) {
-  return load_scene_text(default_scene_text(), "<built-in default scene>", ".", overrides);
+std::unique_ptr<Scene> read_default_scene(const std::vector<std::string>& overrides,
+                                          std::span<const SettingsSection> plugin_sections) {
+  return read_scene_text(default_scene_text(), "<built-in default scene>", ".", overrides, plugin_sections);
 }
 
 }  // namespace candela

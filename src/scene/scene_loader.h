@@ -2,6 +2,7 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -9,15 +10,17 @@
 
 namespace candela {
 
-// Reads and validates a scene file. overrides are "dotted.path=value" (--set). Throws
-// InputError naming file, line, column and JSON path for any problem.
-std::unique_ptr<Scene> load_scene_file(const std::string& path,
-                                       const std::vector<std::string>& overrides = {});
+// Reads and validates a scene file. overrides are "dotted.path=value" (--set). plugin_sections:
+// the top-level objects that plugins above the scene read (the methods' settings), each checked
+// by its reader; any other unknown key is refused. Throws InputError naming file, line, column
+// and JSON path for any problem. (integrators/scene_loading.h passes every method's section.)
+std::unique_ptr<Scene> read_scene_file(const std::string& path, const std::vector<std::string>& overrides,
+                                       std::span<const SettingsSection> plugin_sections);
 // The same for text held in memory; name stands for the file in messages, base_directory
 // resolves relative mesh paths.
-std::unique_ptr<Scene> load_scene_text(const std::string& text, const std::string& name,
-                                       const std::string& base_directory,
-                                       const std::vector<std::string>& overrides = {});
+std::unique_ptr<Scene> read_scene_text(const std::string& text, const std::string& name,
+                                       const std::string& base_directory, const std::vector<std::string>& overrides,
+                                       std::span<const SettingsSection> plugin_sections);
 // Light set-ups for relighting (candela render --relight FILE): a JSON object
 // {"frames": [{"name": "noon", "ambient": 0.1, "lights": [... as a scene's "lights" ...]}, ...]}.
 // Names (default frameN) are unique and made of letters, digits, '_' and '-'. Throws InputError
@@ -31,7 +34,8 @@ std::vector<LightSetup> load_light_setups(const std::string& path);
 std::vector<LightSetup> load_light_setups_text(const std::string& text, const std::string& name);
 
 // The built-in default scene (the two-mirror scene of 000 §5.9).
-std::unique_ptr<Scene> load_default_scene(const std::vector<std::string>& overrides = {});
+std::unique_ptr<Scene> read_default_scene(const std::vector<std::string>& overrides,
+                                          std::span<const SettingsSection> plugin_sections);
 const std::string& default_scene_text();
 
 }  // namespace candela

@@ -135,13 +135,13 @@ std::string scene_with(const std::string& material) {
 
 TEST(MaterialBsdf, SceneKeyMicrofacet) {
   const auto ggx =
-      load_scene_text(scene_with(R"({"type": "cook-torrance", "microfacet": "ggx"})"), "t.json", ".");
+      read_scene_text(scene_with(R"({"type": "cook-torrance", "microfacet": "ggx"})"), "t.json", ".", {}, {});
   EXPECT_EQ(ggx->materials[ggx->primitives[0].material].microfacet, MicrofacetDistribution::ggx);
-  const auto fallback = load_scene_text(scene_with(R"({"type": "cook-torrance"})"), "t.json", ".");
+  const auto fallback = read_scene_text(scene_with(R"({"type": "cook-torrance"})"), "t.json", ".", {}, {});
   EXPECT_EQ(fallback->materials[fallback->primitives[0].material].microfacet,
             MicrofacetDistribution::beckmann);
   try {
-    load_scene_text(scene_with(R"({"type": "cook-torrance", "microfacet": "phong"})"), "t.json", ".");
+    read_scene_text(scene_with(R"({"type": "cook-torrance", "microfacet": "phong"})"), "t.json", ".", {}, {});
     ADD_FAILURE() << "a bad distribution loaded";
   } catch (const InputError& e) {
     EXPECT_EQ(e.location().file, "t.json");
@@ -150,7 +150,7 @@ TEST(MaterialBsdf, SceneKeyMicrofacet) {
     EXPECT_NE(std::string(e.what()).find("beckmann, ggx"), std::string::npos) << e.what();
   }
   // Only the Cook-Torrance model has facets.
-  EXPECT_THROW(load_scene_text(scene_with(R"({"type": "phong", "microfacet": "ggx"})"), "t.json", "."),
+  EXPECT_THROW(read_scene_text(scene_with(R"({"type": "phong", "microfacet": "ggx"})"), "t.json", ".", {}, {}),
                InputError);
 }
 

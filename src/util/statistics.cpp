@@ -7,6 +7,15 @@
 
 namespace candela {
 
+void RunStatistics::absorb(RunStatistics&& other) {
+  for (auto& phase : other.phases) phases.push_back(std::move(phase));
+  rays += other.rays;
+  pixels += other.pixels;
+  primary_per_pixel = std::move(other.primary_per_pixel);
+  samples_per_pixel = std::move(other.samples_per_pixel);
+  for (auto& [key, value] : other.extra.items()) extra[key] = std::move(value);
+}
+
 nlohmann::json RunStatistics::to_json() const {
   nlohmann::json out = extra;
   nlohmann::json phase_list = nlohmann::json::object();

@@ -50,6 +50,9 @@ struct RunStatistics {
   nlohmann::json extra = nlohmann::json::object();  // scene and method facts
 
   void add_phase(std::string name, double seconds) { phases.emplace_back(std::move(name), seconds); }
+  // Takes what another run measured (a method's render) after what this one holds: its phases
+  // follow these, counts add, per-pixel vectors and facts replace (threads stay).
+  void absorb(RunStatistics&& other);
   nlohmann::json to_json() const;
   std::string summary() const;  // one screen of text
 };

@@ -73,11 +73,10 @@ void write_text(const std::string& path, const std::string& text) {
 class SettingsGuard {
  public:
   explicit SettingsGuard(Scene& scene)
-      : scene_(scene), method_(scene.render.method), seed_(scene.render.seed), path_(scene.path) {}
+      : scene_(scene), method_(scene.render.method), seed_(scene.render.seed) {}
   ~SettingsGuard() {
     scene_.render.method = method_;
     scene_.render.seed = seed_;
-    scene_.path = path_;
   }
   SettingsGuard(const SettingsGuard&) = delete;
   SettingsGuard& operator=(const SettingsGuard&) = delete;
@@ -86,12 +85,13 @@ class SettingsGuard {
   Scene& scene_;
   std::string method_;
   uint64_t seed_;
-  PathSettings path_;
 };
 
-// Renders the whole image with the scene's current settings and writes DIR/<key>.png and .exr.
+// Renders the whole image with the scene's current settings, the method's settings object changed
+// by `settings` ("spp=16"), and writes DIR/<key>.png and .exr.
 CrossMethodEntry render_entry(Scene& scene, const CrossMethodOptions& options, const std::string& method_name,
-                              const std::string& label, const std::string& key) {
+                              const std::string& label, const std::string& key,
+                              const std::vector<std::string>& settings = {}) {
   const MethodEntry* registered = find_method(method_name);
   if (!registered)
     throw std::invalid_argument("unknown method \"" + method_name + "\" (expected one of: " + method_names() + ")");
@@ -110,8 +110,10 @@ CrossMethodEntry render_entry(Scene& scene, const CrossMethodOptions& options, c
   request.quiet = options.quiet;
   Stopwatch timer;
   try {
-    const std::unique_ptr<Method> method = registered->create();
-    method->render(scene, request, film, statistics);
+    const std::unique_ptr<Method> method = create_method(*registered, scene, settings);
+    RenderResult result = method->render(scene, request);
+    film = std::move(result.film);
+    statistics.absorb(std::move(result.statistics));
   } catch (const InputError& e) {
     throw InputError(e.location(), "method " + label + ": " + e.message());
   } catch (const std::exception& e) {
@@ -257,7 +259,6 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
                                             width, height));
   const SettingsGuard guard(scene);
   const uint64_t seed = scene.render.seed;
-  const PathSettings path_settings = scene.path;
   const fs::path directory(options.output_directory);
   // A page left from an earlier report would describe images this run is about to replace: it
   // goes first, so that a run that fails leaves no page at all.
@@ -288,20 +289,18 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
     write_image(report.reference.image, (directory / "reference.exr").string(), scene.display);
   } else {
     report.reference_spp = options.reference_spp;
-    scene.path.spp = options.reference_spp;
-    scene.path.time = 0;
     scene.render.seed = report.reference_seed;
-    report.reference = render_entry(scene, options, "path", "reference", "reference");
+    report.reference = render_entry(scene, options, "path", "reference", "reference",
+                                    {"spp=" + std::to_string(options.reference_spp), "time=0"});
     report.reference.facts.emplace_back("seed", std::to_string(report.reference_seed));
     scene.render.seed = seed;
-    scene.path = path_settings;
   }
 
   // Each method, then path at each other method's time.
   for (const std::string& method : options.methods) {
-    if (method == "path" && options.path_spp) scene.path.spp = *options.path_spp;
-    report.entries.push_back(render_entry(scene, options, method, method, method));
-    scene.path = path_settings;
+    std::vector<std::string> settings;
+    if (method == "path" && options.path_spp) settings.push_back("spp=" + std::to_string(*options.path_spp));
+    report.entries.push_back(render_entry(scene, options, method, method, method, settings));
   }
   if (options.equal_time) {
     const std::size_t count = report.entries.size();
@@ -310,14 +309,12 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
       if (other.method == "path") continue;
       const std::string other_method = other.method;
       const double seconds = std::max(other.seconds, 1e-6);
-      scene.path.spp = 0;
-      scene.path.time = seconds;
       CrossMethodEntry entry = render_entry(scene, options, "path", "path (equal time: " + other_method + ")",
-                                            "path-equal-time-" + other_method);
+                                            "path-equal-time-" + other_method,
+                                            {"spp=0", fmt::format("time={:.17g}", seconds)});
       entry.equal_time_to = other_method;
       entry.facts.emplace_back("time limit (s)", fmt::format("{:.3g}", seconds));
       report.entries.push_back(std::move(entry));
-      scene.path = path_settings;
     }
   }
 

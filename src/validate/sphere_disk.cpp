@@ -16,7 +16,7 @@
 #include "integrators/meshless_method.h"
 #include "io/image_writer.h"
 #include "math/constants.h"
-#include "scene/scene_loader.h"
+#include "integrators/scene_loading.h"
 #include "util/atomic_file.h"
 #include "validate/line_plot.h"
 
@@ -179,15 +179,6 @@ double ReferenceSolution::disc_to_sphere_factor(double at_u) const {
   return sum;
 }
 
-const char* basis_label(BasisKind kind) {
-  switch (kind) {
-    case BasisKind::radial: return "radial";
-    case BasisKind::normalized: return "normalized";
-    case BasisKind::shepard: return "shepard";
-  }
-  return "?";
-}
-
 std::string sphere_disk_scene_json(const SphereDiskScene& scene, const FeSettings& settings) {
   const double window = scene.disc_radius * 1.05;
   return fmt::format(
@@ -202,7 +193,7 @@ std::string sphere_disk_scene_json(const SphereDiskScene& scene, const FeSetting
     {{"type": "sphere", "center": [0, {h}, 0], "radius": {r}, "material": {{"kd": {beta}}}}}
   ]}})",
       fmt::arg("eye", scene.height * 5), fmt::arg("lo", -window), fmt::arg("hi", window),
-      fmt::arg("basis", basis_label(settings.basis)), fmt::arg("spacing", settings.spacing),
+      fmt::arg("basis", kBasisNames.name(settings.basis)), fmt::arg("spacing", settings.spacing),
       fmt::arg("grid", settings.grid), fmt::arg("rounds", settings.rounds), fmt::arg("mu", scene.light),
       fmt::arg("R", scene.disc_radius), fmt::arg("delta", scene.disc_albedo), fmt::arg("h", scene.height),
       fmt::arg("r", scene.sphere_radius), fmt::arg("beta", scene.sphere_albedo));
@@ -212,7 +203,7 @@ FeCurves solve_fe(const SphereDiskScene& scene, const FeSettings& settings, cons
                   const std::vector<double>& alpha) {
   const auto start = std::chrono::steady_clock::now();
   const auto loaded = load_scene_text(sphere_disk_scene_json(scene, settings), "sphere-disk.json", ".");
-  const MeshlessSolution solution = solve_meshless(*loaded);
+  const MeshlessSolution solution = solve_meshless(*loaded, read_meshless_settings(loaded->plugin_settings.node("meshless")));
   const SiteSet& set = solution.sites;
   const MeshlessBasis basis(set.sites, set.radius, settings.basis);
   FeCurves curves;
@@ -442,7 +433,7 @@ nlohmann::json run_sphere_disk_validation(const std::string& directory, const Sp
         fe.azimuths = 16;
       }
       const FeCurves curves = solve_fe(scene, fe, reference.u, reference.alpha);
-      const std::string name = fmt::format("fe_{}_delta{}", basis_label(kind), spacing);
+      const std::string name = fmt::format("fe_{}_delta{}", std::string(kBasisNames.name(kind)), spacing);
       write_text(out / (name + "_disc.csv"),
                  csv("u,direct,total,total_meridian", reference.u,
                      {&curves.disc_direct_mean, &curves.disc_mean, &curves.disc_meridian}));
@@ -477,9 +468,9 @@ nlohmann::json run_sphere_disk_validation(const std::string& directory, const Sp
       entry["converged"] = curves.converged;  // as solve_transfer reports it
       entry["diverged"] = !std::isfinite(mean.rms);  // JSON has no infinity: the errors are then null
       entry["seconds"] = curves.seconds;
-      bases[basis_label(kind)][fmt::format("delta{}", spacing)] = entry;
+      bases[std::string(kBasisNames.name(kind))][fmt::format("delta{}", spacing)] = entry;
       say(fmt::format("{:<10} delta {}: {:>5} sites, RMS {:.4g} ({:.3g} %), max {:.4g} ({:.3g} %), indirect RMS {:.4g}; {:.1f} s",
-                      basis_label(kind), spacing, curves.sites, mean.rms, 100 * mean.rms_relative, mean.max,
+                      std::string(kBasisNames.name(kind)), spacing, curves.sites, mean.rms, 100 * mean.rms_relative, mean.max,
                       100 * mean.max_relative, indirect.rms, curves.seconds));
 
       const Color color = basis_color(kind);
@@ -505,9 +496,9 @@ nlohmann::json run_sphere_disk_validation(const std::string& directory, const Sp
     std::string winner;
     double least = 0;
     for (const BasisKind kind : kinds) {
-      const nlohmann::json& rms = bases[basis_label(kind)][key]["rms"];
+      const nlohmann::json& rms = bases[std::string(kBasisNames.name(kind))][key]["rms"];
       if (!rms.is_number() || !std::isfinite(rms.get<double>())) continue;
-      if (winner.empty() || rms.get<double>() < least) winner = basis_label(kind), least = rms.get<double>();
+      if (winner.empty() || rms.get<double>() < least) winner = std::string(kBasisNames.name(kind)), least = rms.get<double>();
     }
     best[key] = winner;
     // All three bases against the reference's total.

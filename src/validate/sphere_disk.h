@@ -121,7 +121,6 @@ struct CurveErrors {
 CurveErrors curve_errors(const std::vector<double>& disc_fe, const std::vector<double>& disc_reference,
                          const std::vector<double>& sphere_fe, const std::vector<double>& sphere_reference);
 
-const char* basis_label(BasisKind kind);
 
 // The whole validation (`candela validate sphere-disk`): the reference, the refined reference
 // (n = m = k = 4× — its values at the reference's nodes show that the reference has converged),
