@@ -6,7 +6,7 @@
 #include <exception>
 
 #include "fuzz_support.h"
-#include "scene/gltf_import.h"
+#include "io/gltf_import.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "fuzz_support.h"
-#include "scene/obj_import.h"
+#include "io/obj_import.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
@@ -14,7 +14,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::size_t split = text.find(separator);
   const std::string obj = split == std::string::npos ? text : text.substr(0, split);
   const std::string mtl = split == std::string::npos ? std::string() : text.substr(split + separator.size());
-  candela::fuzz::write_scratch_file("fuzz.mtl", reinterpret_cast<const std::uint8_t*>(mtl.data()), mtl.size());
+  candela::fuzz::write_scratch_file("fuzz.mtl", reinterpret_cast<const std::uint8_t*>(mtl.data()),
+                                    mtl.size());
   const auto path = candela::fuzz::write_scratch_file(
       "fuzz.obj", reinterpret_cast<const std::uint8_t*>(obj.data()), obj.size());
   try {

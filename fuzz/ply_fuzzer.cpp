@@ -4,7 +4,7 @@
 #include <exception>
 
 #include "fuzz_support.h"
-#include "scene/ply_import.h"
+#include "io/ply_import.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto path = candela::fuzz::write_scratch_file("fuzz.ply", data, size);

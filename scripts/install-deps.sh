@@ -8,7 +8,7 @@ packages=(
   nlohmann-json3-dev libcli11-dev libtbb-dev libstb-dev libopenexr-dev libtinyobjloader-dev
   libeigen3-dev libfmt-dev libgtest-dev libbenchmark-dev libembree-dev libnanoflann-dev
   libopenmpi-dev openmpi-bin  # MPI: distributed rendering and radiosity (src/distributed, docs/distributed.md)
-  libtinygltf-dev  # glTF 2.0 mesh import (src/scene/gltf_import.cpp)
+  libtinygltf-dev  # glTF 2.0 mesh import (src/io/gltf_import.cpp)
   chromium  # needed by the report test (tests/report_cli_test.cpp opens the HTML report headless); Debian 12 package
 )
 

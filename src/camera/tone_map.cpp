@@ -12,11 +12,6 @@ std::vector<Color> expose(const Film& film, double exposure) {
   return pixels;
 }
 
-double srgb_encode(double linear) {
-  if (linear <= 0.0031308) return 12.92 * linear;
-  return 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
-}
-
 std::vector<uint8_t> to_display(const Film& film, const DisplaySettings& settings) {
   std::vector<Color> pixels = expose(film, settings.exposure);
   if (settings.out_of_range == OutOfRange::scale) {

@@ -7,6 +7,7 @@
 
 #include "util/enum_names.h"
 #include "camera/film.h"
+#include "math/srgb.h"
 
 namespace candela {
 
@@ -29,6 +30,5 @@ struct DisplaySettings {
 std::vector<Color> expose(const Film& film, double exposure);
 // Exposure, out-of-range handling, then sRGB or linear quantisation: RGB8 rows, top first.
 std::vector<uint8_t> to_display(const Film& film, const DisplaySettings& settings);
-double srgb_encode(double linear);
 
 }  // namespace candela

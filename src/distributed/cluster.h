@@ -9,12 +9,12 @@
 
 #include <cstdint>
 #include <exception>
-#include <stdexcept>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "distributed/byte_stream.h"
+#include "io/byte_stream.h"
 
 namespace candela {
 
@@ -22,7 +22,7 @@ struct CommunicationVolume {
   uint64_t messages_sent = 0, bytes_sent = 0;
   uint64_t messages_received = 0, bytes_received = 0;
   uint64_t collectives = 0, collective_bytes = 0;  // broadcasts and reductions, payload counted once
-  double waiting_seconds = 0;                       // polling for messages and collectives
+  double waiting_seconds = 0;                      // polling for messages and collectives
 };
 
 struct ClusterMessage {
@@ -67,7 +67,7 @@ class Cluster {
   void broadcast(Bytes& bytes, int root = 0);
   void sum(std::vector<uint64_t>& values);  // every rank ends with the sums
   void sum(std::vector<double>& values);
-  bool all(bool value);                     // whether every rank passed true
+  bool all(bool value);  // whether every rank passed true
   bool any(bool value);
 
   // The MPI start-up (MpiSession) makes the world cluster of a launched run.

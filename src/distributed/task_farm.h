@@ -18,8 +18,8 @@
 #include <span>
 #include <vector>
 
-#include "distributed/byte_stream.h"
 #include "distributed/cluster.h"
+#include "io/byte_stream.h"
 
 namespace candela {
 
@@ -52,9 +52,9 @@ TaskFarmReport run_task_farm(Cluster& cluster, const TaskFarm& farm);
 // When `again` is given, rank 0 does not keep the results it collects: it asks again(task) for the
 // same bytes (rebuilt from what place stored) when it sends them on, so it never holds the rows
 // twice.
-void run_task_farm_everywhere(Cluster& cluster, std::size_t task_count,
-                              const std::function<Bytes(std::size_t task)>& work,
-                              const std::function<void(std::size_t task, std::span<const std::byte> result)>& place,
-                              const std::function<Bytes(std::size_t task)>& again = {});
+void run_task_farm_everywhere(
+    Cluster& cluster, std::size_t task_count, const std::function<Bytes(std::size_t task)>& work,
+    const std::function<void(std::size_t task, std::span<const std::byte> result)>& place,
+    const std::function<Bytes(std::size_t task)>& again = {});
 
 }  // namespace candela

@@ -1,6 +1,6 @@
 #include "integrators/path_checkpoint.h"
 
-#include "util/checkpoint_file.h"
+#include "io/checkpoint_file.h"
 
 namespace candela {
 
@@ -39,7 +39,8 @@ PathCheckpoint read_path_checkpoint(const std::string& path) {
   checkpoint.sums = in.get_colors();
   in.finish();
   const PixelRect& r = checkpoint.region;
-  if (r.width() <= 0 || r.height() <= 0 || checkpoint.sums.size() != uint64_t(r.width()) * uint64_t(r.height()))
+  if (r.width() <= 0 || r.height() <= 0 ||
+      checkpoint.sums.size() != uint64_t(r.width()) * uint64_t(r.height()))
     in.fail("the checkpoint is corrupt (image size)");
   return checkpoint;
 }

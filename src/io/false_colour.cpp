@@ -7,21 +7,27 @@
 #include <stdexcept>
 
 #include "io/pixel_font.h"
-#include "shading/texture_image.h"  // srgb_decode
+#include "math/srgb.h"
 
 namespace candela {
 
 namespace {
 
-double clamp_unit(double t) { return std::isnan(t) ? 0.0 : std::clamp(t, 0.0, 1.0); }
+double clamp_unit(double t) {
+  return std::isnan(t) ? 0.0 : std::clamp(t, 0.0, 1.0);
+}
 
-Color lerp(const Color& a, const Color& b, double t) { return a + (b - a) * t; }
+Color lerp(const Color& a, const Color& b, double t) {
+  return a + (b - a) * t;
+}
 
 Color clamp_colour(const Color& c) {
   return {std::clamp(c.r, 0.0, 1.0), std::clamp(c.g, 0.0, 1.0), std::clamp(c.b, 0.0, 1.0)};
 }
 
-Color display_to_linear(const Color& c) { return {srgb_decode(c.r), srgb_decode(c.g), srgb_decode(c.b)}; }
+Color display_to_linear(const Color& c) {
+  return {srgb_decode(c.r), srgb_decode(c.g), srgb_decode(c.b)};
+}
 
 // Bar geometry (see the header).
 constexpr int kBarGap = 3;
@@ -30,7 +36,9 @@ constexpr int kTickRows = 3;
 constexpr int kLabelGap = 2;
 constexpr int kBottomMargin = 3;
 
-int label_scale(int width) { return width >= 160 ? 2 : 1; }
+int label_scale(int width) {
+  return width >= 160 ? 2 : 1;
+}
 
 }  // namespace
 
@@ -63,8 +71,10 @@ Color colour_map_diverging(double t) {
 
 Color colour_map(ColourMap map, double t) {
   switch (map) {
-    case ColourMap::viridis: return colour_map_viridis(t);
-    case ColourMap::diverging: return colour_map_diverging(t);
+    case ColourMap::viridis:
+      return colour_map_viridis(t);
+    case ColourMap::diverging:
+      return colour_map_diverging(t);
   }
   return colour_map_viridis(t);
 }
@@ -84,12 +94,14 @@ std::string format_scale_value(double value) {
 Film false_colour_image(const std::vector<double>& values, int width, int height, double low, double high,
                         ColourMap map) {
   if (width <= 0 || height <= 0)
-    throw std::invalid_argument(fmt::format("false-colour image size must be positive, got {}x{}", width, height));
+    throw std::invalid_argument(
+        fmt::format("false-colour image size must be positive, got {}x{}", width, height));
   if (values.size() != std::size_t(width) * std::size_t(height))
-    throw std::invalid_argument(fmt::format("false-colour image of {}x{} pixels given {} values", width, height,
-                                            values.size()));
+    throw std::invalid_argument(
+        fmt::format("false-colour image of {}x{} pixels given {} values", width, height, values.size()));
   if (!std::isfinite(low) || !std::isfinite(high) || !(low < high))
-    throw std::invalid_argument(fmt::format("false-colour scale {} .. {} must be finite with low < high", low, high));
+    throw std::invalid_argument(
+        fmt::format("false-colour scale {} .. {} must be finite with low < high", low, high));
   const int band = colour_bar_height(width);
   Film film(width, height + band);
   const double range = high - low;
@@ -97,7 +109,8 @@ Film false_colour_image(const std::vector<double>& values, int width, int height
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const double value = values[std::size_t(y) * std::size_t(width) + std::size_t(x)];
-      film.at(x, y) = std::isfinite(value) ? display_to_linear(colour_map(map, (value - low) / range)) : no_data;
+      film.at(x, y) =
+          std::isfinite(value) ? display_to_linear(colour_map(map, (value - low) / range)) : no_data;
     }
   // The band: black, then the bar.
   const int bar_top = height + kBarGap;

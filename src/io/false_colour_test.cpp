@@ -6,10 +6,10 @@
 #include <limits>
 
 #include "camera/tone_map.h"
+#include "io/image_reader.h"
 #include "io/image_writer.h"
 #include "io/pixel_font.h"
 #include "scratch_directory.h"
-#include "shading/texture_image.h"
 
 namespace candela {
 namespace {
@@ -18,7 +18,9 @@ void expect_colour_near(const Color& actual, const Color& expected, double toler
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(actual[c], expected[c], tolerance) << "channel " << c;
 }
 
-Color display(const Color& linear) { return {srgb_encode(linear.r), srgb_encode(linear.g), srgb_encode(linear.b)}; }
+Color display(const Color& linear) {
+  return {srgb_encode(linear.r), srgb_encode(linear.g), srgb_encode(linear.b)};
+}
 
 TEST(FalseColour, ViridisEndpointsMatchThePublishedMap) {
   // matplotlib's viridis: #440154 at 0, #21918c at 0.5, #fde725 at 1.
@@ -35,7 +37,8 @@ TEST(FalseColour, ViridisEndpointsMatchThePublishedMap) {
 }
 
 TEST(FalseColour, DivergingIsBlueWhiteRed) {
-  const Color blue = colour_map_diverging(0), white = colour_map_diverging(0.5), red = colour_map_diverging(1);
+  const Color blue = colour_map_diverging(0), white = colour_map_diverging(0.5),
+              red = colour_map_diverging(1);
   EXPECT_GT(blue.b, blue.r);
   EXPECT_EQ(white, Color(1));
   EXPECT_GT(red.r, red.b);
@@ -59,7 +62,7 @@ TEST(FalseColour, ImageHasTheBarBelowWithTheMapsEndColours) {
   std::vector<double> values(std::size_t(width) * height);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) values[std::size_t(y) * width + x] = x * 0.01;  // 0 .. 1.99
-  values[5] = std::numeric_limits<double>::quiet_NaN();  // no data at (5, 0)
+  values[5] = std::numeric_limits<double>::quiet_NaN();                             // no data at (5, 0)
   const Film film = false_colour_image(values, width, height, 0.0, 1.0, ColourMap::viridis);
   ASSERT_EQ(film.width(), width);
   ASSERT_EQ(film.height(), height + colour_bar_height(width));
@@ -86,12 +89,13 @@ TEST(FalseColour, PngKeepsTheMapsColours) {
   const Film film = false_colour_image(values, 4, 1, -1, 1, ColourMap::diverging);
   const std::string path = (directory.path() / "map.png").string();
   write_image(film, path, DisplaySettings{});
-  const TextureImage png = TextureImage::load(path, ColorEncoding::linear);  // the stored codes / 255
+  const RgbImage png = read_image(path, ColorEncoding::linear);  // the stored codes / 255
   ASSERT_EQ(png.width(), 4);
   ASSERT_EQ(png.height(), 1 + colour_bar_height(4));
-  const int top = png.height() - 1;  // TextureImage counts rows from the bottom
+  const int top = png.height() - 1;  // RgbImage counts rows from the bottom
   for (int x = 0; x < 4; ++x)
-    expect_colour_near(png.texel(x, top), colour_map_diverging((values[std::size_t(x)] + 1) / 2), 0.5 / 255 + 1e-6);
+    expect_colour_near(png.texel(x, top), colour_map_diverging((values[std::size_t(x)] + 1) / 2),
+                       0.5 / 255 + 1e-6);
 }
 
 TEST(FalseColour, RefusesBadArguments) {

@@ -1,6 +1,6 @@
 #include "radiosity/radiosity_checkpoint.h"
 
-#include "util/checkpoint_file.h"
+#include "io/checkpoint_file.h"
 
 namespace candela {
 

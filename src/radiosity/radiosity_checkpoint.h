@@ -3,7 +3,7 @@
 // radiosities ΔB after some number of shots. The mesh and the form factors are not stored: they
 // follow from the scene and its settings and are computed again on resume (the fingerprint ties
 // the state to them); the shots then continue from exactly this state, so the result is the
-// uninterrupted run's, bit for bit. File format: util/checkpoint_file.h.
+// uninterrupted run's, bit for bit. File format: io/checkpoint_file.h.
 #pragma once
 
 #include <cstdint>
@@ -16,9 +16,9 @@ namespace candela {
 
 struct RadiosityCheckpoint {
   std::string fingerprint;
-  uint64_t steps = 0;             // shots so far
-  std::vector<Color> radiosity;   // B per element
-  std::vector<Color> unshot;      // ΔB per patch
+  uint64_t steps = 0;            // shots so far
+  std::vector<Color> radiosity;  // B per element
+  std::vector<Color> unshot;     // ΔB per patch
 };
 
 void write_radiosity_checkpoint(const std::string& path, const RadiosityCheckpoint& checkpoint);

@@ -1,22 +1,14 @@
 #include "radiosity/solution_export.h"
 
 #include <algorithm>
-#include <array>
-#include <bit>
 #include <cctype>
-#include <charconv>
-#include <cmath>
-#include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <limits>
-#include <nlohmann/json.hpp>
-#include <ostream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "camera/film.h"
 #include "radiosity/vertex_radiosity.h"
 #include "util/atomic_file.h"
 
@@ -32,78 +24,6 @@ void require_consistent(const RadiositySolveResult& solution) {
                                 std::to_string(solution.element_radiosity.size()) + " radiosities and " +
                                 std::to_string(solution.mesh.patch_of_element.size()) + " patch indices");
 }
-
-// Shortest text that reads back to the same double (std::to_chars without a precision).
-void append_number(std::string& text, double value) {
-  std::array<char, 32> digits;  // the longest shortest-round-trip double is 24 characters
-  const auto result = std::to_chars(digits.data(), digits.data() + digits.size(), value);
-  text.append(digits.data(), result.ptr);
-}
-
-// Binary bodies are assembled byte by byte in little-endian order, whatever the host's order.
-void append_u32_le(std::string& bytes, uint32_t value) {
-  for (int shift = 0; shift < 32; shift += 8) bytes.push_back(static_cast<char>((value >> shift) & 0xFFu));
-}
-void append_float_le(std::string& bytes, float value) {
-  append_u32_le(bytes, std::bit_cast<uint32_t>(value));
-}
-void append_vec3_le(std::string& bytes, const Vec3& v) {
-  for (int axis = 0; axis < 3; ++axis) append_float_le(bytes, static_cast<float>(v[axis]));
-}
-void append_color_le(std::string& bytes, const Color& c) {
-  for (int channel = 0; channel < 3; ++channel) append_float_le(bytes, static_cast<float>(c[channel]));
-}
-
-// The vertex radiosities laid out as a one-row film, so that the display functions of
-// camera/tone_map.h (exposure, out-of-range rule, sRGB) apply to them exactly as to an image.
-Film vertex_film(const VertexRadiosity& vertices) {
-  if (vertices.radiosity.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
-    throw std::length_error("radiosity solution export: too many vertices for a display film");
-  Film film(static_cast<int>(vertices.radiosity.size()), 1);
-  for (std::size_t i = 0; i < vertices.radiosity.size(); ++i)
-    film.at(static_cast<int>(i), 0) = vertices.radiosity[i];
-  return film;
-}
-
-// PLY's face indices are `int` and glTF's are UNSIGNED_INT: both hold any count below 2^31.
-void require_int_indexable(const VertexRadiosity& vertices) {
-  if (vertices.positions.size() > static_cast<std::size_t>(std::numeric_limits<int32_t>::max()))
-    throw std::length_error("radiosity solution export: too many vertices for 32-bit indices");
-}
-
-// RFC 4648 §4 base64 with '=' padding, for the glTF data URI (glTF 2.0 specification, "Buffers and
-// Buffer Views").
-std::string base64_encode(const std::string& bytes) {
-  static constexpr char alphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string text;
-  text.reserve((bytes.size() + 2) / 3 * 4);
-  std::size_t i = 0;
-  for (; i + 3 <= bytes.size(); i += 3) {
-    const uint32_t group = (uint32_t(uint8_t(bytes[i])) << 16) | (uint32_t(uint8_t(bytes[i + 1])) << 8) |
-                           uint32_t(uint8_t(bytes[i + 2]));
-    text.push_back(alphabet[(group >> 18) & 63]);
-    text.push_back(alphabet[(group >> 12) & 63]);
-    text.push_back(alphabet[(group >> 6) & 63]);
-    text.push_back(alphabet[group & 63]);
-  }
-  const std::size_t remaining = bytes.size() - i;
-  if (remaining > 0) {
-    uint32_t group = uint32_t(uint8_t(bytes[i])) << 16;
-    if (remaining == 2) group |= uint32_t(uint8_t(bytes[i + 1])) << 8;
-    text.push_back(alphabet[(group >> 18) & 63]);
-    text.push_back(alphabet[(group >> 12) & 63]);
-    text.push_back(remaining == 2 ? alphabet[(group >> 6) & 63] : '=');
-    text.push_back('=');
-  }
-  return text;
-}
-
-// glTF 2.0 specification, "Accessor Data Types" and the bufferView schema: the GL enums it uses.
-constexpr int gltf_float = 5126;
-constexpr int gltf_unsigned_int = 5125;
-constexpr int gltf_array_buffer = 34962;
-constexpr int gltf_element_array_buffer = 34963;
-constexpr int gltf_triangles = 4;
 
 }  // namespace
 
@@ -122,180 +42,42 @@ bool solution_format_for_path(const std::string& path, SolutionFormat& format) {
   return true;
 }
 
-void write_solution_csv(const RadiositySolveResult& solution, std::ostream& out) {
+std::vector<SolutionElementRow> solution_element_rows(const RadiositySolveResult& solution) {
   require_consistent(solution);
-  std::string text = "id,patch,area,cx,cy,cz,nx,ny,nz,e_r,e_g,e_b,rho_r,rho_g,rho_b,b_r,b_g,b_b\n";
   const auto& elements = solution.mesh.elements;
+  std::vector<SolutionElementRow> rows(elements.size());
   for (std::size_t id = 0; id < elements.size(); ++id) {
     const RadiositySurface& element = elements[id];
-    text += std::to_string(id);
-    text += ',';
-    text += std::to_string(solution.mesh.patch_of_element[id]);
-    const auto field = [&text](double value) {
-      text += ',';
-      append_number(text, value);
-    };
-    field(element.area);
-    for (int axis = 0; axis < 3; ++axis) field(element.centroid[axis]);
-    for (int axis = 0; axis < 3; ++axis) field(element.normal[axis]);
-    for (int channel = 0; channel < 3; ++channel) field(element.emission[channel]);
-    for (int channel = 0; channel < 3; ++channel) field(element.reflectance[channel]);
-    for (int channel = 0; channel < 3; ++channel) field(solution.element_radiosity[id][channel]);
-    text += '\n';
+    rows[id] = {solution.mesh.patch_of_element[id],
+                element.area,
+                element.centroid,
+                element.normal,
+                element.emission,
+                element.reflectance,
+                solution.element_radiosity[id]};
   }
-  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  return rows;
 }
 
-namespace {
-
-// The vertices the mesh exports carry: the display's vertex radiosities (hidden elements kept
-// apart), checked to be indexable by the formats' 32-bit signed indices.
-VertexRadiosity mesh_vertices(const RadiositySolveResult& solution) {
+SolutionMesh solution_mesh(const RadiositySolveResult& solution) {
   require_consistent(solution);
   VertexRadiosity vertices =
       compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity, solution.element_hidden);
-  require_int_indexable(vertices);
-  return vertices;
+  return {std::move(vertices.positions), std::move(vertices.radiosity), std::move(vertices.element_vertices)};
 }
 
-}  // namespace
+void write_solution_csv(const RadiositySolveResult& solution, std::ostream& out) {
+  write_solution_csv(solution_element_rows(solution), out);
+}
 
 void write_solution_ply(const RadiositySolveResult& solution, const DisplaySettings& display,
                         std::ostream& out) {
-  const VertexRadiosity vertices = mesh_vertices(solution);
-  // The same bytes the PNG output would hold for these radiosities (tone_map.h's to_display).
-  const std::vector<uint8_t> display_colors = to_display(vertex_film(vertices), display);
-
-  // PLY format: Turk, "The PLY Polygon File Format" (binary_little_endian 1.0).
-  std::string text =
-      "ply\n"
-      "format binary_little_endian 1.0\n"
-      "comment Candela radiosity solution: x y z in scene units; red green blue the display colour "
-      "(as in the PNG); b_r b_g b_b the linear vertex radiosity, in the units of the scene's emission\n";
-  text += "element vertex " + std::to_string(vertices.positions.size()) + "\n";
-  text +=
-      "property float x\n"
-      "property float y\n"
-      "property float z\n"
-      "property uchar red\n"
-      "property uchar green\n"
-      "property uchar blue\n"
-      "property float b_r\n"
-      "property float b_g\n"
-      "property float b_b\n";
-  text += "element face " + std::to_string(vertices.element_vertices.size()) + "\n";
-  text +=
-      "property list uchar int vertex_indices\n"
-      "end_header\n";
-  text.reserve(text.size() + vertices.positions.size() * 27 + vertices.element_vertices.size() * 13);
-  for (std::size_t i = 0; i < vertices.positions.size(); ++i) {
-    append_vec3_le(text, vertices.positions[i]);
-    for (int channel = 0; channel < 3; ++channel)
-      text.push_back(static_cast<char>(display_colors[i * 3 + channel]));
-    append_color_le(text, vertices.radiosity[i]);
-  }
-  for (const auto& corners : vertices.element_vertices) {
-    text.push_back(char(3));
-    for (uint32_t vertex : corners) append_u32_le(text, vertex);  // < 2^31: the same bits as an int
-  }
-  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  write_solution_ply(solution_mesh(solution), display, out);
 }
 
 void write_solution_gltf(const RadiositySolveResult& solution, const DisplaySettings& display,
                          std::ostream& out) {
-  const VertexRadiosity vertices = mesh_vertices(solution);
-  const std::size_t vertex_count = vertices.positions.size();
-  const std::size_t index_count = vertices.element_vertices.size() * 3;
-
-  nlohmann::json gltf;
-  gltf["asset"] = {{"version", "2.0"}, {"generator", "Candela"}};
-  gltf["scene"] = 0;
-  nlohmann::json scene = nlohmann::json::object();
-  scene["nodes"] = nlohmann::json::array({0});
-  gltf["scenes"] = nlohmann::json::array({scene});
-  nlohmann::json node = nlohmann::json::object();
-  node["name"] = "radiosity solution";
-
-  // glTF requires at least one element in a buffer, a view and an accessor (byteLength ≥ 1,
-  // count ≥ 1) and a mesh to have a primitive: an empty solution is a scene with one empty node.
-  if (vertex_count > 0) {
-    // COLOR_0: exposure as in every output, then clamped per channel (NaN to 0, as to_display does);
-    // glTF 2.0 ("Meshes", COLOR_n) requires float colours in [0, 1] and linear.
-    std::vector<Color> colors = expose(vertex_film(vertices), display.exposure);
-    for (Color& c : colors)
-      for (int channel = 0; channel < 3; ++channel) {
-        const double value = std::clamp(c[channel], 0.0, 1.0);
-        c[channel] = value >= 0 ? value : 0;
-      }
-
-    // One buffer of four tightly packed views; every section is a multiple of 4 bytes long, so
-    // each view starts 4-aligned as glTF 2.0 ("Data Alignment") requires for float and uint32 components.
-    std::string bytes;
-    bytes.reserve(vertex_count * 36 + index_count * 4);
-    std::array<float, 3> position_min{}, position_max{};
-    position_min.fill(std::numeric_limits<float>::infinity());
-    position_max.fill(-std::numeric_limits<float>::infinity());
-    for (const Vec3& position : vertices.positions) {
-      append_vec3_le(bytes, position);
-      // min/max of the stored (float) values, which glTF 2.0 ("Accessor Bounds") requires for POSITION.
-      for (int axis = 0; axis < 3; ++axis) {
-        const float stored = static_cast<float>(position[axis]);
-        position_min[axis] = std::min(position_min[axis], stored);
-        position_max[axis] = std::max(position_max[axis], stored);
-      }
-    }
-    const std::size_t colors_offset = bytes.size();
-    for (const Color& c : colors) append_color_le(bytes, c);
-    const std::size_t radiosity_offset = bytes.size();
-    for (const Color& c : vertices.radiosity) append_color_le(bytes, c);
-    const std::size_t indices_offset = bytes.size();
-    for (const auto& corners : vertices.element_vertices)
-      for (uint32_t vertex : corners) append_u32_le(bytes, vertex);
-
-    const auto view = [](std::size_t offset, std::size_t length, int target) {
-      return nlohmann::json{
-          {"buffer", 0}, {"byteOffset", offset}, {"byteLength", length}, {"target", target}};
-    };
-    nlohmann::json buffer = nlohmann::json::object();
-    buffer["byteLength"] = bytes.size();
-    buffer["uri"] = "data:application/octet-stream;base64," + base64_encode(bytes);
-    gltf["buffers"] = nlohmann::json::array({buffer});
-    gltf["bufferViews"] = nlohmann::json::array({
-        view(0, colors_offset, gltf_array_buffer),
-        view(colors_offset, radiosity_offset - colors_offset, gltf_array_buffer),
-        view(radiosity_offset, indices_offset - radiosity_offset, gltf_array_buffer),
-        view(indices_offset, bytes.size() - indices_offset, gltf_element_array_buffer),
-    });
-    const auto vec3_accessor = [&](int buffer_view) {
-      return nlohmann::json{{"bufferView", buffer_view},
-                            {"componentType", gltf_float},
-                            {"count", vertex_count},
-                            {"type", "VEC3"}};
-    };
-    nlohmann::json position_accessor = vec3_accessor(0);
-    position_accessor["min"] = position_min;
-    position_accessor["max"] = position_max;
-    gltf["accessors"] = nlohmann::json::array({
-        position_accessor,
-        vec3_accessor(1),
-        vec3_accessor(2),
-        {{"bufferView", 3}, {"componentType", gltf_unsigned_int}, {"count", index_count}, {"type", "SCALAR"}},
-    });
-    // Application-specific attributes must start with an underscore (glTF 2.0, "Meshes").
-    nlohmann::json primitive = nlohmann::json::object();
-    primitive["attributes"] = {{"POSITION", 0}, {"COLOR_0", 1}, {"_RADIOSITY", 2}};
-    primitive["indices"] = 3;
-    primitive["mode"] = gltf_triangles;
-    nlohmann::json mesh = nlohmann::json::object();
-    mesh["name"] = "radiosity solution";
-    mesh["primitives"] = nlohmann::json::array({primitive});
-    gltf["meshes"] = nlohmann::json::array({mesh});
-    node["mesh"] = 0;
-  }
-  gltf["nodes"] = nlohmann::json::array({node});
-
-  const std::string text = gltf.dump(1) + "\n";
-  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  write_solution_gltf(solution_mesh(solution), display, out);
 }
 
 void export_solution(const RadiositySolveResult& solution, const std::string& path,

@@ -1,10 +1,11 @@
 #include "scene/shape_registry.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cctype>
 #include <filesystem>
-#include <fmt/format.h>
 
 #include "geometry/box.h"
 #include "geometry/cone.h"
@@ -16,11 +17,10 @@
 #include "geometry/sphere.h"
 #include "geometry/torus.h"
 #include "geometry/triangle_mesh.h"
-#include "scene/gltf_import.h"
-#include "scene/obj_import.h"
-#include "scene/ply_import.h"
+#include "io/gltf_import.h"
+#include "io/obj_import.h"
+#include "io/ply_import.h"
 #include "shading/image_texture.h"
-
 #include "util/registry.h"
 
 namespace candela {
@@ -85,7 +85,8 @@ ShapeBuild make_polygon(const JsonNode& node, const Transform&, LoadContext&) {
 
 // Transforms the mesh into the world and makes its triangles; failures (coordinates that
 // overflow under the transform) are reported at the entry.
-std::vector<std::unique_ptr<Shape>> placed_triangles(const JsonNode& node, const std::shared_ptr<TriangleMesh>& mesh,
+std::vector<std::unique_ptr<Shape>> placed_triangles(const JsonNode& node,
+                                                     const std::shared_ptr<TriangleMesh>& mesh,
                                                      const Transform& transform, std::size_t& skipped) {
   try {
     mesh->transform(transform);
@@ -95,8 +96,8 @@ std::vector<std::unique_ptr<Shape>> placed_triangles(const JsonNode& node, const
   }
 }
 
-ShapeBuild triangles_of(const JsonNode& node, std::shared_ptr<TriangleMesh> mesh,
-                        const Transform& transform, LoadContext& context) {
+ShapeBuild triangles_of(const JsonNode& node, std::shared_ptr<TriangleMesh> mesh, const Transform& transform,
+                        LoadContext& context) {
   std::size_t skipped = 0;
   ShapeBuild build;
   build.shapes = placed_triangles(node, mesh, transform, skipped);
@@ -138,9 +139,7 @@ ShapeBuild make_cone(const JsonNode& node, const Transform&, LoadContext&) {
   const Vec3 cap = node.vec3("cap", {0, 1, 0});
   const double cap_radius = node.number("cap_radius", 0.0, Range::non_negative());
   const bool capped = node.boolean("capped", true);
-  return one_shape(node, [&] {
-    return std::make_unique<Cone>(base, base_radius, cap, cap_radius, capped);
-  });
+  return one_shape(node, [&] { return std::make_unique<Cone>(base, base_radius, cap, cap_radius, capped); });
 }
 
 ShapeBuild make_torus(const JsonNode& node, const Transform&, LoadContext&) {
@@ -216,8 +215,8 @@ ShapeBuild make_mesh(const JsonNode& node, const Transform& transform, LoadConte
     build.materials.push_back(source >= 0 ? material_index[source] : -1);
   }
   if (skipped > 0)
-    context.warnings->push_back(fmt::format("{}: {}: skipped {} degenerate triangle(s)",
-                                            node.location().describe(), path, skipped));
+    context.warnings->push_back(
+        fmt::format("{}: {}: skipped {} degenerate triangle(s)", node.location().describe(), path, skipped));
   if (build.shapes.empty()) file.fail(path + ": every triangle is degenerate (zero area)");
   return build;
 }
@@ -227,14 +226,17 @@ const std::array kEntries = {
                R"({"type": "sphere", "center": [0, 1, 0], "radius": 1})", make_sphere},
     ShapeEntry{"plane", "infinite plane through a point with a normal",
                R"({"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0]})", make_plane},
-    ShapeEntry{"disc", "disc or annulus: centre, normal, radius, inner_radius",
-               R"({"type": "disc", "center": [0, 0, 0], "normal": [0, 1, 0], "radius": 2, "inner_radius": 0.5})",
-               make_disc},
+    ShapeEntry{
+        "disc", "disc or annulus: centre, normal, radius, inner_radius",
+        R"({"type": "disc", "center": [0, 0, 0], "normal": [0, 1, 0], "radius": 2, "inner_radius": 0.5})",
+        make_disc},
     ShapeEntry{"quad", "parallelogram corner + u·edge_u + v·edge_v, (u, v) in [0, 1]² its own uv",
-               R"({"type": "quad", "corner": [-1, 0, -1], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2]})", make_quad},
-    ShapeEntry{"polygon", "planar polygon, convex or not (000 §5.6.2)",
-               R"({"type": "polygon", "vertices": [[0, 0, 0], [2, 0, 0], [2, 1, 0], [1, 1, 0], [1, 2, 0], [0, 2, 0]]})",
-               make_polygon},
+               R"({"type": "quad", "corner": [-1, 0, -1], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2]})",
+               make_quad},
+    ShapeEntry{
+        "polygon", "planar polygon, convex or not (000 §5.6.2)",
+        R"({"type": "polygon", "vertices": [[0, 0, 0], [2, 0, 0], [2, 1, 0], [1, 1, 0], [1, 2, 0], [0, 2, 0]]})",
+        make_polygon},
     ShapeEntry{"triangle", "one triangle (watertight test)",
                R"({"type": "triangle", "vertices": [[0, 0, 0], [1, 0, 0], [0, 1, 0]]})", make_triangle},
     ShapeEntry{"box", "axis-aligned box from min to max (use a transform to turn it)",
@@ -242,21 +244,28 @@ const std::array kEntries = {
     ShapeEntry{"cylinder", "from base to cap with a radius; capped or open",
                R"({"type": "cylinder", "base": [0, 0, 0], "cap": [0, 2, 0], "radius": 0.5, "capped": true})",
                make_cylinder},
-    ShapeEntry{"cone", "truncated cone from base (base_radius) to cap (cap_radius); capped or open",
-               R"({"type": "cone", "base": [0, 0, 0], "base_radius": 1, "cap": [0, 2, 0], "cap_radius": 0, "capped": true})",
-               make_cone},
-    ShapeEntry{"torus", "centre, axis, major and minor radius (quartic)",
-               R"({"type": "torus", "center": [0, 0, 0], "axis": [0, 1, 0], "major_radius": 1, "minor_radius": 0.25})",
-               make_torus},
-    ShapeEntry{"mesh", "OBJ (+MTL), PLY or glTF 2.0 triangle mesh; normals flat, smooth (crease_angle) or from the file",
-               R"({"type": "mesh", "file": "meshes/cube.obj", "normals": "smooth", "crease_angle": 60})",
-               make_mesh},
+    ShapeEntry{
+        "cone", "truncated cone from base (base_radius) to cap (cap_radius); capped or open",
+        R"({"type": "cone", "base": [0, 0, 0], "base_radius": 1, "cap": [0, 2, 0], "cap_radius": 0, "capped": true})",
+        make_cone},
+    ShapeEntry{
+        "torus", "centre, axis, major and minor radius (quartic)",
+        R"({"type": "torus", "center": [0, 0, 0], "axis": [0, 1, 0], "major_radius": 1, "minor_radius": 0.25})",
+        make_torus},
+    ShapeEntry{
+        "mesh",
+        "OBJ (+MTL), PLY or glTF 2.0 triangle mesh; normals flat, smooth (crease_angle) or from the file",
+        R"({"type": "mesh", "file": "meshes/cube.obj", "normals": "smooth", "crease_angle": 60})", make_mesh},
 };
 
 }  // namespace
 
-std::span<const ShapeEntry> shape_entries() { return kEntries; }
+std::span<const ShapeEntry> shape_entries() {
+  return kEntries;
+}
 
-const ShapeEntry* find_shape(std::string_view name) { return find_entry<ShapeEntry>(kEntries, name); }
+const ShapeEntry* find_shape(std::string_view name) {
+  return find_entry<ShapeEntry>(kEntries, name);
+}
 
 }  // namespace candela

@@ -1,14 +1,8 @@
-// The classic material's parameters as BSDF lobes (material_bsdf.h), and the scene key
-// "microfacet".
+// The classic material's parameters as BSDF lobes (material_bsdf.h). The scene key "microfacet"
+// is tests/material_scene_test.cpp.
 #include "shading/material_bsdf.h"
 
 #include <gtest/gtest.h>
-
-#include <string>
-
-#include "scene/scene.h"
-#include "scene/scene_loader.h"
-#include "util/error.h"
 
 namespace candela {
 namespace {
@@ -118,40 +112,6 @@ TEST(MaterialBsdf, ShadingNormalIsTurnedToTheGeometricSide) {
   EXPECT_NEAR(dot(bsdf.frame().s, bsdf.frame().n), 0, 1e-12);
   EXPECT_NEAR(dot(bsdf.frame().t, bsdf.frame().n), 0, 1e-12);
   EXPECT_NEAR(dot(bsdf.frame().s, bsdf.frame().t), 0, 1e-12);
-}
-
-const char* kScene = R"({
-  "format": "candela/1",
-  "camera": {"eye": [0, 0, 5], "target": [0, 0, 0], "width": 4, "height": 3},
-  "materials": {"m": MATERIAL},
-  "shapes": [{"type": "sphere", "radius": 1, "material": "m"}]
-})";
-
-std::string scene_with(const std::string& material) {
-  std::string text = kScene;
-  text.replace(text.find("MATERIAL"), 8, material);
-  return text;
-}
-
-TEST(MaterialBsdf, SceneKeyMicrofacet) {
-  const auto ggx =
-      read_scene_text(scene_with(R"({"type": "cook-torrance", "microfacet": "ggx"})"), "t.json", ".", {}, {});
-  EXPECT_EQ(ggx->materials[ggx->primitives[0].material].microfacet, MicrofacetDistribution::ggx);
-  const auto fallback = read_scene_text(scene_with(R"({"type": "cook-torrance"})"), "t.json", ".", {}, {});
-  EXPECT_EQ(fallback->materials[fallback->primitives[0].material].microfacet,
-            MicrofacetDistribution::beckmann);
-  try {
-    read_scene_text(scene_with(R"({"type": "cook-torrance", "microfacet": "phong"})"), "t.json", ".", {}, {});
-    ADD_FAILURE() << "a bad distribution loaded";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.location().file, "t.json");
-    EXPECT_EQ(e.location().line, 4);
-    EXPECT_NE(e.location().json_path.find("microfacet"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("beckmann, ggx"), std::string::npos) << e.what();
-  }
-  // Only the Cook-Torrance model has facets.
-  EXPECT_THROW(read_scene_text(scene_with(R"({"type": "phong", "microfacet": "ggx"})"), "t.json", ".", {}, {}),
-               InputError);
 }
 
 }  // namespace

@@ -60,15 +60,6 @@ std::string cpu_model() {
   return {};
 }
 
-void write_text(const std::string& path, const std::string& text) {
-  write_atomically(path, [&](const std::string& temporary) {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) throw std::runtime_error("cannot write " + path);
-  });
-}
-
 // The scene's settings as they were before the run, put back however it ends.
 class SettingsGuard {
  public:
@@ -94,7 +85,8 @@ CrossMethodEntry render_entry(Scene& scene, const CrossMethodOptions& options, c
                               const std::vector<std::string>& settings = {}) {
   const MethodEntry* registered = find_method(method_name);
   if (!registered)
-    throw std::invalid_argument("unknown method \"" + method_name + "\" (expected one of: " + method_names() + ")");
+    throw std::invalid_argument("unknown method \"" + method_name + "\" (expected one of: " + method_names() +
+                                ")");
   scene.render.method = method_name;
   if (options.log) options.log("rendering " + label);
   const int width = scene.camera->width(), height = scene.camera->height();
@@ -172,7 +164,9 @@ window.addEventListener('load', function () {
 });
 )";
 
-std::string seconds_text(double seconds) { return seconds < 0 ? "&mdash;" : fmt::format("{:.3f}", seconds); }
+std::string seconds_text(double seconds) {
+  return seconds < 0 ? "&mdash;" : fmt::format("{:.3f}", seconds);
+}
 
 std::string facts_html(const std::vector<std::pair<std::string, std::string>>& facts) {
   std::string text;
@@ -190,18 +184,30 @@ std::string html_escape(std::string_view text) {
   out.reserve(text.size());
   for (const char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
 }
 
-std::vector<std::pair<std::string, std::string>> key_facts(const std::string& method, const nlohmann::json& statistics) {
+std::vector<std::pair<std::string, std::string>> key_facts(const std::string& method,
+                                                           const nlohmann::json& statistics) {
   std::vector<std::pair<std::string, std::string>> facts;
   const auto take = [&](const nlohmann::json& object, const char* key, const char* name) {
     if (object.is_object() && object.contains(key)) facts.emplace_back(name, fact_text(object.at(key)));
@@ -255,8 +261,8 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
   if (options.reference_image &&
       (options.reference_image->width() != width || options.reference_image->height() != height))
     throw std::invalid_argument(fmt::format("the reference image is {}x{}, the scene's image {}x{}",
-                                            options.reference_image->width(), options.reference_image->height(),
-                                            width, height));
+                                            options.reference_image->width(),
+                                            options.reference_image->height(), width, height));
   const SettingsGuard guard(scene);
   const uint64_t seed = scene.render.seed;
   const fs::path directory(options.output_directory);
@@ -344,8 +350,8 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
   }
 
   report.settings = method_settings(options.scene_text, settings_keys(report));
-  write_text((directory / "report.json").string(), cross_method_json(report).dump(2) + "\n");
-  write_text((directory / "index.html").string(), cross_method_html(report));
+  write_text_atomically((directory / "report.json").string(), cross_method_json(report).dump(2) + "\n");
+  write_text_atomically((directory / "index.html").string(), cross_method_html(report));
   return report;
 }
 
@@ -390,15 +396,15 @@ nlohmann::json cross_method_json(const CrossMethodReport& report) {
           {"height", report.height},
           {"reference", reference},
           {"methods", methods},
-          {"difference", {{"metric", "absolute luminance difference |Y - Y_ref| (Rec. 709)"},
-                          {"colour_map", "viridis"},
-                          {"low", 0.0},
-                          {"high", report.difference_scale}}},
+          {"difference",
+           {{"metric", "absolute luminance difference |Y - Y_ref| (Rec. 709)"},
+            {"colour_map", "viridis"},
+            {"low", 0.0},
+            {"high", report.difference_scale}}},
           {"settings", report.settings},
           {"overrides", report.overrides},
-          {"machine", {{"hardware_threads", report.hardware_threads},
-                       {"threads", report.threads},
-                       {"cpu", report.cpu}}},
+          {"machine",
+           {{"hardware_threads", report.hardware_threads}, {"threads", report.threads}, {"cpu", report.cpu}}},
           {"date", report.date}};
 }
 
@@ -408,7 +414,8 @@ std::string cross_method_html(const CrossMethodReport& report) {
   const int scale = std::max(1, 320 / std::max(1, report.width));
   const int shown_width = report.width * scale;
   const auto image = [&](const std::string& file, const std::string& alt) {
-    return fmt::format("<img src=\"{}\" width=\"{}\" alt=\"{}\">", html_escape(file), shown_width, html_escape(alt));
+    return fmt::format("<img src=\"{}\" width=\"{}\" alt=\"{}\">", html_escape(file), shown_width,
+                       html_escape(alt));
   };
   std::string html;
   html += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
@@ -417,30 +424,32 @@ std::string cross_method_html(const CrossMethodReport& report) {
   html += "<script>" + std::string(kScript) + "</script>\n</head>\n";
   html += "<body data-images-loaded=\"pending\">\n";
   html += "<h1>Cross-method report: " + name + "</h1>\n";
-  html += fmt::format("<p>Scene <code>{}</code>, {}&times;{} pixels. ", html_escape(report.scene_path), report.width,
-                      report.height);
+  html += fmt::format("<p>Scene <code>{}</code>, {}&times;{} pixels. ", html_escape(report.scene_path),
+                      report.width, report.height);
   if (report.reference_rendered)
-    html += fmt::format("Reference: method path, {} samples per pixel (seed {}), {} s.</p>\n", report.reference_spp,
-                        report.reference_seed, seconds_text(report.reference.seconds));
+    html += fmt::format("Reference: method path, {} samples per pixel (seed {}), {} s.</p>\n",
+                        report.reference_spp, report.reference_seed, seconds_text(report.reference.seconds));
   else
     html += "Reference: the image <code>" + html_escape(report.reference_file) + "</code>.</p>\n";
 
   // The table.
   html += "<h2>Errors against the reference</h2>\n<table>\n";
-  html += "<tr><th>method</th><th>time (s)</th><th>samples and other facts</th><th>RMSE</th><th>relative MSE</th>"
-          "<th>PSNR (dB)</th><th>max error</th><th>mean luminance ratio</th></tr>\n";
-  html += fmt::format("<tr class=\"reference\"><td class=\"name\">reference</td><td>{}</td><td class=\"facts\">{}</td>"
-                      "<td colspan=\"5\">&mdash;</td></tr>\n",
-                      seconds_text(report.reference.seconds),
-                      report.reference_rendered ? facts_html(report.reference.facts)
-                                                : "file " + html_escape(report.reference_file));
+  html +=
+      "<tr><th>method</th><th>time (s)</th><th>samples and other facts</th><th>RMSE</th><th>relative MSE</th>"
+      "<th>PSNR (dB)</th><th>max error</th><th>mean luminance ratio</th></tr>\n";
+  html += fmt::format(
+      "<tr class=\"reference\"><td class=\"name\">reference</td><td>{}</td><td class=\"facts\">{}</td>"
+      "<td colspan=\"5\">&mdash;</td></tr>\n",
+      seconds_text(report.reference.seconds),
+      report.reference_rendered ? facts_html(report.reference.facts)
+                                : "file " + html_escape(report.reference_file));
   for (const CrossMethodEntry& entry : report.entries) {
     const ImageComparison& e = entry.errors;
-    html += fmt::format("<tr><td class=\"name\">{}</td><td>{}</td><td class=\"facts\">{}</td><td>{}</td><td>{}</td>"
-                        "<td>{}</td><td>{}</td><td>{}</td></tr>\n",
-                        html_escape(entry.label), seconds_text(entry.seconds), facts_html(entry.facts), number(e.rmse),
-                        number(e.relative_mse), number(e.psnr), number(e.max_absolute_error),
-                        number(e.luminance_ratio));
+    html += fmt::format(
+        "<tr><td class=\"name\">{}</td><td>{}</td><td class=\"facts\">{}</td><td>{}</td><td>{}</td>"
+        "<td>{}</td><td>{}</td><td>{}</td></tr>\n",
+        html_escape(entry.label), seconds_text(entry.seconds), facts_html(entry.facts), number(e.rmse),
+        number(e.relative_mse), number(e.psnr), number(e.max_absolute_error), number(e.luminance_ratio));
   }
   html += "</table>\n";
   html += fmt::format(
@@ -455,14 +464,17 @@ std::string cross_method_html(const CrossMethodReport& report) {
       kRelativeMseEpsilon,
       std::any_of(report.entries.begin(), report.entries.end(),
                   [](const CrossMethodEntry& entry) { return !entry.equal_time_to.empty(); })
-          ? " <b>path (equal time: M)</b>: the path tracer given the time method M took (passes until it is up)."
+          ? " <b>path (equal time: M)</b>: the path tracer given the time method M took (passes until it is "
+            "up)."
           : "");
 
   // The gallery.
   html += "<h2>Images</h2>\n";
   html += fmt::format(
-      "<p class=\"note\">Difference pictures show |Y &minus; Y<sub>ref</sub>| (Rec. 709 luminance) in the viridis "
-      "colour map, all on one scale: <b>0 to {}</b> (dark violet 0, yellow {}), drawn as a bar beneath each.</p>\n",
+      "<p class=\"note\">Difference pictures show |Y &minus; Y<sub>ref</sub>| (Rec. 709 luminance) in the "
+      "viridis "
+      "colour map, all on one scale: <b>0 to {}</b> (dark violet 0, yellow {}), drawn as a bar beneath "
+      "each.</p>\n",
       format_scale_value(report.difference_scale), format_scale_value(report.difference_scale));
   html += "<div class=\"gallery\">\n<div class=\"row\">\n<figure>" + image("reference.png", "reference") +
           "<figcaption>reference" +
@@ -472,29 +484,32 @@ std::string cross_method_html(const CrossMethodReport& report) {
           " (<a href=\"reference.exr\">EXR</a>)</figcaption></figure>\n</div>\n";
   for (const CrossMethodEntry& entry : report.entries) {
     const std::string label = html_escape(entry.label);
-    html += "<div class=\"row\">\n<figure>" + image(entry.key + ".png", entry.label) + "<figcaption>" + label + ", " +
-            seconds_text(entry.seconds) + " s (<a href=\"" + html_escape(entry.key) +
+    html += "<div class=\"row\">\n<figure>" + image(entry.key + ".png", entry.label) + "<figcaption>" +
+            label + ", " + seconds_text(entry.seconds) + " s (<a href=\"" + html_escape(entry.key) +
             ".exr\">EXR</a>)</figcaption></figure>\n";
-    html += "<figure>" + image(entry.key + "-diff.png", entry.label + " difference") + "<figcaption>|" + label +
-            " &minus; reference|: RMSE " + number(entry.errors.rmse) + ", PSNR " + number(entry.errors.psnr) +
-            " dB</figcaption></figure>\n</div>\n";
+    html += "<figure>" + image(entry.key + "-diff.png", entry.label + " difference") + "<figcaption>|" +
+            label + " &minus; reference|: RMSE " + number(entry.errors.rmse) + ", PSNR " +
+            number(entry.errors.psnr) + " dB</figcaption></figure>\n</div>\n";
   }
   html += "</div>\n";
 
   // The settings.
-  html += "<h2>Settings</h2>\n<p class=\"note\">The scene file's object for each method (defaults where it has "
-          "none)";
+  html +=
+      "<h2>Settings</h2>\n<p class=\"note\">The scene file's object for each method (defaults where it has "
+      "none)";
   html += report.overrides.empty() ? std::string(".") : std::string(", before these overrides:");
   html += "</p>\n";
   if (!report.overrides.empty()) {
     html += "<ul>\n";
-    for (const std::string& o : report.overrides) html += "<li><code>--set " + html_escape(o) + "</code></li>\n";
+    for (const std::string& o : report.overrides)
+      html += "<li><code>--set " + html_escape(o) + "</code></li>\n";
     html += "</ul>\n";
   }
   for (auto it = report.settings.begin(); it != report.settings.end(); ++it) {
     const nlohmann::json& value = it.value();
     html += "<h3>" + html_escape(it.key()) + "</h3>\n";
-    html += value.is_null() ? std::string("<p>defaults</p>\n") : "<pre>" + html_escape(value.dump(2)) + "</pre>\n";
+    html += value.is_null() ? std::string("<p>defaults</p>\n")
+                            : "<pre>" + html_escape(value.dump(2)) + "</pre>\n";
   }
 
   // The machine.

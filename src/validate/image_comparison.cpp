@@ -9,7 +9,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "shading/texture_image.h"
+#include "io/image_reader.h"
 
 namespace candela {
 
@@ -17,14 +17,15 @@ namespace {
 
 void check_same_size(const Film& image, const Film& reference) {
   if (image.width() != reference.width() || image.height() != reference.height())
-    throw std::invalid_argument(fmt::format("the images differ in size: {}x{} and {}x{} (reference)", image.width(),
-                                            image.height(), reference.width(), reference.height()));
+    throw std::invalid_argument(fmt::format("the images differ in size: {}x{} and {}x{} (reference)",
+                                            image.width(), image.height(), reference.width(),
+                                            reference.height()));
 }
 
 void check_mask(const Film& image, const std::vector<uint8_t>* mask) {
   if (mask && mask->size() != image.pixels().size())
-    throw std::invalid_argument(fmt::format("the mask has {} pixels, the images {}x{}", mask->size(), image.width(),
-                                            image.height()));
+    throw std::invalid_argument(
+        fmt::format("the mask has {} pixels, the images {}x{}", mask->size(), image.width(), image.height()));
 }
 
 nlohmann::json number_or_text(double value) {
@@ -86,25 +87,32 @@ ImageComparison compare_images(const Film& image, const Film& reference, const s
       luminance_b += luminance(b);
     }
   if (result.pixels_compared == 0)
-    throw std::invalid_argument(fmt::format("the mask excludes all {}x{} pixels", image.width(), image.height()));
+    throw std::invalid_argument(
+        fmt::format("the mask excludes all {}x{} pixels", image.width(), image.height()));
   const double samples = 3.0 * double(result.pixels_compared);
   result.rmse = std::sqrt(squared / samples);
   result.relative_mse = relative / samples;
   result.mean_absolute_error = absolute / samples;
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
-  if (result.rmse == 0) result.psnr = kInfinity;
-  else if (result.peak <= 0) result.psnr = -kInfinity;
-  else result.psnr = 20 * std::log10(result.peak / result.rmse);
+  if (result.rmse == 0)
+    result.psnr = kInfinity;
+  else if (result.peak <= 0)
+    result.psnr = -kInfinity;
+  else
+    result.psnr = 20 * std::log10(result.peak / result.rmse);
   result.mean_luminance = luminance_a / double(result.pixels_compared);
   result.mean_luminance_reference = luminance_b / double(result.pixels_compared);
-  if (result.mean_luminance_reference != 0) result.luminance_ratio = result.mean_luminance / result.mean_luminance_reference;
-  else result.luminance_ratio = result.mean_luminance == 0 ? 1.0 : kInfinity;
+  if (result.mean_luminance_reference != 0)
+    result.luminance_ratio = result.mean_luminance / result.mean_luminance_reference;
+  else
+    result.luminance_ratio = result.mean_luminance == 0 ? 1.0 : kInfinity;
   return result;
 }
 
 std::vector<uint8_t> mask_from_image(const Film& mask) {
   std::vector<uint8_t> included(mask.pixels().size());
-  for (std::size_t i = 0; i < included.size(); ++i) included[i] = luminance(mask.pixels()[i]) > kMaskThreshold;
+  for (std::size_t i = 0; i < included.size(); ++i)
+    included[i] = luminance(mask.pixels()[i]) > kMaskThreshold;
   return included;
 }
 
@@ -120,24 +128,31 @@ std::vector<double> difference_values(const Film& image, const Film& reference, 
     }
     const double a = luminance(image.pixels()[i]), b = luminance(reference.pixels()[i]);
     switch (metric) {
-      case DifferenceMetric::absolute: values[i] = std::abs(a - b); break;
-      case DifferenceMetric::relative: values[i] = std::abs(a - b) / (std::abs(b) + kRelativeMseEpsilon); break;
-      case DifferenceMetric::signed_difference: values[i] = a - b; break;
+      case DifferenceMetric::absolute:
+        values[i] = std::abs(a - b);
+        break;
+      case DifferenceMetric::relative:
+        values[i] = std::abs(a - b) / (std::abs(b) + kRelativeMseEpsilon);
+        break;
+      case DifferenceMetric::signed_difference:
+        values[i] = a - b;
+        break;
     }
   }
   return values;
 }
 
 LinearImage read_linear_image(const std::string& path) {
-  const TextureImage texture = TextureImage::load(path, ColorEncoding::automatic);
+  const RgbImage texture = read_image(path, ColorEncoding::automatic);
   std::string extension = std::filesystem::path(path).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   LinearImage result;
-  result.srgb_decoded = extension != ".exr" && extension != ".pfm" && extension != ".hdr" && extension != ".pic";
+  result.srgb_decoded =
+      extension != ".exr" && extension != ".pfm" && extension != ".hdr" && extension != ".pic";
   const int width = texture.width(), height = texture.height();
   result.film = Film(width, height);
-  // TextureImage rows run bottom first; Film rows top first.
+  // RgbImage rows run bottom first; Film rows top first.
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) result.film.at(x, y) = texture.texel(x, height - 1 - y);
   return result;

@@ -7,8 +7,8 @@
 
 #include "camera/tone_map.h"
 #include "io/image_writer.h"
+#include "math/srgb.h"
 #include "scratch_directory.h"
-#include "shading/texture_image.h"
 
 namespace candela {
 namespace {

@@ -40,7 +40,8 @@ double exchange_kernel(const SphereDiskScene& scene, double alpha, double u, dou
 void check(const SphereDiskScene& scene, const ReferenceSettings& settings) {
   if (!(scene.sphere_radius > 0) || !(scene.disc_radius > 0) || !(scene.height > scene.sphere_radius))
     throw std::invalid_argument("sphere-disk: need r > 0, R > 0 and h > r (the sphere above the disc)");
-  if (settings.disc_rings < 1 || settings.sphere_rings < 1 || settings.azimuths < 1 || settings.iterations < 0)
+  if (settings.disc_rings < 1 || settings.sphere_rings < 1 || settings.azimuths < 1 ||
+      settings.iterations < 0)
     throw std::invalid_argument("sphere-disk: n, m, k must be >= 1 and the iterations >= 0");
 }
 
@@ -83,7 +84,8 @@ ReferenceSolution::ReferenceSolution(const SphereDiskScene& scene, const Referen
     }
     const double a = alpha[i] - sa / 2, b = alpha[i] + sa / 2;
     const double lit = std::max(a, 0.0);  // ∫ sin α cos α dα over the lit part / ∫ cos α dα
-    sphere_star[i] = b > 0 ? scene.sphere_albedo * scene.light * (std::pow(std::sin(b), 2) - std::pow(std::sin(lit), 2)) /
+    sphere_star[i] = b > 0 ? scene.sphere_albedo * scene.light *
+                                 (std::pow(std::sin(b), 2) - std::pow(std::sin(lit), 2)) /
                                  (2 * (std::sin(b) - std::sin(a)))
                            : 0.0;
   }
@@ -106,13 +108,15 @@ ReferenceSolution::ReferenceSolution(const SphereDiskScene& scene, const Referen
   for (int iteration = 0; iteration < settings.iterations; ++iteration) {
     for (int i = 0; i < m; ++i) {
       double sum = 0;
-      for (int j = 0; j < n; ++j) sum += K[static_cast<std::size_t>(i) * n + j] * u[j] * su * (disc_star[j] + d[j]);
+      for (int j = 0; j < n; ++j)
+        sum += K[static_cast<std::size_t>(i) * n + j] * u[j] * su * (disc_star[j] + d[j]);
       nb[i] = scene.sphere_albedo * sum;
     }
     for (int j = 0; j < n; ++j) {
       double sum = 0;
       for (int i = 0; i < m; ++i)
-        sum += K[static_cast<std::size_t>(i) * n + j] * r * r * std::cos(alpha[i]) * sa * (sphere_star[i] + b[i]);
+        sum += K[static_cast<std::size_t>(i) * n + j] * r * r * std::cos(alpha[i]) * sa *
+               (sphere_star[i] + b[i]);
       nd[j] = scene.disc_albedo * sum;
     }
     double change = 0;
@@ -164,7 +168,9 @@ double ReferenceSolution::sphere_indirect(double at_alpha) const {
   return scene_.sphere_albedo * sum;
 }
 
-double ReferenceSolution::disc_at(double at_u) const { return reference_disc_direct(scene_, at_u) + disc_indirect(at_u); }
+double ReferenceSolution::disc_at(double at_u) const {
+  return reference_disc_direct(scene_, at_u) + disc_indirect(at_u);
+}
 
 double ReferenceSolution::sphere_at(double at_alpha) const {
   return reference_sphere_direct(scene_, at_alpha) + sphere_indirect(at_alpha);
@@ -175,7 +181,8 @@ double ReferenceSolution::disc_to_sphere_factor(double at_u) const {
   const double r = scene_.sphere_radius, sa = kPi / m, st = 2 * kPi / k;
   double sum = 0;
   for (int i = 0; i < m; ++i)
-    for (int s = 0; s < k; ++s) sum += exchange_kernel(scene_, alpha[i], at_u, (s + 0.5) * st) * st * r * r * std::cos(alpha[i]) * sa;
+    for (int s = 0; s < k; ++s)
+      sum += exchange_kernel(scene_, alpha[i], at_u, (s + 0.5) * st) * st * r * r * std::cos(alpha[i]) * sa;
   return sum;
 }
 
@@ -203,12 +210,14 @@ FeCurves solve_fe(const SphereDiskScene& scene, const FeSettings& settings, cons
                   const std::vector<double>& alpha) {
   const auto start = std::chrono::steady_clock::now();
   const auto loaded = load_scene_text(sphere_disk_scene_json(scene, settings), "sphere-disk.json", ".");
-  const MeshlessSolution solution = solve_meshless(*loaded, read_meshless_settings(loaded->plugin_settings.node("meshless")));
+  const MeshlessSolution solution =
+      solve_meshless(*loaded, read_meshless_settings(loaded->plugin_settings.node("meshless")));
   const SiteSet& set = solution.sites;
   const MeshlessBasis basis(set.sites, set.radius, settings.basis);
   FeCurves curves;
   curves.sites = set.sites.size();
-  for (const Site& site : set.sites) (std::abs(site.position.y) < 1e-6 ? curves.disc_sites : curves.sphere_sites)++;
+  for (const Site& site : set.sites)
+    (std::abs(site.position.y) < 1e-6 ? curves.disc_sites : curves.sphere_sites)++;
   curves.converged = solution.transfer.converged;
   const int k = std::max(1, settings.azimuths);
   // One ring: (mean, meridian, direct mean, uncovered points) of L = Σ λ_i φ_i at k azimuths.
@@ -242,7 +251,9 @@ FeCurves solve_fe(const SphereDiskScene& scene, const FeSettings& settings, cons
   const double r = scene.sphere_radius, h = scene.height;
   std::vector<Ring> disc(u.size()), sphere(alpha.size());
   tbb::parallel_for(std::size_t(0), u.size(), [&](std::size_t j) {
-    disc[j] = ring([&](double tau) { return Site{{u[j] * std::cos(tau), 0, u[j] * std::sin(tau)}, {0, 1, 0}}; });
+    disc[j] = ring([&](double tau) {
+      return Site{{u[j] * std::cos(tau), 0, u[j] * std::sin(tau)}, {0, 1, 0}};
+    });
   });
   tbb::parallel_for(std::size_t(0), alpha.size(), [&](std::size_t i) {
     const double ca = std::cos(alpha[i]), sa = std::sin(alpha[i]);
@@ -296,16 +307,8 @@ nlohmann::json to_json(const CurveErrors& e) {
   return {{"rms", e.rms}, {"max", e.max}, {"rms_relative", e.rms_relative}, {"max_relative", e.max_relative}};
 }
 
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  write_atomically(path.string(), [&](const std::string& temporary) {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) throw std::runtime_error("cannot write " + path.string());
-  });
-}
-
-std::string csv(const char* header, const std::vector<double>& x, const std::vector<const std::vector<double>*>& columns) {
+std::string csv(const char* header, const std::vector<double>& x,
+                const std::vector<const std::vector<double>*>& columns) {
   std::string text = std::string(header) + "\n";
   for (std::size_t i = 0; i < x.size(); ++i) {
     text += fmt::format("{:.9g}", x[i]);
@@ -325,13 +328,18 @@ void write_plot(const std::filesystem::path& path, const std::vector<PlotPanel>&
 const Color kReferenceTotal(0, 0, 0), kReferenceDirect(0.6, 0.6, 0.6);
 Color basis_color(BasisKind kind) {
   switch (kind) {
-    case BasisKind::radial: return Color(0.85, 0.15, 0.1);
-    case BasisKind::normalized: return Color(0.1, 0.3, 0.9);
-    case BasisKind::shepard: return Color(0.1, 0.65, 0.2);
+    case BasisKind::radial:
+      return Color(0.85, 0.15, 0.1);
+    case BasisKind::normalized:
+      return Color(0.1, 0.3, 0.9);
+    case BasisKind::shepard:
+      return Color(0.1, 0.65, 0.2);
   }
   return Color(0.5);
 }
-Color lighter(const Color& c) { return c * 0.45 + Color(0.55); }
+Color lighter(const Color& c) {
+  return c * 0.45 + Color(0.55);
+}
 
 std::vector<double> degrees(const std::vector<double>& radians) {
   std::vector<double> out;
@@ -341,7 +349,8 @@ std::vector<double> degrees(const std::vector<double>& radians) {
 
 }  // namespace
 
-nlohmann::json run_sphere_disk_validation(const std::string& directory, const SphereDiskRun& run, std::ostream* log) {
+nlohmann::json run_sphere_disk_validation(const std::string& directory, const SphereDiskRun& run,
+                                          std::ostream* log) {
   namespace fs = std::filesystem;
   const fs::path out(directory);
   std::error_code error;
@@ -358,22 +367,30 @@ nlohmann::json run_sphere_disk_validation(const std::string& directory, const Sp
   }
   auto start = std::chrono::steady_clock::now();
   const ReferenceSolution reference(scene, settings);
-  const double reference_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  say(fmt::format("reference: n = m = k = {}, {} iterations, last change {:.3g}, {:.2f} s", settings.disc_rings,
-                  settings.iterations, reference.last_change, reference_seconds));
+  const double reference_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  say(fmt::format("reference: n = m = k = {}, {} iterations, last change {:.3g}, {:.2f} s",
+                  settings.disc_rings, settings.iterations, reference.last_change, reference_seconds));
 
   nlohmann::json result;
   result["quick"] = run.quick;
-  result["scene"] = {{"sphere_radius", scene.sphere_radius}, {"disc_radius", scene.disc_radius},
-                     {"height", scene.height},               {"sphere_albedo", scene.sphere_albedo},
-                     {"disc_albedo", scene.disc_albedo},     {"light", scene.light},
+  result["scene"] = {{"sphere_radius", scene.sphere_radius},
+                     {"disc_radius", scene.disc_radius},
+                     {"height", scene.height},
+                     {"sphere_albedo", scene.sphere_albedo},
+                     {"disc_albedo", scene.disc_albedo},
+                     {"light", scene.light},
                      {"units", "radiosity (exitance) B; radiance is B/pi"}};
   double reference_largest = 0;
   for (const double v : reference.disc_total) reference_largest = std::max(reference_largest, v);
   for (const double v : reference.sphere_total) reference_largest = std::max(reference_largest, v);
-  result["reference"] = {{"n", settings.disc_rings}, {"m", settings.sphere_rings}, {"k", settings.azimuths},
-                         {"iterations", settings.iterations}, {"last_change", reference.last_change},
-                         {"average_direct", settings.average_direct}, {"largest_total", reference_largest},
+  result["reference"] = {{"n", settings.disc_rings},
+                         {"m", settings.sphere_rings},
+                         {"k", settings.azimuths},
+                         {"iterations", settings.iterations},
+                         {"last_change", reference.last_change},
+                         {"average_direct", settings.average_direct},
+                         {"largest_total", reference_largest},
                          {"seconds", reference_seconds}};
   if (run.refine) {
     // The refined reference evaluated at this one's nodes (Nyström): how far from converged it is.
@@ -382,32 +399,37 @@ nlohmann::json run_sphere_disk_validation(const std::string& directory, const Sp
     start = std::chrono::steady_clock::now();
     const ReferenceSolution refined(scene, fine);
     std::vector<double> disc_fine(reference.u.size()), sphere_fine(reference.alpha.size());
-    tbb::parallel_for(std::size_t(0), reference.u.size(), [&](std::size_t j) { disc_fine[j] = refined.disc_at(reference.u[j]); });
+    tbb::parallel_for(std::size_t(0), reference.u.size(),
+                      [&](std::size_t j) { disc_fine[j] = refined.disc_at(reference.u[j]); });
     tbb::parallel_for(std::size_t(0), reference.alpha.size(),
                       [&](std::size_t i) { sphere_fine[i] = refined.sphere_at(reference.alpha[i]); });
     // Pointwise direct at the shadow edge node is the same convention in both; compare the totals.
-    const CurveErrors difference = curve_errors(reference.disc_total, disc_fine, reference.sphere_total, sphere_fine);
+    const CurveErrors difference =
+        curve_errors(reference.disc_total, disc_fine, reference.sphere_total, sphere_fine);
     // And the thesis's own pointwise direct term in the rings' exchange, for comparison.
     ReferenceSettings pointwise = settings;
     pointwise.average_direct = false;
     const ReferenceSolution thesis(scene, pointwise);
-    const CurveErrors thesis_difference = curve_errors(thesis.disc_total, disc_fine, thesis.sphere_total, sphere_fine);
+    const CurveErrors thesis_difference =
+        curve_errors(thesis.disc_total, disc_fine, thesis.sphere_total, sphere_fine);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     result["reference"]["refinement"] = {{"n", fine.disc_rings},
                                          {"difference", to_json(difference)},
                                          {"pointwise_direct_difference", to_json(thesis_difference)},
                                          {"seconds", seconds}};
-    say(fmt::format("refined reference n = m = k = {}: largest difference {:.3g} ({:.3g} % of the largest), "
+    say(
+        fmt::format("refined reference n = m = k = {}: largest difference {:.3g} ({:.3g} % of the largest), "
                     "{:.3g} % with the thesis's pointwise direct term; {:.1f} s",
-                    fine.disc_rings, difference.max, 100 * difference.max_relative, 100 * thesis_difference.max_relative,
-                    seconds));
+                    fine.disc_rings, difference.max, 100 * difference.max_relative,
+                    100 * thesis_difference.max_relative, seconds));
   }
 
   const std::vector<double> alpha_degrees = degrees(reference.alpha);
-  write_text(out / "reference_disc.csv",
-             csv("u,direct,total", reference.u, {&reference.disc_direct, &reference.disc_total}));
-  write_text(out / "reference_sphere.csv",
-             csv("alpha_deg,direct,total", alpha_degrees, {&reference.sphere_direct, &reference.sphere_total}));
+  write_text_atomically(out / "reference_disc.csv",
+                        csv("u,direct,total", reference.u, {&reference.disc_direct, &reference.disc_total}));
+  write_text_atomically(
+      out / "reference_sphere.csv",
+      csv("alpha_deg,direct,total", alpha_degrees, {&reference.sphere_direct, &reference.sphere_total}));
   const PlotPanel disc_axes{{}, 0, scene.disc_radius, 0, 0, 5, 0};
   const PlotPanel sphere_axes{{}, -90, 90, 0, 0, 30, 0};
   {
@@ -434,17 +456,18 @@ nlohmann::json run_sphere_disk_validation(const std::string& directory, const Sp
       }
       const FeCurves curves = solve_fe(scene, fe, reference.u, reference.alpha);
       const std::string name = fmt::format("fe_{}_delta{}", std::string(kBasisNames.name(kind)), spacing);
-      write_text(out / (name + "_disc.csv"),
-                 csv("u,direct,total,total_meridian", reference.u,
-                     {&curves.disc_direct_mean, &curves.disc_mean, &curves.disc_meridian}));
-      write_text(out / (name + "_sphere.csv"),
-                 csv("alpha_deg,direct,total,total_meridian", alpha_degrees,
-                     {&curves.sphere_direct_mean, &curves.sphere_mean, &curves.sphere_meridian}));
-      const CurveErrors mean = curve_errors(curves.disc_mean, reference.disc_total, curves.sphere_mean, reference.sphere_total);
-      const CurveErrors meridian =
-          curve_errors(curves.disc_meridian, reference.disc_total, curves.sphere_meridian, reference.sphere_total);
-      const CurveErrors direct =
-          curve_errors(curves.disc_direct_mean, reference.disc_direct, curves.sphere_direct_mean, reference.sphere_direct);
+      write_text_atomically(out / (name + "_disc.csv"),
+                            csv("u,direct,total,total_meridian", reference.u,
+                                {&curves.disc_direct_mean, &curves.disc_mean, &curves.disc_meridian}));
+      write_text_atomically(out / (name + "_sphere.csv"),
+                            csv("alpha_deg,direct,total,total_meridian", alpha_degrees,
+                                {&curves.sphere_direct_mean, &curves.sphere_mean, &curves.sphere_meridian}));
+      const CurveErrors mean =
+          curve_errors(curves.disc_mean, reference.disc_total, curves.sphere_mean, reference.sphere_total);
+      const CurveErrors meridian = curve_errors(curves.disc_meridian, reference.disc_total,
+                                                curves.sphere_meridian, reference.sphere_total);
+      const CurveErrors direct = curve_errors(curves.disc_direct_mean, reference.disc_direct,
+                                              curves.sphere_direct_mean, reference.sphere_direct);
       // The indirect light alone (total − direct): smooth, no shadow edge to interpolate.
       std::vector<double> fe_disc_indirect, ref_disc_indirect, fe_sphere_indirect, ref_sphere_indirect;
       for (std::size_t j = 0; j < reference.u.size(); ++j) {
@@ -455,7 +478,8 @@ nlohmann::json run_sphere_disk_validation(const std::string& directory, const Sp
         fe_sphere_indirect.push_back(curves.sphere_mean[i] - curves.sphere_direct_mean[i]);
         ref_sphere_indirect.push_back(reference.sphere_total[i] - reference.sphere_direct[i]);
       }
-      const CurveErrors indirect = curve_errors(fe_disc_indirect, ref_disc_indirect, fe_sphere_indirect, ref_sphere_indirect);
+      const CurveErrors indirect =
+          curve_errors(fe_disc_indirect, ref_disc_indirect, fe_sphere_indirect, ref_sphere_indirect);
       nlohmann::json entry = to_json(mean);
       entry["spacing"] = spacing;
       entry["meridian"] = to_json(meridian);
@@ -465,11 +489,13 @@ nlohmann::json run_sphere_disk_validation(const std::string& directory, const Sp
       entry["disc_sites"] = curves.disc_sites;
       entry["sphere_sites"] = curves.sphere_sites;
       entry["uncovered_points"] = curves.uncovered;
-      entry["converged"] = curves.converged;  // as solve_transfer reports it
+      entry["converged"] = curves.converged;         // as solve_transfer reports it
       entry["diverged"] = !std::isfinite(mean.rms);  // JSON has no infinity: the errors are then null
       entry["seconds"] = curves.seconds;
       bases[std::string(kBasisNames.name(kind))][fmt::format("delta{}", spacing)] = entry;
-      say(fmt::format("{:<10} delta {}: {:>5} sites, RMS {:.4g} ({:.3g} %), max {:.4g} ({:.3g} %), indirect RMS {:.4g}; {:.1f} s",
+      say(
+          fmt::format("{:<10} delta {}: {:>5} sites, RMS {:.4g} ({:.3g} %), max {:.4g} ({:.3g} %), indirect "
+                      "RMS {:.4g}; {:.1f} s",
                       std::string(kBasisNames.name(kind)), spacing, curves.sites, mean.rms, 100 * mean.rms_relative, mean.max,
                       100 * mean.max_relative, indirect.rms, curves.seconds));
 
@@ -513,9 +539,10 @@ nlohmann::json run_sphere_disk_validation(const std::string& directory, const Sp
   }
   result["least_rms"] = best;
   result["error_definition"] =
-      "FE azimuth mean (or meridian) minus reference total at the reference's n disc nodes and m sphere nodes "
+      "FE azimuth mean (or meridian) minus reference total at the reference's n disc nodes and m sphere "
+      "nodes "
       "together, each node once; relative: over the reference's largest total";
-  write_text(out / "errors.json", result.dump(2) + "\n");
+  write_text_atomically(out / "errors.json", result.dump(2) + "\n");
   return result;
 }
 

@@ -1,4 +1,4 @@
-#include "scene/obj_import.h"
+#include "io/obj_import.h"
 
 #include <gtest/gtest.h>
 
@@ -22,9 +22,8 @@ class TempDir {
   TempDir() {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     std::random_device random;
-    path_ =
-        fs::temp_directory_path() / ("candela_obj_" + std::string(info ? info->name() : "test") +
-                                     "_" + std::to_string(random()) + std::to_string(random()));
+    path_ = fs::temp_directory_path() / ("candela_obj_" + std::string(info ? info->name() : "test") + "_" +
+                                         std::to_string(random()) + std::to_string(random()));
     fs::create_directories(path_);
   }
   ~TempDir() {
@@ -109,8 +108,7 @@ TEST(ObjImport, CubeCountsAndGeometry) {
   const Vec3 centre{0.5, 0.5, 0.5};
   for (std::size_t t = 0; t < result.mesh->triangles.size(); ++t) {
     EXPECT_FALSE(result.mesh->is_degenerate(t));
-    EXPECT_GT(dot(result.mesh->face_cross(t), result.mesh->triangle_bounds(t).center() - centre),
-              0);
+    EXPECT_GT(dot(result.mesh->face_cross(t), result.mesh->triangle_bounds(t).center() - centre), 0);
   }
   // Usable as shapes: a ray down the z axis enters through the top face at z = 1.
   const auto shapes = make_triangles(result.mesh);
@@ -274,8 +272,7 @@ TEST(ObjImport, OutOfRangeIndexIsAnError) {
   const std::string triangle = dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n");
   EXPECT_NE(import_error(triangle).find("out of range"), std::string::npos);
   // tinyobjloader silently drops a quad with a bad index; it is still an error.
-  const std::string quad =
-      dir.write("quad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 3 12\n");
+  const std::string quad = dir.write("quad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 3 12\n");
   EXPECT_NE(import_error(quad).find("out of range"), std::string::npos);
   const std::string normal =
       dir.write("normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//4\n");

@@ -1,4 +1,4 @@
-#include "scene/ply_import.h"
+#include "io/ply_import.h"
 
 #include <gtest/gtest.h>
 
@@ -12,14 +12,14 @@
 
 #include "../../tests/scratch_directory.h"
 #include "geometry/triangle_mesh.h"
-#include "scene/scene.h"
-#include "scene/scene_loader.h"
+#include "io/mesh_test_files.h"
 
 namespace candela {
 namespace {
 
 const SourceLocation kFrom{"scene.json", 3, 7, "shapes[0].file"};
 
+using testing::kAsciiCube;
 using testing::write_file;
 
 std::string error_of(const std::string& path) {
@@ -32,41 +32,6 @@ std::string error_of(const std::string& path) {
   ADD_FAILURE() << "no error for " << path;
   return "";
 }
-
-// A unit cube of 8 vertices and 6 quads (outward, counter-clockwise), with an extra vertex
-// property, an extra element and comments.
-const char* kAsciiCube = R"(ply
-format ascii 1.0
-comment made by hand
-obj_info nothing
-element vertex 8
-property float x
-property float y
-property float z
-property uchar confidence
-element edge 1
-property int vertex1
-property int vertex2
-element face 6
-property list uchar int vertex_indices
-property uchar flags
-end_header
-0 0 0 9
-1 0 0 9
-1 1 0 9
-0 1 0 9
-0 0 1 9
-1 0 1 9
-1 1 1 9
-0 1 1 9
-0 1
-4 0 3 2 1 0
-4 4 5 6 7 0
-4 0 1 5 4 0
-4 2 3 7 6 0
-4 1 2 6 5 0
-4 3 0 4 7 0
-)";
 
 TEST(PlyImport, AsciiCubeQuadsBecomeTwoTrianglesEach) {
   testing::ScratchDirectory scratch("ply");
@@ -169,29 +134,33 @@ TEST(PlyImport, TruncatedBinaryGivesTheFileAndByteOffset) {
 
 TEST(PlyImport, HugeCountsAreRefusedBeforeAllocating) {
   testing::ScratchDirectory scratch("ply");
-  const std::string path = write_file(scratch.path() / "huge.ply",
-                                 "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\n"
-                                 "property float x\nproperty float y\nproperty float z\nend_header\n0000");
+  const std::string path =
+      write_file(scratch.path() / "huge.ply",
+                 "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\n"
+                 "property float x\nproperty float y\nproperty float z\nend_header\n0000");
   const std::string message = error_of(path);
   EXPECT_NE(message.find("1000000000"), std::string::npos) << message;
-  const std::string ascii = write_file(scratch.path() / "huge-ascii.ply",
-                                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                                  "property float z\nelement face 18446744073709551615\n"
-                                  "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n");
+  const std::string ascii =
+      write_file(scratch.path() / "huge-ascii.ply",
+                 "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                 "property float z\nelement face 18446744073709551615\n"
+                 "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n");
   EXPECT_NE(error_of(ascii).find("face"), std::string::npos);
-  const std::string list = write_file(scratch.path() / "huge-list.ply",
-                                 "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\n"
-                                 "property float y\nproperty float z\nelement face 1\n"
-                                 "property list uint int vertex_indices\nend_header\n\xff\xff\xff\x7f");
+  const std::string list =
+      write_file(scratch.path() / "huge-list.ply",
+                 "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\n"
+                 "property float y\nproperty float z\nelement face 1\n"
+                 "property list uint int vertex_indices\nend_header\n\xff\xff\xff\x7f");
   EXPECT_NE(error_of(list).find("runs past the end"), std::string::npos);
 }
 
 TEST(PlyImport, BadIndexGivesTheLine) {
   testing::ScratchDirectory scratch("ply");
-  const std::string path = write_file(scratch.path() / "bad.ply",
-                                 "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                                 "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
-                                 "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n");
+  const std::string path =
+      write_file(scratch.path() / "bad.ply",
+                 "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                 "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                 "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n");
   const std::string message = error_of(path);
   EXPECT_NE(message.find(path), std::string::npos) << message;
   EXPECT_NE(message.find("line 13"), std::string::npos) << message;
@@ -200,10 +169,11 @@ TEST(PlyImport, BadIndexGivesTheLine) {
 
 TEST(PlyImport, NonFiniteCoordinateNamesTheVertex) {
   testing::ScratchDirectory scratch("ply");
-  const std::string path = write_file(scratch.path() / "nan.ply",
-                                 "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                                 "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
-                                 "end_header\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n");
+  const std::string path =
+      write_file(scratch.path() / "nan.ply",
+                 "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                 "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                 "end_header\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n");
   const std::string message = error_of(path);
   EXPECT_NE(message.find("vertex 1 has a non-finite coordinate"), std::string::npos) << message;
   EXPECT_NE(message.find("line 11"), std::string::npos) << message;
@@ -216,42 +186,16 @@ TEST(PlyImport, MalformedHeadersAndMissingFiles) {
   EXPECT_NE(error_of(write_file(scratch.path() / "b.ply", "ply\nformat ascii 1.0\nelement vertex 1\n"))
                 .find("end_header"),
             std::string::npos);
-  EXPECT_NE(error_of(write_file(scratch.path() / "c.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n"))
-                .find("line 3"),
-            std::string::npos);
-  EXPECT_NE(error_of(write_file(scratch.path() / "d.ply",
-                           "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
-                           "property float z\nend_header\n0 0 0\n"))
-                .find("no triangles"),
-            std::string::npos);
-}
-
-TEST(PlyImport, LoadedSceneHasTheTriangles) {
-  testing::ScratchDirectory scratch("ply");
-  write_file(scratch.path() / "cube.ply", kAsciiCube);
-  const auto scene = read_scene_text(R"({"format": "candela/1",
-    "camera": {"eye": [3, 3, 3], "target": [0, 0, 0], "fov": 50, "width": 8, "height": 8},
-    "shapes": [{"type": "mesh", "file": "cube.ply", "transform": [{"translate": [1, 0, 0]}],
-                "material": {"kd": 0.5}}]})",
-                                     "ply.json", scratch.path().string(), {}, {});
-  EXPECT_EQ(scene->primitives.size(), 12u);
-  EXPECT_DOUBLE_EQ(scene->bounds().lower.x, 1.0);
-  EXPECT_DOUBLE_EQ(scene->bounds().upper.x, 2.0);
-  EXPECT_DOUBLE_EQ(scene->bounds().upper.z, 1.0);
-}
-
-TEST(PlyImport, UnknownMeshExtensionIsRefused) {
-  testing::ScratchDirectory scratch("ply");
-  write_file(scratch.path() / "cube.stl", "solid");
-  try {
-    (void)read_scene_text(R"({"format": "candela/1",
-      "camera": {"eye": [3, 3, 3], "target": [0, 0, 0], "fov": 50, "width": 8, "height": 8},
-      "shapes": [{"type": "mesh", "file": "cube.stl"}]})",
-                          "stl.json", scratch.path().string(), {}, {});
-    ADD_FAILURE() << "no error";
-  } catch (const InputError& e) {
-    EXPECT_NE(e.message().find(".obj, .ply, .gltf or .glb"), std::string::npos) << e.message();
-  }
+  EXPECT_NE(
+      error_of(write_file(scratch.path() / "c.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n"))
+          .find("line 3"),
+      std::string::npos);
+  EXPECT_NE(
+      error_of(write_file(scratch.path() / "d.ply",
+                          "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+                          "property float z\nend_header\n0 0 0\n"))
+          .find("no triangles"),
+      std::string::npos);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-#include "scene/gltf_import.h"
+#include "io/gltf_import.h"
 
 #include <fmt/format.h>
 
@@ -33,8 +33,8 @@ namespace candela {
 
 namespace {
 
-bool ignore_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
-                  void*) {
+bool ignore_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*,
+                  int, void*) {
   return true;
 }
 
@@ -109,7 +109,8 @@ class GltfReader {
       return;
     }
     const int scene = model_.defaultScene >= 0 ? model_.defaultScene : 0;
-    if (scene >= static_cast<int>(model_.scenes.size())) fail(fmt::format("names scene {}, which does not exist", scene));
+    if (scene >= static_cast<int>(model_.scenes.size()))
+      fail(fmt::format("names scene {}, which does not exist", scene));
     // Depth-first over an explicit stack (a chain of nodes as deep as the file is long must not
     // overflow the call stack); a node reached twice (a cycle, or two parents) is refused.
     std::vector<bool> visited(model_.nodes.size(), false);
@@ -121,7 +122,8 @@ class GltfReader {
       stack.pop_back();
       if (index < 0 || index >= static_cast<int>(model_.nodes.size()))
         fail(fmt::format("refers to node {}, which does not exist", index));
-      if (visited[static_cast<std::size_t>(index)]) fail(fmt::format("reaches node {} twice (the nodes are not a tree)", index));
+      if (visited[static_cast<std::size_t>(index)])
+        fail(fmt::format("reaches node {} twice (the nodes are not a tree)", index));
       visited[static_cast<std::size_t>(index)] = true;
       const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(index)];
       const Eigen::Matrix4d world = parent * local_matrix(node);
@@ -132,7 +134,8 @@ class GltfReader {
 
   // --- accessors ----------------------------------------------------------------------------
 
-  AccessorData accessor(int index, int type, const std::vector<int>& component_types, const std::string& what) const {
+  AccessorData accessor(int index, int type, const std::vector<int>& component_types,
+                        const std::string& what) const {
     if (index < 0 || index >= static_cast<int>(model_.accessors.size()))
       fail(fmt::format("{}: accessor {} does not exist", what, index));
     const tinygltf::Accessor& a = model_.accessors[static_cast<std::size_t>(index)];
@@ -148,8 +151,10 @@ class GltfReader {
     const std::vector<unsigned char>& buffer = model_.buffers[static_cast<std::size_t>(view.buffer)].data;
     const int component_size = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
     const int components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
-    if (component_size <= 0 || components <= 0) fail(fmt::format("{}: accessor {} is malformed", what, index));
-    const std::size_t element = static_cast<std::size_t>(component_size) * static_cast<std::size_t>(components);
+    if (component_size <= 0 || components <= 0)
+      fail(fmt::format("{}: accessor {} is malformed", what, index));
+    const std::size_t element =
+        static_cast<std::size_t>(component_size) * static_cast<std::size_t>(components);
     const std::size_t stride = view.byteStride > 0 ? view.byteStride : element;
     const auto outside = [&] { fail(fmt::format("{}: accessor {} lies outside its buffer", what, index)); };
     if (stride < element || stride > 256) outside();
@@ -169,9 +174,18 @@ class GltfReader {
   static std::uint32_t index_at(const AccessorData& data, std::size_t i) {
     const unsigned char* at = data.data + i * data.stride;
     switch (data.component_type) {
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return *at;
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t v; std::memcpy(&v, at, 2); return v; }
-      default: { std::uint32_t v; std::memcpy(&v, at, 4); return v; }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return *at;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        std::uint16_t v;
+        std::memcpy(&v, at, 2);
+        return v;
+      }
+      default: {
+        std::uint32_t v;
+        std::memcpy(&v, at, 4);
+        return v;
+      }
     }
   }
 
@@ -185,15 +199,16 @@ class GltfReader {
       const std::string name = fmt::format("mesh {} primitive {}", mesh_index, p);
       const tinygltf::Primitive& primitive = mesh.primitives[p];
       if (primitive.mode != TINYGLTF_MODE_TRIANGLES) {
-        warnings.push_back(fmt::format("{}: {} has mode {} (not TRIANGLES); skipped", path_, name, primitive.mode));
+        warnings.push_back(
+            fmt::format("{}: {} has mode {} (not TRIANGLES); skipped", path_, name, primitive.mode));
         continue;
       }
       add_primitive(primitive, name, world, node);
     }
   }
 
-  void add_primitive(const tinygltf::Primitive& primitive, const std::string& name, const Eigen::Matrix4d& world,
-                     int node) {
+  void add_primitive(const tinygltf::Primitive& primitive, const std::string& name,
+                     const Eigen::Matrix4d& world, int node) {
     const auto attribute = [&](const char* key) {
       const auto found = primitive.attributes.find(key);
       return found == primitive.attributes.end() ? -1 : found->second;
@@ -212,10 +227,11 @@ class GltfReader {
       part.mesh.positions.push_back(p);
     }
     if (primitive.indices >= 0) {
-      const AccessorData indices = accessor(primitive.indices, TINYGLTF_TYPE_SCALAR,
-                                            {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
-                                             TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
-                                            name + " indices");
+      const AccessorData indices =
+          accessor(primitive.indices, TINYGLTF_TYPE_SCALAR,
+                   {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                    TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
+                   name + " indices");
       part.mesh.triangles.reserve(indices.count / 3);
       for (std::size_t i = 0; i + 2 < indices.count; i += 3) {
         std::array<std::uint32_t, 3> triangle{};
@@ -229,8 +245,8 @@ class GltfReader {
       }
     } else {
       for (std::size_t i = 0; i + 2 < positions.count; i += 3)
-        part.mesh.triangles.push_back(
-            {static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i + 1), static_cast<std::uint32_t>(i + 2)});
+        part.mesh.triangles.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(i + 1),
+                                       static_cast<std::uint32_t>(i + 2)});
     }
     const int normal_index = attribute("NORMAL");
     if (normal_index >= 0) {
@@ -259,7 +275,8 @@ class GltfReader {
     }
     const int uv_index = attribute("TEXCOORD_0");
     if (uv_index >= 0) {
-      const AccessorData uvs = accessor(uv_index, TINYGLTF_TYPE_VEC2, {TINYGLTF_COMPONENT_TYPE_FLOAT}, name + " TEXCOORD_0");
+      const AccessorData uvs =
+          accessor(uv_index, TINYGLTF_TYPE_VEC2, {TINYGLTF_COMPONENT_TYPE_FLOAT}, name + " TEXCOORD_0");
       if (uvs.count != positions.count) fail(name + ": TEXCOORD_0 and POSITION have different counts");
       for (const auto& triangle : part.mesh.triangles) {
         std::array<Vec2, 3> corners;
@@ -290,20 +307,24 @@ class GltfReader {
     ObjImport result;
     result.mesh = std::make_shared<TriangleMesh>();
     TriangleMesh& mesh = *result.mesh;
-    const bool all_normals = std::all_of(parts_.begin(), parts_.end(), [](const Part& p) { return p.has_normals; });
-    const bool any_uvs = std::any_of(parts_.begin(), parts_.end(), [](const Part& p) { return !p.mesh.corner_uvs.empty(); });
-    const bool any_normals = std::any_of(parts_.begin(), parts_.end(), [](const Part& p) { return p.has_normals; });
+    const bool all_normals =
+        std::all_of(parts_.begin(), parts_.end(), [](const Part& p) { return p.has_normals; });
+    const bool any_uvs =
+        std::any_of(parts_.begin(), parts_.end(), [](const Part& p) { return !p.mesh.corner_uvs.empty(); });
+    const bool any_normals =
+        std::any_of(parts_.begin(), parts_.end(), [](const Part& p) { return p.has_normals; });
     if (any_normals && !all_normals)
       warnings.push_back(fmt::format("{}: some primitives have no NORMAL; the mesh is left flat", path_));
     if (all_normals && replaced_normals_ > 0)
-      warnings.push_back(fmt::format("{}: {} corner(s) with a zero-length normal use the face normal instead", path_,
-                                     replaced_normals_));
+      warnings.push_back(fmt::format("{}: {} corner(s) with a zero-length normal use the face normal instead",
+                                     path_, replaced_normals_));
     for (const Part& part : parts_) {
       if (mesh.positions.size() + part.mesh.positions.size() > std::numeric_limits<std::uint32_t>::max())
         fail("has too many vertices");
       const auto offset = static_cast<std::uint32_t>(mesh.positions.size());
       mesh.positions.insert(mesh.positions.end(), part.mesh.positions.begin(), part.mesh.positions.end());
-      for (const auto& t : part.mesh.triangles) mesh.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+      for (const auto& t : part.mesh.triangles)
+        mesh.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
       if (all_normals)
         mesh.corner_normals.insert(mesh.corner_normals.end(), part.mesh.corner_normals.begin(),
                                    part.mesh.corner_normals.end());
@@ -311,7 +332,8 @@ class GltfReader {
         if (part.mesh.corner_uvs.empty()) {
           mesh.corner_uvs.insert(mesh.corner_uvs.end(), part.mesh.triangles.size(), kDefaultCornerUvs);
         } else {
-          mesh.corner_uvs.insert(mesh.corner_uvs.end(), part.mesh.corner_uvs.begin(), part.mesh.corner_uvs.end());
+          mesh.corner_uvs.insert(mesh.corner_uvs.end(), part.mesh.corner_uvs.begin(),
+                                 part.mesh.corner_uvs.end());
         }
       }
     }
@@ -357,7 +379,8 @@ ObjImport import_gltf(const std::string& path, const SourceLocation& referenced_
     const auto lines = lines_of(error);
     std::string text;
     for (const auto& line : lines) text += (text.empty() ? "" : "; ") + line;
-    throw InputError(referenced_from, "cannot read glTF file '" + path + "': " + (text.empty() ? "unknown error" : text));
+    throw InputError(referenced_from,
+                     "cannot read glTF file '" + path + "': " + (text.empty() ? "unknown error" : text));
   }
   GltfReader reader(path, referenced_from, std::move(model));
   for (const auto& line : lines_of(warning)) reader.warnings.push_back(path + ": " + line);

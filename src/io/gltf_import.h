@@ -20,7 +20,7 @@
 
 #include <string>
 
-#include "scene/obj_import.h"
+#include "io/obj_import.h"
 #include "util/error.h"
 
 namespace candela {

@@ -1,4 +1,4 @@
-#include "scene/ply_import.h"
+#include "io/ply_import.h"
 
 #include <fmt/format.h>
 
@@ -42,15 +42,25 @@ std::optional<Scalar> scalar_named(const std::string& name) {
 
 std::size_t size_of(Scalar type) {
   switch (type) {
-    case Scalar::i8: case Scalar::u8: return 1;
-    case Scalar::i16: case Scalar::u16: return 2;
-    case Scalar::i32: case Scalar::u32: case Scalar::f32: return 4;
-    case Scalar::f64: return 8;
+    case Scalar::i8:
+    case Scalar::u8:
+      return 1;
+    case Scalar::i16:
+    case Scalar::u16:
+      return 2;
+    case Scalar::i32:
+    case Scalar::u32:
+    case Scalar::f32:
+      return 4;
+    case Scalar::f64:
+      return 8;
   }
   return 1;
 }
 
-bool is_integer(Scalar type) { return type != Scalar::f32 && type != Scalar::f64; }
+bool is_integer(Scalar type) {
+  return type != Scalar::f32 && type != Scalar::f64;
+}
 
 struct Property {
   std::string name;
@@ -149,12 +159,18 @@ class PlyReader {
       if (keyword == "end_header") break;
       if (keyword == "comment" || keyword == "obj_info") continue;
       if (keyword == "format") {
-        if (words.size() != 3) fail_at_header("expected 'format <ascii|binary_little_endian|binary_big_endian> 1.0'");
-        if (words[1] == "ascii") format_ = Format::ascii;
-        else if (words[1] == "binary_little_endian") format_ = Format::little_endian;
-        else if (words[1] == "binary_big_endian") format_ = Format::big_endian;
-        else fail_at_header("unknown format '" + words[1] + "'");
-        if (words[2] != "1.0" && words[2] != "1") fail_at_header("unsupported version '" + words[2] + "' (expected 1.0)");
+        if (words.size() != 3)
+          fail_at_header("expected 'format <ascii|binary_little_endian|binary_big_endian> 1.0'");
+        if (words[1] == "ascii")
+          format_ = Format::ascii;
+        else if (words[1] == "binary_little_endian")
+          format_ = Format::little_endian;
+        else if (words[1] == "binary_big_endian")
+          format_ = Format::big_endian;
+        else
+          fail_at_header("unknown format '" + words[1] + "'");
+        if (words[2] != "1.0" && words[2] != "1")
+          fail_at_header("unsupported version '" + words[2] + "' (expected 1.0)");
         have_format = true;
       } else if (keyword == "element") {
         if (words.size() != 3) fail_at_header("expected 'element <name> <count>'");
@@ -193,7 +209,8 @@ class PlyReader {
     for (const Element& element : elements_) {
       std::uint64_t minimum = 0;
       for (const Property& property : element.properties)
-        minimum += format_ == Format::ascii ? 1 : size_of(property.list ? property.count_type : property.type);
+        minimum +=
+            format_ == Format::ascii ? 1 : size_of(property.list ? property.count_type : property.type);
       if (minimum == 0 || element.count == 0) continue;
       if (element.count > body / minimum || needed + element.count * minimum > body)
         fail_plain(fmt::format("announces {} '{}' element(s), more than its {} bytes of data can hold",
@@ -246,16 +263,46 @@ class PlyReader {
     std::array<unsigned char, 8> bytes{};
     std::memcpy(bytes.data(), data_.data() + pos_, size);
     pos_ += size;
-    if (format_ == Format::big_endian) std::reverse(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(size));
+    if (format_ == Format::big_endian)
+      std::reverse(bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(size));
     switch (type) {
-      case Scalar::i8: { std::int8_t v; std::memcpy(&v, bytes.data(), 1); return v; }
-      case Scalar::u8: return bytes[0];
-      case Scalar::i16: { std::int16_t v; std::memcpy(&v, bytes.data(), 2); return v; }
-      case Scalar::u16: { std::uint16_t v; std::memcpy(&v, bytes.data(), 2); return v; }
-      case Scalar::i32: { std::int32_t v; std::memcpy(&v, bytes.data(), 4); return v; }
-      case Scalar::u32: { std::uint32_t v; std::memcpy(&v, bytes.data(), 4); return v; }
-      case Scalar::f32: { float v; std::memcpy(&v, bytes.data(), 4); return static_cast<double>(v); }
-      case Scalar::f64: { double v; std::memcpy(&v, bytes.data(), 8); return v; }
+      case Scalar::i8: {
+        std::int8_t v;
+        std::memcpy(&v, bytes.data(), 1);
+        return v;
+      }
+      case Scalar::u8:
+        return bytes[0];
+      case Scalar::i16: {
+        std::int16_t v;
+        std::memcpy(&v, bytes.data(), 2);
+        return v;
+      }
+      case Scalar::u16: {
+        std::uint16_t v;
+        std::memcpy(&v, bytes.data(), 2);
+        return v;
+      }
+      case Scalar::i32: {
+        std::int32_t v;
+        std::memcpy(&v, bytes.data(), 4);
+        return v;
+      }
+      case Scalar::u32: {
+        std::uint32_t v;
+        std::memcpy(&v, bytes.data(), 4);
+        return v;
+      }
+      case Scalar::f32: {
+        float v;
+        std::memcpy(&v, bytes.data(), 4);
+        return static_cast<double>(v);
+      }
+      case Scalar::f64: {
+        double v;
+        std::memcpy(&v, bytes.data(), 8);
+        return v;
+      }
     }
     return 0;
   }
@@ -301,14 +348,20 @@ class PlyReader {
     // Slot of each property: 0-2 position, 3-5 normal, 6-7 uv, -1 ignored.
     std::vector<int> slot(element.properties.size(), -1);
     std::array<bool, 8> present{};
-    const std::array<std::vector<std::string>, 8> names = {{{"x"}, {"y"}, {"z"}, {"nx"}, {"ny"}, {"nz"},
+    const std::array<std::vector<std::string>, 8> names = {{{"x"},
+                                                            {"y"},
+                                                            {"z"},
+                                                            {"nx"},
+                                                            {"ny"},
+                                                            {"nz"},
                                                             {"u", "s", "texture_u", "texture_s"},
                                                             {"v", "t", "texture_v", "texture_t"}}};
     for (std::size_t p = 0; p < element.properties.size(); ++p) {
       const Property& property = element.properties[p];
       for (int s = 0; s < 8; ++s) {
         bool match = false;
-        for (const std::string& name : names[static_cast<std::size_t>(s)]) match = match || property.name == name;
+        for (const std::string& name : names[static_cast<std::size_t>(s)])
+          match = match || property.name == name;
         if (!match || present[static_cast<std::size_t>(s)]) continue;
         if (property.list) fail_plain("vertex property '" + property.name + "' is a list");
         slot[p] = s;
@@ -337,9 +390,11 @@ class PlyReader {
       const auto check = [&](int from, int to, const char* what) {
         for (int k = from; k < to; ++k) {
           if (std::isfinite(values[static_cast<std::size_t>(k)])) continue;
-          if (format_ == Format::ascii) fail_line(first_line, fmt::format("vertex {} has a non-finite {}", i, what));
-          throw InputError(referenced_from_, fmt::format("PLY file '{}' byte {}: vertex {} has a non-finite {}",
-                                                         path_, first_byte, i, what));
+          if (format_ == Format::ascii)
+            fail_line(first_line, fmt::format("vertex {} has a non-finite {}", i, what));
+          throw InputError(referenced_from_,
+                           fmt::format("PLY file '{}' byte {}: vertex {} has a non-finite {}", path_,
+                                       first_byte, i, what));
         }
       };
       check(0, 3, "coordinate");
@@ -380,8 +435,8 @@ class PlyReader {
         for (std::size_t c = 0; c < corners; ++c) {
           const double index = value(property.type);
           if (!(index >= 0 && index < static_cast<double>(positions_.size())) || index != std::floor(index))
-            fail_here(fmt::format("face {} refers to vertex {}, but there are {} vertices (counted from 0)", f,
-                                  index, positions_.size()));
+            fail_here(fmt::format("face {} refers to vertex {}, but there are {} vertices (counted from 0)",
+                                  f, index, positions_.size()));
           polygon.push_back(static_cast<std::uint32_t>(index));
         }
         if (polygon.size() < 3) {

@@ -31,11 +31,11 @@ struct ImportedMaterial {
   std::string name;
   Color ka;
   Color kd;
-  Color ke;              // emission (MTL Ke); black when absent
-  double ks = 0;         // mean of the MTL Ks components
-  double shininess = 0;  // MTL Ns
-  double kt = 0;         // 1 - d (or Tr), clamped to [0, 1]
-  double ior = 1;        // MTL Ni
+  Color ke;                     // emission (MTL Ke); black when absent
+  double ks = 0;                // mean of the MTL Ks components
+  double shininess = 0;         // MTL Ns
+  double kt = 0;                // 1 - d (or Tr), clamped to [0, 1]
+  double ior = 1;               // MTL Ni
   std::string diffuse_texture;  // MTL map_Kd, resolved against the OBJ's folder; empty if none
 };
 
@@ -52,6 +52,7 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
 
 // The check every mesh reader (OBJ, PLY, glTF) makes first: InputError at referenced_from,
 // "<format> file 'PATH' not found" or "... is not a regular file".
-void require_mesh_file(const std::string& path, const std::string& format, const SourceLocation& referenced_from);
+void require_mesh_file(const std::string& path, const std::string& format,
+                       const SourceLocation& referenced_from);
 
 }  // namespace candela

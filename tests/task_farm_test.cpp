@@ -26,12 +26,15 @@ Bytes number_bytes(uint64_t value) {
   return writer.take();
 }
 
-uint64_t read_number(std::span<const std::byte> bytes) { return ByteReader(bytes).get<uint64_t>(); }
+uint64_t read_number(std::span<const std::byte> bytes) {
+  return ByteReader(bytes).get<uint64_t>();
+}
 
 // A task's result is a function of the task alone: its square, and the input passed along.
 TEST(TaskFarm, EveryTaskIsCollectedOnceWithItsOwnResult) {
   Cluster& cluster = world_cluster();
-  for (const std::size_t count : {std::size_t(0), std::size_t(1), std::size_t(2), std::size_t(5), std::size_t(200)}) {
+  for (const std::size_t count :
+       {std::size_t(0), std::size_t(1), std::size_t(2), std::size_t(5), std::size_t(200)}) {
     std::vector<int> collected(count, 0);
     std::vector<uint64_t> results(count, 0);
     TaskFarm farm;
@@ -159,7 +162,8 @@ TEST(TaskFarm, EverywhereRebuildsResultsOnRankZero) {
         ++rebuilt;
         return number_bytes(placed[task]);
       });
-  for (std::size_t task = 0; task < count; ++task) EXPECT_EQ(placed[task], task * 7 + 3) << "rank " << cluster.rank();
+  for (std::size_t task = 0; task < count; ++task)
+    EXPECT_EQ(placed[task], task * 7 + 3) << "rank " << cluster.rank();
   EXPECT_EQ(rebuilt, cluster.distributed() && cluster.root() ? count : 0u);
 }
 
@@ -174,7 +178,8 @@ TEST(TransferMatrix, RowsAcrossRanksAreTheSingleProcessRows) {
   const SiteSet sites = sample_sites(*scene, sampling);
   ASSERT_GT(sites.sites.size(), 100u);
   const TransferMatrix alone = compute_transfer_matrix(*scene, sites.sites, sites.effective_area);
-  const TransferMatrix shared = compute_transfer_matrix(*scene, sites.sites, sites.effective_area, 0, &cluster);
+  const TransferMatrix shared =
+      compute_transfer_matrix(*scene, sites.sites, sites.effective_area, 0, &cluster);
   ASSERT_EQ(shared.S.rows(), alone.S.rows());
   ASSERT_EQ(shared.entries(), alone.entries());
   EXPECT_EQ(shared.visibility_rays, alone.visibility_rays);
@@ -185,8 +190,9 @@ TEST(TransferMatrix, RowsAcrossRanksAreTheSingleProcessRows) {
     ASSERT_EQ(shared.S.innerIndexPtr()[e], alone.S.innerIndexPtr()[e]) << "entry " << e;
     ASSERT_EQ(shared.S.valuePtr()[e], alone.S.valuePtr()[e]) << "entry " << e;  // bit for bit
   }
-  EXPECT_THROW(compute_transfer_matrix(*scene, sites.sites, sites.effective_area, alone.entries() / 3, &cluster),
-               std::invalid_argument);
+  EXPECT_THROW(
+      compute_transfer_matrix(*scene, sites.sites, sites.effective_area, alone.entries() / 3, &cluster),
+      std::invalid_argument);
 }
 
 TEST(Cluster, CollectivesAgree) {

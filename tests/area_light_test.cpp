@@ -1,4 +1,5 @@
-// Tests of the rectangular area light (scene/area_light.h).
+// Tests of the rectangular area light (scene/area_light.h), against the point-to-polygon form
+// factor of radiosity/ and through the local method of integrators/.
 #include "scene/area_light.h"
 
 #include <gtest/gtest.h>
@@ -7,10 +8,10 @@
 #include <stdexcept>
 #include <vector>
 
+#include "integrators/local.h"
 #include "math/constants.h"
 #include "radiosity/ray_cast_form_factors.h"
-#include "scene/scene_loader.h"
-#include "integrators/local.h"
+#include "integrators/scene_loading.h"
 
 namespace candela {
 namespace {
@@ -20,7 +21,8 @@ double irradiance(const Light& light, const Vec3& x, const Vec3& n) {
   double sum = 0;
   for (int k = 0; k < light.sample_count(); ++k) {
     LightSample sample;
-    if (light.illuminate_sample(x, k, sample)) sum += sample.intensity.g * std::max(0.0, dot(n, sample.direction));
+    if (light.illuminate_sample(x, k, sample))
+      sum += sample.intensity.g * std::max(0.0, dot(n, sample.direction));
   }
   return sum;
 }
@@ -50,12 +52,12 @@ TEST(AreaLight, IrradianceIsTheExitanceTimesThePointToPolygonFormFactor) {
 }
 
 std::unique_ptr<Scene> lit_floor(const std::string& extra_shapes) {
-  return read_scene_text(R"({"format": "candela/1",
+  return load_scene_text(R"({"format": "candela/1",
     "camera": {"eye": [0, 0, 8], "target": [0, 0, 0], "fov": 40, "width": 32, "height": 32},
     "lights": [{"type": "area", "corner": [-0.5, -0.5, 2], "edge_u": [0, 1, 0], "edge_v": [1, 0, 0], "exitance": 5, "samples": 8}],
     "shapes": [{"type": "quad", "corner": [-4, -4, 0], "edge_u": [8, 0, 0], "edge_v": [0, 8, 0], "material": {"kd": 0.5, "ks": 0}})" +
                              extra_shapes + "]}",
-                         "floor.json", ".", {}, {});
+                         "floor.json", ".");
 }
 
 TEST(AreaLight, LocalModelShowsKdTimesIrradianceAndSoftShadows) {
@@ -67,13 +69,15 @@ TEST(AreaLight, LocalModelShowsKdTimesIrradianceAndSoftShadows) {
   const std::vector<Vec3> square{{-0.5, -0.5, 2}, {-0.5, 0.5, 2}, {0.5, 0.5, 2}, {0.5, -0.5, 2}};
   const Ray ray = scene->camera->generate_ray(16.5, 16.5);
   const Vec3 hit_point = ray.at(-ray.origin.z / ray.direction.z);  // where it meets the floor z = 0
-  const double exact = 0.5 * 5 * point_to_polygon_form_factor({hit_point.x, hit_point.y, 0}, {0, 0, 1}, square);
+  const double exact =
+      0.5 * 5 * point_to_polygon_form_factor({hit_point.x, hit_point.y, 0}, {0, 0, 1}, square);
   EXPECT_NEAR(centre.g, exact, 0.01 * exact);
   // A small blocker halfway up, off to the side so that the camera sees past it: the floor in its
   // shadow (pixel 22 looks at x ≈ 1.18, where the blocker hides part of the light from) is darker
   // than without it but not black (penumbra from the light's other samples), and the floor on the
   // other side is as bright as before.
-  const auto shadowed = lit_floor(R"(, {"type": "quad", "corner": [0.45, -0.15, 1], "edge_u": [0.3, 0, 0], "edge_v": [0, 0.3, 0]})");
+  const auto shadowed = lit_floor(
+      R"(, {"type": "quad", "corner": [0.45, -0.15, 1], "edge_u": [0.3, 0, 0], "edge_v": [0, 0.3, 0]})");
   Color open, under, far_open, far_blocked;
   LocalMethod().pixel_ray_tree(*scene, 22, 16, open);
   LocalMethod().pixel_ray_tree(*shadowed, 22, 16, under);
@@ -85,12 +89,16 @@ TEST(AreaLight, LocalModelShowsKdTimesIrradianceAndSoftShadows) {
 }
 
 TEST(AreaLight, BadInputIsALocatedError) {
-  EXPECT_THROW(read_scene_text(R"({"format": "candela/1", "lights": [{"type": "area", "corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [2, 0, 0]}]})",
-                               "bad.json", ".", {}, {}),
-               std::exception);
-  EXPECT_THROW(read_scene_text(R"({"format": "candela/1", "lights": [{"type": "area", "corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0], "samples": 0}]})",
-                               "bad.json", ".", {}, {}),
-               std::exception);
+  EXPECT_THROW(
+      load_scene_text(
+          R"({"format": "candela/1", "lights": [{"type": "area", "corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [2, 0, 0]}]})",
+          "bad.json", "."),
+      std::exception);
+  EXPECT_THROW(
+      load_scene_text(
+          R"({"format": "candela/1", "lights": [{"type": "area", "corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0], "samples": 0}]})",
+          "bad.json", "."),
+      std::exception);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-#include "scene/obj_import.h"
+#include "io/obj_import.h"
 
 #include <fmt/format.h>
 #include <tiny_obj_loader.h>
@@ -18,7 +18,9 @@ namespace candela {
 
 namespace {
 
-std::string quoted(const std::string& path) { return "'" + path + "'"; }
+std::string quoted(const std::string& path) {
+  return "'" + path + "'";
+}
 
 // tinyobjloader's messages, one per line, trimmed; empty lines (and the stray "." it writes
 // after "Degenerated face found") dropped.
@@ -54,8 +56,8 @@ int line_number_in(const std::string& text) {
     at += 5;
     int value = 0;
     std::size_t digits = 0;
-    while (at + digits < text.size() &&
-           std::isdigit(static_cast<unsigned char>(text[at + digits])) && digits < 9) {
+    while (at + digits < text.size() && std::isdigit(static_cast<unsigned char>(text[at + digits])) &&
+           digits < 9) {
       value = value * 10 + (text[at + digits] - '0');
       ++digits;
     }
@@ -65,8 +67,7 @@ int line_number_in(const std::string& text) {
 }
 
 Color to_color(const tinyobj::real_t* values) {
-  return {static_cast<double>(values[0]), static_cast<double>(values[1]),
-          static_cast<double>(values[2])};
+  return {static_cast<double>(values[0]), static_cast<double>(values[1]), static_cast<double>(values[2])};
 }
 
 bool finite_color(const Color& c) {
@@ -91,7 +92,8 @@ std::string first_non_finite_vertex(const std::string& path) {
     for (int k = 0; k < 3 && tokens >> token; ++k) {
       const double value = std::strtod(token.c_str(), nullptr);
       if (!std::isfinite(value))
-        return "vertex " + std::to_string(vertex) + " (line " + std::to_string(line_number) + "): '" + token + "'";
+        return "vertex " + std::to_string(vertex) + " (line " + std::to_string(line_number) + "): '" + token +
+               "'";
     }
   }
   return "";
@@ -99,7 +101,8 @@ std::string first_non_finite_vertex(const std::string& path) {
 
 }  // namespace
 
-void require_mesh_file(const std::string& path, const std::string& format, const SourceLocation& referenced_from) {
+void require_mesh_file(const std::string& path, const std::string& format,
+                       const SourceLocation& referenced_from) {
   std::error_code ec;
   const std::filesystem::file_status status = std::filesystem::status(path, ec);
   if (ec || !std::filesystem::exists(status))
@@ -159,8 +162,7 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
   const std::size_t vertex_count = attrib.vertices.size() / 3;
   mesh->positions.reserve(vertex_count);
   for (std::size_t i = 0; i < vertex_count; ++i) {
-    const Vec3 p{static_cast<double>(attrib.vertices[3 * i]),
-                 static_cast<double>(attrib.vertices[3 * i + 1]),
+    const Vec3 p{static_cast<double>(attrib.vertices[3 * i]), static_cast<double>(attrib.vertices[3 * i + 1]),
                  static_cast<double>(attrib.vertices[3 * i + 2])};
     if (!is_finite(p))
       throw fail("OBJ file " + quoted(path) + ": vertex " + std::to_string(i + 1) +
@@ -195,31 +197,25 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
         const tinyobj::index_t& index = shape_mesh.indices[offset + k];
         if (index.vertex_index < 0 || static_cast<std::size_t>(index.vertex_index) >= vertex_count)
           throw fail(describe_face() + " refers to vertex " +
-                     std::to_string(static_cast<long long>(index.vertex_index) + 1) +
-                     " but the file has " + std::to_string(vertex_count) +
-                     " vertices (face index out of range)");
+                     std::to_string(static_cast<long long>(index.vertex_index) + 1) + " but the file has " +
+                     std::to_string(vertex_count) + " vertices (face index out of range)");
         if (index.normal_index != -1 &&
-            (index.normal_index < 0 ||
-             static_cast<std::size_t>(index.normal_index) >= normal_count))
+            (index.normal_index < 0 || static_cast<std::size_t>(index.normal_index) >= normal_count))
           throw fail(describe_face() + " refers to normal " +
-                     std::to_string(static_cast<long long>(index.normal_index) + 1) +
-                     " but the file has " + std::to_string(normal_count) +
-                     " normals (face index out of range)");
+                     std::to_string(static_cast<long long>(index.normal_index) + 1) + " but the file has " +
+                     std::to_string(normal_count) + " normals (face index out of range)");
         if (index.texcoord_index != -1 &&
-            (index.texcoord_index < 0 ||
-             static_cast<std::size_t>(index.texcoord_index) >= texcoord_count))
+            (index.texcoord_index < 0 || static_cast<std::size_t>(index.texcoord_index) >= texcoord_count))
           throw fail(describe_face() + " refers to texture coordinate " +
-                     std::to_string(static_cast<long long>(index.texcoord_index) + 1) +
-                     " but the file has " + std::to_string(texcoord_count) +
-                     " texture coordinates (face index out of range)");
+                     std::to_string(static_cast<long long>(index.texcoord_index) + 1) + " but the file has " +
+                     std::to_string(texcoord_count) + " texture coordinates (face index out of range)");
       }
       int material = face < shape_mesh.material_ids.size() ? shape_mesh.material_ids[face] : -1;
-      if (material < 0 || static_cast<std::size_t>(material) >= reader.GetMaterials().size())
-        material = -1;
+      if (material < 0 || static_cast<std::size_t>(material) >= reader.GetMaterials().size()) material = -1;
       // tinyobjloader has triangulated already; a fan covers anything it left as a polygon.
       for (std::size_t k = 1; k + 1 < count; ++k) {
-        corners.push_back({shape_mesh.indices[offset], shape_mesh.indices[offset + k],
-                           shape_mesh.indices[offset + k + 1]});
+        corners.push_back(
+            {shape_mesh.indices[offset], shape_mesh.indices[offset + k], shape_mesh.indices[offset + k + 1]});
         result.triangle_material.push_back(material);
       }
       offset += count;
@@ -290,17 +286,16 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
     mesh->corner_uvs.reserve(corners.size());
     for (const auto& triangle : corners) {
       std::array<Vec2, 3> uvs = kDefault;
-      const bool has_all =
-          std::all_of(triangle.begin(), triangle.end(),
-                      [](const tinyobj::index_t& i) { return i.texcoord_index >= 0; });
+      const bool has_all = std::all_of(triangle.begin(), triangle.end(),
+                                       [](const tinyobj::index_t& i) { return i.texcoord_index >= 0; });
       if (has_all) {
         for (int k = 0; k < 3; ++k) {
           const auto n = static_cast<std::size_t>(triangle[k].texcoord_index);
           uvs[k] = {static_cast<double>(attrib.texcoords[2 * n]),
                     static_cast<double>(attrib.texcoords[2 * n + 1])};
           if (!std::isfinite(uvs[k].x) || !std::isfinite(uvs[k].y))
-            throw fail("OBJ file " + quoted(path) + ": texture coordinate " +
-                       std::to_string(n + 1) + " is not finite");
+            throw fail("OBJ file " + quoted(path) + ": texture coordinate " + std::to_string(n + 1) +
+                       " is not finite");
         }
       }
       mesh->corner_uvs.push_back(uvs);
@@ -319,14 +314,14 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
     material.ior = static_cast<double>(source.ior);
     if (!source.diffuse_texname.empty()) {
       const std::filesystem::path texture(source.diffuse_texname);
-      material.diffuse_texture =
-          texture.is_absolute() ? texture.string() : (std::filesystem::path(config.mtl_search_path) / texture).string();
+      material.diffuse_texture = texture.is_absolute()
+                                     ? texture.string()
+                                     : (std::filesystem::path(config.mtl_search_path) / texture).string();
     }
     if (!finite_color(material.ka) || !finite_color(material.kd) || !finite_color(material.ke) ||
-        !std::isfinite(material.ks) || !std::isfinite(material.shininess) ||
-        !std::isfinite(material.ior) || std::isnan(material.kt))
-      throw fail("OBJ file " + quoted(path) + ": material '" + source.name +
-                 "' has a non-finite value");
+        !std::isfinite(material.ks) || !std::isfinite(material.shininess) || !std::isfinite(material.ior) ||
+        std::isnan(material.kt))
+      throw fail("OBJ file " + quoted(path) + ": material '" + source.name + "' has a non-finite value");
     // The ranges a scene file's materials must respect (scene/material_registry.cpp).
     const auto non_negative = [](const Color& c) { return c.r >= 0 && c.g >= 0 && c.b >= 0; };
     std::string problem;

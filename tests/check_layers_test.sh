@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# The layer check itself (scripts/check-layers.sh): it passes on a tree that keeps the layering
+# and fails, naming file:line and both modules, on each kind of violation.
+# Usage: tests/check_layers_test.sh PATH/TO/check-layers.sh
+set -euo pipefail
+
+check=${1:?usage: check_layers_test.sh PATH/TO/check-layers.sh}
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+failures=0
+
+# A tree with a few modules that keep the layering: lower ranks only, own headers, library folders.
+make_tree() {
+  rm -rf "$scratch/tree"
+  mkdir -p "$scratch/tree/src/math" "$scratch/tree/src/io" "$scratch/tree/src/scene"
+  printf '#pragma once\n' >"$scratch/tree/src/math/vector.h"
+  printf '#include "io/reader.h"\n\n#include <nlohmann/json.hpp>\n#include "math/vector.h"\n' \
+    >"$scratch/tree/src/io/reader.cpp"
+  printf '#pragma once\n#include "math/vector.h"\n#include "tinygltf/tiny_gltf.h"\n' >"$scratch/tree/src/io/reader.h"
+  printf '#include "scene/scene.h"\n#include "io/reader.h"\n  #  include "math/vector.h"\n' \
+    >"$scratch/tree/src/scene/scene.cpp"
+}
+
+# expect STATUS DESCRIPTION [TEXT...]: the check's exit status, and each TEXT in its output.
+expect() {
+  local want=$1 description=$2
+  shift 2
+  local output got=0
+  output=$(bash "$check" "$scratch/tree" 2>&1) || got=$?
+  if [[ "$got" != "$want" ]]; then
+    echo "FAIL: $description: exit status $got, expected $want; output:"
+    echo "$output"
+    failures=$((failures + 1))
+    return
+  fi
+  for text in "$@"; do
+    if ! grep -qF -- "$text" <<<"$output"; then
+      echo "FAIL: $description: no '$text' in the output:"
+      echo "$output"
+      failures=$((failures + 1))
+    fi
+  done
+  echo "ok: $description"
+}
+
+make_tree
+expect 0 "a tree that keeps the layering passes"
+
+make_tree
+printf '#include "math/vector.h"\n#include "scene/scene.h"\n' >"$scratch/tree/src/io/writer.cpp"
+expect 1 "a module including a higher one fails" \
+  'src/io/writer.cpp:2: io (rank 4) includes "scene/scene.h" of scene (rank 7, higher)'
+
+make_tree
+printf '#include "io/reader.h"\n' >"$scratch/tree/src/math/vector_test.cpp"
+expect 1 "a unit test including a higher module fails" 'src/math/vector_test.cpp:1: math (rank 0)'
+
+make_tree
+mkdir -p "$scratch/tree/src/camera" "$scratch/tree/src/geometry"
+printf '#pragma once\n' >"$scratch/tree/src/geometry/shape.h"
+printf '\n#include "geometry/shape.h"\n' >"$scratch/tree/src/camera/camera.h"
+expect 1 "two modules of the same rank fail" \
+  'src/camera/camera.h:2: camera (rank 3) includes "geometry/shape.h" of geometry (rank 3, same-rank)'
+
+make_tree
+mkdir -p "$scratch/tree/src/newmodule"
+expect 1 "a module without a rank fails" "src/newmodule: a module without a rank"
+
+make_tree
+mkdir -p "$scratch/tree/src/scene"
+printf '#include "radiosity/radiosity_settings.h"\n' >"$scratch/tree/src/scene/scene.h"
+expect 1 "the scene including a method's settings fails" \
+  'src/scene/scene.h:1: scene (rank 7) includes "radiosity/radiosity_settings.h" of radiosity (rank 9, higher)'
+
+if ((failures > 0)); then
+  echo "$failures failure(s)"
+  exit 1
+fi
