@@ -85,15 +85,6 @@ DiffPicture make_diff(const CompareOptions& options, const Film& image, const Fi
   return diff;
 }
 
-void write_text(const std::string& path, const std::string& text) {
-  write_atomically(path, [&](const std::string& temporary) {
-    std::ofstream out(temporary);
-    out << text;
-    out.close();
-    if (!out) throw std::runtime_error("cannot write " + path);
-  });
-}
-
 int run_compare(const CompareOptions& options) {
   if (options.diff_scale && !(std::isfinite(*options.diff_scale) && *options.diff_scale > 0))
     throw BadArgument(fmt::format("--diff-scale {}: must be a positive number", *options.diff_scale));
@@ -169,7 +160,7 @@ int run_compare(const CompareOptions& options) {
                       {"colour_map", diff->map == ColourMap::viridis ? "viridis" : "diverging"},
                       {"low", diff->low},
                       {"high", diff->high}};
-    write_text(options.json, json.dump(2) + "\n");
+    write_text_atomically(options.json, json.dump(2) + "\n");
   }
   std::cout << table;
   return 0;

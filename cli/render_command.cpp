@@ -201,13 +201,7 @@ std::string path_for_view(const std::string& path, const View& view, std::size_t
 }
 
 void write_statistics(const RunStatistics& statistics, const std::string& path) {
-  const std::string text = statistics.to_json().dump(2) + "\n";
-  write_atomically(path, [&](const std::string& temporary) {
-    std::ofstream out(temporary);
-    out << text;
-    out.close();
-    if (!out) throw std::runtime_error("cannot write " + path);
-  });
+  write_text_atomically(path, statistics.to_json().dump(2) + "\n");
 }
 
 // After Ctrl-C, once the image in progress (and its statistics) is written: says what it holds,
