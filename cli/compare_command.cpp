@@ -2,8 +2,8 @@
 //                     [--diff-scale X] [--json FILE]
 // Error metrics of image A against the reference B (validate/image_comparison.h): RMSE, relative
 // MSE, PSNR, mean and max absolute error, mean luminances and their ratio, printed as a table;
-// --json writes them as JSON; --diff writes a false-colour picture of the per-pixel luminance
-// difference with its colour bar beneath (io/false_colour.h). PNG and other 8-bit files are
+// --json writes them as JSON; --diff writes a false-color picture of the per-pixel luminance
+// difference with its color bar beneath (io/false_color.h). PNG and other 8-bit files are
 // decoded from sRGB to linear first; EXR and PFM are compared as stored. See docs/compare.md.
 #include <fmt/format.h>
 
@@ -18,7 +18,7 @@
 
 #include "commands.h"
 #include "output_paths.h"
-#include "io/false_colour.h"
+#include "io/false_color.h"
 #include "io/image_writer.h"
 #include "util/atomic_file.h"
 #include "validate/image_comparison.h"
@@ -55,7 +55,7 @@ struct DiffPicture {
   DifferenceMetric metric;
   std::string description;  // what a pixel shows
   double low = 0, high = 0;
-  ColourMap map = ColourMap::viridis;
+  ColorMap map = ColorMap::viridis;
   Film film{0, 0};
 };
 
@@ -71,7 +71,7 @@ DiffPicture make_diff(const CompareOptions& options, const Film& image, const Fi
   } else {
     diff.metric = DifferenceMetric::signed_difference;
     diff.description = "Y_A - Y_B";
-    diff.map = ColourMap::diverging;
+    diff.map = ColorMap::diverging;
   }
   const std::vector<double> values = difference_values(image, reference, diff.metric, mask);
   double largest = 0;
@@ -81,7 +81,7 @@ DiffPicture make_diff(const CompareOptions& options, const Film& image, const Fi
   const double top = options.diff_scale ? *options.diff_scale : (largest > 0 ? largest : 1.0);
   diff.low = diff.metric == DifferenceMetric::signed_difference ? -top : 0.0;
   diff.high = top;
-  diff.film = false_colour_image(values, image.width(), image.height(), diff.low, diff.high, diff.map);
+  diff.film = false_color_image(values, image.width(), image.height(), diff.low, diff.high, diff.map);
   return diff;
 }
 
@@ -143,8 +143,8 @@ int run_compare(const CompareOptions& options) {
   row("mean luminance B", number(result.mean_luminance_reference), "");
   row("luminance ratio A/B", number(result.luminance_ratio), "");
   if (diff)
-    table += fmt::format("difference   {}: {}, {} colour map, scale {} .. {} (colour bar below the image)\n",
-                         options.diff, diff->description, diff->map == ColourMap::viridis ? "viridis" : "blue-white-red",
+    table += fmt::format("difference   {}: {}, {} color map, scale {} .. {} (color bar below the image)\n",
+                         options.diff, diff->description, diff->map == ColorMap::viridis ? "viridis" : "blue-white-red",
                          number(diff->low), number(diff->high));
 
   // Outputs, each written atomically, only once everything has been computed.
@@ -157,7 +157,7 @@ int run_compare(const CompareOptions& options) {
     if (diff)
       json["diff"] = {{"path", options.diff},
                       {"metric", options.diff_metric},
-                      {"colour_map", diff->map == ColourMap::viridis ? "viridis" : "diverging"},
+                      {"color_map", diff->map == ColorMap::viridis ? "viridis" : "diverging"},
                       {"low", diff->low},
                       {"high", diff->high}};
     write_text_atomically(options.json, json.dump(2) + "\n");
@@ -175,7 +175,7 @@ void add_compare_command(CLI::App& app, std::function<int()>& run) {
   command->add_option("B", options->reference, "The reference image, the same size")->required();
   command->add_option("--mask", options->mask,
                       "Image of the same size: pixels whose luminance is <= 0.5 (after decoding) are left out");
-  command->add_option("--diff", options->diff, "Write a false-colour difference image with its colour bar (.png)");
+  command->add_option("--diff", options->diff, "Write a false-color difference image with its color bar (.png)");
   command->add_option("--diff-metric", options->diff_metric, "What --diff shows: abs (default), relative or signed")
       ->check(CLI::IsMember({"abs", "relative", "signed"}));
   command->add_option("--diff-scale", options->diff_scale,

@@ -2,7 +2,7 @@
 //   Irradiance and radiance at sensor points (integrators/probe.h; like Radiance's rtrace -I).
 //   --grid cx,cy,cz,ux,uy,uz,vx,vy,vz  a work plane: the parallelogram corner + s·u + t·v, with
 //   --grid-size NU,NV points at its cells' centres facing u × v, and --image FILE.png a
-//   false-colour picture of the illuminance with its scale.
+//   false-color picture of the illuminance with its scale.
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
@@ -15,7 +15,7 @@
 #include "commands.h"
 #include "output_paths.h"
 #include "integrators/probe.h"
-#include "io/false_colour.h"
+#include "io/false_color.h"
 #include "io/image_writer.h"
 #include "scene_options.h"
 #include "util/atomic_file.h"
@@ -124,7 +124,7 @@ int run_probe(ProbeOptions& options) {
         if (std::isfinite(value)) high = std::max(high, value);
       }
     if (!(high > 0)) high = 1;
-    const Film picture = false_colour_image(values, nu, nv, 0, high, ColourMap::viridis);
+    const Film picture = false_color_image(values, nu, nv, 0, high, ColorMap::viridis);
     write_image(picture, options.image, DisplaySettings{});
     if (!options.quiet) std::cout << fmt::format("illuminance scale: 0 to {} lux\n", format_scale_value(high));
   }
@@ -157,7 +157,7 @@ void add_probe_command(CLI::App& app, std::function<int()>& run) {
   command->add_option("--grid", options->grid, "Work plane: corner and edges cx,cy,cz,ux,uy,uz,vx,vy,vz (normal u × v)")
       ->delimiter(',');
   command->add_option("--grid-size", options->grid_size, "Points along u and v: NU,NV (default 20,20)")->delimiter(',');
-  command->add_option("--image", options->image, "With --grid: a false-colour PNG of the illuminance with its scale");
+  command->add_option("--image", options->image, "With --grid: a false-color PNG of the illuminance with its scale");
   command->add_option("-o,--output", options->output, "Output CSV")->required();
   command->add_option("--samples", options->samples, "Estimates (path) or hemisphere rays per point (default 256)");
   command->add_option("--seed", options->seed, "Random seed (default: render.seed)");

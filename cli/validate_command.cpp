@@ -1,7 +1,7 @@
-// candela validate sphere-disk --out DIR [--quick]: the built-in validation cases (SPEC §13).
-//   sphere-disk  the sphere over a disc of seed 002 chapter 7 (validate/sphere_disk.h): the
+// candela validate sphere-disc --out DIR [--quick]: the built-in validation cases (SPEC §13).
+//   sphere-disc  the sphere over a disc of seed 002 chapter 7 (validate/sphere_disc.h): the
 //                reference by quadrature and the meshless FE solution for each basis at Δ = 3 and
-//                Δ = 1; CSV, PNG plots and errors.json in DIR (see docs/validation/sphere-disk.md).
+//                Δ = 1; CSV, PNG plots and errors.json in DIR (see docs/validation/sphere-disc.md).
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -10,7 +10,7 @@
 #include <string>
 
 #include "commands.h"
-#include "validate/sphere_disk.h"
+#include "validate/sphere_disc.h"
 
 namespace candela::cli {
 
@@ -24,17 +24,17 @@ struct ValidateOptions {
 };
 
 int run_validate(const ValidateOptions& options) {
-  if (options.name != "sphere-disk")
-    throw BadArgument(fmt::format("unknown validation case '{}' (known: sphere-disk)", options.name));
+  if (options.name != "sphere-disc")
+    throw BadArgument(fmt::format("unknown validation case '{}' (known: sphere-disc)", options.name));
   namespace fs = std::filesystem;
   std::error_code error;
   fs::create_directories(options.out, error);
   if (error || !fs::is_directory(options.out))
     throw BadArgument(fmt::format("--out: cannot create the directory '{}'{}", options.out,
                                   error ? ": " + error.message() : ""));
-  SphereDiskRun run;
+  SphereDiscRun run;
   run.quick = options.quick;
-  const nlohmann::json errors = run_sphere_disk_validation(options.out, run, options.quiet ? nullptr : &std::cout);
+  const nlohmann::json errors = run_sphere_disc_validation(options.out, run, options.quiet ? nullptr : &std::cout);
   if (!options.quiet)
     std::cout << fmt::format("least RMS error: {} (delta 3), {} (delta 1); written to {}\n",
                              errors["least_rms"]["delta3"].get<std::string>(),
@@ -46,8 +46,8 @@ int run_validate(const ValidateOptions& options) {
 
 void add_validate_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<ValidateOptions>();
-  CLI::App* command = app.add_subcommand("validate", "Run a built-in validation case (sphere-disk)");
-  command->add_option("name", options->name, "The case: sphere-disk")->required();
+  CLI::App* command = app.add_subcommand("validate", "Run a built-in validation case (sphere-disc)");
+  command->add_option("name", options->name, "The case: sphere-disc")->required();
   command->add_option("--out", options->out, "Directory for the CSV files, plots and errors.json")->required();
   command->add_flag("--quick", options->quick, "Coarser reference and sampling (for tests)");
   command->add_flag("-q,--quiet", options->quiet, "No progress lines");

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The texture and environment assets of scenes/textures/ (issue 5; docs/materials.md):
 #   tiles.png           stone floor tiles with grout (256×256, repeats seamlessly)
-#   random-squares.png  000 Figure 21: randomly coloured squares, for the sphere mapping
+#   random-squares.png  000 Figure 21: randomly colored squares, for the sphere mapping
 #   uv-grid.png         a grid whose hue follows u and brightness v, for showing mappings
 #   sky.exr             an equirectangular sky (gradient, sun, ground), linear half floats
 #   sky-{px,nx,py,ny,pz,nz}.png  a cube map rendered by candela from sky-source.json: six 90°

@@ -5,7 +5,7 @@
   make_textures.py png IN.pfm OUT.png  a render (linear floats) as an 8-bit sRGB PNG
   make_textures.py compare A.pfm B.pfm mean and largest channel difference of two renders
 
-Everything is deterministic: the random colours and the noise come from an integer hash, not
+Everything is deterministic: the random colors and the noise come from an integer hash, not
 from the random module, so the files are the same bytes on every run and every machine.
 
 The cube-map faces are rendered by candela itself (scripts/make-textures.sh): in the cube map's
@@ -79,7 +79,7 @@ def read_pfm(path):
         tokens.append(data[start:position].decode())
     position += 1  # the single whitespace after the scale
     if tokens[0] != "PF":
-        raise ValueError(f"{path}: not a colour PFM")
+        raise ValueError(f"{path}: not a color PFM")
     width, height, scale = int(tokens[1]), int(tokens[2]), float(tokens[3])
     order = "<" if scale < 0 else ">"
     values = struct.unpack_from(f"{order}{width * height * 3}f", data, position)
@@ -144,14 +144,14 @@ def srgb_encode(linear):
     return int(encoded * 255 + 0.5)
 
 
-def to_bytes(colour):
+def to_bytes(color):
     """Linear RGB to 8-bit sRGB."""
-    return bytes(srgb_encode(c) for c in colour)
+    return bytes(srgb_encode(c) for c in color)
 
 
-def display_bytes(colour):
-    """A colour already in display (sRGB-encoded) values in [0, 1] to 8 bits."""
-    return bytes(int(min(1.0, max(0.0, c)) * 255 + 0.5) for c in colour)
+def display_bytes(color):
+    """A color already in display (sRGB-encoded) values in [0, 1] to 8 bits."""
+    return bytes(int(min(1.0, max(0.0, c)) * 255 + 0.5) for c in color)
 
 
 # --- deterministic randomness and noise --------------------------------------------------------
@@ -203,7 +203,7 @@ def mix(a, b, t):
 
 
 def tiles(path, size=256, count=4):
-    """Stone floor tiles with grout, `count`×`count` tiles; repeats seamlessly. Colours here and
+    """Stone floor tiles with grout, `count`×`count` tiles; repeats seamlessly. Colors here and
     in the other images are picked as display (sRGB-encoded) values."""
     cell = size // count
     grout_half = 2.5
@@ -221,20 +221,20 @@ def tiles(path, size=256, count=4):
             grain = fbm(x / 16, y / 16, size // 16, 7)
             speckle = hash_unit(x, y, 3)
             if edge < grout_half:
-                colour = tuple(c * (0.8 + 0.4 * grain) for c in grout)
+                color = tuple(c * (0.8 + 0.4 * grain) for c in grout)
             else:
                 base = stones[int(hash_unit(tx % count, ty % count, 11) * len(stones))]
                 cloud = fbm(x / 24 + tx * 3.7, y / 24 + ty * 1.3, 1000, 19)
                 shade = 0.75 + 0.45 * cloud + 0.08 * (speckle - 0.5)
                 bevel = min(1.0, (edge - grout_half) / 4)  # darker towards the grout
-                colour = tuple(c * shade * (0.7 + 0.3 * bevel) for c in base)
-            row += display_bytes(colour)
+                color = tuple(c * shade * (0.7 + 0.3 * bevel) for c in base)
+            row += display_bytes(color)
         rows.append(bytes(row))
     write_png(path, size, size, rows)
 
 
 def random_squares(path, columns=16, lines=8, cell=16):
-    """000 Figure 21: an array of randomly coloured squares (2:1, for the sphere mapping)."""
+    """000 Figure 21: an array of randomly colored squares (2:1, for the sphere mapping)."""
     rows = []
     for y in range(lines * cell):
         row = bytearray()
@@ -258,12 +258,12 @@ def uv_grid(path, width=256, height=128, step=16):
         row = bytearray()
         for x in range(width):
             u = (x + 0.5) / width
-            colour = colorsys.hsv_to_rgb(0.85 * u, 0.75, 0.35 + 0.6 * v)
+            color = colorsys.hsv_to_rgb(0.85 * u, 0.75, 0.35 + 0.6 * v)
             if x % step == 0 or y % step == 0:
-                colour = (0.02, 0.02, 0.02)
+                color = (0.02, 0.02, 0.02)
             if abs(x - width / 2) < 1.5:
-                colour = (1.0, 1.0, 1.0)
-            row += display_bytes(colour)
+                color = (1.0, 1.0, 1.0)
+            row += display_bytes(color)
         rows.append(bytes(row))
     write_png(path, width, height, rows)
 
@@ -279,14 +279,14 @@ def sky_radiance(d):
     horizon = (0.85, 0.88, 0.92)
     if y >= 0:
         zenith = (0.12, 0.30, 0.75)
-        colour = mix(horizon, zenith, y ** 0.45)
+        color = mix(horizon, zenith, y ** 0.45)
         cos_sun = x * SUN[0] + y * SUN[1] + z * SUN[2]
         angle = math.degrees(math.acos(max(-1.0, min(1.0, cos_sun))))
         glow = 0.8 * math.exp(-angle / 3) + 0.12 * math.exp(-angle / 20)
-        colour = tuple(c + glow * s for c, s in zip(colour, (1.0, 0.85, 0.6)))
+        color = tuple(c + glow * s for c, s in zip(color, (1.0, 0.85, 0.6)))
         if angle < 2.5:
-            colour = (60.0, 55.0, 45.0)
-        return colour
+            color = (60.0, 55.0, 45.0)
+        return color
     # the ground plane 1.6 units below the eye, in fields of 4 units
     t = 1.6 / -y
     gx, gz = x * t, z * t

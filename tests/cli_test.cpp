@@ -525,10 +525,10 @@ TEST_F(Cli, BenchRadiositySolvesASceneAndReportsItsFacts) {
   EXPECT_EQ(run("bench --sphere 100 --set radiosity.patch_size=5 -q", output), 2) << output;
 }
 
-TEST_F(Cli, ValidateSphereDiskWritesCsvPlotsAndErrors) {
+TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
   // Issue 8 item 4 (SPEC §13), in its quick form (a smaller disc, a coarser reference).
   std::string output;
-  ASSERT_EQ(run("validate sphere-disk --quick -q --out sd", output), 0) << output;
+  ASSERT_EQ(run("validate sphere-disc --quick -q --out sd", output), 0) << output;
   const fs::path out = directory_ / "sd";
   for (const char* name : {"reference_disc.csv", "reference_sphere.csv", "reference.png", "errors.json",
                            "compare_delta3.png", "compare_delta1.png"})
@@ -547,7 +547,7 @@ TEST_F(Cli, ValidateSphereDiskWritesCsvPlotsAndErrors) {
       EXPECT_TRUE(fs::exists(out / (name + ".png"))) << name;
       const nlohmann::json& entry = errors["bases"][basis][delta];
       ASSERT_TRUE(entry.is_object()) << name;
-      // The radial basis's iteration diverges (docs/validation/sphere-disk.md): its errors are null.
+      // The radial basis's iteration diverges (docs/validation/sphere-disc.md): its errors are null.
       if (std::string(basis) == "radial" && entry["diverged"].get<bool>()) continue;
       for (const char* key : {"rms", "max", "rms_relative", "max_relative"}) {
         ASSERT_TRUE(entry[key].is_number()) << name << " " << key;
@@ -557,7 +557,7 @@ TEST_F(Cli, ValidateSphereDiskWritesCsvPlotsAndErrors) {
     }
   // A directory that cannot be created is bad input.
   write("file", "x");
-  EXPECT_EQ(run("validate sphere-disk --quick --out file/sub", output), 2) << output;
+  EXPECT_EQ(run("validate sphere-disc --quick --out file/sub", output), 2) << output;
   EXPECT_NE(output.find("--out"), std::string::npos) << output;
   EXPECT_EQ(run("validate no-such-case --out x", output), 2) << output;
 }
@@ -667,7 +667,7 @@ TEST_F(Cli, ProbeWritesIrradianceRadianceAndIlluminanceAtPoints) {
   EXPECT_NE(output.find("probed 2 points with radiosity"), std::string::npos) << output;
 }
 
-TEST_F(Cli, ProbeGridWritesAFalseColourImageOfTheIlluminance) {
+TEST_F(Cli, ProbeGridWritesAFalseColorImageOfTheIlluminance) {
   write("lamp.json", kLampScene);
   std::string output;
   ASSERT_EQ(run("probe lamp.json --grid -2,0,2,4,0,0,0,0,-4 --grid-size 8,6 --samples 64 -o grid.csv --image grid.png",

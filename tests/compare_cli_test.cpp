@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "camera/tone_map.h"
-#include "io/false_colour.h"
+#include "io/false_color.h"
 #include "io/image_writer.h"
 #include "scratch_directory.h"
 #include "shading/texture_image.h"
@@ -145,7 +145,7 @@ TEST_F(CompareCli, MissingFileIsAnErrorAndNothingIsWritten) {
   EXPECT_FALSE(exists("d.png"));
 }
 
-TEST_F(CompareCli, DiffWritesAFalseColourPngWithItsBar) {
+TEST_F(CompareCli, DiffWritesAFalseColorPngWithItsBar) {
   Film a(8, 6), b(8, 6);
   for (int y = 0; y < 6; ++y)
     for (int x = 0; x < 8; ++x) {
@@ -159,11 +159,11 @@ TEST_F(CompareCli, DiffWritesAFalseColourPngWithItsBar) {
   EXPECT_NE(output.find("scale 0 .. 0.35"), std::string::npos) << output;
   const TextureImage png = TextureImage::load(directory_.path() / "d.png", ColorEncoding::linear);
   ASSERT_EQ(png.width(), 8);
-  ASSERT_EQ(png.height(), 6 + colour_bar_height(8));
+  ASSERT_EQ(png.height(), 6 + color_bar_height(8));
   const int top = png.height() - 1;  // TextureImage rows count from the bottom
   for (int c = 0; c < 3; ++c) {
-    EXPECT_NEAR(png.texel(0, top)[c], colour_map_viridis(0)[c], 1.0 / 255);
-    EXPECT_NEAR(png.texel(7, top)[c], colour_map_viridis(1)[c], 1.0 / 255);
+    EXPECT_NEAR(png.texel(0, top)[c], color_map_viridis(0)[c], 1.0 / 255);
+    EXPECT_NEAR(png.texel(7, top)[c], color_map_viridis(1)[c], 1.0 / 255);
   }
   const nlohmann::json json = read_json("m.json");
   EXPECT_EQ(json["diff"]["metric"], "abs");
@@ -174,7 +174,7 @@ TEST_F(CompareCli, DiffWritesAFalseColourPngWithItsBar) {
   EXPECT_NE(output.find("scale -0.5 .. 0.5"), std::string::npos) << output;
   const TextureImage signed_png = TextureImage::load(directory_.path() / "s.png", ColorEncoding::linear);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(signed_png.texel(0, top)[c], 1.0, 1.0 / 255);  // 0: white
-  EXPECT_EQ(read_json("m.json")["diff"]["colour_map"], "diverging");
+  EXPECT_EQ(read_json("m.json")["diff"]["color_map"], "diverging");
 }
 
 TEST_F(CompareCli, PngInputsAreDecodedFromSrgb) {

@@ -239,7 +239,7 @@ TEST(MaterialsRender, SecondaryRaysOfASeeThroughSurfaceCarryItsShare) {
 class EnvironmentRender : public ::testing::Test {
  protected:
   void SetUp() override {
-    // Six 2×2 faces (PFM: linear floats), each one flat colour: face i has red = 0.1·(i + 1).
+    // Six 2×2 faces (PFM: linear floats), each one flat color: face i has red = 0.1·(i + 1).
     const char* names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
     for (int i = 0; i < 6; ++i) {
       Film face(2, 2);
@@ -315,7 +315,7 @@ TEST_F(EnvironmentRender, SixRendersFromTheCentreAreACubeMapOfTheScene) {
 }
 
 // Review findings on issue 5, each a test that failed before its fix.
-TEST_F(EnvironmentRender, ScalarImagesAreLinearColourImagesSrgb) {
+TEST_F(EnvironmentRender, ScalarImagesAreLinearColorImagesSrgb) {
   // An 8-bit PNG holding 128 everywhere: as kr it is the number 128/255, as kd it is sRGB.
   Film grey(2, 2);
   for (int y = 0; y < 2; ++y)

@@ -124,7 +124,7 @@ TEST(PathTracer, UniformSkyGivesUnitIrradianceAndTheFloorItsAlbedo) {
 
 // Under the latitude-longitude sky of scenes/textures/sky.exr, the irradiance of a point facing up
 // (or tilted) is ∫ L cos θ dω over its hemisphere, L = the map's value / π (the map holds display
-// units, π × radiance, as the background colour does) — here by a dense midpoint quadrature of the
+// units, π × radiance, as the background color does) — here by a dense midpoint quadrature of the
 // map's own radiance(), against the path tracer's importance-sampled environment with MIS.
 TEST(PathTracer, IrradianceUnderAnEnvironmentMapMatchesQuadrature) {
   const auto scene = load_scene_text(R"({"format": "candela/1",

@@ -61,17 +61,17 @@ TEST(RasterRender, PhongOnAFineSphereMatchesTheRayTracedLocalModel) {
 }
 
 TEST(RasterRender, FlatShadingIsConstantPerTriangle) {
-  // A coarse sphere: flat shading shows at most one colour per triangle, Gouraud many more.
+  // A coarse sphere: flat shading shows at most one color per triangle, Gouraud many more.
   const auto flat = scene_from(kSphereScene, {"raster.segments=8", "raster.shading=\"flat\""});
   const auto gouraud = scene_from(kSphereScene, {"raster.segments=8", "raster.shading=\"gouraud\""});
-  const auto colours = [](const Film& film) {
+  const auto colors = [](const Film& film) {
     std::set<std::tuple<double, double, double>> distinct;
     for (const Color& c : film.pixels()) distinct.insert({c.r, c.g, c.b});
     return distinct.size();
   };
   // 8 longitudes × 4 latitudes: at most 8·4·2 triangles (fewer at the poles), plus background.
-  EXPECT_LE(colours(render(*flat, "raster")), 8u * 4u * 2u + 1u);
-  EXPECT_GT(colours(render(*gouraud, "raster")), 500u);
+  EXPECT_LE(colors(render(*flat, "raster")), 8u * 4u * 2u + 1u);
+  EXPECT_GT(colors(render(*gouraud, "raster")), 500u);
 }
 
 TEST(RasterRender, GouraudLosesAHighlightInsideAPolygonPhongKeepsIt) {

@@ -39,7 +39,7 @@ AxialFrame::Around AxialFrame::around(const Vec3& point) const {
 
 void AxialFrame::sample_end_disc(const Vec3& centre, bool cap, double radius, const Vec2& u,
                                  SurfaceSample& sample) const {
-  const Vec2 d = square_to_uniform_disk_concentric(u);
+  const Vec2 d = square_to_uniform_disc_concentric(u);
   sample.position = centre + (x_axis_ * d.x + y_axis_ * d.y) * radius;
   sample.normal = cap ? axis_ : -axis_;
 }

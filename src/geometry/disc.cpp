@@ -71,7 +71,7 @@ void Disc::tessellate(const TessellationSettings& settings, TriangleMesh& mesh) 
 double Disc::area() const { return kPi * (radius_ * radius_ - inner_radius_ * inner_radius_); }
 
 bool Disc::sample_area(const Vec2& u, SurfaceSample& sample) const {
-  const Vec2 unit = square_to_uniform_disk_concentric(u);
+  const Vec2 unit = square_to_uniform_disc_concentric(u);
   double x = unit.x * radius_, y = unit.y * radius_;
   if (inner_radius_ > 0) {
     const double rho_squared = unit.x * unit.x + unit.y * unit.y;

@@ -3,7 +3,7 @@
 // against it (multiple importance sampling).
 //
 // The choices: each scene light (point, spot, directional, area), the emissive surfaces as one
-// group, and the environment (the environment map, or a non-black background colour) — each
+// group, and the environment (the environment map, or a non-black background color) — each
 // with the same probability; inside the group, an emissive primitive by its power
 // (luminance of E × area). Emissive primitives whose shape cannot be sampled (the plane) are
 // left to BSDF sampling alone.
@@ -46,7 +46,7 @@ class LightSampler {
   std::vector<uint32_t> surfaces_;          // emissive, sampleable primitives
   std::vector<double> surface_cdf_;         // running power fractions, last = 1
   std::vector<double> surface_probability_; // per primitive of the scene (empty without emitters)
-  std::unique_ptr<Environment> background_;  // the background colour as an environment
+  std::unique_ptr<Environment> background_;  // the background color as an environment
   const Environment* environment_ = nullptr;
 };
 

@@ -4,9 +4,9 @@
 //
 // Units: like every Candela method the image holds π × radiance (W/m², "exitance units"), so a
 // diffuse surface shows its radiosity B, an emitter its exitance E, and a ray leaving the scene
-// the background/environment colour — the values the local, radiosity and meshless methods show
+// the background/environment color — the values the local, radiosity and meshless methods show
 // for the same scene. Inside, f is the physical BSDF (a white Lambert surface has 1/π), emitters
-// give E, the environment its colour, and a point-like light of intensity I (Ip·f_at, the
+// give E, the environment its color, and a point-like light of intensity I (Ip·f_at, the
 // irradiance it gives at normal incidence) contributes π·f·I·cos θ.
 #pragma once
 

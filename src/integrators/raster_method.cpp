@@ -42,7 +42,7 @@ constexpr int kObjectPosition = 3;   // object position (3), for solid textures
 constexpr int kUv = 6;               // uv (2)
 constexpr int kNormal = 8;           // vertex normal (3), phong
 constexpr int kSurfaceVaryings = 8;  // position, object position, uv
-constexpr int kPerLight = 4;         // dot-product mode: N·L and the specular colour
+constexpr int kPerLight = 4;         // dot-product mode: N·L and the specular color
 
 // Everything the shading of one scene needs, shared by all tiles.
 class RasterShader {
@@ -170,7 +170,7 @@ class RasterShader {
     }
   }
 
-  // The colour of a pixel whose nearest surface is `triangle` with interpolated varyings.
+  // The color of a pixel whose nearest surface is `triangle` with interpolated varyings.
   Color shade(uint32_t triangle, const double* v, const Color& flat_color, TraceContext& context) const {
     switch (settings_.shading) {
       case RasterShading::flat: return flat_color;

@@ -174,7 +174,7 @@ TEST(Whitted, TwoFacingMirrorsDarkenGeometrically) {
 TEST(Whitted, RefractionThroughASlabKeepsTheDirection) {
   // A glass box (kt 1, ior 1.5) between the eye and a lit white plane: the ray enters and
   // leaves through parallel faces, so it continues along its original line and sees the
-  // plane's colour times kt².
+  // plane's color times kt².
   const auto scene = scene_from(R"(
     "ambient": 1,
     "materials": {"glass": {"kd": 0, "kt": 0.8, "ior": 1.5}, "white": {"kd": 1}},

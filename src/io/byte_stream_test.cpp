@@ -142,7 +142,7 @@ TEST(CheckpointFile, RoundTripsAndRefusesEveryDamage) {
   huge_count.put_string("fingerprint");
   huge_count.put<uint64_t>(uint64_t(1) << 60);
   write_fields(huge_count);
-  EXPECT_EQ(checkpoint_error(path), "the checkpoint is corrupt (colour count)");
+  EXPECT_EQ(checkpoint_error(path), "the checkpoint is corrupt (color count)");
   ByteWriter extra;
   extra.put_string("fingerprint");
   extra.put_array(std::vector<Color>{});

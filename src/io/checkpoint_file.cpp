@@ -22,7 +22,7 @@ std::string_view as_text(std::span<const std::byte> bytes) {
 
 }  // namespace
 
-// A colour is its three doubles, r, g, b, with nothing between: an array of them is the count,
+// A color is its three doubles, r, g, b, with nothing between: an array of them is the count,
 // then r, g, b of each.
 static_assert(std::is_trivially_copyable_v<Color> && sizeof(Color) == 3 * sizeof(double));
 
@@ -73,7 +73,7 @@ std::vector<Color> CheckpointReader::get_colors() {
   try {
     return reader_.get_array<Color>();
   } catch (const ByteStreamError& e) {
-    if (e.kind() == ByteStreamError::Kind::long_array) fail("the checkpoint is corrupt (colour count)");
+    if (e.kind() == ByteStreamError::Kind::long_array) fail("the checkpoint is corrupt (color count)");
     fail_read(e);
   }
 }

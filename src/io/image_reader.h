@@ -63,7 +63,7 @@ class RgbImage {
 // kMaxPixels pixels, a non-finite value.
 RgbImage read_image(const std::filesystem::path& path, ColorEncoding encoding = ColorEncoding::automatic);
 
-// Reads a PFM (colour "PF" or grey "Pf", either byte order). Throws std::runtime_error.
+// Reads a PFM (color "PF" or grey "Pf", either byte order). Throws std::runtime_error.
 Film read_pfm(const std::string& path);
 
 }  // namespace candela

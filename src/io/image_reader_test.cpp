@@ -126,7 +126,7 @@ TEST_F(TextureImageFiles, RgbaDropsAlpha) {
 
 // A 16-bit PNG built by hand (stb_image_write writes only 8 bits): IHDR, one IDAT holding an
 // uncompressed ("stored") deflate block, IEND; CRC-32 and Adler-32 as PNG and zlib define them.
-std::string sixteen_bit_png(int width, int height, int colour_type, const std::vector<int>& samples) {
+std::string sixteen_bit_png(int width, int height, int color_type, const std::vector<int>& samples) {
   const auto crc32 = [](const std::string& bytes) {
     uint32_t crc = 0xffffffffu;
     for (const unsigned char byte : bytes) {
@@ -144,7 +144,7 @@ std::string sixteen_bit_png(int width, int height, int colour_type, const std::v
     return big_endian(static_cast<uint32_t>(data.size()), 4) + type + data +
            big_endian(crc32(type + data), 4);
   };
-  const int channels = colour_type == 2 ? 3 : 1;
+  const int channels = color_type == 2 ? 3 : 1;
   std::string raw;  // each row: filter type 0, then big-endian samples
   for (int y = 0; y < height; ++y) {
     raw += '\0';
@@ -166,7 +166,7 @@ std::string sixteen_bit_png(int width, int height, int colour_type, const std::v
   zlib += raw + big_endian((b << 16) | a, 4);
   const std::string header = big_endian(static_cast<uint32_t>(width), 4) +
                              big_endian(static_cast<uint32_t>(height), 4) + static_cast<char>(16) +
-                             static_cast<char>(colour_type) + std::string(3, '\0');
+                             static_cast<char>(color_type) + std::string(3, '\0');
   return std::string("\x89PNG\r\n\x1a\n") + chunk("IHDR", header) + chunk("IDAT", zlib) + chunk("IEND", "");
 }
 
@@ -402,7 +402,7 @@ TEST_F(TextureImageFiles, FuzzJpegHuffmanTableWithOver256CodesIsRefused) {
 // packs at most 256 pixels into a byte. An honest small TGA still loads.
 TEST_F(TextureImageFiles, FuzzSmallTgaAnnouncingAHugeImageIsRefused) {
   std::string tga(18, '\0');
-  tga[2] = 2;                      // uncompressed true-colour
+  tga[2] = 2;                      // uncompressed true-color
   tga[12] = 0x10, tga[13] = 0x10;  // width 4112
   tga[14] = 0x10, tga[15] = 0x10;  // height 4112
   tga[16] = 24;                    // bits per pixel

@@ -75,7 +75,7 @@ Vec3 JsonNode::as_vec3() const {
 Color JsonNode::as_color(Range per_channel) const {
   if (value_->is_number()) return Color(as_number(per_channel));
   if (!value_->is_array() || value_->size() != 3)
-    fail("expected a colour: [r, g, b] or one number, found " + type_name(*value_));
+    fail("expected a color: [r, g, b] or one number, found " + type_name(*value_));
   return {element(0).as_number(per_channel), element(1).as_number(per_channel),
           element(2).as_number(per_channel)};
 }

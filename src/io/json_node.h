@@ -46,7 +46,7 @@ class JsonNode {
   bool as_bool() const;
   std::string as_string() const;
   Vec3 as_vec3() const;
-  // A colour is [r, g, b] or one number for a grey.
+  // A color is [r, g, b] or one number for a grey.
   Color as_color(Range per_channel = {}) const;
   std::size_t size() const;              // elements of an array (fails otherwise)
   JsonNode element(std::size_t index) const;

@@ -41,7 +41,7 @@ int pixel_text_width(std::string_view text, int scale) {
   return (static_cast<int>(text.size()) * kPixelFontAdvance - (kPixelFontAdvance - kPixelFontWidth)) * scale;
 }
 
-void draw_pixel_text(Film& film, int x, int y, std::string_view text, const Color& colour, int scale) {
+void draw_pixel_text(Film& film, int x, int y, std::string_view text, const Color& color, int scale) {
   for (const char c : text) {
     if (const PixelGlyph* glyph = pixel_font_glyph(c))
       for (int row = 0; row < kPixelFontHeight; ++row)
@@ -50,7 +50,7 @@ void draw_pixel_text(Film& film, int x, int y, std::string_view text, const Colo
           const int x0 = std::max(0, x + column * scale), x1 = std::min(film.width(), x + (column + 1) * scale);
           const int y0 = std::max(0, y + row * scale), y1 = std::min(film.height(), y + (row + 1) * scale);
           for (int py = y0; py < y1; ++py)
-            for (int px = x0; px < x1; ++px) film.at(px, py) = colour;
+            for (int px = x0; px < x1; ++px) film.at(px, py) = color;
         }
     x += kPixelFontAdvance * scale;
   }

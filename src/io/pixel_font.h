@@ -1,5 +1,5 @@
 // A 3×5 pixel font for numbers drawn into images: plot tick labels (validate/line_plot.h) and
-// colour-bar labels (io/false_colour.h). Glyphs: the digits, '.', '-', '+' and 'e' — enough for
+// color-bar labels (io/false_color.h). Glyphs: the digits, '.', '-', '+' and 'e' — enough for
 // numbers such as "0.0123", "-4" or "1.2e-05". Any other character is a blank of the same width.
 #pragma once
 
@@ -27,7 +27,7 @@ const PixelGlyph* pixel_font_glyph(char c);
 int pixel_text_width(std::string_view text, int scale);
 
 // Draws text with its top-left corner at (x, y), each glyph pixel a scale × scale block of
-// colour; parts outside the film are clipped.
-void draw_pixel_text(Film& film, int x, int y, std::string_view text, const Color& colour, int scale);
+// color; parts outside the film are clipped.
+void draw_pixel_text(Film& film, int x, int y, std::string_view text, const Color& color, int scale);
 
 }  // namespace candela

@@ -102,7 +102,7 @@ void write_solution_ply(const SolutionMesh& vertices, const DisplaySettings& dis
   std::string text =
       "ply\n"
       "format binary_little_endian 1.0\n"
-      "comment Candela radiosity solution: x y z in scene units; red green blue the display colour "
+      "comment Candela radiosity solution: x y z in scene units; red green blue the display color "
       "(as in the PNG); b_r b_g b_b the linear vertex radiosity, in the units of the scene's emission\n";
   text += "element vertex " + std::to_string(vertices.positions.size()) + "\n";
   text +=
@@ -151,7 +151,7 @@ void write_solution_gltf(const SolutionMesh& vertices, const DisplaySettings& di
   // count ≥ 1) and a mesh to have a primitive: an empty solution is a scene with one empty node.
   if (vertex_count > 0) {
     // COLOR_0: exposure as in every output, then clamped per channel (NaN to 0, as to_display does);
-    // glTF 2.0 ("Meshes", COLOR_n) requires float colours in [0, 1] and linear.
+    // glTF 2.0 ("Meshes", COLOR_n) requires float colors in [0, 1] and linear.
     std::vector<Color> colors = expose(vertex_film(vertices), display.exposure);
     for (Color& c : colors)
       for (int channel = 0; channel < 3; ++channel) {

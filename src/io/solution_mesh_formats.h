@@ -1,9 +1,9 @@
-// A radiosity solution's element mesh with vertex colours (issue 7, SPEC §10) as PLY and glTF
+// A radiosity solution's element mesh with vertex colors (issue 7, SPEC §10) as PLY and glTF
 // 2.0, so that a solution can be inspected in MeshLab or Blender: the vertices with their
-// radiosity as colour, one triangle per element. Plain data in, so that io/ needs nothing of
+// radiosity as color, one triangle per element. Plain data in, so that io/ needs nothing of
 // radiosity/ (radiosity/solution_export.h computes the vertex radiosities and converts).
 //
-// PLY (binary little endian) carries both the display colour (uchar red/green/blue: exposure,
+// PLY (binary little endian) carries both the display color (uchar red/green/blue: exposure,
 // then the display's out-of-range rule and sRGB as the PNG output) and the linear radiosity
 // (float b_r/b_g/b_b). glTF (.gltf, one JSON file with its buffer embedded as a base64 data URI):
 // COLOR_0 is linear float RGB after exposure, clamped to [0, 1] as the glTF specification

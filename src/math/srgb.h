@@ -1,5 +1,5 @@
 // The sRGB transfer curves (IEC 61966-2-1), for every module that turns linear values into
-// display values or back: tone mapping (camera/), image reading (io/), colour maps and
+// display values or back: tone mapping (camera/), image reading (io/), color maps and
 // texture tests.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Vectors, points and colours in double precision (SPEC "one floating-point type").
+// Vectors, points and colors in double precision (SPEC "one floating-point type").
 #pragma once
 
 #include <algorithm>
@@ -68,7 +68,7 @@ inline std::ostream& operator<<(std::ostream& os, const Vec3& v) {
   return os << '(' << v.x << ", " << v.y << ", " << v.z << ')';
 }
 
-// Linear RGB; the unit is whatever the scene uses (SPEC §3: colours are linear RGB).
+// Linear RGB; the unit is whatever the scene uses (SPEC §3: colors are linear RGB).
 struct Color {
   double r = 0, g = 0, b = 0;
 
@@ -95,7 +95,7 @@ struct Color {
 
 constexpr Color operator*(double s, const Color& c) { return c * s; }
 
-// Rec. 709 / sRGB luminance Y of a linear colour.
+// Rec. 709 / sRGB luminance Y of a linear color.
 constexpr double luminance(const Color& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
 inline std::ostream& operator<<(std::ostream& os, const Color& c) {

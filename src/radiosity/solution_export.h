@@ -1,8 +1,8 @@
 // Exports of a radiosity solution (issue 7, SPEC §10): one row per element to CSV, and the
-// element mesh with vertex colours (the vertex radiosities of radiosity/vertex_radiosity.h) to
+// element mesh with vertex colors (the vertex radiosities of radiosity/vertex_radiosity.h) to
 // PLY and glTF 2.0, so that a solution can be inspected in a spreadsheet, MeshLab or Blender.
 // The formats are io/'s (io/solution_csv.h: the columns; io/solution_mesh_formats.h: the
-// vertices, colours and indices); this is the conversion of a RadiositySolveResult to their plain
+// vertices, colors and indices); this is the conversion of a RadiositySolveResult to their plain
 // data, and the choice of format by extension.
 #pragma once
 

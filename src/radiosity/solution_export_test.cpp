@@ -278,7 +278,7 @@ void expect_ply_header(std::vector<std::string> header, std::size_t vertices, st
   EXPECT_EQ(header, expected_ply_header(vertices, faces));
 }
 
-TEST(SolutionExport, PlyCarriesVerticesRadiositiesDisplayColoursAndFaces) {
+TEST(SolutionExport, PlyCarriesVerticesRadiositiesDisplayColorsAndFaces) {
   const RadiositySolveResult solution = three_element_solution();
   const PlyFile ply = parse_ply(ply_bytes(solution, DisplaySettings{}));
   expect_ply_header(ply.header, expected_vertex_count, 3);
@@ -312,7 +312,7 @@ TEST(SolutionExport, PlyCarriesVerticesRadiositiesDisplayColoursAndFaces) {
   EXPECT_EQ(ply.vertices[ply.faces[0][1]].color, (std::array<uint8_t, 3>{255, 188, 137}));
 }
 
-TEST(SolutionExport, PlyColoursFollowExposureAndTheOutOfRangeRule) {
+TEST(SolutionExport, PlyColorsFollowExposureAndTheOutOfRangeRule) {
   const RadiositySolveResult solution = three_element_solution();
   DisplaySettings display;
   display.exposure = -1;                     // × 1/2: the largest value, B2's red 4, becomes 2
@@ -354,7 +354,7 @@ std::vector<float> read_float_accessor(const nlohmann::json& gltf, const std::st
   return values;
 }
 
-TEST(SolutionExport, GltfCarriesPositionsClampedColoursRadiositiesAndIndices) {
+TEST(SolutionExport, GltfCarriesPositionsClampedColorsRadiositiesAndIndices) {
   const RadiositySolveResult solution = three_element_solution();
   DisplaySettings display;
   display.exposure = -1;

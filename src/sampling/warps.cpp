@@ -40,7 +40,7 @@ double tan2_theta(const Vec3& m) {
 
 // --- disc --------------------------------------------------------------------------------
 
-Vec2 square_to_uniform_disk_concentric(const Vec2& u) {
+Vec2 square_to_uniform_disc_concentric(const Vec2& u) {
   const double a = 2 * u.x - 1, b = 2 * u.y - 1;
   if (a == 0 && b == 0) return {0, 0};
   double r, theta;
@@ -54,7 +54,7 @@ Vec2 square_to_uniform_disk_concentric(const Vec2& u) {
   return {r * std::cos(theta), r * std::sin(theta)};
 }
 
-Vec2 uniform_disk_concentric_to_square(const Vec2& p) {
+Vec2 uniform_disc_concentric_to_square(const Vec2& p) {
   const double r = std::sqrt(p.x * p.x + p.y * p.y);
   if (r == 0) return {0.5, 0.5};
   // The forward map sends the four wedges |a| > |b| (a ≷ 0) and |b| ≥ |a| (b ≷ 0) to the
@@ -107,12 +107,12 @@ double uniform_hemisphere_pdf(const Vec3& direction) {
 // --- cosine hemisphere -------------------------------------------------------------------
 
 Vec3 square_to_cosine_hemisphere(const Vec2& u) {
-  const Vec2 d = square_to_uniform_disk_concentric(u);
+  const Vec2 d = square_to_uniform_disc_concentric(u);
   return {d.x, d.y, std::sqrt(std::max(0.0, 1 - d.x * d.x - d.y * d.y))};
 }
 
 Vec2 cosine_hemisphere_to_square(const Vec3& direction) {
-  return uniform_disk_concentric_to_square({direction.x, direction.y});
+  return uniform_disc_concentric_to_square({direction.x, direction.y});
 }
 
 double cosine_hemisphere_pdf(const Vec3& direction) {

@@ -89,9 +89,9 @@ constexpr double kHalfPi = kPi / 2;
 
 TEST(Warps, ConcentricDiscRoundTripsAndStaysInside) {
   for (const Vec2& u : square_grid()) {
-    const Vec2 p = square_to_uniform_disk_concentric(u);
+    const Vec2 p = square_to_uniform_disc_concentric(u);
     EXPECT_LE(p.x * p.x + p.y * p.y, 1 + 1e-12);
-    const Vec2 back = uniform_disk_concentric_to_square(p);
+    const Vec2 back = uniform_disc_concentric_to_square(p);
     EXPECT_NEAR(back.x, u.x, 1e-12);
     EXPECT_NEAR(back.y, u.y, 1e-12);
   }
@@ -99,33 +99,33 @@ TEST(Warps, ConcentricDiscRoundTripsAndStaysInside) {
     for (int j = 0; j < 20; ++j) {
       const double r = (i + 0.5) / 20, phi = 2 * kPi * (j + 0.5) / 20;
       const Vec2 p{r * std::cos(phi), r * std::sin(phi)};
-      const Vec2 again = square_to_uniform_disk_concentric(uniform_disk_concentric_to_square(p));
+      const Vec2 again = square_to_uniform_disc_concentric(uniform_disc_concentric_to_square(p));
       EXPECT_NEAR(again.x, p.x, 1e-12);
       EXPECT_NEAR(again.y, p.y, 1e-12);
     }
-  const Vec2 centre = square_to_uniform_disk_concentric({0.5, 0.5});
+  const Vec2 centre = square_to_uniform_disc_concentric({0.5, 0.5});
   EXPECT_EQ(centre.x, 0.0);
   EXPECT_EQ(centre.y, 0.0);
 }
 
 TEST(Warps, ConcentricDiscChiSquare) {
   // In polar coordinates (r², φ/2π) a uniform disc is uniform on the unit square with density
-  // uniform_disk_pdf()·π (dA = π d(r²) d(φ/2π)), which keeps the disc's edge off the cells.
+  // uniform_disc_pdf()·π (dA = π d(r²) d(φ/2π)), which keeps the disc's edge off the cells.
   const auto result = test::rectangle_chi_square(
       [](Pcg32& rng, Vec2& q) {
         const double u0 = rng.next_double();
-        const Vec2 p = square_to_uniform_disk_concentric({u0, rng.next_double()});
+        const Vec2 p = square_to_uniform_disc_concentric({u0, rng.next_double()});
         double phi = std::atan2(p.y, p.x) / (2 * kPi);
         if (phi < 0) phi += 1;
         q = {p.x * p.x + p.y * p.y, phi};
         return true;
       },
-      [](const Vec2&) { return uniform_disk_pdf() * kPi; }, kSamples, 1);
+      [](const Vec2&) { return uniform_disc_pdf() * kPi; }, kSamples, 1);
   EXPECT_GT(result.p_value, kSignificance) << result.message;
   testing::Test::RecordProperty("p_value_seed_1", std::to_string(result.p_value));
   // ∫∫ pdf r dr dφ over the disc.
   test::RectangleGrid polar{0, 1, 0, 2 * kPi, 8, 8, 4};
-  EXPECT_NEAR(test::integrate_over_rectangle([](const Vec2& q) { return uniform_disk_pdf() * q.x; }, polar),
+  EXPECT_NEAR(test::integrate_over_rectangle([](const Vec2& q) { return uniform_disc_pdf() * q.x; }, polar),
               1.0, 1e-12);
 }
 

@@ -1,4 +1,4 @@
-// Light sources of the local model (SPEC §7). Ambient light is a scene-wide colour.
+// Light sources of the local model (SPEC §7). Ambient light is a scene-wide color.
 #pragma once
 
 #include <string_view>

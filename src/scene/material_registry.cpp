@@ -349,7 +349,7 @@ std::shared_ptr<const Texture> make_waves(const JsonNode& node, const LoadContex
 }
 
 const std::array kTextures = {
-    TextureEntry{"constant", "one colour", R"({"type": "constant", "value": [0.5, 0.5, 0.5]})", make_constant},
+    TextureEntry{"constant", "one color", R"({"type": "constant", "value": [0.5, 0.5, 0.5]})", make_constant},
     TextureEntry{"checkerboard", "solid 3D checkerboard of cell size `size` in object space",
                  R"({"type": "checkerboard", "even": [0.9, 0.9, 0.9], "odd": [0.1, 0.1, 0.1], "size": 1})",
                  make_checkerboard},

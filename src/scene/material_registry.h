@@ -22,8 +22,8 @@ struct MaterialEntry {
   Material (*create)(const JsonNode& node, const LoadContext& context);
 };
 
-// What a texture feeds: a colour (kd, ka) or a scalar (ks, n, kr, kt, ior, roughness, a bump
-// height). Image files default to sRGB decoding for colours and to linear for scalars (height
+// What a texture feeds: a color (kd, ka) or a scalar (ks, n, kr, kt, ior, roughness, a bump
+// height). Image files default to sRGB decoding for colors and to linear for scalars (height
 // maps and masks store plain numbers).
 enum class TextureUse { color, scalar };
 
@@ -51,7 +51,7 @@ const MappingEntry* find_mapping(std::string_view name);
 
 // A material object; "type" defaults to "phong".
 Material read_material(const JsonNode& node, const LoadContext& context);
-// A colour ([r, g, b] or a number) or a texture object with a "type".
+// A color ([r, g, b] or a number) or a texture object with a "type".
 std::shared_ptr<const Texture> read_texture(const JsonNode& node, const LoadContext& context,
                                             TextureUse use = TextureUse::color);
 // A number or a texture object, read through its channel mean; numbers and constant textures

@@ -88,7 +88,7 @@ class Scene {
   }
   bool occluded(const Ray& ray) const { return accelerator_->occluded(ray); }
   // What a ray leaving the scene along the unit direction sees: the environment map, or the
-  // background colour.
+  // background color.
   Color background_along(const Vec3& direction) const;
 
   const Material& material_of(const Intersection& hit) const {

@@ -11,9 +11,9 @@ namespace {
 
 void validate(const Color& even, const Color& odd, double size) {
   if (!(std::isfinite(size) && size > 0)) throw std::invalid_argument("size must be > 0");
-  for (const Color& colour : {even, odd})
-    if (!(std::isfinite(colour.r) && std::isfinite(colour.g) && std::isfinite(colour.b)))
-      throw std::invalid_argument("checkerboard colours must have finite components");
+  for (const Color& color : {even, odd})
+    if (!(std::isfinite(color.r) && std::isfinite(color.g) && std::isfinite(color.b)))
+      throw std::invalid_argument("checkerboard colors must have finite components");
 }
 
 }  // namespace

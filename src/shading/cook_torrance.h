@@ -7,7 +7,7 @@
 // G: masking and shadowing, G = min(1, 2(N·H)(N·V)/(V·H), 2(N·H)(N·L)/(V·H));
 // F: the unpolarised Fresnel reflectance (000 §4.2.2, ½[sin²(φ−θ)/sin²(φ+θ) +
 //    tan²(φ−θ)/tan²(φ+θ)]) at the angle θ between V and H, with an index of refraction per RGB
-//    channel, so the highlight takes the material's colour.
+//    channel, so the highlight takes the material's color.
 #pragma once
 
 #include "math/vector.h"

@@ -13,7 +13,7 @@ namespace candela {
 namespace {
 constexpr const char* kFaceNames[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
 
-// The sampling weight of a colour: its luminance (Rec. 709), negative channels ignored.
+// The sampling weight of a color: its luminance (Rec. 709), negative channels ignored.
 double sampling_weight(const Color& c) {
   return 0.2126 * std::max(0.0, c.r) + 0.7152 * std::max(0.0, c.g) + 0.0722 * std::max(0.0, c.b);
 }

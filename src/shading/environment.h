@@ -23,7 +23,7 @@ class Environment {
   // Importance sampling for the path tracer's next-event estimation (SPEC §12): a unit
   // direction (away from the scene) with its solid-angle density, roughly proportional to the
   // radiance (a piecewise-constant distribution over the map's texels; uniform on the sphere for
-  // a constant colour). Sets radiance to radiance(direction). False when nothing can be sampled
+  // a constant color). Sets radiance to radiance(direction). False when nothing can be sampled
   // (a black map).
   virtual bool sample(const Vec2& u, Vec3& direction, double& pdf, Color& radiance) const;
   // The density sample() draws the unit direction with (must match it exactly: MIS).
@@ -33,7 +33,7 @@ class Environment {
   virtual void prepare_sampling() {}
 };
 
-// The same colour in every direction.
+// The same color in every direction.
 class ConstantEnvironment final : public Environment {
  public:
   explicit ConstantEnvironment(const Color& color) : color_(color) {}

@@ -16,7 +16,7 @@
 namespace candela {
 namespace {
 
-// A w × h image: a dim colour gradient with one bright texel at (bright_x, bright_y) (from the
+// A w × h image: a dim color gradient with one bright texel at (bright_x, bright_y) (from the
 // bottom row).
 std::shared_ptr<const TextureImage> test_image(int w, int h, int bright_x, int bright_y, double seed) {
   std::vector<float> rgb;

@@ -34,13 +34,13 @@ std::shared_ptr<const TextureImage> gradient_image(int width, int height, double
 
 const Color kFaceColors[6] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {0, 1, 1}, {1, 0, 1}};
 
-CubeMapEnvironment coloured_cube(const Color& multiplier = Color(1)) {
+CubeMapEnvironment colored_cube(const Color& multiplier = Color(1)) {
   std::array<std::shared_ptr<const TextureImage>, 6> faces;
   for (int face = 0; face < 6; ++face) faces[face] = constant_image(2, 2, kFaceColors[face]);
   return CubeMapEnvironment(faces, multiplier);
 }
 
-TEST(EnvironmentConstant, SameColourEverywhere) {
+TEST(EnvironmentConstant, SameColorEverywhere) {
   const ConstantEnvironment environment(Color(0.2, 0.3, 0.5));
   EXPECT_EQ(environment.type_name(), "constant");
   for (const Vec3& d : {Vec3(1, 0, 0), Vec3(0, -1, 0), normalize(Vec3(1, 2, 3))})
@@ -48,7 +48,7 @@ TEST(EnvironmentConstant, SameColourEverywhere) {
 }
 
 TEST(EnvironmentCube, AxisDirectionsSeeTheirFaces) {
-  const CubeMapEnvironment cube = coloured_cube();
+  const CubeMapEnvironment cube = colored_cube();
   EXPECT_EQ(cube.type_name(), "cube");
   const Vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   for (int face = 0; face < 6; ++face) {
@@ -61,7 +61,7 @@ TEST(EnvironmentCube, AxisDirectionsSeeTheirFaces) {
 }
 
 TEST(EnvironmentCube, DirectionsNearEdgesAndTiesPickOneFace) {
-  const CubeMapEnvironment cube = coloured_cube(Color(2));
+  const CubeMapEnvironment cube = colored_cube(Color(2));
   const auto face_color = [&](const Vec3& d) { return cube.radiance(normalize(d)); };
   EXPECT_EQ(face_color({1, 0.999, 0.3}), kFaceColors[CubeMapEnvironment::positive_x] * 2);
   EXPECT_EQ(face_color({0.999, 1, 0}), kFaceColors[CubeMapEnvironment::positive_y] * 2);

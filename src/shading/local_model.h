@@ -4,7 +4,7 @@
 //                                  [kd·(N·L_i) + ks·(N·L_i)·k_s(λ)]   (Cook-Torrance, 000 §4.2.2)
 // with a light contributing only where N·L > 0 (001's I_lum). In the Cook-Torrance form ks is
 // the weight of the specular part (Cook and Torrance's s) and k_s(λ) = DGF/(π(N·V)(N·L)) the
-// bidirectional specular reflectance of cook_torrance.h, coloured through F.
+// bidirectional specular reflectance of cook_torrance.h, colored through F.
 #pragma once
 
 #include "math/vector.h"

@@ -47,7 +47,7 @@ TEST(Fresnel, MatchesTheSeedsFormulaAtEveryAngle) {
   }
 }
 
-TEST(Fresnel, PerChannelIndexColoursTheReflectance) {
+TEST(Fresnel, PerChannelIndexColorsTheReflectance) {
   const Color F = fresnel_unpolarized(1.0, Color(3.0, 1.6, 1.3));
   EXPECT_NEAR(F.r, 0.25, 1e-15);
   EXPECT_NEAR(F.g, std::pow(0.6 / 2.6, 2), 1e-15);
@@ -98,7 +98,7 @@ TEST(CookTorrance, OffSpecularByHand) {
   EXPECT_TRUE(cook_torrance(N, -V, L, m, Color(1.5)).is_black());
 }
 
-TEST(LocalModel, CookTorranceHighlightTakesTheMaterialsColour) {
+TEST(LocalModel, CookTorranceHighlightTakesTheMaterialsColor) {
   Material material;
   material.specular_model = SpecularModel::cook_torrance;
   material.fresnel_ior = Color(3.0, 1.6, 1.3);
@@ -108,12 +108,12 @@ TEST(LocalModel, CookTorranceHighlightTakesTheMaterialsColour) {
   at.roughness = 0.3;
   const Vec3 N{0, 0, 1};
   const Color I = direct_term(material, at, N, N, N, Color(2));
-  // ks·(N·L)·F·D·G/(π(N·V)(N·L)) with D = 1/m², G = 1, N·L = N·V = 1: the colour of F(0).
+  // ks·(N·L)·F·D·G/(π(N·V)(N·L)) with D = 1/m², G = 1, N·L = N·V = 1: the color of F(0).
   const double scale = 2 / (kPi * 0.09);
   EXPECT_NEAR(I.r, scale * 0.25, 1e-12);
   EXPECT_NEAR(I.g, scale * std::pow(0.6 / 2.6, 2), 1e-12);
   EXPECT_NEAR(I.b, scale * std::pow(0.3 / 2.3, 2), 1e-12);
-  // Phong's highlight is colourless whatever the material.
+  // Phong's highlight is colorless whatever the material.
   material.specular_model = SpecularModel::phong;
   at.shininess = 10;
   const Color phong = direct_term(material, at, N, N, N, Color(2));

@@ -59,7 +59,7 @@ struct Material {
   std::string name;
   std::shared_ptr<const Texture> kd;  // diffuse reflectance per channel (000 §2.9)
   std::shared_ptr<const Texture> ka;  // ambient reflectance; null: ka = kd (000 eq. 5-2: kd·Ia)
-  std::shared_ptr<const Texture> ks;  // local specular weight, colourless (000 §2.9)
+  std::shared_ptr<const Texture> ks;  // local specular weight, colorless (000 §2.9)
   std::shared_ptr<const Texture> shininess;  // n of (R·V)^n or (N·H)^n
   SpecularModel specular_model = SpecularModel::phong;
   std::shared_ptr<const Texture> roughness;  // Cook-Torrance m: rms slope of the facets

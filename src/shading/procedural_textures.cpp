@@ -28,8 +28,8 @@ void require_non_negative(double value, const char* name) {
   if (!(std::isfinite(value) && value >= 0)) reject(std::string(name) + " must be a finite number >= 0");
 }
 
-void require_finite(const Color& colour, const char* name) {
-  if (!(std::isfinite(colour.r) && std::isfinite(colour.g) && std::isfinite(colour.b)))
+void require_finite(const Color& color, const char* name) {
+  if (!(std::isfinite(color.r) && std::isfinite(color.g) && std::isfinite(color.b)))
     reject(std::string(name) + " must have finite components");
 }
 

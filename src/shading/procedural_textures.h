@@ -28,7 +28,7 @@ inline constexpr int kMaxOctaves = 16;
 int floor_parity(double x);
 
 // A checkerboard over (u, v) with cells of size 1 (the mapping's scale sets how many repeat):
-// colour `even` where floor(u) + floor(v) is even, `odd` elsewhere. Cells are half-open
+// color `even` where floor(u) + floor(v) is even, `odd` elsewhere. Cells are half-open
 // [i, i + 1): a point on an edge or corner belongs to the cell above and to the right of it, so
 // (0, 0) is `even` and (1, 0), (0, 1) are `odd`.
 class Checkerboard2DTexture final : public Texture2D {
@@ -47,10 +47,10 @@ class Checkerboard2DTexture final : public Texture2D {
 //   r    = sqrt(x² + y²)
 //   ring = frac(r · ring_frequency + turbulence · fractal_noise(p · noise_scale, octaves))
 //   dark = smoothstep(0.60, 0.85, ring) − smoothstep(0.93, 1.00, ring)
-//   colour = light + dark · (dark_colour − light)
+//   color = light + dark · (dark_color − light)
 // The profile `dark` is 0 through the light early wood, rises to 1 in a late-wood band about a
 // quarter of a ring wide and falls back before the ring ends, so it is continuous (and smooth)
-// across ring boundaries and the colour is always a convex combination of `light` and `dark`.
+// across ring boundaries and the color is always a convex combination of `light` and `dark`.
 struct WoodParameters {
   Color light{0.78, 0.56, 0.33};
   Color dark{0.42, 0.24, 0.11};
@@ -76,7 +76,7 @@ class WoodTexture final : public SolidTexture {
 // Marble: Perlin's 1985 sine of turbulence ("An Image Synthesizer", the marble vase): veins are
 // the layers x = const of a sine, bent by turbulence:
 //   value  = 0.5 + 0.5 · sin(frequency · x + turbulence · turbulence_noise(p · noise_scale, octaves))
-//   colour = base + value^sharpness · (vein − base)
+//   color = base + value^sharpness · (vein − base)
 // (turbulence_noise being noise.h's turbulence()), so value 0 is `base`, value 1 is `vein`, and a
 // sharpness above 1 narrows the veins.
 struct MarbleParameters {

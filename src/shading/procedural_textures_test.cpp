@@ -168,7 +168,7 @@ TEST(Checkerboard3D, RejectsBadParameters) {
 
 // --- wood --------------------------------------------------------------------------------------
 
-TEST(ProceduralWood, ColourIsAConvexCombinationOfLightAndDark) {
+TEST(ProceduralWood, ColorIsAConvexCombinationOfLightAndDark) {
   const WoodParameters parameters;
   const WoodTexture wood(parameters);
   EXPECT_EQ(wood.type_name(), "wood");
@@ -236,7 +236,7 @@ TEST(ProceduralWood, RejectsBadParameters) {
 
 // --- marble ------------------------------------------------------------------------------------
 
-TEST(ProceduralMarble, ColourIsAConvexCombinationOfBaseAndVein) {
+TEST(ProceduralMarble, ColorIsAConvexCombinationOfBaseAndVein) {
   const MarbleParameters parameters;
   const MarbleTexture marble(parameters);
   EXPECT_EQ(marble.type_name(), "marble");

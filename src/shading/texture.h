@@ -1,5 +1,5 @@
 // Textures give a value at a surface point (SPEC §7); created by name (scene/material_registry).
-// Colour parameters read evaluate(); scalar parameters (ks, n, kr, kt, ior, roughness, bump
+// Color parameters read evaluate(); scalar parameters (ks, n, kr, kt, ior, roughness, bump
 // heights) read evaluate_scalar(), the mean of the three channels.
 #pragma once
 

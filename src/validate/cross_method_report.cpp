@@ -11,7 +11,7 @@
 #include <thread>
 
 #include "integrators/method_registry.h"
-#include "io/false_colour.h"
+#include "io/false_color.h"
 #include "io/image_writer.h"
 #include "scene/scene.h"
 #include "util/atomic_file.h"
@@ -335,7 +335,7 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
       if (std::isfinite(value)) all.push_back(value);
   }
   // The 99th percentile of every difference: a few pixels along the lamp's edges (10× the rest)
-  // would otherwise leave every picture dark; larger values take the top colour.
+  // would otherwise leave every picture dark; larger values take the top color.
   double scale = 0;
   if (!all.empty()) {
     const auto at = all.begin() + static_cast<std::ptrdiff_t>(0.99 * double(all.size() - 1));
@@ -345,7 +345,7 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
   report.difference_scale = scale > 0 ? scale : 1.0;  // identical images: 0 .. 1
   for (std::size_t i = 0; i < report.entries.size(); ++i) {
     const Film picture =
-        false_colour_image(differences[i], width, height, 0.0, report.difference_scale, ColourMap::viridis);
+        false_color_image(differences[i], width, height, 0.0, report.difference_scale, ColorMap::viridis);
     write_image(picture, (directory / (report.entries[i].key + "-diff.png")).string(), DisplaySettings{});
   }
 
@@ -398,7 +398,7 @@ nlohmann::json cross_method_json(const CrossMethodReport& report) {
           {"methods", methods},
           {"difference",
            {{"metric", "absolute luminance difference |Y - Y_ref| (Rec. 709)"},
-            {"colour_map", "viridis"},
+            {"color_map", "viridis"},
             {"low", 0.0},
             {"high", report.difference_scale}}},
           {"settings", report.settings},
@@ -473,7 +473,7 @@ std::string cross_method_html(const CrossMethodReport& report) {
   html += fmt::format(
       "<p class=\"note\">Difference pictures show |Y &minus; Y<sub>ref</sub>| (Rec. 709 luminance) in the "
       "viridis "
-      "colour map, all on one scale: <b>0 to {}</b> (dark violet 0, yellow {}), drawn as a bar beneath "
+      "color map, all on one scale: <b>0 to {}</b> (dark violet 0, yellow {}), drawn as a bar beneath "
       "each.</p>\n",
       format_scale_value(report.difference_scale), format_scale_value(report.difference_scale));
   html += "<div class=\"gallery\">\n<div class=\"row\">\n<figure>" + image("reference.png", "reference") +

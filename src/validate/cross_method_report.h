@@ -11,7 +11,7 @@
 // `candela render -o x.exr` writes it: linear, display.exposure applied); then each image is
 // compared with the reference (validate/image_comparison.h), the difference pictures
 // DIR/<key>-diff.png are drawn on ONE scale, 0 to the 99th percentile of |Y − Y_ref| over all of
-// them (larger values take the top colour), and
+// them (larger values take the top color), and
 // DIR/report.json and last DIR/index.html are written (each atomically). A page and report.json
 // left in DIR by an earlier run are removed first; a method that fails stops the run with an
 // error naming it: no page is written (images already written stay).

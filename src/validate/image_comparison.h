@@ -62,7 +62,7 @@ enum class DifferenceMetric {
   signed_difference,  // Y_A − Y_B
 };
 
-// Per-pixel values for io/false_colour.h, row by row from the top; NaN where the mask excludes
+// Per-pixel values for io/false_color.h, row by row from the top; NaN where the mask excludes
 // the pixel. The sizes must agree (std::invalid_argument otherwise).
 std::vector<double> difference_values(const Film& image, const Film& reference, DifferenceMetric metric,
                                       const std::vector<uint8_t>* mask = nullptr);

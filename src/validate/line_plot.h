@@ -1,6 +1,6 @@
 // A small line-plot rasterizer for the validation cases (SPEC §13): one or more panels side by side,
 // each with axes, tick marks labelled with numbers (the 3×5 pixel font of io/pixel_font.h),
-// one coloured polyline per curve and a legend of coloured boxes. It draws into a Film (linear RGB
+// one colored polyline per curve and a legend of colored boxes. It draws into a Film (linear RGB
 // in [0, 1]) that io/image_writer.h writes as PNG; there is no text other than the tick numbers, so
 // the legend's meaning is told where the plot is shown (docs/validation/).
 #pragma once

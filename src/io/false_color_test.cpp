@@ -1,4 +1,4 @@
-#include "io/false_colour.h"
+#include "io/false_color.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 namespace candela {
 namespace {
 
-void expect_colour_near(const Color& actual, const Color& expected, double tolerance) {
+void expect_color_near(const Color& actual, const Color& expected, double tolerance) {
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(actual[c], expected[c], tolerance) << "channel " << c;
 }
 
@@ -22,31 +22,31 @@ Color display(const Color& linear) {
   return {srgb_encode(linear.r), srgb_encode(linear.g), srgb_encode(linear.b)};
 }
 
-TEST(FalseColour, ViridisEndpointsMatchThePublishedMap) {
+TEST(FalseColor, ViridisEndpointsMatchThePublishedMap) {
   // matplotlib's viridis: #440154 at 0, #21918c at 0.5, #fde725 at 1.
-  expect_colour_near(colour_map_viridis(0), Color(0x44, 0x01, 0x54) / 255.0, 0.02);
-  expect_colour_near(colour_map_viridis(0.5), Color(0x21, 0x91, 0x8c) / 255.0, 0.02);
-  expect_colour_near(colour_map_viridis(1), Color(0xfd, 0xe7, 0x25) / 255.0, 0.02);
+  expect_color_near(color_map_viridis(0), Color(0x44, 0x01, 0x54) / 255.0, 0.02);
+  expect_color_near(color_map_viridis(0.5), Color(0x21, 0x91, 0x8c) / 255.0, 0.02);
+  expect_color_near(color_map_viridis(1), Color(0xfd, 0xe7, 0x25) / 255.0, 0.02);
   // Clamped outside [0, 1]; NaN reads as 0.
-  EXPECT_EQ(colour_map_viridis(-3), colour_map_viridis(0));
-  EXPECT_EQ(colour_map_viridis(7), colour_map_viridis(1));
-  EXPECT_EQ(colour_map_viridis(std::numeric_limits<double>::quiet_NaN()), colour_map_viridis(0));
+  EXPECT_EQ(color_map_viridis(-3), color_map_viridis(0));
+  EXPECT_EQ(color_map_viridis(7), color_map_viridis(1));
+  EXPECT_EQ(color_map_viridis(std::numeric_limits<double>::quiet_NaN()), color_map_viridis(0));
   // Luminance rises monotonically (a perceptual map).
   for (int i = 1; i <= 100; ++i)
-    EXPECT_GT(luminance(colour_map_viridis(i / 100.0)), luminance(colour_map_viridis((i - 1) / 100.0))) << i;
+    EXPECT_GT(luminance(color_map_viridis(i / 100.0)), luminance(color_map_viridis((i - 1) / 100.0))) << i;
 }
 
-TEST(FalseColour, DivergingIsBlueWhiteRed) {
-  const Color blue = colour_map_diverging(0), white = colour_map_diverging(0.5),
-              red = colour_map_diverging(1);
+TEST(FalseColor, DivergingIsBlueWhiteRed) {
+  const Color blue = color_map_diverging(0), white = color_map_diverging(0.5),
+              red = color_map_diverging(1);
   EXPECT_GT(blue.b, blue.r);
   EXPECT_EQ(white, Color(1));
   EXPECT_GT(red.r, red.b);
-  EXPECT_EQ(colour_map(ColourMap::diverging, 0.25), colour_map_diverging(0.25));
-  EXPECT_EQ(colour_map(ColourMap::viridis, 0.25), colour_map_viridis(0.25));
+  EXPECT_EQ(color_map(ColorMap::diverging, 0.25), color_map_diverging(0.25));
+  EXPECT_EQ(color_map(ColorMap::viridis, 0.25), color_map_viridis(0.25));
 }
 
-TEST(FalseColour, FormatsScaleValuesCompactly) {
+TEST(FalseColor, FormatsScaleValuesCompactly) {
   EXPECT_EQ(format_scale_value(0), "0");
   EXPECT_EQ(format_scale_value(0.0123), "0.0123");
   EXPECT_EQ(format_scale_value(0.5), "0.5");
@@ -57,24 +57,24 @@ TEST(FalseColour, FormatsScaleValuesCompactly) {
     for (const char c : format_scale_value(value)) EXPECT_NE(pixel_font_glyph(c), nullptr) << c;
 }
 
-TEST(FalseColour, ImageHasTheBarBelowWithTheMapsEndColours) {
+TEST(FalseColor, ImageHasTheBarBelowWithTheMapsEndColors) {
   constexpr int width = 200, height = 10;
   std::vector<double> values(std::size_t(width) * height);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) values[std::size_t(y) * width + x] = x * 0.01;  // 0 .. 1.99
   values[5] = std::numeric_limits<double>::quiet_NaN();                             // no data at (5, 0)
-  const Film film = false_colour_image(values, width, height, 0.0, 1.0, ColourMap::viridis);
+  const Film film = false_color_image(values, width, height, 0.0, 1.0, ColorMap::viridis);
   ASSERT_EQ(film.width(), width);
-  ASSERT_EQ(film.height(), height + colour_bar_height(width));
+  ASSERT_EQ(film.height(), height + color_bar_height(width));
   // Pixels: the map at (value − low)/(high − low), clamped; NaN grey. Linear in the Film.
-  expect_colour_near(display(film.at(0, 3)), colour_map_viridis(0), 1e-9);
-  expect_colour_near(display(film.at(50, 3)), colour_map_viridis(0.5), 1e-9);
-  expect_colour_near(display(film.at(150, 3)), colour_map_viridis(1), 1e-9);
-  expect_colour_near(display(film.at(5, 0)), Color(kNoDataGrey), 1e-9);
+  expect_color_near(display(film.at(0, 3)), color_map_viridis(0), 1e-9);
+  expect_color_near(display(film.at(50, 3)), color_map_viridis(0.5), 1e-9);
+  expect_color_near(display(film.at(150, 3)), color_map_viridis(1), 1e-9);
+  expect_color_near(display(film.at(5, 0)), Color(kNoDataGrey), 1e-9);
   // The bar: its first and last columns are the map's ends; the row above it is background.
   const int bar_row = height + 3 + 8;
-  expect_colour_near(display(film.at(0, bar_row)), colour_map_viridis(0), 1e-9);
-  expect_colour_near(display(film.at(width - 1, bar_row)), colour_map_viridis(1), 1e-9);
+  expect_color_near(display(film.at(0, bar_row)), color_map_viridis(0), 1e-9);
+  expect_color_near(display(film.at(width - 1, bar_row)), color_map_viridis(1), 1e-9);
   EXPECT_EQ(film.at(width / 2, height), Color(0));
   // Labels are drawn in white somewhere under the bar.
   int white = 0;
@@ -83,30 +83,30 @@ TEST(FalseColour, ImageHasTheBarBelowWithTheMapsEndColours) {
   EXPECT_GT(white, 30);
 }
 
-TEST(FalseColour, PngKeepsTheMapsColours) {
-  const testing::ScratchDirectory directory("candela-false-colour");
+TEST(FalseColor, PngKeepsTheMapsColors) {
+  const testing::ScratchDirectory directory("candela-false-color");
   const std::vector<double> values = {-1, 0, 1, 0.5};
-  const Film film = false_colour_image(values, 4, 1, -1, 1, ColourMap::diverging);
+  const Film film = false_color_image(values, 4, 1, -1, 1, ColorMap::diverging);
   const std::string path = (directory.path() / "map.png").string();
   write_image(film, path, DisplaySettings{});
   const RgbImage png = read_image(path, ColorEncoding::linear);  // the stored codes / 255
   ASSERT_EQ(png.width(), 4);
-  ASSERT_EQ(png.height(), 1 + colour_bar_height(4));
+  ASSERT_EQ(png.height(), 1 + color_bar_height(4));
   const int top = png.height() - 1;  // RgbImage counts rows from the bottom
   for (int x = 0; x < 4; ++x)
-    expect_colour_near(png.texel(x, top), colour_map_diverging((values[std::size_t(x)] + 1) / 2),
+    expect_color_near(png.texel(x, top), color_map_diverging((values[std::size_t(x)] + 1) / 2),
                        0.5 / 255 + 1e-6);
 }
 
-TEST(FalseColour, RefusesBadArguments) {
-  EXPECT_THROW(false_colour_image({1, 2}, 3, 1, 0, 1, ColourMap::viridis), std::invalid_argument);
-  EXPECT_THROW(false_colour_image({1}, 1, 1, 1, 1, ColourMap::viridis), std::invalid_argument);
-  EXPECT_THROW(false_colour_image({1}, 1, 1, 0, std::numeric_limits<double>::infinity(), ColourMap::viridis),
+TEST(FalseColor, RefusesBadArguments) {
+  EXPECT_THROW(false_color_image({1, 2}, 3, 1, 0, 1, ColorMap::viridis), std::invalid_argument);
+  EXPECT_THROW(false_color_image({1}, 1, 1, 1, 1, ColorMap::viridis), std::invalid_argument);
+  EXPECT_THROW(false_color_image({1}, 1, 1, 0, std::numeric_limits<double>::infinity(), ColorMap::viridis),
                std::invalid_argument);
-  EXPECT_THROW(false_colour_image({}, 0, 0, 0, 1, ColourMap::viridis), std::invalid_argument);
+  EXPECT_THROW(false_color_image({}, 0, 0, 0, 1, ColorMap::viridis), std::invalid_argument);
   // A one-pixel image still gets its bar (labels that do not fit are left out).
-  const Film tiny = false_colour_image({0.5}, 1, 1, 0, 1, ColourMap::viridis);
-  EXPECT_EQ(tiny.height(), 1 + colour_bar_height(1));
+  const Film tiny = false_color_image({0.5}, 1, 1, 0, 1, ColorMap::viridis);
+  EXPECT_EQ(tiny.height(), 1 + color_bar_height(1));
 }
 
 TEST(PixelFont, HasTheGlyphsNumbersNeed) {

@@ -1,4 +1,4 @@
-#include "io/false_colour.h"
+#include "io/false_color.h"
 
 #include <fmt/format.h>
 
@@ -21,7 +21,7 @@ Color lerp(const Color& a, const Color& b, double t) {
   return a + (b - a) * t;
 }
 
-Color clamp_colour(const Color& c) {
+Color clamp_color(const Color& c) {
   return {std::clamp(c.r, 0.0, 1.0), std::clamp(c.g, 0.0, 1.0), std::clamp(c.b, 0.0, 1.0)};
 }
 
@@ -42,7 +42,7 @@ int label_scale(int width) {
 
 }  // namespace
 
-Color colour_map_viridis(double t) {
+Color color_map_viridis(double t) {
   t = clamp_unit(t);
   // Coefficients of t^0 .. t^6 per channel (Matt Zucconi's fit, CC0).
   static constexpr double kCoefficients[7][3] = {
@@ -60,26 +60,26 @@ Color colour_map_viridis(double t) {
     for (int power = 6; power >= 0; --power) value = value * t + kCoefficients[power][channel];
     c[channel] = value;
   }
-  return clamp_colour(c);
+  return clamp_color(c);
 }
 
-Color colour_map_diverging(double t) {
+Color color_map_diverging(double t) {
   t = clamp_unit(t);
   const Color blue(0.230, 0.299, 0.754), white(1.0), red(0.706, 0.016, 0.150);
   return t <= 0.5 ? lerp(blue, white, t / 0.5) : lerp(white, red, (t - 0.5) / 0.5);
 }
 
-Color colour_map(ColourMap map, double t) {
+Color color_map(ColorMap map, double t) {
   switch (map) {
-    case ColourMap::viridis:
-      return colour_map_viridis(t);
-    case ColourMap::diverging:
-      return colour_map_diverging(t);
+    case ColorMap::viridis:
+      return color_map_viridis(t);
+    case ColorMap::diverging:
+      return color_map_diverging(t);
   }
-  return colour_map_viridis(t);
+  return color_map_viridis(t);
 }
 
-int colour_bar_height(int width) {
+int color_bar_height(int width) {
   return kBarGap + kBarRows + kTickRows + kLabelGap + kPixelFontHeight * label_scale(width) + kBottomMargin;
 }
 
@@ -91,18 +91,18 @@ std::string format_scale_value(double value) {
   return general.size() <= exponent.size() ? general : exponent;
 }
 
-Film false_colour_image(const std::vector<double>& values, int width, int height, double low, double high,
-                        ColourMap map) {
+Film false_color_image(const std::vector<double>& values, int width, int height, double low, double high,
+                        ColorMap map) {
   if (width <= 0 || height <= 0)
     throw std::invalid_argument(
-        fmt::format("false-colour image size must be positive, got {}x{}", width, height));
+        fmt::format("false-color image size must be positive, got {}x{}", width, height));
   if (values.size() != std::size_t(width) * std::size_t(height))
     throw std::invalid_argument(
-        fmt::format("false-colour image of {}x{} pixels given {} values", width, height, values.size()));
+        fmt::format("false-color image of {}x{} pixels given {} values", width, height, values.size()));
   if (!std::isfinite(low) || !std::isfinite(high) || !(low < high))
     throw std::invalid_argument(
-        fmt::format("false-colour scale {} .. {} must be finite with low < high", low, high));
-  const int band = colour_bar_height(width);
+        fmt::format("false-color scale {} .. {} must be finite with low < high", low, high));
+  const int band = color_bar_height(width);
   Film film(width, height + band);
   const double range = high - low;
   const Color no_data = display_to_linear(Color(kNoDataGrey));
@@ -110,14 +110,14 @@ Film false_colour_image(const std::vector<double>& values, int width, int height
     for (int x = 0; x < width; ++x) {
       const double value = values[std::size_t(y) * std::size_t(width) + std::size_t(x)];
       film.at(x, y) =
-          std::isfinite(value) ? display_to_linear(colour_map(map, (value - low) / range)) : no_data;
+          std::isfinite(value) ? display_to_linear(color_map(map, (value - low) / range)) : no_data;
     }
   // The band: black, then the bar.
   const int bar_top = height + kBarGap;
   for (int x = 0; x < width; ++x) {
     const double t = width == 1 ? 0.5 : double(x) / (width - 1);
-    const Color colour = display_to_linear(colour_map(map, t));
-    for (int y = bar_top; y < bar_top + kBarRows; ++y) film.at(x, y) = colour;
+    const Color color = display_to_linear(color_map(map, t));
+    for (int y = bar_top; y < bar_top + kBarRows; ++y) film.at(x, y) = color;
   }
   // Ticks and labels: low (left), high (right), middle (centre) while they do not overlap.
   const Color white(1.0);

@@ -39,7 +39,7 @@
 
 namespace candela {
 
-struct SphereDiskScene {
+struct SphereDiscScene {
   double sphere_radius = 5;   // r
   double disc_radius = 40;    // R
   double height = 20;         // h: the sphere's centre above the disc
@@ -57,14 +57,14 @@ struct ReferenceSettings {
 };
 
 // The direct exitance at a point (eqs. 7.5–7.6).
-double reference_disc_direct(const SphereDiskScene& scene, double u);
-double reference_sphere_direct(const SphereDiskScene& scene, double alpha);
+double reference_disc_direct(const SphereDiscScene& scene, double u);
+double reference_sphere_direct(const SphereDiscScene& scene, double alpha);
 
 class ReferenceSolution {
  public:
-  ReferenceSolution(const SphereDiskScene& scene, const ReferenceSettings& settings);
+  ReferenceSolution(const SphereDiscScene& scene, const ReferenceSettings& settings);
 
-  const SphereDiskScene& scene() const { return scene_; }
+  const SphereDiscScene& scene() const { return scene_; }
   const ReferenceSettings& settings() const { return settings_; }
   // The nodes and the solution there: direct (pointwise, eqs. 7.5–7.6) and total = direct + indirect.
   std::vector<double> u, disc_direct, disc_total;           // n disc rings
@@ -83,7 +83,7 @@ class ReferenceSolution {
   double disc_indirect(double u) const;
   double sphere_indirect(double alpha) const;
 
-  SphereDiskScene scene_;
+  SphereDiscScene scene_;
   ReferenceSettings settings_;
   std::vector<double> disc_sent_, sphere_sent_;  // D̄_j, B̄_i
 };
@@ -97,7 +97,7 @@ struct FeSettings {
 };
 
 // The scene as candela/1 JSON (y up: disc in y = 0, sphere centre at y = h, light along −y).
-std::string sphere_disk_scene_json(const SphereDiskScene& scene, const FeSettings& settings);
+std::string sphere_disc_scene_json(const SphereDiscScene& scene, const FeSettings& settings);
 
 struct FeCurves {
   // At the reference's nodes: the mean over `azimuths` points of each ring, and the value at
@@ -110,7 +110,7 @@ struct FeCurves {
   double seconds = 0;
 };
 
-FeCurves solve_fe(const SphereDiskScene& scene, const FeSettings& settings, const std::vector<double>& u,
+FeCurves solve_fe(const SphereDiscScene& scene, const FeSettings& settings, const std::vector<double>& u,
                   const std::vector<double>& alpha);
 
 // Errors of a curve pair (FE − reference) over the disc nodes and the sphere nodes together, each
@@ -122,17 +122,17 @@ CurveErrors curve_errors(const std::vector<double>& disc_fe, const std::vector<d
                          const std::vector<double>& sphere_fe, const std::vector<double>& sphere_reference);
 
 
-// The whole validation (`candela validate sphere-disk`): the reference, the refined reference
+// The whole validation (`candela validate sphere-disc`): the reference, the refined reference
 // (n = m = k = 4× — its values at the reference's nodes show that the reference has converged),
 // and the FE solutions for the three bases at Δ = 3 and Δ = 1, written to directory:
 // reference_disc.csv, reference_sphere.csv, fe_<basis>_delta<Δ>_disc.csv / _sphere.csv,
 // errors.json and PNG plots. quick (for tests): a disc of radius 15, n = m = k = 30, a 64² camera grid. Every file is
 // written atomically; progress lines go to log when not null. Returns errors.json's content.
-struct SphereDiskRun {
+struct SphereDiscRun {
   bool quick = false;
   bool refine = true;  // also solve the refined reference
 };
-nlohmann::json run_sphere_disk_validation(const std::string& directory, const SphereDiskRun& run,
+nlohmann::json run_sphere_disc_validation(const std::string& directory, const SphereDiscRun& run,
                                           std::ostream* log = nullptr);
 
 }  // namespace candela

@@ -1,5 +1,5 @@
 // The sphere-over-disc validation of seed 002 chapter 7 (SPEC §13, issue 8).
-#include "validate/sphere_disk.h"
+#include "validate/sphere_disc.h"
 
 #include <gtest/gtest.h>
 
@@ -18,8 +18,8 @@ ReferenceSettings coarse(int rings = 40, int iterations = 100) {
 }
 
 // 002 eqs. 7.5–7.6: B* = βμ max(0, sin α), D* = δμ for r ≤ u ≤ R, 0 in the shadow.
-TEST(SphereDisk, DirectTermIsTheThesis) {
-  const SphereDiskScene scene;
+TEST(SphereDisc, DirectTermIsTheThesis) {
+  const SphereDiscScene scene;
   EXPECT_DOUBLE_EQ(reference_disc_direct(scene, 20), 0.81);
   EXPECT_DOUBLE_EQ(reference_disc_direct(scene, 5), 0.81);  // the thesis's r ≤ u
   EXPECT_DOUBLE_EQ(reference_disc_direct(scene, 4.99), 0);
@@ -31,8 +31,8 @@ TEST(SphereDisk, DirectTermIsTheThesis) {
 
 // Black surfaces reflect nothing back: the total is the direct term (itself 0 for albedo 0), and with
 // only the sphere black the disc keeps exactly its direct light.
-TEST(SphereDisk, NoReflectionWithoutAlbedo) {
-  SphereDiskScene scene;
+TEST(SphereDisc, NoReflectionWithoutAlbedo) {
+  SphereDiscScene scene;
   scene.sphere_albedo = 0;
   const ReferenceSolution reference(scene, coarse());
   for (std::size_t j = 0; j < reference.u.size(); ++j) EXPECT_DOUBLE_EQ(reference.disc_total[j], reference.disc_direct[j]);
@@ -48,8 +48,8 @@ TEST(SphereDisk, NoReflectionWithoutAlbedo) {
 
 // The quadrature of F r² cos α dα dτ over the sphere is the point-to-sphere form factor of a
 // horizontal element at distance u from the axis, which sees the whole sphere: r² h / (h² + u²)^{3/2}.
-TEST(SphereDisk, QuadratureGivesThePointToSphereFormFactor) {
-  const SphereDiskScene scene;
+TEST(SphereDisc, QuadratureGivesThePointToSphereFormFactor) {
+  const SphereDiscScene scene;
   const ReferenceSolution reference(scene, coarse());
   for (const double u : {0.0, 5.0, 12.0, 30.0}) {
     const double exact = 25.0 * 20.0 / std::pow(400.0 + u * u, 1.5);
@@ -61,8 +61,8 @@ TEST(SphereDisk, QuadratureGivesThePointToSphereFormFactor) {
 // (outside the shadow) reflected once. Its bottom point (α = −π/2, facing straight down, h − r above
 // the disc) sees the lit annulus r ≤ u ≤ R with F = a²/(a² + H²)|_{a=R} − the same at a = r, the
 // form factor of a point to a coaxial disc of radius a at distance H.
-TEST(SphereDisk, SphereBottomGathersTheLitAnnulus) {
-  const SphereDiskScene scene;
+TEST(SphereDisc, SphereBottomGathersTheLitAnnulus) {
+  const SphereDiscScene scene;
   ReferenceSettings settings = coarse(100, 1);
   settings.disc_rings = 400;
   settings.sphere_rings = 201;  // the bottom node is (0.5/201)π above −π/2: F changes to second order
@@ -75,8 +75,8 @@ TEST(SphereDisk, SphereBottomGathersTheLitAnnulus) {
 
 // 100 iterations are converged (the thesis's choice): 200 change nothing; and refining the
 // quadrature 2× changes the solution at the coarse nodes by well under 1 %.
-TEST(SphereDisk, ReferenceConverges) {
-  const SphereDiskScene scene;
+TEST(SphereDisc, ReferenceConverges) {
+  const SphereDiscScene scene;
   const ReferenceSolution a(scene, coarse(40, 100)), b(scene, coarse(40, 200));
   EXPECT_LT(a.last_change, 1e-12);
   for (std::size_t j = 0; j < a.u.size(); ++j) EXPECT_NEAR(a.disc_total[j], b.disc_total[j], 1e-12);
@@ -90,7 +90,7 @@ TEST(SphereDisk, ReferenceConverges) {
   EXPECT_NEAR(a.sphere_at(a.alpha[3]), a.sphere_total[3], 1e-12);
 }
 
-TEST(SphereDisk, CurveErrors) {
+TEST(SphereDisc, CurveErrors) {
   const CurveErrors e = curve_errors({1, 2}, {1, 1}, {0, 4}, {0, 2});
   EXPECT_DOUBLE_EQ(e.max, 2);
   EXPECT_DOUBLE_EQ(e.rms, std::sqrt(5.0 / 4));
@@ -101,8 +101,8 @@ TEST(SphereDisk, CurveErrors) {
 // Issue 8: "the sphere-disc error falls from Δ = 3 to Δ = 1 for every basis" — on a disc of radius
 // 15 instead of 40 (a seventh of the area, so of the sites and the time; the light, sphere and
 // spacings as in the thesis). Every basis, the radial one included.
-TEST(SphereDisk, FiniteElementErrorFallsWithDensity) {
-  SphereDiskScene scene;
+TEST(SphereDisc, FiniteElementErrorFallsWithDensity) {
+  SphereDiscScene scene;
   scene.disc_radius = 15;
   const ReferenceSolution reference(scene, coarse(30));
   for (const BasisKind kind : {BasisKind::radial, BasisKind::normalized, BasisKind::shepard}) {

@@ -1,4 +1,4 @@
-#include "validate/sphere_disk.h"
+#include "validate/sphere_disc.h"
 
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
@@ -27,7 +27,7 @@ namespace {
 // F(p, q) = cos θ_p cos θ_q / (π d²) between the sphere point p at latitude α on the meridian
 // τ = 0 and the disc point q at distance u from the centre and azimuth τ. The disc's normal is +z
 // and p lies above it, so cos θ_q = p_z / d > 0; cos θ_p is clipped at 0.
-double exchange_kernel(const SphereDiskScene& scene, double alpha, double u, double tau) {
+double exchange_kernel(const SphereDiscScene& scene, double alpha, double u, double tau) {
   const double ca = std::cos(alpha), sa = std::sin(alpha);
   const double px = scene.sphere_radius * ca, pz = scene.height + scene.sphere_radius * sa;
   const double dx = u * std::cos(tau) - px, dy = u * std::sin(tau), dz = -pz;
@@ -37,25 +37,25 @@ double exchange_kernel(const SphereDiskScene& scene, double alpha, double u, dou
   return along_normal * pz / (kPi * d2 * d2);
 }
 
-void check(const SphereDiskScene& scene, const ReferenceSettings& settings) {
+void check(const SphereDiscScene& scene, const ReferenceSettings& settings) {
   if (!(scene.sphere_radius > 0) || !(scene.disc_radius > 0) || !(scene.height > scene.sphere_radius))
-    throw std::invalid_argument("sphere-disk: need r > 0, R > 0 and h > r (the sphere above the disc)");
+    throw std::invalid_argument("sphere-disc: need r > 0, R > 0 and h > r (the sphere above the disc)");
   if (settings.disc_rings < 1 || settings.sphere_rings < 1 || settings.azimuths < 1 ||
       settings.iterations < 0)
-    throw std::invalid_argument("sphere-disk: n, m, k must be >= 1 and the iterations >= 0");
+    throw std::invalid_argument("sphere-disc: n, m, k must be >= 1 and the iterations >= 0");
 }
 
 }  // namespace
 
-double reference_disc_direct(const SphereDiskScene& scene, double u) {
+double reference_disc_direct(const SphereDiscScene& scene, double u) {
   return u >= scene.sphere_radius && u <= scene.disc_radius ? scene.disc_albedo * scene.light : 0.0;
 }
 
-double reference_sphere_direct(const SphereDiskScene& scene, double alpha) {
+double reference_sphere_direct(const SphereDiscScene& scene, double alpha) {
   return std::max(0.0, scene.sphere_albedo * scene.light * std::sin(alpha));
 }
 
-ReferenceSolution::ReferenceSolution(const SphereDiskScene& scene, const ReferenceSettings& settings)
+ReferenceSolution::ReferenceSolution(const SphereDiscScene& scene, const ReferenceSettings& settings)
     : scene_(scene), settings_(settings) {
   check(scene, settings);
   const int n = settings.disc_rings, m = settings.sphere_rings, k = settings.azimuths;
@@ -186,7 +186,7 @@ double ReferenceSolution::disc_to_sphere_factor(double at_u) const {
   return sum;
 }
 
-std::string sphere_disk_scene_json(const SphereDiskScene& scene, const FeSettings& settings) {
+std::string sphere_disc_scene_json(const SphereDiscScene& scene, const FeSettings& settings) {
   const double window = scene.disc_radius * 1.05;
   return fmt::format(
       R"({{"format": "candela/1",
@@ -206,10 +206,10 @@ std::string sphere_disk_scene_json(const SphereDiskScene& scene, const FeSetting
       fmt::arg("r", scene.sphere_radius), fmt::arg("beta", scene.sphere_albedo));
 }
 
-FeCurves solve_fe(const SphereDiskScene& scene, const FeSettings& settings, const std::vector<double>& u,
+FeCurves solve_fe(const SphereDiscScene& scene, const FeSettings& settings, const std::vector<double>& u,
                   const std::vector<double>& alpha) {
   const auto start = std::chrono::steady_clock::now();
-  const auto loaded = load_scene_text(sphere_disk_scene_json(scene, settings), "sphere-disk.json", ".");
+  const auto loaded = load_scene_text(sphere_disc_scene_json(scene, settings), "sphere-disc.json", ".");
   const MeshlessSolution solution =
       solve_meshless(*loaded, read_meshless_settings(loaded->plugin_settings.node("meshless")));
   const SiteSet& set = solution.sites;
@@ -321,7 +321,7 @@ std::string csv(const char* header, const std::vector<double>& x,
 void write_plot(const std::filesystem::path& path, const std::vector<PlotPanel>& panels) {
   const Film film = draw_line_plot(panels);
   DisplaySettings display;
-  display.srgb = false;  // the colours as given
+  display.srgb = false;  // the colors as given
   write_png(film, path.string(), display);
 }
 
@@ -349,7 +349,7 @@ std::vector<double> degrees(const std::vector<double>& radians) {
 
 }  // namespace
 
-nlohmann::json run_sphere_disk_validation(const std::string& directory, const SphereDiskRun& run,
+nlohmann::json run_sphere_disc_validation(const std::string& directory, const SphereDiscRun& run,
                                           std::ostream* log) {
   namespace fs = std::filesystem;
   const fs::path out(directory);
@@ -359,7 +359,7 @@ nlohmann::json run_sphere_disk_validation(const std::string& directory, const Sp
   auto say = [&](const std::string& line) {
     if (log) *log << line << std::endl;
   };
-  SphereDiskScene scene;
+  SphereDiscScene scene;
   ReferenceSettings settings;
   if (run.quick) {  // a disc of radius 15 (a seventh of the sites), a coarser reference
     scene.disc_radius = 15;

@@ -1,19 +1,19 @@
-// False-colour pictures of per-pixel scalars (error maps, probe grids) with their scale drawn
+// False-color pictures of per-pixel scalars (error maps, probe grids) with their scale drawn
 // beneath them: `candela compare --diff`, and any command that shows a quantity over an image.
 //
-// Colour maps take t in [0, 1] (clamped; NaN reads as 0) and return sRGB-encoded display values
+// Color maps take t in [0, 1] (clamped; NaN reads as 0) and return sRGB-encoded display values
 // in [0, 1], as the maps are published:
 //   viridis    perceptually uniform, dark blue-violet (t = 0) → green → yellow (t = 1); the
 //              6th-degree polynomial fit of matplotlib's viridis (Stéfan van der Walt and
 //              Nathaniel Smith, CC0) published by Matt Zucconi (CC0), within ~0.02 of the table.
 //   diverging  blue (t = 0) → white (t = 0.5) → red (t = 1), linear in display values between
-//              Moreland's cool-warm end colours (0.230, 0.299, 0.754) and (0.706, 0.016, 0.150):
+//              Moreland's cool-warm end colors (0.230, 0.299, 0.754) and (0.706, 0.016, 0.150):
 //              for signed quantities on a scale symmetric about 0.
 //
-// Layout of false_colour_image(values, W, H, ...): a W × (H + colour_bar_height(W)) Film.
+// Layout of false_color_image(values, W, H, ...): a W × (H + color_bar_height(W)) Film.
 //   rows 0 .. H−1       the picture: pixel (x, y) shows values[y·W + x]; a non-finite value (NaN:
 //                       masked out, no data) is dark grey (display 0.25).
-//   the band below     black background; 3 rows gap, then the colour bar, 16 rows high, full
+//   the band below     black background; 3 rows gap, then the color bar, 16 rows high, full
 //                       width: column x shows t = x / (W − 1) (so column 0 is the map at `low`
 //                       and column W − 1 at `high`); below it white tick marks (3 rows) at the
 //                       left edge, the centre and the right edge, and under them the labels
@@ -23,7 +23,7 @@
 //                       that would overlap another (narrow images) is left out: the middle first,
 //                       then the high one.
 // The Film holds LINEAR RGB like every Film: written with the default DisplaySettings (sRGB,
-// clamp, exposure 0) the PNG's bytes are the map's display colours (to 8-bit rounding).
+// clamp, exposure 0) the PNG's bytes are the map's display colors (to 8-bit rounding).
 #pragma once
 
 #include <string>
@@ -34,26 +34,26 @@
 
 namespace candela {
 
-enum class ColourMap { viridis, diverging };
+enum class ColorMap { viridis, diverging };
 
-Color colour_map_viridis(double t);
-Color colour_map_diverging(double t);
-Color colour_map(ColourMap map, double t);
+Color color_map_viridis(double t);
+Color color_map_diverging(double t);
+Color color_map(ColorMap map, double t);
 
-// The display colour of masked-out / missing values.
+// The display color of masked-out / missing values.
 inline constexpr double kNoDataGrey = 0.25;
 
-// Rows below the picture taken by the colour bar and its labels, for an image `width` wide.
-int colour_bar_height(int width);
+// Rows below the picture taken by the color bar and its labels, for an image `width` wide.
+int color_bar_height(int width);
 
-// A number as the colour bar labels it: "0", or 3 significant digits in the shortest of fixed
+// A number as the color bar labels it: "0", or 3 significant digits in the shortest of fixed
 // and exponent notation ("0.0123", "12.5", "1.23e-05", "-4.5e+06").
 std::string format_scale_value(double value);
 
 // values: width·height numbers, row by row, top row first. The scale runs from low (t = 0) to
-// high (t = 1); values outside it take the end colours. Throws std::invalid_argument when the
+// high (t = 1); values outside it take the end colors. Throws std::invalid_argument when the
 // sizes disagree, width or height is not positive, or !(low < high) (both must be finite).
-Film false_colour_image(const std::vector<double>& values, int width, int height, double low, double high,
-                        ColourMap map);
+Film false_color_image(const std::vector<double>& values, int width, int height, double low, double high,
+                        ColorMap map);
 
 }  // namespace candela
