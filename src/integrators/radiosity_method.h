@@ -14,9 +14,9 @@
 //                 in a closed scene, which the shooter's hemicube with reciprocity
 //                 F_qj = F_jq A_j / A_q does not give elements near the shooter: a furnace then
 //                 shows ±17%). B_q += ΔRad_q; the unshot radiosity of q's patch grows by the
-//                 area-weighted mean of its elements' gains. Until the unshot flux is at most radiosity.threshold
-//                 of the emitted flux, or radiosity.max_steps shots. With radiosity.ambient the
-//                 display adds ρ_q·B_amb (000 §6.6.2), never fed back.
+//                 area-weighted mean of its elements' gains. Until the unshot flux is at most
+//                 radiosity.threshold of the emitted flux, or radiosity.max_steps shots. With
+//                 radiosity.ambient the display adds ρ_q·B_amb (000 §6.6.2), never fed back.
 //   gauss-seidel  the patch system (000 eq. 6-9) with form-factor rows over the patches, by
 //   gaussian      Gauss-Seidel sweeps or LU elimination, then the elements gathered from the
 //                 patch solution, B_q = E_q + ρ_q Σ_j F_qj B_j (000 eq. 6-16), with F_qj from
@@ -32,16 +32,20 @@
 // Pixels no surface covers show the background. Each pixel depends only on the solution and its
 // own ray or tile, and the solution is computed sequentially (the form-factor rows in parallel,
 // each row by one thread into its own place), so the image does not depend on the thread count.
+//
+// The pipeline lives in src/radiosity, one direction: mesh (radiosity_mesh.h) → form factors
+// (form_factor_rows.h) → solve (solve.h, solvers.h; adaptive_subdivision.h, diagnostics.h,
+// form_factor_memory.h) → display (display.h). This file adapts it to a Method: it reads the
+// settings and the render request (checkpoints, resume, export, ranks) and keeps the solution.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "integrators/method.h"
 #include "radiosity/radiosity_settings.h"
@@ -49,7 +53,7 @@
 
 namespace candela {
 
-// Meshes and solves the scene with scene.radiosity (quiet: no progress bar).
+// Meshes and solves the scene with the scene's "radiosity" object (quiet: no progress bar).
 RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet);
 // The same, with what the solve measured written to *facts when not null (the "radiosity" facts
 // of render --stats without the display's: steps, form_factors_per_second, row_sum, ...).
@@ -73,7 +77,8 @@ class RadiosityMethod final : public Method {
   // else a new one, which replaces it.
   // With a checkpoint to write or resume from (request.checkpoint / resume: progressive solver
   // only) the solve is this run's own and not kept.
-  std::shared_ptr<const Solved> solution_for(const Scene& scene, const RenderRequest& request, bool& reused) const;
+  std::shared_ptr<const Solved> solution_for(const Scene& scene, const RadiositySettings& settings,
+                                             const RenderRequest& request, bool& reused) const;
 
   RadiositySettings settings_;
   mutable std::mutex cache_mutex_;

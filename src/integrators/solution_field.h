@@ -21,7 +21,7 @@ class SolutionField {
   virtual Color direct_irradiance(const Vec3& point, const Vec3& normal) const = 0;
 };
 
-// The solution of scene.radiosity, solved now (quiet: no progress bar).
+// The solution of the scene's "radiosity" object, solved now (quiet: no progress bar).
 std::unique_ptr<SolutionField> make_radiosity_field(const Scene& scene, bool quiet);
 // The meshless solution of scene.meshless (its sites are sampled from the scene's camera: points
 // the camera never sees may have no site near them).

@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "math/constants.h"
 #include "raster/tessellated_scene.h"
@@ -288,7 +289,13 @@ void cut_at_contacts(const Scene& scene, std::vector<CornerTriangle>& triangles,
 }  // namespace
 
 RadiositySystem RadiosityMesh::patch_system() const { return system_of(patches); }
-RadiositySystem RadiosityMesh::element_system() const { return system_of(elements); }
+ElementSystem RadiosityMesh::element_system() const {
+  RadiositySystem surfaces = system_of(elements);
+  return {{patch_of_element.begin(), patch_of_element.end()},
+          std::move(surfaces.areas),
+          std::move(surfaces.reflectance),
+          std::move(surfaces.emission)};
+}
 
 double RadiosityMesh::patch_area() const {
   double sum = 0;

@@ -66,9 +66,10 @@ struct RadiosityMesh {
   // The elements by place, for element_at (rebuilt with the elements).
   SurfaceGrid element_grid;
 
-  // The patches as a radiosity system (areas, ρ, E) and the elements likewise.
+  // The patches as a radiosity system (areas, ρ, E), and the elements as the receivers of a
+  // substructured system (their patches, areas, ρ, E; 000 §6.7.1).
   RadiositySystem patch_system() const;
-  RadiositySystem element_system() const;
+  ElementSystem element_system() const;
   double patch_area() const;    // Σ patch areas
   double element_area() const;  // Σ element areas
   // The element of primitive `primitive` nearest the world point (the one containing it for

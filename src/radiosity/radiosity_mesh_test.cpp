@@ -166,7 +166,7 @@ TEST(RadiosityMesh, ReflectanceAndEmissionComeFromTheMaterials) {
   }
   EXPECT_TRUE(saw_dark);
   EXPECT_TRUE(saw_light);
-  EXPECT_NO_THROW(mesh.element_system().validate());
+  EXPECT_NO_THROW(mesh.element_system().validate(mesh.patches.size()));
   EXPECT_NO_THROW(mesh.patch_system().validate());
 }
 

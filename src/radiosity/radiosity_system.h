@@ -68,6 +68,39 @@ struct RadiositySystem {
   void validate() const { validate_surfaces("radiosity system", "patch", areas, reflectance, emission); }
 };
 
+// The elements of a substructured scene (000 §6.7.1): element q lies on patch `patch[q]` and
+// receives light from patches (elements are the smallest units whose radiosity is computed;
+// patches shoot and gather). Index q is the same in every vector.
+struct ElementSystem {
+  std::vector<std::size_t> patch;  // owning patch per element
+  std::vector<double> areas;       // A_q > 0
+  std::vector<Color> reflectance;  // ρ_q, each in [0, 1]
+  std::vector<Color> emission;     // E_q ≥ 0
+
+  std::size_t size() const { return patch.size(); }
+  // Throws std::invalid_argument for vectors of different lengths, a patch index ≥ patch_count,
+  // or a bad area, reflectance or emission. (A patch may have no elements here; the area-weighted
+  // means of solvers.h need at least one per patch and say so.)
+  void validate(std::size_t patch_count) const {
+    if (areas.size() != patch.size()) {
+      throw std::invalid_argument("element system: " + std::to_string(patch.size()) + " patch indices for " +
+                                  std::to_string(areas.size()) + " areas (they must match)");
+    }
+    for (std::size_t q = 0; q < patch.size(); ++q) {
+      if (patch[q] >= patch_count) {
+        throw std::invalid_argument("element system: element " + std::to_string(q) + " lies on patch " +
+                                    std::to_string(patch[q]) + " of " + std::to_string(patch_count));
+      }
+    }
+    validate_surfaces("element system", "element", areas, reflectance, emission);
+  }
+};
+
+// The element rows F_qj, q an element, j a patch (000 §6.7.1: elements receive from patches), kept
+// for a whole solve: float (4 bytes a form factor: the largest thing the solver keeps) and
+// column-major, so that the column F_·j a shooting patch j reaches is contiguous.
+using ElementToPatch = Eigen::MatrixXf;
+
 // Computes row i of a form-factor matrix on demand (for instance a hemicube at patch i's
 // centre). The row arrives sized to the source's column count and filled with zeros; the
 // provider writes F_i→j into row[j] and must not resize it.

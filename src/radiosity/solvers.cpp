@@ -2,6 +2,9 @@
 // with the ambient term (000 §6.6), substructuring (000 §6.7.1). See solvers.h.
 #include "radiosity/solvers.h"
 
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
@@ -17,6 +20,10 @@ namespace candela {
 namespace {
 
 using Index = Eigen::Index;
+
+double channel_sum(const Color& c) {
+  return c.r + c.g + c.b;
+}
 
 void require_square_source(const FormFactorSource& form_factors, std::size_t patch_count,
                            const char* solver) {
@@ -270,57 +277,105 @@ ProgressiveRefinement::ProgressiveRefinement(RadiositySystem system, FormFactorS
     : system_(std::move(system)), form_factors_(std::move(form_factors)) {
   system_.validate();
   const std::size_t n = system_.size();
-  require_square_source(form_factors_, n, "progressive refinement");
-  radiosity_ = system_.emission;  // B = E
-  unshot_ = system_.emission;     // ΔB = E: nothing shot yet
-  Color reflectance_times_area;
-  for (std::size_t i = 0; i < n; ++i) {
-    total_area_ += system_.areas[i];
-    reflectance_times_area += system_.reflectance[i] * system_.areas[i];
-    const Color emitted = system_.emission[i] * system_.areas[i];
-    emitted_flux_ += emitted.r + emitted.g + emitted.b;
+  require_square_source(*form_factors_, n, "progressive refinement");
+  // Every patch is its own one receiver.
+  receivers_.patch.resize(n);
+  for (std::size_t i = 0; i < n; ++i) receivers_.patch[i] = i;
+  receivers_.areas = system_.areas;
+  receivers_.reflectance = system_.reflectance;
+  receivers_.emission = system_.emission;
+  start();
+}
+
+ProgressiveRefinement::ProgressiveRefinement(RadiositySystem patches, ElementSystem elements,
+                                             std::shared_ptr<const ElementToPatch> element_to_patch)
+    : system_(std::move(patches)),
+      receivers_(std::move(elements)),
+      element_to_patch_(std::move(element_to_patch)) {
+  system_.validate();
+  receivers_.validate(system_.size());
+  if (!element_to_patch_ || static_cast<std::size_t>(element_to_patch_->rows()) != receivers_.size() ||
+      static_cast<std::size_t>(element_to_patch_->cols()) != system_.size()) {
+    throw std::invalid_argument("progressive refinement: element-to-patch form factors are " +
+                                (element_to_patch_ ? std::to_string(element_to_patch_->rows()) + "×" +
+                                                         std::to_string(element_to_patch_->cols())
+                                                   : std::string("missing")) +
+                                " for " + std::to_string(receivers_.size()) + " elements and " +
+                                std::to_string(system_.size()) + " patches");
   }
-  if (n > 0) average_reflectance_ = reflectance_times_area / total_area_;  // 000 eq. 6-14
+  start();
+}
+
+void ProgressiveRefinement::start() {
+  radiosity_ = receivers_.emission;  // B = E
+  unshot_ = system_.emission;        // ΔB = E: nothing shot yet
+  for (std::size_t j = 0; j < size(); ++j) {
+    total_area_ += system_.areas[j];
+    emitted_flux_ += channel_sum(unshot_[j]) * system_.areas[j];
+  }
+  // 000 eq. 6-14: ρ_avg = Σ_q ρ_q A_q / Σ_j A_j.
+  for (std::size_t q = 0; q < receivers_.size(); ++q)
+    average_reflectance_ += receivers_.reflectance[q] * (receivers_.areas[q] / total_area_);
+  update_totals();
+}
+
+void ProgressiveRefinement::restore(std::vector<Color> radiosity, std::vector<Color> unshot,
+                                    std::size_t steps) {
+  if (radiosity.size() != receivers_.size() || unshot.size() != size()) {
+    throw std::invalid_argument("progressive refinement: a state of " + std::to_string(radiosity.size()) +
+                                " receivers and " + std::to_string(unshot.size()) + " patches for " +
+                                std::to_string(receivers_.size()) + " and " + std::to_string(size()));
+  }
+  radiosity_ = std::move(radiosity);
+  unshot_ = std::move(unshot);
+  steps_ = steps;
   update_totals();
 }
 
 void ProgressiveRefinement::update_totals() {
-  const std::size_t n = system_.size();
   unshot_flux_ = 0;
-  Color unshot_times_area;
-  next_shooter_ = n;
+  next_shooter_ = size();
   double largest_unshot_flux = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Color flux = unshot_[i] * system_.areas[i];
-    const double patch_flux = flux.r + flux.g + flux.b;
+  for (std::size_t j = 0; j < size(); ++j) {
+    const double patch_flux = channel_sum(unshot_[j]) * system_.areas[j];
     unshot_flux_ += patch_flux;
-    unshot_times_area += flux;
     if (patch_flux > largest_unshot_flux) {  // strict: the lowest index wins a tie
       largest_unshot_flux = patch_flux;
-      next_shooter_ = i;
+      next_shooter_ = j;
     }
   }
-  area_weighted_unshot_ = n > 0 ? unshot_times_area / total_area_ : Color();
 }
 
 double ProgressiveRefinement::unshot_fraction() const {
   return emitted_flux_ > 0 ? unshot_flux_ / emitted_flux_ : 0.0;
 }
 
+template <typename FormFactorOf>
+void ProgressiveRefinement::shoot(const Color& shot, FormFactorOf form_factor_of) {
+  for (std::size_t q = 0; q < receivers_.size(); ++q) {
+    const double form_factor = form_factor_of(q);  // F_qj
+    if (form_factor <= 0) continue;
+    const Color gain = receivers_.reflectance[q] * shot * form_factor;  // 000 eqs. 6-12, 6-13
+    radiosity_[q] += gain;
+    const std::size_t patch = receivers_.patch[q];
+    unshot_[patch] += gain * (receivers_.areas[q] / system_.areas[patch]);  // area-weighted mean
+  }
+}
+
 bool ProgressiveRefinement::step() {
   const std::size_t shooter = next_shooter_;
-  if (shooter >= system_.size()) return false;
+  if (shooter >= size()) return false;
   const Color shot = unshot_[shooter];
-  unshot_[shooter] = Color();        // cleared first: what the shooter sends to itself stays unshot
-  form_factors_.row(shooter, row_);  // F_j→i for every i: one hemicube at the shooter
-  ++rows_computed_;
-  const double shooter_area = system_.areas[shooter];
-  for (std::size_t i = 0; i < system_.size(); ++i) {
-    if (row_[i] == 0) continue;
-    // 000 eq. 6-13: B_i due to ΔB_j = ρ_i ΔB_j F_ji A_j / A_i (reciprocity, 000 eq. 6-5).
-    const Color received = system_.reflectance[i] * shot * (row_[i] * shooter_area / system_.areas[i]);
-    radiosity_[i] += received;
-    unshot_[i] += received;
+  unshot_[shooter] = Color();  // cleared first: what the shooter sends to itself stays unshot
+  if (element_to_patch_) {
+    const float* column = element_to_patch_->col(static_cast<Index>(shooter)).data();  // contiguous
+    shoot(shot, [column](std::size_t q) { return static_cast<double>(column[q]); });
+  } else {
+    form_factors_->row(shooter, row_);  // F_j→i for every i: one hemicube at the shooter
+    ++rows_computed_;
+    const double shooter_area = system_.areas[shooter];
+    // Reciprocity (000 eq. 6-5): F_ij = F_ji A_j / A_i.
+    shoot(shot, [&](std::size_t i) { return row_[i] * shooter_area / system_.areas[i]; });
   }
   ++steps_;
   update_totals();
@@ -328,13 +383,16 @@ bool ProgressiveRefinement::step() {
 }
 
 ProgressiveRunResult ProgressiveRefinement::run(double threshold, std::size_t max_steps,
-                                                const ProgressiveStepCallback& on_step) {
+                                                const ProgressiveStepCallback& on_step,
+                                                const ProgressiveCancelPredicate& cancelled) {
   if (!(threshold >= 0) || !std::isfinite(threshold)) {
     throw std::invalid_argument("progressive refinement: threshold " + std::to_string(threshold) +
                                 " (must be a non-negative fraction of the emitted flux)");
   }
   ProgressiveRunResult result;
-  while (unshot_fraction() > threshold && result.steps < max_steps && step()) {
+  while (unshot_fraction() > threshold && next_shooter_ < size() && result.steps < max_steps &&
+         !(cancelled && cancelled(steps_))) {
+    step();
     ++result.steps;
     if (on_step) on_step(steps_, unshot_fraction());
   }
@@ -344,34 +402,33 @@ ProgressiveRunResult ProgressiveRefinement::run(double threshold, std::size_t ma
 }
 
 Color ProgressiveRefinement::ambient() const {
-  // 000 §6.6.2: B_amb = 1/(1 − ρ_avg) · Σ_i ΔB_i A_i / Σ_k A_k, per channel.
+  // 000 §6.6.2: B_amb = 1/(1 − ρ_avg) · Σ_j ΔB_j A_j / Σ_k A_k, per channel.
+  Color area_weighted_unshot;
+  for (std::size_t j = 0; j < size(); ++j)
+    area_weighted_unshot += unshot_[j] * (system_.areas[j] / total_area_);
   Color ambient;
   for (int c = 0; c < 3; ++c) {
-    if (area_weighted_unshot_[c] == 0) continue;
-    if (!(average_reflectance_[c] < 1)) {
-      throw std::domain_error(
-          "progressive refinement: ambient term undefined: every patch reflects everything in channel " +
-          std::to_string(c) + " (ρ_avg = 1, the inter-reflection series 000 eq. 6-15 diverges)");
-    }
-    ambient[c] = area_weighted_unshot_[c] / (1.0 - average_reflectance_[c]);
+    // A channel where every surface reflects everything has no finite series: no ambient there.
+    if (average_reflectance_[c] < 1) ambient[c] = area_weighted_unshot[c] / (1 - average_reflectance_[c]);
   }
   return ambient;
 }
 
-Color ProgressiveRefinement::display_radiosity(std::size_t i, bool with_ambient) const {
-  if (i >= system_.size()) {
-    throw std::out_of_range("progressive refinement: patch " + std::to_string(i) + " of " +
-                            std::to_string(system_.size()));
+Color ProgressiveRefinement::display_radiosity(std::size_t q, bool with_ambient) const {
+  if (q >= receivers_.size()) {
+    throw std::out_of_range("progressive refinement: receiver " + std::to_string(q) + " of " +
+                            std::to_string(receivers_.size()));
   }
-  if (!with_ambient) return radiosity_[i];
-  return radiosity_[i] + system_.reflectance[i] * ambient();  // display only (000 §6.6.2)
+  if (!with_ambient) return radiosity_[q];
+  return radiosity_[q] + receivers_.reflectance[q] * ambient();  // display only (000 §6.6.2)
 }
 
 std::vector<Color> ProgressiveRefinement::display_radiosities(bool with_ambient) const {
   std::vector<Color> display = radiosity_;
   if (with_ambient) {
     const Color ambient_radiosity = ambient();
-    for (std::size_t i = 0; i < display.size(); ++i) display[i] += system_.reflectance[i] * ambient_radiosity;
+    for (std::size_t q = 0; q < display.size(); ++q)
+      display[q] += receivers_.reflectance[q] * ambient_radiosity;
   }
   return display;
 }
@@ -384,19 +441,16 @@ double progressive_convergence_progress(double unshot_fraction, double threshold
 
 // ---- Substructuring ------------------------------------------------------------------------
 
-void ElementSystem::validate(std::size_t patch_count) const {
-  const std::size_t m = patch.size();
-  if (areas.size() != m) {
-    throw std::invalid_argument("element system: " + std::to_string(m) + " patch indices for " +
-                                std::to_string(areas.size()) + " areas (they must match)");
-  }
-  for (std::size_t q = 0; q < m; ++q) {
-    if (patch[q] >= patch_count) {
-      throw std::invalid_argument("element system: element " + std::to_string(q) + " lies on patch " +
-                                  std::to_string(patch[q]) + " of " + std::to_string(patch_count));
-    }
-  }
-  validate_surfaces("element system", "element", areas, reflectance, emission);
+FormFactorSource element_to_patch_source(std::shared_ptr<const ElementToPatch> element_to_patch) {
+  if (!element_to_patch) throw std::invalid_argument("substructuring: no element-to-patch form factors");
+  const auto rows = static_cast<std::size_t>(element_to_patch->rows());
+  const auto columns = static_cast<std::size_t>(element_to_patch->cols());
+  return FormFactorSource(
+      rows, columns,
+      [element_to_patch = std::move(element_to_patch)](std::size_t q, std::vector<double>& row) {
+        for (std::size_t j = 0; j < row.size(); ++j)
+          row[j] = (*element_to_patch)(static_cast<Index>(q), static_cast<Index>(j));
+      });
 }
 
 std::vector<Color> gather_element_radiosities(const ElementSystem& elements,
@@ -411,13 +465,14 @@ std::vector<Color> gather_element_radiosities(const ElementSystem& elements,
         " elements and " + std::to_string(patch_count) + " patches");
   }
   std::vector<Color> element_radiosity(elements.size());
-  std::vector<double> row;
-  for (std::size_t q = 0; q < elements.size(); ++q) {
+  tbb::enumerable_thread_specific<std::vector<double>> rows;
+  tbb::parallel_for(std::size_t(0), elements.size(), [&](std::size_t q) {
+    std::vector<double>& row = rows.local();
     element_to_patch.row(q, row);
     Color gathered;
     for (std::size_t j = 0; j < patch_count; ++j) gathered += row[j] * patch_radiosity[j];
     element_radiosity[q] = elements.emission[q] + elements.reflectance[q] * gathered;  // 000 eq. 6-16
-  }
+  });
   return element_radiosity;
 }
 

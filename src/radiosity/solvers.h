@@ -8,19 +8,23 @@
 //   of a sweep is below tolerance × max B.
 // - ProgressiveRefinement: 000 §6.6 — shoot the unshot radiosity of the patch with the largest
 //   unshot flux ΔB_j·A_j to every patch with one row of form factors per step (memory of order
-//   n), until the unshot flux is below a fraction of the emitted flux (default 0.1%), with the
-//   ambient term of 000 §6.6.2 for display.
+//   n), or to every element with the elements' own rows (substructuring, 000 §6.7.1), until the
+//   unshot flux is below a fraction of the emitted flux (default 0.1%), with the ambient term of
+//   000 §6.6.2 for display.
 // - Substructuring (000 §6.7.1): element radiosities gathered from the patch solution
 //   (000 eq. 6-16), patch form factors as area-weighted means of element rows (000 eq. 6-19),
 //   patch radiosities as area-weighted means of element radiosities.
 //
-// Everything is sequential and deterministic: the same input gives bit-identical output.
+// Everything is deterministic: the same input gives bit-identical output. All is sequential but
+// gather_element_radiosities, whose elements are gathered in parallel, each into its own place.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -99,9 +103,11 @@ RadiositySolution solve_gauss_seidel(const RadiositySystem& system, const FormFa
 // ---- Progressive refinement (000 §6.6) ---------------------------------------------------
 
 // Called after every step with the number of steps taken so far (1 after the first shot, as the
-// seed counts "after 1, 2, 20 and 100 iterations") and the unshot fraction then: take snapshots
-// and advance progress bars here.
+// seed counts "after 1, 2, 20 and 100 iterations") and the unshot fraction then: take snapshots,
+// advance progress bars and write checkpoints here.
 using ProgressiveStepCallback = std::function<void(std::size_t step, double unshot_fraction)>;
+// Asked before every step with the number of steps taken so far; true stops the run there (Ctrl-C).
+using ProgressiveCancelPredicate = std::function<bool(std::size_t steps)>;
 
 struct ProgressiveRunResult {
   std::size_t steps = 0;       // steps taken by this run
@@ -109,18 +115,41 @@ struct ProgressiveRunResult {
   bool converged = false;      // unshot_fraction ≤ threshold
 };
 
+// 000 §6.6: the patch j with the largest unshot flux ΔB_j·A_j shoots its unshot radiosity to the
+// receivers. A receiver q lies on a patch p(q) (a patch is its own one receiver, or, with
+// substructuring (000 §6.7.1), an element of it), receives
+//   ΔRad_q = ρ_q ΔB_j F_qj                                        (000 eqs. 6-12, 6-13)
+// and B_q += ΔRad_q, ΔB_p(q) += ΔRad_q A_q / A_p(q): the unshot radiosity of q's patch grows by the
+// area-weighted mean of its receivers' gains. Where F_qj comes from depends on the receivers:
+//   patches   row j of a square source (F_j→i, a hemicube at the shooter; one row per step,
+//             memory of order n) and reciprocity F_ij = F_ji A_j / A_i (000 eq. 6-5);
+//   elements  column j of the elements' own rows F_qj (element_to_patch: a hemicube at every
+//             element over the patches, computed once). Each such row sums to 1 in a closed scene,
+//             which the shooter's hemicube with reciprocity does not give elements near the
+//             shooter (a furnace then shows ±17%).
+// Flux means ΔB·A summed over the channels. Sequential and deterministic.
 class ProgressiveRefinement {
  public:
-  // Starts from B = ΔB = E. The source must be square; only rows of shooting patches are read.
-  // Throws std::invalid_argument for a bad system or source shape.
+  // Patches receive. Starts from B = ΔB = E. The source must be square; only rows of shooting
+  // patches are read. Throws std::invalid_argument for a bad system or source shape.
   ProgressiveRefinement(RadiositySystem system, FormFactorSource form_factors);
+  // The elements receive (000 §6.7.1). Starts from B_q = E_q and ΔB_j = E_j. element_to_patch
+  // has one row per element and one column per patch. Throws std::invalid_argument for a bad
+  // system, bad elements, or rows of the wrong shape.
+  ProgressiveRefinement(RadiositySystem patches, ElementSystem elements,
+                        std::shared_ptr<const ElementToPatch> element_to_patch);
 
-  std::size_t size() const { return system_.size(); }
+  std::size_t size() const { return system_.size(); }  // patches
   const RadiositySystem& system() const { return system_; }
-  const std::vector<Color>& radiosity() const { return radiosity_; }      // B
-  const std::vector<Color>& unshot_radiosity() const { return unshot_; }  // ΔB
+  const std::vector<Color>& radiosity() const { return radiosity_; }      // B per receiver
+  const std::vector<Color>& unshot_radiosity() const { return unshot_; }  // ΔB per patch
 
-  // Σ_i ΔB_i·A_i and Σ_i E_i·A_i, summed over the channels.
+  // Continues from a saved state (a checkpoint: issue 10) instead of B = ΔB = E: B per receiver,
+  // ΔB per patch and the steps that led there. Throws std::invalid_argument, naming both sizes,
+  // when the state does not fit.
+  void restore(std::vector<Color> radiosity, std::vector<Color> unshot, std::size_t steps);
+
+  // Σ_j ΔB_j·A_j and Σ_j E_j·A_j over the patches, summed over the channels.
   double unshot_flux() const { return unshot_flux_; }
   double emitted_flux() const { return emitted_flux_; }
   // unshot_flux / emitted_flux (0 when nothing is emitted).
@@ -130,46 +159,54 @@ class ProgressiveRefinement {
   // lowest index among equals; size() when nothing is left to shoot.
   std::size_t next_shooter() const { return next_shooter_; }
 
-  // One shot from next_shooter() = j (000 eqs. 6-12, 6-13): reads row j (F_j→i) and, with
-  // ΔB_j cleared first so that light j sends to itself (F_jj) stays unshot, for every patch i
-  //   ΔRad = ρ_i ΔB_j F_ji A_j / A_i;  B_i += ΔRad;  ΔB_i += ΔRad.
-  // Returns false (and does nothing) when no unshot flux is left.
+  // One shot from next_shooter() = j, with ΔB_j cleared first so that light j sends to itself
+  // (F_jj with patch receivers) stays unshot. Returns false (and does nothing) when no unshot
+  // flux is left.
   bool step();
 
-  // Steps until unshot_fraction() ≤ threshold, max_steps steps have been taken by this call, or
-  // nothing is left to shoot. Throws std::invalid_argument for a negative or non-finite threshold.
+  // Steps until unshot_fraction() ≤ threshold, max_steps steps have been taken by this call,
+  // nothing is left to shoot, or cancelled (asked only when another step would follow) says to
+  // stop. Throws std::invalid_argument for a negative or non-finite threshold.
   ProgressiveRunResult run(double threshold = 0.001,
                            std::size_t max_steps = std::numeric_limits<std::size_t>::max(),
-                           const ProgressiveStepCallback& on_step = {});
+                           const ProgressiveStepCallback& on_step = {},
+                           const ProgressiveCancelPredicate& cancelled = {});
 
   // The ambient radiosity of 000 §6.6.2, per channel:
-  //   ρ_avg = Σ_j ρ_j A_j / Σ_j A_j                                 (000 eq. 6-14)
+  //   ρ_avg = Σ_q ρ_q A_q / Σ_j A_j                                 (000 eq. 6-14)
   //   R = 1 + ρ_avg + ρ_avg² + … = 1 / (1 − ρ_avg)                 (000 eq. 6-15)
-  //   B_amb = R Σ_i ΔB_i F^est_i  with  F^est_i = A_i / Σ_k A_k
-  // It vanishes as the solution converges (ΔB → 0). Throws std::domain_error when ρ_avg = 1 in
-  // some channel while unshot radiosity remains there (the series diverges).
+  //   B_amb = R Σ_j ΔB_j F^est_j  with  F^est_j = A_j / Σ_k A_k
+  // It vanishes as the solution converges (ΔB → 0). In a channel where every surface reflects
+  // everything (ρ_avg = 1) the series diverges, and that channel has no ambient term (0).
   Color ambient() const;
 
-  // What to display for patch i: B_i, plus ρ_i·B_amb with the ambient term (000 §6.6.2: for
+  // What to display for receiver q: B_q, plus ρ_q·B_amb with the ambient term (000 §6.6.2: for
   // display only, never fed back into the solution).
-  Color display_radiosity(std::size_t i, bool with_ambient) const;
+  Color display_radiosity(std::size_t q, bool with_ambient) const;
   std::vector<Color> display_radiosities(bool with_ambient) const;
 
-  // Statistics.
+  // Statistics: steps taken (with those restored), rows read from a patch source.
   std::size_t steps() const { return steps_; }
   std::size_t rows_computed() const { return rows_computed_; }
 
  private:
-  // Recomputes the unshot flux, the sums of the ambient term and the next shooter in one pass.
+  // B = E per receiver, ΔB = E per patch, the emitted flux and ρ_avg (000 eq. 6-14).
+  void start();
+  // Recomputes the unshot flux and the next shooter in one pass over the patches.
   void update_totals();
+  // Gives every receiver q its share of `shot`, the unshot radiosity of the shooting patch j,
+  // with F_qj = form_factor_of(q).
+  template <typename FormFactorOf>
+  void shoot(const Color& shot, FormFactorOf form_factor_of);
 
-  RadiositySystem system_;
-  FormFactorSource form_factors_;
+  RadiositySystem system_;  // the patches
+  ElementSystem receivers_;
+  std::optional<FormFactorSource> form_factors_;            // patch receivers: the shooters' rows
+  std::shared_ptr<const ElementToPatch> element_to_patch_;  // element receivers: their own rows
   std::vector<Color> radiosity_, unshot_;
-  std::vector<double> row_;  // the shooter's form factors, reused every step
-  double total_area_ = 0;
-  Color average_reflectance_;   // ρ_avg per channel (000 eq. 6-14)
-  Color area_weighted_unshot_;  // Σ_i ΔB_i A_i / Σ_k A_k per channel
+  std::vector<double> row_;    // the shooter's form factors, reused every step
+  double total_area_ = 0;      // Σ_j A_j over the patches
+  Color average_reflectance_;  // ρ_avg per channel (000 eq. 6-14)
   double unshot_flux_ = 0, emitted_flux_ = 0;
   std::size_t next_shooter_ = 0;
   std::size_t steps_ = 0, rows_computed_ = 0;
@@ -181,26 +218,15 @@ double progressive_convergence_progress(double unshot_fraction, double threshold
 
 // ---- Substructuring (000 §6.7.1) ---------------------------------------------------------
 
-// The elements of a substructured scene: element q lies on patch `patch[q]` and receives light
-// from patches (elements are the smallest units whose radiosity is computed; patches shoot and
-// gather). Index q is the same in every vector.
-struct ElementSystem {
-  std::vector<std::size_t> patch;  // owning patch per element
-  std::vector<double> areas;       // A_q > 0
-  std::vector<Color> reflectance;  // ρ_q, each in [0, 1]
-  std::vector<Color> emission;     // E_q ≥ 0
-
-  std::size_t size() const { return patch.size(); }
-  // Throws std::invalid_argument for vectors of different lengths, a patch index ≥ patch_count,
-  // or a bad area, reflectance or emission. (A patch may have no elements here; the area-weighted
-  // means below need at least one per patch and say so.)
-  void validate(std::size_t patch_count) const;
-};
+// The element rows as a form-factor source (rows = elements, columns = patches) that reads the
+// float matrix in place.
+FormFactorSource element_to_patch_source(std::shared_ptr<const ElementToPatch> element_to_patch);
 
 // Element radiosities from the patch solution (000 eq. 6-16):
 //   B_q = E_q + ρ_q Σ_j F_qj B_j
 // element_to_patch: rows = elements, columns = patches (F_q→j, e.g. a hemicube at the element's
-// centre that sees patches). Reads every element row once. Throws std::invalid_argument for
+// centre that sees patches). Reads every element row once, the elements in parallel (a row
+// provider must be safe to call from several threads). Throws std::invalid_argument for
 // mismatched sizes.
 std::vector<Color> gather_element_radiosities(const ElementSystem& elements,
                                               const FormFactorSource& element_to_patch,

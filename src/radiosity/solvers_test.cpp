@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -703,6 +705,267 @@ TEST(RadiositySolverSubstructuring, PatchSolutionIsTheAreaWeightedMeanOfGathered
   for (std::size_t k = 1; k <= split; ++k) orphan.patch[orphan.size() - k] = n - 2;  // patch n − 1: none
   EXPECT_THROW(patch_form_factors_from_elements(orphan, element_source), std::invalid_argument);
   EXPECT_THROW(patch_radiosities_from_elements(orphan, element_radiosity, n), std::invalid_argument);
+}
+
+TEST(RadiositySolverSubstructuring, FloatElementRowsAreReadAsTheirDoubles) {
+  // The method keeps its element rows as float (ElementToPatch); read in place through
+  // element_to_patch_source they gather (000 eq. 6-16) and average (000 eq. 6-19) exactly as the
+  // same values held as doubles.
+  const SpherePatches sphere = unequal_area_sphere(43);
+  const std::size_t split = 3;
+  ElementSystem elements = sphere_elements(sphere, split, Color(0.5), Color(0.0));
+  Pcg32 rng(43, 9);
+  for (std::size_t q = 0; q < elements.size(); ++q) {
+    elements.reflectance[q] = Color(0.2 + 0.6 * rng.next_double(), 0.5, 0.3);
+    if (q == 4) elements.emission[q] = Color(2.0, 1.0, 0.5);
+  }
+  const auto m = static_cast<Eigen::Index>(elements.size());
+  const auto n = static_cast<Eigen::Index>(sphere.areas.size());
+  auto rows = std::make_shared<ElementToPatch>(m, n);
+  for (Eigen::Index q = 0; q < m; ++q)
+    for (Eigen::Index j = 0; j < n; ++j)
+      (*rows)(q, j) = static_cast<float>(rng.next_double() / static_cast<double>(n));
+  const FormFactorSource as_float = element_to_patch_source(rows);
+  const FormFactorSource as_double(Eigen::MatrixXd(rows->cast<double>()));
+  EXPECT_EQ(as_float.rows(), elements.size());
+  EXPECT_EQ(as_float.columns(), sphere.areas.size());
+  std::vector<Color> patch_radiosity;
+  for (std::size_t i = 0; i < sphere.areas.size(); ++i)
+    patch_radiosity.emplace_back(1.0 + static_cast<double>(i), 2.0, 0.5);
+  const std::vector<Color> from_float = gather_element_radiosities(elements, as_float, patch_radiosity);
+  const std::vector<Color> from_double = gather_element_radiosities(elements, as_double, patch_radiosity);
+  for (std::size_t q = 0; q < elements.size(); ++q)
+    EXPECT_EQ(from_float[q], from_double[q]) << "element " << q;
+  const Eigen::MatrixXd patch_float = patch_form_factors_from_elements(elements, as_float).to_dense();
+  const Eigen::MatrixXd patch_double = patch_form_factors_from_elements(elements, as_double).to_dense();
+  EXPECT_TRUE(patch_float == patch_double);
+  EXPECT_THROW(element_to_patch_source(nullptr), std::invalid_argument);
+}
+
+// ---- Progressive refinement with element receivers (000 §6.6 with §6.7.1) --------------------
+
+// A substructured system: n patches of `split` elements each, ρ per patch, patch 2 (and its
+// elements) emitting, and random element rows F_qj each summing to 0.95 with nothing to the
+// element's own patch (as the method's hemicubes skip it).
+struct SubstructuredSystem {
+  RadiositySystem patches;
+  ElementSystem elements;
+  std::shared_ptr<ElementToPatch> rows;
+};
+
+SubstructuredSystem random_substructured_system(std::size_t n, std::size_t split, uint64_t seed) {
+  Pcg32 rng(seed, 5);
+  SubstructuredSystem result;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Color rho(0.2 + 0.6 * rng.next_double(), 0.2 + 0.6 * rng.next_double(),
+                    0.2 + 0.6 * rng.next_double());
+    const Color emission = i == 2 ? Color(4.0, 3.0, 2.0) : Color(0.0);
+    double area = 0;
+    for (std::size_t k = 0; k < split; ++k) {
+      result.elements.patch.push_back(i);
+      result.elements.areas.push_back(0.2 + rng.next_double());
+      result.elements.reflectance.push_back(rho);
+      result.elements.emission.push_back(emission);
+      area += result.elements.areas.back();
+    }
+    result.patches.areas.push_back(area);
+    result.patches.reflectance.push_back(rho);
+    result.patches.emission.push_back(emission);
+  }
+  const auto m = static_cast<Eigen::Index>(n * split);
+  result.rows = std::make_shared<ElementToPatch>(m, static_cast<Eigen::Index>(n));
+  ElementToPatch& rows = *result.rows;
+  for (Eigen::Index q = 0; q < m; ++q) {
+    for (Eigen::Index j = 0; j < rows.cols(); ++j)
+      rows(q, j) = result.elements.patch[static_cast<std::size_t>(q)] == static_cast<std::size_t>(j)
+                       ? 0.0f
+                       : static_cast<float>(rng.next_double());
+    rows.row(q) *= 0.95f / rows.row(q).sum();
+  }
+  return result;
+}
+
+// Element rows on the sphere: every element sees patch j as A_j / A_sphere.
+std::shared_ptr<ElementToPatch> sphere_element_rows(const SpherePatches& sphere, std::size_t element_count) {
+  auto rows = std::make_shared<ElementToPatch>(static_cast<Eigen::Index>(element_count),
+                                               static_cast<Eigen::Index>(sphere.areas.size()));
+  for (Eigen::Index q = 0; q < rows->rows(); ++q) rows->row(q) = sphere.form_factors.row(0).cast<float>();
+  return rows;
+}
+
+TEST(RadiositySolverProgressiveElements, FurnaceWithinOnePercentAndTheAmbientTermExact) {
+  const SpherePatches sphere = unequal_area_sphere(41);
+  const ElementSystem elements = sphere_elements(sphere, 3, kFurnaceReflectance, kFurnaceEmission);
+  const auto make = [&] {
+    return ProgressiveRefinement(uniform_system(sphere.areas, kFurnaceReflectance, kFurnaceEmission),
+                                 elements, sphere_element_rows(sphere, elements.size()));
+  };
+  ProgressiveRefinement progressive = make();
+  EXPECT_EQ(progressive.size(), sphere.areas.size());
+  EXPECT_EQ(progressive.radiosity().size(), elements.size());
+  EXPECT_EQ(progressive.unshot_radiosity().size(), sphere.areas.size());
+  // As with patches (AmbientIsExactInTheUniformClosedSphere), every step already displays the
+  // converged answer (up to the float rows).
+  for (int step = 0; step < 5; ++step) {
+    expect_furnace(progressive.display_radiosities(true), 1e-6);
+    ASSERT_TRUE(progressive.step());
+  }
+  ProgressiveRefinement converging = make();
+  const ProgressiveRunResult result = converging.run(0.001);
+  EXPECT_TRUE(result.converged);
+  EXPECT_EQ(converging.rows_computed(), 0u);  // the element rows are given: no row is read from a source
+  expect_furnace(converging.radiosity(), 0.01);
+  for (const Color& b : converging.radiosity()) {
+    for (int c = 0; c < 3; ++c) EXPECT_LE(b[c], furnace_radiosity()[c] * (1 + 1e-6));
+  }
+}
+
+TEST(RadiositySolverProgressiveElements, OneElementPerPatchReadingItsOwnRowsMatchesThePatchShooter) {
+  // Reciprocal F (A_i F_ij = A_j F_ji): patch receivers reading the shooter's row F_ji and element
+  // receivers (one per patch) reading their own rows F_ij solve the same system.
+  const PhysicalSystem physical = random_physical_system(40, 6);
+  ElementSystem elements{{}, physical.system.areas, physical.system.reflectance, physical.system.emission};
+  for (std::size_t i = 0; i < physical.system.size(); ++i) elements.patch.push_back(i);
+  ProgressiveRefinement as_patches(physical.system, FormFactorSource(physical.form_factors));
+  ProgressiveRefinement as_elements(physical.system, elements,
+                                    std::make_shared<ElementToPatch>(physical.form_factors.cast<float>()));
+  EXPECT_TRUE(as_patches.run(1e-10).converged);
+  EXPECT_TRUE(as_elements.run(1e-10).converged);
+  EXPECT_LT(largest_relative_difference(as_elements.radiosity(), as_patches.radiosity()), 1e-5);
+  const RadiositySolution direct =
+      solve_gaussian_elimination(physical.system, FormFactorSource(physical.form_factors));
+  EXPECT_LT(largest_relative_difference(as_elements.radiosity(), direct.radiosity), 1e-5);
+}
+
+TEST(RadiositySolverProgressiveElements, ElementGainsFeedTheirPatchsUnshotRadiosityByArea) {
+  // 000 eqs. 6-12, 6-13 with substructuring: the first shot from patch 2 gives element q
+  // ΔRad_q = ρ_q ΔB_2 F_q2, and patch p's ΔB the area-weighted mean Σ_{q∈p} ΔRad_q A_q / A_p.
+  const SubstructuredSystem sub = random_substructured_system(6, 3, 47);
+  ProgressiveRefinement progressive(sub.patches, sub.elements, sub.rows);
+  EXPECT_EQ(progressive.next_shooter(), 2u);
+  ASSERT_TRUE(progressive.step());
+  const Color shot = sub.patches.emission[2];
+  std::vector<Color> patch_gain(sub.patches.size());
+  for (std::size_t q = 0; q < sub.elements.size(); ++q) {
+    const Color gain = sub.elements.reflectance[q] * shot *
+                       static_cast<double>((*sub.rows)(static_cast<Eigen::Index>(q), 2));
+    const Color expected = sub.elements.emission[q] + gain;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(progressive.radiosity()[q][c], expected[c], 1e-15) << "element " << q;
+    patch_gain[sub.elements.patch[q]] +=
+        gain * (sub.elements.areas[q] / sub.patches.areas[sub.elements.patch[q]]);
+  }
+  for (std::size_t p = 0; p < sub.patches.size(); ++p) {
+    // The shooter's own elements see nothing of it: its unshot radiosity is cleared and stays 0.
+    const Color expected = p == 2 ? Color() : patch_gain[p];
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(progressive.unshot_radiosity()[p][c], expected[c], 1e-15) << "patch " << p;
+  }
+}
+
+TEST(RadiositySolverProgressiveElements, AmbientWeighsElementReflectancesByArea) {
+  // 000 §6.6.2 before any step: ΔB = E, so B_amb = (Σ_j E_j A_j / Σ A) / (1 − ρ_avg) with
+  // ρ_avg = Σ_q ρ_q A_q / Σ A over the elements (000 eq. 6-14), elements of a patch differing.
+  SubstructuredSystem sub = random_substructured_system(8, 3, 53);
+  for (std::size_t q = 0; q < sub.elements.size(); ++q)
+    sub.elements.reflectance[q] = Color(0.1 * static_cast<double>(q % 7), 0.4, 0.8);
+  ProgressiveRefinement progressive(sub.patches, sub.elements, sub.rows);
+  double total_area = 0;
+  Color emission_area, reflectance_area;
+  for (std::size_t j = 0; j < sub.patches.size(); ++j) {
+    total_area += sub.patches.areas[j];
+    emission_area += sub.patches.emission[j] * sub.patches.areas[j];
+  }
+  for (std::size_t q = 0; q < sub.elements.size(); ++q)
+    reflectance_area += sub.elements.reflectance[q] * sub.elements.areas[q];
+  const Color ambient = progressive.ambient();
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(ambient[c], emission_area[c] / total_area / (1 - reflectance_area[c] / total_area), 1e-12);
+  for (const std::size_t q : {0u, 5u, 13u}) {
+    EXPECT_EQ(progressive.display_radiosity(q, true),
+              progressive.radiosity()[q] + sub.elements.reflectance[q] * ambient);
+    EXPECT_EQ(progressive.display_radiosity(q, false), progressive.radiosity()[q]);
+  }
+  EXPECT_THROW(progressive.display_radiosity(sub.elements.size(), false), std::out_of_range);
+  // A channel where everything reflects everything has no finite series: no ambient there.
+  for (Color& rho : sub.elements.reflectance) rho.g = 1;
+  const Color perfect_green = ProgressiveRefinement(sub.patches, sub.elements, sub.rows).ambient();
+  EXPECT_EQ(perfect_green.g, 0.0);
+  EXPECT_GT(perfect_green.r, 0.0);
+}
+
+TEST(RadiositySolverProgressiveElements, RestoredStateContinuesBitForBit) {
+  // Issue 10: a checkpoint's state (B per element, ΔB per patch, the steps) continues to exactly
+  // the uninterrupted run.
+  const SubstructuredSystem sub = random_substructured_system(10, 4, 59);
+  ProgressiveRefinement uninterrupted(sub.patches, sub.elements, sub.rows);
+  uninterrupted.run(1e-4);
+  ProgressiveRefinement first(sub.patches, sub.elements, sub.rows);
+  first.run(1e-4, 7);
+  ASSERT_EQ(first.steps(), 7u);
+  ProgressiveRefinement resumed(sub.patches, sub.elements, sub.rows);
+  resumed.restore(first.radiosity(), first.unshot_radiosity(), first.steps());
+  EXPECT_EQ(resumed.steps(), 7u);
+  EXPECT_EQ(resumed.next_shooter(), first.next_shooter());
+  EXPECT_EQ(resumed.unshot_fraction(), first.unshot_fraction());
+  std::vector<std::size_t> steps;
+  resumed.run(1e-4, std::numeric_limits<std::size_t>::max(),
+              [&](std::size_t step, double) { steps.push_back(step); });
+  ASSERT_FALSE(steps.empty());
+  EXPECT_EQ(steps.front(), 8u);  // counted on from the restored steps
+  EXPECT_EQ(resumed.steps(), uninterrupted.steps());
+  for (std::size_t q = 0; q < sub.elements.size(); ++q)
+    EXPECT_EQ(resumed.radiosity()[q], uninterrupted.radiosity()[q]);
+  for (std::size_t p = 0; p < sub.patches.size(); ++p)
+    EXPECT_EQ(resumed.unshot_radiosity()[p], uninterrupted.unshot_radiosity()[p]);
+  // A state of another size is refused.
+  EXPECT_THROW(resumed.restore(std::vector<Color>(3), first.unshot_radiosity(), 0), std::invalid_argument);
+  EXPECT_THROW(resumed.restore(first.radiosity(), std::vector<Color>(3), 0), std::invalid_argument);
+}
+
+TEST(RadiositySolverProgressiveElements, CancelIsAskedBeforeEveryStepWithTheStepsSoFar) {
+  const SubstructuredSystem sub = random_substructured_system(10, 2, 61);
+  ProgressiveRefinement progressive(sub.patches, sub.elements, sub.rows);
+  std::vector<std::size_t> asked;
+  const auto cancel_at_five = [&](std::size_t steps) {
+    asked.push_back(steps);
+    return steps == 5;
+  };
+  const ProgressiveRunResult stopped = progressive.run(1e-9, 1000, {}, cancel_at_five);
+  EXPECT_EQ(stopped.steps, 5u);
+  EXPECT_FALSE(stopped.converged);
+  EXPECT_EQ(asked, (std::vector<std::size_t>{0, 1, 2, 3, 4, 5}));
+  // Not asked when no step would follow: out of steps, or converged.
+  const auto never = [&](std::size_t steps) {
+    asked.push_back(steps);
+    return false;
+  };
+  asked.clear();
+  EXPECT_EQ(progressive.run(1e-9, 0, {}, never).steps, 0u);
+  EXPECT_TRUE(asked.empty());
+  const ProgressiveRunResult converged = progressive.run(0.01, 1000, {}, never);
+  EXPECT_TRUE(converged.converged);
+  EXPECT_EQ(asked.size(), converged.steps);  // once before each step, not after the last
+  EXPECT_EQ(progressive.run(0.01, 1000, {}, never).steps, 0u);
+  EXPECT_EQ(asked.size(), converged.steps);
+}
+
+TEST(RadiositySolverProgressiveElements, RejectsRowsOfTheWrongShapeAndBadElements) {
+  const SubstructuredSystem sub = random_substructured_system(4, 2, 67);
+  EXPECT_THROW(ProgressiveRefinement(sub.patches, sub.elements, nullptr), std::invalid_argument);
+  EXPECT_THROW(ProgressiveRefinement(sub.patches, sub.elements,
+                                     std::make_shared<ElementToPatch>(ElementToPatch::Zero(8, 3))),
+               std::invalid_argument);
+  EXPECT_THROW(ProgressiveRefinement(sub.patches, sub.elements,
+                                     std::make_shared<ElementToPatch>(ElementToPatch::Zero(7, 4))),
+               std::invalid_argument);
+  ElementSystem stray = sub.elements;
+  stray.patch[3] = 4;  // no patch 4
+  EXPECT_THROW(ProgressiveRefinement(sub.patches, stray, sub.rows), std::invalid_argument);
+  ElementSystem flat = sub.elements;
+  flat.areas[1] = 0;
+  EXPECT_THROW(ProgressiveRefinement(sub.patches, flat, sub.rows), std::invalid_argument);
+  EXPECT_NO_THROW(ProgressiveRefinement(sub.patches, sub.elements, sub.rows));
 }
 
 }  // namespace

@@ -1,0 +1,46 @@
+// The radiosity solution as a SolutionField (integrators/solution_field.h) for `candela probe`.
+#include <memory>
+#include <utility>
+
+#include "integrators/radiosity_method.h"
+#include "integrators/solution_field.h"
+#include "radiosity/display.h"
+#include "radiosity/vertex_radiosity.h"
+
+namespace candela {
+namespace {
+
+// The ray-traced display's field: the vertex radiosities interpolated over the element hit.
+class RadiosityField final : public SolutionField {
+ public:
+  explicit RadiosityField(RadiositySolveResult solution)
+      : solution_(std::move(solution)),
+        vertices_(compute_vertex_radiosity(solution_.mesh.elements, solution_.element_radiosity,
+                                           solution_.element_hidden)) {}
+  bool exitance(const Ray& ray, const Intersection& hit, Color& exitance) const override {
+    const uint32_t element = solution_.mesh.element_at(hit.primitive, hit.surface.position);
+    if (element == UINT32_MAX) return false;
+    // Patches are one-sided (000 §6): nothing leaves a patch's back.
+    if (dot(ray.direction, solution_.mesh.elements[element].normal) > 0) {
+      exitance = Color();
+      return true;
+    }
+    exitance = ray_traced_radiosity(solution_, vertices_, element, hit);
+    return true;
+  }
+  Color direct_irradiance(const Vec3&, const Vec3&) const override {
+    return {};
+  }  // emissive surfaces only (000 §6)
+
+ private:
+  RadiositySolveResult solution_;
+  VertexRadiosity vertices_;
+};
+
+}  // namespace
+
+std::unique_ptr<SolutionField> make_radiosity_field(const Scene& scene, bool quiet) {
+  return std::make_unique<RadiosityField>(solve_radiosity(scene, quiet));
+}
+
+}  // namespace candela

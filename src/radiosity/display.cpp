@@ -1,0 +1,160 @@
+#include "radiosity/display.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cstddef>
+
+#include "math/bounds.h"
+#include "scene/scene.h"
+
+namespace candela {
+namespace {
+
+// Barycentric coordinates (weights of corners 0, 1, 2) of a point projected on a triangle's
+// plane, clamped to the triangle.
+std::array<double, 3> barycentric(const std::array<Vec3, 3>& corners, const Vec3& point) {
+  const Vec3 e1 = corners[1] - corners[0], e2 = corners[2] - corners[0], d = point - corners[0];
+  const double d11 = dot(e1, e1), d12 = dot(e1, e2), d22 = dot(e2, e2), d1 = dot(d, e1), d2 = dot(d, e2);
+  const double denominator = d11 * d22 - d12 * d12;
+  double v = denominator > 0 ? (d22 * d1 - d12 * d2) / denominator : 0;
+  double w = denominator > 0 ? (d11 * d2 - d12 * d1) / denominator : 0;
+  v = std::clamp(v, 0.0, 1.0);
+  w = std::clamp(w, 0.0, 1.0 - v);
+  return {1 - v - w, v, w};
+}
+
+// The element mesh (000 Figure 65): each element flat, its edges drawn dark about a pixel wide —
+// where the hit lies closer to an edge than pixel_footprint (the width a pixel covers there).
+Color element_outline(const RadiositySolveResult& solution, uint32_t element, const Intersection& hit,
+                      double pixel_footprint) {
+  const RadiositySurface& surface = solution.mesh.elements[element];
+  const auto weights = barycentric(surface.corners, hit.surface.position);
+  for (int k = 0; k < 3; ++k) {
+    // Weight k is the distance to the opposite edge over the triangle's height there, 2A/|edge|.
+    const double edge = length(surface.corners[(k + 2) % 3] - surface.corners[(k + 1) % 3]);
+    if (edge > 0 && weights[static_cast<std::size_t>(k)] * 2 * surface.area / edge < 0.6 * pixel_footprint)
+      return solution.element_radiosity[element] * 0.15;
+  }
+  return solution.element_radiosity[element];
+}
+
+}  // namespace
+
+// 000 §6.5 and SPEC §10 "a ray-traced view that looks the value up at each hit": a ray through
+// each pixel centre; at its hit, the element under the hit point, and the vertex radiosities of
+// that element interpolated at the point's barycentric coordinates (the same field the Gouraud
+// display shows, without its screen-space interpolation).
+Color ray_traced_radiosity(const RadiositySolveResult& solution, const VertexRadiosity& vertices,
+                           uint32_t element, const Intersection& hit) {
+  const auto weights = barycentric(solution.mesh.elements[element].corners, hit.surface.position);
+  const auto& ids = vertices.element_vertices[element];
+  return vertices.radiosity[ids[0]] * weights[0] + vertices.radiosity[ids[1]] * weights[1] +
+         vertices.radiosity[ids[2]] * weights[2];
+}
+
+SolutionDisplay::SolutionDisplay(const Scene& scene, const RadiositySolveResult& solution,
+                                 RadiosityDisplay display)
+    : scene_(scene), solution_(solution), display_(display) {
+  if (display != RadiosityDisplay::gouraud && display != RadiosityDisplay::ray_traced) return;
+  vertices_ =
+      compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity, solution.element_hidden);
+  if (display != RadiosityDisplay::gouraud) return;
+  // 000 §6.5: the elements drawn as triangles through the scanline rasterizer with their vertex
+  // radiosities as colours, interpolated perspective-correctly (Gouraud). Projected once, here;
+  // draw fills any region from them.
+  const Camera& camera = *scene.camera;
+  const std::vector<RadiositySurface>& elements = solution.mesh.elements;
+  // Depth range: a box around the elements and the eye; near small enough for the closest element.
+  Bounds3 bounds;
+  bounds.extend(camera.eye_position());
+  for (const RadiositySurface& element : elements)
+    for (const Vec3& corner : element.corners) bounds.extend(corner);
+  const double far = 2 * length(bounds.diagonal()) + 1;
+  const Eigen::Matrix4d clip_from_world = camera.view_projection(far * 1e-8, far);
+  triangles_.resize(elements.size());
+  bounds_on_screen_.resize(elements.size());
+  for (std::size_t q = 0; q < elements.size(); ++q) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Vec3& p = elements[q].corners[k];
+      RasterVertex& vertex = triangles_[q][k];
+      vertex.clip = clip_from_world * Eigen::Vector4d(p.x, p.y, p.z, 1);
+      const Color& b = vertices_.radiosity[vertices_.element_vertices[q][k]];
+      vertex.varyings[0] = b.r, vertex.varyings[1] = b.g, vertex.varyings[2] = b.b;
+    }
+    bounds_on_screen_[q] = screen_bounds(triangles_[q][0].clip, triangles_[q][1].clip, triangles_[q][2].clip,
+                                         camera.width(), camera.height());
+  }
+}
+
+void SolutionDisplay::draw(int x0, int y0, Film& film) const {
+  if (display_ == RadiosityDisplay::gouraud) return draw_rasterized(x0, y0, film);
+  draw_ray_cast(x0, y0, film);
+}
+
+// Tiles of 32 × 32 pixels, each drawn by one thread from the same inputs with its own depth
+// buffer, so the image does not depend on the thread count; pixels no element covers show the
+// background.
+void SolutionDisplay::draw_rasterized(int x0, int y0, Film& film) const {
+  const Camera& camera = *scene_.camera;
+  const int region_x1 = x0 + film.width(), region_y1 = y0 + film.height();
+  const int tile = 32;
+  const int tiles_x = (film.width() + tile - 1) / tile, tiles_y = (film.height() + tile - 1) / tile;
+  tbb::parallel_for(0, tiles_x * tiles_y, [&](int index) {
+    const int tile_x0 = x0 + (index % tiles_x) * tile, tile_y0 = y0 + (index / tiles_x) * tile;
+    const int tile_x1 = std::min(tile_x0 + tile, region_x1), tile_y1 = std::min(tile_y0 + tile, region_y1);
+    const int w = tile_x1 - tile_x0;
+    Rasterizer rasterizer(camera.width(), camera.height(), tile_x0, tile_y0, tile_x1, tile_y1);  // cleared
+    std::vector<Color> colors(std::size_t(w) * (tile_y1 - tile_y0));
+    std::vector<bool> covered(colors.size(), false);
+    for (std::size_t q = 0; q < triangles_.size(); ++q) {
+      const ScreenBounds& box = bounds_on_screen_[q];
+      if (box.upper_x < tile_x0 || box.lower_x > tile_x1 || box.upper_y < tile_y0 || box.lower_y > tile_y1)
+        continue;  // misses the tile
+      rasterizer.draw_triangle(
+          triangles_[q][0], triangles_[q][1], triangles_[q][2], 3, [&](const Fragment& fragment) {
+            const std::size_t pixel = std::size_t(fragment.y - tile_y0) * w + (fragment.x - tile_x0);
+            colors[pixel] = {fragment.varyings[0], fragment.varyings[1], fragment.varyings[2]};
+            covered[pixel] = true;
+            return true;
+          });
+    }
+    for (int y = tile_y0; y < tile_y1; ++y)
+      for (int x = tile_x0; x < tile_x1; ++x) {
+        const std::size_t pixel = std::size_t(y - tile_y0) * w + (x - tile_x0);
+        film.at(x - x0, y - y0) =
+            covered[pixel] ? colors[pixel]
+                           : scene_.background_along(camera.generate_ray(x + 0.5, y + 0.5).direction);
+      }
+  });
+}
+
+// By ray casting: the radiosity (view independent: B itself) where each pixel's ray hits.
+void SolutionDisplay::draw_ray_cast(int x0, int y0, Film& film) const {
+  const Camera& camera = *scene_.camera;
+  tbb::parallel_for(y0, y0 + film.height(), [&](int y) {
+    for (int x = x0; x < x0 + film.width(); ++x) {
+      const Ray ray = camera.generate_ray(x + 0.5, y + 0.5);
+      Intersection hit;
+      Color color;
+      const uint32_t element = scene_.intersect(ray, hit)
+                                   ? solution_.mesh.element_at(hit.primitive, hit.surface.position)
+                                   : UINT32_MAX;
+      if (element == UINT32_MAX) {
+        color = scene_.background_along(ray.direction);  // a miss, or off the mesh (as the Gouraud display)
+      } else if (display_ == RadiosityDisplay::ray_traced) {
+        color = ray_traced_radiosity(solution_, vertices_, element, hit);
+      } else if (display_ == RadiosityDisplay::elements) {
+        const Vec3 next = camera.generate_ray(x + 1.5, y + 0.5).direction;
+        color = element_outline(
+            solution_, element, hit,
+            length(hit.surface.position - ray.origin) * length(normalize(next) - normalize(ray.direction)));
+      } else {
+        color = solution_.element_radiosity[element];
+      }
+      film.at(x - x0, y - y0) = color;
+    }
+  });
+}
+
+}  // namespace candela

@@ -1,0 +1,172 @@
+#include "radiosity/form_factor_rows.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <span>
+
+#include "io/byte_stream.h"
+#include "distributed/cluster.h"
+#include "distributed/task_farm.h"
+#include "math/pcg32.h"
+#include "radiosity/delta_form_factors.h"
+#include "radiosity/hemicube_form_factors.h"
+#include "radiosity/ray_cast_form_factors.h"
+#include "scene/scene.h"
+#include "util/cancellation.h"
+
+namespace candela {
+namespace {
+
+// Orients the hemicube around a surface's normal: its first edge (never along the normal).
+Vec3 tangent_of(const RadiositySurface& surface) {
+  return normalize(surface.corners[1] - surface.corners[0]);
+}
+
+// Form factors from the centroids of surfaces[rows[k]] to every target (F_i→j), written as
+// write(k, j, F), in parallel; row k's sum into sums[k]. A surface's row skips the target
+// `skipped(i)`.
+template <typename Sink, typename Skipped>
+void compute_form_factor_rows(const Scene& scene, const RadiositySettings& settings, uint64_t seed,
+                              const std::vector<RadiositySurface>& surfaces, std::span<const uint32_t> rows,
+                              const std::vector<RadiositySurface>& targets,
+                              const FormFactorGeometry& geometry, Skipped skipped, Sink write,
+                              std::span<double> sums) {
+  if (settings.form_factors == RadiosityFormFactors::hemicube) {
+    const auto table = std::make_shared<const DeltaFormFactors>(settings.hemicube_resolution);
+    tbb::enumerable_thread_specific<std::unique_ptr<HemicubeFormFactors>> hemicubes;
+    tbb::parallel_for(std::size_t(0), rows.size(), [&](std::size_t k) {
+      if (cancel_requested()) return;  // Ctrl-C: the rows not begun stay zero
+      auto& hemicube = hemicubes.local();
+      if (!hemicube) hemicube = std::make_unique<HemicubeFormFactors>(table);
+      thread_local std::vector<double> row;
+      const std::size_t i = rows[k];
+      const RadiositySurface& surface = surfaces[i];
+      hemicube->compute_row(geometry, surface.centroid, surface.normal, tangent_of(surface),
+                            static_cast<uint32_t>(skipped(i)), row);
+      for (std::size_t j = 0; j < row.size(); ++j) write(k, j, row[j]);
+      sums[k] = row_sum(row);
+    });
+  } else {
+    std::vector<FormFactorElement> sources;
+    sources.reserve(targets.size());
+    for (const RadiositySurface& target : targets)
+      sources.push_back(FormFactorElement::triangle(target.corners[0], target.corners[1], target.corners[2]));
+    RayCastSettings ray_cast;
+    ray_cast.source_samples_per_side = settings.ray_cast_samples;
+    tbb::parallel_for(std::size_t(0), rows.size(), [&](std::size_t k) {
+      if (cancel_requested()) return;
+      const std::size_t i = rows[k];
+      Pcg32 random(seed, i);  // one stream per row
+      const RadiositySurface& surface = surfaces[i];
+      double sum = 0;
+      for (std::size_t j = 0; j < sources.size(); ++j) {
+        double form_factor = 0;
+        if (j != skipped(i))
+          form_factor = point_to_element_form_factor(surface.centroid, surface.normal, sources[j],
+                                                     &scene.accelerator(), ray_cast, random);
+        write(k, j, form_factor);
+        sum += form_factor;
+      }
+      sums[k] = sum;
+    });
+  }
+}
+
+// The rows `rows` of matrix (and of sums_by_row), on this process or farmed out across the ranks.
+template <typename Matrix, typename Skipped>
+void fill_form_factor_rows(const Scene& scene, const RadiositySettings& settings, uint64_t seed,
+                           const std::vector<RadiositySurface>& surfaces, const std::vector<uint32_t>& rows,
+                           const std::vector<RadiositySurface>& targets, const FormFactorGeometry& geometry,
+                           Skipped skipped, Matrix& matrix, std::vector<double>& sums_by_row,
+                           Cluster* cluster) {
+  using Scalar = typename Matrix::Scalar;
+  std::vector<double> sums(rows.size());
+  if (!cluster || !cluster->distributed()) {
+    compute_form_factor_rows(
+        scene, settings, seed, surfaces, rows, targets, geometry, skipped,
+        [&](std::size_t k, std::size_t j, double value) {
+          matrix(static_cast<Eigen::Index>(rows[k]), static_cast<Eigen::Index>(j)) =
+              static_cast<Scalar>(value);
+        },
+        sums);
+  } else {
+    // Chunks of about 8 a rank's worth of threads, at most 64 rows: enough to balance, few messages.
+    const std::size_t chunk =
+        std::clamp<std::size_t>(rows.size() / (std::size_t(cluster->size()) * 8), 1, 64);
+    const std::size_t tasks = (rows.size() + chunk - 1) / chunk;
+    const std::size_t columns = targets.size();
+    // A chunk's rows and sums as bytes: what a rank sends, and what rank 0 rebuilds from the
+    // matrix to pass on (it keeps no second copy of the rows).
+    const auto chunk_bytes = [&](std::span<const Scalar> values, std::span<const double> chunk_sums) {
+      ByteWriter writer;
+      writer.put_array(values);
+      writer.put_array(chunk_sums);
+      return writer.take();
+    };
+    run_task_farm_everywhere(
+        *cluster, tasks,
+        [&](std::size_t task) {
+          const std::size_t first = task * chunk, count = std::min(chunk, rows.size() - first);
+          std::vector<Scalar> values(count * columns, Scalar(0));
+          std::vector<double> chunk_sums(count);
+          compute_form_factor_rows(
+              scene, settings, seed, surfaces, std::span<const uint32_t>(rows).subspan(first, count), targets,
+              geometry, skipped,
+              [&](std::size_t k, std::size_t j, double value) {
+                values[k * columns + j] = static_cast<Scalar>(value);
+              },
+              chunk_sums);
+          return chunk_bytes(values, chunk_sums);
+        },
+        [&](std::size_t task, std::span<const std::byte> result) {
+          const std::size_t first = task * chunk;
+          ByteReader reader(result);
+          const std::vector<Scalar> values = reader.get_array<Scalar>();
+          const std::vector<double> chunk_sums = reader.get_array<double>();
+          for (std::size_t k = 0; k < chunk_sums.size(); ++k) {
+            for (std::size_t j = 0; j < columns; ++j)
+              matrix(static_cast<Eigen::Index>(rows[first + k]), static_cast<Eigen::Index>(j)) =
+                  values[k * columns + j];
+            sums[first + k] = chunk_sums[k];
+          }
+        },
+        [&](std::size_t task) {
+          const std::size_t first = task * chunk, count = std::min(chunk, rows.size() - first);
+          std::vector<Scalar> values(count * columns);
+          for (std::size_t k = 0; k < count; ++k)
+            for (std::size_t j = 0; j < columns; ++j)
+              values[k * columns + j] =
+                  matrix(static_cast<Eigen::Index>(rows[first + k]), static_cast<Eigen::Index>(j));
+          return chunk_bytes(values, std::span<const double>(sums).subspan(first, count));
+        });
+  }
+  for (std::size_t k = 0; k < rows.size(); ++k) sums_by_row[rows[k]] = sums[k];
+}
+
+}  // namespace
+
+std::vector<uint32_t> all_rows(std::size_t count) {
+  std::vector<uint32_t> rows(count);
+  for (std::size_t i = 0; i < count; ++i) rows[i] = static_cast<uint32_t>(i);
+  return rows;
+}
+
+void fill_patch_form_factor_rows(const Scene& scene, const RadiositySettings& settings, uint64_t seed,
+                                 const RadiosityMesh& mesh, Eigen::MatrixXd& rows, std::vector<double>& sums,
+                                 Cluster* cluster) {
+  fill_form_factor_rows(
+      scene, settings, seed, mesh.patches, all_rows(mesh.patches.size()), mesh.patches, mesh.patch_geometry,
+      [](std::size_t i) { return i; }, rows, sums, cluster);
+}
+
+void fill_element_form_factor_rows(const Scene& scene, const RadiositySettings& settings, uint64_t seed,
+                                   const RadiosityMesh& mesh, const std::vector<uint32_t>& elements,
+                                   ElementToPatch& matrix, std::vector<double>& sums, Cluster* cluster) {
+  fill_form_factor_rows(
+      scene, settings, seed, mesh.elements, elements, mesh.patches, mesh.patch_geometry,
+      [&](std::size_t q) { return std::size_t{mesh.patch_of_element[q]}; }, matrix, sums, cluster);
+}
+
+}  // namespace candela

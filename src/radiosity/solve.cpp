@@ -1,0 +1,269 @@
+#include "radiosity/solve.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include "distributed/cluster.h"
+#include "radiosity/adaptive_subdivision.h"
+#include "radiosity/diagnostics.h"
+#include "radiosity/form_factor_memory.h"
+#include "radiosity/form_factor_rows.h"
+#include "radiosity/solvers.h"
+#include "scene/scene.h"
+#include "util/cancellation.h"
+#include "util/progress.h"
+#include "util/statistics.h"
+
+namespace candela {
+namespace {
+
+// What the elements' radiosities came to.
+struct ElementSolution {
+  std::vector<Color> radiosity;  // B_q: what adaptive subdivision compares
+  std::vector<Color> displayed;  // B_q, plus ρ_q·B_amb with the ambient term (000 §6.6.2)
+  std::size_t steps = 0;
+  double unshot_fraction = 0;
+  bool converged = true;
+};
+
+// 000 §6.6 with substructuring (000 §6.7.1): patches shoot, elements receive, from B = E or the
+// checkpoint's state, with the progress bar, checkpoints and Ctrl-C.
+ElementSolution shoot_progressively(const RadiosityMesh& mesh, const ElementRows& rows,
+                                    const RadiositySettings& settings, ProgressReporter& progress,
+                                    ProgressiveCheckpointing* checkpointing, Cluster* cluster) {
+  ProgressiveRefinement refinement(mesh.patch_system(), mesh.element_system(), rows.form_factors);
+  if (checkpointing && checkpointing->resume) {
+    const RadiosityCheckpoint& state = *checkpointing->resume;
+    if (state.radiosity.size() != mesh.elements.size() || state.unshot.size() != mesh.patches.size())
+      throw std::invalid_argument(fmt::format(
+          "the checkpoint holds {} elements and {} patches, this mesh {} and {}", state.radiosity.size(),
+          state.unshot.size(), mesh.elements.size(), mesh.patches.size()));
+    refinement.restore(state.radiosity, state.unshot, static_cast<std::size_t>(state.steps));
+  }
+  Stopwatch since_checkpoint;
+  const auto save = [&] {
+    if (!checkpointing || checkpointing->path.empty()) return;  // (rank 0 alone is given a checkpoint path)
+    write_radiosity_checkpoint(checkpointing->path, {checkpointing->fingerprint, refinement.steps(),
+                                                     refinement.radiosity(), refinement.unshot_radiosity()});
+    ++checkpointing->checkpoints_written;
+    since_checkpoint = Stopwatch();
+  };
+  uint64_t progress_done = 0;
+  const auto on_step = [&](std::size_t steps, double fraction) {
+    const auto done =
+        static_cast<uint64_t>(1000 * progressive_convergence_progress(fraction, settings.threshold));
+    progress.set_detail(fmt::format("unshot {:.3g}% after {} steps", 100 * fraction, steps));
+    if (done > progress_done) progress.advance(done - progress_done), progress_done = done;
+    if (checkpointing && !checkpointing->path.empty() &&
+        since_checkpoint.seconds() >= checkpointing->interval)
+      save();
+  };
+  // Ctrl-C: the solution so far (several ranks agree every 256 shots, so they shoot alike; a shot
+  // takes microseconds, an agreement between nodes tens of them).
+  const auto cancelled = [&](std::size_t steps) {
+    return cluster ? steps % 256 == 0 && cancelled_anywhere(*cluster) : cancel_requested();
+  };
+  const auto max_steps = static_cast<std::size_t>(settings.max_steps);  // with the steps resumed
+  const ProgressiveRunResult run =
+      refinement.run(settings.threshold, max_steps > refinement.steps() ? max_steps - refinement.steps() : 0,
+                     on_step, cancelled);
+  save();  // the final state: a later run goes on from it (after Ctrl-C, or with a lower threshold)
+  ElementSolution solution;
+  solution.radiosity = refinement.radiosity();
+  solution.displayed = refinement.display_radiosities(settings.ambient);
+  solution.steps = refinement.steps();
+  solution.unshot_fraction = run.unshot_fraction;
+  solution.converged = run.converged;
+  return solution;
+}
+
+}  // namespace
+
+RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings& settings,
+                                     const RadiositySolveOptions& options) {
+  Cluster* cluster = options.cluster;
+  RadiositySolveResult result;
+  Stopwatch mesh_time;
+  RadiosityMeshSettings mesh_settings;
+  mesh_settings.segments = settings.segments;
+  mesh_settings.patch_size = settings.patch_size;
+  mesh_settings.element_size = settings.element_size;
+  mesh_settings.split_at_contacts = settings.split_at_contacts;
+  const bool progressive = settings.solver == RadiositySolver::progressive;
+  // Whether Ctrl-C arrived; with several ranks, whether it reached any (a collective), so that all
+  // of them take the same branch.
+  const auto stopped = [&] { return cancelled_anywhere(cluster); };
+  const std::string fewer =
+      "raise radiosity.patch_size or radiosity.element_size (fewer patches and elements)";
+  {
+    // Refused before the mesh is built (it can take gigabytes itself): the fewest patches and
+    // elements these sizes can give, and what their form factors would take.
+    const RadiosityMeshEstimate least = estimate_radiosity_mesh(scene, mesh_settings);
+    const double element_bytes = least.elements * least.patches * sizeof(float);
+    const double patch_bytes = progressive ? 0.0
+                                           : least.patches * least.patches * sizeof(double) *
+                                                 (settings.solver == RadiositySolver::gaussian ? 3 : 1);
+    const double bytes = std::min(element_bytes + patch_bytes, 1.8e19);
+    check_form_factor_memory(
+        static_cast<uint64_t>(bytes), settings,
+        fmt::format("a mesh of at least {:.0f} patches and {:.0f} elements", least.patches, least.elements),
+        progressive ? fewer : "use radiosity.solver \"progressive\", or " + fewer);
+  }
+  result.mesh = build_radiosity_mesh(scene, mesh_settings);
+  result.mesh_seconds = mesh_time.seconds();
+  Stopwatch solve_time;
+  double form_factor_seconds = 0;  // of solve_seconds, the time spent computing form factors
+  RadiosityMesh& mesh = result.mesh;
+  const std::size_t patch_count = mesh.patches.size();
+
+  // The patch system first (direct solvers), its memory checked before anything is computed.
+  std::vector<double> patch_sums;
+  Reciprocity reciprocity;
+  std::vector<Color> patch_radiosity;
+  std::size_t patch_steps = 0;
+  bool patch_converged = true;
+  if (!progressive) {
+    const uint64_t solver_bytes =
+        settings.solver == RadiositySolver::gaussian ? gaussian_elimination_memory_bytes(patch_count) : 0;
+    check_form_factor_memory(
+        static_cast<uint64_t>(patch_count) * patch_count * sizeof(double) + solver_bytes +
+            element_rows_bytes(mesh.elements.size(), patch_count),
+        settings,
+        fmt::format("the full matrix of {} patches ({} elements)", patch_count, mesh.elements.size()),
+        "use radiosity.solver \"progressive\", or " + fewer);
+    patch_sums.resize(patch_count);
+    Eigen::MatrixXd patch_rows(static_cast<Eigen::Index>(patch_count),
+                               static_cast<Eigen::Index>(patch_count));
+    {
+      Stopwatch form_factor_time;
+      fill_patch_form_factor_rows(scene, settings, options.seed, mesh, patch_rows, patch_sums, cluster);
+      form_factor_seconds += form_factor_time.seconds();
+    }
+    reciprocity = measure_reciprocity(mesh.patches, patch_rows);
+    if (stopped()) {  // Ctrl-C: not solved, B = E
+      for (const RadiositySurface& patch : mesh.patches) patch_radiosity.push_back(patch.emission);
+      patch_converged = false;
+    } else {
+      const RadiositySystem patches = mesh.patch_system();
+      const FormFactorSource patch_source(std::move(patch_rows));
+      const RadiositySolution solution =
+          settings.solver == RadiositySolver::gaussian
+              ? solve_gaussian_elimination(patches, patch_source, form_factor_memory_limit(settings))
+              : solve_gauss_seidel(patches, patch_source, settings.threshold,
+                                   static_cast<std::size_t>(settings.max_steps));
+      patch_radiosity = solution.radiosity;
+      patch_steps = solution.iterations;
+      patch_converged = solution.converged;
+    }
+  }
+
+  // The element rows, then solutions and adaptive subdivision (000 §6.7.2) until no neighbours
+  // differ by more than the threshold.
+  check_form_factor_memory(
+      element_rows_bytes(mesh.elements.size(), patch_count), settings,
+      fmt::format("the form factors of {} elements to {} patches", mesh.elements.size(), patch_count), fewer);
+  ElementRows rows{std::make_shared<ElementToPatch>(static_cast<Eigen::Index>(mesh.elements.size()),
+                                                    static_cast<Eigen::Index>(patch_count)),
+                   std::vector<double>(mesh.elements.size())};
+  {
+    Stopwatch form_factor_time;
+    fill_element_form_factor_rows(scene, settings, options.seed, mesh, all_rows(mesh.elements.size()),
+                                  *rows.form_factors, rows.sums, cluster);
+    form_factor_seconds += form_factor_time.seconds();
+  }
+  // Ctrl-C before every row was computed: the rows not begun are zero.
+  const bool form_factors_complete = !stopped();
+  std::size_t form_factor_rows = (progressive ? 0 : patch_count) + mesh.elements.size();
+  const double min_element_size =
+      settings.min_element_size > 0 ? settings.min_element_size : mesh.element_size / 8;
+  ProgressReporter progress("radiosity", 1000, "per mille of convergence", options.quiet);
+  ElementSolution solution;
+  for (;;) {
+    if (progressive) {
+      solution = shoot_progressively(mesh, rows, settings, progress, options.checkpointing, cluster);
+    } else {
+      solution.radiosity = gather_element_radiosities(
+          mesh.element_system(), element_to_patch_source(rows.form_factors), patch_radiosity);
+      solution.displayed = solution.radiosity;
+      solution.steps = patch_steps;
+      solution.converged = patch_converged;
+    }
+    if (!(settings.subdivision_threshold > 0) || stopped()) break;
+    const std::vector<bool> split = elements_to_split(mesh, solution.radiosity, rows.sums,
+                                                      settings.subdivision_threshold, min_element_size);
+    if (std::find(split.begin(), split.end(), true) == split.end()) break;
+    const std::vector<uint32_t> new_rows = split_elements_keeping_rows(scene, settings, split, mesh, rows);
+    {
+      Stopwatch form_factor_time;
+      fill_element_form_factor_rows(scene, settings, options.seed, mesh, new_rows, *rows.form_factors,
+                                    rows.sums, cluster);
+      form_factor_seconds += form_factor_time.seconds();
+    }
+    form_factor_rows += new_rows.size();
+    ++result.subdivision_passes;
+  }
+  progress.finish();
+
+  if (progressive && patch_count <= 2048) {  // P² doubles: 32 MiB at most
+    // Reciprocity of the substructured patch form factors F_ij = Σ_{q∈i} A_q F_qj / A_i (000 eq. 6-19).
+    reciprocity = measure_reciprocity(
+        mesh.patches,
+        patch_form_factors_from_elements(mesh.element_system(), element_to_patch_source(rows.form_factors))
+            .to_dense());
+  }
+  result.element_radiosity = std::move(solution.displayed);
+  result.element_hidden.resize(mesh.elements.size());
+  for (std::size_t q = 0; q < mesh.elements.size(); ++q)
+    result.element_hidden[q] = rows.sums[q] < kHiddenRowSum;
+  result.steps = solution.steps;
+  result.unshot_fraction = solution.unshot_fraction;
+  result.converged = solution.converged;
+  result.form_factor_rows = form_factor_rows;
+  result.form_factors = (progressive ? 0 : patch_count * patch_count) +
+                        (form_factor_rows - (progressive ? 0 : patch_count)) * patch_count;
+  result.form_factor_bytes = element_rows_bytes(mesh.elements.size(), patch_count);
+  result.solve_seconds = solve_time.seconds();
+  if (options.facts) {
+    nlohmann::json& out = *options.facts;
+    out = {{"solver", kRadiositySolverNames.name(settings.solver)},
+           {"form_factors", kRadiosityFormFactorNames.name(settings.form_factors)},
+           {"hemicube_resolution", settings.hemicube_resolution},
+           {"patches", patch_count},
+           {"elements", mesh.elements.size()},
+           {"patch_size", mesh.patch_size},
+           {"element_size", mesh.element_size},
+           {"steps", result.steps},
+           {"converged", result.converged},
+           {"unshot_fraction", result.unshot_fraction},
+           {"subdivision_passes", result.subdivision_passes},
+           {"form_factor_rows", result.form_factor_rows},
+           {"form_factors_computed", result.form_factors},
+           {"form_factors_per_second",
+            form_factor_seconds > 0 ? static_cast<double>(result.form_factors) / form_factor_seconds : 0.0},
+           {"form_factor_memory_mib", static_cast<double>(result.form_factor_bytes) / 1048576.0},
+           {"mesh_seconds", result.mesh_seconds},
+           {"solve_seconds", result.solve_seconds},
+           {"form_factor_seconds", form_factor_seconds}};
+    if (reciprocity.measured) {  // progressive: up to 2,048 patches
+      out["reciprocity_error"] = reciprocity.mean_error;
+      out["reciprocity_error_max"] = reciprocity.max_error;
+    }
+    out["row_sum"] = row_sum_facts(progressive ? rows.sums : patch_sums);
+    if (!progressive) out["element_row_sum"] = row_sum_facts(rows.sums);
+    if (cancel_requested()) {
+      out["interrupted"] = true;
+      out["completed"] =
+          !form_factors_complete ? std::string("form factors not finished")
+          : progressive ? fmt::format("{} shots, unshot {:.3g}%", result.steps, 100 * result.unshot_fraction)
+                        : fmt::format("{} sweeps", result.steps);
+    }
+  }
+  return result;
+}
+
+}  // namespace candela
