@@ -14,18 +14,17 @@
 // elements, steps, unshot fraction, form factors computed and per second, their memory, and the
 // process's peak resident memory; SCENE defaults to the built-in default scene, as for render.
 #include <fmt/format.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
-#include <functional>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <optional>
 #include <string>
 #include <thread>
-
-#include <tbb/global_control.h>
 
 #include "bench/bench_runner.h"
 #include "bench/raster_bench.h"
@@ -174,12 +173,14 @@ std::vector<BenchMesh> raster_meshes(const BenchCommandOptions& options) {
   if (paths.empty() && !options.sphere && !options.terrain) {
     std::error_code error;
     for (const auto& entry : std::filesystem::directory_iterator(kDefaultModelDirectory, error))
-      if (entry.is_regular_file() && entry.path().extension() == ".obj") paths.push_back(entry.path().string());
+      if (entry.is_regular_file() && entry.path().extension() == ".obj")
+        paths.push_back(entry.path().string());
     std::sort(paths.begin(), paths.end());
     if (paths.empty())
-      throw BadArgument(fmt::format("--raster: no MESH given and no .obj file in {} (run from the repository root "
-                                    "or pass the meshes)",
-                                    kDefaultModelDirectory));
+      throw BadArgument(
+          fmt::format("--raster: no MESH given and no .obj file in {} (run from the repository root "
+                      "or pass the meshes)",
+                      kDefaultModelDirectory));
   }
   for (const std::string& path : paths) {
     meshes.push_back(read_bench_obj(path));
@@ -202,10 +203,12 @@ std::vector<BenchMesh> raster_meshes(const BenchCommandOptions& options) {
 
 int run_raster_bench_command(const BenchCommandOptions& options) {
   // The options of the ray sets do not apply to the rasterizer.
-  if (!options.accelerators.empty() || !options.threads.empty() || !options.eye.empty() || !options.lookat.empty() ||
-      !options.light.empty() || options.rays != 0 || !options.dump_directory.empty())
-    throw BadArgument("--raster takes MESH files, --sphere, --terrain, --width, --height, --fov, --repeat, "
-                      "--min-time, --json and --quiet only");
+  if (!options.accelerators.empty() || !options.threads.empty() || !options.eye.empty() ||
+      !options.lookat.empty() || !options.light.empty() || options.rays != 0 ||
+      !options.dump_directory.empty())
+    throw BadArgument(
+        "--raster takes MESH files, --sphere, --terrain, --width, --height, --fov, --repeat, "
+        "--min-time, --json and --quiet only");
   RasterBenchOptions raster;
   if (options.width_given) raster.width = options.width;
   if (options.height_given) raster.height = options.height;
@@ -217,7 +220,8 @@ int run_raster_bench_command(const BenchCommandOptions& options) {
   if (options.repeat < 1) throw BadArgument("--repeat must be >= 1");
   raster.repeat = options.repeat;
   if (options.min_time_given) {
-    if (!(options.min_time >= 0) || !std::isfinite(options.min_time)) throw BadArgument("--min-time must be >= 0");
+    if (!(options.min_time >= 0) || !std::isfinite(options.min_time))
+      throw BadArgument("--min-time must be >= 0");
     raster.min_seconds = options.min_time;
   }
   const auto log = [&](const std::string& line) {
@@ -247,14 +251,15 @@ nlohmann::json machine_facts() {
 
 // --radiosity and --meshless: solve one scene file once per thread count, a table row and the
 // solver's facts per run. run_one(scene, facts) solves and returns the table row's cells.
-int run_scene_solve_bench(const BenchCommandOptions& options, const std::string& mode, const std::string& header,
+int run_scene_solve_bench(const BenchCommandOptions& options, const std::string& mode,
+                          const std::string& header,
                           const std::function<std::string(const Scene&, nlohmann::json&)>& run_one) {
   if (options.raster || (options.radiosity && options.meshless))
     throw BadArgument("give one of --raster, --radiosity and --meshless");
-  if (!options.accelerators.empty() || !options.eye.empty() || !options.lookat.empty() || !options.light.empty() ||
-      options.rays != 0 || !options.dump_directory.empty() || options.sphere || options.terrain ||
-      options.width_given || options.height_given || options.min_time_given || options.fov_given ||
-      options.repeat_given || options.seed_given)
+  if (!options.accelerators.empty() || !options.eye.empty() || !options.lookat.empty() ||
+      !options.light.empty() || options.rays != 0 || !options.dump_directory.empty() || options.sphere ||
+      options.terrain || options.width_given || options.height_given || options.min_time_given ||
+      options.fov_given || options.repeat_given || options.seed_given)
     throw BadArgument("--" + mode + " takes SCENE, --set, --threads, --json and --quiet only");
   if (options.inputs.size() > 1) throw BadArgument("--" + mode + " takes at most one SCENE");
   const std::string scene_path = options.inputs.empty() ? std::string() : options.inputs.front();
@@ -270,14 +275,16 @@ int run_scene_solve_bench(const BenchCommandOptions& options, const std::string&
     thread_counts.push_back(
         static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
 
-  const std::unique_ptr<Scene> scene =
-      scene_path.empty() ? load_default_scene(options.overrides) : load_scene_file(scene_path, options.overrides);
+  const std::unique_ptr<Scene> scene = scene_path.empty() ? load_default_scene(options.overrides)
+                                                          : load_scene_file(scene_path, options.overrides);
   for (const auto& warning : scene->warnings) std::cerr << "candela: warning: " << warning << "\n";
   nlohmann::json runs = nlohmann::json::array();
-  std::cout << fmt::format("scene: {}\n", scene_path.empty() ? "(built-in default)" : scene_path) << header << "\n";
+  std::cout << fmt::format("scene: {}\n", scene_path.empty() ? "(built-in default)" : scene_path) << header
+            << "\n";
   for (const int threads : thread_counts) {
     if (!options.quiet) std::cerr << fmt::format("candela: bench: {}, {} thread(s)\n", mode, threads);
-    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads));
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
+                                    static_cast<std::size_t>(threads));
     nlohmann::json facts;
     Stopwatch total;
     const std::string row = run_one(*scene, facts);
@@ -298,9 +305,10 @@ int run_scene_solve_bench(const BenchCommandOptions& options, const std::string&
 }
 
 int run_radiosity_bench_command(const BenchCommandOptions& options) {
-  const std::string header = fmt::format("{:>7} {:>8} {:>9} {:>7} {:>10} {:>9} {:>9} {:>9} {:>13} {:>10} {:>9} {:>9}",
-                                         "threads", "patches", "elements", "steps", "unshot", "converged", "mesh s",
-                                         "solve s", "form factors", "FF/s", "FF MiB", "peak MiB");
+  const std::string header =
+      fmt::format("{:>7} {:>8} {:>9} {:>7} {:>10} {:>9} {:>9} {:>9} {:>13} {:>10} {:>9} {:>9}", "threads",
+                  "patches", "elements", "steps", "unshot", "converged", "mesh s", "solve s", "form factors",
+                  "FF/s", "FF MiB", "peak MiB");
   return run_scene_solve_bench(options, "radiosity", header, [&](const Scene& scene, nlohmann::json& facts) {
     const RadiositySolveResult result = solve_radiosity(scene, options.quiet, &facts);
     return fmt::format("{:>8} {:>9} {:>7} {:>9.4f}% {:>9} {:>9.3f} {:>9.3f} {:>13} {:>10.4g} {:>9.1f}",
@@ -314,17 +322,17 @@ int run_radiosity_bench_command(const BenchCommandOptions& options) {
 // Issue 8: the meshless method's sites, transfer matrix (entries, density, memory, time) and
 // solution time, to see how they grow with the number of sites.
 int run_meshless_bench_command(const BenchCommandOptions& options) {
-  const std::string header = fmt::format("{:>7} {:>7} {:>12} {:>8} {:>9} {:>10} {:>10} {:>10} {:>6} {:>9} {:>9}",
-                                         "threads", "sites", "entries", "density", "S MiB", "sample s", "areas s",
-                                         "S s", "iters", "solve s", "peak MiB");
+  const std::string header = fmt::format(
+      "{:>7} {:>7} {:>12} {:>8} {:>9} {:>10} {:>10} {:>10} {:>6} {:>9} {:>9}", "threads", "sites", "entries",
+      "density", "S MiB", "sample s", "areas s", "S s", "iters", "solve s", "peak MiB");
   return run_scene_solve_bench(options, "meshless", header, [&](const Scene& scene, nlohmann::json& facts) {
     const MeshlessSolution solution =
         solve_meshless(scene, read_meshless_settings(scene.plugin_settings.node("meshless")), &facts);
     return fmt::format("{:>7} {:>12} {:>8.4f} {:>9.1f} {:>10.3f} {:>10.3f} {:>10.3f} {:>6} {:>9.3f}",
                        solution.sites.sites.size(), solution.matrix.entries(), solution.matrix.density(),
                        solution.matrix.bytes() / 1048576.0, facts.value("sampling_seconds", 0.0),
-                       facts.value("area_seconds", 0.0), solution.matrix.seconds, solution.transfer.iterations,
-                       facts.value("lighting_seconds", 0.0));
+                       facts.value("area_seconds", 0.0), solution.matrix.seconds,
+                       solution.transfer.iterations, facts.value("lighting_seconds", 0.0));
   });
 }
 
@@ -343,7 +351,8 @@ int run_bench_command(const BenchCommandOptions& given) {
   if (is_scene_file(options.mesh_path)) {
     // A scene: its primitives as the loader makes them, rays from the bounds of its bounded
     // shapes; Embree's native triangle mode does not apply.
-    if (options.sphere || options.terrain) throw BadArgument("give exactly one of MESH, --sphere N or --terrain N");
+    if (options.sphere || options.terrain)
+      throw BadArgument("give exactly one of MESH, --sphere N or --terrain N");
     const std::unique_ptr<Scene> scene = load_scene_file(options.mesh_path);
     if (bench.accelerators.empty())
       for (const std::string& name : bench_accelerator_names())
@@ -351,8 +360,8 @@ int run_bench_command(const BenchCommandOptions& given) {
     if (std::find(bench.accelerators.begin(), bench.accelerators.end(), "embree") != bench.accelerators.end())
       throw BadArgument("--accel embree measures Embree's own triangles: use embree-exact for a scene");
     const BenchScene primitives(scene->primitives);
-    const BenchReport report =
-        run_bench(BenchInput{options.mesh_path, scene->bounds(), scene->primitives.size(), &primitives}, bench, log);
+    const BenchReport report = run_bench(
+        BenchInput{options.mesh_path, scene->bounds(), scene->primitives.size(), &primitives}, bench, log);
     return finish_bench(report, options);
   }
   const BenchMesh mesh = load_mesh(options);
@@ -372,19 +381,25 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<BenchCommandOptions>();
   CLI::App* command =
       app.add_subcommand("bench", "Ray-set throughput and checksums per accelerator (shared/BENCH-RAYS.md)");
-  command->add_option("mesh", options->inputs,
-                      "Wavefront OBJ mesh (only v and f lines are read) or a scene file (.json); with --raster, "
-                      "any number of meshes (default: every .obj of ../shared/models)");
-  command->add_flag("--raster", options->raster,
-                    "Measure the scanline rasterizer (item buffer, depth, Gouraud, Phong passes) instead of rays");
-  command->add_flag("--meshless", options->meshless,
-                    "Sample, build and solve a scene's meshless radiosity (SCENE, default: the built-in scene) once per "
-                    "--threads count; sites, transfer entries, density, memory and times");
-  command->add_flag("--radiosity", options->radiosity,
-                    "Mesh and solve a scene's radiosity (SCENE, default: the built-in scene) once per --threads "
-                    "value and report steps, form factors per second and memory");
+  command->add_option(
+      "mesh", options->inputs,
+      "Wavefront OBJ mesh (only v and f lines are read) or a scene file (.json); with --raster, "
+      "any number of meshes (default: every .obj of ../shared/models)");
+  command->add_flag(
+      "--raster", options->raster,
+      "Measure the scanline rasterizer (item buffer, depth, Gouraud, Phong passes) instead of rays");
+  command->add_flag(
+      "--meshless", options->meshless,
+      "Sample, build and solve a scene's meshless radiosity (SCENE, default: the built-in scene) once per "
+      "--threads count; sites, transfer entries, density, memory and times");
+  command->add_flag(
+      "--radiosity", options->radiosity,
+      "Mesh and solve a scene's radiosity (SCENE, default: the built-in scene) once per --threads "
+      "value and report steps, form factors per second and memory");
   // One key=value per --set, as for render.
-  command->add_option("--set", options->overrides, "--radiosity: override a scene setting, e.g. radiosity.patch_size=1")
+  command
+      ->add_option("--set", options->overrides,
+                   "--radiosity: override a scene setting, e.g. radiosity.patch_size=1")
       ->expected(1)
       ->allow_extra_args(false)
       ->take_all();
@@ -395,8 +410,10 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
                    "Accelerators (default: every registered one); embree = Embree's own triangle test, "
                    "embree-exact = Embree with Candela's tests")
       ->expected(1, -1);
-  command->add_option("--threads", options->threads,
-                      "Thread counts to run (default: 1 2; --radiosity: every core)")->expected(1, -1);
+  command
+      ->add_option("--threads", options->threads,
+                   "Thread counts to run (default: 1 2; --radiosity: every core)")
+      ->expected(1, -1);
   command->add_option("--json", options->json_path, "Write the results as JSON");
   command->add_option("--seed", options->seed, "Seed of the incoherent rays (default 1)");
   command->add_option("--eye", options->eye, "Camera position (default: from the bounds)")->expected(3);
@@ -405,13 +422,16 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   command->add_option("--fov", options->fov, "Vertical field of view in degrees (default 45)");
   command->add_option("--light", options->light, "Point light of the shadow rays (default: from the bounds)")
       ->expected(3);
-  command->add_option("--width", options->width, "Primary rays per row (default 1024; --raster: image width, 1024)");
-  command->add_option("--height", options->height, "Rows of primary rays (default 1024; --raster: image height, 768)");
+  command->add_option("--width", options->width,
+                      "Primary rays per row (default 1024; --raster: image width, 1024)");
+  command->add_option("--height", options->height,
+                      "Rows of primary rays (default 1024; --raster: image height, 768)");
   command->add_option("--rays", options->rays, "Incoherent rays (default: width x height)");
   command->add_option("--repeat", options->repeat, "Timed repetitions (default 3)");
-  command->add_option("--min-time", options->min_time,
-                      "Stop repeating once the timed repetitions took this many seconds (default 0.5; --raster: "
-                      "repeat until they took at least this long, default 1)");
+  command->add_option(
+      "--min-time", options->min_time,
+      "Stop repeating once the timed repetitions took this many seconds (default 0.5; --raster: "
+      "repeat until they took at least this long, default 1)");
   command->add_option("--dump", options->dump_directory, "Write the ray sets to this directory");
   command->add_flag("-q,--quiet", options->quiet, "No progress lines");
   command->callback([options, command, &run]() {

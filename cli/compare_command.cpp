@@ -17,9 +17,9 @@
 #include <string>
 
 #include "commands.h"
-#include "output_paths.h"
 #include "io/false_color.h"
 #include "io/image_writer.h"
+#include "output_paths.h"
 #include "util/atomic_file.h"
 #include "validate/image_comparison.h"
 
@@ -101,19 +101,20 @@ int run_compare(const CompareOptions& options) {
   const Film& a = image.film;
   const Film& b = reference.film;
   if (a.width() != b.width() || a.height() != b.height())
-    throw BadArgument(fmt::format("the images differ in size: A {} is {}x{}, B {} is {}x{}", options.image, a.width(),
-                                  a.height(), options.reference, b.width(), b.height()));
+    throw BadArgument(fmt::format("the images differ in size: A {} is {}x{}, B {} is {}x{}", options.image,
+                                  a.width(), a.height(), options.reference, b.width(), b.height()));
   std::optional<LinearImage> mask_image;
   std::vector<uint8_t> mask;
   if (!options.mask.empty()) {
     mask_image = read(options.mask, "--mask");
     if (mask_image->film.width() != a.width() || mask_image->film.height() != a.height())
-      throw BadArgument(fmt::format("--mask {} is {}x{}, the images {}x{}", options.mask, mask_image->film.width(),
-                                    mask_image->film.height(), a.width(), a.height()));
+      throw BadArgument(fmt::format("--mask {} is {}x{}, the images {}x{}", options.mask,
+                                    mask_image->film.width(), mask_image->film.height(), a.width(),
+                                    a.height()));
     mask = mask_from_image(mask_image->film);
     if (std::find(mask.begin(), mask.end(), uint8_t(1)) == mask.end())
-      throw BadArgument(fmt::format("--mask {} excludes every pixel (none has luminance above {})", options.mask,
-                                    kMaskThreshold));
+      throw BadArgument(fmt::format("--mask {} excludes every pixel (none has luminance above {})",
+                                    options.mask, kMaskThreshold));
   }
   const std::vector<uint8_t>* mask_pointer = options.mask.empty() ? nullptr : &mask;
   const ImageComparison result = compare_images(a, b, mask_pointer);
@@ -132,20 +133,23 @@ int run_compare(const CompareOptions& options) {
     table += fmt::format("  {:<22} {:>12}{}\n", name, value, note.empty() ? "" : "  " + note);
   };
   row("RMSE", number(result.rmse), "");
-  row("relative MSE", number(result.relative_mse), fmt::format("(a-b)^2/(b^2+{}), B the reference", kRelativeMseEpsilon));
+  row("relative MSE", number(result.relative_mse),
+      fmt::format("(a-b)^2/(b^2+{}), B the reference", kRelativeMseEpsilon));
   row("PSNR (dB)", number(result.psnr),
       fmt::format("peak {} = B's largest value{}", number(result.peak),
                   reference.srgb_decoded ? " (linear; 1 for a white 8-bit pixel)" : ""));
   row("mean absolute error", number(result.mean_absolute_error), "");
   row("max absolute error", number(result.max_absolute_error),
-      fmt::format("at x {}, y {}, {}", result.max_error_x, result.max_error_y, channels[result.max_error_channel]));
+      fmt::format("at x {}, y {}, {}", result.max_error_x, result.max_error_y,
+                  channels[result.max_error_channel]));
   row("mean luminance A", number(result.mean_luminance), "Rec. 709 Y");
   row("mean luminance B", number(result.mean_luminance_reference), "");
   row("luminance ratio A/B", number(result.luminance_ratio), "");
   if (diff)
     table += fmt::format("difference   {}: {}, {} color map, scale {} .. {} (color bar below the image)\n",
-                         options.diff, diff->description, diff->map == ColorMap::viridis ? "viridis" : "blue-white-red",
-                         number(diff->low), number(diff->high));
+                         options.diff, diff->description,
+                         diff->map == ColorMap::viridis ? "viridis" : "blue-white-red", number(diff->low),
+                         number(diff->high));
 
   // Outputs, each written atomically, only once everything has been computed.
   if (diff) write_image(diff->film, options.diff, DisplaySettings{});
@@ -173,10 +177,14 @@ void add_compare_command(CLI::App& app, std::function<int()>& run) {
   CLI::App* command = app.add_subcommand("compare", "Error metrics of image A against the reference B");
   command->add_option("A", options->image, "The image to judge (PNG, EXR, PFM, ...)")->required();
   command->add_option("B", options->reference, "The reference image, the same size")->required();
-  command->add_option("--mask", options->mask,
-                      "Image of the same size: pixels whose luminance is <= 0.5 (after decoding) are left out");
-  command->add_option("--diff", options->diff, "Write a false-color difference image with its color bar (.png)");
-  command->add_option("--diff-metric", options->diff_metric, "What --diff shows: abs (default), relative or signed")
+  command->add_option(
+      "--mask", options->mask,
+      "Image of the same size: pixels whose luminance is <= 0.5 (after decoding) are left out");
+  command->add_option("--diff", options->diff,
+                      "Write a false-color difference image with its color bar (.png)");
+  command
+      ->add_option("--diff-metric", options->diff_metric,
+                   "What --diff shows: abs (default), relative or signed")
       ->check(CLI::IsMember({"abs", "relative", "signed"}));
   command->add_option("--diff-scale", options->diff_scale,
                       "Fixed top of the --diff scale (signed: -X .. X); default: the largest difference");

@@ -1,9 +1,8 @@
 // candela: one executable, thin sub-commands over the core library (SPEC "Product surface").
-#include <exception>
-#include <iostream>
-
 #include <fmt/format.h>
 
+#include <exception>
+#include <iostream>
 #include <optional>
 
 #include "commands.h"
@@ -74,7 +73,8 @@ int main(int argc, char** argv) {
       return 1;
     }
     // Once the ranks work together an error on one would leave the others waiting: it ends all.
-    std::cerr << fmt::format("candela: error (rank {} of {}): {}\n", cluster.rank(), cluster.size(), e.what());
+    std::cerr << fmt::format("candela: error (rank {} of {}): {}\n", cluster.rank(), cluster.size(),
+                             e.what());
     candela::abort_all_ranks(1);
   }
 }

@@ -13,10 +13,10 @@
 #include <optional>
 
 #include "commands.h"
-#include "output_paths.h"
 #include "integrators/probe.h"
 #include "io/false_color.h"
 #include "io/image_writer.h"
+#include "output_paths.h"
 #include "scene_options.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -41,16 +41,20 @@ struct ProbeOptions {
   bool quiet = false;
 };
 
-std::string csv_number(double value) { return fmt::format("{:.9g}", value); }
+std::string csv_number(double value) {
+  return fmt::format("{:.9g}", value);
+}
 
 int run_probe(ProbeOptions& options) {
   if (options.points_path.empty() == options.grid.empty())
     throw BadArgument("give either --points FILE or --grid cx,cy,cz,ux,uy,uz,vx,vy,vz");
   if (options.samples < 1) throw BadArgument("--samples must be >= 1");
-  if (!(options.efficacy > 0) || !std::isfinite(options.efficacy)) throw BadArgument("--efficacy must be > 0");
+  if (!(options.efficacy > 0) || !std::isfinite(options.efficacy))
+    throw BadArgument("--efficacy must be > 0");
   if (options.threads < 0) throw BadArgument("--threads must be >= 0 (0: all cores)");
   if (options.method != "path" && options.method != "radiosity" && options.method != "meshless")
-    throw BadArgument("--method " + options.method + " cannot be probed (expected one of: " + kProbeMethods + ")");
+    throw BadArgument("--method " + options.method + " cannot be probed (expected one of: " + kProbeMethods +
+                      ")");
   if (options.output.size() < 5 || options.output.substr(options.output.size() - 4) != ".csv")
     throw BadArgument("-o " + options.output + ": expected a .csv file");
   check_writable(options.output, "-o");
@@ -71,7 +75,8 @@ int run_probe(ProbeOptions& options) {
         int64_t(options.grid_size[0]) * options.grid_size[1] > 4'000'000)
       throw BadArgument("--grid-size expects NU,NV >= 1 (at most 4,000,000 points)");
     const Vec3 corner{options.grid[0], options.grid[1], options.grid[2]};
-    const Vec3 u{options.grid[3], options.grid[4], options.grid[5]}, v{options.grid[6], options.grid[7], options.grid[8]};
+    const Vec3 u{options.grid[3], options.grid[4], options.grid[5]},
+        v{options.grid[6], options.grid[7], options.grid[8]};
     if (!(length(cross(u, v)) > 0)) throw BadArgument("--grid: the edges u and v must span a plane");
     nu = options.grid_size[0];
     nv = options.grid_size[1];
@@ -81,7 +86,8 @@ int run_probe(ProbeOptions& options) {
   }
   std::optional<tbb::global_control> thread_limit;
   if (options.threads > 0)
-    thread_limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(options.threads));
+    thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
+                         static_cast<std::size_t>(options.threads));
 
   Stopwatch timer;
   std::unique_ptr<Scene> scene = options.scene.load();
@@ -95,20 +101,22 @@ int run_probe(ProbeOptions& options) {
   const std::vector<ProbeResult> results = probe(*scene, points, settings, &facts);
 
   std::vector<double> illuminance(results.size());
-  for (std::size_t i = 0; i < results.size(); ++i) illuminance[i] = options.efficacy * luminance(results[i].irradiance);
+  for (std::size_t i = 0; i < results.size(); ++i)
+    illuminance[i] = options.efficacy * luminance(results[i].irradiance);
   // Streamed row by row (a 4,000,000-point grid is 600 MB of text), into a temporary file renamed
   // into place.
   write_atomically(options.output, [&](const std::string& temporary) {
     std::ofstream out(temporary);
-    out << "x,y,z,nx,ny,nz,irradiance_r,irradiance_g,irradiance_b,radiance_r,radiance_g,radiance_b,illuminance_lux\n";
+    out << "x,y,z,nx,ny,nz,irradiance_r,irradiance_g,irradiance_b,radiance_r,radiance_g,radiance_b,"
+           "illuminance_lux\n";
     for (std::size_t i = 0; i < results.size(); ++i) {
       const ProbePoint& p = points[i];
       const ProbeResult& r = results[i];
-      out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_number(p.position.x), csv_number(p.position.y),
-                         csv_number(p.position.z), csv_number(p.normal.x), csv_number(p.normal.y),
-                         csv_number(p.normal.z), csv_number(r.irradiance.r), csv_number(r.irradiance.g),
-                         csv_number(r.irradiance.b), csv_number(r.radiance.r), csv_number(r.radiance.g),
-                         csv_number(r.radiance.b), csv_number(illuminance[i]));
+      out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_number(p.position.x),
+                         csv_number(p.position.y), csv_number(p.position.z), csv_number(p.normal.x),
+                         csv_number(p.normal.y), csv_number(p.normal.z), csv_number(r.irradiance.r),
+                         csv_number(r.irradiance.g), csv_number(r.irradiance.b), csv_number(r.radiance.r),
+                         csv_number(r.radiance.g), csv_number(r.radiance.b), csv_number(illuminance[i]));
     }
     out.close();
     if (!out) throw std::runtime_error("cannot write " + options.output);
@@ -126,7 +134,8 @@ int run_probe(ProbeOptions& options) {
     if (!(high > 0)) high = 1;
     const Film picture = false_color_image(values, nu, nv, 0, high, ColorMap::viridis);
     write_image(picture, options.image, DisplaySettings{});
-    if (!options.quiet) std::cout << fmt::format("illuminance scale: 0 to {} lux\n", format_scale_value(high));
+    if (!options.quiet)
+      std::cout << fmt::format("illuminance scale: 0 to {} lux\n", format_scale_value(high));
   }
   if (!options.quiet) {
     double low = std::numeric_limits<double>::infinity(), high = 0, sum = 0;
@@ -135,13 +144,15 @@ int run_probe(ProbeOptions& options) {
       high = std::max(high, v);
       sum += v;
     }
-    std::cout << fmt::format("probed {} points with {} ({} samples each) in {:.2f} s: illuminance min {:.4g}, mean {:.4g}, "
-                             "max {:.4g} lux (efficacy {} lm/W); wrote {}\n",
-                             points.size(), settings.method, settings.samples, timer.seconds(), low,
-                             sum / double(illuminance.size()), high, options.efficacy, options.output);
+    std::cout << fmt::format(
+        "probed {} points with {} ({} samples each) in {:.2f} s: illuminance min {:.4g}, mean {:.4g}, "
+        "max {:.4g} lux (efficacy {} lm/W); wrote {}\n",
+        points.size(), settings.method, settings.samples, timer.seconds(), low,
+        sum / double(illuminance.size()), high, options.efficacy, options.output);
     if (facts.contains("rays_without_solution") && facts["rays_without_solution"].get<uint64_t>() > 0)
-      std::cerr << fmt::format("candela: warning: {} probe rays hit surfaces the {} solution does not cover (counted as 0)\n",
-                               facts["rays_without_solution"].get<uint64_t>(), settings.method);
+      std::cerr << fmt::format(
+          "candela: warning: {} probe rays hit surfaces the {} solution does not cover (counted as 0)\n",
+          facts["rays_without_solution"].get<uint64_t>(), settings.method);
   }
   return 0;
 }
@@ -150,18 +161,26 @@ int run_probe(ProbeOptions& options) {
 
 void add_probe_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<ProbeOptions>();
-  CLI::App* command = app.add_subcommand("probe", "Irradiance and radiance at sensor points or over a work plane");
+  CLI::App* command =
+      app.add_subcommand("probe", "Irradiance and radiance at sensor points or over a work plane");
   command->add_option("scene", options->scene.scene_path, "Scene file (candela/1 JSON)")->required();
-  command->add_option("--method", options->method, std::string("Method: ") + kProbeMethods + " (default path)");
+  command->add_option("--method", options->method,
+                      std::string("Method: ") + kProbeMethods + " (default path)");
   command->add_option("--points", options->points_path, "CSV of sensor points: x,y,z,nx,ny,nz per line");
-  command->add_option("--grid", options->grid, "Work plane: corner and edges cx,cy,cz,ux,uy,uz,vx,vy,vz (normal u × v)")
+  command
+      ->add_option("--grid", options->grid,
+                   "Work plane: corner and edges cx,cy,cz,ux,uy,uz,vx,vy,vz (normal u × v)")
       ->delimiter(',');
-  command->add_option("--grid-size", options->grid_size, "Points along u and v: NU,NV (default 20,20)")->delimiter(',');
-  command->add_option("--image", options->image, "With --grid: a false-color PNG of the illuminance with its scale");
+  command->add_option("--grid-size", options->grid_size, "Points along u and v: NU,NV (default 20,20)")
+      ->delimiter(',');
+  command->add_option("--image", options->image,
+                      "With --grid: a false-color PNG of the illuminance with its scale");
   command->add_option("-o,--output", options->output, "Output CSV")->required();
-  command->add_option("--samples", options->samples, "Estimates (path) or hemisphere rays per point (default 256)");
+  command->add_option("--samples", options->samples,
+                      "Estimates (path) or hemisphere rays per point (default 256)");
   command->add_option("--seed", options->seed, "Random seed (default: render.seed)");
-  command->add_option("--efficacy", options->efficacy, "Luminous efficacy in lm/W for the lux column (default 179, Radiance's)");
+  command->add_option("--efficacy", options->efficacy,
+                      "Luminous efficacy in lm/W for the lux column (default 179, Radiance's)");
   command->add_option("--threads", options->threads, "Worker threads (default: all cores)");
   command->add_option("--set", options->scene.overrides, "Override a scene setting: key=value")
       ->expected(1)

@@ -6,18 +6,18 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <cmath>
 #include <iterator>
 #include <optional>
 
 #include "commands.h"
-#include "output_paths.h"
 #include "distributed/cluster.h"
 #include "integrators/method_registry.h"
 #include "io/image_writer.h"
+#include "output_paths.h"
 #include "radiosity/solution_export.h"
 #include "scene/scene_loader.h"
 #include "scene_options.h"
@@ -67,13 +67,15 @@ std::string scene_fingerprint(const SceneOptions& options, const Scene& scene) {
   };
   const std::string text = options.scene_path.empty() ? default_scene_text() : file_text(options.scene_path);
   std::string referenced;
-  for (const std::string& file : scene.input_files) referenced += fmt::format("{:016x}", fnv1a_64(file_text(file)));
+  for (const std::string& file : scene.input_files)
+    referenced += fmt::format("{:016x}", fnv1a_64(file_text(file)));
   std::string overrides;
   for (const std::string& o : options.overrides) {
-    const bool irrelevant = o.rfind("path.spp=", 0) == 0 || o.rfind("path.time=", 0) == 0 ||
-                            o.rfind("path.checkpoint_interval=", 0) == 0 || o.rfind("render.accelerator=", 0) == 0 ||
-                            o.rfind("radiosity.threshold=", 0) == 0 || o.rfind("radiosity.max_steps=", 0) == 0 ||
-                            o.rfind("radiosity.memory_limit_mib=", 0) == 0;
+    const bool irrelevant =
+        o.rfind("path.spp=", 0) == 0 || o.rfind("path.time=", 0) == 0 ||
+        o.rfind("path.checkpoint_interval=", 0) == 0 || o.rfind("render.accelerator=", 0) == 0 ||
+        o.rfind("radiosity.threshold=", 0) == 0 || o.rfind("radiosity.max_steps=", 0) == 0 ||
+        o.rfind("radiosity.memory_limit_mib=", 0) == 0;
     if (!irrelevant) overrides += o + "\n";
   }
   return fmt::format("scene {:016x} files {:016x} overrides {:016x}", fnv1a_64(text), fnv1a_64(referenced),
@@ -88,7 +90,8 @@ PixelRect region_of(const RenderOptions& options, const Camera& camera) {
   if (region.x0 < 0 || region.y0 < 0 || region.x1 > camera.width() || region.y1 > camera.height() ||
       region.x0 >= region.x1 || region.y0 >= region.y1)
     throw BadArgument(fmt::format("--crop {},{},{},{} must satisfy 0 <= x0 < x1 <= {} and 0 <= y0 < y1 <= {}",
-                                  region.x0, region.y0, region.x1, region.y1, camera.width(), camera.height()));
+                                  region.x0, region.y0, region.x1, region.y1, camera.width(),
+                                  camera.height()));
   return region;
 }
 
@@ -149,7 +152,8 @@ std::string camera_names(const Scene& scene) {
 std::vector<View> select_views(const std::vector<std::string>& requested, Scene& scene) {
   std::vector<View> views;
   const auto add = [&](View view) {
-    const bool seen = std::any_of(views.begin(), views.end(), [&](const View& v) { return v.name == view.name; });
+    const bool seen =
+        std::any_of(views.begin(), views.end(), [&](const View& v) { return v.name == view.name; });
     if (!seen) views.push_back(std::move(view));
   };
   for (const std::string& name : requested) {
@@ -163,7 +167,8 @@ std::vector<View> select_views(const std::vector<std::string>& requested, Scene&
       const auto found = std::find_if(scene.cameras.begin(), scene.cameras.end(),
                                       [&](const NamedCamera& named) { return named.name == name; });
       if (found == scene.cameras.end())
-        throw BadArgument("--camera " + name + ": unknown camera (expected one of: " + camera_names(scene) + ")");
+        throw BadArgument("--camera " + name + ": unknown camera (expected one of: " + camera_names(scene) +
+                          ")");
       add({found->name, &found->camera});
     }
   }
@@ -178,7 +183,8 @@ std::vector<std::string> split_camera_names(const std::vector<std::string>& valu
     std::size_t start = 0;
     while (true) {
       const std::size_t comma = value.find(',', start);
-      const std::string name = value.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+      const std::string name =
+          value.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
       if (name.empty()) throw BadArgument("--camera " + value + ": empty camera name");
       names.push_back(name);
       if (comma == std::string::npos) break;
@@ -193,7 +199,8 @@ std::vector<std::string> split_camera_names(const std::vector<std::string>& valu
 std::string path_with_suffix(const std::string& path, const std::string& name) {
   if (path.empty()) return path;
   const std::filesystem::path original(path);
-  return (original.parent_path() / (original.stem().string() + "-" + name + original.extension().string())).string();
+  return (original.parent_path() / (original.stem().string() + "-" + name + original.extension().string()))
+      .string();
 }
 
 std::string path_for_view(const std::string& path, const View& view, std::size_t view_count) {
@@ -223,7 +230,8 @@ int report_interrupted(const RunStatistics& statistics, const std::string& outpu
 
 // Ctrl-C between images: nothing of the next one is begun.
 int report_interrupted_before(std::size_t skipped, const char* what) {
-  std::cerr << fmt::format("candela: interrupted: {} more {}{} not rendered\n", skipped, what, skipped == 1 ? "" : "s");
+  std::cerr << fmt::format("candela: interrupted: {} more {}{} not rendered\n", skipped, what,
+                           skipped == 1 ? "" : "s");
   return kInterruptedExitCode;
 }
 
@@ -246,7 +254,8 @@ int print_pixel_ray_trees(const RenderOptions& options, Scene& scene, const std:
     const Camera& camera = view.camera(scene);
     if (options.pixel.size() != 2 || options.pixel[0] < 0 || options.pixel[1] < 0 ||
         options.pixel[0] >= camera.width() || options.pixel[1] >= camera.height())
-      throw BadArgument(fmt::format("--pixel X,Y must lie in the {}x{} image{}", camera.width(), camera.height(),
+      throw BadArgument(fmt::format("--pixel X,Y must lie in the {}x{} image{}", camera.width(),
+                                    camera.height(),
                                     views.size() > 1 ? " of camera " + view.name : std::string()));
   }
   for (const View& view : views) {
@@ -301,7 +310,8 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   if (!options.show_sites.empty()) {
     ImageFormat sites_format;
     if (!image_format_for_path(options.show_sites, sites_format))
-      throw BadArgument("--show-sites " + options.show_sites + ": unsupported extension (expected .png, .exr or .pfm)");
+      throw BadArgument("--show-sites " + options.show_sites +
+                        ": unsupported extension (expected .png, .exr or .pfm)");
     check_writable(options.show_sites, "--show-sites");
   }
   if (!options.export_solution.empty()) {
@@ -317,23 +327,27 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   const std::vector<std::string> camera_requests = split_camera_names(options.cameras);
   std::optional<tbb::global_control>& thread_limit = job.thread_limit;  // lives as long as the job
   if (options.threads > 0)
-    thread_limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(options.threads));
-  job.threads = static_cast<int>(
-      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+    thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
+                         static_cast<std::size_t>(options.threads));
+  job.threads =
+      static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
 
-  if (!options.accelerator.empty()) options.scene.overrides.push_back("render.accelerator=" + options.accelerator);
+  if (!options.accelerator.empty())
+    options.scene.overrides.push_back("render.accelerator=" + options.accelerator);
   if (options.spp) {
     if (*options.spp < 1 || *options.spp > (1 << 24)) throw BadArgument("--spp must be in [1, 16777216]");
     options.scene.overrides.push_back("path.spp=" + std::to_string(*options.spp));
   }
   if (options.time) {
-    if (!(*options.time > 0) || !std::isfinite(*options.time)) throw BadArgument("--time must be a number of seconds > 0");
+    if (!(*options.time > 0) || !std::isfinite(*options.time))
+      throw BadArgument("--time must be a number of seconds > 0");
     options.scene.overrides.push_back(fmt::format("path.time={}", *options.time));
     // Only the time limits the run unless --spp says otherwise.
     if (!options.spp) options.scene.overrides.push_back("path.spp=0");
   }
   if (options.checkpoint_every) {
-    if (!(*options.checkpoint_every > 0)) throw BadArgument("--checkpoint-every must be a number of seconds > 0");
+    if (!(*options.checkpoint_every > 0))
+      throw BadArgument("--checkpoint-every must be a number of seconds > 0");
     options.scene.overrides.push_back(fmt::format("path.checkpoint_interval={}", *options.checkpoint_every));
   }
   if (!options.checkpoint.empty()) check_writable(options.checkpoint, "--checkpoint");
@@ -356,27 +370,34 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   if (!entry) {
     SourceLocation where = scene->render.method_location;
     if (where.file.empty()) where = {scene->source, 0, 0, "render.method"};
-    throw InputError(where, "unknown method \"" + scene->render.method + "\" (expected one of: " +
-                                method_names() + ")");
+    throw InputError(
+        where, "unknown method \"" + scene->render.method + "\" (expected one of: " + method_names() + ")");
   }
   // An output the method cannot give would be silently missing: refused before any work.
   const MethodCapabilities& can = entry->capabilities;
-  if (!options.export_solution.empty() && !can.solution) refuse_option("--export-solution needs", &MethodCapabilities::solution, *entry);
-  if (!options.show_sites.empty() && !can.sites_image) refuse_option("--show-sites needs", &MethodCapabilities::sites_image, *entry);
+  if (!options.export_solution.empty() && !can.solution)
+    refuse_option("--export-solution needs", &MethodCapabilities::solution, *entry);
+  if (!options.show_sites.empty() && !can.sites_image)
+    refuse_option("--show-sites needs", &MethodCapabilities::sites_image, *entry);
   if ((options.spp || options.time) && !can.progressive_passes)
     refuse_option("--spp and --time need", &MethodCapabilities::progressive_passes, *entry);
-  const bool checkpoint_options = !options.checkpoint.empty() || options.checkpoint_every || !options.resume.empty();
+  const bool checkpoint_options =
+      !options.checkpoint.empty() || options.checkpoint_every || !options.resume.empty();
   if (checkpoint_options && !can.checkpoints)
-    refuse_option("--checkpoint, --checkpoint-every and --resume need", &MethodCapabilities::checkpoints, *entry);
-  if (!relight_frames.empty() && !can.relighting) refuse_option("--relight needs", &MethodCapabilities::relighting, *entry);
+    refuse_option("--checkpoint, --checkpoint-every and --resume need", &MethodCapabilities::checkpoints,
+                  *entry);
+  if (!relight_frames.empty() && !can.relighting)
+    refuse_option("--relight needs", &MethodCapabilities::relighting, *entry);
   job.views = select_views(camera_requests, *scene);
   const std::vector<View>& views = job.views;
   if (!options.resume.empty() && views.size() != 1)
     throw BadArgument("--resume continues one camera's image, not " + std::to_string(views.size()));
-  if (!relight_frames.empty() && views.size() != 1) throw BadArgument("--relight renders one camera, not " + std::to_string(views.size()));
+  if (!relight_frames.empty() && views.size() != 1)
+    throw BadArgument("--relight renders one camera, not " + std::to_string(views.size()));
   for (const LightSetup& frame : relight_frames) {
     check_writable(path_with_suffix(options.output, frame.name), "-o");
-    if (!options.stats_path.empty()) check_writable(path_with_suffix(options.stats_path, frame.name), "--stats");
+    if (!options.stats_path.empty())
+      check_writable(path_with_suffix(options.stats_path, frame.name), "--stats");
   }
   // One method object renders every view, so what it keeps between renders (a radiosity
   // solution) is computed once.
@@ -398,7 +419,8 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
       throw BadArgument(std::string(e.what()) + " (camera " + view.name + ")");
     }
     check_writable(path_for_view(options.output, view, views.size()), "-o");
-    if (!options.stats_path.empty()) check_writable(path_for_view(options.stats_path, view, views.size()), "--stats");
+    if (!options.stats_path.empty())
+      check_writable(path_for_view(options.stats_path, view, views.size()), "--stats");
     if (!options.aa_map_path.empty())
       check_writable(path_for_view(options.aa_map_path, view, views.size()), "--aa-map");
     if (!options.show_sites.empty())
@@ -407,7 +429,6 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
       check_writable(path_for_view(options.checkpoint, view, views.size()), "--checkpoint");
   }
   job.fingerprint = can.checkpoints ? scene_fingerprint(options.scene, *scene) : std::string();
-
 }
 
 // Distributed runs (issue 11): every rank prepares the same job; then they agree, so that a rank
@@ -460,7 +481,8 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
   const bool root = cluster.root();
   for (std::size_t v = 0; v < views.size(); ++v) {
     const View& view = views[v];
-    if (interrupted()) return root ? report_interrupted_before(views.size() - v, "view") : kInterruptedExitCode;
+    if (interrupted())
+      return root ? report_interrupted_before(views.size() - v, "view") : kInterruptedExitCode;
     const std::string output = path_for_view(options.output, view, views.size());
     const std::string stats_path = path_for_view(options.stats_path, view, views.size());
     const std::string aa_map_path = path_for_view(options.aa_map_path, view, views.size());
@@ -528,14 +550,16 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
                 << statistics.summary();
     statistics.extra["ranks"] = cluster.size();
     if (!stats_path.empty()) write_statistics(statistics, stats_path);
-    if (interrupted()) return report_interrupted(statistics, output, views.size() - v - 1 + relight_frames.size());
+    if (interrupted())
+      return report_interrupted(statistics, output, views.size() - v - 1 + relight_frames.size());
   }
 
   // Relighting: each frame's lights in place of the scene's, the same method object, so the
   // meshless geometry (sites, areas, transfer matrix) is reused and only η and λ are redone.
   for (std::size_t f = 0; f < relight_frames.size(); ++f) {
     LightSetup& frame = relight_frames[f];
-    if (interrupted()) return root ? report_interrupted_before(relight_frames.size() - f, "frame") : kInterruptedExitCode;
+    if (interrupted())
+      return root ? report_interrupted_before(relight_frames.size() - f, "frame") : kInterruptedExitCode;
     std::swap(scene->lights, frame.lights);
     std::swap(scene->ambient, frame.ambient);
     const CurrentCamera current(*scene, views.front());
@@ -565,10 +589,12 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
     statistics.extra["method"] = std::string(method->name());
     statistics.extra["output"] = output;
     if (!options.quiet)
-      std::cerr << fmt::format("candela: relit frame {} in {:.3f} s (lighting {:.3f} s), wrote {}\n", frame.name,
-                               render_timer.seconds(),
-                               statistics.extra[std::string(method->name())].value("lighting_seconds", 0.0), output);
-    if (!options.stats_path.empty()) write_statistics(statistics, path_with_suffix(options.stats_path, frame.name));
+      std::cerr << fmt::format("candela: relit frame {} in {:.3f} s (lighting {:.3f} s), wrote {}\n",
+                               frame.name, render_timer.seconds(),
+                               statistics.extra[std::string(method->name())].value("lighting_seconds", 0.0),
+                               output);
+    if (!options.stats_path.empty())
+      write_statistics(statistics, path_with_suffix(options.stats_path, frame.name));
     if (interrupted()) return report_interrupted(statistics, output, relight_frames.size() - f - 1);
   }
   return 0;
@@ -605,15 +631,20 @@ int run_render(RenderOptions& options) {
 
 void add_render_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<RenderOptions>();
-  CLI::App* command = app.add_subcommand("render", "Render a scene (the built-in default scene without SCENE)");
+  CLI::App* command =
+      app.add_subcommand("render", "Render a scene (the built-in default scene without SCENE)");
   command->add_option("scene", options->scene.scene_path, "Scene file (candela/1 JSON)");
-  command->add_option("-o,--output", options->output, "Output image: .png (sRGB 8-bit), .exr or .pfm (linear float)");
+  command->add_option("-o,--output", options->output,
+                      "Output image: .png (sRGB 8-bit), .exr or .pfm (linear float)");
   command->add_option("--method", options->method, "Rendering method: " + method_names());
-  command->add_option("--accel", options->accelerator, "Acceleration structure (default: render.accelerator)");
+  command->add_option("--accel", options->accelerator,
+                      "Acceleration structure (default: render.accelerator)");
   command->add_option("--threads", options->threads, "Worker threads (default: all cores)");
   command->add_option("--seed", options->seed, "Random seed (default: render.seed)");
   // One key=value per --set, repeated as often as needed, so SCENE may follow.
-  command->add_option("--set", options->scene.overrides, "Override a scene setting: key=value, e.g. camera.width=640")
+  command
+      ->add_option("--set", options->scene.overrides,
+                   "Override a scene setting: key=value, e.g. camera.width=640")
       ->expected(1)
       ->allow_extra_args(false)
       ->take_all();
@@ -622,31 +653,39 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
                       "Write a PNG whose grey levels show the samples each pixel used (white: the most)");
   command->add_flag("-q,--quiet", options->quiet, "No progress and no summary");
   command->add_option("--crop", options->crop, "Render only pixels x0,y0 (inclusive) to x1,y1 (exclusive)")
-      ->delimiter(',')->expected(4);
+      ->delimiter(',')
+      ->expected(4);
   command->add_option("--pixel", options->pixel, "Print the ray tree of pixel X,Y instead of rendering")
-      ->delimiter(',')->expected(2);
-  command->add_option("--camera", options->cameras,
-                      "Render the named camera(s) of the scene's \"cameras\": NAME, a comma-separated list, or "
-                      "all; default is the \"camera\" object. Several: one image each, -o out.png -> out-NAME.png")
+      ->delimiter(',')
+      ->expected(2);
+  command
+      ->add_option(
+          "--camera", options->cameras,
+          "Render the named camera(s) of the scene's \"cameras\": NAME, a comma-separated list, or "
+          "all; default is the \"camera\" object. Several: one image each, -o out.png -> out-NAME.png")
       ->expected(1)
       ->allow_extra_args(false)
       ->take_all();
   command->add_option("--export-solution", options->export_solution,
                       "radiosity: also write the solution (.csv, .ply or .gltf)");
-  command->add_option("--relight", options->relight,
-                      "meshless: also render each light set-up of FILE ({\"frames\": [{\"name\", \"lights\"}]}) from the "
-                      "same sites and transfer matrix, -o out.png -> out-NAME.png");
+  command->add_option(
+      "--relight", options->relight,
+      "meshless: also render each light set-up of FILE ({\"frames\": [{\"name\", \"lights\"}]}) from the "
+      "same sites and transfer matrix, -o out.png -> out-NAME.png");
   command->add_option("--show-sites", options->show_sites,
                       "meshless: also write the image with the element centres (sites) drawn over it");
   command->add_option("--spp", options->spp, "path: samples per pixel (passes; setting path.spp)");
-  command->add_option("--time", options->time,
-                      "path: render passes for this many seconds (setting path.time; with --spp, whichever comes first)");
-  command->add_option("--checkpoint", options->checkpoint,
-                      "path: write the progressive state to FILE every --checkpoint-every seconds and at the end");
+  command->add_option(
+      "--time", options->time,
+      "path: render passes for this many seconds (setting path.time; with --spp, whichever comes first)");
+  command->add_option(
+      "--checkpoint", options->checkpoint,
+      "path: write the progressive state to FILE every --checkpoint-every seconds and at the end");
   command->add_option("--checkpoint-every", options->checkpoint_every,
                       "path: seconds between checkpoints (setting path.checkpoint_interval, default 60)");
-  command->add_option("--resume", options->resume,
-                      "path: continue from a checkpoint of the same scene and settings (to --spp / --time more)");
+  command->add_option(
+      "--resume", options->resume,
+      "path: continue from a checkpoint of the same scene and settings (to --spp / --time more)");
   command->callback([options, &run]() {
     run = [options]() { return run_reporting_bad_input([&] { return run_render(*options); }); };
   });

@@ -45,10 +45,12 @@ std::vector<std::string> parse_methods(const std::string& list) {
   std::size_t start = 0;
   while (true) {
     const std::size_t comma = list.find(',', start);
-    const std::string name = list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const std::string name =
+        list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     if (name.empty()) throw BadArgument("--methods " + list + ": empty method name");
     if (!find_method(name))
-      throw BadArgument("--methods: unknown method \"" + name + "\" (expected one of: " + method_names() + ")");
+      throw BadArgument("--methods: unknown method \"" + name + "\" (expected one of: " + method_names() +
+                        ")");
     if (std::find(methods.begin(), methods.end(), name) != methods.end())
       throw BadArgument("--methods: " + name + " is named twice");
     methods.push_back(name);
@@ -96,7 +98,8 @@ int run_report(ReportOptions& options) {
   }
   std::optional<tbb::global_control> thread_limit;
   if (options.threads > 0)
-    thread_limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(options.threads));
+    thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
+                         static_cast<std::size_t>(options.threads));
   const int threads =
       static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
 
@@ -110,8 +113,9 @@ int run_report(ReportOptions& options) {
   if (reference) {
     const Film& film = reference->film;
     if (film.width() != scene->camera->width() || film.height() != scene->camera->height())
-      throw BadArgument(fmt::format("--reference {} is {}x{}, the scene's image {}x{}", options.reference, film.width(),
-                                    film.height(), scene->camera->width(), scene->camera->height()));
+      throw BadArgument(fmt::format("--reference {} is {}x{}, the scene's image {}x{}", options.reference,
+                                    film.width(), film.height(), scene->camera->width(),
+                                    scene->camera->height()));
     // The file holds what `candela render -o x.exr` writes: the image times 2^exposure.
     const double undo = std::exp2(-scene->display.exposure);
     Film image(film.width(), film.height());
@@ -127,16 +131,17 @@ int run_report(ReportOptions& options) {
   settings.scene_text = read_text(options.scene.scene_path);
   settings.overrides = options.scene.overrides;
   settings.threads = threads;
-  if (!options.quiet) settings.log = [](const std::string& line) { std::cerr << "candela: report: " << line << "\n"; };
+  if (!options.quiet)
+    settings.log = [](const std::string& line) { std::cerr << "candela: report: " << line << "\n"; };
 
   prepare_directory(options.output);
   const CrossMethodReport report = run_cross_method_report(*scene, settings);
 
   if (!options.quiet) {
-    std::cerr << fmt::format("candela: report: wrote {}/index.html ({} methods against {})\n", options.output,
-                             report.entries.size(),
-                             report.reference_rendered ? fmt::format("path at {} spp", report.reference_spp)
-                                                       : options.reference);
+    std::cerr << fmt::format(
+        "candela: report: wrote {}/index.html ({} methods against {})\n", options.output,
+        report.entries.size(),
+        report.reference_rendered ? fmt::format("path at {} spp", report.reference_spp) : options.reference);
     std::cerr << fmt::format("  {:<34} {:>9} {:>11} {:>11} {:>9}\n", "method", "time (s)", "RMSE", "rel. MSE",
                              "PSNR");
     for (const CrossMethodEntry& entry : report.entries)
@@ -151,24 +156,32 @@ int run_report(ReportOptions& options) {
 void add_report_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<ReportOptions>();
   CLI::App* command = app.add_subcommand(
-      "report", "Render a scene with several methods and write an HTML report of their errors against a path-traced "
-                "reference");
+      "report",
+      "Render a scene with several methods and write an HTML report of their errors against a path-traced "
+      "reference");
   command->add_option("scene", options->scene.scene_path, "Scene file (candela/1 JSON)")->required();
-  command->add_option("--methods", options->methods,
-                      "Comma-separated methods to compare (default whitted,radiosity,meshless,path; any of: " +
-                          method_names() + ")");
-  command->add_option("-o,--output", options->output, "Folder for index.html, report.json and the images (created)")
+  command->add_option(
+      "--methods", options->methods,
+      "Comma-separated methods to compare (default whitted,radiosity,meshless,path; any of: " +
+          method_names() + ")");
+  command
+      ->add_option("-o,--output", options->output,
+                   "Folder for index.html, report.json and the images (created)")
       ->required();
-  auto* reference_spp = command->add_option(
-      "--reference-spp", options->reference_spp,
-      "Samples per pixel of the path-traced reference (default 1024)");
-  command->add_option("--reference", options->reference,
-                      "Use this linear image (.exr or .pfm, the scene's size) as the reference instead of rendering one")
+  auto* reference_spp = command->add_option("--reference-spp", options->reference_spp,
+                                            "Samples per pixel of the path-traced reference (default 1024)");
+  command
+      ->add_option(
+          "--reference", options->reference,
+          "Use this linear image (.exr or .pfm, the scene's size) as the reference instead of rendering one")
       ->excludes(reference_spp);
-  command->add_option("--spp", options->spp, "Samples per pixel of the \"path\" entry (default: the scene's path.spp)");
+  command->add_option("--spp", options->spp,
+                      "Samples per pixel of the \"path\" entry (default: the scene's path.spp)");
   command->add_flag("--equal-time", options->equal_time,
                     "Also render path limited to each other method's render time, and report its errors");
-  command->add_option("--set", options->scene.overrides, "Override a scene setting: key=value, e.g. camera.width=640")
+  command
+      ->add_option("--set", options->scene.overrides,
+                   "Override a scene setting: key=value, e.g. camera.width=640")
       ->expected(1)
       ->allow_extra_args(false)
       ->take_all();

@@ -34,7 +34,8 @@ int run_validate(const ValidateOptions& options) {
                                   error ? ": " + error.message() : ""));
   SphereDiscRun run;
   run.quick = options.quick;
-  const nlohmann::json errors = run_sphere_disc_validation(options.out, run, options.quiet ? nullptr : &std::cout);
+  const nlohmann::json errors =
+      run_sphere_disc_validation(options.out, run, options.quiet ? nullptr : &std::cout);
   if (!options.quiet)
     std::cout << fmt::format("least RMS error: {} (delta 3), {} (delta 1); written to {}\n",
                              errors["least_rms"]["delta3"].get<std::string>(),
@@ -48,7 +49,8 @@ void add_validate_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<ValidateOptions>();
   CLI::App* command = app.add_subcommand("validate", "Run a built-in validation case (sphere-disc)");
   command->add_option("name", options->name, "The case: sphere-disc")->required();
-  command->add_option("--out", options->out, "Directory for the CSV files, plots and errors.json")->required();
+  command->add_option("--out", options->out, "Directory for the CSV files, plots and errors.json")
+      ->required();
   command->add_flag("--quick", options->quick, "Coarser reference and sampling (for tests)");
   command->add_flag("-q,--quiet", options->quiet, "No progress lines");
   command->callback([options, &run]() {

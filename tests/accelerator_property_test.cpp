@@ -30,7 +30,9 @@ class RandomScene {
   explicit RandomScene(uint64_t seed) : rng_(seed, 7) {}
 
   double uniform(double lower, double upper) { return lower + (upper - lower) * rng_.next_double(); }
-  Vec3 point(double extent) { return {uniform(-extent, extent), uniform(-extent, extent), uniform(-extent, extent)}; }
+  Vec3 point(double extent) {
+    return {uniform(-extent, extent), uniform(-extent, extent), uniform(-extent, extent)};
+  }
   Vec3 direction() {
     const double z = uniform(-1, 1), phi = uniform(0, 2 * kPi), r = std::sqrt(std::max(0.0, 1 - z * z));
     return {r * std::cos(phi), r * std::sin(phi), z};
@@ -43,7 +45,8 @@ class RandomScene {
   void next_object() { ++object_; }
 
   void add_spheres(int count, double extent, double radius) {
-    for (int i = 0; i < count; ++i, next_object()) add(std::make_unique<Sphere>(point(extent), uniform(0.1, 1) * radius));
+    for (int i = 0; i < count; ++i, next_object())
+      add(std::make_unique<Sphere>(point(extent), uniform(0.1, 1) * radius));
   }
   // One mesh object of random triangles (some tiny, some long and thin).
   void add_triangle_soup(int count, double extent, double size) {
@@ -64,11 +67,21 @@ class RandomScene {
     for (int i = 0; i < count; ++i, next_object()) {
       const Vec3 c = point(extent);
       switch (i % 7) {
-        case 0: add(std::make_unique<Box>(c, c + Vec3{uniform(0.1, 2), uniform(0.1, 2), uniform(0.1, 2)})); break;
-        case 1: add(std::make_unique<Cylinder>(c, c + point(2), uniform(0.1, 0.5), i % 2 == 0)); break;
-        case 2: add(std::make_unique<Cone>(c, uniform(0.1, 0.6), c + point(2), uniform(0, 0.3), true)); break;
-        case 3: add(std::make_unique<Torus>(c, direction(), uniform(0.5, 1), uniform(0.05, 0.3))); break;
-        case 4: add(std::make_unique<Disc>(c, direction(), uniform(0.2, 1), 0.0)); break;
+        case 0:
+          add(std::make_unique<Box>(c, c + Vec3{uniform(0.1, 2), uniform(0.1, 2), uniform(0.1, 2)}));
+          break;
+        case 1:
+          add(std::make_unique<Cylinder>(c, c + point(2), uniform(0.1, 0.5), i % 2 == 0));
+          break;
+        case 2:
+          add(std::make_unique<Cone>(c, uniform(0.1, 0.6), c + point(2), uniform(0, 0.3), true));
+          break;
+        case 3:
+          add(std::make_unique<Torus>(c, direction(), uniform(0.5, 1), uniform(0.05, 0.3)));
+          break;
+        case 4:
+          add(std::make_unique<Disc>(c, direction(), uniform(0.2, 1), 0.0));
+          break;
         case 5: {
           Vec3 u, v;
           const Vec3 n = direction();
@@ -77,7 +90,8 @@ class RandomScene {
           break;
         }
         case 6: {
-          const Transform transform = Transform::translate(c) * Transform::rotate(uniform(0, 360), direction()) *
+          const Transform transform = Transform::translate(c) *
+                                      Transform::rotate(uniform(0, 360), direction()) *
                                       Transform::scale({uniform(0.2, 2), uniform(0.2, 2), uniform(0.2, 2)});
           add(std::make_unique<TransformedShape>(std::make_unique<Sphere>(Vec3{0, 0, 0}, 1.0), transform));
           break;
@@ -106,8 +120,8 @@ class RandomScene {
     for (int i = 0; i < count; ++i) {
       Ray ray{point(extent * 1.5), direction()};
       if (i % 5 == 0) ray.direction = normalize(point(extent * 0.5) - ray.origin);  // aimed inside
-      if (i % 17 == 0) ray.direction = Vec3{0, 0, (i % 2) ? 1.0 : -1.0};           // zero components
-      if (i % 13 == 0) ray.t_max = uniform(0.5, extent);                             // shadow-like
+      if (i % 17 == 0) ray.direction = Vec3{0, 0, (i % 2) ? 1.0 : -1.0};            // zero components
+      if (i % 13 == 0) ray.t_max = uniform(0.5, extent);                            // shadow-like
       rays.push_back(ray);
     }
     return rays;
@@ -131,7 +145,8 @@ std::vector<Candidate> every_accelerator() {
   for (const AcceleratorEntry& entry : accelerator_entries())
     candidates.push_back({std::string(entry.name), create_default_accelerator(entry)});
   for (const auto kind : {BoundingVolumeKind::sphere, BoundingVolumeKind::box, BoundingVolumeKind::slabs})
-    candidates.push_back({"list+" + std::string(kBoundingVolumeNames.name(kind)), std::make_unique<PrimitiveList>(kind)});
+    candidates.push_back(
+        {"list+" + std::string(kBoundingVolumeNames.name(kind)), std::make_unique<PrimitiveList>(kind)});
   return candidates;
 }
 

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "integrators/local.h"
+#include "integrators/scene_loading.h"
 #include "math/constants.h"
 #include "radiosity/ray_cast_form_factors.h"
-#include "integrators/scene_loading.h"
 
 namespace candela {
 namespace {

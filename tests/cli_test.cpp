@@ -17,8 +17,9 @@ namespace fs = std::filesystem;
 class Cli : public ::testing::Test {
  protected:
   void SetUp() override {
-    directory_ = fs::temp_directory_path() /
-                 ("candela-cli-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    directory_ =
+        fs::temp_directory_path() /
+        ("candela-cli-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(directory_);
     fs::create_directories(directory_);
   }
@@ -27,8 +28,8 @@ class Cli : public ::testing::Test {
   // Runs candela with arguments; returns the exit code and fills output (stdout + stderr).
   int run(const std::string& arguments, std::string& output) {
     const fs::path log = directory_ / "log.txt";
-    const std::string command = "cd '" + directory_.string() + "' && '" CANDELA_CLI "' " + arguments + " > '" +
-                                log.string() + "' 2>&1";
+    const std::string command = "cd '" + directory_.string() + "' && '" CANDELA_CLI "' " + arguments +
+                                " > '" + log.string() + "' 2>&1";
     const int status = std::system(command.c_str());
     std::ifstream in(log);
     std::stringstream text;
@@ -43,7 +44,8 @@ class Cli : public ::testing::Test {
   // No file other than the inputs and the log may exist (no half-written output).
   int file_count() {
     int count = 0;
-    for (const auto& entry : fs::directory_iterator(directory_)) count += entry.path().filename() != "log.txt";
+    for (const auto& entry : fs::directory_iterator(directory_))
+      count += entry.path().filename() != "log.txt";
     return count;
   }
   fs::path directory_;
@@ -51,7 +53,8 @@ class Cli : public ::testing::Test {
 
 TEST_F(Cli, RendersTheDefaultSceneToPng) {
   std::string output;
-  ASSERT_EQ(run("render --set camera.width=40 --set camera.height=30 -o out.png --stats stats.json", output), 0)
+  ASSERT_EQ(run("render --set camera.width=40 --set camera.height=30 -o out.png --stats stats.json", output),
+            0)
       << output;
   ASSERT_TRUE(fs::exists(directory_ / "out.png"));
   std::ifstream png(directory_ / "out.png", std::ios::binary);
@@ -87,16 +90,20 @@ TEST_F(Cli, AntialiasingStatisticsAndSampleMap) {
                 output),
             0)
       << output;
-  EXPECT_EQ(run("render -q --set camera.width=4 --set camera.height=3 -o out.png --aa-map map.exr", output), 2);
-  EXPECT_EQ(run("render -q --set camera.width=4 --set camera.height=3 -o out.png --aa-map nowhere/map.png", output),
+  EXPECT_EQ(run("render -q --set camera.width=4 --set camera.height=3 -o out.png --aa-map map.exr", output),
             2);
+  EXPECT_EQ(
+      run("render -q --set camera.width=4 --set camera.height=3 -o out.png --aa-map nowhere/map.png", output),
+      2);
 }
 
 TEST_F(Cli, WritesExrAndPfmAndCrops) {
   std::string output;
-  ASSERT_EQ(run("render --quiet --set camera.width=20 --set camera.height=10 -o out.exr", output), 0) << output;
+  ASSERT_EQ(run("render --quiet --set camera.width=20 --set camera.height=10 -o out.exr", output), 0)
+      << output;
   EXPECT_TRUE(output.empty()) << output;
-  ASSERT_EQ(run("render -q --set camera.width=20 --set camera.height=10 --crop 5,2,15,8 -o out.pfm", output), 0)
+  ASSERT_EQ(run("render -q --set camera.width=20 --set camera.height=10 --crop 5,2,15,8 -o out.pfm", output),
+            0)
       << output;
   std::ifstream pfm(directory_ / "out.pfm", std::ios::binary);
   std::string magic;
@@ -122,7 +129,8 @@ TEST_F(Cli, PixelPrintsTheRayTree) {
 TEST_F(Cli, BadSceneExitsWithTwoAndWritesNothing) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"{\"format\": \"candela/1\",\n \"camera\": {\"width\": 4,}}", "bad.json:2:24"},
-      {R"({"format": "candela/1", "camera": {}, "shapes": [{"type": "blob"}]})", "shapes[0].type: unknown shape"},
+      {R"({"format": "candela/1", "camera": {}, "shapes": [{"type": "blob"}]})",
+       "shapes[0].type: unknown shape"},
       {R"({"format": "candela/1", "camera": {}, "shapes": [{"type": "sphere", "radius": -2}]})",
        "bad.json:1:79: shapes[0].radius: must be > 0"},
       {R"({"format": "candela/1", "camera": {"fov": 0}})", "camera.fov: must be in (0, 180)"},
@@ -144,7 +152,11 @@ TEST_F(Cli, BadArgumentsExitWithTwo) {
   EXPECT_EQ(run("render -o out.bmp", output), 2);
   EXPECT_NE(output.find("unsupported extension"), std::string::npos) << output;
   EXPECT_EQ(run("render --method teleport -o out.png", output), 2);
-  EXPECT_NE(output.find("unknown method \"teleport\" (expected one of: local, whitted, raster, radiosity, meshless, path)"), std::string::npos) << output;
+  EXPECT_NE(
+      output.find(
+          "unknown method \"teleport\" (expected one of: local, whitted, raster, radiosity, meshless, path)"),
+      std::string::npos)
+      << output;
   EXPECT_EQ(run("render --crop 0,0,9999,10 -o out.png", output), 2);
   EXPECT_EQ(run("render --set camera.width=abc -o out.png", output), 2);
   EXPECT_NE(output.find("camera.width"), std::string::npos) << output;
@@ -170,12 +182,15 @@ TEST_F(Cli, UnwritableOutputsAreRefusedBeforeRendering) {
   EXPECT_EQ(run("render -q -o missing/out.png", output), 2);
   EXPECT_NE(output.find("does not exist"), std::string::npos) << output;
   // An unwritable --stats used to leave the image behind after failing.
-  EXPECT_EQ(run("render -q --set camera.width=8 --set camera.height=8 -o out.png --stats missing/s.json", output), 2);
+  EXPECT_EQ(
+      run("render -q --set camera.width=8 --set camera.height=8 -o out.png --stats missing/s.json", output),
+      2);
   EXPECT_EQ(file_count(), 0);
 }
 
 TEST_F(Cli, SetMayComeBeforeTheScene) {
-  write("s.json", R"({"format": "candela/1", "camera": {"width": 4, "height": 4}, "shapes": [{"type": "sphere"}]})");
+  write("s.json",
+        R"({"format": "candela/1", "camera": {"width": 4, "height": 4}, "shapes": [{"type": "sphere"}]})");
   std::string output;
   EXPECT_EQ(run("render --set camera.width=6 s.json -q -o s.pfm", output), 0) << output;
   std::ifstream pfm(directory_ / "s.pfm", std::ios::binary);
@@ -246,8 +261,10 @@ TEST_F(Cli, SeveralCamerasWriteOneImageAndStatisticsFileEach) {
   write("side.json", kSideAsCameraScene);
   std::string output;
   // A list, a repeated option and a repeated name (rendered once).
-  ASSERT_EQ(run("render views.json -q --camera side,default --camera front,side -o out.png --stats stats.json", output),
-            0)
+  ASSERT_EQ(
+      run("render views.json -q --camera side,default --camera front,side -o out.png --stats stats.json",
+          output),
+      0)
       << output;
   for (const char* name : {"side", "default", "front"}) {
     EXPECT_TRUE(fs::exists(directory_ / ("out-" + std::string(name) + ".png"))) << name;
@@ -300,11 +317,14 @@ TEST_F(Cli, BadCameraSelectionsAreRefusedAndNothingIsWritten) {
 
 TEST_F(Cli, ExportSolutionWritesOneRowPerElementOnceForSeveralViews) {
   std::string output;
-  ASSERT_EQ(run("render '" CANDELA_SOURCE_DIR "/scenes/cornell-box.json' -q --camera all --set radiosity.patch_size=5 "
-                "--set radiosity.element_size=2.5 --set radiosity.hemicube_resolution=20 --set radiosity.threshold=0.05 "
-                "--set camera.width=8 --set camera.height=8 --export-solution s.csv --stats s.json -o room.png",
-                output),
-            0)
+  ASSERT_EQ(
+      run("render '" CANDELA_SOURCE_DIR
+          "/scenes/cornell-box.json' -q --camera all --set radiosity.patch_size=5 "
+          "--set radiosity.element_size=2.5 --set radiosity.hemicube_resolution=20 --set "
+          "radiosity.threshold=0.05 "
+          "--set camera.width=8 --set camera.height=8 --export-solution s.csv --stats s.json -o room.png",
+          output),
+      0)
       << output;
   std::ifstream csv(directory_ / "s.csv");
   std::string line;
@@ -324,13 +344,17 @@ TEST_F(Cli, ExportSolutionIsCheckedBeforeRendering) {
   write("views.json", kViewsScene);
   std::string output;
   EXPECT_EQ(run("render views.json -q --export-solution solution.csv -o out.png", output), 2);
-  EXPECT_NE(output.find("--export-solution needs --method radiosity (the method is whitted)"), std::string::npos)
-      << output;
-  EXPECT_EQ(run("render views.json -q --method radiosity --export-solution solution.txt -o out.png", output), 2);
-  EXPECT_NE(output.find("--export-solution solution.txt: unsupported extension (expected .csv, .ply or .gltf)"),
+  EXPECT_NE(output.find("--export-solution needs --method radiosity (the method is whitted)"),
             std::string::npos)
       << output;
-  EXPECT_EQ(run("render views.json -q --method radiosity --export-solution missing/solution.ply -o out.png", output),
+  EXPECT_EQ(run("render views.json -q --method radiosity --export-solution solution.txt -o out.png", output),
+            2);
+  EXPECT_NE(
+      output.find("--export-solution solution.txt: unsupported extension (expected .csv, .ply or .gltf)"),
+      std::string::npos)
+      << output;
+  EXPECT_EQ(run("render views.json -q --method radiosity --export-solution missing/solution.ply -o out.png",
+                output),
             2);
   EXPECT_NE(output.find("does not exist"), std::string::npos) << output;
   EXPECT_EQ(file_count(), 1);  // views.json alone
@@ -344,7 +368,8 @@ TEST_F(Cli, ShowSitesDrawsTheMeshlessSitesOverTheImage) {
     "lights": [{"type": "point", "position": [5, 7, 5], "intensity": 10}],
     "shapes": [{"type": "box", "min": [0, 0, 0], "max": [10, 8, 10], "material": {"kd": 0.6}}]})");
   std::string output;
-  ASSERT_EQ(run("render room.json -q --method meshless --show-sites sites.pfm -o room.pfm", output), 0) << output;
+  ASSERT_EQ(run("render room.json -q --method meshless --show-sites sites.pfm -o room.pfm", output), 0)
+      << output;
   const auto read_pfm = [&](const std::string& name) {
     std::ifstream in(directory_ / name, std::ios::binary);
     std::string magic;
@@ -353,7 +378,8 @@ TEST_F(Cli, ShowSitesDrawsTheMeshlessSitesOverTheImage) {
     in >> magic >> width >> height >> scale;
     in.get();
     std::vector<float> pixels(static_cast<std::size_t>(width) * height * 3);
-    in.read(reinterpret_cast<char*>(pixels.data()), static_cast<std::streamsize>(pixels.size() * sizeof(float)));
+    in.read(reinterpret_cast<char*>(pixels.data()),
+            static_cast<std::streamsize>(pixels.size() * sizeof(float)));
     return pixels;
   };
   const std::vector<float> image = read_pfm("room.pfm"), sites = read_pfm("sites.pfm");
@@ -375,14 +401,18 @@ TEST_F(Cli, RelightRendersEachLightSetUpFromOneGeometry) {
   write("room.json", R"({"format": "candela/1",
     "camera": {"eye": [5, 4, 9.5], "target": [5, 4, 0], "fov": 60, "width": 16, "height": 16},
     "meshless": {"spacing": 1.5, "grid": 12, "rounds": 1},
-    "lights": [)" + light + R"(],
+    "lights": [)" + light +
+                         R"(],
     "shapes": [{"type": "box", "min": [0, 0, 0], "max": [10, 8, 10], "material": {"kd": 0.6}}]})");
   write("lights.json", R"({"frames": [
-    {"name": "same", "lights": [)" + light + R"(]},
+    {"name": "same", "lights": [)" +
+                           light + R"(]},
     {"name": "low", "lights": [{"type": "point", "position": [2, 1, 5], "intensity": 10}]},
     {"name": "area", "ambient": 0.1, "lights": [{"type": "area", "corner": [4, 7.9, 4], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2], "exitance": 20}]}]})");
   std::string output;
-  ASSERT_EQ(run("render room.json -q --method meshless --relight lights.json --stats s.json -o room.pfm", output), 0)
+  ASSERT_EQ(
+      run("render room.json -q --method meshless --relight lights.json --stats s.json -o room.pfm", output),
+      0)
       << output;
   const auto bytes = [&](const std::string& name) {
     std::ifstream in(directory_ / name, std::ios::binary);
@@ -430,7 +460,9 @@ TEST_F(Cli, BenchWritesTheTableJsonAndRayDump) {
 
 TEST_F(Cli, BenchRasterReportsEveryPass) {
   std::string output;
-  ASSERT_EQ(run("bench --raster --sphere 200 --width 64 --height 48 --repeat 1 --min-time 0 --json r.json -q", output), 0)
+  ASSERT_EQ(run("bench --raster --sphere 200 --width 64 --height 48 --repeat 1 --min-time 0 --json r.json -q",
+                output),
+            0)
       << output;
   std::ifstream json_file(directory_ / "r.json");
   const nlohmann::json json = nlohmann::json::parse(json_file);
@@ -459,7 +491,7 @@ TEST_F(Cli, BenchMeasuresASceneFile) {
   std::ifstream json_file(directory_ / "b.json");
   const nlohmann::json json = nlohmann::json::parse(json_file);
   EXPECT_EQ(json["mesh"], "s.json");
-  EXPECT_EQ(json["triangles"], 4);  // primitives of a scene
+  EXPECT_EQ(json["triangles"], 4);              // primitives of a scene
   std::map<std::string, nlohmann::json> first;  // per set: the list's checksums
   for (const auto& result : json["results"]) {
     const std::string set = result["set"];
@@ -491,11 +523,12 @@ TEST_F(Cli, BenchRejectsBadArguments) {
 TEST_F(Cli, BenchRadiositySolvesASceneAndReportsItsFacts) {
   // Issue 7: the Cornell box on a coarse mesh, one run per thread count.
   std::string output;
-  ASSERT_EQ(run("bench --radiosity '" CANDELA_SOURCE_DIR "/scenes/cornell-box.json' --set radiosity.patch_size=5 "
-                "--set radiosity.element_size=2.5 --set radiosity.hemicube_resolution=20 --threads 1 2 "
-                "--json r.json -q",
-                output),
-            0)
+  ASSERT_EQ(
+      run("bench --radiosity '" CANDELA_SOURCE_DIR "/scenes/cornell-box.json' --set radiosity.patch_size=5 "
+          "--set radiosity.element_size=2.5 --set radiosity.hemicube_resolution=20 --threads 1 2 "
+          "--json r.json -q",
+          output),
+      0)
       << output;
   EXPECT_NE(output.find("elements"), std::string::npos) << output;  // the table
   std::ifstream json_file(directory_ / "r.json");
@@ -568,7 +601,6 @@ TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
 namespace candela {
 namespace {
 
-
 // Issue 9: "--checkpoint FILE ... and --resume FILE continuing to the same result as an
 // uninterrupted run (a test compares)" — byte for byte, through the command line.
 TEST_F(Cli, PathResumeGivesTheUninterruptedImageByteForByte) {
@@ -577,7 +609,8 @@ TEST_F(Cli, PathResumeGivesTheUninterruptedImageByteForByte) {
   ASSERT_EQ(run("render " + size + "--spp 5 -o full.pfm", output), 0) << output;
   ASSERT_EQ(run("render " + size + "--spp 2 --checkpoint state.ckpt -o part.pfm", output), 0) << output;
   ASSERT_TRUE(fs::exists(directory_ / "state.ckpt"));
-  ASSERT_EQ(run("render " + size + "--spp 5 --resume state.ckpt --checkpoint state.ckpt -o resumed.pfm --stats s.json",
+  ASSERT_EQ(run("render " + size +
+                    "--spp 5 --resume state.ckpt --checkpoint state.ckpt -o resumed.pfm --stats s.json",
                 output),
             0)
       << output;
@@ -590,7 +623,8 @@ TEST_F(Cli, PathResumeGivesTheUninterruptedImageByteForByte) {
   EXPECT_EQ(stats["path"]["passes_this_run"], 3);
 
   // Another scene (a changed setting) cannot continue it; nothing is written.
-  ASSERT_NE(run("render " + size + "--set camera.fov=30 --spp 5 --resume state.ckpt -o other.pfm", output), 0);
+  ASSERT_NE(run("render " + size + "--set camera.fov=30 --spp 5 --resume state.ckpt -o other.pfm", output),
+            0);
   EXPECT_NE(output.find("another scene or other settings"), std::string::npos) << output;
   EXPECT_FALSE(fs::exists(directory_ / "other.pfm"));
   // Fewer samples than the checkpoint holds: refused.
@@ -600,7 +634,8 @@ TEST_F(Cli, PathResumeGivesTheUninterruptedImageByteForByte) {
 
 TEST_F(Cli, PathOptionsNeedThePathMethod) {
   std::string output;
-  EXPECT_EQ(run("render -q --set camera.width=8 --set camera.height=6 --spp 4 -o out.png", output), 2) << output;
+  EXPECT_EQ(run("render -q --set camera.width=8 --set camera.height=6 --spp 4 -o out.png", output), 2)
+      << output;
   EXPECT_NE(output.find("need --method path"), std::string::npos) << output;
   EXPECT_FALSE(fs::exists(directory_ / "out.png"));
   EXPECT_NE(run("render -q --method path --resume missing.ckpt -o out.png", output), 0);
@@ -653,31 +688,34 @@ TEST_F(Cli, ProbeWritesIrradianceRadianceAndIlluminanceAtPoints) {
   write("lamp.json", kLampScene);
   write("pts.csv", "x,y,z,nx,ny,nz\n0,0,0,0,1,0\n0,0,0,0,-1,0\n");
   std::string output;
-  ASSERT_EQ(run("probe lamp.json --method radiosity --points pts.csv --samples 4096 -o out.csv", output), 0) << output;
+  ASSERT_EQ(run("probe lamp.json --method radiosity --points pts.csv --samples 4096 -o out.csv", output), 0)
+      << output;
   std::string header;
   const auto rows = read_csv_rows(directory_ / "out.csv", header);
   EXPECT_EQ(header,
-            "x,y,z,nx,ny,nz,irradiance_r,irradiance_g,irradiance_b,radiance_r,radiance_g,radiance_b,illuminance_lux");
+            "x,y,z,nx,ny,nz,irradiance_r,irradiance_g,irradiance_b,radiance_r,radiance_g,radiance_b,"
+            "illuminance_lux");
   ASSERT_EQ(rows.size(), 2u);
   ASSERT_EQ(rows[0].size(), 13u);
   EXPECT_NEAR(rows[0][6], 3 * 0.55411, 0.01 * 3 * 0.55411);
   EXPECT_NEAR(rows[0][9], 3 / M_PI, 1e-6);
   EXPECT_NEAR(rows[0][12], 179 * rows[0][7], 1e-6 * rows[0][12]);  // white light: Y = the channels
-  EXPECT_EQ(rows[1][6], 0);  // facing away from the lamp
+  EXPECT_EQ(rows[1][6], 0);                                        // facing away from the lamp
   EXPECT_NE(output.find("probed 2 points with radiosity"), std::string::npos) << output;
 }
 
 TEST_F(Cli, ProbeGridWritesAFalseColorImageOfTheIlluminance) {
   write("lamp.json", kLampScene);
   std::string output;
-  ASSERT_EQ(run("probe lamp.json --grid -2,0,2,4,0,0,0,0,-4 --grid-size 8,6 --samples 64 -o grid.csv --image grid.png",
+  ASSERT_EQ(run("probe lamp.json --grid -2,0,2,4,0,0,0,0,-4 --grid-size 8,6 --samples 64 -o grid.csv --image "
+                "grid.png",
                 output),
             0)
       << output;
   std::string header;
   const auto rows = read_csv_rows(directory_ / "grid.csv", header);
   ASSERT_EQ(rows.size(), 48u);
-  EXPECT_EQ(rows[0][4], 1);  // (4,0,0) × (0,0,-4) faces +y, up at the lamp
+  EXPECT_EQ(rows[0][4], 1);                   // (4,0,0) × (0,0,-4) faces +y, up at the lamp
   EXPECT_GT(rows[3 * 8 + 3][6], rows[0][6]);  // brighter under the lamp than at the corner
   ASSERT_TRUE(fs::exists(directory_ / "grid.png"));
   EXPECT_NE(output.find("illuminance scale: 0 to"), std::string::npos) << output;
@@ -714,7 +752,8 @@ TEST_F(Cli, PathCheckpointNoticesAChangedMeshButNotTheAccelerator) {
     "lights": [{"type": "point", "position": [0, 2, 0], "intensity": 2}],
     "shapes": [{"type": "mesh", "file": "tri.obj", "material": {"kd": 0.5}}]})");
   std::string output;
-  ASSERT_EQ(run("render scene.json -q --method path --spp 2 --checkpoint a.ckpt -o a.pfm", output), 0) << output;
+  ASSERT_EQ(run("render scene.json -q --method path --spp 2 --checkpoint a.ckpt -o a.pfm", output), 0)
+      << output;
   EXPECT_EQ(run("render scene.json -q --method path --spp 3 --accel bvh --resume a.ckpt -o b.pfm", output), 0)
       << output;
   write("tri.obj", "v -1 0 -1\nv 1 0 -1\nv 0 0 2\nf 1 3 2\n");
@@ -733,12 +772,16 @@ namespace {
 // run (a test compares)" — 40 shots, a checkpoint, then on to the scene's threshold.
 TEST_F(Cli, RadiosityResumeGivesTheUninterruptedImageByteForByte) {
   const std::string scene = std::string(CANDELA_SOURCE_DIR) + "/scenes/cornell-box.json";
-  const std::string common = "render '" + scene + "' -q --method radiosity --set camera.width=32 --set camera.height=32 "
+  const std::string common = "render '" + scene +
+                             "' -q --method radiosity --set camera.width=32 --set camera.height=32 "
                              "--set radiosity.patch_size=3 --set radiosity.element_size=1.5 ";
   std::string output;
   ASSERT_EQ(run(common + "-o full.pfm --stats full.json", output), 0) << output;
-  ASSERT_EQ(run(common + "--set radiosity.max_steps=40 --checkpoint r.ckpt -o part.pfm", output), 0) << output;
-  ASSERT_EQ(run(common + "--resume r.ckpt --checkpoint r.ckpt -o resumed.pfm --stats resumed.json", output), 0) << output;
+  ASSERT_EQ(run(common + "--set radiosity.max_steps=40 --checkpoint r.ckpt -o part.pfm", output), 0)
+      << output;
+  ASSERT_EQ(run(common + "--resume r.ckpt --checkpoint r.ckpt -o resumed.pfm --stats resumed.json", output),
+            0)
+      << output;
   EXPECT_EQ(file_bytes(directory_ / "resumed.pfm"), file_bytes(directory_ / "full.pfm"));
   EXPECT_NE(file_bytes(directory_ / "part.pfm"), file_bytes(directory_ / "full.pfm"));
   std::ifstream full_file(directory_ / "full.json"), resumed_file(directory_ / "resumed.json");

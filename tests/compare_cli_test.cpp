@@ -169,7 +169,8 @@ TEST_F(CompareCli, DiffWritesAFalseColorPngWithItsBar) {
   EXPECT_EQ(json["diff"]["metric"], "abs");
   EXPECT_NEAR(json["diff"]["high"].get<double>(), 0.35, 1e-6);
   // Signed, with a fixed scale: symmetric about 0, the blue-white-red map.
-  ASSERT_EQ(run("compare a.pfm b.pfm --diff s.png --diff-metric signed --diff-scale 0.5 --json m.json", output), 0)
+  ASSERT_EQ(
+      run("compare a.pfm b.pfm --diff s.png --diff-metric signed --diff-scale 0.5 --json m.json", output), 0)
       << output;
   EXPECT_NE(output.find("scale -0.5 .. 0.5"), std::string::npos) << output;
   const TextureImage signed_png = TextureImage::load(directory_.path() / "s.png", ColorEncoding::linear);

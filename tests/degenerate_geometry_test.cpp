@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "render_support.h"
 #include "integrators/scene_loading.h"
+#include "render_support.h"
 #include "scratch_directory.h"
 
 namespace candela {
@@ -39,7 +39,8 @@ std::string vec(double x, double y, double z, double scale = 1) {
 // Small settings for every method; lengths (patch size, site spacing) scaled with the scene.
 std::string settings(double scale = 1) {
   return R"("radiosity": {"patch_size": )" + num(0.75 * scale) + R"(, "hemicube_resolution": 16},
-    "meshless": {"spacing": )" + num(0.3 * scale) + R"(, "grid": 16, "rounds": 2},
+    "meshless": {"spacing": )" +
+         num(0.3 * scale) + R"(, "grid": 16, "rounds": 2},
     "path": {"spp": 4},
     "raster": {"segments": 8},)";
 }
@@ -49,21 +50,30 @@ std::string settings(double scale = 1) {
 std::string room(double scale, const std::string& extra = "") {
   const auto v = [scale](double x, double y, double z) { return vec(x, y, z, scale); };
   return R"({"format": "candela/1",
-    "camera": {"eye": )" + v(0, 1, 3) + R"(, "target": )" + v(0, 0.8, 0) + R"(, "fov": 55, "width": 16, "height": 16},
+    "camera": {"eye": )" +
+         v(0, 1, 3) + R"(, "target": )" + v(0, 0.8, 0) + R"(, "fov": 55, "width": 16, "height": 16},
     "ambient": 0.05,
-    "lights": [{"type": "point", "position": )" + v(0.2, 1.5, 0.8) + R"(, "intensity": 0.8, "attenuation": "none"}],
-    )" + settings(scale) + R"(
+    "lights": [{"type": "point", "position": )" +
+         v(0.2, 1.5, 0.8) + R"(, "intensity": 0.8, "attenuation": "none"}],
+    )" + settings(scale) +
+         R"(
     "shapes": [
-      {"type": "quad", "corner": )" + v(-1, 0, -1) + R"(, "edge_u": )" + v(0, 0, 2) + R"(, "edge_v": )" + v(2, 0, 0) + R"(,
+      {"type": "quad", "corner": )" +
+         v(-1, 0, -1) + R"(, "edge_u": )" + v(0, 0, 2) + R"(, "edge_v": )" + v(2, 0, 0) + R"(,
        "material": {"kd": [0.6, 0.6, 0.6]}},
-      {"type": "quad", "corner": )" + v(-1, 0, -1) + R"(, "edge_u": )" + v(2, 0, 0) + R"(, "edge_v": )" + v(0, 2, 0) + R"(,
+      {"type": "quad", "corner": )" +
+         v(-1, 0, -1) + R"(, "edge_u": )" + v(2, 0, 0) + R"(, "edge_v": )" + v(0, 2, 0) + R"(,
        "material": {"kd": [0.5, 0.5, 0.7]}},
-      {"type": "quad", "corner": )" + v(-1, 0, -1) + R"(, "edge_u": )" + v(0, 2, 0) + R"(, "edge_v": )" + v(0, 0, 2) + R"(,
+      {"type": "quad", "corner": )" +
+         v(-1, 0, -1) + R"(, "edge_u": )" + v(0, 2, 0) + R"(, "edge_v": )" + v(0, 0, 2) + R"(,
        "material": {"kd": [0.7, 0.3, 0.3]}},
-      {"type": "quad", "corner": )" + v(-0.5, 1.9, -0.5) + R"(, "edge_u": )" + v(1, 0, 0) + R"(, "edge_v": )" + v(0, 0, 1) + R"(,
+      {"type": "quad", "corner": )" +
+         v(-0.5, 1.9, -0.5) + R"(, "edge_u": )" + v(1, 0, 0) + R"(, "edge_v": )" + v(0, 0, 1) + R"(,
        "material": {"kd": 0, "emission": 2}},
-      {"type": "sphere", "center": )" + v(0.3, 0.4, -0.2) + R"(, "radius": )" + num(0.4 * scale) + R"(,
-       "material": {"kd": [0.3, 0.6, 0.3], "ks": 0.3, "n": 20}})" + extra + R"(]})";
+      {"type": "sphere", "center": )" +
+         v(0.3, 0.4, -0.2) + R"(, "radius": )" + num(0.4 * scale) + R"(,
+       "material": {"kd": [0.3, 0.6, 0.3], "ks": 0.3, "n": 20}})" +
+         extra + R"(]})";
 }
 
 std::unique_ptr<Scene> load(const std::string& text, const std::string& base = ".") {
@@ -143,9 +153,11 @@ TEST(DegenerateGeometry, MeshWithNanOrInfVertexIsRefusedNamingTheFileAndVertex) 
   testing::ScratchDirectory scratch("candela-degenerate");
   for (const char* bad : {"nan", "inf", "-inf", "1e400"}) {
     SCOPED_TRACE(bad);
-    write_file(scratch.path() / "bad.obj", std::string("v 0 0 0\nv 1 0 0\nv ") + bad + " 1 0\nv 0 1 0\nf 1 2 4\nf 1 2 3\n");
-    const std::string message = load_error(
-        room(1, R"(, {"type": "mesh", "file": "bad.obj", "material": {"kd": 0.5}})"), scratch.path().string());
+    write_file(scratch.path() / "bad.obj",
+               std::string("v 0 0 0\nv 1 0 0\nv ") + bad + " 1 0\nv 0 1 0\nf 1 2 4\nf 1 2 3\n");
+    const std::string message =
+        load_error(room(1, R"(, {"type": "mesh", "file": "bad.obj", "material": {"kd": 0.5}})"),
+                   scratch.path().string());
     EXPECT_NE(message.find("bad.obj"), std::string::npos) << message;
     EXPECT_NE(message.find("shapes[5]"), std::string::npos) << message;
     EXPECT_NE(message.find("vertex 3"), std::string::npos) << message;
@@ -170,7 +182,8 @@ TEST(DegenerateGeometry, JsonOverflowingNumberIsRefusedWithItsLocation) {
   EXPECT_NE(message.find("degenerate.json:"), std::string::npos) << message;
   EXPECT_NE(message.find("1e400"), std::string::npos) << message;
   for (const char* literal : {"NaN", "Infinity", "-Infinity"}) {
-    const std::string refused = load_error(room(1, R"(, {"type": "sphere", "center": [0, )" + std::string(literal) + R"(, 0]})"));
+    const std::string refused =
+        load_error(room(1, R"(, {"type": "sphere", "center": [0, )" + std::string(literal) + R"(, 0]})"));
     EXPECT_NE(refused.find("degenerate.json:"), std::string::npos) << refused;
   }
 }
@@ -219,8 +232,9 @@ TEST(DegenerateGeometry, ZeroAreaTrianglesInAMeshAreSkippedWithAWarning) {
   render_every_method(*scene, "zero-area mesh");
 
   write_file(scratch.path() / "all-bad.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 1\n");
-  const std::string message = load_error(
-      room(1, R"(, {"type": "mesh", "file": "all-bad.obj", "material": {"kd": 0.5}})"), scratch.path().string());
+  const std::string message =
+      load_error(room(1, R"(, {"type": "mesh", "file": "all-bad.obj", "material": {"kd": 0.5}})"),
+                 scratch.path().string());
   EXPECT_NE(message.find("all-bad.obj"), std::string::npos) << message;
   EXPECT_NE(message.find("degenerate"), std::string::npos) << message;
 }
@@ -261,9 +275,12 @@ TEST(DegenerateGeometry, CoincidentQuadsAreDeterministicAndTheFirstWins) {
   for (const char* accelerator : {"list", "bvh", "grid", "octree"}) {
     SCOPED_TRACE(accelerator);
     const std::string text = room(1, quads);
-    const auto scene = load(text.substr(0, text.size() - 1) + R"(, "render": {"accelerator": ")" + std::string(accelerator) + R"("}})");
-    const std::vector<Film> one = render_every_method(*scene, std::string("coincident, 1 thread, ") + accelerator, 1);
-    const std::vector<Film> two = render_every_method(*scene, std::string("coincident, 2 threads, ") + accelerator, 2);
+    const auto scene = load(text.substr(0, text.size() - 1) + R"(, "render": {"accelerator": ")" +
+                            std::string(accelerator) + R"("}})");
+    const std::vector<Film> one =
+        render_every_method(*scene, std::string("coincident, 1 thread, ") + accelerator, 1);
+    const std::vector<Film> two =
+        render_every_method(*scene, std::string("coincident, 2 threads, ") + accelerator, 2);
     for (std::size_t m = 0; m < kMethods.size(); ++m) {
       if (kMethods[m] == "meshless") continue;  // its site placement is not thread-count exact
       EXPECT_EQ(one[m].pixels(), two[m].pixels()) << kMethods[m] << ": differs between 1 and 2 threads";
@@ -271,7 +288,8 @@ TEST(DegenerateGeometry, CoincidentQuadsAreDeterministicAndTheFirstWins) {
     // The red quad alone gives the same image: the blue one is never seen (the methods that
     // trace or rasterize; radiosity and meshless mesh both quads).
     const std::string red = room(1, quads.substr(0, quads.find("},\n") + 1));
-    const auto red_only = load(red.substr(0, red.size() - 1) + R"(, "render": {"accelerator": ")" + std::string(accelerator) + R"("}})");
+    const auto red_only = load(red.substr(0, red.size() - 1) + R"(, "render": {"accelerator": ")" +
+                               std::string(accelerator) + R"("}})");
     for (std::size_t m : {0u, 1u, 2u, 5u}) {
       const Film expected = testing::render_scene(*red_only, kMethods[m], 1);
       EXPECT_EQ(one[m].pixels(), expected.pixels()) << kMethods[m] << ": the second coincident quad shows";
@@ -308,8 +326,8 @@ TEST_P(DegenerateScale, RoomRendersAsAtUnitScale) {
     // the same image up to rounding, no acne. The others mesh and place sites by lengths that
     // are scaled too, so they are close as well.
     const double bound = kMethods[m] == "meshless" ? 0.1 : 0.02;
-    EXPECT_LT(difference, bound) << kMethods[m] << " at scale " << scale << ": mean " << mean_luminance(films[m])
-                                 << " vs " << mean_luminance(reference[m]);
+    EXPECT_LT(difference, bound) << kMethods[m] << " at scale " << scale << ": mean "
+                                 << mean_luminance(films[m]) << " vs " << mean_luminance(reference[m]);
   }
 }
 

@@ -26,10 +26,12 @@ class Distributed : public ::testing::Test {
     if (ranks > 0)
       // Open MPI's plugins leak at exit (LeakSanitizer cannot even name them, they are unloaded by
       // then): leak checks stay with the single-process tests; every other check stays on.
-      launcher += "env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0 '" CANDELA_MPIEXEC "' -np " +
-                  std::to_string(ranks) + " --oversubscribe --bind-to none ";
-    const std::string command = "cd '" + directory_.path().string() + "' && " + launcher + "'" CANDELA_CLI "' " +
-                                arguments + " > '" + log.string() + "' 2>&1";
+      launcher +=
+          "env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+          "ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0 '" CANDELA_MPIEXEC "' -np " +
+          std::to_string(ranks) + " --oversubscribe --bind-to none ";
+    const std::string command = "cd '" + directory_.path().string() + "' && " + launcher +
+                                "'" CANDELA_CLI "' " + arguments + " > '" + log.string() + "' 2>&1";
     const int status = std::system(command.c_str());
     output = bytes("log.txt");
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -44,10 +46,13 @@ class Distributed : public ::testing::Test {
   nlohmann::json json(const std::string& name) { return nlohmann::json::parse(bytes(name)); }
   // Renders arguments alone (-o NAME-1.EXT) and on two ranks (-o NAME-2.EXT); expects both to
   // succeed and the images to be identical.
-  void expect_identical(const std::string& name, const std::string& arguments, const std::string& extension = "pfm") {
+  void expect_identical(const std::string& name, const std::string& arguments,
+                        const std::string& extension = "pfm") {
     std::string output;
     ASSERT_EQ(run(0, arguments + " -o " + name + "-1." + extension, output), 0) << output;
-    ASSERT_EQ(run(2, arguments + " -o " + name + "-2." + extension + " --stats " + name + "-2.json", output), 0) << output;
+    ASSERT_EQ(run(2, arguments + " -o " + name + "-2." + extension + " --stats " + name + "-2.json", output),
+              0)
+        << output;
     const std::string one = bytes(name + "-1." + extension), two = bytes(name + "-2." + extension);
     ASSERT_FALSE(one.empty());
     EXPECT_TRUE(one == two) << name << ": the two-rank image differs from the single-process one";
@@ -61,7 +66,8 @@ class Distributed : public ::testing::Test {
   testing::ScratchDirectory directory_{"candela-distributed"};
 };
 
-const std::string kCornell = "'" CANDELA_SOURCE_DIR "/scenes/cornell-box.json' -q --set camera.width=96 --set camera.height=96";
+const std::string kCornell =
+    "'" CANDELA_SOURCE_DIR "/scenes/cornell-box.json' -q --set camera.width=96 --set camera.height=96";
 
 // The test: the built-in scene (Whitted, 500 × 500), PNG byte for byte.
 TEST_F(Distributed, BuiltInSceneOnTwoRanksIsByteIdentical) {
@@ -76,7 +82,8 @@ TEST_F(Distributed, BuiltInSceneOnTwoRanksIsByteIdentical) {
 TEST_F(Distributed, LocalAndAdaptiveWhittedWithTheirSampleMaps) {
   expect_identical("local", "render -q --method local --set camera.width=150 --set camera.height=100");
   std::string output;
-  const std::string adaptive = "render -q --set camera.width=130 --set camera.height=70 --set aa.mode=adaptive";
+  const std::string adaptive =
+      "render -q --set camera.width=130 --set camera.height=70 --set aa.mode=adaptive";
   ASSERT_EQ(run(0, adaptive + " -o a1.pfm --aa-map map1.png", output), 0) << output;
   ASSERT_EQ(run(2, adaptive + " -o a2.pfm --aa-map map2.png", output), 0) << output;
   EXPECT_EQ(bytes("a1.pfm"), bytes("a2.pfm"));
@@ -113,8 +120,10 @@ TEST_F(Distributed, RadiosityRowsAcrossRanksGiveTheSameSolution) {
   EXPECT_EQ(bytes("h1.csv"), bytes("h2.csv"));
   // Ray-cast rows (random streams per row), Gauss-Seidel over patch rows, adaptive subdivision
   // (new element rows across ranks), and the Gouraud display.
-  expect_identical("raycast", radiosity + " --set radiosity.form_factors=ray-cast --set radiosity.ray_cast_samples=3");
-  expect_identical("seidel", radiosity + " --set radiosity.solver=gauss-seidel --set radiosity.subdivision_threshold=0.1");
+  expect_identical("raycast",
+                   radiosity + " --set radiosity.form_factors=ray-cast --set radiosity.ray_cast_samples=3");
+  expect_identical(
+      "seidel", radiosity + " --set radiosity.solver=gauss-seidel --set radiosity.subdivision_threshold=0.1");
   expect_identical("gouraud", radiosity + " --set radiosity.display=gouraud");
 }
 
@@ -122,7 +131,9 @@ TEST_F(Distributed, RadiosityCheckpointResumesOnTwoRanks) {
   std::string output;
   const std::string radiosity = "render " + kCornell + " --method radiosity";
   ASSERT_EQ(run(0, radiosity + " -o whole.pfm", output), 0) << output;
-  ASSERT_EQ(run(0, radiosity + " --set radiosity.max_steps=15 --checkpoint shots.ckpt -o part.pfm", output), 0) << output;
+  ASSERT_EQ(run(0, radiosity + " --set radiosity.max_steps=15 --checkpoint shots.ckpt -o part.pfm", output),
+            0)
+      << output;
   ASSERT_EQ(run(2, radiosity + " --resume shots.ckpt -o resumed.pfm", output), 0) << output;
   EXPECT_EQ(bytes("resumed.pfm"), bytes("whole.pfm"));
 }
@@ -131,7 +142,10 @@ TEST_F(Distributed, MeshlessTransferRowsAcrossRanksGiveTheSameImage) {
   expect_identical("meshless", "render " + kCornell + " --method meshless --set meshless.spacing=0.5");
   const nlohmann::json two = json("meshless-2.json");
   std::string output;
-  ASSERT_EQ(run(0, "render " + kCornell + " --method meshless --set meshless.spacing=0.5 -o m.pfm --stats m.json", output), 0);
+  ASSERT_EQ(
+      run(0, "render " + kCornell + " --method meshless --set meshless.spacing=0.5 -o m.pfm --stats m.json",
+          output),
+      0);
   EXPECT_EQ(json("m.json")["meshless"]["transfer_entries"], two["meshless"]["transfer_entries"]);
   EXPECT_EQ(json("m.json")["meshless"]["visibility_rays"], two["meshless"]["visibility_rays"]);
 }
@@ -174,11 +188,14 @@ TEST_F(Distributed, BadInputIsReportedOnceAndWritesNothing) {
   EXPECT_FALSE(exists("out.png"));
   const std::size_t first = output.find("candela: error:");
   ASSERT_NE(first, std::string::npos) << output;
-  EXPECT_EQ(output.find("candela: error:", first + 1), std::string::npos) << "reported more than once:\n" << output;
+  EXPECT_EQ(output.find("candela: error:", first + 1), std::string::npos) << "reported more than once:\n"
+                                                                          << output;
   EXPECT_NE(output.find("bad.json"), std::string::npos) << output;
 
   // A checkpoint of another scene: rank 0 reads it and refuses; the other rank stops with it.
-  ASSERT_EQ(run(0, "render " + kCornell + " --method path --spp 2 --checkpoint box.ckpt -o box.pfm", output), 0) << output;
+  ASSERT_EQ(run(0, "render " + kCornell + " --method path --spp 2 --checkpoint box.ckpt -o box.pfm", output),
+            0)
+      << output;
   EXPECT_NE(run(2, "render -q --method path --spp 4 --resume box.ckpt -o other.pfm", output), 0);
   EXPECT_NE(output.find("another scene"), std::string::npos) << output;
   EXPECT_FALSE(exists("other.pfm"));

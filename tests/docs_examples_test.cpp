@@ -26,7 +26,8 @@ TEST(DocsExamples, EveryJsonBlockLoads) {
       inside = false;
       ++blocks;
       try {
-        const auto scene = load_scene_text(block, "scene-format.md block at line " + std::to_string(block_start), docs);
+        const auto scene =
+            load_scene_text(block, "scene-format.md block at line " + std::to_string(block_start), docs);
         EXPECT_FALSE(scene->primitives.empty()) << "block at line " << block_start;
       } catch (const std::exception& e) {
         ADD_FAILURE() << e.what();

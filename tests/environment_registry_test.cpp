@@ -140,7 +140,8 @@ TEST_F(EnvironmentRegistry, BadTypesKeysAndValuesAreLocated) {
   EXPECT_EQ(type.location().json_path, "type");
   EXPECT_NE(type.message().find("constant, cube, equirectangular"), std::string::npos) << type.what();
   EXPECT_EQ(read_error(R"({"color": 1})").location().json_path, "");  // no type
-  EXPECT_EQ(read_error(R"({"type": "constant", "colour": 1, "color": 1})").location().json_path, "colour");  // British spelling: unknown
+  EXPECT_EQ(read_error(R"({"type": "constant", "colour": 1, "color": 1})").location().json_path,
+            "colour");  // British spelling: unknown
   EXPECT_EQ(read_error(R"({"type": "constant"})").message(), "missing required key \"color\"");
   EXPECT_EQ(read_error(R"({"type": "constant", "color": -1})").location().json_path, "color");
   std::string extra_face = cube_json();

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <string>
 
-#include "render_support.h"
 #include "integrators/scene_loading.h"
+#include "render_support.h"
 
 namespace candela {
 namespace {
@@ -17,14 +17,18 @@ namespace {
 const Color kAlbedo(0.5, 0.7, 0.8);
 const Color kExpected(2.0, 1.0 / 0.3, 5.0);
 
-std::string material_json() { return R"({"kd": [0.5, 0.7, 0.8], "emission": 1})"; }
+std::string material_json() {
+  return R"({"kd": [0.5, 0.7, 0.8], "emission": 1})";
+}
 
 // The camera at the centre of a closed sphere of radius 2.
 std::unique_ptr<Scene> sphere_furnace(const std::string& method, const std::string& settings) {
   return load_scene_text(R"({"format": "candela/1",
     "camera": {"eye": [0.1, 0.2, 0], "target": [0, 0, -1], "fov": 70, "width": 16, "height": 16},
-    "render": {"method": ")" + method + R"("}, )" + settings + R"(
-    "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 2, "material": )" + material_json() + R"(}]})",
+    "render": {"method": ")" +
+                             method + R"("}, )" + settings + R"(
+    "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 2, "material": )" +
+                             material_json() + R"(}]})",
                          "sphere-furnace.json", ".");
 }
 
@@ -33,14 +37,21 @@ std::unique_ptr<Scene> cube_furnace(const std::string& method, const std::string
   const std::string m = material_json();
   return load_scene_text(R"({"format": "candela/1",
     "camera": {"eye": [1, 1.1, 1.7], "target": [0.9, 0.8, 0], "fov": 80, "width": 16, "height": 16},
-    "render": {"method": ")" + method + R"("}, )" + settings + R"(
+    "render": {"method": ")" +
+                             method + R"("}, )" + settings + R"(
     "shapes": [
-      {"type": "quad", "corner": [0, 0, 0], "edge_u": [0, 0, 2], "edge_v": [2, 0, 0], "material": )" + m + R"(},
-      {"type": "quad", "corner": [0, 2, 0], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2], "material": )" + m + R"(},
-      {"type": "quad", "corner": [0, 0, 0], "edge_u": [0, 2, 0], "edge_v": [0, 0, 2], "material": )" + m + R"(},
-      {"type": "quad", "corner": [2, 0, 0], "edge_u": [0, 0, 2], "edge_v": [0, 2, 0], "material": )" + m + R"(},
-      {"type": "quad", "corner": [0, 0, 0], "edge_u": [2, 0, 0], "edge_v": [0, 2, 0], "material": )" + m + R"(},
-      {"type": "quad", "corner": [0, 0, 2], "edge_u": [0, 2, 0], "edge_v": [2, 0, 0], "material": )" + m + R"(}]})",
+      {"type": "quad", "corner": [0, 0, 0], "edge_u": [0, 0, 2], "edge_v": [2, 0, 0], "material": )" +
+                             m + R"(},
+      {"type": "quad", "corner": [0, 2, 0], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2], "material": )" +
+                             m + R"(},
+      {"type": "quad", "corner": [0, 0, 0], "edge_u": [0, 2, 0], "edge_v": [0, 0, 2], "material": )" +
+                             m + R"(},
+      {"type": "quad", "corner": [2, 0, 0], "edge_u": [0, 0, 2], "edge_v": [0, 2, 0], "material": )" +
+                             m + R"(},
+      {"type": "quad", "corner": [0, 0, 0], "edge_u": [2, 0, 0], "edge_v": [0, 2, 0], "material": )" +
+                             m + R"(},
+      {"type": "quad", "corner": [0, 0, 2], "edge_u": [0, 2, 0], "edge_v": [2, 0, 0], "material": )" +
+                             m + R"(}]})",
                          "cube-furnace.json", ".");
 }
 
@@ -60,8 +71,10 @@ void expect_furnace_mean(const Film& film, int channel, double expected, const s
   // carries the ray offsets' bias of ~1e-7.
   const double standard_error = std::sqrt(variance / n) + 1e-6 * expected;
   const double t = standard_error > 0 ? (mean - expected) / standard_error : 0;
-  EXPECT_LT(std::fabs(t), 2.596) << label << " channel " << channel << ": mean " << mean << " ± " << standard_error;
-  EXPECT_LT(std::fabs(mean - expected), 0.01 * expected) << label << " channel " << channel << ": mean " << mean;
+  EXPECT_LT(std::fabs(t), 2.596) << label << " channel " << channel << ": mean " << mean << " ± "
+                                 << standard_error;
+  EXPECT_LT(std::fabs(mean - expected), 0.01 * expected)
+      << label << " channel " << channel << ": mean " << mean;
 }
 
 TEST(Furnace, PathTracerGivesEOverOneMinusRhoInASphere) {
@@ -90,8 +103,9 @@ TEST(Furnace, OneBounceGivesEPlusRhoE) {
 TEST(Furnace, RadiosityGivesEOverOneMinusRhoInACube) {
   for (const std::string form_factors : {"hemicube", "ray-cast"}) {
     const auto scene = cube_furnace(
-        "radiosity", R"("radiosity": {"solver": "gauss-seidel", "threshold": 1e-6, "patch_size": 0.5, "form_factors": ")" +
-                         form_factors + R"("},)");
+        "radiosity",
+        R"("radiosity": {"solver": "gauss-seidel", "threshold": 1e-6, "patch_size": 0.5, "form_factors": ")" +
+            form_factors + R"("},)");
     const Film film = testing::render_scene(*scene, "radiosity", 2);
     for (const Color& pixel : film.pixels())
       for (int c = 0; c < 3; ++c) ASSERT_NEAR(pixel[c], kExpected[c], 0.01 * kExpected[c]) << form_factors;
@@ -102,8 +116,8 @@ TEST(Furnace, MeshlessGivesEOverOneMinusRhoInASphere) {
   // The radial basis cannot: it is no partition of unity (Σφ ≈ 1.4, docs/methods/meshless.md), so
   // a constant field comes out scaled — the thesis's reason for the normalized basis.
   for (const std::string basis : {"normalized", "shepard"}) {
-    const auto scene =
-        sphere_furnace("meshless", R"("meshless": {"basis": ")" + basis + R"(", "spacing": 0.3, "grid": 24, "rounds": 6},)");
+    const auto scene = sphere_furnace(
+        "meshless", R"("meshless": {"basis": ")" + basis + R"(", "spacing": 0.3, "grid": 24, "rounds": 6},)");
     const Film film = testing::render_scene(*scene, "meshless", 2);
     // Not 1 %: the effective areas are integrated over the tessellated sphere, a few tenths of a
     // percent short, so the rows of S sum to s ≈ 0.996 and B = E/(1 − ρs) falls short by

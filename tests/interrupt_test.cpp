@@ -2,10 +2,8 @@
 // method stops early once cancellation is requested and says so in its statistics; `candela
 // render` writes the partial image, exits with 130, and the path tracer's checkpoint continues to
 // the same image as a run that was never interrupted.
-#include <gtest/gtest.h>
-
-#include "render_support.h"
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <tbb/global_control.h>
@@ -24,8 +22,9 @@
 #include "camera/antialiasing.h"
 #include "integrators/method_registry.h"
 #include "integrators/path_checkpoint.h"
-#include "io/image_reader.h"
 #include "integrators/scene_loading.h"
+#include "io/image_reader.h"
+#include "render_support.h"
 #include "scratch_directory.h"
 #include "util/cancellation.h"
 
@@ -47,7 +46,8 @@ struct CancellationGuard {
 std::unique_ptr<Scene> furnace(const std::string& method, const std::string& extra = "") {
   return load_scene_text(R"({"format": "candela/1",
     "camera": {"eye": [0, 0, 0], "target": [0, 0, -1], "fov": 60, "width": 24, "height": 24},
-    "render": {"method": ")" + method + R"("}, )" + extra + R"(
+    "render": {"method": ")" +
+                             method + R"("}, )" + extra + R"(
     "radiosity": {"patch_size": 1, "element_size": 1},
     "meshless": {"spacing": 0.5, "grid": 12, "rounds": 2},
     "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 2, "material": {"kd": 0.5, "emission": 1}}]})",
@@ -123,7 +123,8 @@ TEST(Interrupt, PathTracerKeepsTheMeanOfWholePasses) {
   EXPECT_TRUE(interrupted.statistics.extra.value("interrupted", false));
   EXPECT_EQ(interrupted.statistics.extra["path"]["spp"].get<uint64_t>(), 3u);
   const auto exact = furnace("path", R"("path": {"spp": 3},)");
-  const RenderResult reference = create_method(*find_method("path"), *exact)->render(*exact, {{0, 0, 24, 24}, true});
+  const RenderResult reference =
+      create_method(*find_method("path"), *exact)->render(*exact, {{0, 0, 24, 24}, true});
   EXPECT_FALSE(reference.statistics.extra.value("interrupted", false));
   EXPECT_EQ(interrupted.film.pixels(), reference.film.pixels());
 }
@@ -190,8 +191,9 @@ TEST(Interrupt, CtrlCWritesThePartialImageAndACheckpointThatResumes) {
   const testing::ScratchDirectory scratch("candela-interrupt");
   const fs::path& dir = scratch.path();
   const std::string scene = CANDELA_SOURCE_DIR "/scenes/cornell-box.json";
-  const std::vector<std::string> common{"render", scene, "-q", "--method", "path", "--set", "camera.width=12",
-                                        "--set", "camera.height=10", "--threads", "2"};
+  const std::vector<std::string> common{
+      "render",           scene,       "-q", "--method", "path", "--set", "camera.width=12", "--set",
+      "camera.height=10", "--threads", "2"};
   const auto with = [&](std::vector<std::string> extra) {
     std::vector<std::string> all = common;
     all.insert(all.end(), extra.begin(), extra.end());
@@ -199,8 +201,8 @@ TEST(Interrupt, CtrlCWritesThePartialImageAndACheckpointThatResumes) {
   };
   const fs::path checkpoint = dir / "run.ckpt", output = dir / "partial.pfm", stats = dir / "stats.json";
   {
-    Process process(dir, with({"--spp", "16000000", "--checkpoint", checkpoint.string(), "--checkpoint-every", "0.05",
-                               "-o", output.string(), "--stats", stats.string()}));
+    Process process(dir, with({"--spp", "16000000", "--checkpoint", checkpoint.string(), "--checkpoint-every",
+                               "0.05", "-o", output.string(), "--stats", stats.string()}));
     ASSERT_TRUE(process.started());
     // The first checkpoint says the passes have begun.
     const auto deadline = Clock::now() + std::chrono::seconds(60);

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "scene/scene.h"
 #include "integrators/scene_loading.h"
+#include "scene/scene.h"
 #include "shading/material_bsdf.h"
 #include "util/error.h"
 

@@ -1,8 +1,6 @@
 // Issue 5 end to end: materials, textures, environment maps, bump mapping and the see-through
 // transparency models inside whole renders (SPEC §7, 000 §4).
 #include <gtest/gtest.h>
-
-#include "scratch_directory.h"
 #include <unistd.h>
 
 #include <cmath>
@@ -12,10 +10,11 @@
 
 #include "integrators/local.h"
 #include "integrators/method_registry.h"
+#include "integrators/scene_loading.h"
 #include "integrators/whitted.h"
 #include "io/image_writer.h"
 #include "render_support.h"
-#include "integrators/scene_loading.h"
+#include "scratch_directory.h"
 
 namespace candela {
 namespace {
@@ -24,7 +23,8 @@ namespace fs = std::filesystem;
 
 std::unique_ptr<Scene> scene_from(const std::string& body, const std::string& camera,
                                   const std::string& directory = ".") {
-  return load_scene_text(R"({"format": "candela/1", "camera": )" + camera + ", " + body + "}", "test.json", directory);
+  return load_scene_text(R"({"format": "candela/1", "camera": )" + camera + ", " + body + "}", "test.json",
+                         directory);
 }
 
 // One pixel looking down −z through the image centre.
@@ -36,7 +36,9 @@ Color pixel(const Scene& scene) {
   return radiance;
 }
 
-Film render(const Scene& scene) { return testing::render_scene(scene, "whitted"); }
+Film render(const Scene& scene) {
+  return testing::render_scene(scene, "whitted");
+}
 
 void expect_color_near(const Color& got, const Color& expected, double tolerance) {
   EXPECT_NEAR(got.r, expected.r, tolerance);
@@ -47,11 +49,19 @@ void expect_color_near(const Color& got, const Color& expected, double tolerance
 TEST(MaterialsRender, BumpLeavesTheSilhouetteSmooth) {
   // 000 §4.2.1: the bump changes shading, never the outline. Every pixel that shows the
   // background without the bump shows it with the bump, and the other way round.
-  const std::string camera = R"({"eye": [0, 0, 6], "target": [0, 0, 0], "fov": 40, "width": 48, "height": 48})";
-  const std::string lights = R"("lights": [{"type": "point", "position": [3, 4, 6]}], "background": [0, 0, 1], )";
-  const auto plain = scene_from(lights + R"("shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1.5, "material": {"kd": [1, 1, 0], "ks": 0.3}}])", camera);
-  const auto bumped = scene_from(lights + R"("shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1.5, "material": {"kd": [1, 1, 0], "ks": 0.3,
-      "bump": {"height": {"type": "waves", "waves": [{"amplitude": 1, "frequency": [24, 0]}, {"amplitude": 0.5, "frequency": [0, 12]}]}, "scale": 0.004}}}])", camera);
+  const std::string camera =
+      R"({"eye": [0, 0, 6], "target": [0, 0, 0], "fov": 40, "width": 48, "height": 48})";
+  const std::string lights =
+      R"("lights": [{"type": "point", "position": [3, 4, 6]}], "background": [0, 0, 1], )";
+  const auto plain = scene_from(
+      lights +
+          R"("shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1.5, "material": {"kd": [1, 1, 0], "ks": 0.3}}])",
+      camera);
+  const auto bumped = scene_from(
+      lights +
+          R"("shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1.5, "material": {"kd": [1, 1, 0], "ks": 0.3,
+      "bump": {"height": {"type": "waves", "waves": [{"amplitude": 1, "frequency": [24, 0]}, {"amplitude": 0.5, "frequency": [0, 12]}]}, "scale": 0.004}}}])",
+      camera);
   const Film a = render(*plain);
   const Film b = render(*bumped);
   int background = 0, different = 0;
@@ -69,12 +79,19 @@ TEST(MaterialsRender, BumpLeavesTheSilhouetteSmooth) {
 
 TEST(MaterialsRender, ConstantTransparencyBlendsFrontAndBehind) {
   // 000 §4.4: I = (1 − t)·I_front + t·I_behind, the ray going on undeviated.
-  const std::string back = R"({"type": "plane", "point": [0, 0, -2], "normal": [0, 0, 1], "material": {"kd": [1, 0, 0]}})";
+  const std::string back =
+      R"({"type": "plane", "point": [0, 0, -2], "normal": [0, 0, 1], "material": {"kd": [1, 0, 0]}})";
   const std::string light = R"("lights": [{"type": "directional", "direction": [0, 0, -1]}], )";
-  const auto front_only = scene_from(light + R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": {"kd": [0, 0.5, 0]}}])", kCentreCamera);
+  const auto front_only = scene_from(
+      light +
+          R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": {"kd": [0, 0.5, 0]}}])",
+      kCentreCamera);
   const auto behind_only = scene_from(light + R"("shapes": [)" + back + "]", kCentreCamera);
-  const auto both = scene_from(light + R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
-      "material": {"kd": [0, 0.5, 0], "transparency": {"model": "constant", "t": 0.3}}}, )" + back + "]", kCentreCamera);
+  const auto both =
+      scene_from(light + R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
+      "material": {"kd": [0, 0.5, 0], "transparency": {"model": "constant", "t": 0.3}}}, )" +
+                     back + "]",
+                 kCentreCamera);
   const Color front = pixel(*front_only);
   // The back plane is lit through the pane: its light is attenuated by t on the way in.
   const Color behind = pixel(*behind_only) * 0.3;
@@ -90,8 +107,11 @@ TEST(MaterialsRender, LinearAndNonlinearTransparencyFollowTheNormal) {
   // same in the nonlinear model (1 − (1 − 1)^m = 1).
   const std::string light = R"("ambient": 1, )";
   const auto expect_through_centre = [&](const std::string& transparency, double t) {
-    const auto scene = scene_from(light + R"("background": [0, 0, 1], "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1,
-        "material": {"kd": [1, 0, 0], "transparency": )" + transparency + "}}]", kCentreCamera);
+    const auto scene = scene_from(
+        light + R"("background": [0, 0, 1], "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1,
+        "material": {"kd": [1, 0, 0], "transparency": )" +
+            transparency + "}}]",
+        kCentreCamera);
     // Two surfaces, each I = (1 − t)·kd·Ia + t·(what lies behind).
     const Color inner = Color(1, 0, 0) * (1 - t) + Color(0, 0, 1) * t;
     const Color outer = Color(1, 0, 0) * (1 - t) + inner * t;
@@ -107,15 +127,18 @@ TEST(MaterialsRender, LinearAndNonlinearTransparencyFollowTheNormal) {
   const double distance = -b - std::sqrt(b * b - (dot(eye, eye) - 1));
   const double n_z = std::fabs(dot(eye + direction * distance, direction));  // N = p on the unit sphere
   const auto expect_off_centre = [&](const std::string& transparency, double t) {
-    const auto scene = scene_from(light + R"("background": [0, 0, 1], "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1,
-        "material": {"kd": [1, 0, 0], "transparency": )" + transparency + "}}]",
-                                  R"({"eye": [10, 0, 0], "target": [0, 0.6, 0], "fov": 1, "width": 1, "height": 1})");
+    const auto scene = scene_from(
+        light + R"("background": [0, 0, 1], "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1,
+        "material": {"kd": [1, 0, 0], "transparency": )" +
+            transparency + "}}]",
+        R"({"eye": [10, 0, 0], "target": [0, 0.6, 0], "fov": 1, "width": 1, "height": 1})");
     const Color inner = Color(1, 0, 0) * (1 - t) + Color(0, 0, 1) * t;
     // The see-through ray starts 1e-7·extent inside: its second hit moves by as much.
     expect_color_near(pixel(*scene), Color(1, 0, 0) * (1 - t) + inner * t, 1e-6);
   };
   expect_off_centre(R"({"model": "linear", "t_min": 0.1, "t_max": 0.8})", 0.1 + 0.7 * n_z);
-  expect_off_centre(R"({"model": "nonlinear", "t_min": 0.1, "t_max": 0.8, "m": 3})", 0.1 + 0.7 * (1 - std::pow(1 - n_z, 3)));
+  expect_off_centre(R"({"model": "nonlinear", "t_min": 0.1, "t_max": 0.8, "m": 3})",
+                    0.1 + 0.7 * (1 - std::pow(1 - n_z, 3)));
   // Off centre n_z < 1: the linear model is less transparent there.
   Transparency linear;
   linear.model = TransparencyModel::linear;
@@ -133,22 +156,26 @@ TEST(MaterialsRender, LinearAndNonlinearTransparencyFollowTheNormal) {
 TEST(MaterialsRender, TexturedKrReflectsOnlyWhereTheTextureSaysSo) {
   // kr from a 2D checker over the plane's uv (uv = the hit's coordinates): the centre pixel
   // sees cell (0, 0) — even, kr = 0.5 — of a mirror facing a white background.
-  const auto scene = scene_from(R"("background": 1, "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
+  const auto scene =
+      scene_from(R"("background": 1, "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
       "material": {"kd": 0, "kr": {"type": "checker2d", "even": 0.5, "odd": 0, "mapping": {"type": "uv", "offset": [0.5, 0.5]}}}}])",
-                                kCentreCamera);
+                 kCentreCamera);
   expect_color_near(pixel(*scene), Color(0.5), 1e-12);
-  const auto shifted = scene_from(R"("background": 1, "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
+  const auto shifted =
+      scene_from(R"("background": 1, "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
       "material": {"kd": 0, "kr": {"type": "checker2d", "even": 0.5, "odd": 0, "mapping": {"type": "uv", "offset": [1.5, 0.5]}}}}])",
-                                  kCentreCamera);
+                 kCentreCamera);
   expect_color_near(pixel(*shifted), Color(0), 1e-12);
 }
 
 TEST(MaterialsRender, NegativeTextureValuesNeverMakeNegativePixels) {
   // Waves swing to −1: as kd they would give negative light; reflectances stay >= 0.
-  const std::string camera = R"({"eye": [0, 0, 6], "target": [0, 0, 0], "fov": 40, "width": 24, "height": 24})";
-  const auto scene = scene_from(R"("ambient": 0.5, "lights": [{"type": "point", "position": [2, 3, 5]}], "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1.5,
+  const std::string camera =
+      R"({"eye": [0, 0, 6], "target": [0, 0, 0], "fov": 40, "width": 24, "height": 24})";
+  const auto scene = scene_from(
+      R"("ambient": 0.5, "lights": [{"type": "point", "position": [2, 3, 5]}], "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1.5,
       "material": {"kd": {"type": "waves", "waves": [{"amplitude": 1, "frequency": [8, 0]}]}, "ks": {"type": "noise", "amplitude": 4, "offset": -2}}}])",
-                                camera);
+      camera);
   const Film film = render(*scene);
   int dark = 0;
   for (const Color& c : film.pixels()) {
@@ -164,12 +191,13 @@ TEST(MaterialsRender, EveryParameterTakesATexture) {
   const auto checker = [](const std::string& even, const std::string& odd) {
     return R"({"type": "checker2d", "even": )" + even + R"(, "odd": )" + odd + "}";
   };
-  const auto scene = scene_from(R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": {
-      "ka": )" + checker("[0.1, 0.2, 0.3]", "0") + R"(, "kd": )" + checker("[0.4, 0.5, 0.6]", "0") +
-                                    R"(, "ks": )" + checker("0.7", "0") + R"(, "n": )" + checker("33", "1") +
-                                    R"(, "kr": )" + checker("0.25", "0") + R"(, "kt": )" + checker("0.5", "0") +
-                                    R"(, "ior": )" + checker("1.7", "1") + "}}]",
-                                kCentreCamera);
+  const auto scene =
+      scene_from(R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": {
+      "ka": )" + checker("[0.1, 0.2, 0.3]", "0") +
+                     R"(, "kd": )" + checker("[0.4, 0.5, 0.6]", "0") + R"(, "ks": )" + checker("0.7", "0") +
+                     R"(, "n": )" + checker("33", "1") + R"(, "kr": )" + checker("0.25", "0") +
+                     R"(, "kt": )" + checker("0.5", "0") + R"(, "ior": )" + checker("1.7", "1") + "}}]",
+                 kCentreCamera);
   const Material& material = scene->materials.back();
   SurfaceHit even, odd;
   even.uv = {0.5, 0.5};
@@ -189,9 +217,10 @@ TEST(MaterialsRender, EveryParameterTakesATexture) {
   EXPECT_NEAR(b.ior, 1.0, 1e-15);
   EXPECT_TRUE(material.has_reflection());
   EXPECT_TRUE(material.has_refraction());
-  const auto rough = scene_from(R"("shapes": [{"type": "sphere", "material": {"type": "cook-torrance", "roughness": )" +
-                                    checker("0.2", "0.6") + "}}]",
-                                kCentreCamera);
+  const auto rough =
+      scene_from(R"("shapes": [{"type": "sphere", "material": {"type": "cook-torrance", "roughness": )" +
+                     checker("0.2", "0.6") + "}}]",
+                 kCentreCamera);
   EXPECT_NEAR(rough->materials.back().at(even).roughness, 0.2, 1e-15);
   EXPECT_NEAR(rough->materials.back().at(odd).roughness, 0.6, 1e-15);
 }
@@ -205,18 +234,22 @@ TEST(MaterialsRender, ConstantTexturesAreRangeChecked) {
       EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
     }
   };
-  expect_error(R"({"type": "cook-torrance", "roughness": {"type": "constant", "value": 0}})", "shapes[0].material.roughness: must be > 0");
+  expect_error(R"({"type": "cook-torrance", "roughness": {"type": "constant", "value": 0}})",
+               "shapes[0].material.roughness: must be > 0");
   expect_error(R"({"ior": {"type": "constant", "value": 0}})", "shapes[0].material.ior: must be > 0");
   expect_error(R"({"kr": {"type": "constant", "value": 1.5}})", "must be in [0, 1]");
   // A spherical mapping without a centre cannot carry bump heights (its uv never move).
-  expect_error(R"({"bump": {"height": {"type": "waves", "waves": [{"frequency": [24, 0]}], "mapping": "spherical"}}})",
-               "shapes[0].material.bump.height: a spherical mapping without \"center\"");
+  expect_error(
+      R"({"bump": {"height": {"type": "waves", "waves": [{"frequency": [24, 0]}], "mapping": "spherical"}}})",
+      "shapes[0].material.bump.height: a spherical mapping without \"center\"");
 }
 
 TEST(MaterialsRender, SecondaryRaysOfASeeThroughSurfaceCarryItsShare) {
   // kr 0.5 on a surface with t = 0.9: the reflection reaches the pixel with weight 0.1·0.5.
-  const auto scene = scene_from(R"("background": 1, "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
-      "material": {"kd": 0, "kr": 0.5, "transparency": {"model": "constant", "t": 0.9}}}])", kCentreCamera);
+  const auto scene =
+      scene_from(R"("background": 1, "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
+      "material": {"kd": 0, "kr": 0.5, "transparency": {"model": "constant", "t": 0.9}}}])",
+                 kCentreCamera);
   Color radiance;
   const RayTree tree = WhittedMethod().pixel_ray_tree(*scene, 0, 0, radiance);
   bool found_reflection = false, found_see_through = false;
@@ -253,7 +286,8 @@ class EnvironmentRender : public ::testing::Test {
   const fs::path& directory_ = scratch_.path();
 };
 
-const char* kCube = R"("environment": {"type": "cube", "faces": {"+x": "px.pfm", "-x": "nx.pfm", "+y": "py.pfm", "-y": "ny.pfm", "+z": "pz.pfm", "-z": "nz.pfm"}}, )";
+const char* kCube =
+    R"("environment": {"type": "cube", "faces": {"+x": "px.pfm", "-x": "nx.pfm", "+y": "py.pfm", "-y": "ny.pfm", "+z": "pz.pfm", "-z": "nz.pfm"}}, )";
 
 TEST_F(EnvironmentRender, BackgroundIsTheCubeFaceAhead) {
   // Looking down −z: the −z face (index 5).
@@ -264,20 +298,29 @@ TEST_F(EnvironmentRender, BackgroundIsTheCubeFaceAhead) {
 
 TEST_F(EnvironmentRender, MirrorReflectsTheFaceBehindTheCamera) {
   // A mirror facing +z sends the central ray back along +z: the +z face (index 4).
-  const auto scene = scene_from(kCube + std::string(R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": {"kd": 0, "kr": 1}}])"),
-                                kCentreCamera, directory_.string());
+  const auto scene = scene_from(
+      kCube +
+          std::string(
+              R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": {"kd": 0, "kr": 1}}])"),
+      kCentreCamera, directory_.string());
   EXPECT_NEAR(pixel(*scene).r, red_of_face(4), 1e-6);
   // Turned 45° about x the mirror sends the ray up, to +y (index 2).
-  const auto tilted = scene_from(kCube + std::string(R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 1], "material": {"kd": 0, "kr": 1}}])"),
-                                 kCentreCamera, directory_.string());
+  const auto tilted = scene_from(
+      kCube +
+          std::string(
+              R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 1], "material": {"kd": 0, "kr": 1}}])"),
+      kCentreCamera, directory_.string());
   EXPECT_NEAR(pixel(*tilted).r, red_of_face(2), 1e-6);
 }
 
 TEST_F(EnvironmentRender, RefractedRaysThatMissSeeTheEnvironment) {
   // A clear slab (kt = 1, ior 1.5) facing the eye: the ray passes straight through at normal
   // incidence and sees the −z face.
-  const auto scene = scene_from(kCube + std::string(R"("shapes": [{"type": "box", "min": [-1, -1, -1], "max": [1, 1, 1], "material": {"kd": 0, "kt": 1, "ior": 1.5}}])"),
-                                kCentreCamera, directory_.string());
+  const auto scene = scene_from(
+      kCube +
+          std::string(
+              R"("shapes": [{"type": "box", "min": [-1, -1, -1], "max": [1, 1, 1], "material": {"kd": 0, "kt": 1, "ior": 1.5}}])"),
+      kCentreCamera, directory_.string());
   EXPECT_NEAR(pixel(*scene).r, red_of_face(5), 1e-6);
 }
 
@@ -292,14 +335,17 @@ TEST_F(EnvironmentRender, SixRendersFromTheCentreAreACubeMapOfTheScene) {
     const char* name;
     const char* forward;
     const char* up;
-  } faces[6] = {{"px", "[1, 0, 0]", "[0, 1, 0]"}, {"nx", "[-1, 0, 0]", "[0, 1, 0]"}, {"py", "[0, 1, 0]", "[0, 0, -1]"},
-                {"ny", "[0, -1, 0]", "[0, 0, 1]"}, {"pz", "[0, 0, 1]", "[0, 1, 0]"},  {"nz", "[0, 0, -1]", "[0, 1, 0]"}};
+  } faces[6] = {{"px", "[1, 0, 0]", "[0, 1, 0]"},  {"nx", "[-1, 0, 0]", "[0, 1, 0]"},
+                {"py", "[0, 1, 0]", "[0, 0, -1]"}, {"ny", "[0, -1, 0]", "[0, 0, 1]"},
+                {"pz", "[0, 0, 1]", "[0, 1, 0]"},  {"nz", "[0, 0, -1]", "[0, 1, 0]"}};
   for (const auto& face : faces) {
-    const auto scene = scene_from(room, std::string(R"({"eye": [0, 0, 0], "target": )") + face.forward + R"(, "up": )" +
-                                            face.up + R"(, "fov": 90, "width": 96, "height": 96})");
+    const auto scene =
+        scene_from(room, std::string(R"({"eye": [0, 0, 0], "target": )") + face.forward + R"(, "up": )" +
+                             face.up + R"(, "fov": 90, "width": 96, "height": 96})");
     write_pfm(render(*scene), (directory_ / (std::string("room-") + face.name + ".pfm")).string(), 0);
   }
-  const std::string view = R"({"eye": [0, 0, 0], "target": [0.5, 0.35, -1], "up": [0.1, 1, 0], "fov": 100, "width": 48, "height": 40})";
+  const std::string view =
+      R"({"eye": [0, 0, 0], "target": [0.5, 0.35, -1], "up": [0.1, 1, 0], "fov": 100, "width": 48, "height": 40})";
   const Film direct = render(*scene_from(room, view));
   const Film through_cube = render(*scene_from(
       R"("environment": {"type": "cube", "faces": {"+x": "room-px.pfm", "-x": "room-nx.pfm", "+y": "room-py.pfm", "-y": "room-ny.pfm", "+z": "room-pz.pfm", "-z": "room-nz.pfm"}}, "shapes": [])",
@@ -323,11 +369,15 @@ TEST_F(EnvironmentRender, ScalarImagesAreLinearColorImagesSrgb) {
   DisplaySettings linear_bytes;
   linear_bytes.srgb = false;
   write_png(grey, (directory_ / "grey.png").string(), linear_bytes);
-  const auto mirror = scene_from(R"("background": 1, "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
-      "material": {"kd": 0, "kr": {"type": "image", "file": "grey.png"}}}])", kCentreCamera, directory_.string());
+  const auto mirror =
+      scene_from(R"("background": 1, "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
+      "material": {"kd": 0, "kr": {"type": "image", "file": "grey.png"}}}])",
+                 kCentreCamera, directory_.string());
   EXPECT_NEAR(pixel(*mirror).r, 128 / 255.0, 1e-6);
-  const auto diffuse = scene_from(R"("ambient": 1, "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
-      "material": {"kd": {"type": "image", "file": "grey.png"}}}])", kCentreCamera, directory_.string());
+  const auto diffuse =
+      scene_from(R"("ambient": 1, "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1],
+      "material": {"kd": {"type": "image", "file": "grey.png"}}}])",
+                 kCentreCamera, directory_.string());
   EXPECT_NEAR(pixel(*diffuse).r, std::pow((128 / 255.0 + 0.055) / 1.055, 2.4), 1e-6);
 }
 
@@ -336,8 +386,8 @@ TEST_F(EnvironmentRender, NonFiniteTexelsAreRefusedWithTheFileAndTexel) {
   bad.at(1, 0) = Color(1, std::numeric_limits<double>::infinity(), 0);
   write_pfm(bad, (directory_ / "bad.pfm").string(), 0);
   try {
-    scene_from(R"("shapes": [{"type": "sphere", "material": {"kd": {"type": "image", "file": "bad.pfm"}}}])", kCentreCamera,
-               directory_.string());
+    scene_from(R"("shapes": [{"type": "sphere", "material": {"kd": {"type": "image", "file": "bad.pfm"}}}])",
+               kCentreCamera, directory_.string());
     FAIL() << "expected an error";
   } catch (const InputError& e) {
     const std::string message = e.what();
@@ -364,13 +414,15 @@ TEST_F(EnvironmentRender, ObjTextureCoordinatesAndMapKd) {
            "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl textured\nf 1/1 2/2 3/3 4/4\n";
   }
   // Look straight down −z at a point: eye 10 units above it.
-  const auto scene = scene_from(R"("lights": [{"type": "directional", "direction": [0, 0, -1]}], "shapes": [{"type": "mesh", "file": "quad.obj"}])",
-                                R"({"eye": [-0.5, -0.5, 10], "target": [-0.5, -0.5, 0], "fov": 1, "width": 1, "height": 1})",
-                                directory_.string());
+  const auto scene = scene_from(
+      R"("lights": [{"type": "directional", "direction": [0, 0, -1]}], "shapes": [{"type": "mesh", "file": "quad.obj"}])",
+      R"({"eye": [-0.5, -0.5, 10], "target": [-0.5, -0.5, 0], "fov": 1, "width": 1, "height": 1})",
+      directory_.string());
   expect_color_near(pixel(*scene), Color(0.5, 0, 0), 1e-6);  // Kd × texel
-  const auto top_right = scene_from(R"("lights": [{"type": "directional", "direction": [0, 0, -1]}], "shapes": [{"type": "mesh", "file": "quad.obj"}])",
-                                    R"({"eye": [0.5, 0.5, 10], "target": [0.5, 0.5, 0], "fov": 1, "width": 1, "height": 1})",
-                                    directory_.string());
+  const auto top_right = scene_from(
+      R"("lights": [{"type": "directional", "direction": [0, 0, -1]}], "shapes": [{"type": "mesh", "file": "quad.obj"}])",
+      R"({"eye": [0.5, 0.5, 10], "target": [0.5, 0.5, 0], "fov": 1, "width": 1, "height": 1})",
+      directory_.string());
   expect_color_near(pixel(*top_right), Color(0, 0, 0.5), 1e-6);
   // A missing map_Kd image is an error naming the OBJ's "file" entry.
   fs::remove(directory_ / "quad.pfm");

@@ -4,9 +4,9 @@
 
 #include <string>
 
+#include "integrators/scene_loading.h"
 #include "io/mesh_test_files.h"
 #include "scene/scene.h"
-#include "integrators/scene_loading.h"
 #include "scratch_directory.h"
 
 namespace candela {

@@ -1,16 +1,15 @@
 // Issue 8 end to end: the meshless method (seed 002, SPEC §11) inside whole scenes.
 #include <gtest/gtest.h>
 
-#include "render_support.h"
-
 #include <cmath>
 #include <string>
 
 #include "integrators/local.h"
-#include "integrators/method_registry.h"
 #include "integrators/meshless_method.h"
-#include "meshless/transfer_matrix.h"
+#include "integrators/method_registry.h"
 #include "integrators/scene_loading.h"
+#include "meshless/transfer_matrix.h"
+#include "render_support.h"
 
 namespace candela {
 namespace {
@@ -24,7 +23,8 @@ MeshlessSettings meshless_settings(const Scene& scene) {
 std::unique_ptr<Scene> furnace(const std::string& meshless) {
   return load_scene_text(R"({"format": "candela/1",
     "camera": {"eye": [0, 0, 0], "target": [0, 0, -1], "fov": 60, "width": 24, "height": 24},
-    "render": {"method": "meshless"}, "meshless": )" + meshless + R"(,
+    "render": {"method": "meshless"}, "meshless": )" +
+                             meshless + R"(,
     "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 2, "material": {"kd": 0.5, "emission": 1}}]})",
                          "furnace.json", ".");
 }
@@ -61,7 +61,8 @@ TEST(MeshlessMethod, ThesisEffectiveAreasOverestimate) {
   const auto& S = solution.matrix.S;
   for (int32_t j = 0; j < S.rows(); ++j) {
     double sum = 0;
-    for (Eigen::SparseMatrix<float, Eigen::RowMajor, int32_t>::InnerIterator entry(S, j); entry; ++entry) sum += entry.value();
+    for (Eigen::SparseMatrix<float, Eigen::RowMajor, int32_t>::InnerIterator entry(S, j); entry; ++entry)
+      sum += entry.value();
     EXPECT_LE(sum, 1 + 1e-6);
   }
   for (const Color& lambda : solution.transfer.lambda) EXPECT_NEAR(lambda.g, 2, 0.04);
@@ -73,7 +74,8 @@ TEST(MeshlessTransfer, DivergenceIsReportedNotConverged) {
   transfer.S.resize(2, 2);
   std::vector<Eigen::Triplet<float, int32_t>> entries{{0, 1, 1.0f}, {1, 0, 1.0f}};
   transfer.S.setFromTriplets(entries.begin(), entries.end());
-  const TransferSolution solution = solve_transfer(transfer, {Color(1.5), Color(1.5)}, {Color(1.0), Color(1.0)}, 1e-9, 100000);
+  const TransferSolution solution =
+      solve_transfer(transfer, {Color(1.5), Color(1.5)}, {Color(1.0), Color(1.0)}, 1e-9, 100000);
   EXPECT_TRUE(solution.diverged);
   EXPECT_FALSE(solution.converged);
   EXPECT_LT(solution.iterations, 1000u);
@@ -87,7 +89,8 @@ TEST(MeshlessTransfer, RowsOfAClosedSphereSumToOne) {
   const auto& S = solution.matrix.S;
   for (int32_t j = 0; j < S.rows(); ++j) {
     double sum = 0;
-    for (Eigen::SparseMatrix<float, Eigen::RowMajor, int32_t>::InnerIterator entry(S, j); entry; ++entry) sum += entry.value();
+    for (Eigen::SparseMatrix<float, Eigen::RowMajor, int32_t>::InnerIterator entry(S, j); entry; ++entry)
+      sum += entry.value();
     EXPECT_NEAR(sum, 1, 0.02) << j;
   }
   EXPECT_GT(solution.matrix.density(), 0.99);  // everything sees everything but itself
@@ -101,20 +104,25 @@ TEST(MeshlessTransfer, SolveIteratesToTheFixedPoint) {
   transfer.S.resize(2, 2);
   std::vector<Eigen::Triplet<float, int32_t>> entries{{0, 1, 0.5f}, {1, 0, 0.5f}};
   transfer.S.setFromTriplets(entries.begin(), entries.end());
-  const TransferSolution solution = solve_transfer(transfer, {Color(0.8), Color(0.5)}, {Color(1.0), Color(0.0)}, 1e-12, 200);
+  const TransferSolution solution =
+      solve_transfer(transfer, {Color(0.8), Color(0.5)}, {Color(1.0), Color(0.0)}, 1e-12, 200);
   EXPECT_TRUE(solution.converged);
   EXPECT_NEAR(solution.lambda[0].r, 1 / 0.9, 1e-10);
   EXPECT_NEAR(solution.lambda[1].r, 0.25 / 0.9, 1e-10);
-  EXPECT_THROW(solve_transfer(transfer, {Color(0.8)}, {Color(1.0), Color(0.0)}, 1e-6, 10), std::invalid_argument);
+  EXPECT_THROW(solve_transfer(transfer, {Color(0.8)}, {Color(1.0), Color(0.0)}, 1e-6, 10),
+               std::invalid_argument);
 }
 
 // The hybrid display traces the direct light per pixel: on a lone plane under a point light there
 // is no indirect light, and it equals the local model's diffuse term exactly.
 TEST(MeshlessMethod, HybridDirectLightIsTheLocalModelsDiffuseTerm) {
   // A point light and an area light (its samples² shadow rays), each alone.
-  for (const std::string& light :
-       {std::string(R"({"type": "point", "position": [1, 1, 3], "intensity": 4, "attenuation": "inverse-square"})"),
-        std::string(R"({"type": "area", "corner": [-1, -1, 3], "edge_u": [0, 2, 0], "edge_v": [2, 0, 0], "exitance": 6, "samples": 6})")}) {
+  for (
+      const std::string& light :
+      {std::string(
+           R"({"type": "point", "position": [1, 1, 3], "intensity": 4, "attenuation": "inverse-square"})"),
+       std::string(
+           R"({"type": "area", "corner": [-1, -1, 3], "edge_u": [0, 2, 0], "edge_v": [2, 0, 0], "exitance": 6, "samples": 6})")}) {
     const std::string text = R"({"format": "candela/1",
       "camera": {"eye": [0, 0, 6], "target": [0, 0, 0], "fov": 50, "width": 16, "height": 16},
       "meshless": {"display": "hybrid", "spacing": 0.5, "grid": 16, "rounds": 1},
@@ -125,7 +133,8 @@ TEST(MeshlessMethod, HybridDirectLightIsTheLocalModelsDiffuseTerm) {
     const Film meshless = testing::render_scene(*scene, "meshless", 2, statistics);
     const Film local = testing::render_scene(*scene, "local", 2, statistics);
     for (int y = 0; y < 16; ++y)
-      for (int x = 0; x < 16; ++x) EXPECT_NEAR(meshless.at(x, y).g, local.at(x, y).g, 1e-12) << x << ", " << y;
+      for (int x = 0; x < 16; ++x)
+        EXPECT_NEAR(meshless.at(x, y).g, local.at(x, y).g, 1e-12) << x << ", " << y;
     EXPECT_GT(local.at(8, 8).g, 0);
   }
 }
@@ -155,9 +164,13 @@ TEST(MeshlessMethod, AnotherCameraSamplesItsOwnSites) {
     "shapes": [{"type": "box", "min": [0, 0, 0], "max": [10, 8, 10], "material": {"kd": 0.6}},
                {"type": "box", "min": [3, 0, 3], "max": [5, 2, 5], "material": {"kd": [0.8, 0.2, 0.2]}}]})";
   const auto front = load_scene_text(R"({"format": "candela/1",
-    "camera": {"eye": [5, 4, 9.5], "target": [5, 4, 0], "fov": 60, "width": 12, "height": 12}, )" + shapes, "a.json", ".");
+    "camera": {"eye": [5, 4, 9.5], "target": [5, 4, 0], "fov": 60, "width": 12, "height": 12}, )" +
+                                         shapes,
+                                     "a.json", ".");
   const auto side = load_scene_text(R"({"format": "candela/1",
-    "camera": {"eye": [9.5, 6, 5], "target": [0, 2, 5], "fov": 60, "width": 12, "height": 12}, )" + shapes, "b.json", ".");
+    "camera": {"eye": [9.5, 6, 5], "target": [0, 2, 5], "fov": 60, "width": 12, "height": 12}, )" +
+                                        shapes,
+                                    "b.json", ".");
   const auto method = create_method(*find_method("meshless"), *front);
   Film first(12, 12), second(12, 12), fresh(12, 12);
   RunStatistics statistics;
@@ -165,8 +178,8 @@ TEST(MeshlessMethod, AnotherCameraSamplesItsOwnSites) {
   std::swap(front->camera, side->camera);  // the same scene object, seen from the side
   testing::render_into(*method, *front, {{0, 0, 12, 12}, true}, second, statistics);
   EXPECT_FALSE(statistics.extra["meshless"]["geometry_reused"].get<bool>());
-  testing::render_into(*create_method(*find_method("meshless"), *front), *front, {{0, 0, 12, 12}, true}, fresh,
-                       statistics);
+  testing::render_into(*create_method(*find_method("meshless"), *front), *front, {{0, 0, 12, 12}, true},
+                       fresh, statistics);
   for (int y = 0; y < 12; ++y)
     for (int x = 0; x < 12; ++x) EXPECT_EQ(second.at(x, y).g, fresh.at(x, y).g);
 }

@@ -10,8 +10,8 @@
 #include "integrators/light_sampler.h"
 #include "integrators/path_checkpoint.h"
 #include "integrators/path_tracer.h"
-#include "render_support.h"
 #include "integrators/scene_loading.h"
+#include "render_support.h"
 #include "scratch_directory.h"
 #include "shading/bsdf.h"
 
@@ -37,7 +37,8 @@ Estimate estimate(int n, Sample sample) {
   }
   Estimate e;
   e.mean = sum / n;
-  for (int c = 0; c < 3; ++c) e.error[c] = std::sqrt(std::max(0.0, squares[c] / n - e.mean[c] * e.mean[c]) / (n - 1));
+  for (int c = 0; c < 3; ++c)
+    e.error[c] = std::sqrt(std::max(0.0, squares[c] / n - e.mean[c] * e.mean[c]) / (n - 1));
   return e;
 }
 
@@ -71,7 +72,8 @@ double point_to_parallel_rectangle_corner(double a, double b, double c) {
 // A point one unit below the centre of an emitting unit square (E = 3, facing down): the
 // irradiance is E × the point-to-area form factor, 4 corner rectangles of 0.5 × 0.5.
 TEST(PathTracer, IrradianceUnderAnEmittingSquareIsEmissionTimesTheFormFactor) {
-  const auto scene = scene_from(R"("camera": {"eye": [0, -3, 0], "target": [0, 0, 0], "up": [0, 0, 1], "width": 4, "height": 4},
+  const auto scene = scene_from(
+      R"("camera": {"eye": [0, -3, 0], "target": [0, 0, 0], "up": [0, 0, 1], "width": 4, "height": 4},
     "shapes": [{"type": "quad", "corner": [-0.5, 1, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1],
                 "material": {"kd": 0, "emission": 3}}])");
   const double expected = 3 * 4 * point_to_parallel_rectangle_corner(0.5, 0.5, 1);  // 3 × 0.23946
@@ -82,12 +84,14 @@ TEST(PathTracer, IrradianceUnderAnEmittingSquareIsEmissionTimesTheFormFactor) {
 // scaled): the emitter sampling of mesh triangles and transformed shapes gives the same irradiance.
 TEST(PathTracer, TrianglesAndTransformedQuadsEmitLikeTheSquare) {
   const double expected = 3 * 4 * point_to_parallel_rectangle_corner(0.5, 0.5, 1);
-  const auto triangles = scene_from(R"("camera": {"eye": [0, -3, 0], "target": [0, 0, 0], "up": [0, 0, 1], "width": 4, "height": 4},
+  const auto triangles = scene_from(
+      R"("camera": {"eye": [0, -3, 0], "target": [0, 0, 0], "up": [0, 0, 1], "width": 4, "height": 4},
     "materials": {"lamp": {"kd": 0, "emission": 3}},
     "shapes": [{"type": "triangle", "vertices": [[-0.5, 1, -0.5], [0.5, 1, -0.5], [0.5, 1, 0.5]], "material": "lamp"},
                {"type": "triangle", "vertices": [[-0.5, 1, -0.5], [0.5, 1, 0.5], [-0.5, 1, 0.5]], "material": "lamp"}])");
   expect_estimate(irradiance(*triangles, {0, 0, 0}, {0, 1, 0}, 4000), expected, "triangles");
-  const auto transformed = scene_from(R"("camera": {"eye": [0, -3, 0], "target": [0, 0, 0], "up": [0, 0, 1], "width": 4, "height": 4},
+  const auto transformed = scene_from(
+      R"("camera": {"eye": [0, -3, 0], "target": [0, 0, 0], "up": [0, 0, 1], "width": 4, "height": 4},
     "shapes": [{"type": "quad", "corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0],
                 "transform": [{"scale": [2, 0.5, 1]}, {"translate": [-1, -0.25, 0]}, {"rotate": {"angle": 90, "axis": [1, 0, 0]}},
                               {"translate": [0, 1, 0]}],
@@ -100,11 +104,13 @@ TEST(PathTracer, TrianglesAndTransformedQuadsEmitLikeTheSquare) {
 // Coaxial disc of radius r at height h: F = r²/(h² + r²); a sphere of radius r whose centre lies
 // at distance d on the normal: F = (r/d)².
 TEST(PathTracer, IrradianceFromADiscAndASphereMatchesTheirFormFactors) {
-  const auto disc = scene_from(R"("camera": {"eye": [0, -3, 0], "target": [0, 0, 0], "up": [0, 0, 1], "width": 4, "height": 4},
+  const auto disc = scene_from(
+      R"("camera": {"eye": [0, -3, 0], "target": [0, 0, 0], "up": [0, 0, 1], "width": 4, "height": 4},
     "shapes": [{"type": "disc", "center": [0, 2, 0], "normal": [0, -1, 0], "radius": 1.5,
                 "material": {"kd": 0, "emission": 2}}])");
   expect_estimate(irradiance(*disc, {0, 0, 0}, {0, 1, 0}, 4000), 2 * 2.25 / (4 + 2.25), "disc");
-  const auto sphere = scene_from(R"("camera": {"eye": [0, -3, 0], "target": [0, 0, 0], "up": [0, 0, 1], "width": 4, "height": 4},
+  const auto sphere = scene_from(
+      R"("camera": {"eye": [0, -3, 0], "target": [0, 0, 0], "up": [0, 0, 1], "width": 4, "height": 4},
     "shapes": [{"type": "sphere", "center": [0, 3, 0], "radius": 1, "material": {"kd": 0, "emission": 2}}])");
   expect_estimate(irradiance(*sphere, {0, 0, 0}, {0, 1, 0}, 4000), 2.0 / 9.0, "sphere");
 }
@@ -112,7 +118,8 @@ TEST(PathTracer, IrradianceFromADiscAndASphereMatchesTheirFormFactors) {
 // Under a uniform sky of 1 an unoccluded point facing up receives irradiance 1 (display units:
 // the background's value), and a floor of ρ = 0.5 shows 0.5.
 TEST(PathTracer, UniformSkyGivesUnitIrradianceAndTheFloorItsAlbedo) {
-  const auto scene = scene_from(R"("camera": {"eye": [0, 3, 0], "target": [0, 0, 0], "up": [0, 0, -1], "fov": 40,
+  const auto scene =
+      scene_from(R"("camera": {"eye": [0, 3, 0], "target": [0, 0, 0], "up": [0, 0, -1], "fov": 40,
       "width": 16, "height": 16},
     "background": [1, 1, 1], "path": {"spp": 16},
     "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": {"kd": 0.5}}])");
@@ -158,7 +165,8 @@ TEST(PathTracer, MirrorAndGlassSpheresVanishInAUniformEnvironment) {
   for (const std::string material : {R"({"kd": 0, "kr": 1})", R"({"kd": 0, "kt": 1, "ior": 1.5})"}) {
     const auto scene = scene_from(R"("camera": {"eye": [0, 0, 4], "target": [0, 0, 0], "fov": 35, "width": 12,
         "height": 12}, "background": [0.7, 0.7, 0.7], "path": {"spp": 8, "roulette_depth": 64},
-      "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": )" + material + "}]");
+      "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": )" +
+                                  material + "}]");
     const Film film = testing::render_scene(*scene, "path");
     for (const Color& pixel : film.pixels())
       for (int c = 0; c < 3; ++c) ASSERT_NEAR(pixel[c], 0.7, 0.7 * 0.01) << material;
@@ -180,8 +188,10 @@ TEST(PathTracer, DirectLightOnADiffuseFloorEqualsTheLocalModel) {
 }
 
 std::unique_ptr<Scene> small_box(int spp) {
-  return scene_from(R"("camera": {"eye": [0.5, 0.5, 2], "target": [0.5, 0.5, 0], "fov": 60, "width": 12, "height": 10},
-    "path": {"spp": )" + std::to_string(spp) + R"(},
+  return scene_from(
+      R"("camera": {"eye": [0.5, 0.5, 2], "target": [0.5, 0.5, 0], "fov": 60, "width": 12, "height": 10},
+    "path": {"spp": )" +
+      std::to_string(spp) + R"(},
     "lights": [{"type": "point", "position": [0.3, 0.8, 0.6], "intensity": 1}],
     "shapes": [
       {"type": "quad", "corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0], "material": {"kd": 0.7}},

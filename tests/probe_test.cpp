@@ -1,14 +1,15 @@
 // Issue 9 item 4: `candela probe` — irradiance and radiance at sensor points by the path tracer,
 // classic radiosity and the meshless method, against Howell's point-to-rectangle form factor.
+#include "integrators/probe.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
 #include <string>
 
-#include "integrators/probe.h"
-#include "math/constants.h"
 #include "integrators/scene_loading.h"
+#include "math/constants.h"
 #include "scratch_directory.h"
 
 namespace candela {
@@ -89,7 +90,8 @@ TEST(Probe, ReadsPointsAndNamesTheLineAndColumnOfBadOnes) {
     std::ofstream(path) << text;
     return path;
   };
-  const auto points = read_probe_points(file("x,y,z,nx,ny,nz\n# a comment\n\n1,2,3,0,0,2\r\n-1, 0.5 ,1e-3,1,1,0\n"));
+  const auto points =
+      read_probe_points(file("x,y,z,nx,ny,nz\n# a comment\n\n1,2,3,0,0,2\r\n-1, 0.5 ,1e-3,1,1,0\n"));
   ASSERT_EQ(points.size(), 2u);
   EXPECT_EQ(points[0].position.y, 2);
   EXPECT_EQ(points[0].normal.z, 1);

@@ -1,9 +1,6 @@
 // Issue 7 end to end: classic radiosity (000 §6, SPEC §10) — emissive materials and the
 // radiosity mesh inside whole scenes.
 #include <gtest/gtest.h>
-
-#include "render_support.h"
-
 #include <tbb/global_control.h>
 
 #include <algorithm>
@@ -14,9 +11,10 @@
 
 #include "integrators/method_registry.h"
 #include "integrators/radiosity_method.h"
+#include "integrators/scene_loading.h"
 #include "integrators/whitted.h"
 #include "radiosity/solvers.h"
-#include "integrators/scene_loading.h"
+#include "render_support.h"
 
 namespace candela {
 namespace {
@@ -27,7 +25,8 @@ RadiositySettings radiosity_settings(const Scene& scene) {
 }
 
 std::unique_ptr<Scene> scene_from(const std::string& body, const std::string& camera) {
-  return load_scene_text(R"({"format": "candela/1", "camera": )" + camera + ", " + body + "}", "test.json", ".");
+  return load_scene_text(R"({"format": "candela/1", "camera": )" + camera + ", " + body + "}", "test.json",
+                         ".");
 }
 
 // One pixel looking down −z through the image centre.
@@ -48,14 +47,17 @@ TEST(RadiosityEmission, MaterialReadsEmissionDefaultingToBlack) {
   EXPECT_EQ(e.g, 0.5);
   EXPECT_EQ(e.b, 0.25);
   const auto plain = scene_from(
-      R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": {"kd": 0.5}}])", kCentreCamera);
+      R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": {"kd": 0.5}}])",
+      kCentreCamera);
   EXPECT_TRUE(plain->materials.back().emission.is_black());
 }
 
 TEST(RadiosityEmission, NegativeEmissionIsRefused) {
-  EXPECT_THROW(scene_from(R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": {"emission": [1, -0.5, 0]}}])",
-                          kCentreCamera),
-               std::exception);
+  EXPECT_THROW(
+      scene_from(
+          R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": {"emission": [1, -0.5, 0]}}])",
+          kCentreCamera),
+      std::exception);
 }
 
 TEST(RadiosityEmission, RayTracerShowsSelfLuminousSurfacesWithoutLights) {
@@ -85,15 +87,22 @@ TEST(RadiosityEmission, RayTracerShowsSelfLuminousSurfacesWithoutLights) {
 std::string furnace_scene(const std::string& radiosity) {
   const std::string material = R"("material": {"kd": 0.6, "emission": 1})";
   return R"("radiosity": )" + radiosity + R"(, "shapes": [
-      {"type": "quad", "corner": [0, 0, 0], "edge_u": [0, 0, 2], "edge_v": [2, 0, 0], )" + material + R"(},
-      {"type": "quad", "corner": [0, 2, 0], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2], )" + material + R"(},
-      {"type": "quad", "corner": [0, 0, 0], "edge_u": [0, 2, 0], "edge_v": [0, 0, 2], )" + material + R"(},
-      {"type": "quad", "corner": [2, 0, 0], "edge_u": [0, 0, 2], "edge_v": [0, 2, 0], )" + material + R"(},
-      {"type": "quad", "corner": [0, 0, 0], "edge_u": [2, 0, 0], "edge_v": [0, 2, 0], )" + material + R"(},
-      {"type": "quad", "corner": [0, 0, 2], "edge_u": [0, 2, 0], "edge_v": [2, 0, 0], )" + material + R"(}])";
+      {"type": "quad", "corner": [0, 0, 0], "edge_u": [0, 0, 2], "edge_v": [2, 0, 0], )" +
+         material + R"(},
+      {"type": "quad", "corner": [0, 2, 0], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2], )" +
+         material + R"(},
+      {"type": "quad", "corner": [0, 0, 0], "edge_u": [0, 2, 0], "edge_v": [0, 0, 2], )" +
+         material + R"(},
+      {"type": "quad", "corner": [2, 0, 0], "edge_u": [0, 0, 2], "edge_v": [0, 2, 0], )" +
+         material + R"(},
+      {"type": "quad", "corner": [0, 0, 0], "edge_u": [2, 0, 0], "edge_v": [0, 2, 0], )" +
+         material + R"(},
+      {"type": "quad", "corner": [0, 0, 2], "edge_u": [0, 2, 0], "edge_v": [2, 0, 0], )" +
+         material + R"(}])";
 }
 
-const char* kFurnaceCamera = R"({"eye": [1, 1, 1.9], "target": [1, 1, 0], "fov": 80, "width": 16, "height": 16})";
+const char* kFurnaceCamera =
+    R"({"eye": [1, 1, 1.9], "target": [1, 1, 0], "fov": 80, "width": 16, "height": 16})";
 
 // The furnace (000 eq. 6-7 in a closed enclosure of uniform E and ρ): B = E + ρB, so every
 // element's B = E / (1 − ρ) = 2.5, whatever the form factors, as long as every row sums to 1.
@@ -127,45 +136,57 @@ void expect_furnace(const std::string& radiosity) {
 }
 
 TEST(RadiosityMethod, FurnaceProgressiveWithSubstructuring) {
-  expect_furnace(R"({"patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-4, "ambient": false})");
+  expect_furnace(
+      R"({"patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-4, "ambient": false})");
 }
 
 TEST(RadiosityMethod, FurnaceProgressiveWithAmbient) {
   // Stopped early, the ambient term of 000 §6.6.2 stands in for what is left unshot: in a uniform
   // closed furnace it is nearly exact, so 5% unshot still shows E / (1 − ρ) everywhere...
-  expect_furnace(R"({"patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 0.05, "ambient": true})");
+  expect_furnace(
+      R"({"patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 0.05, "ambient": true})");
   // ...which without it is far off.
-  const auto scene = scene_from(furnace_scene(R"({"patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 0.05, "ambient": false})"),
-                                kFurnaceCamera);
+  const auto scene = scene_from(
+      furnace_scene(
+          R"({"patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 0.05, "ambient": false})"),
+      kFurnaceCamera);
   const RadiositySolveResult result = solve_radiosity(*scene, true);
   double mean = 0;
-  for (const Color& b : result.element_radiosity) mean += b.g / static_cast<double>(result.element_radiosity.size());
+  for (const Color& b : result.element_radiosity)
+    mean += b.g / static_cast<double>(result.element_radiosity.size());
   EXPECT_LT(mean, 0.985 * 2.5);  // ≈ 2.43: the missing ρ·B_amb
 }
 
 TEST(RadiosityMethod, FurnaceGaussSeidel) {
-  expect_furnace(R"({"solver": "gauss-seidel", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-6})");
+  expect_furnace(
+      R"({"solver": "gauss-seidel", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-6})");
 }
 
 TEST(RadiosityMethod, FurnaceGaussianElimination) {
-  expect_furnace(R"({"solver": "gaussian", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60})");
+  expect_furnace(
+      R"({"solver": "gaussian", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60})");
 }
 
 TEST(RadiosityMethod, FurnaceProgressiveWithRayCastFormFactors) {
-  expect_furnace(R"({"form_factors": "ray-cast", "ray_cast_samples": 3, "patch_size": 1, "element_size": 0.5, "threshold": 1e-4, "ambient": false})");
+  expect_furnace(
+      R"({"form_factors": "ray-cast", "ray_cast_samples": 3, "patch_size": 1, "element_size": 0.5, "threshold": 1e-4, "ambient": false})");
 }
 
 TEST(RadiosityMethod, FurnaceGaussianWithRayCastFormFactors) {
-  expect_furnace(R"({"solver": "gaussian", "form_factors": "ray-cast", "patch_size": 1, "element_size": 0.5})");
+  expect_furnace(
+      R"({"solver": "gaussian", "form_factors": "ray-cast", "patch_size": 1, "element_size": 0.5})");
 }
 
 TEST(RadiosityMethod, SettingsAreCheckedAndUnknownKeysRefused) {
-  const auto load = [](const std::string& radiosity) { return scene_from(furnace_scene(radiosity), kFurnaceCamera); };
+  const auto load = [](const std::string& radiosity) {
+    return scene_from(furnace_scene(radiosity), kFurnaceCamera);
+  };
   EXPECT_EQ(radiosity_settings(*load("{}")).hemicube_resolution, 100);
   EXPECT_EQ(radiosity_settings(*load("{}")).solver, RadiositySolver::progressive);
   EXPECT_EQ(radiosity_settings(*load(R"({"solver": "gaussian"})")).solver, RadiositySolver::gaussian);
   EXPECT_EQ(radiosity_settings(*load("{}")).form_factors, RadiosityFormFactors::hemicube);
-  EXPECT_EQ(radiosity_settings(*load(R"({"form_factors": "ray-cast"})")).form_factors, RadiosityFormFactors::ray_cast);
+  EXPECT_EQ(radiosity_settings(*load(R"({"form_factors": "ray-cast"})")).form_factors,
+            RadiosityFormFactors::ray_cast);
   EXPECT_THROW(load(R"({"ray_cast_samples": 0})"), std::exception);
   EXPECT_THROW(load(R"({"hemicube_resolution": 51})"), std::exception);
   EXPECT_THROW(load(R"({"hemicube_resolution": 0})"), std::exception);
@@ -208,14 +229,19 @@ TEST(RadiosityMethod, SolvesThatDoNotFitAreRefusedNamingTheSettings) {
           {"radiosity.patch_size", "radiosity.element_size"});
   // A mesh far too large is refused from the sizes alone, before it is built (it would take
   // gigabytes itself): 24 m² in elements of 1 mm.
-  refused(R"({"patch_size": 0.001, "element_size": 0.001})", {"radiosity.patch_size", "radiosity.element_size", "at least"});
+  refused(R"({"patch_size": 0.001, "element_size": 0.001})",
+          {"radiosity.patch_size", "radiosity.element_size", "at least"});
   // A limit beyond 2⁶⁴ bytes is no limit (not a wrapped-around 0).
-  const auto generous = scene_from(furnace_scene(R"({"patch_size": 1, "element_size": 1, "memory_limit_mib": 2e13, "hemicube_resolution": 20, "threshold": 0.05})"),
-                                   kFurnaceCamera);
+  const auto generous = scene_from(
+      furnace_scene(
+          R"({"patch_size": 1, "element_size": 1, "memory_limit_mib": 2e13, "hemicube_resolution": 20, "threshold": 0.05})"),
+      kFurnaceCamera);
   EXPECT_NO_THROW(solve_radiosity(*generous, true));
   // Within the limit the same scene solves.
-  const auto scene = scene_from(furnace_scene(R"({"patch_size": 0.5, "element_size": 0.5, "memory_limit_mib": 1, "hemicube_resolution": 20, "threshold": 0.05})"),
-                                kFurnaceCamera);
+  const auto scene = scene_from(
+      furnace_scene(
+          R"({"patch_size": 0.5, "element_size": 0.5, "memory_limit_mib": 1, "hemicube_resolution": 20, "threshold": 0.05})"),
+      kFurnaceCamera);
   EXPECT_NO_THROW(solve_radiosity(*scene, true));
 }
 
@@ -225,8 +251,8 @@ Film render_cornell_box(const Scene& scene, int threads, RunStatistics& statisti
 
 TEST(RadiosityMethod, CornellBoxConvergesAndDoesNotDependOnThreads) {
   const auto scene = load_scene_file(std::string(CANDELA_SOURCE_DIR) + "/scenes/cornell-box.json",
-                                     {"camera.width=40", "camera.height=40", "radiosity.hemicube_resolution=50",
-                                      "radiosity.threshold=0.01"});
+                                     {"camera.width=40", "camera.height=40",
+                                      "radiosity.hemicube_resolution=50", "radiosity.threshold=0.01"});
   RunStatistics one_thread, two_threads;
   const Film a = render_cornell_box(*scene, 1, one_thread);
   const Film b = render_cornell_box(*scene, 2, two_threads);
@@ -247,7 +273,7 @@ TEST(RadiosityMethod, CornellBoxConvergesAndDoesNotDependOnThreads) {
       EXPECT_EQ(a.at(x, y).g, b.at(x, y).g);
       EXPECT_EQ(a.at(x, y).b, b.at(x, y).b);
     }
-  // Colour bleeding (000 §6.8): the floor near the red wall is redder than near the blue wall.
+  // Color bleeding (000 §6.8): the floor near the red wall is redder than near the blue wall.
   const RadiositySolveResult result = solve_radiosity(*scene, true);
   Color near_red, near_blue;
   for (std::size_t q = 0; q < result.mesh.elements.size(); ++q) {
@@ -267,8 +293,9 @@ std::unique_ptr<Scene> cornell_box(std::vector<std::string> settings) {
 // patch sent out, never more — before back faces were made occluders, the ceiling behind the lamp
 // counted the lamp's back as a lit front and 1.79 times the shot arrived.
 TEST(RadiosityMethod, FirstShotDeliversNoMoreThanTheShooterSent) {
-  const auto scene = cornell_box({"radiosity.hemicube_resolution=60", "radiosity.element_size=2", "radiosity.max_steps=1", "radiosity.ambient=false",
-                                  "camera.width=8", "camera.height=8"});
+  const auto scene =
+      cornell_box({"radiosity.hemicube_resolution=60", "radiosity.element_size=2", "radiosity.max_steps=1",
+                   "radiosity.ambient=false", "camera.width=8", "camera.height=8"});
   const RadiositySolveResult result = solve_radiosity(*scene, true);
   ASSERT_EQ(result.steps, 1u);
   double shooter_flux = 0, arrived = 0;
@@ -290,12 +317,13 @@ TEST(RadiosityMethod, FirstShotDeliversNoMoreThanTheShooterSent) {
 // allowed.
 TEST(RadiosityMethod, AdaptiveSubdivisionRefinesUntilNoNeighboursDifferTooMuch) {
   const double threshold = 0.15, min_size = 0.5;
-  const auto scene = cornell_box({"radiosity.patch_size=2", "radiosity.element_size=2", "radiosity.hemicube_resolution=40",
-                                  "radiosity.threshold=0.01", "radiosity.ambient=false",
-                                  "radiosity.subdivision_threshold=0.15", "radiosity.min_element_size=0.5",
-                                  "camera.width=8", "camera.height=8"});
-  const auto uniform = cornell_box({"radiosity.patch_size=2", "radiosity.element_size=2", "radiosity.hemicube_resolution=40",
-                                    "radiosity.threshold=0.01", "radiosity.ambient=false", "camera.width=8", "camera.height=8"});
+  const auto scene = cornell_box({"radiosity.patch_size=2", "radiosity.element_size=2",
+                                  "radiosity.hemicube_resolution=40", "radiosity.threshold=0.01",
+                                  "radiosity.ambient=false", "radiosity.subdivision_threshold=0.15",
+                                  "radiosity.min_element_size=0.5", "camera.width=8", "camera.height=8"});
+  const auto uniform = cornell_box({"radiosity.patch_size=2", "radiosity.element_size=2",
+                                    "radiosity.hemicube_resolution=40", "radiosity.threshold=0.01",
+                                    "radiosity.ambient=false", "camera.width=8", "camera.height=8"});
   nlohmann::json facts;
   const RadiositySolveResult refined = solve_radiosity(*scene, true, &facts);
   const RadiositySolveResult plain = solve_radiosity(*uniform, true);
@@ -313,7 +341,9 @@ TEST(RadiosityMethod, AdaptiveSubdivisionRefinesUntilNoNeighboursDifferTooMuch) 
   const auto& elements = refined.mesh.elements;
   const auto& b = refined.element_radiosity;
   // Emitters and hidden elements (lying against another surface) are not compared.
-  const auto counted = [&](std::size_t q) { return elements[q].emission.is_black() && !refined.element_hidden[q]; };
+  const auto counted = [&](std::size_t q) {
+    return elements[q].emission.is_black() && !refined.element_hidden[q];
+  };
   double largest = 0;
   for (std::size_t q = 0; q < elements.size(); ++q)
     if (counted(q)) largest = std::max({largest, b[q].r, b[q].g, b[q].b});
@@ -348,7 +378,8 @@ TEST(RadiosityMethod, AdaptiveSubdivisionRefinesUntilNoNeighboursDifferTooMuch) 
 // element reaching outside the footprints sees the room.
 TEST(RadiosityMethod, SplittingAtContactsRemovesTheShadowLeakAroundTheBoxes) {
   const auto black_floor_outside_the_box = [](bool split) {
-    const auto scene = cornell_box({"radiosity.hemicube_resolution=40", "radiosity.threshold=0.01", "radiosity.ambient=false",
+    const auto scene = cornell_box({"radiosity.hemicube_resolution=40", "radiosity.threshold=0.01",
+                                    "radiosity.ambient=false",
                                     std::string("radiosity.split_at_contacts=") + (split ? "true" : "false"),
                                     "camera.width=8", "camera.height=8"});
     const RadiositySolveResult result = solve_radiosity(*scene, true);
@@ -402,7 +433,9 @@ TEST(RadiosityMethod, OneSolutionServesEveryView) {
 
 // 000 §6.5, SPEC §10 "Display": the radiosity.display setting, "gouraud" by default.
 TEST(RadiosityDisplay, SettingDefaultsToGouraudAndIsChecked) {
-  const auto load = [](const std::string& radiosity) { return scene_from(furnace_scene(radiosity), kFurnaceCamera); };
+  const auto load = [](const std::string& radiosity) {
+    return scene_from(furnace_scene(radiosity), kFurnaceCamera);
+  };
   EXPECT_EQ(radiosity_settings(*load("{}")).display, RadiosityDisplay::gouraud);
   EXPECT_EQ(radiosity_settings(*load(R"({"display": "flat"})")).display, RadiosityDisplay::flat);
   EXPECT_EQ(radiosity_settings(*load(R"({"display": "gouraud"})")).display, RadiosityDisplay::gouraud);
@@ -411,20 +444,24 @@ TEST(RadiosityDisplay, SettingDefaultsToGouraudAndIsChecked) {
 
 // A constant field stays constant: every vertex of the furnace gets E / (1 − ρ) too.
 TEST(RadiosityDisplay, FurnaceGouraudShowsEOverOneMinusRhoEverywhere) {
-  expect_furnace(R"({"display": "gouraud", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-4, "ambient": false})");
-  expect_furnace(R"({"display": "gouraud", "solver": "gaussian", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60})");
+  expect_furnace(
+      R"({"display": "gouraud", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-4, "ambient": false})");
+  expect_furnace(
+      R"({"display": "gouraud", "solver": "gaussian", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60})");
 }
 
 TEST(RadiosityDisplay, FurnaceRayTracedShowsEOverOneMinusRhoEverywhere) {
-  expect_furnace(R"({"display": "ray-traced", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-4, "ambient": false})");
+  expect_furnace(
+      R"({"display": "ray-traced", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-4, "ambient": false})");
 }
 
 // The ray-traced view looks up the same vertex field the Gouraud display interpolates on screen:
 // the two images agree closely (they differ only where screen-space and surface interpolation
 // part, and at silhouettes).
 TEST(RadiosityDisplay, RayTracedViewMatchesGouraud) {
-  const std::vector<std::string> base{"camera.width=48", "camera.height=48", "radiosity.hemicube_resolution=40",
-                                      "radiosity.element_size=2", "radiosity.threshold=0.01"};
+  const std::vector<std::string> base{"camera.width=48", "camera.height=48",
+                                      "radiosity.hemicube_resolution=40", "radiosity.element_size=2",
+                                      "radiosity.threshold=0.01"};
   auto traced_settings = base, gouraud_settings = base;
   traced_settings.push_back("radiosity.display=\"ray-traced\"");
   const auto traced_scene = cornell_box(traced_settings);
@@ -445,8 +482,10 @@ TEST(RadiosityDisplay, RayTracedViewMatchesGouraud) {
 
 // 000 Figure 65's picture of the mesh: flat elements with their edges dark (15%).
 TEST(RadiosityDisplay, ElementsDisplayOutlinesEveryElement) {
-  const auto scene = scene_from(furnace_scene(R"({"display": "elements", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 40, "threshold": 1e-4, "ambient": false})"),
-                                R"({"eye": [1, 1, 1.9], "target": [1, 1, 0], "fov": 80, "width": 64, "height": 64})");
+  const auto scene = scene_from(
+      furnace_scene(
+          R"({"display": "elements", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 40, "threshold": 1e-4, "ambient": false})"),
+      R"({"eye": [1, 1, 1.9], "target": [1, 1, 0], "fov": 80, "width": 64, "height": 64})");
   EXPECT_EQ(radiosity_settings(*scene).display, RadiosityDisplay::elements);
   RunStatistics statistics;
   const Film film = testing::render_scene(*scene, "radiosity", 2, statistics);
@@ -455,8 +494,10 @@ TEST(RadiosityDisplay, ElementsDisplayOutlinesEveryElement) {
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 64; ++x) {
       const double g = film.at(x, y).g;
-      if (std::fabs(g - 2.5) < 0.025) ++inside;
-      else if (std::fabs(g - 0.15 * 2.5) < 0.025 * 0.15) ++outline;
+      if (std::fabs(g - 2.5) < 0.025)
+        ++inside;
+      else if (std::fabs(g - 0.15 * 2.5) < 0.025 * 0.15)
+        ++outline;
     }
   EXPECT_EQ(inside + outline, 64u * 64u);  // every pixel is one or the other
   EXPECT_GT(outline, 64u * 4u);            // lines cross the image
@@ -464,7 +505,8 @@ TEST(RadiosityDisplay, ElementsDisplayOutlinesEveryElement) {
 }
 
 TEST(RadiosityDisplay, FurnaceFlatShowsEOverOneMinusRhoEverywhere) {
-  expect_furnace(R"({"display": "flat", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-4, "ambient": false})");
+  expect_furnace(
+      R"({"display": "flat", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-4, "ambient": false})");
 }
 
 // The sum of squared differences between horizontally adjacent pixels in the image's bottom rows
@@ -483,8 +525,9 @@ double floor_steps(const Film& film) {
 TEST(RadiosityDisplay, CornellBoxGouraudHasNoElementStepsAndDoesNotDependOnThreads) {
   // Without the contact cuts: they sharpen the boxes' shadow edges on the floor, which this
   // measure of steps would count.
-  const std::vector<std::string> settings{"camera.width=64", "camera.height=64", "radiosity.hemicube_resolution=50",
-                                          "radiosity.threshold=0.01", "radiosity.split_at_contacts=false"};
+  const std::vector<std::string> settings{"camera.width=64", "camera.height=64",
+                                          "radiosity.hemicube_resolution=50", "radiosity.threshold=0.01",
+                                          "radiosity.split_at_contacts=false"};
   const std::string file = std::string(CANDELA_SOURCE_DIR) + "/scenes/cornell-box.json";
   auto flat_settings = settings, gouraud_settings = settings;
   flat_settings.push_back("radiosity.display=\"flat\"");

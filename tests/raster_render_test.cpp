@@ -8,8 +8,8 @@
 #include <tuple>
 
 #include "integrators/method_registry.h"
-#include "render_support.h"
 #include "integrators/scene_loading.h"
+#include "render_support.h"
 #include "util/error.h"
 
 namespace candela {
@@ -94,7 +94,7 @@ TEST(RasterRender, GouraudLosesAHighlightInsideAPolygonPhongKeepsIt) {
   const double gouraud_peak = brightest(render(*gouraud, "raster"));
   const double phong_peak = brightest(render(*phong, "raster"));
   EXPECT_NEAR(gouraud_peak, 0.2 / std::sqrt(3.0), 0.01);  // nothing brighter than the corners
-  EXPECT_GT(phong_peak, 1.0);    // kd + ks at the centre: 1.2
+  EXPECT_GT(phong_peak, 1.0);                             // kd + ks at the centre: 1.2
 }
 
 TEST(RasterRender, EveryModeEqualsTheRayTracerOnALitPlane) {
@@ -126,11 +126,13 @@ TEST(RasterRender, EveryModeEqualsTheRayTracerOnALitPlane) {
 
 TEST(RasterRender, SameBytesWhateverTheThreadCount) {
   for (const char* shading : {"flat", "gouraud", "phong", "dotproduct"}) {
-    const auto scene = load_default_scene({"camera.width=64", "camera.height=48", std::string("raster.shading=\"") + shading + "\""});
+    const auto scene = load_default_scene(
+        {"camera.width=64", "camera.height=48", std::string("raster.shading=\"") + shading + "\""});
     const Film one = render(*scene, "raster", 1);
     const Film two = render(*scene, "raster", 2);
     ASSERT_EQ(one.pixels().size(), two.pixels().size());
-    for (std::size_t i = 0; i < one.pixels().size(); ++i) ASSERT_TRUE(one.pixels()[i] == two.pixels()[i]) << shading << " " << i;
+    for (std::size_t i = 0; i < one.pixels().size(); ++i)
+      ASSERT_TRUE(one.pixels()[i] == two.pixels()[i]) << shading << " " << i;
   }
 }
 
@@ -208,7 +210,8 @@ TEST(RasterRender, PlanesAreRefinedSoGouraudLightsTheFloor) {
     EXPECT_LT(c.mean, std::string(shading) == "flat" ? 0.1 : 0.03) << shading << " " << c.mean;
   }
   // A scene of planes only, the eye near them: the floor is drawn, not left to the background.
-  const auto only_plane = scene_from(R"("camera": {"eye": [0, 0, 0], "target": [0, -0.5, -1], "width": 32, "height": 24},
+  const auto only_plane =
+      scene_from(R"("camera": {"eye": [0, 0, 0], "target": [0, -0.5, -1], "width": 32, "height": 24},
       "background": [0, 0, 1], "ambient": 1, "shapes": [{"type": "plane", "point": [0, -1, 0], "normal": [0, 1, 0]}])");
   const Comparison c = compare(render(*only_plane, "raster"), render(*only_plane, "local"), Color(0, 0, 1));
   EXPECT_EQ(c.coverage_differs, 0);
@@ -221,7 +224,8 @@ TEST(RasterRender, MeshesKeepTheirOwnNormals) {
   const std::string body = R"(
     "camera": {"eye": [2.5, 2, 3], "target": [0.5, 0.5, 0.5], "width": 48, "height": 36},
     "background": [0, 0, 1], "ambient": 0.1, "lights": [{"type": "point", "position": [4, 5, 3]}],
-    "shapes": [{"type": "mesh", "file": ")" + source + R"(/scenes/meshes/cube.obj", "material": {"kd": 0.7}}],
+    "shapes": [{"type": "mesh", "file": ")" +
+                           source + R"(/scenes/meshes/cube.obj", "material": {"kd": 0.7}}],
     "local": {"shadows": false})";
   const auto scene = scene_from(body);
   const Comparison c = compare(render(*scene, "raster"), render(*scene, "local"), Color(0, 0, 1));
@@ -231,15 +235,18 @@ TEST(RasterRender, MeshesKeepTheirOwnNormals) {
 
 TEST(RasterRender, CameraInsideASphereAndOrthographicViews) {
   // Most triangles behind the eye: clipped, not smeared over every tile; the inside is drawn.
-  const auto inside = scene_from(R"("camera": {"eye": [0, 0, 0], "target": [0, 0, -1], "width": 32, "height": 24},
+  const auto inside =
+      scene_from(R"("camera": {"eye": [0, 0, 0], "target": [0, 0, -1], "width": 32, "height": 24},
       "background": [0, 0, 1], "ambient": 1, "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 3}])");
   const Comparison c = compare(render(*inside, "raster"), render(*inside, "local"), Color(0, 0, 1));
   EXPECT_EQ(c.coverage_differs, 0);
   EXPECT_EQ(c.covered, 32 * 24);
-  const auto orthographic = scene_from(R"("camera": {"type": "orthographic", "eye": [0, 0, 5], "target": [0, 0, 0], "window": [-2, 2, -1.5, 1.5], "width": 32, "height": 24},
+  const auto orthographic = scene_from(
+      R"("camera": {"type": "orthographic", "eye": [0, 0, 5], "target": [0, 0, 0], "window": [-2, 2, -1.5, 1.5], "width": 32, "height": 24},
       "background": [0, 0, 1], "ambient": 0.2, "lights": [{"type": "directional", "direction": [0, 0, -1]}],
       "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1}], "raster": {"segments": 128}, "local": {"shadows": false})");
-  const Comparison o = compare(render(*orthographic, "raster"), render(*orthographic, "local"), Color(0, 0, 1));
+  const Comparison o =
+      compare(render(*orthographic, "raster"), render(*orthographic, "local"), Color(0, 0, 1));
   EXPECT_GT(o.covered, 150);
   EXPECT_LT(o.coverage_differs, 12);
   EXPECT_LT(o.mean, 0.01);
@@ -251,9 +258,11 @@ TEST(RasterRender, SettingsAreChecked) {
   EXPECT_THROW(scene_from(kSphereScene, {"raster.crease_angle=200"}), InputError);
   // Dot-product shading carries four values per light: too many lights is a clear error.
   std::string lights = R"("lights": [)";
-  for (int i = 0; i < 20; ++i) lights += std::string(i ? ", " : "") + R"({"type": "point", "position": [0, 5, 5]})";
-  const auto crowded = scene_from(R"("camera": {"width": 8, "height": 8}, )" + lights +
-                                  R"(], "shapes": [{"type": "sphere"}], "raster": {"shading": "dotproduct"})");
+  for (int i = 0; i < 20; ++i)
+    lights += std::string(i ? ", " : "") + R"({"type": "point", "position": [0, 5, 5]})";
+  const auto crowded =
+      scene_from(R"("camera": {"width": 8, "height": 8}, )" + lights +
+                 R"(], "shapes": [{"type": "sphere"}], "raster": {"shading": "dotproduct"})");
   try {
     render(*crowded, "raster");
     FAIL() << "expected an error";

@@ -1,7 +1,5 @@
 // Every registered name can be created from its documented example (STYLE.md habit 2).
 #include <gtest/gtest.h>
-
-#include "scratch_directory.h"
 #include <unistd.h>
 
 #include <filesystem>
@@ -10,12 +8,13 @@
 
 #include "accel/accelerator_registry.h"
 #include "integrators/method_registry.h"
+#include "integrators/scene_loading.h"
 #include "io/image_writer.h"
 #include "scene/camera_registry.h"
 #include "scene/light_registry.h"
 #include "scene/material_registry.h"
-#include "integrators/scene_loading.h"
 #include "scene/shape_registry.h"
+#include "scratch_directory.h"
 
 namespace candela {
 namespace {
@@ -74,7 +73,8 @@ TEST_F(RegistryTest, EveryMaterialAndTextureFromItsExample) {
     EXPECT_EQ(scene->materials.back().name, "m");
   }
   for (const MappingEntry& entry : mapping_entries()) {
-    const auto scene = load(R"("materials": {"m": {"kd": {"type": "checker2d", "mapping": )" + std::string(entry.example) + "}}}");
+    const auto scene = load(R"("materials": {"m": {"kd": {"type": "checker2d", "mapping": )" +
+                            std::string(entry.example) + "}}}");
     const auto& texture = dynamic_cast<const Texture2D&>(*scene->materials.back().kd);
     EXPECT_EQ(texture.mapping().type_name(), entry.name);
     EXPECT_EQ(find_mapping(entry.name), &entry);
@@ -87,8 +87,9 @@ TEST_F(RegistryTest, EveryMaterialAndTextureFromItsExample) {
 
 TEST_F(RegistryTest, EveryCameraFromItsExample) {
   for (const CameraEntry& entry : camera_entries()) {
-    const auto scene = load_scene_text(R"({"format": "candela/1", "camera": )" + std::string(entry.example) + "}",
-                                       "registry.json", directory_.string());
+    const auto scene =
+        load_scene_text(R"({"format": "candela/1", "camera": )" + std::string(entry.example) + "}",
+                        "registry.json", directory_.string());
     EXPECT_EQ(scene->camera->type_name(), entry.name);
     EXPECT_EQ(scene->camera->width(), 320);
   }

@@ -7,10 +7,10 @@
 
 #include "accel/accelerator_registry.h"
 #include "integrators/method_registry.h"
+#include "integrators/scene_loading.h"
 #include "io/image_reader.h"
 #include "io/image_writer.h"
 #include "render_support.h"
-#include "integrators/scene_loading.h"
 
 namespace candela {
 namespace {
@@ -25,8 +25,10 @@ TEST(Render, SameImageBytesWhateverTheThreadCount) {
     const Film one = render(*scene, method, 1);
     const Film two = render(*scene, method, 2);
     const Film four = render(*scene, method, 4);
-    EXPECT_EQ(std::memcmp(one.pixels().data(), two.pixels().data(), one.pixels().size() * sizeof(Color)), 0) << method;
-    EXPECT_EQ(std::memcmp(one.pixels().data(), four.pixels().data(), one.pixels().size() * sizeof(Color)), 0) << method;
+    EXPECT_EQ(std::memcmp(one.pixels().data(), two.pixels().data(), one.pixels().size() * sizeof(Color)), 0)
+        << method;
+    EXPECT_EQ(std::memcmp(one.pixels().data(), four.pixels().data(), one.pixels().size() * sizeof(Color)), 0)
+        << method;
     EXPECT_EQ(to_display(one, scene->display), to_display(two, scene->display));
   }
 }
@@ -38,7 +40,8 @@ TEST(Render, EveryAntialiasingModeIsThreadIndependent) {
                                            "aa.jitter=true", "aa.filter=gaussian"});
     const Film one = render(*scene, "whitted", 1);
     const Film two = render(*scene, "whitted", 2);
-    EXPECT_EQ(std::memcmp(one.pixels().data(), two.pixels().data(), one.pixels().size() * sizeof(Color)), 0) << mode;
+    EXPECT_EQ(std::memcmp(one.pixels().data(), two.pixels().data(), one.pixels().size() * sizeof(Color)), 0)
+        << mode;
   }
 }
 
@@ -46,17 +49,20 @@ TEST(Render, SameImageBytesOnEveryAccelerator) {
   // SPEC §5: every accelerator answers identically, so the image cannot depend on the choice.
   std::vector<uint8_t> reference;
   for (const AcceleratorEntry& entry : accelerator_entries()) {
-    const auto scene = load_scene_file(std::string(CANDELA_SOURCE_DIR) + "/scenes/glass-globe.json",
-                                       {"camera.width=48", "camera.height=32", "render.accelerator=" + std::string(entry.name)});
+    const auto scene = load_scene_file(
+        std::string(CANDELA_SOURCE_DIR) + "/scenes/glass-globe.json",
+        {"camera.width=48", "camera.height=32", "render.accelerator=" + std::string(entry.name)});
     const Film film = render(*scene, "whitted", 2);
     const std::vector<uint8_t> bytes = to_display(film, scene->display);
     if (reference.empty()) reference = bytes;
     EXPECT_EQ(bytes, reference) << entry.name;
   }
   for (const char* volume : {"sphere", "box", "slabs"}) {
-    const auto scene = load_default_scene({"camera.width=48", "camera.height=48", std::string("render.bounding_volume=") + volume});
+    const auto scene = load_default_scene(
+        {"camera.width=48", "camera.height=48", std::string("render.bounding_volume=") + volume});
     const auto plain = load_default_scene({"camera.width=48", "camera.height=48"});
-    EXPECT_EQ(to_display(render(*scene, "whitted", 2), scene->display), to_display(render(*plain, "whitted", 2), plain->display))
+    EXPECT_EQ(to_display(render(*scene, "whitted", 2), scene->display),
+              to_display(render(*plain, "whitted", 2), plain->display))
         << volume;
   }
 }
@@ -65,7 +71,8 @@ TEST(Render, SameImageBytesOnEveryAccelerator) {
 // Tolerance: float storage and libm differences.
 void expect_matches_golden(const std::string& name) {
   const std::string source = CANDELA_SOURCE_DIR;
-  const auto scene = load_scene_file(source + "/scenes/" + name + ".json", {"camera.width=64", "camera.height=64"});
+  const auto scene =
+      load_scene_file(source + "/scenes/" + name + ".json", {"camera.width=64", "camera.height=64"});
   const Film film = render(*scene, "whitted", 2);
   const Film golden = read_pfm(source + "/tests/golden/" + name + "-64x64.pfm");
   ASSERT_EQ(golden.width(), film.width());

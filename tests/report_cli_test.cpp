@@ -56,8 +56,9 @@ const char* kRoom = R"({
 class ReportCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    directory_ = fs::temp_directory_path() /
-                 ("candela-report-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    directory_ =
+        fs::temp_directory_path() /
+        ("candela-report-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(directory_);
     fs::create_directories(directory_);
     std::ofstream(directory_ / "room.json") << kRoom;
@@ -69,7 +70,8 @@ class ReportCli : public ::testing::Test {
   // Runs a shell command in the test's folder; returns the exit code, output = stdout + stderr.
   int shell(const std::string& command, std::string& output) {
     const fs::path log = directory_ / "log.txt";
-    const std::string line = "cd '" + directory_.string() + "' && " + command + " > '" + log.string() + "' 2>&1";
+    const std::string line =
+        "cd '" + directory_.string() + "' && " + command + " > '" + log.string() + "' 2>&1";
     const int status = std::system(line.c_str());
     output = read(log);
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -86,7 +88,8 @@ class ReportCli : public ::testing::Test {
   fs::path directory_;
 };
 
-const char* kFourMethods = "report room.json --methods whitted,radiosity,meshless,path --reference-spp 16 --threads 2";
+const char* kFourMethods =
+    "report room.json --methods whitted,radiosity,meshless,path --reference-spp 16 --threads 2";
 
 TEST_F(ReportCli, WritesThePageTheJsonAndEveryImage) {
   std::string output;
@@ -95,7 +98,8 @@ TEST_F(ReportCli, WritesThePageTheJsonAndEveryImage) {
   const fs::path out = directory_ / "out";
   ASSERT_TRUE(fs::is_regular_file(out / "index.html"));
   ASSERT_TRUE(fs::is_regular_file(out / "report.json"));
-  for (const char* file : {"reference.png", "reference.exr"}) EXPECT_TRUE(fs::is_regular_file(out / file)) << file;
+  for (const char* file : {"reference.png", "reference.exr"})
+    EXPECT_TRUE(fs::is_regular_file(out / file)) << file;
 
   std::ifstream json_file(out / "report.json");
   const nlohmann::json report = nlohmann::json::parse(json_file);
@@ -124,7 +128,7 @@ TEST_F(ReportCli, WritesThePageTheJsonAndEveryImage) {
     EXPECT_TRUE(rmse.count(key)) << key;
   // Whitted misses all the light the lamp sheds; 4 samples of the path tracer only add noise.
   EXPECT_LT(rmse["path"], rmse["whitted"]);
-  EXPECT_LT(rmse["path"], 0.6 * rmse["whitted"]);  // about 0.3 with seeds 0 to 3
+  EXPECT_LT(rmse["path"], 0.6 * rmse["whitted"]);                   // about 0.3 with seeds 0 to 3
   EXPECT_EQ(report["methods"][3]["statistics"]["path"]["spp"], 4);  // the scene's path.spp
   EXPECT_EQ(report["methods"][4]["equal_time_to"], "whitted");
   EXPECT_GT(report["difference"]["high"].get<double>(), 0);
@@ -138,7 +142,8 @@ TEST_F(ReportCli, WritesThePageTheJsonAndEveryImage) {
   // Every <img> names a file that exists, by a relative path.
   const std::regex image_source("<img src=\"([^\"]+)\"");
   int images = 0;
-  for (auto it = std::sregex_iterator(html.begin(), html.end(), image_source); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(html.begin(), html.end(), image_source); it != std::sregex_iterator();
+       ++it) {
     ++images;
     const std::string file = (*it)[1];
     EXPECT_TRUE(fs::path(file).is_relative()) << file;
@@ -150,8 +155,9 @@ TEST_F(ReportCli, WritesThePageTheJsonAndEveryImage) {
   std::string dom;
   const std::string chromium =
       "(timeout 60 chromium --headless --no-sandbox --disable-gpu --virtual-time-budget=5000 "
-      "--user-data-dir='" + (directory_ / "chromium-profile").string() + "' --dump-dom 'file://" +
-      (out / "index.html").string() + "' > dom.html 2> chromium-log.txt)";
+      "--user-data-dir='" +
+      (directory_ / "chromium-profile").string() + "' --dump-dom 'file://" + (out / "index.html").string() +
+      "' > dom.html 2> chromium-log.txt)";
   const int status = shell(chromium, dom);
   ASSERT_EQ(status, 0) << "headless chromium failed (is it installed? scripts/install-deps.sh installs it):\n"
                        << read(directory_ / "chromium-log.txt");
@@ -167,12 +173,15 @@ TEST_F(ReportCli, WritesThePageTheJsonAndEveryImage) {
 
 TEST_F(ReportCli, ReusesAReferenceImage) {
   std::string output;
-  ASSERT_EQ(candela("report room.json --methods whitted --reference-spp 8 --threads 2 -q -o first", output), 0)
+  ASSERT_EQ(candela("report room.json --methods whitted --reference-spp 8 --threads 2 -q -o first", output),
+            0)
       << output;
-  ASSERT_EQ(candela("report room.json --methods whitted --reference first/reference.exr -o second", output), 0)
+  ASSERT_EQ(candela("report room.json --methods whitted --reference first/reference.exr -o second", output),
+            0)
       << output;
   EXPECT_NE(output.find("second/index.html"), std::string::npos) << output;  // the summary
-  std::ifstream first_file(directory_ / "first" / "report.json"), second_file(directory_ / "second" / "report.json");
+  std::ifstream first_file(directory_ / "first" / "report.json"),
+      second_file(directory_ / "second" / "report.json");
   const nlohmann::json first = nlohmann::json::parse(first_file), second = nlohmann::json::parse(second_file);
   EXPECT_EQ(second["reference"]["rendered"], false);
   EXPECT_EQ(second["reference"]["file"], "first/reference.exr");
@@ -181,9 +190,11 @@ TEST_F(ReportCli, ReusesAReferenceImage) {
   EXPECT_NEAR(a, b, 1e-5 * a);
   EXPECT_TRUE(fs::is_regular_file(directory_ / "second" / "reference.png"));
   // The wrong size is refused.
-  EXPECT_EQ(candela("report room.json --methods whitted --set camera.width=12 --reference first/reference.exr -o third",
-                    output),
-            2);
+  EXPECT_EQ(
+      candela(
+          "report room.json --methods whitted --set camera.width=12 --reference first/reference.exr -o third",
+          output),
+      2);
   EXPECT_NE(output.find("24x18"), std::string::npos) << output;
   EXPECT_FALSE(fs::exists(directory_ / "third" / "index.html"));
 }
@@ -206,9 +217,10 @@ TEST_F(ReportCli, RefusesBadArguments) {
 TEST_F(ReportCli, AFailingMethodWritesNoPage) {
   std::string output;
   // Meshless refuses more sites than meshless.max_sites when it renders.
-  const int code = candela("report room.json --methods whitted,meshless --reference-spp 4 --threads 2 -q "
-                           "--set meshless.max_sites=2 -o out",
-                           output);
+  const int code = candela(
+      "report room.json --methods whitted,meshless --reference-spp 4 --threads 2 -q "
+      "--set meshless.max_sites=2 -o out",
+      output);
   EXPECT_NE(code, 0) << output;
   EXPECT_NE(output.find("meshless"), std::string::npos) << output;
   EXPECT_FALSE(fs::exists(directory_ / "out" / "index.html"));
@@ -216,7 +228,8 @@ TEST_F(ReportCli, AFailingMethodWritesNoPage) {
 
   // A good report, then a failing run into the same folder: the old page would describe the new
   // reference it did not measure, so it must be gone.
-  ASSERT_EQ(candela("report room.json --methods whitted --reference-spp 4 --threads 2 -q -o again", output), 0)
+  ASSERT_EQ(candela("report room.json --methods whitted --reference-spp 4 --threads 2 -q -o again", output),
+            0)
       << output;
   ASSERT_TRUE(fs::exists(directory_ / "again" / "index.html"));
   EXPECT_NE(candela("report room.json --methods whitted,meshless --reference-spp 2 --threads 2 -q "

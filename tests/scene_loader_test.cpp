@@ -1,12 +1,11 @@
-#include "integrators/scene_loading.h"
-#include "integrators/whitted.h"
-
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 
+#include "integrators/scene_loading.h"
+#include "integrators/whitted.h"
 #include "io/json_document.h"
 
 namespace candela {
@@ -43,7 +42,8 @@ TEST(SceneLoader, LoadsAMinimalScene) {
   "lights": [{"type": "point", "position": [0, 5, 0]}, {"type": "ambient", "intensity": 0.25}],
   "materials": {"red": {"kd": [1, 0, 0]}},
   "shapes": [{"type": "sphere", "radius": 2, "material": "red", "transform": [{"translate": [1, 0, 0]}]}]
-})", "test.json", ".");
+})",
+                                     "test.json", ".");
   EXPECT_EQ(scene->camera->width(), 4);
   EXPECT_EQ(scene->lights.size(), 1u);
   EXPECT_EQ(scene->ambient, Color(0.25));
@@ -61,13 +61,15 @@ TEST(SceneLoader, SyntaxErrorHasLineAndColumn) {
 
 TEST(SceneLoader, UnknownShapeListsTheValidOnes) {
   expect_error(std::string(kHeader) + R"(  "shapes": [{"type": "sphere"}, {"type": "teapot"}]
-})", "shapes[1].type", 4, 43, "unknown shape \"teapot\" (expected one of: sphere, plane,");
+})",
+               "shapes[1].type", 4, 43, "unknown shape \"teapot\" (expected one of: sphere, plane,");
 }
 
 TEST(SceneLoader, ReadsAntialiasingSettings) {
   const auto scene = load_scene_text(std::string(kHeader) + R"(  "aa": {"mode": "adaptive", "max_level": 3,
     "threshold": [0.1, 0.2, 0.3], "jitter": true, "filter": "gaussian", "filter_radius": 1, "filter_sigma": 0.4}
-})", "test.json", ".");
+})",
+                                     "test.json", ".");
   EXPECT_EQ(scene->antialiasing.mode, AntialiasingMode::adaptive);
   EXPECT_EQ(scene->antialiasing.max_level, 3);
   EXPECT_EQ(scene->antialiasing.threshold, Color(0.1, 0.2, 0.3));
@@ -75,45 +77,57 @@ TEST(SceneLoader, ReadsAntialiasingSettings) {
   EXPECT_EQ(scene->antialiasing.filter, "gaussian");
   EXPECT_EQ(scene->antialiasing.filter_parameters.sigma, 0.4);
   const auto plain = load_scene_text(std::string(kHeader) + R"(  "shapes": []
-})", "test.json", ".");
+})",
+                                     "test.json", ".");
   EXPECT_EQ(plain->antialiasing.mode, AntialiasingMode::none);
 }
 
 TEST(SceneLoader, BadAntialiasingSettings) {
   expect_error(std::string(kHeader) + R"(  "aa": {"mode": "supersampled"}
-})", "aa.mode", 4, 18, "unknown anti-aliasing mode \"supersampled\" (expected one of: none, uniform,");
+})",
+               "aa.mode", 4, 18,
+               "unknown anti-aliasing mode \"supersampled\" (expected one of: none, uniform,");
   expect_error(std::string(kHeader) + R"(  "aa": {"mode": "uniform", "n": 0}
-})", "aa.n", 4, 34, "n");
+})",
+               "aa.n", 4, 34, "n");
   expect_error(std::string(kHeader) + R"(  "aa": {"threshold": [0.2, -0.1, 0.3]}
-})", "aa.threshold[1]", 4, 29, "");
+})",
+               "aa.threshold[1]", 4, 29, "");
   expect_error(std::string(kHeader) + R"(  "aa": {"filter": "lanczos"}
-})", "aa.filter", 4, 20, "unknown filter \"lanczos\"");
+})",
+               "aa.filter", 4, 20, "unknown filter \"lanczos\"");
   expect_error(std::string(kHeader) + R"(  "aa": {"nn": 2}
-})", "aa.nn", 4, 16, "unknown key \"nn\"");
+})",
+               "aa.nn", 4, 16, "unknown key \"nn\"");
 }
 
 TEST(SceneLoader, UnknownKeyIsAnError) {
   expect_error(std::string(kHeader) + R"(  "shapes": [{"type": "sphere", "radus": 2}]
-})", "shapes[0].radus", 4, 42, "unknown key \"radus\"");
+})",
+               "shapes[0].radus", 4, 42, "unknown key \"radus\"");
   expect_error(std::string(kHeader) + R"(  "lightz": []
-})", "lightz", 4, 13, "unknown key \"lightz\"");
+})",
+               "lightz", 4, 13, "unknown key \"lightz\"");
 }
 
 TEST(SceneLoader, NegativeRadius) {
   expect_error(std::string(kHeader) + R"(  "shapes": [
     {"type": "sphere", "radius": -1}
   ]
-})", "shapes[0].radius", 5, 34, "must be > 0");
+})",
+               "shapes[0].radius", 5, 34, "must be > 0");
 }
 
 TEST(SceneLoader, FieldOfViewOutOfRange) {
   expect_error(R"({"format": "candela/1",
- "camera": {"fov": 180}})", "camera.fov", 2, 20, "must be in (0, 180)");
+ "camera": {"fov": 180}})",
+               "camera.fov", 2, 20, "must be in (0, 180)");
 }
 
 TEST(SceneLoader, MissingMeshFile) {
   expect_error(std::string(kHeader) + R"(  "shapes": [{"type": "mesh", "file": "no/such/mesh.obj"}]
-})", "shapes[0].file", 4, 39, "no/such/mesh.obj");
+})",
+               "shapes[0].file", 4, 39, "no/such/mesh.obj");
 }
 
 TEST(SceneLoader, NaNIsRejected) {
@@ -124,7 +138,8 @@ TEST(SceneLoader, NaNIsRejected) {
   EXPECT_EQ(bare.location().column, 14);
   // A string where a number belongs is a type error at its path.
   expect_error(std::string(kHeader) + R"(  "ambient": [0, "NaN", 0]
-})", "ambient[1]", 4, 18, "expected a number");
+})",
+               "ambient[1]", 4, 18, "expected a number");
 }
 
 TEST(SceneLoader, OverflowingNumberIsRejected) {
@@ -141,13 +156,15 @@ TEST(SceneLoader, WrongTypesAndMissingKeys) {
   expect_error(R"({"format": "candela/2", "camera": {}})", "format", 1, 12, "unsupported format");
   expect_error(R"({"camera": {}})", "", 1, 1, "missing required key \"format\"");
   expect_error(std::string(kHeader) + R"(  "lights": [{"type": "point"}]
-})", "lights[0]", 4, 14, "missing required key \"position\"");
+})",
+               "lights[0]", 4, 14, "missing required key \"position\"");
 }
 
 TEST(SceneLoader, UnknownMaterialReference) {
   expect_error(std::string(kHeader) + R"(  "materials": {"red": {"kd": [1, 0, 0]}},
   "shapes": [{"type": "sphere", "material": "blue"}]
-})", "shapes[0].material", 5, 45, "unknown material \"blue\" (defined: red)");
+})",
+               "shapes[0].material", 5, 45, "unknown material \"blue\" (defined: red)");
 }
 
 TEST(SceneLoader, DuplicateKeyIsAnError) {
@@ -158,26 +175,38 @@ TEST(SceneLoader, DuplicateKeyIsAnError) {
 
 TEST(SceneLoader, BadValuesInMaterialsLightsAndTransforms) {
   expect_error(std::string(kHeader) + R"(  "materials": {"m": {"kr": 1.5}}
-})", "materials.m.kr", 4, 29, "must be in [0, 1]");
-  expect_error(std::string(kHeader) + R"(  "lights": [{"type": "point", "position": [0, 1, 0], "attenuation": "cubic"}]
-})", "lights[0].attenuation", 4, 70, "unknown attenuation");
+})",
+               "materials.m.kr", 4, 29, "must be in [0, 1]");
+  expect_error(
+      std::string(kHeader) + R"(  "lights": [{"type": "point", "position": [0, 1, 0], "attenuation": "cubic"}]
+})",
+      "lights[0].attenuation", 4, 70, "unknown attenuation");
   expect_error(std::string(kHeader) + R"(  "shapes": [{"type": "sphere", "transform": [{"scale": 0}]}]
-})", "shapes[0].transform[0].scale", 4, 57, "non-zero");
-  expect_error(std::string(kHeader) + R"(  "shapes": [{"type": "sphere", "transform": [{"matrix": [1,0,0,0, 0,1,0,0, 0,0,0,0, 0,0,0,1]}]}]
-})", "shapes[0].transform[0].matrix", 4, 58, "singular");
+})",
+               "shapes[0].transform[0].scale", 4, 57, "non-zero");
+  expect_error(
+      std::string(kHeader) +
+          R"(  "shapes": [{"type": "sphere", "transform": [{"matrix": [1,0,0,0, 0,1,0,0, 0,0,0,0, 0,0,0,1]}]}]
+})",
+      "shapes[0].transform[0].matrix", 4, 58, "singular");
   expect_error(std::string(kHeader) + R"(  "film": {"out_of_range": "wrap"}
-})", "film.out_of_range", 4, 28, "expected one of: clamp, scale, normalize");
+})",
+               "film.out_of_range", 4, 28, "expected one of: clamp, scale, normalize");
 }
 
 TEST(SceneLoader, ConstructorValidationIsReportedAtTheShape) {
-  expect_error(std::string(kHeader) + R"(  "shapes": [{"type": "cylinder", "base": [0, 0, 0], "cap": [0, 0, 0]}]
-})", "shapes[0]", 4, 14, "base and cap must differ");
+  expect_error(
+      std::string(kHeader) + R"(  "shapes": [{"type": "cylinder", "base": [0, 0, 0], "cap": [0, 0, 0]}]
+})",
+      "shapes[0]", 4, 14, "base and cap must differ");
 }
 
 TEST(SceneLoader, OverridesReplaceSettingsByDottedPath) {
   const auto scene = load_scene_text(std::string(kHeader) + R"(  "shapes": [{"type": "sphere"}]
-})", "test.json", ".", {"camera.width=640", "whitted.max_depth=3", "film.out_of_range=scale",
-                        "shapes.0.radius=2.5", "background=[0.1, 0.2, 0.3]"});
+})",
+                                     "test.json", ".",
+                                     {"camera.width=640", "whitted.max_depth=3", "film.out_of_range=scale",
+                                      "shapes.0.radius=2.5", "background=[0.1, 0.2, 0.3]"});
   EXPECT_EQ(scene->camera->width(), 640);
   EXPECT_EQ(read_whitted_settings(scene->plugin_settings.node("whitted")).max_depth, 3);
   EXPECT_EQ(scene->display.out_of_range, OutOfRange::scale);
@@ -197,16 +226,21 @@ TEST(SceneLoader, UnknownTopLevelKeyFromAnOverrideNamesTheAssignment) {
 // Each method's and accelerator's object is read by its own registry entry, still at load time and
 // still with the file position (issue 18: the scene keeps the raw objects, not the structs).
 TEST(SceneLoader, PluginSettingsAreCheckedAtLoadTime) {
-  expect_error(std::string(kHeader) + "  \"whitted\": {\"max_dept\": 3}\n}", "whitted.max_dept", 4, 27, "unknown key \"max_dept\"");
-  expect_error(std::string(kHeader) + "  \"path\": {\"spp\": -1}\n}", "path.spp", 4, 19, "must be in [0, 16777216]");
-  expect_error(std::string(kHeader) + "  \"bvh\": {\"bins\": 1}\n}", "bvh.bins", 4, 19, "must be in [2, 256]");
-  expect_error(std::string(kHeader) + "  \"octree\": {\"depth\": 3}\n}", "octree.depth", 4, 23, "unknown key \"depth\"");
+  expect_error(std::string(kHeader) + "  \"whitted\": {\"max_dept\": 3}\n}", "whitted.max_dept", 4, 27,
+               "unknown key \"max_dept\"");
+  expect_error(std::string(kHeader) + "  \"path\": {\"spp\": -1}\n}", "path.spp", 4, 19,
+               "must be in [0, 16777216]");
+  expect_error(std::string(kHeader) + "  \"bvh\": {\"bins\": 1}\n}", "bvh.bins", 4, 19,
+               "must be in [2, 256]");
+  expect_error(std::string(kHeader) + "  \"octree\": {\"depth\": 3}\n}", "octree.depth", 4, 23,
+               "unknown key \"depth\"");
   // A method whose object is not used still has it checked, and --set reaches it.
-  const InputError override = load_error(std::string(kHeader) + "\"shapes\": []}", {"radiosity.solver=jacobi"});
+  const InputError override =
+      load_error(std::string(kHeader) + "\"shapes\": []}", {"radiosity.solver=jacobi"});
   EXPECT_EQ(override.location().file, "--set radiosity.solver=jacobi") << override.what();
   // The objects are kept for the plugins, overrides applied.
-  const auto scene = load_scene_text(std::string(kHeader) + "  \"whitted\": {\"max_depth\": 2}\n}", "test.json", ".",
-                                     {"whitted.shadows=false"});
+  const auto scene = load_scene_text(std::string(kHeader) + "  \"whitted\": {\"max_depth\": 2}\n}",
+                                     "test.json", ".", {"whitted.shadows=false"});
   const WhittedSettings whitted = read_whitted_settings(scene->plugin_settings.node("whitted"));
   EXPECT_EQ(whitted.max_depth, 2);
   EXPECT_FALSE(whitted.shadows);
@@ -236,13 +270,15 @@ TEST(SceneLoader, MissingSceneFile) {
 }
 
 TEST(SceneLoader, MeshPathIsRelativeToTheSceneFile) {
-  const auto directory = std::filesystem::temp_directory_path() / ("candela-loader-test-" + std::to_string(::getpid()));
+  const auto directory =
+      std::filesystem::temp_directory_path() / ("candela-loader-test-" + std::to_string(::getpid()));
   std::filesystem::create_directories(directory / "meshes");
   {
     std::ofstream obj(directory / "meshes" / "quad.obj");
     obj << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
     std::ofstream scene(directory / "scene.json");
-    scene << kHeader << R"(  "shapes": [{"type": "mesh", "file": "meshes/quad.obj", "transform": {"scale": 2}}]})";
+    scene << kHeader
+          << R"(  "shapes": [{"type": "mesh", "file": "meshes/quad.obj", "transform": {"scale": 2}}]})";
   }
   const auto scene = load_scene_file((directory / "scene.json").string());
   EXPECT_EQ(scene->primitives.size(), 2u);
@@ -257,7 +293,8 @@ TEST(SceneLoader, ReadsNamedCamerasThatInheritTheImageSize) {
     {"name": "side_2", "eye": [5, 0, 0], "width": 8},
     {"name": "plan", "type": "orthographic", "eye": [0, 5, 0], "up": [0, 0, -1], "height": 6}
   ]
-})", "test.json", ".");
+})",
+                                     "test.json", ".");
   EXPECT_EQ(scene->camera->width(), 4);  // "camera" is still the one rendered
   ASSERT_EQ(scene->cameras.size(), 3u);
   EXPECT_EQ(scene->cameras[0].name, "front");
@@ -272,16 +309,20 @@ TEST(SceneLoader, ReadsNamedCamerasThatInheritTheImageSize) {
   EXPECT_EQ(scene->cameras[2].camera->height(), 6);
   // Only the size is inherited: eye is the default, not the eye of "camera".
   const auto moved = load_scene_text(R"({"format": "candela/1", "camera": {"eye": [1, 2, 3]},
-    "cameras": [{"name": "a"}]})", "test.json", ".");
+    "cameras": [{"name": "a"}]})",
+                                     "test.json", ".");
   EXPECT_EQ(moved->cameras[0].camera->eye_position(), Vec3(0, 0, 5));
   EXPECT_EQ(moved->cameras[0].camera->width(), 640);
   // --set camera.width resizes the views that do not fix their own width.
-  const auto resized = load_scene_text(std::string(kHeader) + R"(  "cameras": [{"name": "a"}, {"name": "b", "width": 2}]
-})", "test.json", ".", {"camera.width=10"});
+  const auto resized =
+      load_scene_text(std::string(kHeader) + R"(  "cameras": [{"name": "a"}, {"name": "b", "width": 2}]
+})",
+                      "test.json", ".", {"camera.width=10"});
   EXPECT_EQ(resized->cameras[0].camera->width(), 10);
   EXPECT_EQ(resized->cameras[1].camera->width(), 2);
   const auto none = load_scene_text(std::string(kHeader) + R"(  "shapes": []
-})", "test.json", ".");
+})",
+                                    "test.json", ".");
   EXPECT_TRUE(none->cameras.empty());
 }
 
@@ -291,49 +332,62 @@ TEST(SceneLoader, BadNamedCamerasAreLocatedErrors) {
     {"name": "a"},
     {"name": "a"}
   ]
-})", "cameras[1].name", 6, 14, "duplicate camera name \"a\" (cameras[0] has it already)");
+})",
+               "cameras[1].name", 6, 14, "duplicate camera name \"a\" (cameras[0] has it already)");
   expect_error(header + R"(  "cameras": [
     {"fov": 30}
   ]
-})", "cameras[0]", 5, 5, "missing required key \"name\"");
+})",
+               "cameras[0]", 5, 5, "missing required key \"name\"");
   expect_error(header + R"(  "cameras": [
     {"name": "my camera"}
   ]
-})", "cameras[0].name", 5, 14, "may only use letters, digits, '_' and '-'");
+})",
+               "cameras[0].name", 5, 14, "may only use letters, digits, '_' and '-'");
   expect_error(header + R"(  "cameras": [
     {"name": ""}
   ]
-})", "cameras[0].name", 5, 14, "must not be empty");
+})",
+               "cameras[0].name", 5, 14, "must not be empty");
   expect_error(header + R"(  "cameras": [
     {"name": "all"}
   ]
-})", "cameras[0].name", 5, 14, "reserved");
+})",
+               "cameras[0].name", 5, 14, "reserved");
   expect_error(header + R"(  "cameras": [
     {"name": "default"}
   ]
-})", "cameras[0].name", 5, 14, "reserved");
+})",
+               "cameras[0].name", 5, 14, "reserved");
   expect_error(header + R"(  "cameras": [
     {"name": 7}
   ]
-})", "cameras[0].name", 5, 14, "expected a string");
+})",
+               "cameras[0].name", 5, 14, "expected a string");
   // The keys of "camera" are read by the same reader, with the same checks.
   expect_error(header + R"(  "cameras": [
     {"name": "a"},
     {"name": "b", "fov": 200}
   ]
-})", "cameras[1].fov", 6, 26, "must be in (0, 180)");
+})",
+               "cameras[1].fov", 6, 26, "must be in (0, 180)");
   expect_error(header + R"(  "cameras": [
     {"name": "b", "zoom": 2}
   ]
-})", "cameras[0].zoom", 5, 27, "unknown key \"zoom\" (expected one of: eye, fov, height, name, target, type, up, width)");
+})",
+               "cameras[0].zoom", 5, 27,
+               "unknown key \"zoom\" (expected one of: eye, fov, height, name, target, type, up, width)");
   expect_error(header + R"(  "cameras": [
     {"name": "b", "type": "fisheye"}
   ]
-})", "cameras[0].type", 5, 27, "unknown camera \"fisheye\"");
+})",
+               "cameras[0].type", 5, 27, "unknown camera \"fisheye\"");
   expect_error(header + R"(  "cameras": {"name": "a"}
-})", "cameras", 4, 14, "expected an array");
+})",
+               "cameras", 4, 14, "expected an array");
   expect_error(header + R"(  "cameras": [3]
-})", "cameras[0]", 4, 15, "expected an object");
+})",
+               "cameras[0]", 4, 15, "expected an object");
 }
 
 TEST(SceneLoader, TheSeedScenesLoad) {
@@ -366,20 +420,27 @@ TEST(SceneLoader, ReviewedHostileInputsAreLocatedErrors) {
   const InputError deep = load_error(std::string(300, '[') + std::string(300, ']'));
   EXPECT_NE(std::string(deep.what()).find("nesting deeper than 256"), std::string::npos) << deep.what();
   // Small scales are valid (they used to be called singular); dependent columns are not.
-  EXPECT_NO_THROW(load_scene_text(std::string(kHeader) + R"("shapes": [{"type": "sphere", "transform": {"scale": 1e-4}}]})",
-                                  "test.json", "."));
   EXPECT_NO_THROW(load_scene_text(
-      std::string(kHeader) + R"("shapes": [{"type": "sphere", "transform": {"scale": [1, 1, 1e-12]}}]})", "test.json", "."));
-  expect_error(std::string(kHeader) + R"(  "shapes": [{"type": "sphere", "transform": {"matrix": [1, 2, 0, 0,  1, 2, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1]}}]
-})", "shapes[0].transform.matrix", 4, 57, "singular");
+      std::string(kHeader) + R"("shapes": [{"type": "sphere", "transform": {"scale": 1e-4}}]})", "test.json",
+      "."));
+  EXPECT_NO_THROW(load_scene_text(
+      std::string(kHeader) + R"("shapes": [{"type": "sphere", "transform": {"scale": [1, 1, 1e-12]}}]})",
+      "test.json", "."));
+  expect_error(
+      std::string(kHeader) +
+          R"(  "shapes": [{"type": "sphere", "transform": {"matrix": [1, 2, 0, 0,  1, 2, 0, 0,  0, 0, 1, 0,  0, 0, 0, 1]}}]
+})",
+      "shapes[0].transform.matrix", 4, 57, "singular");
   // Magnitudes whose squares would overflow, and images too large for memory.
   expect_error(std::string(kHeader) + R"(  "shapes": [{"type": "sphere", "radius": 1e200}]
-})", "shapes[0].radius", 4, 43, "magnitude above 1e16");
-  expect_error(R"({"format": "candela/1", "camera": {"width": 65536, "height": 65536}})", "camera.width", 1, 45,
-               "lower camera.width or camera.height");
+})",
+               "shapes[0].radius", 4, 43, "magnitude above 1e16");
+  expect_error(R"({"format": "candela/1", "camera": {"width": 65536, "height": 65536}})", "camera.width", 1,
+               45, "lower camera.width or camera.height");
   // A ray tree that would never shrink.
   expect_error(std::string(kHeader) + R"(  "materials": {"m": {"kr": 0.6, "kt": 0.6}}
-})", "materials.m.kt", 4, 40, "kr + kt must be <= 1");
+})",
+               "materials.m.kt", 4, 40, "kr + kt must be <= 1");
 }
 
 TEST(SceneLoader, OverridesWithOutOfRangeNumbersAndIndices) {
@@ -389,11 +450,13 @@ TEST(SceneLoader, OverridesWithOutOfRangeNumbersAndIndices) {
   const InputError index = load_error(text, {"shapes.99999999999999999999999.radius=2"});
   EXPECT_NE(std::string(index.what()).find("out of range"), std::string::npos) << index.what();
   const InputError file_overflow = load_error(std::string(kHeader) + R"(  "ambient": 1e999})");
-  EXPECT_EQ(std::string(file_overflow.message()).find("[json.exception"), std::string::npos) << file_overflow.what();
+  EXPECT_EQ(std::string(file_overflow.message()).find("[json.exception"), std::string::npos)
+      << file_overflow.what();
 }
 
 TEST(SceneLoader, MtlValuesAreRangeChecked) {
-  const auto directory = std::filesystem::temp_directory_path() / ("candela-mtl-test-" + std::to_string(::getpid()));
+  const auto directory =
+      std::filesystem::temp_directory_path() / ("candela-mtl-test-" + std::to_string(::getpid()));
   std::filesystem::create_directories(directory);
   std::ofstream(directory / "m.obj") << "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl bad\nf 1 2 3\n";
   std::ofstream(directory / "m.mtl") << "newmtl bad\nKd -5 0.5 0.5\n";

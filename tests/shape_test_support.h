@@ -7,7 +7,9 @@
 
 namespace candela::testing {
 
-inline Ray make_ray(Vec3 origin, Vec3 direction) { return Ray{origin, normalize(direction)}; }
+inline Ray make_ray(Vec3 origin, Vec3 direction) {
+  return Ray{origin, normalize(direction)};
+}
 
 inline void expect_vec_near(const Vec3& actual, const Vec3& expected, double tolerance) {
   EXPECT_NEAR(actual.x, expected.x, tolerance);

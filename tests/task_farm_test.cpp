@@ -11,10 +11,10 @@
 #include <thread>
 
 #include "distributed/cluster.h"
+#include "integrators/scene_loading.h"
 #include "meshless/site_sampling.h"
 #include "meshless/transfer_matrix.h"
 #include "scene/scene.h"
-#include "integrators/scene_loading.h"
 #include "util/cancellation.h"
 
 namespace candela {

@@ -38,9 +38,11 @@ inline bool closer_hit(double t, uint32_t primitive, double best_t, uint32_t bes
 
 // What the list tests per scene object before its primitives (accel/bounding_volume.h).
 enum class BoundingVolumeKind { none, sphere, box, slabs };
-inline constexpr auto kBoundingVolumeNames = enum_names<BoundingVolumeKind>(
-    {{BoundingVolumeKind::none, "none"}, {BoundingVolumeKind::sphere, "sphere"}, {BoundingVolumeKind::box, "box"},
-     {BoundingVolumeKind::slabs, "slabs"}});
+inline constexpr auto kBoundingVolumeNames =
+    enum_names<BoundingVolumeKind>({{BoundingVolumeKind::none, "none"},
+                                    {BoundingVolumeKind::sphere, "sphere"},
+                                    {BoundingVolumeKind::box, "box"},
+                                    {BoundingVolumeKind::slabs, "slabs"}});
 
 // Quality figures printed next to timings (STYLE.md habit 8): nodes, leaves, depth, SAH cost…
 struct AcceleratorReport {

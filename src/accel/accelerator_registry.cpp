@@ -23,11 +23,12 @@ std::unique_ptr<Accelerator> finished(const JsonNode& settings, std::unique_ptr<
 }
 
 const std::array kEntries = {
-    AcceleratorEntry{"list", "brute force: every ray against every primitive",
-                     [](const JsonNode& settings, BoundingVolumeKind object_volume) -> std::unique_ptr<Accelerator> {
-                       settings.expect_object();
-                       return finished(settings, std::make_unique<PrimitiveList>(object_volume));
-                     }},
+    AcceleratorEntry{
+        "list", "brute force: every ray against every primitive",
+        [](const JsonNode& settings, BoundingVolumeKind object_volume) -> std::unique_ptr<Accelerator> {
+          settings.expect_object();
+          return finished(settings, std::make_unique<PrimitiveList>(object_volume));
+        }},
     AcceleratorEntry{"grid", "uniform grid: L×M×N voxels from the object count, 3D-DDA traversal",
                      [](const JsonNode& settings, BoundingVolumeKind) -> std::unique_ptr<Accelerator> {
                        settings.expect_object();
@@ -35,22 +36,24 @@ const std::array kEntries = {
                        const double density = settings.number("density", 3.0, {0, 1000, true, false});
                        return finished(settings, std::make_unique<UniformGrid>(density));
                      }},
-    AcceleratorEntry{"octree", "octree: split while a voxel holds more than K objects, ordered traversal",
-                     [](const JsonNode& settings, BoundingVolumeKind) -> std::unique_ptr<Accelerator> {
-                       settings.expect_object();
-                       // K: subdivide a voxel holding more; D: the depth at most (000 §5.7.2)
-                       const int max_primitives = settings.integer("max_primitives", 8, {1, 1 << 20, false, false});
-                       const int max_depth = settings.integer("max_depth", 10, {0, 32, false, false});
-                       return finished(settings, std::make_unique<Octree>(max_primitives, max_depth));
-                     }},
-    AcceleratorEntry{"bvh", "bounding volume hierarchy: binned SAH build, ordered traversal",
-                     [](const JsonNode& settings, BoundingVolumeKind) -> std::unique_ptr<Accelerator> {
-                       settings.expect_object();
-                       BvhSettings bvh;
-                       bvh.max_leaf_primitives = settings.integer("max_leaf_primitives", 4, {1, 64, false, false});
-                       bvh.bins = settings.integer("bins", 16, {2, 256, false, false});
-                       return finished(settings, std::make_unique<Bvh>(bvh));
-                     }},
+    AcceleratorEntry{
+        "octree", "octree: split while a voxel holds more than K objects, ordered traversal",
+        [](const JsonNode& settings, BoundingVolumeKind) -> std::unique_ptr<Accelerator> {
+          settings.expect_object();
+          // K: subdivide a voxel holding more; D: the depth at most (000 §5.7.2)
+          const int max_primitives = settings.integer("max_primitives", 8, {1, 1 << 20, false, false});
+          const int max_depth = settings.integer("max_depth", 10, {0, 32, false, false});
+          return finished(settings, std::make_unique<Octree>(max_primitives, max_depth));
+        }},
+    AcceleratorEntry{
+        "bvh", "bounding volume hierarchy: binned SAH build, ordered traversal",
+        [](const JsonNode& settings, BoundingVolumeKind) -> std::unique_ptr<Accelerator> {
+          settings.expect_object();
+          BvhSettings bvh;
+          bvh.max_leaf_primitives = settings.integer("max_leaf_primitives", 4, {1, 64, false, false});
+          bvh.bins = settings.integer("bins", 16, {2, 256, false, false});
+          return finished(settings, std::make_unique<Bvh>(bvh));
+        }},
 #ifdef CANDELA_HAVE_EMBREE
     AcceleratorEntry{"embree", "Embree's BVH over the primitives' bounds, hits from Candela's exact tests",
                      [](const JsonNode& settings, BoundingVolumeKind) -> std::unique_ptr<Accelerator> {
@@ -62,11 +65,16 @@ const std::array kEntries = {
 
 }  // namespace
 
-std::span<const AcceleratorEntry> accelerator_entries() { return kEntries; }
+std::span<const AcceleratorEntry> accelerator_entries() {
+  return kEntries;
+}
 
-const AcceleratorEntry* find_accelerator(std::string_view name) { return find_entry<AcceleratorEntry>(kEntries, name); }
+const AcceleratorEntry* find_accelerator(std::string_view name) {
+  return find_entry<AcceleratorEntry>(kEntries, name);
+}
 
-std::unique_ptr<Accelerator> create_default_accelerator(const AcceleratorEntry& entry, BoundingVolumeKind object_volume) {
+std::unique_ptr<Accelerator> create_default_accelerator(const AcceleratorEntry& entry,
+                                                        BoundingVolumeKind object_volume) {
   const JsonDocument defaults = JsonDocument::parse("{}", "<defaults>");
   return entry.create(JsonNode(defaults, defaults.root(), std::string(entry.name)), object_volume);
 }

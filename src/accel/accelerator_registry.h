@@ -25,7 +25,7 @@ std::span<const AcceleratorEntry> accelerator_entries();
 // nullptr for an unknown name.
 const AcceleratorEntry* find_accelerator(std::string_view name);
 // The accelerator with its default settings (benchmarks, tests).
-std::unique_ptr<Accelerator> create_default_accelerator(const AcceleratorEntry& entry,
-                                                        BoundingVolumeKind object_volume = BoundingVolumeKind::none);
+std::unique_ptr<Accelerator> create_default_accelerator(
+    const AcceleratorEntry& entry, BoundingVolumeKind object_volume = BoundingVolumeKind::none);
 
 }  // namespace candela

@@ -36,7 +36,7 @@ bool BoundingSphere::hit_by(const Ray& ray) const {
 
 const std::array<Vec3, 7> KayKajiyaSlabs::kNormals = [] {
   const double s = 1 / std::sqrt(3.0);
-  return std::array<Vec3, 7>{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}, Vec3{s, s, s},
+  return std::array<Vec3, 7>{Vec3{1, 0, 0},  Vec3{0, 1, 0},  Vec3{0, 0, 1}, Vec3{s, s, s},
                              Vec3{-s, s, s}, Vec3{s, -s, s}, Vec3{s, s, -s}};
 }();
 
@@ -124,25 +124,33 @@ ObjectBound::ObjectBound(BoundingVolumeKind kind, std::span<const Primitive> pri
     bounding_points(*primitive.shape, points);
   }
   switch (kind_) {
-    case BoundingVolumeKind::none: break;
-    case BoundingVolumeKind::sphere: sphere_ = BoundingSphere::around(points); break;
+    case BoundingVolumeKind::none:
+      break;
+    case BoundingVolumeKind::sphere:
+      sphere_ = BoundingSphere::around(points);
+      break;
     case BoundingVolumeKind::box:
       for (const Primitive& primitive : primitives) box_.extend(primitive.shape->bounds());
       break;
-    case BoundingVolumeKind::slabs: slabs_ = KayKajiyaSlabs::around(points); break;
+    case BoundingVolumeKind::slabs:
+      slabs_ = KayKajiyaSlabs::around(points);
+      break;
   }
 }
 
 bool ObjectBound::hit_by(const Ray& ray) const {
   if (unbounded_) return true;
   switch (kind_) {
-    case BoundingVolumeKind::none: return true;
-    case BoundingVolumeKind::sphere: return sphere_.hit_by(ray);
+    case BoundingVolumeKind::none:
+      return true;
+    case BoundingVolumeKind::sphere:
+      return sphere_.hit_by(ray);
     case BoundingVolumeKind::box: {
       double t_enter, t_exit;
       return box_.intersect(ray, t_enter, t_exit);
     }
-    case BoundingVolumeKind::slabs: return slabs_.hit_by(ray);
+    case BoundingVolumeKind::slabs:
+      return slabs_.hit_by(ray);
   }
   return true;
 }

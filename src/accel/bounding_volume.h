@@ -24,7 +24,7 @@ struct BoundingSphere {
 
 struct KayKajiyaSlabs {
   static const std::array<Vec3, 7> kNormals;  // unit
-  std::array<double, 7> lower{}, upper{};      // extent of the object along each normal
+  std::array<double, 7> lower{}, upper{};     // extent of the object along each normal
   static KayKajiyaSlabs around(std::span<const Vec3> points);
   // Intersection of the 7 slabs' parametric intervals with (t_min, t_max) is non-empty.
   bool hit_by(const Ray& ray) const;

@@ -27,8 +27,8 @@ TEST(BoundingVolume, SphereTestRespectsTheRayInterval) {
   ray.t_max = 8.9;  // ends before the sphere
   EXPECT_FALSE(sphere.hit_by(ray));
   EXPECT_FALSE(sphere.hit_by(Ray{{0, 1.01, 0}, {0, 0, -1}}));
-  EXPECT_FALSE(sphere.hit_by(Ray{{0, 0, 0}, {0, 0, 1}}));  // behind
-  EXPECT_TRUE(sphere.hit_by(Ray{{0, 0, -10}, {1, 0, 0}}));   // from inside
+  EXPECT_FALSE(sphere.hit_by(Ray{{0, 0, 0}, {0, 0, 1}}));   // behind
+  EXPECT_TRUE(sphere.hit_by(Ray{{0, 0, -10}, {1, 0, 0}}));  // from inside
 }
 
 TEST(BoundingVolume, SlabsAreExactForASphere) {

@@ -1,21 +1,20 @@
 #include "accel/bvh.h"
 
+#include <emmintrin.h>  // SSE2, part of x86-64
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstring>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <new>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
-
-#include <emmintrin.h>  // SSE2, part of x86-64
-
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include "accel/bvh_builder.h"
 #include "geometry/triangle_mesh.h"
@@ -28,8 +27,9 @@ namespace candela {
 
 namespace {
 
-constexpr int kLeafHardCap = 16;        // the SAH may keep up to this many in a leaf
-constexpr std::size_t kStackSize = (Bvh::kWidth - 1) * 128 + Bvh::kWidth;  // depth below 128, at most 7 left per level
+constexpr int kLeafHardCap = 16;  // the SAH may keep up to this many in a leaf
+constexpr std::size_t kStackSize =
+    (Bvh::kWidth - 1) * 128 + Bvh::kWidth;  // depth below 128, at most 7 left per level
 constexpr std::size_t kGrain = 4096;
 
 // [t_min, t_max] is widened by this relative amount plus this much of the scene's scale, far
@@ -69,7 +69,9 @@ float round_up(double v) {
   return round_directed(v, true);
 }
 
-double max_abs(const Vec3& v) { return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}); }
+double max_abs(const Vec3& v) {
+  return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+}
 
 // What build() does with each primitive.
 enum class Kind : uint8_t { unbounded, shape, triangle, never_hit };
@@ -146,12 +148,13 @@ struct FloatSlabs {
     __m128 near[3], far[3];
     for (int axis = 0; axis < 3; ++axis) {
       const char* base = reinterpret_cast<const char*>(&node) + sizeof(float) * first;
-      near[axis] = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(reinterpret_cast<const float*>(base + near_offset[axis])),
-                                         origin_near[axis]),
-                              inverse_near[axis]);
-      far[axis] = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(reinterpret_cast<const float*>(base + far_offset[axis])),
-                                        origin_far[axis]),
-                             inverse_far[axis]);
+      near[axis] =
+          _mm_mul_ps(_mm_sub_ps(_mm_load_ps(reinterpret_cast<const float*>(base + near_offset[axis])),
+                                origin_near[axis]),
+                     inverse_near[axis]);
+      far[axis] = _mm_mul_ps(
+          _mm_sub_ps(_mm_load_ps(reinterpret_cast<const float*>(base + far_offset[axis])), origin_far[axis]),
+          inverse_far[axis]);
     }
     // A tree of max / min (a NaN operand makes its pair NaN or drops one bound, then the outer
     // max / min drops that pair: only constraints are lost, never gained).
@@ -288,9 +291,12 @@ void* bvh_allocate(std::size_t bytes) {
   return memory;
 }
 
-void bvh_free(void* memory) noexcept { std::free(memory); }
+void bvh_free(void* memory) noexcept {
+  std::free(memory);
+}
 
-Bvh::Bvh(const BvhSettings& settings) : max_leaf_primitives_(settings.max_leaf_primitives), bins_(settings.bins) {
+Bvh::Bvh(const BvhSettings& settings)
+    : max_leaf_primitives_(settings.max_leaf_primitives), bins_(settings.bins) {
   if (max_leaf_primitives_ < 1 || max_leaf_primitives_ > 1024)
     throw std::invalid_argument("bvh.max_leaf_primitives must be in [1, 1024], got " +
                                 std::to_string(max_leaf_primitives_));
@@ -314,35 +320,37 @@ void Bvh::build(std::span<const Primitive> primitives) {
 
   std::vector<Bounds3> bounds(count);
   std::vector<Kind> kinds(count);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, kGrain),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t i = range.begin(); i < range.end(); ++i) {
-                        const Shape* shape = primitives[i].shape;
-                        bounds[i] = shape->bounds();
-                        if (!bounds[i].is_finite() || bounds[i].empty()) {
-                          kinds[i] = Kind::unbounded;
-                        } else if (const auto* triangle = dynamic_cast<const MeshTriangle*>(shape)) {
-                          kinds[i] = triangle->mesh().is_degenerate(triangle->triangle_index())
-                                         ? Kind::never_hit
-                                         : Kind::triangle;
-                        } else {
-                          kinds[i] = Kind::shape;
-                        }
-                      }
-                    });
+  tbb::parallel_for(
+      tbb::blocked_range<std::size_t>(0, count, kGrain), [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t i = range.begin(); i < range.end(); ++i) {
+          const Shape* shape = primitives[i].shape;
+          bounds[i] = shape->bounds();
+          if (!bounds[i].is_finite() || bounds[i].empty()) {
+            kinds[i] = Kind::unbounded;
+          } else if (const auto* triangle = dynamic_cast<const MeshTriangle*>(shape)) {
+            kinds[i] =
+                triangle->mesh().is_degenerate(triangle->triangle_index()) ? Kind::never_hit : Kind::triangle;
+          } else {
+            kinds[i] = Kind::shape;
+          }
+        }
+      });
 
   std::vector<uint32_t> tree_primitive;
   std::vector<Bounds3> tree_bounds;
   for (std::size_t i = 0; i < count; ++i) {
     const auto index = static_cast<uint32_t>(i);
     switch (kinds[i]) {
-      case Kind::unbounded: unbounded_.push_back(index); break;
+      case Kind::unbounded:
+        unbounded_.push_back(index);
+        break;
       case Kind::shape:
       case Kind::triangle:
         tree_primitive.push_back(index);
         tree_bounds.push_back(bounds[i]);
         break;
-      case Kind::never_hit: break;
+      case Kind::never_hit:
+        break;
     }
   }
   bounds = {};
@@ -351,8 +359,10 @@ void Bvh::build(std::span<const Primitive> primitives) {
   for (uint32_t index : tree_primitive) {
     if (kinds[index] != Kind::triangle) continue;
     const TriangleMesh* mesh = &static_cast<const MeshTriangle*>(primitives[index].shape)->mesh();
-    if (first_mesh) only_mesh_ = mesh;
-    else if (mesh != only_mesh_) only_mesh_ = nullptr;
+    if (first_mesh)
+      only_mesh_ = mesh;
+    else if (mesh != only_mesh_)
+      only_mesh_ = nullptr;
     first_mesh = false;
   }
 
@@ -527,7 +537,8 @@ bool Bvh::occluded_all_slots(const Ray& ray) const {
 bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
   const Slack slack(ray, scene_scale_);
   FloatSlabs slabs;
-  if (!nodes_.empty() && !slabs.init(ray, slack.down(ray.t_min))) return intersect_all_slots(ray, intersection);
+  if (!nodes_.empty() && !slabs.init(ray, slack.down(ray.t_min)))
+    return intersect_all_slots(ray, intersection);
 
   double best_t = ray.t_max;
   uint32_t best = std::numeric_limits<uint32_t>::max();
@@ -559,7 +570,8 @@ bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
 
   for (uint32_t primitive : unbounded_) {
     ShapeHits& h = hits();
-    if (primitives_[primitive].shape->intersect(test, h.hit) && closer_hit(h.hit.t, primitive, best_t, best)) {
+    if (primitives_[primitive].shape->intersect(test, h.hit) &&
+        closer_hit(h.hit.t, primitive, best_t, best)) {
       accept(h.hit.t, primitive);
       h.best = h.hit;
       best_is_triangle = false;
@@ -633,7 +645,8 @@ bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
               best_is_triangle = true;
               best_slot = &slot;
               if (only_mesh_ && !only_mesh_->corner_normals.empty())  // for the fill below
-                _mm_prefetch(reinterpret_cast<const char*>(&only_mesh_->corner_normals[slot.triangle]), _MM_HINT_T0);
+                _mm_prefetch(reinterpret_cast<const char*>(&only_mesh_->corner_normals[slot.triangle]),
+                             _MM_HINT_T0);
             }
           } else {
             const uint32_t primitive = slot.primitive & ~kShapeSlot;
@@ -742,8 +755,8 @@ AcceleratorReport Bvh::report() const {
       {"primitives per leaf", leaves_ > 0 ? static_cast<double>(slot_count_) / leaves_ : 0.0},
       {"unbounded primitives", static_cast<double>(unbounded_.size())},
   };
-  report.bytes = nodes_.size() * sizeof(Node) + lane_slots_.size() * sizeof(Slot) + packets_.size() * sizeof(Packet) +
-                 unbounded_.size() * sizeof(uint32_t);
+  report.bytes = nodes_.size() * sizeof(Node) + lane_slots_.size() * sizeof(Slot) +
+                 packets_.size() * sizeof(Packet) + unbounded_.size() * sizeof(uint32_t);
   return report;
 }
 

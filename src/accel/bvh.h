@@ -56,7 +56,9 @@ struct BvhAllocator {
   T* allocate(std::size_t n) { return static_cast<T*>(bvh_allocate(n * sizeof(T))); }
   void deallocate(T* p, std::size_t) noexcept { bvh_free(p); }
   template <class U>
-  bool operator==(const BvhAllocator<U>&) const { return true; }
+  bool operator==(const BvhAllocator<U>&) const {
+    return true;
+  }
 };
 
 // The scene file's "bvh" object.
@@ -121,11 +123,11 @@ class Bvh final : public Accelerator {
   std::vector<Node, BvhAllocator<Node>> nodes_;
   std::vector<Packet, BvhAllocator<Packet>> packets_;
   std::vector<Slot, BvhAllocator<Slot>> lane_slots_;  // four per packet (unused lanes zero)
-  std::size_t slot_count_ = 0;    // slots in leaves
-  std::vector<uint32_t> unbounded_;  // primitives with infinite bounds
-  const TriangleMesh* only_mesh_ = nullptr;  // the mesh of every inline triangle, when only one
-  double scene_scale_ = 0;  // largest |coordinate| of the tree's bounds
-  uint32_t tree_nodes_ = 0;  // nodes of the binary tree, leaves included
+  std::size_t slot_count_ = 0;                        // slots in leaves
+  std::vector<uint32_t> unbounded_;                   // primitives with infinite bounds
+  const TriangleMesh* only_mesh_ = nullptr;           // the mesh of every inline triangle, when only one
+  double scene_scale_ = 0;                            // largest |coordinate| of the tree's bounds
+  uint32_t tree_nodes_ = 0;                           // nodes of the binary tree, leaves included
   uint32_t leaves_ = 0;
   uint32_t depth_ = 0;
   double sah_cost_ = 0;

@@ -1,14 +1,14 @@
 #include "accel/bvh_builder.h"
 
-#include <algorithm>
-#include <cmath>
-#include <stdexcept>
-#include <utility>
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
 
 namespace candela {
 
@@ -28,7 +28,9 @@ struct PrimRef {
   Vec3 centroid() const { return lower * 0.5 + upper * 0.5; }
 };
 
-Bounds3 ref_bounds(const PrimRef& ref) { return {ref.lower, ref.upper}; }
+Bounds3 ref_bounds(const PrimRef& ref) {
+  return {ref.lower, ref.upper};
+}
 
 // Half the surface area (the SAH only needs ratios).
 double half_area(const Bounds3& b) {
@@ -91,8 +93,7 @@ struct Split {
 
 class Builder {
  public:
-  Builder(std::vector<PrimRef>& refs, std::vector<BvhBuildNode>& nodes,
-          const BvhBuildSettings& settings)
+  Builder(std::vector<PrimRef>& refs, std::vector<BvhBuildNode>& nodes, const BvhBuildSettings& settings)
       : refs_(refs), nodes_(nodes), settings_(settings) {
     bins_ = std::clamp(settings.bins, 2, kMaxBins);
     max_leaf_ = static_cast<std::size_t>(std::max(1, settings.max_leaf_primitives));
@@ -132,8 +133,8 @@ class Builder {
   }
 
  private:
-  Split choose_split(std::size_t begin, std::size_t end, const Bounds3& bounds,
-                     const Bounds3& centroids, uint32_t depth) const {
+  Split choose_split(std::size_t begin, std::size_t end, const Bounds3& bounds, const Bounds3& centroids,
+                     uint32_t depth) const {
     Split split;
     const std::size_t count = end - begin;
     if (count <= max_leaf_) {
@@ -189,9 +190,8 @@ class Builder {
     // Partition by the same bin computation that binned, so the counts agree.
     auto first = refs_.begin() + static_cast<std::ptrdiff_t>(begin);
     auto last = refs_.begin() + static_cast<std::ptrdiff_t>(end);
-    std::partition(first, last, [&](const PrimRef& ref) {
-      return binning.bin(ref.centroid(), best_axis) < best_plane;
-    });
+    std::partition(first, last,
+                   [&](const PrimRef& ref) { return binning.bin(ref.centroid(), best_axis) < best_plane; });
     const Bin* bins = &set.bins[static_cast<std::size_t>(best_axis) * bins_];
     Bin left, right;
     for (int b = 0; b < best_plane; ++b) left.merge(bins[b]);
@@ -238,8 +238,8 @@ class Builder {
   Split median_split(std::size_t begin, std::size_t end, const Bounds3& centroids) const {
     Split split;
     const std::size_t count = end - begin;
-    if (count <= max_leaf_hard_ && !(centroids.diagonal().x > 0 || centroids.diagonal().y > 0 ||
-                                     centroids.diagonal().z > 0)) {
+    if (count <= max_leaf_hard_ &&
+        !(centroids.diagonal().x > 0 || centroids.diagonal().y > 0 || centroids.diagonal().z > 0)) {
       split.leaf = true;  // identical centroids: splitting cannot separate anything
       return split;
     }
@@ -319,9 +319,7 @@ BvhBuildResult build_bvh(std::span<const Bounds3> bounds, const BvhBuildSettings
                         result.order[i] = refs[i].index;
                     });
   const double root_area = half_area(root.bounds);
-  const auto relative_area = [&](const Bounds3& b) {
-    return root_area > 0 ? half_area(b) / root_area : 1.0;
-  };
+  const auto relative_area = [&](const Bounds3& b) { return root_area > 0 ? half_area(b) / root_area : 1.0; };
   struct Pending {
     uint32_t slot;
     int64_t parent;  // dense index of the inner node whose second child this is, or -1

@@ -43,8 +43,8 @@ struct BvhBuildResult {
   std::vector<BvhBuildNode> nodes;  // empty when there was nothing to build
   std::vector<uint32_t> order;      // reference indices (into the input) in leaf order
   uint32_t leaves = 0;
-  uint32_t depth = 0;     // levels: a single leaf has depth 1
-  double sah_cost = 0;    // the tree's SAH cost with the settings' costs, relative to the root
+  uint32_t depth = 0;   // levels: a single leaf has depth 1
+  double sah_cost = 0;  // the tree's SAH cost with the settings' costs, relative to the root
 };
 
 // Every bounds must be finite and non-empty. The maximum depth is below 128.

@@ -38,7 +38,9 @@ struct TestScene {
   }
 };
 
-double uniform(Pcg32& rng, double lo, double hi) { return lo + (hi - lo) * rng.next_double(); }
+double uniform(Pcg32& rng, double lo, double hi) {
+  return lo + (hi - lo) * rng.next_double();
+}
 
 Vec3 random_in(Pcg32& rng, const Bounds3& b) {
   return {uniform(rng, b.lower.x, b.upper.x), uniform(rng, b.lower.y, b.upper.y),
@@ -67,7 +69,9 @@ std::vector<Ray> random_rays(Pcg32& rng, const Bounds3& scene, int count) {
     Ray ray;
     ray.origin = random_in(rng, i % 3 == 0 ? scene : around);
     switch (i % 4) {
-      case 0: ray.direction = random_direction(rng); break;
+      case 0:
+        ray.direction = random_direction(rng);
+        break;
       case 1:
       case 2: {
         const Vec3 d = random_in(rng, scene) - ray.origin;
@@ -115,8 +119,8 @@ Agreement expect_same_as_list(const TestScene& scene, const std::vector<Ray>& ra
     Intersection expected, actual;
     const bool expected_hit = list.intersect(ray, expected);
     const bool actual_hit = bvh.intersect(ray, actual);
-    EXPECT_EQ(actual_hit, expected_hit) << "ray " << i << " origin " << ray.origin << " direction "
-                                        << ray.direction;
+    EXPECT_EQ(actual_hit, expected_hit)
+        << "ray " << i << " origin " << ray.origin << " direction " << ray.direction;
     if (actual_hit != expected_hit) {
       ++failures;
       continue;
@@ -137,8 +141,8 @@ Agreement expect_same_as_list(const TestScene& scene, const std::vector<Ray>& ra
     if (list.occluded(ray)) ++agreement.occluded;
     if (expected_hit) {
       Ray segment = ray;
-      for (double t_max : {expected.surface.t, std::nextafter(expected.surface.t, kInfinity),
-                           expected.surface.t * 0.5}) {
+      for (double t_max :
+           {expected.surface.t, std::nextafter(expected.surface.t, kInfinity), expected.surface.t * 0.5}) {
         segment.t_max = t_max;
         EXPECT_EQ(bvh.occluded(segment), list.occluded(segment)) << "ray " << i << " t_max " << t_max;
       }
@@ -154,8 +158,8 @@ std::shared_ptr<TriangleMesh> random_triangles(Pcg32& rng, int count, double ext
     const Vec3 center = random_in(rng, box);
     const auto first = static_cast<uint32_t>(mesh->positions.size());
     for (int k = 0; k < 3; ++k)
-      mesh->positions.push_back(center + Vec3{uniform(rng, -size, size), uniform(rng, -size, size),
-                                              uniform(rng, -size, size)});
+      mesh->positions.push_back(
+          center + Vec3{uniform(rng, -size, size), uniform(rng, -size, size), uniform(rng, -size, size)});
     mesh->triangles.push_back({first, first + 1, first + 2});
   }
   return mesh;
@@ -220,8 +224,8 @@ TEST(Bvh, RandomSpheresMatchList) {
   Pcg32 rng(7, 1);
   TestScene scene;
   for (int i = 0; i < 400; ++i)
-    scene.add(std::make_unique<Sphere>(random_in(rng, {{-10, -10, -10}, {10, 10, 10}}),
-                                       uniform(rng, 0.1, 1.0)));
+    scene.add(
+        std::make_unique<Sphere>(random_in(rng, {{-10, -10, -10}, {10, 10, 10}}), uniform(rng, 0.1, 1.0)));
   const Agreement agreement = expect_same_as_list(scene, random_rays(rng, scene.bounds(), 4000));
   EXPECT_GT(agreement.hits, 1000);
 }
@@ -241,7 +245,8 @@ TEST(Bvh, OtherSettingsMatchList) {
   for (int i = 0; i < 100; ++i)
     scene.add(std::make_unique<Sphere>(random_in(rng, {{-10, -10, -10}, {10, 10, 10}}), 0.5));
   const std::vector<Ray> rays = random_rays(rng, scene.bounds(), 1500);
-  for (const auto& [max_leaf, bins] : {std::pair{1, 2}, std::pair{2, 64}, std::pair{8, 7}, std::pair{32, 16}}) {
+  for (const auto& [max_leaf, bins] :
+       {std::pair{1, 2}, std::pair{2, 64}, std::pair{8, 7}, std::pair{32, 16}}) {
     SCOPED_TRACE(testing::Message() << "max leaf " << max_leaf << ", bins " << bins);
     BvhSettings settings;
     settings.max_leaf_primitives = max_leaf;
@@ -505,12 +510,25 @@ TEST(Bvh, RaysOutsideTheFloatRange) {
     ray.origin = random_in(rng, {{-6, -6, -6}, {6, 6, 6}});
     Vec3 d = random_direction(rng);
     switch (i % 6) {
-      case 0: d[i % 3] = 1e-35; break;                       // a tiny component
-      case 1: d[i % 3] = -1e-300; break;                     // a double subnormal-ish one
-      case 2: d = d * 1e35; break;                           // huge direction
-      case 3: ray.origin[i % 3] = 1e31; d[i % 3] = -1; break;  // huge origin
-      case 4: ray.t_min = -1e31; break;                      // very negative t_min
-      default: ray.t_min = -uniform(rng, 0, 8); break;       // hits behind the origin count
+      case 0:
+        d[i % 3] = 1e-35;
+        break;  // a tiny component
+      case 1:
+        d[i % 3] = -1e-300;
+        break;  // a double subnormal-ish one
+      case 2:
+        d = d * 1e35;
+        break;  // huge direction
+      case 3:
+        ray.origin[i % 3] = 1e31;
+        d[i % 3] = -1;
+        break;  // huge origin
+      case 4:
+        ray.t_min = -1e31;
+        break;  // very negative t_min
+      default:
+        ray.t_min = -uniform(rng, 0, 8);
+        break;  // hits behind the origin count
     }
     ray.direction = d;
     rays.push_back(ray);

@@ -9,7 +9,8 @@ void PrimitiveList::build(std::span<const Primitive> primitives) {
   for (uint32_t first = 0; first < primitives.size();) {
     uint32_t end = first + 1;
     while (end < primitives.size() && primitives[end].object == primitives[first].object) ++end;
-    groups_.push_back({first, end - first, ObjectBound(bounding_volume_, primitives.subspan(first, end - first))});
+    groups_.push_back(
+        {first, end - first, ObjectBound(bounding_volume_, primitives.subspan(first, end - first))});
     first = end;
   }
 }

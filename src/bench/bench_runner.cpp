@@ -170,7 +170,8 @@ BenchReport run_bench(const BenchMesh& mesh, const BenchOptions& options,
                       const std::function<void(const std::string&)>& log) {
   const BenchScene scene(mesh.mesh);
   if (scene.skipped_degenerate() > 0 && log)
-    log(fmt::format("{} degenerate triangle(s) are never hit (they keep their ids)", scene.skipped_degenerate()));
+    log(fmt::format("{} degenerate triangle(s) are never hit (they keep their ids)",
+                    scene.skipped_degenerate()));
   return run_bench(BenchInput{mesh.name, mesh.bounds, mesh.mesh->triangles.size(), &scene}, options, log);
 }
 

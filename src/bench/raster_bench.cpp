@@ -134,17 +134,19 @@ RasterBenchReport run_raster_bench(const BenchMesh& mesh, const RasterBenchOptio
                                  options.height);
 
   const std::vector<Vec3> normals = vertex_normals(triangles);
-  Frame frame{triangles,
-              normals,
-              camera.view_projection(report.near, report.far),
-              report.eye,
-              std::vector<Eigen::Vector4d>(triangles.positions.size()),
-              std::vector<float>(static_cast<std::size_t>(options.width) * static_cast<std::size_t>(options.height)),
-              options.width};
+  Frame frame{
+      triangles,
+      normals,
+      camera.view_projection(report.near, report.far),
+      report.eye,
+      std::vector<Eigen::Vector4d>(triangles.positions.size()),
+      std::vector<float>(static_cast<std::size_t>(options.width) * static_cast<std::size_t>(options.height)),
+      options.width};
   const auto say = [&](const RasterPassResult& r) {
     if (log)
-      log(fmt::format("{}: {}: {:.2f} Mtriangles/s, {:.2f} Mfragments/s ({} frame(s), best {:.3f} ms)", mesh.name,
-                      r.pass, r.mtriangles_per_s, r.mfragments_per_s, r.frames, r.best_seconds * 1e3));
+      log(fmt::format("{}: {}: {:.2f} Mtriangles/s, {:.2f} Mfragments/s ({} frame(s), best {:.3f} ms)",
+                      mesh.name, r.pass, r.mtriangles_per_s, r.mfragments_per_s, r.frames,
+                      r.best_seconds * 1e3));
   };
 
   {
@@ -155,9 +157,8 @@ RasterBenchReport run_raster_bench(const BenchMesh& mesh, const RasterBenchOptio
           items.clear();
           items.reset_statistics();
         },
-        [&] { items.draw(frame.clip_from_world, triangles); }, [&]() -> const RasterStatistics& {
-          return items.statistics();
-        }));
+        [&] { items.draw(frame.clip_from_world, triangles); },
+        [&]() -> const RasterStatistics& { return items.statistics(); }));
     say(report.passes.back());
   }
 
@@ -187,7 +188,8 @@ RasterBenchReport run_raster_bench(const BenchMesh& mesh, const RasterBenchOptio
         frame.transform();
         for (std::size_t i = 0; i < intensities.size(); ++i) intensities[i] = frame.lambert(i, normals[i]);
         draw_mesh(
-            rasterizer, frame, 1, [&](RasterVertex& corner, uint32_t vertex) { corner.varyings[0] = intensities[vertex]; },
+            rasterizer, frame, 1,
+            [&](RasterVertex& corner, uint32_t vertex) { corner.varyings[0] = intensities[vertex]; },
             [&](const Fragment& f) {
               frame.image[static_cast<std::size_t>(f.y) * width + static_cast<std::size_t>(f.x)] =
                   static_cast<float>(f.varyings[0]);
@@ -217,7 +219,8 @@ RasterBenchReport run_raster_bench(const BenchMesh& mesh, const RasterBenchOptio
             [&](const Fragment& f) {
               const Vec3 normal{f.varyings[0], f.varyings[1], f.varyings[2]};
               const Vec3 to_light = report.eye - Vec3{f.varyings[3], f.varyings[4], f.varyings[5]};
-              const double shade = std::fabs(dot(normal, to_light)) / std::sqrt(length_squared(normal) * length_squared(to_light));
+              const double shade = std::fabs(dot(normal, to_light)) /
+                                   std::sqrt(length_squared(normal) * length_squared(to_light));
               frame.image[static_cast<std::size_t>(f.y) * width + static_cast<std::size_t>(f.x)] =
                   static_cast<float>(shade);
               return true;
@@ -256,12 +259,12 @@ nlohmann::json RasterBenchReport::to_json() const {
 std::string RasterBenchReport::table() const {
   std::string text = fmt::format("mesh: {} ({} triangles), {}x{}, vertical fov {} degrees, 1 thread\n", mesh,
                                  triangles, width, height, fov_degrees);
-  text += fmt::format("{:<12} {:>7} {:>10} {:>10} {:>10} {:>10} {:>10} {:>8} {:>8}\n", "pass", "frames", "best ms",
-                      "Mtri/s", "Mfrag/s", "fragments", "written", "culled", "clipped");
+  text += fmt::format("{:<12} {:>7} {:>10} {:>10} {:>10} {:>10} {:>10} {:>8} {:>8}\n", "pass", "frames",
+                      "best ms", "Mtri/s", "Mfrag/s", "fragments", "written", "culled", "clipped");
   for (const RasterPassResult& p : passes)
-    text += fmt::format("{:<12} {:>7} {:>10.3f} {:>10.2f} {:>10.2f} {:>10} {:>10} {:>8} {:>8}\n", p.pass, p.frames,
-                        p.best_seconds * 1e3, p.mtriangles_per_s, p.mfragments_per_s, p.fragments, p.written,
-                        p.culled, p.clipped);
+    text += fmt::format("{:<12} {:>7} {:>10.3f} {:>10.2f} {:>10.2f} {:>10} {:>10} {:>8} {:>8}\n", p.pass,
+                        p.frames, p.best_seconds * 1e3, p.mtriangles_per_s, p.mfragments_per_s, p.fragments,
+                        p.written, p.culled, p.clipped);
   return text;
 }
 

@@ -40,9 +40,9 @@ struct RasterBenchOptions {
 
 struct RasterPassResult {
   std::string pass;
-  int frames = 0;             // timed
-  double best_seconds = 0;    // the fastest timed frame
-  double total_seconds = 0;   // all timed frames
+  int frames = 0;            // timed
+  double best_seconds = 0;   // the fastest timed frame
+  double total_seconds = 0;  // all timed frames
   double mtriangles_per_s = 0;
   double mfragments_per_s = 0;  // written fragments (pixels) per second of the best frame
   // One frame's RasterStatistics (the same every frame).

@@ -24,7 +24,9 @@ uint64_t mix64(uint64_t z) {  // splitmix64's finaliser
 
 }  // namespace
 
-uint64_t lattice_key_hash(uint64_t key) { return mix64(key); }
+uint64_t lattice_key_hash(uint64_t key) {
+  return mix64(key);
+}
 
 namespace {
 
@@ -40,7 +42,8 @@ struct Lattice {
     x = double(ix) / double(scale);
     y = double(iy) / double(scale);
     if (!jitter || ix == 0 || iy == 0 || ix == last_x || iy == last_y) return;
-    const uint64_t h = mix64(mix64(seed ^ 0x9e3779b97f4a7c15ULL) ^ (uint64_t(iy) << 32 | uint64_t(uint32_t(ix))));
+    const uint64_t h =
+        mix64(mix64(seed ^ 0x9e3779b97f4a7c15ULL) ^ (uint64_t(iy) << 32 | uint64_t(uint32_t(ix))));
     const double u = double(h >> 40) * 0x1p-24 - 0.5;
     const double v = double((h >> 16) & 0xffffff) * 0x1p-24 - 0.5;
     x += u / double(scale);
@@ -57,7 +60,8 @@ double channel_contrast(double a, double b, double c, double d) {
 
 bool exceeds(const Color& threshold, const Color& c00, const Color& c10, const Color& c01, const Color& c11) {
   for (int channel = 0; channel < 3; ++channel)
-    if (channel_contrast(c00[channel], c10[channel], c01[channel], c11[channel]) > threshold[channel]) return true;
+    if (channel_contrast(c00[channel], c10[channel], c01[channel], c11[channel]) > threshold[channel])
+      return true;
   return false;
 }
 
@@ -81,8 +85,8 @@ void for_each_tile(int width, int height, int tile, const std::function<void()>&
 }
 
 // none, uniform, jittered: each pixel alone.
-void sample_pixels(const AntialiasingSettings& settings, uint64_t seed, const SamplingRegion& region, int tile,
-                   const RadianceFunction& radiance, Film& film, SamplingResult& result,
+void sample_pixels(const AntialiasingSettings& settings, uint64_t seed, const SamplingRegion& region,
+                   int tile, const RadianceFunction& radiance, Film& film, SamplingResult& result,
                    const std::function<void()>& tile_done) {
   const bool single = settings.mode == AntialiasingMode::none;
   const int n = single ? 1 : settings.n;
@@ -118,8 +122,8 @@ void sample_pixels(const AntialiasingSettings& settings, uint64_t seed, const Sa
 }
 
 // corners: the (W+1)×(H+1) lattice of the region's pixel corners, traced once by rows.
-void sample_corners(const AntialiasingSettings& settings, uint64_t seed, const SamplingRegion& region, int tile,
-                    const RadianceFunction& radiance, Film& film, SamplingResult& result,
+void sample_corners(const AntialiasingSettings& settings, uint64_t seed, const SamplingRegion& region,
+                    int tile, const RadianceFunction& radiance, Film& film, SamplingResult& result,
                     const std::function<void()>& tile_done) {
   const int width = film.width(), height = film.height();
   const Lattice lattice{1, settings.jitter, seed, region.image_width, region.image_height};

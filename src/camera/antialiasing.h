@@ -21,10 +21,10 @@
 #include <string_view>
 #include <vector>
 
-#include "util/enum_names.h"
 #include "camera/film.h"
 #include "camera/pixel_filter.h"
 #include "math/vector.h"
+#include "util/enum_names.h"
 
 namespace candela {
 
@@ -32,20 +32,20 @@ enum class AntialiasingMode { none, uniform, jittered, corners, adaptive };
 
 struct AntialiasingSettings {
   AntialiasingMode mode = AntialiasingMode::none;
-  int n = 2;          // uniform, jittered: n×n samples per pixel
-  int max_level = 2;  // adaptive: at most 2^max_level × 2^max_level leaf squares per pixel
+  int n = 2;                         // uniform, jittered: n×n samples per pixel
+  int max_level = 2;                 // adaptive: at most 2^max_level × 2^max_level leaf squares per pixel
   Color threshold{0.25, 0.20, 0.4};  // adaptive: contrast thresholds per channel
   bool jitter = false;               // corners, adaptive: jitter the interior lattice points
   std::string filter = "box";        // uniform, jittered
   PixelFilterParameters filter_parameters;
 };
 
-inline constexpr auto kAntialiasingModeNames = enum_names<AntialiasingMode>(
-    {{AntialiasingMode::none, "none"},
-     {AntialiasingMode::uniform, "uniform"},
-     {AntialiasingMode::jittered, "jittered"},
-     {AntialiasingMode::corners, "corners"},
-     {AntialiasingMode::adaptive, "adaptive"}});
+inline constexpr auto kAntialiasingModeNames =
+    enum_names<AntialiasingMode>({{AntialiasingMode::none, "none"},
+                                  {AntialiasingMode::uniform, "uniform"},
+                                  {AntialiasingMode::jittered, "jittered"},
+                                  {AntialiasingMode::corners, "corners"},
+                                  {AntialiasingMode::adaptive, "adaptive"}});
 
 // Traces one primary ray through image point (x, y) — pixels, (0, 0) the top-left corner of the
 // image — and returns its radiance. Called concurrently from several threads.
@@ -63,8 +63,8 @@ struct SamplingResult {
 };
 
 struct SamplingRegion {
-  int x0 = 0, y0 = 0;                      // the film's top-left pixel in the image
-  int image_width = 0, image_height = 0;   // the whole image (its border gets no jitter)
+  int x0 = 0, y0 = 0;                     // the film's top-left pixel in the image
+  int image_width = 0, image_height = 0;  // the whole image (its border gets no jitter)
 };
 
 // Fills film (the region's size) in parallel tiles of tile_size pixels; tile_done, when set, is

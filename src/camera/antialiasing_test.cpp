@@ -179,9 +179,10 @@ TEST(Antialiasing, HalfPlaneEdgeErrorShrinksWithN) {
         // Jittered: at most the 2n − 1 sub-cells the edge crosses are wrong, each by 1/n²;
         // uniform centres do better: within 1/n.
         const double bound = mode == AntialiasingMode::uniform ? 1.0 / n : (2.0 * n - 1) / (n * n);
-        EXPECT_LE(error, bound + 1e-9) << std::string(kAntialiasingModeNames.name(mode)) << " n=" << n << " at " << degrees << "°";
-        std::printf("  %-8s n=%d at %4.0f°: worst pixel error %.4f\n", std::string(kAntialiasingModeNames.name(mode)).c_str(), n, degrees,
-                    error);
+        EXPECT_LE(error, bound + 1e-9)
+            << std::string(kAntialiasingModeNames.name(mode)) << " n=" << n << " at " << degrees << "°";
+        std::printf("  %-8s n=%d at %4.0f°: worst pixel error %.4f\n",
+                    std::string(kAntialiasingModeNames.name(mode)).c_str(), n, degrees, error);
       }
     }
     const double corners = worst_error(render(with_mode(AntialiasingMode::corners), edge).film, edge);
@@ -218,7 +219,8 @@ TEST(Antialiasing, AdaptiveMatchesTheDenseLatticeOnEdgePixelsWithFewerRays) {
         dense /= kScale * kScale;
         worst = std::max(worst, std::fabs(adaptive.film.at(x, y).r - dense));
         worst_exact = std::max(worst_exact, std::fabs(adaptive.film.at(x, y).r - exact));
-        worst_uniform = std::max(worst_uniform, std::fabs(adaptive.film.at(x, y).r - uniform.film.at(x, y).r));
+        worst_uniform =
+            std::max(worst_uniform, std::fabs(adaptive.film.at(x, y).r - uniform.film.at(x, y).r));
       }
     }
     EXPECT_LT(worst, 1e-12) << degrees << "°";
@@ -230,11 +232,12 @@ TEST(Antialiasing, AdaptiveMatchesTheDenseLatticeOnEdgePixelsWithFewerRays) {
     EXPECT_LT(adaptive.result.traced, uniform.result.traced);
     // The uniform 8×8 sub-pixel centres cost this many rays.
     const uint64_t uniform_rays = uint64_t(kWidth * kHeight) * kScale * kScale;
-    std::printf("  adaptive L=%d at %4.0f°: %llu rays vs %llu for the dense lattice (ratio %.3f) and %llu for "
-                "uniform %dx%d; worst edge-pixel error vs exact area %.4f\n",
-                kLevel, degrees, static_cast<unsigned long long>(adaptive.result.traced),
-                static_cast<unsigned long long>(dense_rays), double(adaptive.result.traced) / double(dense_rays),
-                static_cast<unsigned long long>(uniform_rays), kScale, kScale, worst_exact);
+    std::printf(
+        "  adaptive L=%d at %4.0f°: %llu rays vs %llu for the dense lattice (ratio %.3f) and %llu for "
+        "uniform %dx%d; worst edge-pixel error vs exact area %.4f\n",
+        kLevel, degrees, static_cast<unsigned long long>(adaptive.result.traced),
+        static_cast<unsigned long long>(dense_rays), double(adaptive.result.traced) / double(dense_rays),
+        static_cast<unsigned long long>(uniform_rays), kScale, kScale, worst_exact);
   }
 }
 
@@ -262,8 +265,9 @@ TEST(Antialiasing, SeedExampleOnePixelTwoLevels) {
 
 TEST(Antialiasing, ImagesDoNotDependOnTheThreadCount) {
   std::vector<AntialiasingSettings> all;
-  for (const AntialiasingMode mode : {AntialiasingMode::none, AntialiasingMode::uniform, AntialiasingMode::jittered,
-                                      AntialiasingMode::corners, AntialiasingMode::adaptive})
+  for (const AntialiasingMode mode :
+       {AntialiasingMode::none, AntialiasingMode::uniform, AntialiasingMode::jittered,
+        AntialiasingMode::corners, AntialiasingMode::adaptive})
     all.push_back(with_mode(mode, 3));
   all.push_back(with_mode(AntialiasingMode::adaptive));
   all.back().jitter = true;

@@ -1,9 +1,8 @@
 // Cameras map a point of the image to a primary ray (SPEC §6).
 #pragma once
 
-#include <string_view>
-
 #include <Eigen/Dense>
+#include <string_view>
 
 #include "math/ray.h"
 

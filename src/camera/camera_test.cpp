@@ -22,8 +22,8 @@ TEST(PerspectiveCamera, FollowsTheViewingSystemOf000Section5_2) {
       // The seed counts j from the bottom row; image rows run from the top.
       const int j = height - 1 - row;
       const double x_view = (i + 0.5) / width, y_view = (j + 0.5) / height;
-      const Vec3 P = Vec3{0, 0, -1} + Vec3{tan_theta, 0, 0} * (2 * x_view - 1) +
-                     Vec3{0, tan_phi, 0} * (2 * y_view - 1);
+      const Vec3 P =
+          Vec3{0, 0, -1} + Vec3{tan_theta, 0, 0} * (2 * x_view - 1) + Vec3{0, tan_phi, 0} * (2 * y_view - 1);
       const Ray ray = camera.generate_ray(i + 0.5, row + 0.5);
       EXPECT_EQ(ray.origin, eye);
       const Vec3 expected = normalize(P);
@@ -64,7 +64,8 @@ TEST(OrthographicCamera, RaysArePerpendicularToTheWindow) {
 // (x, y) projects to ndc (2x/width − 1, 1 − 2y/height), in front of the near plane.
 void expect_projection_matches_rays(const Camera& camera) {
   const Eigen::Matrix4d clip_from_world = camera.view_projection(0.5, 100);
-  for (const auto& [x, y] : {std::pair{0.5, 0.5}, std::pair{13.25, 7.75}, std::pair{31.5, 23.5}, std::pair{16.0, 12.0}}) {
+  for (const auto& [x, y] :
+       {std::pair{0.5, 0.5}, std::pair{13.25, 7.75}, std::pair{31.5, 23.5}, std::pair{16.0, 12.0}}) {
     const Ray ray = camera.generate_ray(x, y);
     for (const double t : {1.0, 5.0, 40.0}) {
       const Vec3 p = ray.at(t);
@@ -93,7 +94,8 @@ TEST(PerspectiveCamera, ViewProjectionMatchesGenerateRay) {
 }
 
 TEST(OrthographicCamera, ViewProjectionMatchesGenerateRay) {
-  expect_projection_matches_rays(OrthographicCamera({1, 2, 3}, {-2, 0.5, -4}, {0, 1, 0}, -3, 2, -1, 2.5, 32, 24));
+  expect_projection_matches_rays(
+      OrthographicCamera({1, 2, 3}, {-2, 0.5, -4}, {0, 1, 0}, -3, 2, -1, 2.5, 32, 24));
 }
 
 }  // namespace

@@ -8,8 +8,8 @@ namespace candela {
 // eye: u = l + (r − l)(i + 0.5)/Nx, v = b + (t − b)(j + 0.5)/Ny, direction G.
 class OrthographicCamera final : public Camera {
  public:
-  OrthographicCamera(const Vec3& eye, const Vec3& target, const Vec3& up, double left,
-                     double right, double bottom, double top, int width, int height);
+  OrthographicCamera(const Vec3& eye, const Vec3& target, const Vec3& up, double left, double right,
+                     double bottom, double top, int width, int height);
   Ray generate_ray(double x, double y) const override;
   std::string_view type_name() const override { return "orthographic"; }
   // The window (l, r, b, t) onto ndc [−1, 1]²; depth from the eye plane along the gaze.

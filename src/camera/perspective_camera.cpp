@@ -15,7 +15,8 @@ PerspectiveCamera::PerspectiveCamera(const Vec3& eye, const Vec3& target, const 
   if (!(length(gaze) > 0)) throw std::invalid_argument("target must differ from eye");
   gaze_ = normalize(gaze);
   const Vec3 x_axis = cross(gaze_, up);  // X = G × U
-  if (!(length(x_axis) > 1e-12 * length(up))) throw std::invalid_argument("up is parallel to the view direction");
+  if (!(length(x_axis) > 1e-12 * length(up)))
+    throw std::invalid_argument("up is parallel to the view direction");
   const Vec3 x_unit = normalize(x_axis);
   const Vec3 y_unit = cross(x_unit, gaze_);  // Y = X × G
   const double tan_theta = std::tan(degrees_to_radians(horizontal_fov_degrees) / 2);

@@ -10,8 +10,8 @@ namespace candela {
 // (x', y') measured from the lower-left corner of the view plane.
 class PerspectiveCamera final : public Camera {
  public:
-  PerspectiveCamera(const Vec3& eye, const Vec3& target, const Vec3& up,
-                    double horizontal_fov_degrees, int width, int height);
+  PerspectiveCamera(const Vec3& eye, const Vec3& target, const Vec3& up, double horizontal_fov_degrees,
+                    int width, int height);
   Ray generate_ray(double x, double y) const override;
   std::string_view type_name() const override { return "perspective"; }
   // The OpenGL frustum whose pixel centres are generate_ray's: 1/tanθ across, 1/tanφ up.

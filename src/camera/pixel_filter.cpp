@@ -47,7 +47,8 @@ class MitchellFilter final : public PixelFilter {
     if (x < 1)
       k = ((12 - 9 * b - 6 * c) * x * x * x + (-18 + 12 * b + 6 * c) * x * x + (6 - 2 * b)) / 6;
     else if (x < 2)
-      k = ((-b - 6 * c) * x * x * x + (6 * b + 30 * c) * x * x + (-12 * b - 48 * c) * x + (8 * b + 24 * c)) / 6;
+      k = ((-b - 6 * c) * x * x * x + (6 * b + 30 * c) * x * x + (-12 * b - 48 * c) * x + (8 * b + 24 * c)) /
+          6;
     return k * 2 / radius_;
   }
 };
@@ -79,19 +80,24 @@ const std::array kEntries{
 
 }  // namespace
 
-std::span<const PixelFilterEntry> pixel_filter_entries() { return kEntries; }
+std::span<const PixelFilterEntry> pixel_filter_entries() {
+  return kEntries;
+}
 
 const PixelFilterEntry* find_pixel_filter(std::string_view name) {
   return find_entry(pixel_filter_entries(), name);
 }
 
-std::string pixel_filter_names() { return entry_names(pixel_filter_entries()); }
+std::string pixel_filter_names() {
+  return entry_names(pixel_filter_entries());
+}
 
-std::unique_ptr<PixelFilter> create_pixel_filter(std::string_view name, const PixelFilterParameters& parameters) {
+std::unique_ptr<PixelFilter> create_pixel_filter(std::string_view name,
+                                                 const PixelFilterParameters& parameters) {
   const PixelFilterEntry* entry = find_pixel_filter(name);
   if (!entry)
-    throw std::invalid_argument("unknown filter \"" + std::string(name) + "\" (expected one of: " +
-                                pixel_filter_names() + ")");
+    throw std::invalid_argument("unknown filter \"" + std::string(name) +
+                                "\" (expected one of: " + pixel_filter_names() + ")");
   return entry->create(parameters);
 }
 

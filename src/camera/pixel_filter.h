@@ -41,6 +41,7 @@ std::span<const PixelFilterEntry> pixel_filter_entries();
 const PixelFilterEntry* find_pixel_filter(std::string_view name);  // nullptr when unknown
 std::string pixel_filter_names();
 // Throws std::invalid_argument for an unknown name or bad parameters.
-std::unique_ptr<PixelFilter> create_pixel_filter(std::string_view name, const PixelFilterParameters& parameters);
+std::unique_ptr<PixelFilter> create_pixel_filter(std::string_view name,
+                                                 const PixelFilterParameters& parameters);
 
 }  // namespace candela

@@ -5,9 +5,9 @@
 #include <string_view>
 #include <vector>
 
-#include "util/enum_names.h"
 #include "camera/film.h"
 #include "math/srgb.h"
+#include "util/enum_names.h"
 
 namespace candela {
 

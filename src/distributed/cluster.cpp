@@ -83,12 +83,13 @@ Cluster::Cluster(std::unique_ptr<Implementation> implementation, int rank, int s
 void Cluster::send(int destination, int tag, Bytes bytes) {
   if (!implementation_) throw single_process("send");
   if (bytes.size() > static_cast<std::size_t>(INT_MAX))
-    throw std::length_error("distributed message of " + std::to_string(bytes.size()) + " bytes (at most 2 GiB)");
+    throw std::length_error("distributed message of " + std::to_string(bytes.size()) +
+                            " bytes (at most 2 GiB)");
   implementation_->reap();
   auto& pending = implementation_->sends.emplace_back();
   pending.bytes = std::move(bytes);
-  MPI_Isend(pending.bytes.data(), static_cast<int>(pending.bytes.size()), MPI_BYTE, destination, tag, MPI_COMM_WORLD,
-            &pending.request);
+  MPI_Isend(pending.bytes.data(), static_cast<int>(pending.bytes.size()), MPI_BYTE, destination, tag,
+            MPI_COMM_WORLD, &pending.request);
   ++volume_.messages_sent;
   volume_.bytes_sent += pending.bytes.size();
 }
@@ -116,7 +117,9 @@ bool Cluster::try_receive(int tag, ClusterMessage& message) {
   std::vector<int> sources_waiting;
   for (auto it = state.receives.begin(); it != state.receives.end(); ++it) {
     if (it->message.tag != tag) continue;
-    if (std::find(sources_waiting.begin(), sources_waiting.end(), it->message.source) != sources_waiting.end()) continue;
+    if (std::find(sources_waiting.begin(), sources_waiting.end(), it->message.source) !=
+        sources_waiting.end())
+      continue;
     int done = 0;
     MPI_Test(&it->request, &done, MPI_STATUS_IGNORE);
     if (!done) {
@@ -172,7 +175,8 @@ void all_reduce(std::vector<T>& values, MPI_Datatype type, MPI_Op op, Cluster::I
                 CommunicationVolume& volume) {
   std::vector<T> result(values.size());
   MPI_Request request;
-  MPI_Iallreduce(values.data(), result.data(), static_cast<int>(values.size()), type, op, MPI_COMM_WORLD, &request);
+  MPI_Iallreduce(values.data(), result.data(), static_cast<int>(values.size()), type, op, MPI_COMM_WORLD,
+                 &request);
   implementation.wait(request, volume);
   values.swap(result);
   ++volume.collectives;
@@ -207,15 +211,25 @@ struct Cluster::Implementation {};
 
 Cluster::Cluster(std::unique_ptr<Implementation> implementation, int rank, int size)
     : implementation_(std::move(implementation)), rank_(rank), size_(size) {}
-void Cluster::send(int, int, Bytes) { throw single_process("send"); }
-bool Cluster::try_receive(int, ClusterMessage&) { throw single_process("try_receive"); }
-ClusterMessage Cluster::receive(int) { throw single_process("receive"); }
+void Cluster::send(int, int, Bytes) {
+  throw single_process("send");
+}
+bool Cluster::try_receive(int, ClusterMessage&) {
+  throw single_process("try_receive");
+}
+ClusterMessage Cluster::receive(int) {
+  throw single_process("receive");
+}
 void Cluster::flush_sends() {}
 void Cluster::broadcast(Bytes&, int) {}
 void Cluster::sum(std::vector<uint64_t>&) {}
 void Cluster::sum(std::vector<double>&) {}
-bool Cluster::all(bool value) { return value; }
-bool Cluster::any(bool value) { return value; }
+bool Cluster::all(bool value) {
+  return value;
+}
+bool Cluster::any(bool value) {
+  return value;
+}
 
 #endif
 
@@ -252,7 +266,9 @@ bool cancelled_anywhere(Cluster& cluster) {
   return cancelled;
 }
 
-bool cancelled_anywhere(Cluster* cluster) { return cluster ? cancelled_anywhere(*cluster) : cancel_requested(); }
+bool cancelled_anywhere(Cluster* cluster) {
+  return cluster ? cancelled_anywhere(*cluster) : cancel_requested();
+}
 
 void settle_root_outcome(Cluster& cluster, std::exception_ptr root_error) {
   Bytes outcome(1, std::byte{root_error ? uint8_t{1} : uint8_t{0}});
@@ -278,9 +294,10 @@ MpiSession::MpiSession([[maybe_unused]] int& argc, [[maybe_unused]] char**& argv
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   world_slot() = std::make_unique<Cluster>(std::make_unique<Cluster::Implementation>(), rank, size);
 #else
-  throw std::runtime_error("started as " + std::to_string(launched) +
-                           " MPI ranks, but this candela was built without MPI: every rank would render the whole "
-                           "image alone (install libopenmpi-dev and rebuild: scripts/install-deps.sh does)");
+  throw std::runtime_error(
+      "started as " + std::to_string(launched) +
+      " MPI ranks, but this candela was built without MPI: every rank would render the whole "
+      "image alone (install libopenmpi-dev and rebuild: scripts/install-deps.sh does)");
 #endif
 }
 

@@ -26,7 +26,8 @@ struct FarmTags {
 };
 
 FarmTags farm_tags(Cluster& cluster) {
-  const auto base = 1000 + 2 * static_cast<int>(cluster.next_exchange() % 8000);  // below MPI's least tag bound, 32767
+  const auto base =
+      1000 + 2 * static_cast<int>(cluster.next_exchange() % 8000);  // below MPI's least tag bound, 32767
   return {base, base + 1};
 }
 
@@ -44,7 +45,8 @@ Bytes message_of(Kind kind, std::size_t task = 0, std::span<const std::byte> pay
 }
 
 Kind kind_of(const Bytes& bytes) {
-  if (bytes.size() < 1 + sizeof(uint64_t)) throw std::runtime_error("task farm: a message shorter than its header");
+  if (bytes.size() < 1 + sizeof(uint64_t))
+    throw std::runtime_error("task farm: a message shorter than its header");
   return static_cast<Kind>(bytes[0]);
 }
 
@@ -141,45 +143,45 @@ TaskFarmReport run_coordinator(Cluster& cluster, const TaskFarm& farm, const Far
   };
   Backoff idle;
   try {
-  for (;;) {
-    bool busy = false;
-    {
-      std::vector<std::pair<std::size_t, Bytes>> finished;
-      bool done_locally;
+    for (;;) {
+      bool busy = false;
       {
-        std::lock_guard lock(mutex);
-        finished.swap(local_results);
-        done_locally = local_finished;
+        std::vector<std::pair<std::size_t, Bytes>> finished;
+        bool done_locally;
+        {
+          std::lock_guard lock(mutex);
+          finished.swap(local_results);
+          done_locally = local_finished;
+        }
+        for (auto& [task, result] : finished) {
+          std::lock_guard lock(mutex);
+          collect(task, std::move(result), 0);
+          busy = true;
+        }
+        if (done_locally && open_requests == 0) {
+          std::lock_guard lock(mutex);
+          if (local_results.empty()) break;
+        }
       }
-      for (auto& [task, result] : finished) {
-        std::lock_guard lock(mutex);
-        collect(task, std::move(result), 0);
+      ClusterMessage message;
+      if (cluster.try_receive(tags.to_coordinator, message)) {
         busy = true;
+        const Kind kind = kind_of(message.bytes);
+        if (kind == kResult) {
+          std::lock_guard lock(mutex);
+          collect(number_of(message.bytes),
+                  Bytes(payload_of(message.bytes).begin(), payload_of(message.bytes).end()), message.source);
+        } else if (kind != kRequest) {
+          throw std::runtime_error("task farm: unexpected message kind " + std::to_string(int(kind)));
+        }
+        answer(message.source);
       }
-      if (done_locally && open_requests == 0) {
-        std::lock_guard lock(mutex);
-        if (local_results.empty()) break;
+      if (busy) {
+        idle.reset();
+      } else {
+        idle.pause();
       }
     }
-    ClusterMessage message;
-    if (cluster.try_receive(tags.to_coordinator, message)) {
-      busy = true;
-      const Kind kind = kind_of(message.bytes);
-      if (kind == kResult) {
-        std::lock_guard lock(mutex);
-        collect(number_of(message.bytes), Bytes(payload_of(message.bytes).begin(), payload_of(message.bytes).end()),
-                message.source);
-      } else if (kind != kRequest) {
-        throw std::runtime_error("task farm: unexpected message kind " + std::to_string(int(kind)));
-      }
-      answer(message.source);
-    }
-    if (busy) {
-      idle.reset();
-    } else {
-      idle.pause();
-    }
-  }
   } catch (...) {  // a broken message: stop the working thread before leaving
     {
       std::lock_guard lock(mutex);
@@ -205,7 +207,8 @@ void run_worker(Cluster& cluster, const TaskFarm& farm, const FarmTags& tags) {
     --open_requests;
     const Kind kind = kind_of(message.bytes);
     if (kind == kNoMore) continue;
-    if (kind != kTask) throw std::runtime_error("task farm: unexpected message kind " + std::to_string(int(kind)));
+    if (kind != kTask)
+      throw std::runtime_error("task farm: unexpected message kind " + std::to_string(int(kind)));
     const std::size_t task = number_of(message.bytes);
     const Bytes result = farm.work(task, payload_of(message.bytes));
     cluster.send(0, tags.to_coordinator, message_of(kResult, task, result));
@@ -224,10 +227,10 @@ TaskFarmReport run_task_farm(Cluster& cluster, const TaskFarm& farm) {
   return {};
 }
 
-void run_task_farm_everywhere(Cluster& cluster, std::size_t task_count,
-                              const std::function<Bytes(std::size_t task)>& work,
-                              const std::function<void(std::size_t task, std::span<const std::byte> result)>& place,
-                              const std::function<Bytes(std::size_t task)>& again) {
+void run_task_farm_everywhere(
+    Cluster& cluster, std::size_t task_count, const std::function<Bytes(std::size_t task)>& work,
+    const std::function<void(std::size_t task, std::span<const std::byte> result)>& place,
+    const std::function<Bytes(std::size_t task)>& again) {
   std::vector<Bytes> results(cluster.distributed() && cluster.root() && !again ? task_count : 0);
   TaskFarm farm;
   farm.task_count = task_count;

@@ -17,8 +17,7 @@ AxialFrame::AxialFrame(const Vec3& base, const Vec3& cap) : base_(base) {
   orthonormal_basis(axis_, x_axis_, y_axis_);
 }
 
-bool AxialFrame::cap_distance(const Vec3& origin, const Vec3& direction, double z, double radius,
-                              double& t) {
+bool AxialFrame::cap_distance(const Vec3& origin, const Vec3& direction, double z, double radius, double& t) {
   if (direction.z == 0) return false;
   t = (z - origin.z) / direction.z;
   const double x = origin.x + direction.x * t, y = origin.y + direction.y * t;

@@ -41,10 +41,11 @@ class AxialFrame {
   // Area sampling of an end disc: a uniform point (u on the unit square) of the disc of this
   // radius about the axis at centre (the base or the cap point), facing away from the body (+axis
   // at the cap, −axis at the base). Leaves sample.pdf to the caller.
-  void sample_end_disc(const Vec3& centre, bool cap, double radius, const Vec2& u, SurfaceSample& sample) const;
+  void sample_end_disc(const Vec3& centre, bool cap, double radius, const Vec2& u,
+                       SurfaceSample& sample) const;
 
   const Vec3& base() const { return base_; }
-  const Vec3& axis() const { return axis_; }  // unit, base to cap
+  const Vec3& axis() const { return axis_; }      // unit, base to cap
   const Vec3& x_axis() const { return x_axis_; }  // with y_axis, orthonormal_basis(axis)
   const Vec3& y_axis() const { return y_axis_; }
   double height() const { return height_; }

@@ -88,7 +88,9 @@ bool Box::occluded(const Ray& ray) const {
   return nearest_t(ray, face) < kInfinity;
 }
 
-Bounds3 Box::bounds() const { return {lower_, upper_}; }
+Bounds3 Box::bounds() const {
+  return {lower_, upper_};
+}
 
 double Box::area() const {
   const Vec3 e = upper_ - lower_;
@@ -115,7 +117,9 @@ bool Box::sample_area(const Vec2& u, SurfaceSample& sample) const {
   return true;
 }
 
-double Box::pdf_area(const SurfaceHit&) const { return 1 / area(); }
+double Box::pdf_area(const SurfaceHit&) const {
+  return 1 / area();
+}
 
 void Box::tessellate(const TessellationSettings&, TriangleMesh& mesh) const {
   MeshAppender out(mesh);

@@ -12,8 +12,7 @@ namespace candela {
 
 Cone::Cone(const Vec3& base, double base_radius, const Vec3& cap, double cap_radius, bool capped)
     : frame_(base, cap), base_radius_(base_radius), cap_(cap), cap_radius_(cap_radius), capped_(capped) {
-  if (!(base_radius >= 0) || !(cap_radius >= 0) || !std::isfinite(base_radius) ||
-      !std::isfinite(cap_radius))
+  if (!(base_radius >= 0) || !(cap_radius >= 0) || !std::isfinite(base_radius) || !std::isfinite(cap_radius))
     throw std::invalid_argument("radii must be >= 0");
   if (base_radius == 0 && cap_radius == 0) throw std::invalid_argument("radii must not both be 0");
   slope_ = (cap_radius - base_radius) / frame_.height();
@@ -128,12 +127,15 @@ bool Cone::sample_area(const Vec2& u, SurfaceSample& sample) const {
   return true;
 }
 
-double Cone::pdf_area(const SurfaceHit&) const { return 1 / area(); }
+double Cone::pdf_area(const SurfaceHit&) const {
+  return 1 / area();
+}
 
 void Cone::tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const {
   MeshAppender out(mesh);
   const std::vector<Vec2> circle = unit_circle(turn_divisions(settings));
-  append_truncated_cone(frame_.base(), frame_.axis(), frame_.height(), frame_.x_axis(), frame_.y_axis(), base_radius_, cap_radius_, capped_, circle, out);
+  append_truncated_cone(frame_.base(), frame_.axis(), frame_.height(), frame_.x_axis(), frame_.y_axis(),
+                        base_radius_, cap_radius_, capped_, circle, out);
 }
 
 }  // namespace candela

@@ -16,8 +16,7 @@ namespace candela {
 // the axis, v = z / height; on a cap as for the cylinder. dpdu x dpdv points outward.
 class Cone final : public Shape {
  public:
-  Cone(const Vec3& base, double base_radius, const Vec3& cap, double cap_radius,
-       bool capped = true);
+  Cone(const Vec3& base, double base_radius, const Vec3& cap, double cap_radius, bool capped = true);
 
   bool intersect(const Ray& ray, SurfaceHit& hit) const override;
   bool occluded(const Ray& ray) const override;

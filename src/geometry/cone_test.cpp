@@ -2,19 +2,18 @@
 
 #include <gtest/gtest.h>
 
-#include "shape_test_support.h"
-
 #include <cmath>
 
 #include "geometry/transformed_shape.h"
 #include "math/constants.h"
 #include "math/transform.h"
+#include "shape_test_support.h"
 
 namespace candela {
 namespace {
 
-using candela::testing::make_ray;
 using candela::testing::expect_vec_near;
+using candela::testing::make_ray;
 
 // Base radius 1 at z = 0, apex at z = 2: radius(z) = 1 - z/2, slope k = -1/2, so the outward
 // side normal at angle φ is (cos φ, sin φ, 1/2) / sqrt(5/4) = (2 cos φ, 2 sin φ, 1) / √5.

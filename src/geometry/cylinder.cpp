@@ -103,12 +103,15 @@ bool Cylinder::sample_area(const Vec2& u, SurfaceSample& sample) const {
   return true;
 }
 
-double Cylinder::pdf_area(const SurfaceHit&) const { return 1 / area(); }
+double Cylinder::pdf_area(const SurfaceHit&) const {
+  return 1 / area();
+}
 
 void Cylinder::tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const {
   MeshAppender out(mesh);
   const std::vector<Vec2> circle = unit_circle(turn_divisions(settings));
-  append_truncated_cone(frame_.base(), frame_.axis(), frame_.height(), frame_.x_axis(), frame_.y_axis(), radius_, radius_, capped_, circle, out);
+  append_truncated_cone(frame_.base(), frame_.axis(), frame_.height(), frame_.x_axis(), frame_.y_axis(),
+                        radius_, radius_, capped_, circle, out);
 }
 
 }  // namespace candela

@@ -2,19 +2,18 @@
 
 #include <gtest/gtest.h>
 
-#include "shape_test_support.h"
-
 #include <cmath>
 
 #include "geometry/transformed_shape.h"
 #include "math/constants.h"
 #include "math/transform.h"
+#include "shape_test_support.h"
 
 namespace candela {
 namespace {
 
-using candela::testing::make_ray;
 using candela::testing::expect_vec_near;
+using candela::testing::make_ray;
 
 // Axis +z from z = 0 to z = 2, radius 1; orthonormal_basis((0, 0, 1)) = (1, 0, 0), (0, 1, 0),
 // so u is the angle from +x about +z.

@@ -6,9 +6,9 @@
 
 #include "geometry/flat_surface.h"
 #include "geometry/surface_sampling.h"
-#include "sampling/warps.h"
 #include "geometry/tessellation.h"
 #include "math/constants.h"
+#include "sampling/warps.h"
 
 namespace candela {
 
@@ -55,9 +55,13 @@ bool Disc::intersect(const Ray& ray, SurfaceHit& hit) const {
   return true;
 }
 
-bool Disc::occluded(const Ray& ray) const { return nearest_t(ray) < kInfinity; }
+bool Disc::occluded(const Ray& ray) const {
+  return nearest_t(ray) < kInfinity;
+}
 
-Bounds3 Disc::bounds() const { return disc_bounds(center_, normal_, radius_); }
+Bounds3 Disc::bounds() const {
+  return disc_bounds(center_, normal_, radius_);
+}
 
 void Disc::tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const {
   MeshAppender out(mesh);
@@ -68,7 +72,9 @@ void Disc::tessellate(const TessellationSettings& settings, TriangleMesh& mesh) 
                          /*wrap_rings=*/false, out);
 }
 
-double Disc::area() const { return kPi * (radius_ * radius_ - inner_radius_ * inner_radius_); }
+double Disc::area() const {
+  return kPi * (radius_ * radius_ - inner_radius_ * inner_radius_);
+}
 
 bool Disc::sample_area(const Vec2& u, SurfaceSample& sample) const {
   const Vec2 unit = square_to_uniform_disc_concentric(u);
@@ -76,7 +82,8 @@ bool Disc::sample_area(const Vec2& u, SurfaceSample& sample) const {
   if (inner_radius_ > 0) {
     const double rho_squared = unit.x * unit.x + unit.y * unit.y;
     const double rho = std::sqrt(rho_squared);
-    const double r = std::sqrt(inner_radius_ * inner_radius_ + rho_squared * (radius_ * radius_ - inner_radius_ * inner_radius_));
+    const double r = std::sqrt(inner_radius_ * inner_radius_ +
+                               rho_squared * (radius_ * radius_ - inner_radius_ * inner_radius_));
     const double scale = rho > 0 ? r / rho : 0;
     x = rho > 0 ? unit.x * scale : inner_radius_;
     y = unit.y * scale;
@@ -87,10 +94,12 @@ bool Disc::sample_area(const Vec2& u, SurfaceSample& sample) const {
   return true;
 }
 
-double Disc::pdf_area(const SurfaceHit&) const { return 1 / area(); }
+double Disc::pdf_area(const SurfaceHit&) const {
+  return 1 / area();
+}
 
-void fill_cap_hit(bool top, const Vec3& axis, const Vec3& radial, const Vec3& tangent, double phi,
-                  double r, double cap_radius, SurfaceHit& hit) {
+void fill_cap_hit(bool top, const Vec3& axis, const Vec3& radial, const Vec3& tangent, double phi, double r,
+                  double cap_radius, SurfaceHit& hit) {
   hit.geometric_normal = top ? axis : -axis;
   // Seen from outside the base cap, counter-clockwise is clockwise about +axis.
   hit.uv = {top ? phi / (2 * kPi) : 1.0 - phi / (2 * kPi), std::clamp(1.0 - r / cap_radius, 0.0, 1.0)};

@@ -50,7 +50,7 @@ Bounds3 disc_bounds(const Vec3& center, const Vec3& unit_normal, double radius);
 // The normal, uv and derivatives of a hit on an end cap of a cylinder or cone: top caps face
 // +axis, base caps -axis; u = phi/2π counter-clockwise seen from outside, v = 1 - r/radius.
 // radial and tangent are the unit directions at angle phi about the axis.
-void fill_cap_hit(bool top, const Vec3& axis, const Vec3& radial, const Vec3& tangent, double phi,
-                  double r, double cap_radius, SurfaceHit& hit);
+void fill_cap_hit(bool top, const Vec3& axis, const Vec3& radial, const Vec3& tangent, double phi, double r,
+                  double cap_radius, SurfaceHit& hit);
 
 }  // namespace candela

@@ -36,7 +36,9 @@ bool Plane::intersect(const Ray& ray, SurfaceHit& hit) const {
   return true;
 }
 
-bool Plane::occluded(const Ray& ray) const { return nearest_t(ray) < kInfinity; }
+bool Plane::occluded(const Ray& ray) const {
+  return nearest_t(ray) < kInfinity;
+}
 
 Bounds3 Plane::bounds() const {
   return {Vec3{-kInfinity, -kInfinity, -kInfinity}, Vec3{kInfinity, kInfinity, kInfinity}};
@@ -50,7 +52,8 @@ void Plane::tessellate(const TessellationSettings& settings, TriangleMesh& mesh)
   std::array<Vec3, 8> corners;
   std::array<double, 8> distance;  // signed, along the normal
   for (int i = 0; i < 8; ++i) {
-    for (int axis = 0; axis < 3; ++axis) corners[i][axis] = ((i >> axis) & 1) ? box.upper[axis] : box.lower[axis];
+    for (int axis = 0; axis < 3; ++axis)
+      corners[i][axis] = ((i >> axis) & 1) ? box.upper[axis] : box.lower[axis];
     distance[i] = dot(normal_, corners[i] - point_);
   }
   // The plane meets the box in a convex polygon whose vertices are the corners on the plane
@@ -89,7 +92,9 @@ void Plane::tessellate(const TessellationSettings& settings, TriangleMesh& mesh)
   Vec3 mean;
   for (const Vec3& p : points) mean += p;
   mean = mean / static_cast<double>(points.size());
-  const auto angle = [&](const Vec3& p) { return std::atan2(dot(p - mean, v_axis_), dot(p - mean, u_axis_)); };
+  const auto angle = [&](const Vec3& p) {
+    return std::atan2(dot(p - mean, v_axis_), dot(p - mean, u_axis_));
+  };
   std::sort(points.begin(), points.end(), [&](const Vec3& a, const Vec3& b) { return angle(a) < angle(b); });
   std::vector<uint32_t> ids;
   std::vector<Vec2> uvs;

@@ -6,9 +6,9 @@
 
 #include "geometry/flat_surface.h"
 #include "geometry/surface_sampling.h"
-#include "sampling/warps.h"
 #include "geometry/tessellation.h"
 #include "math/constants.h"
+#include "sampling/warps.h"
 
 namespace candela {
 
@@ -82,7 +82,9 @@ bool Polygon::sample_area(const Vec2& u, SurfaceSample& sample) const {
   return true;
 }
 
-double Polygon::pdf_area(const SurfaceHit&) const { return area_ > 0 ? 1 / area_ : 0; }
+double Polygon::pdf_area(const SurfaceHit&) const {
+  return area_ > 0 ? 1 / area_ : 0;
+}
 
 bool Polygon::contains_projected(double u, double v) const {
   // 000 Figure 42b: translate so the hit point is the origin and count the edges crossing the
@@ -127,9 +129,13 @@ bool Polygon::intersect(const Ray& ray, SurfaceHit& hit) const {
   return true;
 }
 
-bool Polygon::occluded(const Ray& ray) const { return nearest_t(ray) < kInfinity; }
+bool Polygon::occluded(const Ray& ray) const {
+  return nearest_t(ray) < kInfinity;
+}
 
-Bounds3 Polygon::bounds() const { return bounds_; }
+Bounds3 Polygon::bounds() const {
+  return bounds_;
+}
 
 namespace {
 

@@ -2,13 +2,12 @@
 
 #include <gtest/gtest.h>
 
-#include "shape_test_support.h"
-
 #include <cmath>
 
 #include "geometry/transformed_shape.h"
 #include "math/constants.h"
 #include "math/transform.h"
+#include "shape_test_support.h"
 
 namespace candela {
 namespace {
@@ -16,9 +15,13 @@ namespace {
 using candela::testing::make_ray;
 
 // A ray straight down onto z = 0 at (x, y).
-Ray down_at(double x, double y) { return make_ray({x, y, 5}, {0, 0, -1}); }
+Ray down_at(double x, double y) {
+  return make_ray({x, y, 5}, {0, 0, -1});
+}
 
-Polygon unit_square() { return Polygon({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}); }
+Polygon unit_square() {
+  return Polygon({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+}
 
 // The L of 000-style tests: the 2x2 square without its upper right quarter (the notch).
 Polygon l_shape() {
@@ -194,9 +197,9 @@ TEST(Polygon, RejectsBadArguments) {
 TEST(Polygon, TransformedLShape) {
   // The L scaled by 2, rotated 90° about +x (y -> z, z -> -y) and moved to the plane y = 3:
   // it covers x, z in [0,4]x[0,2] and [0,2]x[0,4]; the notch is x, z in (2, 4).
-  const TransformedShape l(std::make_unique<Polygon>(l_shape()),
-                           Transform::translate({0, 3, 0}) * Transform::rotate(90, {1, 0, 0}) *
-                               Transform::scale({2, 2, 2}));
+  const TransformedShape l(
+      std::make_unique<Polygon>(l_shape()),
+      Transform::translate({0, 3, 0}) * Transform::rotate(90, {1, 0, 0}) * Transform::scale({2, 2, 2}));
   SurfaceHit hit;
   ASSERT_TRUE(l.intersect(make_ray({1, 10, 3}, {0, -1, 0}), hit));
   EXPECT_NEAR(hit.t, 7.0, 1e-12);

@@ -74,6 +74,8 @@ bool Quad::sample_area(const Vec2& u, SurfaceSample& sample) const {
   return true;
 }
 
-double Quad::pdf_area(const SurfaceHit&) const { return 1 / area_; }
+double Quad::pdf_area(const SurfaceHit&) const {
+  return 1 / area_;
+}
 
 }  // namespace candela

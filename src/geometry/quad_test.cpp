@@ -2,9 +2,9 @@
 
 #include <gtest/gtest.h>
 
-#include "shape_test_support.h"
-
 #include <cmath>
+
+#include "shape_test_support.h"
 
 namespace candela {
 namespace {

@@ -10,9 +10,13 @@ void Shape::tessellate(const TessellationSettings&, TriangleMesh&) const {
   throw std::logic_error("shape \"" + std::string(type_name()) + "\" cannot be tessellated");
 }
 
-bool Shape::sample_area(const Vec2&, SurfaceSample&) const { return false; }
+bool Shape::sample_area(const Vec2&, SurfaceSample&) const {
+  return false;
+}
 
-double Shape::pdf_area(const SurfaceHit&) const { return 0; }
+double Shape::pdf_area(const SurfaceHit&) const {
+  return 0;
+}
 
 namespace {
 

@@ -14,9 +14,9 @@ struct TriangleMesh;
 // A point drawn on a shape's surface for next-event estimation toward an emitter (SPEC §12).
 struct SurfaceSample {
   Vec3 position;
-  Vec3 normal;      // unit, the geometric normal (outward / the declared side), as intersect reports
-  double pdf = 0;   // density of the point: per unit area (sample_area) or per unit solid angle
-                    // seen from the reference point (sample_from)
+  Vec3 normal;     // unit, the geometric normal (outward / the declared side), as intersect reports
+  double pdf = 0;  // density of the point: per unit area (sample_area) or per unit solid angle
+                   // seen from the reference point (sample_from)
 };
 
 // How finely a curved shape becomes triangles (SPEC §9 the rasterizer, §10 radiosity meshing).

@@ -65,12 +65,12 @@ int crossings(const Shape& shape, const Vec3& origin, const Vec3& direction, dou
 }
 
 struct Check {
-  double area;                      // the analytic area (or the estimate to compare with)
-  double area_tolerance = 1e-12;    // relative
-  bool uniform = true;              // every sample has pdf 1/area
-  double size = 1;                  // the shape's scale, for tolerances
-  std::vector<Vec3> references;     // points to sample from
-  bool cone_sampled = false;        // sample_from sees one layer only (the sphere from outside)
+  double area;                    // the analytic area (or the estimate to compare with)
+  double area_tolerance = 1e-12;  // relative
+  bool uniform = true;            // every sample has pdf 1/area
+  double size = 1;                // the shape's scale, for tolerances
+  std::vector<Vec3> references;   // points to sample from
+  bool cone_sampled = false;      // sample_from sees one layer only (the sphere from outside)
 };
 
 void check_shape(const Shape& shape, const Check& check, uint64_t seed) {
@@ -95,7 +95,8 @@ void check_shape(const Shape& shape, const Check& check, uint64_t seed) {
     SurfaceHit hit;
     ASSERT_TRUE(shape.intersect(ray, hit)) << "sample " << i << " at " << sample.position;
     EXPECT_NEAR(length(hit.position - sample.position), 0, 1e-9 * size) << "sample " << i;
-    EXPECT_GT(dot(hit.geometric_normal, sample.normal), 1 - 1e-9) << "sample " << i << " at " << sample.position;
+    EXPECT_GT(dot(hit.geometric_normal, sample.normal), 1 - 1e-9)
+        << "sample " << i << " at " << sample.position;
     EXPECT_NEAR(shape.pdf_area(hit) / sample.pdf, 1, 1e-7) << "sample " << i;
   }
   // ∫ pdf dA = 1: the mean of 1/pdf is the area.
@@ -112,7 +113,8 @@ void check_shape(const Shape& shape, const Check& check, uint64_t seed) {
     ASSERT_TRUE(shape.sample_area({u.x, u.y + h}, s2));
     // Straddling a part boundary or a kink of the map: not comparable.
     if (length(s1.normal - s0.normal) > 1e-4 || length(s2.normal - s0.normal) > 1e-4) continue;
-    if (length(s1.position - s0.position) > 1e-4 * size || length(s2.position - s0.position) > 1e-4 * size) continue;
+    if (length(s1.position - s0.position) > 1e-4 * size || length(s2.position - s0.position) > 1e-4 * size)
+      continue;
     const double jacobian = length(cross(s1.position - s0.position, s2.position - s0.position)) / (h * h);
     if (jacobian * s0.pdf < 1e-3) continue;  // a degenerate point of the map (a pole, a centre)
     EXPECT_NEAR(jacobian * s0.pdf, 1, 2e-4) << "u = " << u.x << ", " << u.y;
@@ -136,7 +138,7 @@ void check_shape(const Shape& shape, const Check& check, uint64_t seed) {
       const Vec3 to_point = sample.position - reference;
       const Ray ray{reference, normalize(to_point), 0, kInfinity};
       SurfaceHit hit;
-      if (!shape.intersect(ray, hit)) continue;  // grazing
+      if (!shape.intersect(ray, hit)) continue;                            // grazing
       if (length(hit.position - sample.position) > 1e-7 * size) continue;  // behind a nearer layer
       ++matched;
       // The hit and the sample differ by rounding, which the 1/cos of a grazing view amplifies.
@@ -201,7 +203,13 @@ TEST(ShapeSampling, Sphere) {
 
 TEST(ShapeSampling, QuadAndMeshTriangle) {
   const Quad quad({1, 0, 0}, {2, 0, 0.5}, {1, 1, 0});
-  check_shape(quad, {length(cross(Vec3{2, 0, 0.5}, Vec3{1, 1, 0})), 1e-12, true, 2, {{2, 0.5, 2}, {2, 0.5, -1}, {8, 1, 0.3}}}, 2);
+  check_shape(quad,
+              {length(cross(Vec3{2, 0, 0.5}, Vec3{1, 1, 0})),
+               1e-12,
+               true,
+               2,
+               {{2, 0.5, 2}, {2, 0.5, -1}, {8, 1, 0.3}}},
+              2);
 
   auto mesh = std::make_shared<TriangleMesh>();
   mesh->positions = {{0, 0, 0}, {2, 0.3, 0}, {0.5, 1.5, 1}};
@@ -257,7 +265,8 @@ TEST(ShapeSampling, ConesTruncatedAndPointed) {
   const Cone pointed(base, 0, cap, 0.8, false);  // apex at the base, open
   check_shape(pointed, {kPi * 0.8 * std::hypot(h, 0.8), 1e-12, true, 2, {{3, 0, 1}, {0.4, 0.4, 1.8}}}, 11);
   const Cone widening(base, 0.3, cap, 1.1);
-  check_shape(widening, {kPi * 1.4 * std::hypot(h, 0.8) + kPi * (0.09 + 1.21), 1e-12, true, 2, {{-2, 1, 3}}}, 12);
+  check_shape(widening, {kPi * 1.4 * std::hypot(h, 0.8) + kPi * (0.09 + 1.21), 1e-12, true, 2, {{-2, 1, 3}}},
+              12);
 }
 
 TEST(ShapeSampling, Torus) {
@@ -285,21 +294,23 @@ TEST(ShapeSampling, PlaneCannotBeSampled) {
 }
 
 Transform skew() {
-  return Transform::translate({0.5, -1, 2}) * Transform::rotate(35, {1, 2, 0.5}) * Transform::scale({2, 0.5, 1.3}) *
-         Transform::rotate(-20, {0, 1, 1});
+  return Transform::translate({0.5, -1, 2}) * Transform::rotate(35, {1, 2, 0.5}) *
+         Transform::scale({2, 0.5, 1.3}) * Transform::rotate(-20, {0, 1, 1});
 }
 
 TEST(ShapeSampling, TransformedPlanarShapesAreExact) {
   const Transform m = skew();
   const Vec3 eu{2, 0, 0.5}, ev{1, 1, 0};
   const TransformedShape quad(std::make_unique<Quad>(Vec3{1, 0, 0}, eu, ev), m);
-  check_shape(quad, {length(cross(m.vector(eu), m.vector(ev))), 1e-12, true, 3, {{2, 0.5, 5}, {-3, 1, 1}}}, 20);
+  check_shape(quad, {length(cross(m.vector(eu), m.vector(ev))), 1e-12, true, 3, {{2, 0.5, 5}, {-3, 1, 1}}},
+              20);
 
   // A mirroring transform keeps the normals intersect reports.
   const Transform mirror = Transform::scale({-1, 1.5, 1}) * Transform::rotate(10, {1, 0, 0});
   const TransformedShape disc(std::make_unique<Disc>(Vec3{0, 0, 0}, Vec3{0, 0.3, 1}, 1), mirror);
   const Vec3 n = normalize(Vec3{0, 0.3, 1});
-  const double scale = std::fabs(mirror.matrix().topLeftCorner<3, 3>().determinant()) * length(mirror.normal(n));
+  const double scale =
+      std::fabs(mirror.matrix().topLeftCorner<3, 3>().determinant()) * length(mirror.normal(n));
   check_shape(disc, {kPi * scale, 1e-12, true, 1.5, {{0.2, 0.5, 2}}}, 21);
 
   // A box under shear: six parallelograms.
@@ -318,7 +329,8 @@ TEST(ShapeSampling, TransformedPlanarShapesAreExact) {
 
 TEST(ShapeSampling, TransformedCurvedShapes) {
   // A similarity: exact area.
-  const Transform similar = Transform::translate({1, 2, 3}) * Transform::rotate(40, {1, 1, 0}) * Transform::scale({1.5, 1.5, 1.5});
+  const Transform similar =
+      Transform::translate({1, 2, 3}) * Transform::rotate(40, {1, 1, 0}) * Transform::scale({1.5, 1.5, 1.5});
   const TransformedShape cylinder(std::make_unique<Cylinder>(Vec3{0, 0, 0}, Vec3{0, 0, 1}, 0.5), similar);
   check_shape(cylinder, {2.25 * (2 * kPi * 0.5 + 2 * kPi * 0.25), 1e-12, true, 2, {{4, 2, 3}}}, 30);
   const TransformedShape torus(std::make_unique<Torus>(Vec3{0, 0, 0}, Vec3{0, 0, 1}, 1, 0.3), similar);
@@ -340,8 +352,10 @@ TEST(ShapeSampling, TransformedCurvedShapes) {
       ASSERT_TRUE(shape.sample_area({rng.next_double(), rng.next_double()}, sample));
       inverse_pdf.add(1 / sample.pdf);
     }
-    EXPECT_NEAR(shape.area(), inverse_pdf.mean(), 4 * inverse_pdf.error() + 1e-4 * shape.area()) << shape_kind;
-    check_shape(shape, {shape.area(), 1e-12, false, 3, {m.point({3, 0, 0}), m.point({0, 0, 0.5})}}, 50 + shape_kind);
+    EXPECT_NEAR(shape.area(), inverse_pdf.mean(), 4 * inverse_pdf.error() + 1e-4 * shape.area())
+        << shape_kind;
+    check_shape(shape, {shape.area(), 1e-12, false, 3, {m.point({3, 0, 0}), m.point({0, 0, 0.5})}},
+                50 + shape_kind);
   }
 }
 

@@ -52,12 +52,13 @@ bool Sphere::intersect(const Ray& ray, SurfaceHit& hit) const {
   hit.uv = {phi / (2 * kPi), 1.0 - theta / kPi};
   // dp/du = 2π r (-y, x, 0); dp/dv = -π r (z cos φ, z sin φ, -sin θ), so dpdu × dpdv is outward.
   hit.dpdu = Vec3{-local.y, local.x, 0} * (2 * kPi * radius_);
-  hit.dpdv =
-      Vec3{local.z * std::cos(phi), local.z * std::sin(phi), -std::sin(theta)} * (-kPi * radius_);
+  hit.dpdv = Vec3{local.z * std::cos(phi), local.z * std::sin(phi), -std::sin(theta)} * (-kPi * radius_);
   return true;
 }
 
-bool Sphere::occluded(const Ray& ray) const { return nearest_t(ray) >= 0; }
+bool Sphere::occluded(const Ray& ray) const {
+  return nearest_t(ray) >= 0;
+}
 
 Bounds3 Sphere::bounds() const {
   const Vec3 extent{radius_, radius_, radius_};
@@ -86,7 +87,9 @@ void Sphere::tessellate(const TessellationSettings& settings, TriangleMesh& mesh
 
 namespace candela {
 
-double Sphere::area() const { return 4 * kPi * radius_ * radius_; }
+double Sphere::area() const {
+  return 4 * kPi * radius_ * radius_;
+}
 
 bool Sphere::sample_area(const Vec2& u, SurfaceSample& sample) const {
   // z = 1 − 2 u.x, so 1 − z² = 4 u.x (1 − u.x) without cancellation at the poles.
@@ -100,7 +103,9 @@ bool Sphere::sample_area(const Vec2& u, SurfaceSample& sample) const {
   return true;
 }
 
-double Sphere::pdf_area(const SurfaceHit&) const { return 1 / area(); }
+double Sphere::pdf_area(const SurfaceHit&) const {
+  return 1 / area();
+}
 
 namespace {
 // A reference counts as outside (cone sampling) only beyond the surface by more than rounding:

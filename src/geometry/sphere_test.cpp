@@ -2,12 +2,11 @@
 
 #include <gtest/gtest.h>
 
-#include "shape_test_support.h"
-
 #include <cmath>
 
 #include "geometry/transformed_shape.h"
 #include "math/transform.h"
+#include "shape_test_support.h"
 
 namespace candela {
 namespace {
@@ -92,8 +91,7 @@ TEST(Sphere, RejectsNonPositiveRadius) {
 TEST(Sphere, TransformedScaledSphereIsAnEllipsoid) {
   // Unit sphere scaled by (2, 1, 1), moved to x = 10: a ray along -x from x = 20 hits x = 12.
   const TransformedShape ellipsoid(std::make_unique<Sphere>(Vec3{0, 0, 0}, 1.0),
-                                   Transform::translate({10, 0, 0}) *
-                                       Transform::scale({2, 1, 1}));
+                                   Transform::translate({10, 0, 0}) * Transform::scale({2, 1, 1}));
   SurfaceHit hit;
   ASSERT_TRUE(ellipsoid.intersect(make_ray({20, 0, 0}, {-1, 0, 0}), hit));
   EXPECT_NEAR(hit.t, 8.0, 1e-12);

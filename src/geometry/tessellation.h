@@ -31,7 +31,9 @@
 namespace candela {
 
 // settings.segments raised to the minimum of 3 divisions of a full turn.
-inline int turn_divisions(const TessellationSettings& settings) { return std::max(3, settings.segments); }
+inline int turn_divisions(const TessellationSettings& settings) {
+  return std::max(3, settings.segments);
+}
 
 // Appends triangles to a mesh that may already hold other shapes' triangles. Vertices are
 // candidates, welded by exact position, until a triangle uses them: only then do they enter
@@ -113,8 +115,9 @@ inline std::vector<Vec2> unit_circle(int divisions) {
 // the order of increasing φ, or of decreasing φ (k = 0, n-1, n-2, ...) when clockwise. A zero
 // radius gives the centre every time (a pole or an apex: append_revolution_grid then makes it
 // one vertex).
-inline std::vector<Vec3> circle_points(const Vec3& center, const Vec3& x_axis, const Vec3& y_axis, double radius,
-                                       const std::vector<Vec2>& circle, bool clockwise = false) {
+inline std::vector<Vec3> circle_points(const Vec3& center, const Vec3& x_axis, const Vec3& y_axis,
+                                       double radius, const std::vector<Vec2>& circle,
+                                       bool clockwise = false) {
   const std::size_t divisions = circle.size();
   std::vector<Vec3> points(divisions);
   for (std::size_t k = 0; k < divisions; ++k) {
@@ -176,9 +179,10 @@ inline void append_revolution_grid(const std::vector<std::vector<Vec3>>& rings, 
 // axis (counter-clockwise seen from outside), hence its reversed ring. Every rim point is
 // computed by circle_points from the same centre, so side and caps share them bit for bit, and
 // a zero radius makes its ring one apex vertex. x_axis, y_axis: the shape's own frame axes.
-inline void append_truncated_cone(const Vec3& base_center, const Vec3& axis, double height, const Vec3& x_axis,
-                                  const Vec3& y_axis, double base_radius, double cap_radius, bool capped,
-                                  const std::vector<Vec2>& circle, MeshAppender& out) {
+inline void append_truncated_cone(const Vec3& base_center, const Vec3& axis, double height,
+                                  const Vec3& x_axis, const Vec3& y_axis, double base_radius,
+                                  double cap_radius, bool capped, const std::vector<Vec2>& circle,
+                                  MeshAppender& out) {
   const Vec3 top_center = base_center + axis * height;
   append_revolution_grid({circle_points(base_center, x_axis, y_axis, base_radius, circle),
                           circle_points(top_center, x_axis, y_axis, cap_radius, circle)},
@@ -189,9 +193,10 @@ inline void append_truncated_cone(const Vec3& base_center, const Vec3& axis, dou
                             circle_points(top_center, x_axis, y_axis, 0, circle)},
                            /*wrap_rings=*/false, out);
   if (base_radius > 0)
-    append_revolution_grid({circle_points(base_center, x_axis, y_axis, base_radius, circle, /*clockwise=*/true),
-                            circle_points(base_center, x_axis, y_axis, 0, circle, /*clockwise=*/true)},
-                           /*wrap_rings=*/false, out);
+    append_revolution_grid(
+        {circle_points(base_center, x_axis, y_axis, base_radius, circle, /*clockwise=*/true),
+         circle_points(base_center, x_axis, y_axis, 0, circle, /*clockwise=*/true)},
+        /*wrap_rings=*/false, out);
 }
 
 }  // namespace candela

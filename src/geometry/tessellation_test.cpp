@@ -66,7 +66,9 @@ double distance_from_axis(const Vec3& p, const Vec3& base, const Vec3& unit_axis
   return length(p - base - unit_axis * height);
 }
 
-double outside(double value, double low, double high) { return std::max({0.0, low - value, value - high}); }
+double outside(double value, double low, double high) {
+  return std::max({0.0, low - value, value - high});
+}
 
 // Side of a cone (a cylinder when the radii agree) from base to cap, plus its caps when given.
 std::function<double(const Vec3&)> cone_residual(Vec3 base, double base_radius, Vec3 cap, double cap_radius,
@@ -77,8 +79,8 @@ std::function<double(const Vec3&)> cone_residual(Vec3 base, double base_radius, 
     double z;
     const double rho = distance_from_axis(p, base, axis, z);
     const double slope = (cap_radius - base_radius) / height;
-    double best = std::fabs(rho - (base_radius + slope * z)) / std::sqrt(1 + slope * slope) +
-                  outside(z, 0, height);
+    double best =
+        std::fabs(rho - (base_radius + slope * z)) / std::sqrt(1 + slope * slope) + outside(z, 0, height);
     if (capped) {
       best = std::min(best, std::fabs(z) + outside(rho, 0, base_radius));
       best = std::min(best, std::fabs(z - height) + outside(rho, 0, cap_radius));
@@ -105,8 +107,10 @@ std::shared_ptr<TriangleMesh> two_triangle_mesh() {
   auto mesh = std::make_shared<TriangleMesh>();
   mesh->positions = {{0, 0, 1}, {2, 0, 1.5}, {0.5, 1.5, 1}, {1, 2, 0}};
   mesh->triangles = {{0, 1, 2}, {1, 3, 2}};
-  mesh->corner_uvs = {{Vec2{0.1, 0.2}, Vec2{0.9, 0.1}, Vec2{0.3, 0.8}}, {Vec2{0.9, 0.1}, Vec2{1, 1}, Vec2{0.3, 0.8}}};
-  mesh->corner_normals = {{Vec3{0, 0, 1}, Vec3{0, 0, 1}, Vec3{0, 0, 1}}, {Vec3{0, 0, 1}, Vec3{0, 0, 1}, Vec3{0, 0, 1}}};
+  mesh->corner_uvs = {{Vec2{0.1, 0.2}, Vec2{0.9, 0.1}, Vec2{0.3, 0.8}},
+                      {Vec2{0.9, 0.1}, Vec2{1, 1}, Vec2{0.3, 0.8}}};
+  mesh->corner_normals = {{Vec3{0, 0, 1}, Vec3{0, 0, 1}, Vec3{0, 0, 1}},
+                          {Vec3{0, 0, 1}, Vec3{0, 0, 1}, Vec3{0, 0, 1}}};
   return mesh;
 }
 
@@ -119,33 +123,66 @@ std::vector<Case> all_cases() {
   // ray that is oblique in object space.
   const Transform uniform_mirror = Transform::rotate(30, {1, 2, 3}) * Transform::scale({-1.5, 1.5, 1.5});
   std::vector<Case> cases{
-      {"sphere", [] { return std::make_unique<Sphere>(Vec3{0.5, -1, 2}, 1.5); },
-       [](const Vec3& p) { return std::fabs(length(p - Vec3{0.5, -1, 2}) - 1.5); }, 1.5, true},
-      {"cylinder", [] { return std::make_unique<Cylinder>(Vec3{1, 0, 0}, Vec3{1, 2, 1}, 0.7); },
+      {"sphere",
+       [] {
+         return std::make_unique<Sphere>(Vec3{0.5, -1, 2}, 1.5);
+       },
+       [](const Vec3& p) {
+         return std::fabs(length(p - Vec3{0.5, -1, 2}) - 1.5);
+       },
+       1.5, true},
+      {"cylinder",
+       [] {
+         return std::make_unique<Cylinder>(Vec3{1, 0, 0}, Vec3{1, 2, 1}, 0.7);
+       },
        cone_residual({1, 0, 0}, 0.7, {1, 2, 1}, 0.7, true), 2, true},
-      {"open cylinder", [] { return std::make_unique<Cylinder>(Vec3{0, 0, 0}, Vec3{0, 0, 2}, 1, false); },
+      {"open cylinder",
+       [] {
+         return std::make_unique<Cylinder>(Vec3{0, 0, 0}, Vec3{0, 0, 2}, 1, false);
+       },
        cone_residual({0, 0, 0}, 1, {0, 0, 2}, 1, false), 2, false},
-      {"truncated cone", [] { return std::make_unique<Cone>(Vec3{0, 1, 0}, 1.2, Vec3{0.5, 2, 1}, 0.4); },
+      {"truncated cone",
+       [] {
+         return std::make_unique<Cone>(Vec3{0, 1, 0}, 1.2, Vec3{0.5, 2, 1}, 0.4);
+       },
        cone_residual({0, 1, 0}, 1.2, {0.5, 2, 1}, 0.4, true), 2, true},
-      {"pointed cone", [] { return std::make_unique<Cone>(Vec3{0, 0, 0}, 1, Vec3{0, 0, 1.5}, 0); },
+      {"pointed cone",
+       [] {
+         return std::make_unique<Cone>(Vec3{0, 0, 0}, 1, Vec3{0, 0, 1.5}, 0);
+       },
        cone_residual({0, 0, 0}, 1, {0, 0, 1.5}, 0, true), 1.5, true},
-      {"cone pointed at its base", [] { return std::make_unique<Cone>(Vec3{0, 0, 0}, 0, Vec3{1, 1, 0}, 0.8); },
+      {"cone pointed at its base",
+       [] {
+         return std::make_unique<Cone>(Vec3{0, 0, 0}, 0, Vec3{1, 1, 0}, 0.8);
+       },
        cone_residual({0, 0, 0}, 0, {1, 1, 0}, 0.8, true), 1.5, true},
-      {"torus", [=] { return std::make_unique<Torus>(Vec3{1, 0, 0}, torus_axis, 2, 0.6); },
+      {"torus",
+       [=] {
+         return std::make_unique<Torus>(Vec3{1, 0, 0}, torus_axis, 2, 0.6);
+       },
        [=](const Vec3& p) {
          double z;
          const double rho = distance_from_axis(p, {1, 0, 0}, torus_axis, z);
          return std::fabs(std::hypot(rho - 2, z) - 0.6);
        },
        2.6, true},
-      {"disc", [] { return std::make_unique<Disc>(Vec3{0, 1, 0}, Vec3{1, 2, -1}, 1.5); },
+      {"disc",
+       [] {
+         return std::make_unique<Disc>(Vec3{0, 1, 0}, Vec3{1, 2, -1}, 1.5);
+       },
        [](const Vec3& p) {
          return flat_residual({0, 1, 0}, {1, 2, -1})(p) + outside(length(p - Vec3{0, 1, 0}), 0, 1.5);
        },
        1.5, false},
-      {"annulus", [] { return std::make_unique<Disc>(Vec3{0, 0, 0}, Vec3{0, 0, -1}, 1.5, 0.5); },
+      {"annulus",
+       [] {
+         return std::make_unique<Disc>(Vec3{0, 0, 0}, Vec3{0, 0, -1}, 1.5, 0.5);
+       },
        [](const Vec3& p) { return std::fabs(p.z) + outside(length(p), 0.5, 1.5); }, 1.5, false},
-      {"box", [] { return std::make_unique<Box>(Vec3{-1, 0, 2}, Vec3{1, 0.5, 5}); },
+      {"box",
+       [] {
+         return std::make_unique<Box>(Vec3{-1, 0, 2}, Vec3{1, 0.5, 5});
+       },
        [](const Vec3& p) {
          const Vec3 lower{-1, 0, 2}, upper{1, 0.5, 5};
          double best = kInfinity;
@@ -159,15 +196,21 @@ std::vector<Case> all_cases() {
          return best;
        },
        3, true},
-      {"quad", [] { return std::make_unique<Quad>(Vec3{1, 0, 0}, Vec3{2, 0, 1}, Vec3{1, 1, 0}); },
+      {"quad",
+       [] {
+         return std::make_unique<Quad>(Vec3{1, 0, 0}, Vec3{2, 0, 1}, Vec3{1, 1, 0});
+       },
        flat_residual({1, 0, 0}, cross(Vec3{2, 0, 1}, Vec3{1, 1, 0})), 3, false},
       {"L polygon",
        [] {
-         return std::make_unique<Polygon>(std::vector<Vec3>{
-             {0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}});
+         return std::make_unique<Polygon>(
+             std::vector<Vec3>{{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}});
        },
        flat_residual({0, 0, 0}, {0, 0, 1}), 2, false},
-      {"plane", [] { return std::make_unique<Plane>(Vec3{0.5, 0, 0}, Vec3{1, 2, 0.5}); },
+      {"plane",
+       [] {
+         return std::make_unique<Plane>(Vec3{0.5, 0, 0}, Vec3{1, 2, 0.5});
+       },
        [](const Vec3& p) {
          return flat_residual({0.5, 0, 0}, {1, 2, 0.5})(p) + outside(p.x, -1, 2) + outside(p.y, -1.5, 1) +
                 outside(p.z, -2, 1.5);
@@ -177,16 +220,21 @@ std::vector<Case> all_cases() {
        flat_residual({2, 0, 1.5}, cross(Vec3{-1, 2, -1.5}, Vec3{-1.5, 1.5, -0.5})), 2, false},
       {"mirrored sphere",
        [=] {
-         return std::make_unique<TransformedShape>(std::make_unique<Sphere>(Vec3{0.3, 0, 0}, 1), uniform_mirror);
+         return std::make_unique<TransformedShape>(std::make_unique<Sphere>(Vec3{0.3, 0, 0}, 1),
+                                                   uniform_mirror);
        },
-       [=](const Vec3& p) { return std::fabs(length(uniform_mirror.inverse().point(p) - Vec3{0.3, 0, 0}) - 1); },
+       [=](const Vec3& p) {
+         return std::fabs(length(uniform_mirror.inverse().point(p) - Vec3{0.3, 0, 0}) - 1);
+       },
        1.5, true},
       {"mirrored cone",
        [=] {
-         return std::make_unique<TransformedShape>(std::make_unique<Cone>(Vec3{0, 0, 0}, 1, Vec3{0, 1, 0}, 0.5),
-                                                   mirror);
+         return std::make_unique<TransformedShape>(
+             std::make_unique<Cone>(Vec3{0, 0, 0}, 1, Vec3{0, 1, 0}, 0.5), mirror);
        },
-       [=](const Vec3& p) { return cone_residual({0, 0, 0}, 1, {0, 1, 0}, 0.5, true)(mirror.inverse().point(p)); },
+       [=](const Vec3& p) {
+         return cone_residual({0, 0, 0}, 1, {0, 1, 0}, 0.5, true)(mirror.inverse().point(p));
+       },
        1.5, true},
       {"rotated plane",
        [] {
@@ -195,8 +243,8 @@ std::vector<Case> all_cases() {
        },
        [](const Vec3& p) {
          const Transform rotation = Transform::rotate(30, {1, 1, 0});
-         return flat_residual(rotation.point({0, 0, 1}), rotation.vector({0, 0, 1}))(p) + outside(p.x, -1, 2) +
-                outside(p.y, -1.5, 1) + outside(p.z, -2, 1.5);
+         return flat_residual(rotation.point({0, 0, 1}), rotation.vector({0, 0, 1}))(p) +
+                outside(p.x, -1, 2) + outside(p.y, -1.5, 1) + outside(p.z, -2, 1.5);
        },
        4, false, kClipBox},
   };
@@ -287,7 +335,8 @@ std::vector<std::pair<Vec3, Vec3>> boundary_edges(const TriangleMesh& mesh) {
   std::vector<Vec3> welded_position;
   std::map<std::array<double, 3>, uint32_t> ids;
   const auto id = [&](const Vec3& p) {
-    const auto [it, inserted] = ids.emplace(std::array<double, 3>{p.x, p.y, p.z}, static_cast<uint32_t>(ids.size()));
+    const auto [it, inserted] =
+        ids.emplace(std::array<double, 3>{p.x, p.y, p.z}, static_cast<uint32_t>(ids.size()));
     if (inserted) welded_position.push_back(p);
     return it->second;
   };
@@ -304,7 +353,9 @@ std::vector<std::pair<Vec3, Vec3>> boundary_edges(const TriangleMesh& mesh) {
   return boundary;
 }
 
-std::size_t unmatched_edges(const TriangleMesh& mesh) { return boundary_edges(mesh).size(); }
+std::size_t unmatched_edges(const TriangleMesh& mesh) {
+  return boundary_edges(mesh).size();
+}
 
 TEST(Tessellation, ClosedShapesAreWatertight) {
   for (const Case& c : all_cases()) {
@@ -328,19 +379,46 @@ struct AreaCase {
 TEST(Tessellation, CurvedAreasConvergeAsOneOverSegmentsSquared) {
   const double slant = std::sqrt(2.0 * 2.0 + 0.8 * 0.8);
   const std::vector<AreaCase> cases{
-      {"sphere", [] { return std::make_unique<Sphere>(Vec3{1, 2, 3}, 1.5); }, 4 * kPi * 1.5 * 1.5},
-      {"capped cylinder", [] { return std::make_unique<Cylinder>(Vec3{0, 0, 0}, Vec3{0, 3, 0}, 0.5); },
+      {"sphere",
+       [] {
+         return std::make_unique<Sphere>(Vec3{1, 2, 3}, 1.5);
+       },
+       4 * kPi * 1.5 * 1.5},
+      {"capped cylinder",
+       [] {
+         return std::make_unique<Cylinder>(Vec3{0, 0, 0}, Vec3{0, 3, 0}, 0.5);
+       },
        2 * kPi * 0.5 * 3 + 2 * kPi * 0.25},
-      {"open cylinder", [] { return std::make_unique<Cylinder>(Vec3{0, 0, 0}, Vec3{1, 1, 1}, 2, false); },
+      {"open cylinder",
+       [] {
+         return std::make_unique<Cylinder>(Vec3{0, 0, 0}, Vec3{1, 1, 1}, 2, false);
+       },
        2 * kPi * 2 * std::sqrt(3.0)},
-      {"truncated cone", [] { return std::make_unique<Cone>(Vec3{0, 0, 0}, 1.2, Vec3{0, 0, 2}, 0.4); },
+      {"truncated cone",
+       [] {
+         return std::make_unique<Cone>(Vec3{0, 0, 0}, 1.2, Vec3{0, 0, 2}, 0.4);
+       },
        kPi * (1.2 + 0.4) * slant + kPi * (1.2 * 1.2 + 0.4 * 0.4)},
-      {"open pointed cone", [] { return std::make_unique<Cone>(Vec3{0, 0, 0}, 1, Vec3{0, 0, 1.5}, 0, false); },
+      {"open pointed cone",
+       [] {
+         return std::make_unique<Cone>(Vec3{0, 0, 0}, 1, Vec3{0, 0, 1.5}, 0, false);
+       },
        kPi * 1 * std::sqrt(1 + 1.5 * 1.5)},
-      {"torus", [] { return std::make_unique<Torus>(Vec3{0, 0, 0}, Vec3{0, 0, 1}, 2, 0.5); },
+      {"torus",
+       [] {
+         return std::make_unique<Torus>(Vec3{0, 0, 0}, Vec3{0, 0, 1}, 2, 0.5);
+       },
        4 * kPi * kPi * 2 * 0.5},
-      {"disc", [] { return std::make_unique<Disc>(Vec3{0, 0, 0}, Vec3{1, 1, 1}, 2); }, kPi * 4},
-      {"annulus", [] { return std::make_unique<Disc>(Vec3{0, 0, 0}, Vec3{1, 1, 1}, 2, 1); }, kPi * 3},
+      {"disc",
+       [] {
+         return std::make_unique<Disc>(Vec3{0, 0, 0}, Vec3{1, 1, 1}, 2);
+       },
+       kPi * 4},
+      {"annulus",
+       [] {
+         return std::make_unique<Disc>(Vec3{0, 0, 0}, Vec3{1, 1, 1}, 2, 1);
+       },
+       kPi * 3},
   };
   for (const AreaCase& c : cases) {
     SCOPED_TRACE(c.name);
@@ -409,7 +487,8 @@ TEST(Tessellation, BoxQuadAndConvexPolygonAreExact) {
 
   // A regular hexagon, tilted: 3√3/2 s².
   std::vector<Vec3> hexagon;
-  for (int k = 0; k < 6; ++k) hexagon.push_back({std::cos(k * kPi / 3), 0.6 * std::sin(k * kPi / 3), 0.8 * std::sin(k * kPi / 3)});
+  for (int k = 0; k < 6; ++k)
+    hexagon.push_back({std::cos(k * kPi / 3), 0.6 * std::sin(k * kPi / 3), 0.8 * std::sin(k * kPi / 3)});
   const double side_squared = length_squared(hexagon[1] - hexagon[0]);
   const TriangleMesh hexagon_mesh = tessellated(Polygon(hexagon), 8);
   EXPECT_EQ(hexagon_mesh.triangles.size(), 4u);
@@ -423,14 +502,13 @@ void expect_triangulates(const Polygon& polygon, double area, std::size_t max_tr
   EXPECT_LE(mesh.triangles.size(), max_triangles);
   EXPECT_NEAR(total_area(mesh), area, 1e-13 * area);
   const Vec3& normal = polygon.normal();
-  const std::array<std::array<double, 3>, 4> samples{{{1 / 3.0, 1 / 3.0, 1 / 3.0},
-                                                      {0.8, 0.1, 0.1},
-                                                      {0.1, 0.8, 0.1},
-                                                      {0.1, 0.1, 0.8}}};
+  const std::array<std::array<double, 3>, 4> samples{
+      {{1 / 3.0, 1 / 3.0, 1 / 3.0}, {0.8, 0.1, 0.1}, {0.1, 0.8, 0.1}, {0.1, 0.1, 0.8}}};
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     EXPECT_GT(dot(mesh.face_cross(t), normal), 0) << t;
     for (const auto& weight : samples) {
-      const Vec3 p = corner(mesh, t, 0) * weight[0] + corner(mesh, t, 1) * weight[1] + corner(mesh, t, 2) * weight[2];
+      const Vec3 p =
+          corner(mesh, t, 0) * weight[0] + corner(mesh, t, 1) * weight[1] + corner(mesh, t, 2) * weight[2];
       SurfaceHit hit;
       EXPECT_TRUE(polygon.intersect(Ray{p + normal, -normal}, hit)) << "triangle " << t << " leaves at " << p;
     }
@@ -448,7 +526,8 @@ TEST(Tessellation, NonConvexPolygonsWithCollinearVertices) {
     tilted_l.push_back(tilt.point(p));
   expect_triangulates(Polygon(tilted_l), 3, 6);
   expect_triangulates(
-      Polygon({{0, 0, 0}, {3, 0, 0}, {3, 2, 0}, {2, 2, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}}), 5, 6);
+      Polygon({{0, 0, 0}, {3, 0, 0}, {3, 2, 0}, {2, 2, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}}), 5,
+      6);
   // Clockwise as listed: the normal is -z and the triangles follow it.
   expect_triangulates(Polygon({{0, 0, 0}, {0, 2, 0}, {1, 2, 0}, {1, 1, 0}, {2, 1, 0}, {2, 0, 0}}), 3, 4);
 }
@@ -462,12 +541,12 @@ TEST(Tessellation, PlaneIsCutByTheClipBoxExactly) {
     std::size_t vertices;
   };
   const std::vector<PlaneCut> cuts{
-      {{0, 0, 0.25}, {0, 0, 1}, unit, 1, 4},                                 // a square
-      {{0.5, 0.5, 0.5}, {1, 1, 1}, unit, 3 * std::sqrt(3.0) / 4, 6},         // a regular hexagon
-      {{0.5, 0, 0}, {1, 1, 1}, unit, std::sqrt(3.0) / 8, 3},                 // a corner cut off
-      {{1, 0, 0}, {1, 1, 0}, unit, std::sqrt(2.0), 4},                       // the diagonal rectangle
-      {{0, 0, 0}, {0, 0, -1}, unit, 1, 4},                                   // along a face
-      {{0, 0, -2}, {0, 0, 1}, Bounds3{{-1, 0, -3}, {2, 1, -1}}, 3, 4},       // another box
+      {{0, 0, 0.25}, {0, 0, 1}, unit, 1, 4},                            // a square
+      {{0.5, 0.5, 0.5}, {1, 1, 1}, unit, 3 * std::sqrt(3.0) / 4, 6},    // a regular hexagon
+      {{0.5, 0, 0}, {1, 1, 1}, unit, std::sqrt(3.0) / 8, 3},            // a corner cut off
+      {{1, 0, 0}, {1, 1, 0}, unit, std::sqrt(2.0), 4},                  // the diagonal rectangle
+      {{0, 0, 0}, {0, 0, -1}, unit, 1, 4},                              // along a face
+      {{0, 0, -2}, {0, 0, 1}, Bounds3{{-1, 0, -3}, {2, 1, -1}}, 3, 4},  // another box
       {{0.5, 0, 0}, {1, 2, 0.5}, kClipBox, -1, 0},  // a slanted cut: containment and winding only
   };
   for (const PlaneCut& cut : cuts) {
@@ -480,16 +559,17 @@ TEST(Tessellation, PlaneIsCutByTheClipBoxExactly) {
       EXPECT_EQ(mesh.triangles.size(), cut.vertices - 2);
     }
     for (const Vec3& p : mesh.positions) EXPECT_TRUE(cut.box.contains(p)) << p;
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) EXPECT_GT(dot(mesh.face_cross(t), plane.normal()), 0);
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+      EXPECT_GT(dot(mesh.face_cross(t), plane.normal()), 0);
   }
 }
 
 TEST(Tessellation, PlaneMissingOrOnlyTouchingTheBoxGivesNothing) {
   const Bounds3 unit{{0, 0, 0}, {1, 1, 1}};
-  EXPECT_TRUE(tessellated(Plane({0, 0, 2}, {0, 0, 1}), 16, unit).triangles.empty());      // misses
-  EXPECT_TRUE(tessellated(Plane({0, 0, 0}, {1, 1, 0}), 16, unit).triangles.empty());      // an edge
-  EXPECT_TRUE(tessellated(Plane({0, 0, 0}, {1, 1, 1}), 16, unit).triangles.empty());      // a corner
-  EXPECT_TRUE(tessellated(Plane({0, 0, 0}, {0, 0, 1}), 16, Bounds3{}).triangles.empty()); // empty box
+  EXPECT_TRUE(tessellated(Plane({0, 0, 2}, {0, 0, 1}), 16, unit).triangles.empty());       // misses
+  EXPECT_TRUE(tessellated(Plane({0, 0, 0}, {1, 1, 0}), 16, unit).triangles.empty());       // an edge
+  EXPECT_TRUE(tessellated(Plane({0, 0, 0}, {1, 1, 1}), 16, unit).triangles.empty());       // a corner
+  EXPECT_TRUE(tessellated(Plane({0, 0, 0}, {0, 0, 1}), 16, Bounds3{}).triangles.empty());  // empty box
   const Bounds3 infinite{{-kInfinity, -kInfinity, -kInfinity}, {kInfinity, kInfinity, kInfinity}};
   const TriangleMesh nothing = tessellated(Plane({0, 0, 0}, {0, 0, 1}), 16, infinite);
   EXPECT_TRUE(nothing.triangles.empty());

@@ -13,8 +13,7 @@ Torus::Torus(const Vec3& center, const Vec3& axis, double major_radius, double m
     : center_(center), major_radius_(major_radius), minor_radius_(minor_radius) {
   if (!is_finite(center)) throw std::invalid_argument("center must be finite");
   const double axis_length = length(axis);
-  if (!(axis_length > 0) || !std::isfinite(axis_length))
-    throw std::invalid_argument("axis must be non-zero");
+  if (!(axis_length > 0) || !std::isfinite(axis_length)) throw std::invalid_argument("axis must be non-zero");
   if (!(major_radius > 0) || !std::isfinite(major_radius))
     throw std::invalid_argument("major radius must be > 0");
   if (!(minor_radius > 0) || !std::isfinite(minor_radius))
@@ -57,10 +56,9 @@ double Torus::nearest_t(const Ray& ray, Vec3& local) const {
   const double g = dot(o, o) + major_squared - minor_radius_ * minor_radius_;
   const double four_major_squared = 4 * major_squared;
   double roots[4];
-  const int count =
-      solve_quartic(1, 4 * k, 4 * k * k + 2 * g - four_major_squared * (d.x * d.x + d.y * d.y),
-                    4 * k * g - 2 * four_major_squared * (o.x * d.x + o.y * d.y),
-                    g * g - four_major_squared * (o.x * o.x + o.y * o.y), roots);
+  const int count = solve_quartic(1, 4 * k, 4 * k * k + 2 * g - four_major_squared * (d.x * d.x + d.y * d.y),
+                                  4 * k * g - 2 * four_major_squared * (o.x * d.x + o.y * d.y),
+                                  g * g - four_major_squared * (o.x * o.x + o.y * o.y), roots);
   double best = kInfinity;
   for (int i = 0; i < count; ++i) {
     // Newton steps on the torus function itself, kept while they reduce it.
@@ -145,7 +143,10 @@ bool Torus::sample_area(const Vec2& u, SurfaceSample& sample) const {
   for (int iteration = 0; iteration < 64; ++iteration) {
     const double value = R * theta + r * std::sin(theta) - target;
     if (value == 0) break;
-    if (value < 0) low = theta; else high = theta;
+    if (value < 0)
+      low = theta;
+    else
+      high = theta;
     const double derivative = R + r * std::cos(theta);
     double next = derivative > 0 ? theta - value / derivative : 0.5 * (low + high);
     if (!(next > low && next < high)) next = 0.5 * (low + high);

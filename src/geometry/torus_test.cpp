@@ -2,19 +2,18 @@
 
 #include <gtest/gtest.h>
 
-#include "shape_test_support.h"
-
 #include <cmath>
 
 #include "geometry/transformed_shape.h"
 #include "math/constants.h"
 #include "math/transform.h"
+#include "shape_test_support.h"
 
 namespace candela {
 namespace {
 
-using candela::testing::make_ray;
 using candela::testing::expect_vec_near;
+using candela::testing::make_ray;
 
 // R = 3, r = 1 about +z; orthonormal_basis((0, 0, 1)) = (1, 0, 0), (0, 1, 0).
 const Torus kRing({0, 0, 0}, {0, 0, 1}, 3, 1);
@@ -118,8 +117,7 @@ TEST(Torus, FarAwayRaysStayAccurate) {
   expect_vec_near(hit.geometric_normal, Vec3{std::sqrt(15.0), 1, 0} / 4, 1e-9);
   // Down the outward normal at tube angle 45°, longitude 30°, from 1e4 (and 1e6) away.
   const double phi = kPi / 6, theta = kPi / 4;
-  const Vec3 normal{std::cos(theta) * std::cos(phi), std::cos(theta) * std::sin(phi),
-                    std::sin(theta)};
+  const Vec3 normal{std::cos(theta) * std::cos(phi), std::cos(theta) * std::sin(phi), std::sin(theta)};
   const Vec3 point = Vec3{3 * std::cos(phi), 3 * std::sin(phi), 0} + normal;
   for (const double distance : {1e4, 1e6}) {
     ASSERT_TRUE(kRing.intersect(Ray{point + normal * distance, -normal}, hit)) << distance;
@@ -183,9 +181,9 @@ TEST(Torus, RejectsBadArguments) {
 TEST(Torus, TransformedTorus) {
   // Scaled by 2 (R = 6, r = 2), turned so the axis is +x (rotate 90° about +y: z -> x) and
   // moved to (0, 0, 5).
-  const TransformedShape torus(std::make_unique<Torus>(Vec3{0, 0, 0}, Vec3{0, 0, 1}, 3.0, 1.0),
-                               Transform::translate({0, 0, 5}) * Transform::rotate(90, {0, 1, 0}) *
-                                   Transform::scale({2, 2, 2}));
+  const TransformedShape torus(
+      std::make_unique<Torus>(Vec3{0, 0, 0}, Vec3{0, 0, 1}, 3.0, 1.0),
+      Transform::translate({0, 0, 5}) * Transform::rotate(90, {0, 1, 0}) * Transform::scale({2, 2, 2}));
   SurfaceHit hit;
   ASSERT_TRUE(torus.intersect(make_ray({0, 20, 5}, {0, -1, 0}), hit));
   EXPECT_NEAR(hit.t, 12.0, 1e-12);

@@ -45,7 +45,8 @@ TransformedShape::TransformedShape(std::unique_ptr<Shape> shape, const Transform
     for (int i = 0; i < cells; ++i) {
       for (int j = 0; j < cells; ++j) {
         SurfaceSample sample;
-        if (!shape_->sample_area({(i + 0.5) / cells, (j + 0.5) / cells}, sample) || !(sample.pdf > 0)) continue;
+        if (!shape_->sample_area({(i + 0.5) / cells, (j + 0.5) / cells}, sample) || !(sample.pdf > 0))
+          continue;
         const double value = area_scale(sample.normal) / sample.pdf;
         if (count == 0) first = value;
         if (std::fabs(value - first) > 1e-12 * first) constant = false;
@@ -127,7 +128,9 @@ bool TransformedShape::occluded(const Ray& ray) const {
   return shape_->occluded(to_object(ray, scale));
 }
 
-Bounds3 TransformedShape::bounds() const { return object_to_world_.bounds(shape_->bounds()); }
+Bounds3 TransformedShape::bounds() const {
+  return object_to_world_.bounds(shape_->bounds());
+}
 
 namespace {
 

@@ -23,7 +23,9 @@ namespace candela {
 
 namespace {
 
-bool is_finite(const Vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+bool is_finite(const Vec2& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y);
+}
 
 }  // namespace
 
@@ -48,21 +50,18 @@ void TriangleMesh::validate() const {
                                 " corner normal triples for " + std::to_string(triangles.size()) +
                                 " triangles");
   if (!corner_uvs.empty() && corner_uvs.size() != triangles.size())
-    throw std::invalid_argument("mesh has " + std::to_string(corner_uvs.size()) +
-                                " corner uv triples for " + std::to_string(triangles.size()) +
-                                " triangles");
+    throw std::invalid_argument("mesh has " + std::to_string(corner_uvs.size()) + " corner uv triples for " +
+                                std::to_string(triangles.size()) + " triangles");
   for (std::size_t t = 0; t < corner_normals.size(); ++t) {
     for (const Vec3& n : corner_normals[t]) {
       if (!candela::is_finite(n))
-        throw std::invalid_argument("corner normal of triangle " + std::to_string(t) +
-                                    " is not finite");
+        throw std::invalid_argument("corner normal of triangle " + std::to_string(t) + " is not finite");
     }
   }
   for (std::size_t t = 0; t < corner_uvs.size(); ++t) {
     for (const Vec2& uv : corner_uvs[t]) {
       if (!is_finite(uv))
-        throw std::invalid_argument("corner uv of triangle " + std::to_string(t) +
-                                    " is not finite");
+        throw std::invalid_argument("corner uv of triangle " + std::to_string(t) + " is not finite");
     }
   }
 }
@@ -113,8 +112,7 @@ void TriangleMesh::transform(const Transform& object_to_world) {
 // Smooth normals
 
 void compute_corner_normals(TriangleMesh& mesh, double crease_angle_degrees) {
-  if (!(crease_angle_degrees >= 0))
-    throw std::invalid_argument("crease angle must be >= 0 degrees");
+  if (!(crease_angle_degrees >= 0)) throw std::invalid_argument("crease angle must be >= 0 degrees");
   mesh.validate();
   const bool smooth_everything = crease_angle_degrees >= 180;
   const double cos_crease = std::cos(degrees_to_radians(std::min(crease_angle_degrees, 180.0)));
@@ -152,8 +150,7 @@ void compute_corner_normals(TriangleMesh& mesh, double crease_angle_degrees) {
   std::vector<std::size_t> fill(row_start.begin(), row_start.end() - 1);
   for (std::size_t t = 0; t < triangle_count; ++t) {
     if (degenerate[t]) continue;
-    for (uint32_t index : mesh.triangles[t])
-      around[fill[welded[index]]++] = static_cast<uint32_t>(t);
+    for (uint32_t index : mesh.triangles[t]) around[fill[welded[index]]++] = static_cast<uint32_t>(t);
   }
 
   mesh.corner_normals.assign(triangle_count, {Vec3{}, Vec3{}, Vec3{}});
@@ -232,7 +229,7 @@ bool WatertightRay::distance(const Vec3& p0, const Vec3& p1, const Vec3& p2, dou
 }
 
 bool WatertightRay::intersect(const Vec3& p0, const Vec3& p1, const Vec3& p2,
-                             TriangleIntersection& result) const {
+                              TriangleIntersection& result) const {
   double u, v, w, det;
   if (!edges(p0, p1, p2, u, v, w, det)) return false;
   const double az = sz * (p0[kz] - origin[kz]);
@@ -261,8 +258,8 @@ MeshTriangle::MeshTriangle(std::shared_ptr<const TriangleMesh> mesh, uint32_t tr
   if (!mesh_) throw std::invalid_argument("triangle needs a mesh");
   if (index_ >= mesh_->triangles.size())
     throw std::invalid_argument("triangle index " + std::to_string(index_) +
-                                " is out of range (the mesh has " +
-                                std::to_string(mesh_->triangles.size()) + " triangles)");
+                                " is out of range (the mesh has " + std::to_string(mesh_->triangles.size()) +
+                                " triangles)");
   for (uint32_t index : mesh_->triangles[index_]) {
     if (index >= mesh_->positions.size())
       throw std::invalid_argument("triangle " + std::to_string(index_) + " refers to vertex " +
@@ -330,11 +327,13 @@ bool MeshTriangle::occluded(const Ray& ray) const {
   if (degenerate_) return false;
   const auto& tri = mesh_->triangles[index_];
   TriangleIntersection found;
-  return intersect_triangle(ray, mesh_->positions[tri[0]], mesh_->positions[tri[1]],
-                            mesh_->positions[tri[2]], found);
+  return intersect_triangle(ray, mesh_->positions[tri[0]], mesh_->positions[tri[1]], mesh_->positions[tri[2]],
+                            found);
 }
 
-Bounds3 MeshTriangle::bounds() const { return mesh_->triangle_bounds(index_); }
+Bounds3 MeshTriangle::bounds() const {
+  return mesh_->triangle_bounds(index_);
+}
 
 void MeshTriangle::tessellate(const TessellationSettings&, TriangleMesh& mesh) const {
   // Copied before appending: mesh may be the very mesh this triangle belongs to.

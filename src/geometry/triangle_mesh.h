@@ -101,7 +101,8 @@ struct WatertightRay {
   explicit WatertightRay(const Ray& ray);
   // Edge functions u, v, w (weights of p0, p1, p2 times det) and det = u + v + w; false when
   // the ray misses the triangle's interior (or is edge-on).
-  bool edges(const Vec3& p0, const Vec3& p1, const Vec3& p2, double& u, double& v, double& w, double& det) const;
+  bool edges(const Vec3& p0, const Vec3& p1, const Vec3& p2, double& u, double& v, double& w,
+             double& det) const;
   // The hit distance in (t_min, t_max), or false.
   bool distance(const Vec3& p0, const Vec3& p1, const Vec3& p2, double& t) const;
   // The hit distance in (t_min, t_max) and the barycentric weights, or false (result is then

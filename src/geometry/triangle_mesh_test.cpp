@@ -2,8 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include "shape_test_support.h"
-
 #include <cmath>
 #include <map>
 #include <memory>
@@ -12,6 +10,7 @@
 #include "math/constants.h"
 #include "math/pcg32.h"
 #include "math/transform.h"
+#include "shape_test_support.h"
 
 namespace candela {
 namespace {
@@ -291,13 +290,11 @@ TEST(MeshTriangle, WatertightAtTheSharedVertexOfAFan) {
   for (int k = 0; k < ring; ++k) {
     const double angle = 2 * kPi * (k + 0.3 * rng.next_double()) / ring;
     const double radius = 0.7 + 0.6 * rng.next_double();
-    mesh->positions.push_back({centre.x + radius * std::cos(angle),
-                               centre.y + radius * std::sin(angle),
+    mesh->positions.push_back({centre.x + radius * std::cos(angle), centre.y + radius * std::sin(angle),
                                0.1 * rng.next_double() - 0.05});
   }
   for (int k = 0; k < ring; ++k)
-    mesh->triangles.push_back(
-        {0u, static_cast<uint32_t>(1 + k), static_cast<uint32_t>(1 + (k + 1) % ring)});
+    mesh->triangles.push_back({0u, static_cast<uint32_t>(1 + k), static_cast<uint32_t>(1 + (k + 1) % ring)});
   std::size_t skipped = 0;
   const auto shapes = make_triangles(mesh, &skipped);
   ASSERT_EQ(shapes.size(), static_cast<std::size_t>(ring));
@@ -383,8 +380,7 @@ TEST(TriangleMesh, SmoothPrismSideKeepsItsCapFlat) {
   }
   mesh->positions.push_back({0, 0, 1});  // cap centre, index 12
   for (uint32_t k = 0; k < sides; ++k) {
-    const uint32_t b0 = 2 * k, t0 = 2 * k + 1, b1 = 2 * ((k + 1) % sides),
-                   t1 = 2 * ((k + 1) % sides) + 1;
+    const uint32_t b0 = 2 * k, t0 = 2 * k + 1, b1 = 2 * ((k + 1) % sides), t1 = 2 * ((k + 1) % sides) + 1;
     mesh->triangles.push_back({b0, b1, t1});
     mesh->triangles.push_back({b0, t1, t0});
     mesh->triangles.push_back({12, t0, t1});  // cap, normal +z
@@ -506,8 +502,7 @@ TEST(TriangleMesh, MirroringTransformKeepsNormalsOutward) {
   nearest.t = kInfinity;
   for (const auto& shape : shapes) {
     SurfaceHit hit;
-    if (shape->intersect(make_ray({10, 0.5, 0.5}, {-1, 0, 0}), hit) && hit.t < nearest.t)
-      nearest = hit;
+    if (shape->intersect(make_ray({10, 0.5, 0.5}, {-1, 0, 0}), hit) && hit.t < nearest.t) nearest = hit;
   }
   EXPECT_NEAR(nearest.t, 4.0, 1e-12);
   expect_vec_near(nearest.geometric_normal, {1, 0, 0}, 1e-15);

@@ -15,11 +15,11 @@ std::vector<PixelRect> distributed_tiles(const PixelRect& region, int tile_size)
   return tiles;
 }
 
-TiledRender render_tiles_across_ranks(Cluster& cluster, const PixelRect& region,
-                                      const std::function<RenderedTile(const PixelRect& tile)>& render_tile,
-                                      Film& film,
-                                      const std::function<void(const PixelRect&, const std::vector<uint32_t>&)>& place_counts,
-                                      ProgressReporter* progress) {
+TiledRender render_tiles_across_ranks(
+    Cluster& cluster, const PixelRect& region,
+    const std::function<RenderedTile(const PixelRect& tile)>& render_tile, Film& film,
+    const std::function<void(const PixelRect&, const std::vector<uint32_t>&)>& place_counts,
+    ProgressReporter* progress) {
   const std::vector<PixelRect> tiles = distributed_tiles(region);
   TaskFarm farm;
   farm.task_count = tiles.size();
@@ -39,7 +39,8 @@ TiledRender render_tiles_across_ranks(Cluster& cluster, const PixelRect& region,
       throw std::runtime_error("distributed tile of the wrong size");
     for (int y = tile.y0; y < tile.y1; ++y)
       for (int x = tile.x0; x < tile.x1; ++x)
-        film.at(x - region.x0, y - region.y0) = pixels[std::size_t(y - tile.y0) * tile.width() + (x - tile.x0)];
+        film.at(x - region.x0, y - region.y0) =
+            pixels[std::size_t(y - tile.y0) * tile.width() + (x - tile.x0)];
     if (place_counts) place_counts(tile, counts);
     if (progress) progress->advance();
   };
@@ -57,11 +58,14 @@ void draw_across_ranks(Cluster* cluster, const PixelRect& region,
                        const std::function<void(const PixelRect& area, Film& target)>& draw, Film& film,
                        RunStatistics& statistics) {
   if (!cluster || !cluster->distributed()) return draw(region, film);
-  const TiledRender run = render_tiles_across_ranks(*cluster, region, [&](const PixelRect& tile) {
-    RenderedTile rendered{Film(tile.width(), tile.height()), {}};
-    draw(tile, rendered.film);
-    return rendered;
-  }, film);
+  const TiledRender run = render_tiles_across_ranks(
+      *cluster, region,
+      [&](const PixelRect& tile) {
+        RenderedTile rendered{Film(tile.width(), tile.height()), {}};
+        draw(tile, rendered.film);
+        return rendered;
+      },
+      film);
   statistics.extra["distributed"] = distributed_facts(*cluster, run.tiles_by_rank, "tiles");
 }
 

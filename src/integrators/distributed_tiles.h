@@ -43,11 +43,11 @@ std::vector<PixelRect> distributed_tiles(const PixelRect& region, int tile_size 
 // Every rank calls it. On rank 0 film (region-sized) receives every tile and place_counts, when
 // set, each tile's counts; other ranks' film is left as it was. progress (rank 0) advances a tile
 // at a time.
-TiledRender render_tiles_across_ranks(Cluster& cluster, const PixelRect& region,
-                                      const std::function<RenderedTile(const PixelRect& tile)>& render_tile,
-                                      Film& film,
-                                      const std::function<void(const PixelRect&, const std::vector<uint32_t>&)>& place_counts = {},
-                                      ProgressReporter* progress = nullptr);
+TiledRender render_tiles_across_ranks(
+    Cluster& cluster, const PixelRect& region,
+    const std::function<RenderedTile(const PixelRect& tile)>& render_tile, Film& film,
+    const std::function<void(const PixelRect&, const std::vector<uint32_t>&)>& place_counts = {},
+    ProgressReporter* progress = nullptr);
 
 // A view drawn by draw(area, target) (target area-sized): on one process (cluster null or of one
 // rank) the whole region at once; with several ranks in tiles across them, with the

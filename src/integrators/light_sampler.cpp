@@ -31,10 +31,12 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     environment_ = scene.environment.get();
   } else if (!scene.background.is_black()) {
     const Color& b = scene.background;
-    background_ = std::make_unique<ConstantEnvironment>(Color(std::max(b.r, 0.0), std::max(b.g, 0.0), std::max(b.b, 0.0)));
+    background_ = std::make_unique<ConstantEnvironment>(
+        Color(std::max(b.r, 0.0), std::max(b.g, 0.0), std::max(b.b, 0.0)));
     environment_ = background_.get();
   }
-  choice_count_ = static_cast<int>(scene.lights.size()) + (surfaces_.empty() ? 0 : 1) + (environment_ ? 1 : 0);
+  choice_count_ =
+      static_cast<int>(scene.lights.size()) + (surfaces_.empty() ? 0 : 1) + (environment_ ? 1 : 0);
   if (!surfaces_.empty()) {
     const double group = 1.0 / choice_count_;
     double previous = 0;

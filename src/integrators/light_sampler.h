@@ -13,8 +13,8 @@
 #include <memory>
 #include <vector>
 
-#include "shading/environment.h"
 #include "scene/scene.h"
+#include "shading/environment.h"
 
 namespace candela {
 
@@ -43,9 +43,9 @@ class LightSampler {
  private:
   const Scene& scene_;
   int choice_count_ = 0;
-  std::vector<uint32_t> surfaces_;          // emissive, sampleable primitives
-  std::vector<double> surface_cdf_;         // running power fractions, last = 1
-  std::vector<double> surface_probability_; // per primitive of the scene (empty without emitters)
+  std::vector<uint32_t> surfaces_;           // emissive, sampleable primitives
+  std::vector<double> surface_cdf_;          // running power fractions, last = 1
+  std::vector<double> surface_probability_;  // per primitive of the scene (empty without emitters)
   std::unique_ptr<Environment> background_;  // the background color as an environment
   const Environment* environment_ = nullptr;
 };

@@ -1,23 +1,21 @@
 #include "integrators/meshless_method.h"
 
-#include "distributed/cluster.h"
-#include "integrators/distributed_tiles.h"
-#include "integrators/solution_field.h"
-#include "util/memory.h"
-
-#include <tbb/parallel_for.h>
-
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
+#include "distributed/cluster.h"
+#include "integrators/distributed_tiles.h"
+#include "integrators/solution_field.h"
 #include "meshless/effective_area.h"
 #include "meshless/meshless_basis.h"
 #include "scene/light.h"
 #include "scene/scene.h"
 #include "util/cancellation.h"
+#include "util/memory.h"
 
 namespace candela {
 
@@ -32,7 +30,8 @@ MeshlessSettings read_meshless_settings(const JsonNode& node) {
   settings.rounds = node.integer("rounds", settings.rounds, {0, 1000, false, false});
   settings.effective_area = node.enumeration("effective_area", settings.effective_area, kMeshlessAreaNames);
   settings.tolerance = node.number("tolerance", settings.tolerance, {0, 1, true, false});
-  settings.max_iterations = node.integer("max_iterations", settings.max_iterations, {1, 1 << 20, false, false});
+  settings.max_iterations =
+      node.integer("max_iterations", settings.max_iterations, {1, 1 << 20, false, false});
   settings.display = node.enumeration("display", settings.display, kMeshlessDisplayNames);
   settings.shepard_power = node.number("shepard_power", settings.shepard_power, {0, 16, false, false});
   settings.max_sites = node.integer("max_sites", settings.max_sites, {1, 1 << 22, false, false});
@@ -87,10 +86,12 @@ Film with_sites_drawn(const Scene& scene, const SiteSet& sites, const PixelRect&
   const Eigen::Matrix4d clip_from_world = camera.view_projection(far * 1e-7, far);
   const int radius = camera.width() >= 256 ? 1 : 0;
   for (const Site& site : sites.sites) {
-    const Eigen::Vector4d clip = clip_from_world * Eigen::Vector4d(site.position.x, site.position.y, site.position.z, 1);
+    const Eigen::Vector4d clip =
+        clip_from_world * Eigen::Vector4d(site.position.x, site.position.y, site.position.z, 1);
     if (!(clip.w() > 0)) continue;
     // The rasterizer's convention: x = (ndc_x + 1)/2·width, y = (1 − ndc_y)/2·height.
-    const double px = (clip.x() / clip.w() + 1) / 2 * camera.width(), py = (1 - clip.y() / clip.w()) / 2 * camera.height();
+    const double px = (clip.x() / clip.w() + 1) / 2 * camera.width(),
+                 py = (1 - clip.y() / clip.w()) / 2 * camera.height();
     // Seen when the camera ray through that image point first hits the surface at the site
     // (perspective and orthographic cameras alike).
     const Ray view = camera.generate_ray(px, py);
@@ -108,7 +109,6 @@ Film with_sites_drawn(const Scene& scene, const SiteSet& sites, const PixelRect&
   return result;
 }
 
-
 // What a solution depends on besides the scene object: the meshless settings that shape the
 // geometry (not the display, the tolerance or the lights) and the seed.
 std::string geometry_key(const Scene& scene, const MeshlessSettings& m) {
@@ -116,10 +116,10 @@ std::string geometry_key(const Scene& scene, const MeshlessSettings& m) {
   const Camera& camera = *scene.camera;
   const Vec3 eye = camera.eye_position(), gaze = camera.view_direction();
   return fmt::format("{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{},{},{}|{},{},{}|{}x{}", scene.unique_id,
-                     static_cast<int>(m.basis), static_cast<int>(m.kernel), m.spacing, m.neighbours, m.grid, m.rounds,
-                     static_cast<int>(m.effective_area), m.shepard_power, m.max_sites, scene.render.seed,
-                     static_cast<const void*>(&camera), eye.x, eye.y, eye.z, gaze.x, gaze.y, gaze.z, camera.width(),
-                     camera.height());
+                     static_cast<int>(m.basis), static_cast<int>(m.kernel), m.spacing, m.neighbours, m.grid,
+                     m.rounds, static_cast<int>(m.effective_area), m.shepard_power, m.max_sites,
+                     scene.render.seed, static_cast<const void*>(&camera), eye.x, eye.y, eye.z, gaze.x,
+                     gaze.y, gaze.z, camera.width(), camera.height());
 }
 
 nlohmann::json geometry_facts(const MeshlessSettings& settings, const MeshlessGeometry& geometry) {
@@ -157,8 +157,8 @@ std::size_t transfer_entry_limit() {
 
 // build_meshless_geometry; when cancellable, null once Ctrl-C arrives between its phases
 // (sampling, areas, transfer matrix).
-std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const MeshlessSettings& settings, bool cancellable,
-                                                  Cluster* cluster = nullptr) {
+std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const MeshlessSettings& settings,
+                                                 bool cancellable, Cluster* cluster = nullptr) {
   // Every rank stops at the same phase (a collective when distributed).
   const auto stop = [&] { return cancellable && cancelled_anywhere(cluster); };
   auto geometry = std::make_shared<MeshlessGeometry>();
@@ -178,30 +178,35 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const Meshl
   start = std::chrono::steady_clock::now();
   // The basis refers to the geometry's own sites and radii, which stay where they are: the
   // geometry is held by a pointer and never moved.
-  geometry->basis = std::make_unique<MeshlessBasis>(sites.sites, sites.radius, settings.basis, settings.kernel,
-                                                    settings.shepard_power);
+  geometry->basis = std::make_unique<MeshlessBasis>(sites.sites, sites.radius, settings.basis,
+                                                    settings.kernel, settings.shepard_power);
   geometry->areas = sites.effective_area;  // the thesis's πh²/(m + 1)
   if (settings.effective_area == MeshlessAreas::integrated)
-    geometry->areas = integrate_effective_areas(scene, *geometry->basis, sites, sites.spacing / 4, 64, cluster);
+    geometry->areas =
+        integrate_effective_areas(scene, *geometry->basis, sites, sites.spacing / 4, 64, cluster);
   geometry->area_seconds = seconds_since(start);
   if (stop()) return nullptr;
-  geometry->matrix = compute_transfer_matrix(scene, sites.sites, geometry->areas, transfer_entry_limit(), cluster);
+  geometry->matrix =
+      compute_transfer_matrix(scene, sites.sites, geometry->areas, transfer_entry_limit(), cluster);
   return geometry;
 }
 
 }  // namespace
 
-std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene, const MeshlessSettings& settings) {
+std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene,
+                                                          const MeshlessSettings& settings) {
   return build_geometry(scene, settings, false);
 }
 
-MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& settings, const MeshlessGeometry& geometry) {
+MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& settings,
+                                const MeshlessGeometry& geometry) {
   const SiteSet& sites = geometry.sites;
   const auto start = std::chrono::steady_clock::now();
   MeshlessLighting lighting;
   lighting.eta.resize(sites.sites.size());
   tbb::parallel_for(std::size_t(0), sites.sites.size(), [&](std::size_t i) {
-    lighting.eta[i] = sites.emission[i] + direct_light(scene, sites.sites[i].position, sites.sites[i].normal, sites.albedo[i]);
+    lighting.eta[i] = sites.emission[i] +
+                      direct_light(scene, sites.sites[i].position, sites.sites[i].normal, sites.albedo[i]);
   });
   lighting.transfer = solve_transfer(geometry.matrix, sites.albedo, lighting.eta, settings.tolerance,
                                      static_cast<std::size_t>(settings.max_iterations));
@@ -237,7 +242,7 @@ MeshlessSolution solve_meshless(const Scene& scene, const MeshlessSettings& sett
 }
 
 std::shared_ptr<const MeshlessGeometry> MeshlessMethod::geometry_for(const Scene& scene, bool& reused,
-                                                                    Cluster* cluster) const {
+                                                                     Cluster* cluster) const {
   const std::string key = geometry_key(scene, settings_);
   std::lock_guard lock(cache_mutex_);
   reused = cached_ && cached_key_ == key;
@@ -298,25 +303,35 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
             direct += solution.eta[i] * phi;
           }
           switch (settings.display) {
-            case MeshlessDisplay::global: color = global; break;
-            case MeshlessDisplay::direct: color = direct; break;
-            case MeshlessDisplay::indirect: color = global - direct; break;
+            case MeshlessDisplay::global:
+              color = global;
+              break;
+            case MeshlessDisplay::direct:
+              color = direct;
+              break;
+            case MeshlessDisplay::indirect:
+              color = global - direct;
+              break;
             case MeshlessDisplay::hybrid: {
               const Material& material = scene.material_of(hit);
               const Color albedo = material.at(hit.surface).diffuse_albedo();
-              color = material.emission + direct_light(scene, p.position, p.normal, albedo) + (global - direct);
+              color =
+                  material.emission + direct_light(scene, p.position, p.normal, albedo) + (global - direct);
               break;
             }
           }
-          if (weights.empty() && settings.display != MeshlessDisplay::hybrid) color = scene.background_along(ray.direction);
+          if (weights.empty() && settings.display != MeshlessDisplay::hybrid)
+            color = scene.background_along(ray.direction);
         }
         target.at(x - area.x0, y - area.y0) = color;
       }
     });
   };
-  draw_across_ranks(request.cluster, region, draw, film, statistics);  // issue 11: every rank holds the same λ
+  draw_across_ranks(request.cluster, region, draw, film,
+                    statistics);  // issue 11: every rank holds the same λ
   // Rank 0 holds the whole image (issue 11), and its result is the one written.
-  if (request.sites_image && (!cluster || cluster->root())) output.sites_image = with_sites_drawn(scene, solution.sites, region, film);
+  if (request.sites_image && (!cluster || cluster->root()))
+    output.sites_image = with_sites_drawn(scene, solution.sites, region, film);
   const auto pixel_count = static_cast<uint64_t>(region.width()) * region.height();
   statistics.rays.primary += pixel_count;
   statistics.pixels += pixel_count;
@@ -334,7 +349,8 @@ namespace {
 // The global display's field: Σ λ_i φ_i at the hit, the normal turned toward the ray's origin.
 class MeshlessField final : public SolutionField {
  public:
-  MeshlessField(const Scene& scene, std::shared_ptr<const MeshlessGeometry> geometry, MeshlessLighting lighting)
+  MeshlessField(const Scene& scene, std::shared_ptr<const MeshlessGeometry> geometry,
+                MeshlessLighting lighting)
       : scene_(scene), geometry_(std::move(geometry)), lighting_(std::move(lighting)) {}
   bool exitance(const Ray& ray, const Intersection& hit, Color& exitance) const override {
     const Site p{hit.surface.position, face_forward(hit.surface.geometric_normal, -ray.direction)};

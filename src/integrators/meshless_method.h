@@ -19,10 +19,9 @@
 // Pixels that hit nothing, or where no element reaches, show the background.
 #pragma once
 
-#include <nlohmann/json.hpp>
-
 #include <memory>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "integrators/method.h"
@@ -35,9 +34,11 @@ namespace candela {
 
 // How the solution is shown (see above).
 enum class MeshlessDisplay { global, direct, indirect, hybrid };
-inline constexpr auto kMeshlessDisplayNames = enum_names<MeshlessDisplay>(
-    {{MeshlessDisplay::global, "global"}, {MeshlessDisplay::direct, "direct"}, {MeshlessDisplay::indirect, "indirect"},
-     {MeshlessDisplay::hybrid, "hybrid"}});
+inline constexpr auto kMeshlessDisplayNames =
+    enum_names<MeshlessDisplay>({{MeshlessDisplay::global, "global"},
+                                 {MeshlessDisplay::direct, "direct"},
+                                 {MeshlessDisplay::indirect, "indirect"},
+                                 {MeshlessDisplay::hybrid, "hybrid"}});
 // The sites' effective areas: integrated over the surfaces (meshless/effective_area.h), or the
 // thesis's πh²/(m + 1).
 enum class MeshlessAreas { integrated, thesis };
@@ -79,18 +80,21 @@ struct MeshlessLighting {
   double seconds = 0;  // direct light and iteration
 };
 
-std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene, const MeshlessSettings& settings);
-MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& settings, const MeshlessGeometry& geometry);
+std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene,
+                                                          const MeshlessSettings& settings);
+MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& settings,
+                                const MeshlessGeometry& geometry);
 
 struct MeshlessSolution {
   SiteSet sites;
-  std::vector<Color> eta;      // η: emitted and directly reflected
-  TransferSolution transfer;   // λ
-  TransferMatrix matrix;       // S
+  std::vector<Color> eta;     // η: emitted and directly reflected
+  TransferSolution transfer;  // λ
+  TransferMatrix matrix;      // S
 };
 
 // Samples, builds and solves; fills facts for --stats when given.
-MeshlessSolution solve_meshless(const Scene& scene, const MeshlessSettings& settings, nlohmann::json* facts = nullptr);
+MeshlessSolution solve_meshless(const Scene& scene, const MeshlessSettings& settings,
+                                nlohmann::json* facts = nullptr);
 
 // Keeps the last scene's geometry (recognised by Scene::unique_id and the settings that shape it)
 // and reuses it when called again for the same scene: other views, or other lights
@@ -102,7 +106,8 @@ class MeshlessMethod final : public Method {
   RenderResult render(const Scene& scene, const RenderRequest& request) const override;
 
  private:
-  std::shared_ptr<const MeshlessGeometry> geometry_for(const Scene& scene, bool& reused, Cluster* cluster) const;
+  std::shared_ptr<const MeshlessGeometry> geometry_for(const Scene& scene, bool& reused,
+                                                       Cluster* cluster) const;
   MeshlessSettings settings_;
   mutable std::mutex cache_mutex_;
   mutable std::shared_ptr<const MeshlessGeometry> cached_;

@@ -58,7 +58,7 @@ struct RenderResult {
   explicit RenderResult(const PixelRect& region) : film(region.width(), region.height()) {}
   Film film;
   RunStatistics statistics;
-  std::optional<Film> sites_image;                        // when requested (RenderRequest::sites_image)
+  std::optional<Film> sites_image;                       // when requested (RenderRequest::sites_image)
   std::shared_ptr<const RadiositySolveResult> solution;  // a view-independent solution (radiosity)
 };
 

@@ -53,27 +53,32 @@ const std::array kEntries = {
                 [](const JsonNode& settings) -> std::unique_ptr<Method> {
                   return std::make_unique<WhittedMethod>(read_whitted_settings(settings));
                 }},
-    MethodEntry{"raster", "scanline z-buffer rasterizer, flat / Gouraud / Phong / dot-product shading (000 §3)", {},
+    MethodEntry{"raster",
+                "scanline z-buffer rasterizer, flat / Gouraud / Phong / dot-product shading (000 §3)",
+                {},
                 [](const JsonNode& settings) -> std::unique_ptr<Method> {
                   return std::make_unique<RasterMethod>(read_raster_settings(settings));
                 }},
-    MethodEntry{"radiosity",
-                "classic radiosity: hemicube form factors, progressive refinement with substructuring (000 §6)",
-                radiosity(),
-                [](const JsonNode& settings) -> std::unique_ptr<Method> {
-                  return std::make_unique<RadiosityMethod>(read_radiosity_settings(settings));
-                }},
-    MethodEntry{"meshless", "meshless finite-element radiosity: sites, radial / normalized / Shepard bases (002)",
+    MethodEntry{
+        "radiosity",
+        "classic radiosity: hemicube form factors, progressive refinement with substructuring (000 §6)",
+        radiosity(),
+        [](const JsonNode& settings) -> std::unique_ptr<Method> {
+          return std::make_unique<RadiosityMethod>(read_radiosity_settings(settings));
+        }},
+    MethodEntry{"meshless",
+                "meshless finite-element radiosity: sites, radial / normalized / Shepard bases (002)",
                 meshless(),
                 [](const JsonNode& settings) -> std::unique_ptr<Method> {
                   return std::make_unique<MeshlessMethod>(read_meshless_settings(settings));
                 }},
-    MethodEntry{"path",
-                "path-traced reference: next-event estimation, MIS, Russian roulette, progressive passes (SPEC §12)",
-                path(),
-                [](const JsonNode& settings) -> std::unique_ptr<Method> {
-                  return std::make_unique<PathMethod>(read_path_settings(settings));
-                }},
+    MethodEntry{
+        "path",
+        "path-traced reference: next-event estimation, MIS, Russian roulette, progressive passes (SPEC §12)",
+        path(),
+        [](const JsonNode& settings) -> std::unique_ptr<Method> {
+          return std::make_unique<PathMethod>(read_path_settings(settings));
+        }},
 };
 
 // kEntries as loader sections: each method's object checked by making the method from it.
@@ -88,11 +93,17 @@ std::array<SettingsSection, kEntries.size()> make_sections() {
 
 }  // namespace
 
-std::span<const MethodEntry> method_entries() { return kEntries; }
+std::span<const MethodEntry> method_entries() {
+  return kEntries;
+}
 
-const MethodEntry* find_method(std::string_view name) { return find_entry<MethodEntry>(kEntries, name); }
+const MethodEntry* find_method(std::string_view name) {
+  return find_entry<MethodEntry>(kEntries, name);
+}
 
-std::string method_names() { return entry_names<MethodEntry>(kEntries); }
+std::string method_names() {
+  return entry_names<MethodEntry>(kEntries);
+}
 
 std::unique_ptr<Method> create_method(const MethodEntry& entry, const Scene& scene,
                                       const std::vector<std::string>& overrides) {
@@ -101,7 +112,8 @@ std::unique_ptr<Method> create_method(const MethodEntry& entry, const Scene& sce
   const JsonNode original = scene.plugin_settings.node(entry.name);
   JsonDocument document =
       JsonDocument::parse(nlohmann::json{{std::string(entry.name), original.json()}}.dump(), scene.source);
-  for (const std::string& assignment : overrides) document.apply_override(std::string(entry.name) + "." + assignment);
+  for (const std::string& assignment : overrides)
+    document.apply_override(std::string(entry.name) + "." + assignment);
   const JsonNode root(document, document.root(), "");
   return entry.create(root.at(entry.name));
 }

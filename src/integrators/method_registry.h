@@ -18,13 +18,13 @@ namespace candela {
 
 // What a method gives besides its image, and which run options it takes.
 struct MethodCapabilities {
-  bool ray_trees = false;         // the ray tree of one pixel (RayTracingMethod::pixel_ray_tree)
-  bool samples_per_pixel = false;  // how many samples each pixel used (RunStatistics::samples_per_pixel)
-  bool solution = false;          // a view-independent solution mesh (RenderResult::solution)
-  bool sites_image = false;       // the image with its sites drawn (RenderResult::sites_image)
-  bool relighting = false;        // other light set-ups from the same geometry, cheaply
+  bool ray_trees = false;           // the ray tree of one pixel (RayTracingMethod::pixel_ray_tree)
+  bool samples_per_pixel = false;   // how many samples each pixel used (RunStatistics::samples_per_pixel)
+  bool solution = false;            // a view-independent solution mesh (RenderResult::solution)
+  bool sites_image = false;         // the image with its sites drawn (RenderResult::sites_image)
+  bool relighting = false;          // other light set-ups from the same geometry, cheaply
   bool progressive_passes = false;  // samples per pixel and a time limit (path.spp, path.time)
-  bool checkpoints = false;       // checkpoint and resume (RenderRequest::checkpoint, resume)
+  bool checkpoints = false;         // checkpoint and resume (RenderRequest::checkpoint, resume)
 };
 
 struct MethodEntry {

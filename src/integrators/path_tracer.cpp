@@ -33,7 +33,8 @@ PathSettings read_path_settings(const JsonNode& node) {
     node.at("spp").fail("spp 0 (no limit) needs a time limit: path.time > 0");
   settings.max_depth = node.integer("max_depth", settings.max_depth, {0, 1024, false, false});
   settings.roulette_depth = node.integer("roulette_depth", settings.roulette_depth, {0, 1024, false, false});
-  settings.checkpoint_interval = node.number("checkpoint_interval", settings.checkpoint_interval, {0, 1e9, true, false});
+  settings.checkpoint_interval =
+      node.number("checkpoint_interval", settings.checkpoint_interval, {0, 1e9, true, false});
   node.finish();
   return settings;
 }
@@ -43,10 +44,13 @@ namespace {
 // Paths end here even when Russian roulette keeps them going (a closed mirror box).
 constexpr int kDepthCap = 1024;
 
-bool is_finite(const Color& c) { return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b); }
+bool is_finite(const Color& c) {
+  return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b);
+}
 
 // A secondary ray starts off the surface on the side it leaves by (SPEC §8's offset).
-Vec3 offset_origin(const Scene& scene, const Vec3& position, const Vec3& geometric_normal, const Vec3& direction) {
+Vec3 offset_origin(const Scene& scene, const Vec3& position, const Vec3& geometric_normal,
+                   const Vec3& direction) {
   const Vec3 side = dot(direction, geometric_normal) >= 0 ? geometric_normal : -geometric_normal;
   return position + side * scene.ray_offset(position);
 }
@@ -68,8 +72,8 @@ bool unoccluded(const Scene& scene, const Vec3& position, const Vec3& geometric_
 // Whether nothing lies between the point and a point sampled on a surface: both ends are lifted
 // off their surfaces (the far one toward the near side), so that a segment reaching a sphere's
 // silhouette at a grazing angle does not clip the sphere just before its end.
-bool unoccluded_surface(const Scene& scene, const Vec3& position, const Vec3& geometric_normal, const Vec3& target,
-                        const Vec3& target_normal, RayCounts& rays) {
+bool unoccluded_surface(const Scene& scene, const Vec3& position, const Vec3& geometric_normal,
+                        const Vec3& target, const Vec3& target_normal, RayCounts& rays) {
   ++rays.shadow;
   const Vec3 toward = dot(target_normal, position - target) >= 0 ? target_normal : -target_normal;
   const Vec3 end = target + toward * scene.ray_offset(target);
@@ -82,8 +86,9 @@ bool unoccluded_surface(const Scene& scene, const Vec3& position, const Vec3& ge
 
 // One next-event estimate at a surface point: a light chosen by the sampler, a point or direction
 // on it, weighted against BSDF sampling (MIS) where a BSDF-sampled ray could have found it too.
-Color sample_light(const Scene& scene, const LightSampler& lights, const Vec3& position, const Vec3& geometric_normal,
-                   const Vec3& shading_normal, const Bsdf& bsdf, const Vec3& wo, Pcg32& rng, RayCounts& rays) {
+Color sample_light(const Scene& scene, const LightSampler& lights, const Vec3& position,
+                   const Vec3& geometric_normal, const Vec3& shading_normal, const Bsdf& bsdf, const Vec3& wo,
+                   Pcg32& rng, RayCounts& rays) {
   if (lights.empty()) return {};
   const LightSampler::Choice choice = lights.choose(rng.next_double());
   const Vec2 u{rng.next_double(), rng.next_double()};
@@ -95,7 +100,8 @@ Color sample_light(const Scene& scene, const LightSampler& lights, const Vec3& p
       if (f.is_black()) return {};
       if (!unoccluded(scene, position, geometric_normal, sample.direction, sample.distance, rays)) return {};
       // A point-like light: no BSDF-sampled ray can hit it, so no MIS.
-      return f * sample.intensity * (kPi * std::fabs(dot(shading_normal, sample.direction)) / choice.probability);
+      return f * sample.intensity *
+             (kPi * std::fabs(dot(shading_normal, sample.direction)) / choice.probability);
     }
     case LightSampler::Kind::surface: {
       const Primitive& primitive = scene.primitives[choice.index];
@@ -107,7 +113,8 @@ Color sample_light(const Scene& scene, const LightSampler& lights, const Vec3& p
       const Vec3 L = to_light / distance;
       const Color f = bsdf.evaluate(wo, L);
       if (f.is_black()) return {};
-      if (!unoccluded_surface(scene, position, geometric_normal, sample.position, sample.normal, rays)) return {};
+      if (!unoccluded_surface(scene, position, geometric_normal, sample.position, sample.normal, rays))
+        return {};
       const double light_pdf = choice.probability * sample.pdf;
       const double weight = power_heuristic(light_pdf, bsdf.pdf(wo, L));
       const Color& emission = scene.materials[primitive.material].emission;
@@ -133,16 +140,16 @@ Color sample_light(const Scene& scene, const LightSampler& lights, const Vec3& p
 struct PathState {
   Ray ray;
   Color beta{1};
-  bool specular = true;   // the last bounce was a delta (or this is the camera ray): no MIS on hits
-  double bsdf_pdf = 0;    // the density the last bounce sampled ray.direction with
-  Vec3 previous;          // where the last bounce happened
-  double eta_scale = 1;   // Russian roulette looks at beta without the 1/η² of refractions
+  bool specular = true;  // the last bounce was a delta (or this is the camera ray): no MIS on hits
+  double bsdf_pdf = 0;   // the density the last bounce sampled ray.direction with
+  Vec3 previous;         // where the last bounce happened
+  double eta_scale = 1;  // Russian roulette looks at beta without the 1/η² of refractions
   int depth = 0;
 };
 
 // Follows a path from its current ray to its end, adding what it gathers.
-Color continue_path(const Scene& scene, const PathSettings& settings, const LightSampler& lights, PathState state, Pcg32& rng,
-                    RayCounts& rays) {
+Color continue_path(const Scene& scene, const PathSettings& settings, const LightSampler& lights,
+                    PathState state, Pcg32& rng, RayCounts& rays) {
   Color L;
   const int max_depth = settings.max_depth > 0 ? settings.max_depth : kDepthCap;
   for (;; ++state.depth) {
@@ -152,7 +159,8 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
       if (!background.is_black()) {
         double weight = 1;
         if (!state.specular && lights.environment()) {
-          const double light_pdf = lights.environment_probability() * lights.environment()->pdf(state.ray.direction);
+          const double light_pdf =
+              lights.environment_probability() * lights.environment()->pdf(state.ray.direction);
           weight = power_heuristic(state.bsdf_pdf, light_pdf);
         }
         L += state.beta * background * weight;
@@ -167,7 +175,8 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
       if (!state.specular) {
         const double choice = lights.surface_probability(hit.primitive);
         if (choice > 0) {
-          const double light_pdf = choice * scene.primitives[hit.primitive].shape->pdf_from(state.previous, surface);
+          const double light_pdf =
+              choice * scene.primitives[hit.primitive].shape->pdf_from(state.previous, surface);
           weight = power_heuristic(state.bsdf_pdf, light_pdf);
         }
       }
@@ -222,16 +231,15 @@ Pcg32 path_pixel_rng(uint64_t seed, uint64_t pass, uint32_t x, uint32_t y) {
   return Pcg32(mix64(seed * 0x9e3779b97f4a7c15ULL + pass), (static_cast<uint64_t>(y) << 32) | x);
 }
 
-Color path_radiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights, const Ray& ray,
-                    Pcg32& rng, RayCounts& rays) {
+Color path_radiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights,
+                    const Ray& ray, Pcg32& rng, RayCounts& rays) {
   PathState state;
   state.ray = ray;
   return continue_path(scene, settings, lights, state, rng, rays);
 }
 
-Color path_irradiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights, const Vec3& point,
-                      const Vec3& normal,
-                      Pcg32& rng, RayCounts& rays) {
+Color path_irradiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights,
+                      const Vec3& point, const Vec3& normal, Pcg32& rng, RayCounts& rays) {
   Bsdf bsdf(ShadingFrame::from_normal(normal), normal);
   BsdfLobe white;
   white.type = LobeType::lambert;
@@ -264,10 +272,9 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
   const PathSettings& settings = settings_;
   // Everything besides the scene file that changes a sample: a checkpoint made with other values
   // cannot be continued.
-  const std::string fingerprint =
-      fmt::format("{}|path max_depth={} roulette_depth={} seed={} image={}x{}", request.fingerprint,
-                  settings.max_depth, settings.roulette_depth, scene.render.seed, scene.camera->width(),
-                  scene.camera->height());
+  const std::string fingerprint = fmt::format(
+      "{}|path max_depth={} roulette_depth={} seed={} image={}x{}", request.fingerprint, settings.max_depth,
+      settings.roulette_depth, scene.render.seed, scene.camera->width(), scene.camera->height());
 
   PathCheckpoint state;
   state.fingerprint = fingerprint;
@@ -278,21 +285,23 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
   // every rank.
   std::exception_ptr resume_error;
   try {
-  if (!request.resume.empty() && (!cluster || cluster->root())) {
-    PathCheckpoint resumed = read_path_checkpoint(request.resume);
-    const SourceLocation where{request.resume, 0, 0, {}};
-    if (resumed.fingerprint != fingerprint)
-      throw InputError(where, "the checkpoint was made for another scene or other settings (" + resumed.fingerprint +
-                                  "), not this one (" + fingerprint + ")");
-    const PixelRect& r = resumed.region;
-    if (r.x0 != region.x0 || r.y0 != region.y0 || r.x1 != region.x1 || r.y1 != region.y1)
-      throw InputError(where, fmt::format("the checkpoint covers pixels [{},{})×[{},{}), not [{},{})×[{},{})", r.x0,
-                                          r.x1, r.y0, r.y1, region.x0, region.x1, region.y0, region.y1));
-    if (settings.spp > 0 && resumed.passes > uint64_t(settings.spp))
-      throw InputError(where, fmt::format("the checkpoint already holds {} samples per pixel, more than path.spp = {}",
-                                          resumed.passes, settings.spp));
-    state = std::move(resumed);
-  }
+    if (!request.resume.empty() && (!cluster || cluster->root())) {
+      PathCheckpoint resumed = read_path_checkpoint(request.resume);
+      const SourceLocation where{request.resume, 0, 0, {}};
+      if (resumed.fingerprint != fingerprint)
+        throw InputError(where, "the checkpoint was made for another scene or other settings (" +
+                                    resumed.fingerprint + "), not this one (" + fingerprint + ")");
+      const PixelRect& r = resumed.region;
+      if (r.x0 != region.x0 || r.y0 != region.y0 || r.x1 != region.x1 || r.y1 != region.y1)
+        throw InputError(
+            where, fmt::format("the checkpoint covers pixels [{},{})×[{},{}), not [{},{})×[{},{})", r.x0,
+                               r.x1, r.y0, r.y1, region.x0, region.x1, region.y0, region.y1));
+      if (settings.spp > 0 && resumed.passes > uint64_t(settings.spp))
+        throw InputError(
+            where, fmt::format("the checkpoint already holds {} samples per pixel, more than path.spp = {}",
+                               resumed.passes, settings.spp));
+      state = std::move(resumed);
+    }
   } catch (...) {
     if (!cluster) throw;
     resume_error = std::current_exception();
@@ -307,7 +316,8 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
   tbb::enumerable_thread_specific<RayCounts> counts;
   tbb::enumerable_thread_specific<uint64_t> invalid;
   const int tile = std::max(1, scene.render.tile_size);
-  const uint64_t progress_total = settings.spp > 0 ? last_pass - first_pass : static_cast<uint64_t>(std::ceil(settings.time));
+  const uint64_t progress_total =
+      settings.spp > 0 ? last_pass - first_pass : static_cast<uint64_t>(std::ceil(settings.time));
   ProgressReporter progress("path", progress_total, settings.spp > 0 ? "passes" : "s",
                             request.quiet || (cluster && !cluster->root()));
   Stopwatch timer, since_checkpoint;
@@ -317,7 +327,8 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
     if (request.checkpoint.empty() || (cluster && !cluster->root())) return;  // rank 0 writes
     RayCounts rays = state.rays;
     for (const RayCounts& c : counts) rays += c;
-    PathCheckpoint snapshot{state.fingerprint, state.region, state.passes, state.seconds + timer.seconds(), rays, {}};
+    PathCheckpoint snapshot{
+        state.fingerprint, state.region, state.passes, state.seconds + timer.seconds(), rays, {}};
     snapshot.sums = state.sums;
     write_path_checkpoint(request.checkpoint, snapshot);
     ++checkpoints;
@@ -408,20 +419,20 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
           }
           tbb::parallel_for(tbb::blocked_range2d<int>(t.y0, t.y1, tile, t.x0, t.x1, tile),
                             [&](const tbb::blocked_range2d<int>& block) {
-            RayCounts& rays = counts.local();
-            for (int j = block.rows().begin(); j < block.rows().end(); ++j)
-              for (int i = block.cols().begin(); i < block.cols().end(); ++i) {
-                const Color value = sample_pixel(pass, i, j, rays);
-                // A non-finite sample is dropped (adds zero), as in one process.
-                Color& sum = sums[std::size_t(j - t.y0) * t.width() + (i - t.x0)];
-                if (is_finite(value)) {
-                  sum += value;
-                } else {
-                  sum += Color();
-                  ++tile_dropped;
-                }
-              }
-          });
+                              RayCounts& rays = counts.local();
+                              for (int j = block.rows().begin(); j < block.rows().end(); ++j)
+                                for (int i = block.cols().begin(); i < block.cols().end(); ++i) {
+                                  const Color value = sample_pixel(pass, i, j, rays);
+                                  // A non-finite sample is dropped (adds zero), as in one process.
+                                  Color& sum = sums[std::size_t(j - t.y0) * t.width() + (i - t.x0)];
+                                  if (is_finite(value)) {
+                                    sum += value;
+                                  } else {
+                                    sum += Color();
+                                    ++tile_dropped;
+                                  }
+                                }
+                            });
         }
         ByteWriter writer;
         writer.put<uint8_t>(cut_short ? 0 : 1);
@@ -443,7 +454,8 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
       const TaskFarmReport report = run_task_farm(*cluster, farm);
       ++rounds;
       if (!cluster->root()) continue;
-      for (std::size_t r = 0; r < report.tasks_by_rank.size(); ++r) tiles_by_rank[r] += report.tasks_by_rank[r];
+      for (std::size_t r = 0; r < report.tasks_by_rank.size(); ++r)
+        tiles_by_rank[r] += report.tasks_by_rank[r];
       if (report.tasks_done < tiles.size() || !whole) {  // Ctrl-C during the round: dropped
         interrupted = true;
         continue;  // the next plan says stop
@@ -459,7 +471,8 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
       double budget = std::clamp(double(width) * height / 2e5, 1.0, 30.0);
       if (timed) budget = std::min(budget, settings.time - timer.seconds());
       if (!request.checkpoint.empty()) budget = std::min(budget, settings.checkpoint_interval);
-      passes_per_round = per_pass > 0 ? std::clamp<uint64_t>(static_cast<uint64_t>(budget / per_pass), 1, 256) : 256;
+      passes_per_round =
+          per_pass > 0 ? std::clamp<uint64_t>(static_cast<uint64_t>(budget / per_pass), 1, 256) : 256;
       save_if_due();
     }
     distributed = distributed_facts(*cluster, tiles_by_rank, "tiles");
@@ -536,12 +549,14 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
   if (cluster) statistics.extra["distributed"] = distributed;
   if (interrupted) {  // Ctrl-C: the mean of the whole passes, which the checkpoint holds too
     statistics.extra["interrupted"] = true;
-    statistics.extra["completed"] = fmt::format("{} passes{}", state.passes - first_pass,
-                                                first_pass > 0 ? fmt::format(" ({} in all)", state.passes) : "");
+    statistics.extra["completed"] =
+        fmt::format("{} passes{}", state.passes - first_pass,
+                    first_pass > 0 ? fmt::format(" ({} in all)", state.passes) : "");
     if (!request.checkpoint.empty()) statistics.extra["checkpoint"] = request.checkpoint;
   }
   if (lights.empty())
-    facts["warning"] = "nothing emits light (no lights, emissive surfaces, environment or background): the image is black";
+    facts["warning"] =
+        "nothing emits light (no lights, emissive surfaces, environment or background): the image is black";
   statistics.extra["path"] = facts;
   return output;
 }

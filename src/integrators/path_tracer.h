@@ -34,14 +34,14 @@ struct PathCounts {
 
 // The estimate of one camera ray (display units), with its random stream.
 // The depth limits are path.max_depth and path.roulette_depth.
-Color path_radiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights, const Ray& ray,
-                    Pcg32& rng, RayCounts& rays);
+Color path_radiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights,
+                    const Ray& ray, Pcg32& rng, RayCounts& rays);
 
 // The radiance a surface point with a white Lambert surface (ρ = 1) facing `normal` would
 // reflect, times π: the irradiance at (point, normal) in display units (candela probe). Every
 // light arriving over the hemisphere counts, by next-event estimation and BSDF sampling with MIS.
-Color path_irradiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights, const Vec3& point,
-                      const Vec3& normal, Pcg32& rng, RayCounts& rays);
+Color path_irradiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights,
+                      const Vec3& point, const Vec3& normal, Pcg32& rng, RayCounts& rays);
 
 // The stream of pass `pass` at image pixel (x, y): independent of the thread and of the region.
 Pcg32 path_pixel_rng(uint64_t seed, uint64_t pass, uint32_t x, uint32_t y);

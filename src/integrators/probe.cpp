@@ -34,8 +34,9 @@ Vec3 sensor_origin(const Scene& scene, const ProbePoint& point) {
   return point.position + point.normal * scene.ray_offset(point.position);
 }
 
-ProbeResult probe_path(const Scene& scene, const PathSettings& path, const LightSampler& lights, const ProbePoint& point,
-                       std::size_t index, const ProbeSettings& settings, RayCounts& rays) {
+ProbeResult probe_path(const Scene& scene, const PathSettings& path, const LightSampler& lights,
+                       const ProbePoint& point, std::size_t index, const ProbeSettings& settings,
+                       RayCounts& rays) {
   Color irradiance, radiance;
   const Ray look{sensor_origin(scene, point), point.normal};
   for (int s = 0; s < settings.samples; ++s) {
@@ -52,8 +53,8 @@ ProbeResult probe_path(const Scene& scene, const PathSettings& path, const Light
 // the path tracer's light sampler (a small lamp is otherwise found by few rays). A point on an
 // emitter counts only when the ray toward it hits that primitive first.
 ProbeResult probe_field(const Scene& scene, const SolutionField& field, const LightSampler& lights,
-                        const ProbePoint& point, std::size_t index, const ProbeSettings& settings, uint64_t& uncovered,
-                        RayCounts& rays) {
+                        const ProbePoint& point, std::size_t index, const ProbeSettings& settings,
+                        uint64_t& uncovered, RayCounts& rays) {
   const ShadingFrame frame = ShadingFrame::from_normal(point.normal);
   const Vec3 origin = sensor_origin(scene, point);
   // The exitance the ray sees (the background's value where it leaves) and the hit's primitive.
@@ -68,7 +69,8 @@ ProbeResult probe_field(const Scene& scene, const SolutionField& field, const Li
   // The density the light strategy gives the direction toward hit.
   const auto light_pdf = [&](const Intersection& hit) {
     const double choice = lights.surface_probability(hit.primitive);
-    return choice > 0 ? choice * scene.primitives[hit.primitive].shape->pdf_from(point.position, hit.surface) : 0.0;
+    return choice > 0 ? choice * scene.primitives[hit.primitive].shape->pdf_from(point.position, hit.surface)
+                      : 0.0;
   };
   const int k = std::max(1, static_cast<int>(std::ceil(std::sqrt(double(settings.samples)))));
   const int n = k * k;
@@ -94,7 +96,8 @@ ProbeResult probe_field(const Scene& scene, const SolutionField& field, const Li
       const Vec2 u{rng.next_double(), rng.next_double()};
       if (choice.kind != LightSampler::Kind::surface) continue;  // only surfaces carry a solution
       SurfaceSample sample;
-      if (!scene.primitives[choice.index].shape->sample_from(point.position, u, sample) || !(sample.pdf > 0)) continue;
+      if (!scene.primitives[choice.index].shape->sample_from(point.position, u, sample) || !(sample.pdf > 0))
+        continue;
       const Vec3 direction = normalize(sample.position - origin);
       const double cosine = dot(direction, point.normal);
       if (!(cosine > 0)) continue;
@@ -121,8 +124,8 @@ ProbeResult probe_field(const Scene& scene, const SolutionField& field, const Li
 
 }  // namespace
 
-std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>& points, const ProbeSettings& settings,
-                               nlohmann::json* facts) {
+std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>& points,
+                               const ProbeSettings& settings, nlohmann::json* facts) {
   if (settings.samples < 1) throw std::invalid_argument("probe: samples must be >= 1");
   std::unique_ptr<SolutionField> field;
   const LightSampler lights(scene);
@@ -133,16 +136,17 @@ std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>
   } else if (settings.method == "meshless") {
     field = make_meshless_field(scene);
   } else if (settings.method != "path") {
-    throw std::invalid_argument("probe: method \"" + settings.method + "\" cannot be probed (expected one of: " +
-                                kProbeMethods + ")");
+    throw std::invalid_argument("probe: method \"" + settings.method +
+                                "\" cannot be probed (expected one of: " + kProbeMethods + ")");
   }
   std::vector<ProbeResult> results(points.size());
   tbb::enumerable_thread_specific<RayCounts> counts;
   tbb::enumerable_thread_specific<uint64_t> uncovered;
   ProgressReporter progress("probe", points.size(), "points", settings.quiet);
   tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t i) {
-    results[i] = field ? probe_field(scene, *field, lights, points[i], i, settings, uncovered.local(), counts.local())
-                       : probe_path(scene, path, lights, points[i], i, settings, counts.local());
+    results[i] =
+        field ? probe_field(scene, *field, lights, points[i], i, settings, uncovered.local(), counts.local())
+              : probe_path(scene, path, lights, points[i], i, settings, counts.local());
     progress.advance();
   });
   progress.finish();
@@ -180,7 +184,8 @@ std::vector<ProbePoint> read_probe_points(const std::string& path) {
     for (int k = 0; k < 6; ++k) {
       const std::size_t comma = line.find(',', at);
       if (k < 5 && comma == std::string::npos)
-        fail(path, line_number, int(line.size()) + 1, fmt::format("expected 6 values x,y,z,nx,ny,nz, found {}", k + 1));
+        fail(path, line_number, int(line.size()) + 1,
+             fmt::format("expected 6 values x,y,z,nx,ny,nz, found {}", k + 1));
       if (k == 5 && comma != std::string::npos)
         fail(path, line_number, int(comma) + 1, "more than 6 values (expected x,y,z,nx,ny,nz)");
       const std::string field = line.substr(at, k < 5 ? comma - at : std::string::npos);
@@ -200,7 +205,8 @@ std::vector<ProbePoint> read_probe_points(const std::string& path) {
     }
     const Vec3 normal{values[3], values[4], values[5]};
     const double norm = length(normal);
-    if (!(norm > 0) || !std::isfinite(norm)) fail(path, line_number, 1, "the normal (nx,ny,nz) must not be zero");
+    if (!(norm > 0) || !std::isfinite(norm))
+      fail(path, line_number, 1, "the normal (nx,ny,nz) must not be zero");
     points.push_back({{values[0], values[1], values[2]}, normal / norm});
   }
   if (points.empty()) fail(path, line_number, 0, "no points (expected lines x,y,z,nx,ny,nz)");
@@ -212,7 +218,8 @@ std::vector<ProbePoint> grid_probe_points(const Vec3& corner, const Vec3& u, con
   std::vector<ProbePoint> points;
   points.reserve(std::size_t(nu) * nv);
   for (int j = 0; j < nv; ++j)
-    for (int i = 0; i < nu; ++i) points.push_back({corner + u * ((i + 0.5) / nu) + v * ((j + 0.5) / nv), normal});
+    for (int i = 0; i < nu; ++i)
+      points.push_back({corner + u * ((i + 0.5) / nu) + v * ((j + 0.5) / nv), normal});
   return points;
 }
 

@@ -17,10 +17,9 @@
 #pragma once
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "scene/scene.h"
 
@@ -48,8 +47,8 @@ inline constexpr const char* kProbeMethods = "path, radiosity, meshless";
 
 // Throws std::invalid_argument for another method. Fills facts (when not null) with what the
 // solution measured and how many rays found no solution (off the radiosity mesh, no site near).
-std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>& points, const ProbeSettings& settings,
-                               nlohmann::json* facts = nullptr);
+std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>& points,
+                               const ProbeSettings& settings, nlohmann::json* facts = nullptr);
 
 // Points from a CSV file: one "x,y,z,nx,ny,nz" per line; blank lines and lines starting with '#'
 // are skipped, as is a first line naming the columns. Throws InputError (file, line, column) for

@@ -6,9 +6,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "io/byte_stream.h"
 #include "distributed/cluster.h"
 #include "integrators/distributed_tiles.h"
+#include "io/byte_stream.h"
 #include "radiosity/display.h"
 #include "radiosity/radiosity_checkpoint.h"
 #include "radiosity/solve.h"
@@ -166,7 +166,8 @@ RenderResult RadiosityMethod::render(const Scene& scene, const RenderRequest& re
   // Issue 11: every rank holds the same solution.
   draw_across_ranks(
       request.cluster, region,
-      [&](const PixelRect& area, Film& target) { display.draw(area.x0, area.y0, target); }, output.film, statistics);
+      [&](const PixelRect& area, Film& target) { display.draw(area.x0, area.y0, target); }, output.film,
+      statistics);
   const auto pixel_count = static_cast<uint64_t>(region.width()) * region.height();
   if (display.casts_primary_rays()) statistics.rays.primary += pixel_count;  // rasterized: none
   statistics.pixels += pixel_count;

@@ -27,7 +27,7 @@
 //            nearest the hit point → that element's radiosity B (the exitance, view
 //            independent), shown directly as the seed's radiosity images are.
 //   gouraud  (default) the vertex radiosities of radiosity/vertex_radiosity.h; the elements drawn
-//            as triangles by the scanline rasterizer in 32 × 32 tiles, colours interpolated
+//            as triangles by the scanline rasterizer in 32 × 32 tiles, colors interpolated
 //            perspective-correctly.
 // Pixels no surface covers show the background. Each pixel depends only on the solution and its
 // own ray or tile, and the solution is computed sequentially (the form-factor rows in parallel,

@@ -48,23 +48,31 @@ constexpr int kPerLight = 4;         // dot-product mode: N·L and the specular 
 class RasterShader {
  public:
   RasterShader(const Scene& scene, const TessellatedScene& triangles, const RasterSettings& settings)
-      : scene_(scene), triangles_(triangles), settings_(settings),
+      : scene_(scene),
+        triangles_(triangles),
+        settings_(settings),
         perspective_(scene.camera->type_name() == "perspective"),
-        eye_(scene.camera->eye_position()), view_direction_(scene.camera->view_direction()) {
+        eye_(scene.camera->eye_position()),
+        view_direction_(scene.camera->view_direction()) {
     if (settings_.shading == RasterShading::dot_product &&
         kSurfaceVaryings + kPerLight * static_cast<int>(scene.lights.size()) > kMaxVaryings)
-      throw InputError({scene.source, 0, 0, "raster.shading"}, "\"dotproduct\" interpolates " + std::to_string(kPerLight) +
-                                  " values per light and supports at most " +
-                                  std::to_string((kMaxVaryings - kSurfaceVaryings) / kPerLight) +
-                                  " lights (the scene has " + std::to_string(scene.lights.size()) + ")");
+      throw InputError({scene.source, 0, 0, "raster.shading"},
+                       "\"dotproduct\" interpolates " + std::to_string(kPerLight) +
+                           " values per light and supports at most " +
+                           std::to_string((kMaxVaryings - kSurfaceVaryings) / kPerLight) +
+                           " lights (the scene has " + std::to_string(scene.lights.size()) + ")");
   }
 
   int varying_count() const {
     switch (settings_.shading) {
-      case RasterShading::flat: return 0;
-      case RasterShading::gouraud: return 3;
-      case RasterShading::phong: return kNormal + 3;
-      case RasterShading::dot_product: return kSurfaceVaryings + kPerLight * static_cast<int>(scene_.lights.size());
+      case RasterShading::flat:
+        return 0;
+      case RasterShading::gouraud:
+        return 3;
+      case RasterShading::phong:
+        return kNormal + 3;
+      case RasterShading::dot_product:
+        return kSurfaceVaryings + kPerLight * static_cast<int>(scene_.lights.size());
     }
     return 0;
   }
@@ -78,8 +86,8 @@ class RasterShader {
   Vec3 on_surface(uint32_t triangle, const Vec3& p) const {
     const std::size_t c = 3 * std::size_t(triangle);
     const Vec3* corners = &triangles_.corner_positions[c];
-    const double reach = std::max({length(corners[1] - corners[0]), length(corners[2] - corners[1]),
-                                   length(corners[0] - corners[2])});
+    const double reach = std::max(
+        {length(corners[1] - corners[0]), length(corners[2] - corners[1]), length(corners[0] - corners[2])});
     const Vec3& n = triangles_.face_normals[triangle];
     const Shape& shape = *scene_.primitives[triangles_.primitives[triangle]].shape;
     double best = kInfinity;
@@ -151,8 +159,10 @@ class RasterShader {
     for (const auto& light : scene_.lights) {
       LightSample sample;
       Vec3 L;
-      if (light->illuminate(p, sample)) L = sample.direction;
-      else L = -N;  // outside a spot cone: no light from it here
+      if (light->illuminate(p, sample))
+        L = sample.direction;
+      else
+        L = -N;  // outside a spot cone: no light from it here
       const double n_dot_l = dot(N, L);
       Color specular;
       if (n_dot_l > 0 && at.ks > 0) {
@@ -160,7 +170,7 @@ class RasterShader {
           specular = at.ks * n_dot_l * cook_torrance(N, V, L, at.roughness, material.fresnel_ior);
         } else {
           const double cosine = material.specular_model == SpecularModel::phong ? dot(reflect(L, N), V)
-                                                                                 : dot(N, normalize(L + V));
+                                                                                : dot(N, normalize(L + V));
           if (cosine > 0) specular = Color(at.ks * std::pow(cosine, at.shininess));
         }
       }
@@ -173,13 +183,16 @@ class RasterShader {
   // The color of a pixel whose nearest surface is `triangle` with interpolated varyings.
   Color shade(uint32_t triangle, const double* v, const Color& flat_color, TraceContext& context) const {
     switch (settings_.shading) {
-      case RasterShading::flat: return flat_color;
-      case RasterShading::gouraud: return {v[0], v[1], v[2]};
+      case RasterShading::flat:
+        return flat_color;
+      case RasterShading::gouraud:
+        return {v[0], v[1], v[2]};
       case RasterShading::phong:
         return local_model(triangle, {v[kPosition], v[kPosition + 1], v[kPosition + 2]},
-                           {v[kObjectPosition], v[kObjectPosition + 1], v[kObjectPosition + 2]}, {v[kUv], v[kUv + 1]},
-                           {v[kNormal], v[kNormal + 1], v[kNormal + 2]}, context);
-      case RasterShading::dot_product: return dot_product(triangle, v, context);
+                           {v[kObjectPosition], v[kObjectPosition + 1], v[kObjectPosition + 2]},
+                           {v[kUv], v[kUv + 1]}, {v[kNormal], v[kNormal + 1], v[kNormal + 2]}, context);
+      case RasterShading::dot_product:
+        return dot_product(triangle, v, context);
     }
     return {};
   }
@@ -187,11 +200,15 @@ class RasterShader {
   // Flat shading (000 §3.1): the model once, at the centroid, with the face normal.
   Color flat(uint32_t triangle, TraceContext& context) const {
     const std::size_t c = 3 * std::size_t(triangle);
-    const Vec3 p = (triangles_.corner_positions[c] + triangles_.corner_positions[c + 1] + triangles_.corner_positions[c + 2]) / 3;
+    const Vec3 p = (triangles_.corner_positions[c] + triangles_.corner_positions[c + 1] +
+                    triangles_.corner_positions[c + 2]) /
+                   3;
     const Vec3 q = (triangles_.corner_object_positions[c] + triangles_.corner_object_positions[c + 1] +
-                    triangles_.corner_object_positions[c + 2]) / 3;
-    const Vec2 uv{(triangles_.corner_uvs[c].x + triangles_.corner_uvs[c + 1].x + triangles_.corner_uvs[c + 2].x) / 3,
-                  (triangles_.corner_uvs[c].y + triangles_.corner_uvs[c + 1].y + triangles_.corner_uvs[c + 2].y) / 3};
+                    triangles_.corner_object_positions[c + 2]) /
+                   3;
+    const Vec2 uv{
+        (triangles_.corner_uvs[c].x + triangles_.corner_uvs[c + 1].x + triangles_.corner_uvs[c + 2].x) / 3,
+        (triangles_.corner_uvs[c].y + triangles_.corner_uvs[c + 1].y + triangles_.corner_uvs[c + 2].y) / 3};
     return local_model(triangle, p, q, uv, triangles_.face_normals[triangle], context);
   }
 
@@ -202,7 +219,8 @@ class RasterShader {
     hit.position = p;
     hit.object_position = {v[kObjectPosition], v[kObjectPosition + 1], v[kObjectPosition + 2]};
     hit.uv = {v[kUv], v[kUv + 1]};
-    hit.geometric_normal = hit.shading_normal = face_forward(triangles_.face_normals[triangle], toward_viewer(p));
+    hit.geometric_normal = hit.shading_normal =
+        face_forward(triangles_.face_normals[triangle], toward_viewer(p));
     const Material& material = scene_.materials[triangles_.materials[triangle]];
     const SurfaceProperties at = material.at(hit);
     Color result = at.ka * scene_.ambient;
@@ -217,7 +235,8 @@ class RasterShader {
       Color s(1);
       if (settings_.shadows) {
         const double reach = std::isfinite(sample.distance) ? sample.distance - 2 * offset : kInfinity;
-        s = shadow_transmittance(scene_, p + hit.geometric_normal * offset, sample.direction, reach, context, -1);
+        s = shadow_transmittance(scene_, p + hit.geometric_normal * offset, sample.direction, reach, context,
+                                 -1);
       }
       result += sample.intensity * s * (at.kd * n_dot_l + specular);
     }
@@ -280,7 +299,8 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
     for (int k = 0; k < 3; ++k) {
       const Vec3& p = triangles.corner_positions[3 * t + k];
       clip_positions[3 * t + k] = clip_from_world * Eigen::Vector4d(p.x, p.y, p.z, 1);
-      if (varying_count > 0) shader.corner_varyings(static_cast<uint32_t>(t), k, &corner_varyings[(3 * t + k) * stride], context);
+      if (varying_count > 0)
+        shader.corner_varyings(static_cast<uint32_t>(t), k, &corner_varyings[(3 * t + k) * stride], context);
     }
     if (!flat_colors.empty()) flat_colors[t] = shader.flat(static_cast<uint32_t>(t), context);
   });
@@ -296,25 +316,28 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
     int outside_all = 0x3F;
     for (int k = 0; k < 3; ++k) {
       const Eigen::Vector4d& c = clip_positions[3 * t + k];
-      const int outside = (c.x() < -c.w()) | (c.x() > c.w()) << 1 | (c.y() < -c.w()) << 2 | (c.y() > c.w()) << 3 |
-                          (c.z() < -c.w()) << 4 | (c.z() > c.w()) << 5;
+      const int outside = (c.x() < -c.w()) | (c.x() > c.w()) << 1 | (c.y() < -c.w()) << 2 |
+                          (c.y() > c.w()) << 3 | (c.z() < -c.w()) << 4 | (c.z() > c.w()) << 5;
       outside_all &= outside;
     }
     if (outside_all != 0) continue;
     int tx0 = 0, ty0 = 0, tx1 = tiles_x - 1, ty1 = tiles_y - 1;
     const auto [lower_x, upper_x, lower_y, upper_y, in_front] =
-        screen_bounds(clip_positions[3 * t], clip_positions[3 * t + 1], clip_positions[3 * t + 2], camera.width(),
-                      camera.height());
+        screen_bounds(clip_positions[3 * t], clip_positions[3 * t + 1], clip_positions[3 * t + 2],
+                      camera.width(), camera.height());
     if (in_front) {
-      if (!(upper_x >= region.x0 && lower_x <= region.x1 && upper_y >= region.y0 && lower_y <= region.y1)) continue;
+      if (!(upper_x >= region.x0 && lower_x <= region.x1 && upper_y >= region.y0 && lower_y <= region.y1))
+        continue;
       const auto tile_of = [&](double v, int origin, int count) {
-        return std::clamp(static_cast<int>(std::floor((std::clamp(v, -1e9, 1e9) - origin) / tile)), 0, count - 1);
+        return std::clamp(static_cast<int>(std::floor((std::clamp(v, -1e9, 1e9) - origin) / tile)), 0,
+                          count - 1);
       };
       tx0 = tile_of(lower_x, region.x0, tiles_x), tx1 = tile_of(upper_x, region.x0, tiles_x);
       ty0 = tile_of(lower_y, region.y0, tiles_y), ty1 = tile_of(upper_y, region.y0, tiles_y);
     }
     for (int ty = ty0; ty <= ty1; ++ty)
-      for (int tx = tx0; tx <= tx1; ++tx) bins[std::size_t(ty) * tiles_x + tx].push_back(static_cast<uint32_t>(t));
+      for (int tx = tx0; tx <= tx1; ++tx)
+        bins[std::size_t(ty) * tiles_x + tx].push_back(static_cast<uint32_t>(t));
   }
   ProgressReporter progress("raster", static_cast<uint64_t>(tiles_x) * tiles_y, "tiles", request.quiet);
   tbb::enumerable_thread_specific<RasterStatistics> tile_statistics;
@@ -334,14 +357,16 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
       for (int k = 0; k < 3; ++k) {
         corners[k].clip = clip_positions[3 * t + k];
         if (varying_count > 0)
-          std::copy_n(corner_varyings.data() + (3 * t + k) * stride, varying_count, corners[k].varyings.begin());
+          std::copy_n(corner_varyings.data() + (3 * t + k) * stride, varying_count,
+                      corners[k].varyings.begin());
       }
-      rasterizer.draw_triangle(corners[0], corners[1], corners[2], varying_count, [&](const Fragment& fragment) {
-        const std::size_t pixel = std::size_t(fragment.y - y0) * w + (fragment.x - x0);
-        buffers.triangle[pixel] = id;
-        std::copy_n(fragment.varyings, varying_count, buffers.varyings.begin() + pixel * stride);
-        return true;
-      });
+      rasterizer.draw_triangle(
+          corners[0], corners[1], corners[2], varying_count, [&](const Fragment& fragment) {
+            const std::size_t pixel = std::size_t(fragment.y - y0) * w + (fragment.x - x0);
+            buffers.triangle[pixel] = id;
+            std::copy_n(fragment.varyings, varying_count, buffers.varyings.begin() + pixel * stride);
+            return true;
+          });
     }
     TraceContext& context = contexts.local();
     for (int y = y0; y < y1; ++y)

@@ -26,9 +26,11 @@
 namespace candela {
 
 enum class RasterShading { flat, gouraud, phong, dot_product };
-inline constexpr auto kRasterShadingNames = enum_names<RasterShading>(
-    {{RasterShading::flat, "flat"}, {RasterShading::gouraud, "gouraud"}, {RasterShading::phong, "phong"},
-     {RasterShading::dot_product, "dotproduct"}});
+inline constexpr auto kRasterShadingNames =
+    enum_names<RasterShading>({{RasterShading::flat, "flat"},
+                               {RasterShading::gouraud, "gouraud"},
+                               {RasterShading::phong, "phong"},
+                               {RasterShading::dot_product, "dotproduct"}});
 
 // The scene file's "raster" object.
 struct RasterSettings {

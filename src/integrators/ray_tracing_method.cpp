@@ -10,7 +10,6 @@
 #include "camera/antialiasing.h"
 #include "distributed/cluster.h"
 #include "integrators/distributed_tiles.h"
-
 #include "util/cancellation.h"
 #include "util/progress.h"
 
@@ -24,8 +23,8 @@ RenderResult RayTracingMethod::render(const Scene& scene, const RenderRequest& r
   const int tile = scene.render.tile_size;
   Cluster* cluster = several_ranks(request);
   // Across ranks the tiles are the larger ones handed out; rank 0 shows their progress.
-  const int64_t tile_count = sampling_tile_count(region.width(), region.height(),
-                                                 cluster ? kDistributedTileSize : tile);
+  const int64_t tile_count =
+      sampling_tile_count(region.width(), region.height(), cluster ? kDistributedTileSize : tile);
   ProgressReporter progress("render", static_cast<uint64_t>(tile_count), "tiles",
                             request.quiet || (cluster && !cluster->root()));
   // Counts are per thread and summed at the end; the random stream is reseeded per ray from the
@@ -33,8 +32,10 @@ RenderResult RayTracingMethod::render(const Scene& scene, const RenderRequest& r
   tbb::enumerable_thread_specific<TraceContext> contexts;
   const RadianceFunction radiance = [&](double x, double y) {
     TraceContext& context = contexts.local();
-    const auto px = static_cast<uint32_t>(std::clamp(static_cast<int>(std::floor(x)), 0, scene.camera->width() - 1));
-    const auto py = static_cast<uint32_t>(std::clamp(static_cast<int>(std::floor(y)), 0, scene.camera->height() - 1));
+    const auto px =
+        static_cast<uint32_t>(std::clamp(static_cast<int>(std::floor(x)), 0, scene.camera->width() - 1));
+    const auto py =
+        static_cast<uint32_t>(std::clamp(static_cast<int>(std::floor(y)), 0, scene.camera->height() - 1));
     context.rng = pixel_rng(scene.render.seed, px, py);
     ++context.counts.primary;
     return trace_primary(scene, scene.camera->generate_ray(x, y), context);
@@ -56,9 +57,11 @@ RenderResult RayTracingMethod::render(const Scene& scene, const RenderRequest& r
         [&](const PixelRect& piece) {
           RenderedTile rendered{Film(piece.width(), piece.height()), {}};
           const SamplingRegion sampling{piece.x0, piece.y0, scene.camera->width(), scene.camera->height()};
-          SamplingResult sampled = sample_image(scene.antialiasing, scene.render.seed, sampling, tile, radiance, rendered.film);
+          SamplingResult sampled =
+              sample_image(scene.antialiasing, scene.render.seed, sampling, tile, radiance, rendered.film);
           rendered.counts = std::move(sampled.traced_per_pixel);
-          rendered.counts.insert(rendered.counts.end(), sampled.samples_per_pixel.begin(), sampled.samples_per_pixel.end());
+          rendered.counts.insert(rendered.counts.end(), sampled.samples_per_pixel.begin(),
+                                 sampled.samples_per_pixel.end());
           return rendered;
         },
         film,

@@ -8,19 +8,29 @@ namespace candela {
 
 const char* ray_kind_name(RayKind kind) {
   switch (kind) {
-    case RayKind::primary: return "primary";
-    case RayKind::reflected: return "reflected";
-    case RayKind::refracted: return "refracted";
-    case RayKind::internal_reflection: return "internal reflection";
-    case RayKind::see_through: return "see-through";
-    case RayKind::shadow: return "shadow";
+    case RayKind::primary:
+      return "primary";
+    case RayKind::reflected:
+      return "reflected";
+    case RayKind::refracted:
+      return "refracted";
+    case RayKind::internal_reflection:
+      return "internal reflection";
+    case RayKind::see_through:
+      return "see-through";
+    case RayKind::shadow:
+      return "shadow";
   }
   return "?";
 }
 
 namespace {
-std::string format_vec(const Vec3& v) { return fmt::format("({:.4g}, {:.4g}, {:.4g})", v.x, v.y, v.z); }
-std::string format_color(const Color& c) { return fmt::format("[{:.4g}, {:.4g}, {:.4g}]", c.r, c.g, c.b); }
+std::string format_vec(const Vec3& v) {
+  return fmt::format("({:.4g}, {:.4g}, {:.4g})", v.x, v.y, v.z);
+}
+std::string format_color(const Color& c) {
+  return fmt::format("[{:.4g}, {:.4g}, {:.4g}]", c.r, c.g, c.b);
+}
 }  // namespace
 
 std::string RayTree::to_text() const {

@@ -21,12 +21,12 @@ struct RayTreeNode {
   std::string object;  // name of what it hit
   double t = 0;
   Vec3 position;
-  double weight = 1;     // product of the k's from the eye (000 §5.5)
-  Color transmittance;   // shadow rays: the s of 001, per channel
-  Color local;           // the local model's part at the hit
-  Color radiance;        // what the ray brings back
-  Color contribution;    // radiance × weight × k of the last bounce: its share of the pixel
-  std::string note;      // why the branch ended, what it saw
+  double weight = 1;    // product of the k's from the eye (000 §5.5)
+  Color transmittance;  // shadow rays: the s of 001, per channel
+  Color local;          // the local model's part at the hit
+  Color radiance;       // what the ray brings back
+  Color contribution;   // radiance × weight × k of the last bounce: its share of the pixel
+  std::string note;     // why the branch ended, what it saw
 };
 
 class RayTree {

@@ -9,7 +9,8 @@ std::unique_ptr<Scene> load_scene_file(const std::string& path, const std::vecto
 }
 
 std::unique_ptr<Scene> load_scene_text(const std::string& text, const std::string& name,
-                                       const std::string& base_directory, const std::vector<std::string>& overrides) {
+                                       const std::string& base_directory,
+                                       const std::vector<std::string>& overrides) {
   return read_scene_text(text, name, base_directory, overrides, method_settings_sections());
 }
 

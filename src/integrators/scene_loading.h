@@ -11,7 +11,8 @@
 
 namespace candela {
 
-std::unique_ptr<Scene> load_scene_file(const std::string& path, const std::vector<std::string>& overrides = {});
+std::unique_ptr<Scene> load_scene_file(const std::string& path,
+                                       const std::vector<std::string>& overrides = {});
 std::unique_ptr<Scene> load_scene_text(const std::string& text, const std::string& name,
                                        const std::string& base_directory,
                                        const std::vector<std::string>& overrides = {});

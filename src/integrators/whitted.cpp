@@ -68,8 +68,9 @@ Color trace(const Scene& scene, const Ray& ray, const TreeLimits& limits, RayKin
   const double surface_share = 1 - t;
   const SurfaceProperties at = material.at(hit.surface);
   // A fully clear surface shows only what lies behind it.
-  const Color local = surface_share > 0 ? local_illumination(scene, hit, at, V, limits.shadows, context, node_index)
-                                        : Color();
+  const Color local = surface_share > 0
+                          ? local_illumination(scene, hit, at, V, limits.shadows, context, node_index)
+                          : Color();
   Color radiance = local;
 
   const bool entering = dot(hit.surface.geometric_normal, V) > 0;
@@ -122,8 +123,8 @@ Color trace(const Scene& scene, const Ray& ray, const TreeLimits& limits, RayKin
           // 000 §5.3: no transmitted ray; reflect with the flipped normal instead.
           ++context.counts.reflected;
           const Ray internal{outside_origin, above(reflect(V, N))};
-          radiance += at.kt * trace(scene, internal, limits, RayKind::internal_reflection,
-                                    depth + 1, surface_weight * at.kt, context, node_index);
+          radiance += at.kt * trace(scene, internal, limits, RayKind::internal_reflection, depth + 1,
+                                    surface_weight * at.kt, context, node_index);
         }
       } else {
         transmission_pruned = true;
@@ -145,7 +146,8 @@ Color trace(const Scene& scene, const Ray& ray, const TreeLimits& limits, RayKin
     } else if (weight * t >= min_weight) {
       ++context.counts.refracted;
       const Ray through{inside_origin, ray.direction};
-      behind = trace(scene, through, limits, RayKind::see_through, depth + 1, weight * t, context, node_index);
+      behind =
+          trace(scene, through, limits, RayKind::see_through, depth + 1, weight * t, context, node_index);
     } else {
       note_pruned = "see-through pruned: weight below whitted.min_weight";
     }

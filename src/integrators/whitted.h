@@ -41,7 +41,8 @@ class WhittedMethod final : public RayTracingMethod {
   explicit WhittedMethod(const WhittedSettings& settings = {}) : settings_(settings) {}
   std::string_view name() const override { return "whitted"; }
   Color trace_primary(const Scene& scene, const Ray& ray, TraceContext& context) const override {
-    return trace_ray_tree(scene, ray, {settings_.max_depth, settings_.min_weight, settings_.shadows, settings_.max_depth},
+    return trace_ray_tree(scene, ray,
+                          {settings_.max_depth, settings_.min_weight, settings_.shadows, settings_.max_depth},
                           context);
   }
 

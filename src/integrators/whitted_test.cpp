@@ -12,7 +12,8 @@ namespace candela {
 namespace {
 
 std::unique_ptr<Scene> scene_from(const std::string& body, const std::string& camera) {
-  return load_scene_text(R"({"format": "candela/1", "camera": )" + camera + ", " + body + "}", "test.json", ".");
+  return load_scene_text(R"({"format": "candela/1", "camera": )" + camera + ", " + body + "}", "test.json",
+                         ".");
 }
 
 // One pixel looking straight down -z through the image centre.
@@ -41,7 +42,8 @@ TEST(Whitted, LocalModelOnALitPlaneMatchesTheFormula) {
   const double d = 5, n_dot_l = 0.8;
   // R = 2N(N·L) − L = (0, -0.6, 0.8); V = (0, 0, 1): R·V = 0.8.
   const double specular = 0.3 * 0.8 * 0.8;
-  const Color expected = Color(0.1 * 0.2) + Color(0.5, 0.25, 1) * (2 / (d + 1) * n_dot_l) + Color(2 / (d + 1) * specular);
+  const Color expected =
+      Color(0.1 * 0.2) + Color(0.5, 0.25, 1) * (2 / (d + 1) * n_dot_l) + Color(2 / (d + 1) * specular);
   const Color got = render_pixel(*scene, whitted_of(*scene));
   EXPECT_NEAR(got.r, expected.r, 1e-12);
   EXPECT_NEAR(got.g, expected.g, 1e-12);
@@ -49,16 +51,19 @@ TEST(Whitted, LocalModelOnALitPlaneMatchesTheFormula) {
 }
 
 TEST(Whitted, AttenuationModes) {
-  const std::string shapes = R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": {"kd": 1}}])";
+  const std::string shapes =
+      R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": {"kd": 1}}])";
   const auto with = [&](const std::string& attenuation) {
     const auto scene = scene_from(R"("lights": [{"type": "point", "position": [0, 0, 4], "attenuation": )" +
-                                      attenuation + "}], " + shapes, kCentreCamera);
+                                      attenuation + "}], " + shapes,
+                                  kCentreCamera);
     return render_pixel(*scene, whitted_of(*scene)).r;
   };
   EXPECT_NEAR(with("\"none\""), 1.0, 1e-12);
   EXPECT_NEAR(with("\"inverse-square\""), 1.0 / (4 * kPi * 16), 1e-12);
   EXPECT_NEAR(with(R"({"mode": "linear", "d0": 2})"), 1.0 / 6, 1e-12);
-  EXPECT_NEAR(with(R"({"mode": "polynomial", "constant": 1, "linear": 0.5, "quadratic": 0.25})"), 1.0 / 7, 1e-12);
+  EXPECT_NEAR(with(R"({"mode": "polynomial", "constant": 1, "linear": 0.5, "quadratic": 0.25})"), 1.0 / 7,
+              1e-12);
   // Clamped at 1: a small denominator never amplifies (001's f_at ≤ 1).
   EXPECT_NEAR(with(R"({"mode": "polynomial", "constant": 0.1})"), 1.0, 1e-12);
 }
@@ -106,12 +111,13 @@ TEST(Whitted, LightInsideAnAbsorbingSphere) {
   // A point light at the centre of a glass sphere (radius 0.5, kt 0.9, absorption 5): the
   // shadow ray from outside crosses 0.5 of glass, s = 0.9·exp(−2.5). It used to skip the
   // absorption because the ray never left the sphere before reaching the light.
-  const auto scene = scene_from(R"(
+  const auto scene =
+      scene_from(R"(
     "lights": [{"type": "point", "position": [0, 0, 2]}],
     "materials": {"floor": {"kd": 1}, "glass": {"kd": 0, "kt": 0.9, "absorption": 5}},
     "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": "floor"},
                {"type": "sphere", "center": [0, 0, 2], "radius": 0.5, "material": "glass"}])",
-                                R"({"eye": [3, 0, 0.5], "target": [0, 0, 0], "fov": 0.001, "width": 1, "height": 1})");
+                 R"({"eye": [3, 0, 0.5], "target": [0, 0, 0], "fov": 0.001, "width": 1, "height": 1})");
   Color radiance;
   const RayTree tree = LocalMethod().pixel_ray_tree(*scene, 0, 0, radiance);
   ASSERT_EQ(tree.nodes().size(), 2u);
@@ -125,9 +131,11 @@ TEST(Whitted, SmallShadowsSurviveFarFromTheOrigin) {
   for (const double x : {0.0, 1e5}) {
     const std::string X = std::to_string(x);
     const auto scene = scene_from(R"(
-      "lights": [{"type": "point", "position": [)" + X + R"(, 0, 1]}],
+      "lights": [{"type": "point", "position": [)" +
+                                      X + R"(, 0, 1]}],
       "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1]},
-                 {"type": "sphere", "center": [)" + X + R"(, 0, 0.006], "radius": 0.003}])",
+                 {"type": "sphere", "center": [)" +
+                                      X + R"(, 0, 0.006], "radius": 0.003}])",
                                   R"({"eye": [)" + X + R"(, -0.05, 0.0001], "target": [)" + X +
                                       R"(, 0, 0], "fov": 0.001, "width": 1, "height": 1})");
     EXPECT_TRUE(render_pixel(*scene, LocalMethod()).is_black()) << "x = " << x;
@@ -175,12 +183,13 @@ TEST(Whitted, RefractionThroughASlabKeepsTheDirection) {
   // A glass box (kt 1, ior 1.5) between the eye and a lit white plane: the ray enters and
   // leaves through parallel faces, so it continues along its original line and sees the
   // plane's color times kt².
-  const auto scene = scene_from(R"(
+  const auto scene =
+      scene_from(R"(
     "ambient": 1,
     "materials": {"glass": {"kd": 0, "kt": 0.8, "ior": 1.5}, "white": {"kd": 1}},
     "shapes": [{"type": "box", "min": [-5, -5, 2], "max": [5, 5, 4], "material": "glass"},
                {"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": "white"}])",
-                                R"({"eye": [0.3, 0.2, 10], "target": [0, 0, 0], "fov": 0.01, "width": 1, "height": 1})");
+                 R"({"eye": [0.3, 0.2, 10], "target": [0, 0, 0], "fov": 0.01, "width": 1, "height": 1})");
   Color radiance;
   const RayTree tree = whitted_of(*scene).pixel_ray_tree(*scene, 0, 0, radiance);
   EXPECT_NEAR(radiance.r, 0.64, 1e-9);
@@ -194,11 +203,12 @@ TEST(Whitted, RefractionThroughASlabKeepsTheDirection) {
 TEST(Whitted, TotalInternalReflectionInsideGlass) {
   // Looking from inside a glass block (ior 1.5) at its top face at 60° from the normal, past
   // the critical angle of 41.8°: the tree holds an internal reflection, not a refraction.
-  const auto scene = scene_from(R"(
+  const auto scene = scene_from(
+      R"(
     "materials": {"glass": {"kd": 0, "kt": 1, "ior": 1.5}},
     "shapes": [{"type": "box", "min": [-100, -100, -100], "max": [100, 100, 0], "material": "glass"}],
     "whitted": {"max_depth": 1})",
-                                R"({"eye": [0, 0, -1], "target": [0.8660254037844386, 0, -0.5], "fov": 0.01, "width": 1, "height": 1})");
+      R"({"eye": [0, 0, -1], "target": [0.8660254037844386, 0, -0.5], "fov": 0.01, "width": 1, "height": 1})");
   Color radiance;
   const RayTree tree = whitted_of(*scene).pixel_ray_tree(*scene, 0, 0, radiance);
   ASSERT_EQ(tree.nodes().size(), 2u);
@@ -211,15 +221,19 @@ TEST(Whitted, NoShadowAcneOnCurvedSurfaces) {
   // (no self-shadowing speckles), at several scene scales.
   for (double scale : {1e-3, 1.0, 1e4}) {
     const std::string s = std::to_string(scale);
-    const auto scene = scene_from(
-        R"("lights": [{"type": "point", "position": [0, 0, )" + std::to_string(10 * scale) + R"(]}],
-           "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": )" + s + "}]",
-        R"({"eye": [0, 0, )" + std::to_string(5 * scale) + R"(], "target": [0, 0, 0], "fov": 15, "width": 32, "height": 32})");
+    const auto scene = scene_from(R"("lights": [{"type": "point", "position": [0, 0, )" +
+                                      std::to_string(10 * scale) + R"(]}],
+           "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": )" +
+                                      s + "}]",
+                                  R"({"eye": [0, 0, )" + std::to_string(5 * scale) +
+                                      R"(], "target": [0, 0, 0], "fov": 15, "width": 32, "height": 32})");
     const Film film = whitted_of(*scene).render(*scene, {{0, 0, 32, 32}, true}).film;
     int dark = 0, lit = 0;
     for (const Color& c : film.pixels()) {
-      if (c.r > 0) ++lit;
-      else ++dark;
+      if (c.r > 0)
+        ++lit;
+      else
+        ++dark;
     }
     // The sphere subtends 23° of the 15° view (21° at the corners) at this distance: it fills the image.
     EXPECT_EQ(dark, 0) << "scale " << scale;

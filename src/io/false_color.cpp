@@ -92,7 +92,7 @@ std::string format_scale_value(double value) {
 }
 
 Film false_color_image(const std::vector<double>& values, int width, int height, double low, double high,
-                        ColorMap map) {
+                       ColorMap map) {
   if (width <= 0 || height <= 0)
     throw std::invalid_argument(
         fmt::format("false-color image size must be positive, got {}x{}", width, height));

@@ -54,6 +54,6 @@ std::string format_scale_value(double value);
 // high (t = 1); values outside it take the end colors. Throws std::invalid_argument when the
 // sizes disagree, width or height is not positive, or !(low < high) (both must be finite).
 Film false_color_image(const std::vector<double>& values, int width, int height, double low, double high,
-                        ColorMap map);
+                       ColorMap map);
 
 }  // namespace candela

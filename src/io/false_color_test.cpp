@@ -37,8 +37,7 @@ TEST(FalseColor, ViridisEndpointsMatchThePublishedMap) {
 }
 
 TEST(FalseColor, DivergingIsBlueWhiteRed) {
-  const Color blue = color_map_diverging(0), white = color_map_diverging(0.5),
-              red = color_map_diverging(1);
+  const Color blue = color_map_diverging(0), white = color_map_diverging(0.5), red = color_map_diverging(1);
   EXPECT_GT(blue.b, blue.r);
   EXPECT_EQ(white, Color(1));
   EXPECT_GT(red.r, red.b);
@@ -95,7 +94,7 @@ TEST(FalseColor, PngKeepsTheMapsColors) {
   const int top = png.height() - 1;  // RgbImage counts rows from the bottom
   for (int x = 0; x < 4; ++x)
     expect_color_near(png.texel(x, top), color_map_diverging((values[std::size_t(x)] + 1) / 2),
-                       0.5 / 255 + 1e-6);
+                      0.5 / 255 + 1e-6);
 }
 
 TEST(FalseColor, RefusesBadArguments) {

@@ -25,10 +25,14 @@ bool image_format_for_path(const std::string& path, ImageFormat& format) {
   std::string extension = path.substr(dot + 1);
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (extension == "png") format = ImageFormat::png;
-  else if (extension == "exr") format = ImageFormat::exr;
-  else if (extension == "pfm") format = ImageFormat::pfm;
-  else return false;
+  if (extension == "png")
+    format = ImageFormat::png;
+  else if (extension == "exr")
+    format = ImageFormat::exr;
+  else if (extension == "pfm")
+    format = ImageFormat::pfm;
+  else
+    return false;
   return true;
 }
 
@@ -51,9 +55,8 @@ void write_png(const Film& film, const std::string& path, const DisplaySettings&
   if (!stbi_write_png_to_func(append, &encoded, film.width(), film.height(), 3, bytes.data(),
                               film.width() * 3))
     throw std::runtime_error("PNG encoding failed for " + path);
-  write_atomically(path, [&](const std::string& temporary) {
-    write_bytes(temporary, encoded.data(), encoded.size());
-  });
+  write_atomically(
+      path, [&](const std::string& temporary) { write_bytes(temporary, encoded.data(), encoded.size()); });
 }
 
 void write_exr(const Film& film, const std::string& path, double exposure) {
@@ -94,9 +97,8 @@ void write_pfm(const Film& film, const std::string& path, double exposure) {
         row[std::size_t(x) * 3 + c] = static_cast<float>(pixels[std::size_t(y) * width + x][c]);
     data.append(reinterpret_cast<const char*>(row.data()), row.size() * sizeof(float));
   }
-  write_atomically(path, [&](const std::string& temporary) {
-    write_bytes(temporary, data.data(), data.size());
-  });
+  write_atomically(path,
+                   [&](const std::string& temporary) { write_bytes(temporary, data.data(), data.size()); });
 }
 
 void write_image(const Film& film, const std::string& path, const DisplaySettings& display) {
@@ -104,9 +106,15 @@ void write_image(const Film& film, const std::string& path, const DisplaySetting
   if (!image_format_for_path(path, format))
     throw std::runtime_error("unsupported image extension: " + path + " (expected .png, .exr or .pfm)");
   switch (format) {
-    case ImageFormat::png: write_png(film, path, display); break;
-    case ImageFormat::exr: write_exr(film, path, display.exposure); break;
-    case ImageFormat::pfm: write_pfm(film, path, display.exposure); break;
+    case ImageFormat::png:
+      write_png(film, path, display);
+      break;
+    case ImageFormat::exr:
+      write_exr(film, path, display.exposure);
+      break;
+    case ImageFormat::pfm:
+      write_pfm(film, path, display.exposure);
+      break;
   }
 }
 

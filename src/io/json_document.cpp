@@ -19,14 +19,20 @@ class TrackingIterator {
   using reference = const char&;
 
   TrackingIterator() = default;
-  TrackingIterator(const char* position, const char** furthest)
-      : position_(position), furthest_(furthest) {}
+  TrackingIterator(const char* position, const char** furthest) : position_(position), furthest_(furthest) {}
   reference operator*() const {
     if (furthest_ && position_ + 1 > *furthest_) *furthest_ = position_ + 1;
     return *position_;
   }
-  TrackingIterator& operator++() { ++position_; return *this; }
-  TrackingIterator operator++(int) { auto copy = *this; ++position_; return copy; }
+  TrackingIterator& operator++() {
+    ++position_;
+    return *this;
+  }
+  TrackingIterator operator++(int) {
+    auto copy = *this;
+    ++position_;
+    return copy;
+  }
   bool operator==(const TrackingIterator& other) const { return position_ == other.position_; }
   bool operator!=(const TrackingIterator& other) const { return position_ != other.position_; }
 
@@ -89,9 +95,11 @@ class LocatingSaxHandler {
     // "[json.exception.parse_error.101] parse error at line 1, column 2: syntax error ..." or
     // "[json.exception.out_of_range.406] number overflow parsing '1e999'": keep the reason.
     std::string message = e.what();
-    if (const auto bracket = message.find("] "); bracket != std::string::npos) message = message.substr(bracket + 2);
+    if (const auto bracket = message.find("] "); bracket != std::string::npos)
+      message = message.substr(bracket + 2);
     if (message.rfind("parse error", 0) == 0)
-      if (const auto colon = message.find(": "); colon != std::string::npos) message = message.substr(colon + 2);
+      if (const auto colon = message.find(": "); colon != std::string::npos)
+        message = message.substr(colon + 2);
     error_ = message;
     return false;
   }
@@ -158,7 +166,8 @@ class LocatingSaxHandler {
   }
   bool open(json value) {
     // Deeper nesting serves no scene and would cost memory for every level's path.
-    if (stack_.size() >= kMaxDepth) return fail("nesting deeper than " + std::to_string(kMaxDepth) + " levels");
+    if (stack_.size() >= kMaxDepth)
+      return fail("nesting deeper than " + std::to_string(kMaxDepth) + " levels");
     std::string path;
     json* slot = insert(std::move(value), path);
     stack_.push_back({slot, path, {}});
@@ -225,8 +234,7 @@ JsonDocument JsonDocument::parse(const std::string& text, const std::string& fil
   LocatingSaxHandler handler(document, text, &furthest);
   const TrackingIterator first(text.data(), &furthest);
   const TrackingIterator last(text.data() + text.size(), &furthest);
-  const bool ok = nlohmann::json::sax_parse(first, last, &handler,
-                                            nlohmann::json::input_format_t::json,
+  const bool ok = nlohmann::json::sax_parse(first, last, &handler, nlohmann::json::input_format_t::json,
                                             /*strict=*/true, /*ignore_comments=*/true);
   if (!ok) {
     const auto [line, column] = LocatingSaxHandler::line_and_column(text, handler.error_offset());
@@ -263,8 +271,8 @@ void JsonDocument::apply_override(const std::string& assignment) {
       std::size_t index = 0;
       const auto [end, error] = std::from_chars(segment.data(), segment.data() + segment.size(), index);
       if (error != std::errc() || end != segment.data() + segment.size() || index >= node->size())
-        throw InputError(origin, path + " has " + std::to_string(node->size()) +
-                                     " elements; index " + segment + " is out of range");
+        throw InputError(origin, path + " has " + std::to_string(node->size()) + " elements; index " +
+                                     segment + " is out of range");
       path = element_path(path, index);
       node = &(*node)[index];
     } else if (node->is_object() || node->is_null()) {

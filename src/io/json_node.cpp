@@ -1,7 +1,8 @@
 #include "io/json_node.h"
 
-#include <cmath>
 #include <fmt/format.h>
+
+#include <cmath>
 
 namespace candela {
 
@@ -37,7 +38,9 @@ JsonNode::JsonNode(const JsonDocument& document, const nlohmann::json& value, st
       path_(std::move(path)),
       known_keys_(std::make_shared<std::set<std::string, std::less<>>>()) {}
 
-void JsonNode::fail(const std::string& message) const { throw InputError(location(), message); }
+void JsonNode::fail(const std::string& message) const {
+  throw InputError(location(), message);
+}
 
 double JsonNode::as_number(Range range) const {
   if (!value_->is_number()) fail("expected a number, found " + type_name(*value_));
@@ -119,7 +122,9 @@ double JsonNode::number(std::string_view key, double fallback, Range range) cons
   return node ? node->as_number(range) : fallback;
 }
 
-double JsonNode::number(std::string_view key, Range range) const { return at(key).as_number(range); }
+double JsonNode::number(std::string_view key, Range range) const {
+  return at(key).as_number(range);
+}
 
 int JsonNode::integer(std::string_view key, int fallback, Range range) const {
   const auto node = get(key);
@@ -141,7 +146,9 @@ Vec3 JsonNode::vec3(std::string_view key, const Vec3& fallback) const {
   return node ? node->as_vec3() : fallback;
 }
 
-Vec3 JsonNode::vec3(std::string_view key) const { return at(key).as_vec3(); }
+Vec3 JsonNode::vec3(std::string_view key) const {
+  return at(key).as_vec3();
+}
 
 Color JsonNode::color(std::string_view key, const Color& fallback, Range per_channel) const {
   const auto node = get(key);

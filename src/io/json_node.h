@@ -10,9 +10,9 @@
 #include <string>
 #include <string_view>
 
+#include "io/json_document.h"
 #include "math/constants.h"
 #include "math/vector.h"
-#include "io/json_document.h"
 #include "util/enum_names.h"
 
 namespace candela {
@@ -48,7 +48,7 @@ class JsonNode {
   Vec3 as_vec3() const;
   // A color is [r, g, b] or one number for a grey.
   Color as_color(Range per_channel = {}) const;
-  std::size_t size() const;              // elements of an array (fails otherwise)
+  std::size_t size() const;  // elements of an array (fails otherwise)
   JsonNode element(std::size_t index) const;
   void expect_object() const;
 

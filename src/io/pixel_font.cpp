@@ -28,11 +28,16 @@ constexpr std::array<PixelGlyph, 14> kGlyphs{{
 const PixelGlyph* pixel_font_glyph(char c) {
   if (c >= '0' && c <= '9') return &kGlyphs[static_cast<std::size_t>(c - '0')];
   switch (c) {
-    case '.': return &kGlyphs[10];
-    case '-': return &kGlyphs[11];
-    case '+': return &kGlyphs[12];
-    case 'e': return &kGlyphs[13];
-    default: return nullptr;
+    case '.':
+      return &kGlyphs[10];
+    case '-':
+      return &kGlyphs[11];
+    case '+':
+      return &kGlyphs[12];
+    case 'e':
+      return &kGlyphs[13];
+    default:
+      return nullptr;
   }
 }
 
@@ -47,7 +52,8 @@ void draw_pixel_text(Film& film, int x, int y, std::string_view text, const Colo
       for (int row = 0; row < kPixelFontHeight; ++row)
         for (int column = 0; column < kPixelFontWidth; ++column) {
           if (!((*glyph)[row] & (4 >> column))) continue;
-          const int x0 = std::max(0, x + column * scale), x1 = std::min(film.width(), x + (column + 1) * scale);
+          const int x0 = std::max(0, x + column * scale),
+                    x1 = std::min(film.width(), x + (column + 1) * scale);
           const int y0 = std::max(0, y + row * scale), y1 = std::min(film.height(), y + (row + 1) * scale);
           for (int py = y0; py < y1; ++py)
             for (int px = x0; px < x1; ++px) film.at(px, py) = color;

@@ -12,9 +12,9 @@
 
 namespace candela {
 
-inline constexpr int kPixelFontWidth = 3;   // glyph pixels
-inline constexpr int kPixelFontHeight = 5;  // glyph pixels
-inline constexpr int kPixelFontAdvance = 4; // glyph pixels from one character to the next
+inline constexpr int kPixelFontWidth = 3;    // glyph pixels
+inline constexpr int kPixelFontHeight = 5;   // glyph pixels
+inline constexpr int kPixelFontAdvance = 4;  // glyph pixels from one character to the next
 
 // One glyph: five rows, top first; in each row bit 2 is the left column, bit 0 the right one.
 using PixelGlyph = std::array<uint8_t, kPixelFontHeight>;

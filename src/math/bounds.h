@@ -13,13 +13,19 @@ struct Bounds3 {
 
   static Bounds3 of_point(const Vec3& p) { return {p, p}; }
   bool empty() const { return lower.x > upper.x || lower.y > upper.y || lower.z > upper.z; }
-  void extend(const Vec3& p) { lower = min(lower, p); upper = max(upper, p); }
-  void extend(const Bounds3& b) { lower = min(lower, b.lower); upper = max(upper, b.upper); }
+  void extend(const Vec3& p) {
+    lower = min(lower, p);
+    upper = max(upper, p);
+  }
+  void extend(const Bounds3& b) {
+    lower = min(lower, b.lower);
+    upper = max(upper, b.upper);
+  }
   Vec3 diagonal() const { return upper - lower; }
   Vec3 center() const { return (lower + upper) * 0.5; }
   bool contains(const Vec3& p) const {
-    return p.x >= lower.x && p.x <= upper.x && p.y >= lower.y && p.y <= upper.y &&
-           p.z >= lower.z && p.z <= upper.z;
+    return p.x >= lower.x && p.x <= upper.x && p.y >= lower.y && p.y <= upper.y && p.z >= lower.z &&
+           p.z <= upper.z;
   }
   bool is_finite() const { return candela::is_finite(lower) && candela::is_finite(upper); }
 

@@ -133,10 +133,8 @@ TEST(Polynomial, QuarticWidelySpreadRoots) {
   // (x - 0.001)(x - 1)(x - 10)(x - 100), relative accuracy on every root.
   const double r[4] = {0.001, 1, 10, 100};
   const double e1 = r[0] + r[1] + r[2] + r[3];
-  const double e2 =
-      r[0] * r[1] + r[0] * r[2] + r[0] * r[3] + r[1] * r[2] + r[1] * r[3] + r[2] * r[3];
-  const double e3 =
-      r[0] * r[1] * r[2] + r[0] * r[1] * r[3] + r[0] * r[2] * r[3] + r[1] * r[2] * r[3];
+  const double e2 = r[0] * r[1] + r[0] * r[2] + r[0] * r[3] + r[1] * r[2] + r[1] * r[3] + r[2] * r[3];
+  const double e3 = r[0] * r[1] * r[2] + r[0] * r[1] * r[3] + r[0] * r[2] * r[3] + r[1] * r[2] * r[3];
   const double e4 = r[0] * r[1] * r[2] * r[3];
   double roots[4];
   ASSERT_EQ(solve_quartic(1, -e1, e2, -e3, e4, roots), 4);

@@ -46,8 +46,7 @@ Transform Transform::rotate(double angle_degrees, const Vec3& axis) {
   if (!(axis_length > 0)) throw std::invalid_argument("rotation axis must be non-zero");
   const Eigen::Vector3d a(axis.x / axis_length, axis.y / axis_length, axis.z / axis_length);
   Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
-  m.topLeftCorner<3, 3>() =
-      Eigen::AngleAxisd(degrees_to_radians(angle_degrees), a).toRotationMatrix();
+  m.topLeftCorner<3, 3>() = Eigen::AngleAxisd(degrees_to_radians(angle_degrees), a).toRotationMatrix();
   Eigen::Matrix4d inverse = Eigen::Matrix4d::Identity();
   inverse.topLeftCorner<3, 3>() = m.topLeftCorner<3, 3>().transpose();
   return Transform(m, inverse);
@@ -57,9 +56,13 @@ Transform Transform::operator*(const Transform& other) const {
   return Transform(matrix_ * other.matrix_, other.inverse_ * inverse_);
 }
 
-Transform Transform::inverse() const { return Transform(inverse_, matrix_); }
+Transform Transform::inverse() const {
+  return Transform(inverse_, matrix_);
+}
 
-bool Transform::is_identity() const { return matrix_ == Eigen::Matrix4d::Identity(); }
+bool Transform::is_identity() const {
+  return matrix_ == Eigen::Matrix4d::Identity();
+}
 
 Vec3 Transform::point(const Vec3& p) const {
   const auto& m = matrix_;
@@ -70,8 +73,7 @@ Vec3 Transform::point(const Vec3& p) const {
 
 Vec3 Transform::vector(const Vec3& v) const {
   const auto& m = matrix_;
-  return {m(0, 0) * v.x + m(0, 1) * v.y + m(0, 2) * v.z,
-          m(1, 0) * v.x + m(1, 1) * v.y + m(1, 2) * v.z,
+  return {m(0, 0) * v.x + m(0, 1) * v.y + m(0, 2) * v.z, m(1, 0) * v.x + m(1, 1) * v.y + m(1, 2) * v.z,
           m(2, 0) * v.x + m(2, 1) * v.y + m(2, 2) * v.z};
 }
 

@@ -31,8 +31,7 @@ class Transform {
   Bounds3 bounds(const Bounds3& b) const;
 
  private:
-  Transform(const Eigen::Matrix4d& m, const Eigen::Matrix4d& inverse)
-      : matrix_(m), inverse_(inverse) {}
+  Transform(const Eigen::Matrix4d& m, const Eigen::Matrix4d& inverse) : matrix_(m), inverse_(inverse) {}
   Eigen::Matrix4d matrix_;
   Eigen::Matrix4d inverse_;
 };

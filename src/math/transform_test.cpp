@@ -13,8 +13,8 @@ void expect_near(const Vec3& a, const Vec3& b) {
 
 TEST(Transform, ComposesInOrderAndInverts) {
   // Scale first, then rotate 90° about z, then translate.
-  const Transform t = Transform::translate({1, 2, 3}) * Transform::rotate(90, {0, 0, 1}) *
-                      Transform::scale({2, 2, 2});
+  const Transform t =
+      Transform::translate({1, 2, 3}) * Transform::rotate(90, {0, 0, 1}) * Transform::scale({2, 2, 2});
   expect_near(t.point({1, 0, 0}), {1, 4, 3});
   expect_near(t.vector({1, 0, 0}), {0, 2, 0});
   expect_near(t.inverse().point(t.point({0.3, -0.7, 5})), {0.3, -0.7, 5});

@@ -25,21 +25,48 @@ struct Vec3 {
   constexpr Vec3 operator-() const { return {-x, -y, -z}; }
   constexpr Vec3 operator*(double s) const { return {x * s, y * s, z * s}; }
   constexpr Vec3 operator/(double s) const { return {x / s, y / s, z / s}; }
-  Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
-  Vec3& operator-=(const Vec3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
-  Vec3& operator*=(double s) { x *= s; y *= s; z *= s; return *this; }
+  Vec3& operator+=(const Vec3& o) {
+    x += o.x;
+    y += o.y;
+    z += o.z;
+    return *this;
+  }
+  Vec3& operator-=(const Vec3& o) {
+    x -= o.x;
+    y -= o.y;
+    z -= o.z;
+    return *this;
+  }
+  Vec3& operator*=(double s) {
+    x *= s;
+    y *= s;
+    z *= s;
+    return *this;
+  }
   constexpr bool operator==(const Vec3& o) const { return x == o.x && y == o.y && z == o.z; }
 };
 
-constexpr Vec3 operator*(double s, const Vec3& v) { return v * s; }
-constexpr double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr Vec3 operator*(double s, const Vec3& v) {
+  return v * s;
+}
+constexpr double dot(const Vec3& a, const Vec3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline double length_squared(const Vec3& v) { return dot(v, v); }
-inline double length(const Vec3& v) { return std::sqrt(dot(v, v)); }
-inline Vec3 normalize(const Vec3& v) { return v / length(v); }
-inline Vec3 abs(const Vec3& v) { return {std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}; }
+inline double length_squared(const Vec3& v) {
+  return dot(v, v);
+}
+inline double length(const Vec3& v) {
+  return std::sqrt(dot(v, v));
+}
+inline Vec3 normalize(const Vec3& v) {
+  return v / length(v);
+}
+inline Vec3 abs(const Vec3& v) {
+  return {std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)};
+}
 inline Vec3 min(const Vec3& a, const Vec3& b) {
   return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)};
 }
@@ -53,7 +80,9 @@ inline bool is_finite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 // Flips n to lie in the hemisphere of v.
-inline Vec3 face_forward(const Vec3& n, const Vec3& v) { return dot(n, v) < 0 ? -n : n; }
+inline Vec3 face_forward(const Vec3& n, const Vec3& v) {
+  return dot(n, v) < 0 ? -n : n;
+}
 
 // Builds two unit vectors orthogonal to the unit vector n (Duff et al. 2017).
 inline void orthonormal_basis(const Vec3& n, Vec3& b1, Vec3& b2) {
@@ -83,9 +112,24 @@ struct Color {
   constexpr Color operator*(const Color& o) const { return {r * o.r, g * o.g, b * o.b}; }
   constexpr Color operator*(double s) const { return {r * s, g * s, b * s}; }
   constexpr Color operator/(double s) const { return {r / s, g / s, b / s}; }
-  Color& operator+=(const Color& o) { r += o.r; g += o.g; b += o.b; return *this; }
-  Color& operator*=(const Color& o) { r *= o.r; g *= o.g; b *= o.b; return *this; }
-  Color& operator*=(double s) { r *= s; g *= s; b *= s; return *this; }
+  Color& operator+=(const Color& o) {
+    r += o.r;
+    g += o.g;
+    b += o.b;
+    return *this;
+  }
+  Color& operator*=(const Color& o) {
+    r *= o.r;
+    g *= o.g;
+    b *= o.b;
+    return *this;
+  }
+  Color& operator*=(double s) {
+    r *= s;
+    g *= s;
+    b *= s;
+    return *this;
+  }
   constexpr bool operator==(const Color& o) const { return r == o.r && g == o.g && b == o.b; }
 
   double max_component() const { return std::max({r, g, b}); }
@@ -93,10 +137,14 @@ struct Color {
   bool is_black() const { return r == 0 && g == 0 && b == 0; }
 };
 
-constexpr Color operator*(double s, const Color& c) { return c * s; }
+constexpr Color operator*(double s, const Color& c) {
+  return c * s;
+}
 
 // Rec. 709 / sRGB luminance Y of a linear color.
-constexpr double luminance(const Color& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+constexpr double luminance(const Color& c) {
+  return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+}
 
 inline std::ostream& operator<<(std::ostream& os, const Color& c) {
   return os << '[' << c.r << ", " << c.g << ", " << c.b << ']';

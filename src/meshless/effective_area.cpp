@@ -12,14 +12,17 @@
 
 namespace candela {
 
-std::vector<double> integrate_effective_areas(const Scene& scene, const MeshlessBasis& basis, const SiteSet& sites,
-                                              double cell, int segments, Cluster* cluster) {
+std::vector<double> integrate_effective_areas(const Scene& scene, const MeshlessBasis& basis,
+                                              const SiteSet& sites, double cell, int segments,
+                                              Cluster* cluster) {
   const std::size_t site_count = sites.sites.size();
   // The sides sites lie on, per object: bit 0 the geometric normal's side, bit 1 the other.
   std::vector<uint8_t> sides_with_sites(scene.objects.size(), 0);
   for (std::size_t i = 0; i < site_count && i < sites.object.size(); ++i)
-    if (sites.object[i] < sides_with_sites.size()) sides_with_sites[sites.object[i]] |= sites.side[i] > 0 ? 1 : 2;
-  if (!(cell > 0) || !std::isfinite(cell)) throw std::invalid_argument("effective areas: the cell size must be > 0");
+    if (sites.object[i] < sides_with_sites.size())
+      sides_with_sites[sites.object[i]] |= sites.side[i] > 0 ? 1 : 2;
+  if (!(cell > 0) || !std::isfinite(cell))
+    throw std::invalid_argument("effective areas: the cell size must be > 0");
   if (segments < 3) throw std::invalid_argument("effective areas: segments must be >= 3");
   // Planes are cut where the elements can reach: around the scene's finite shapes and every site
   // grown by the largest finite radius (a floor plane under a small object holds sites far
@@ -53,7 +56,8 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
     const double area = 0.5 * length(face);
     if (!(area > 0)) return;
     const Vec3 normal = face / (2 * area);
-    const uint8_t sides = triangles.objects[t] < sides_with_sites.size() ? sides_with_sites[triangles.objects[t]] : 0;
+    const uint8_t sides =
+        triangles.objects[t] < sides_with_sites.size() ? sides_with_sites[triangles.objects[t]] : 0;
     if (sides == 0) return;
     // n × n similar sub-triangles (n² of them: n(n+1)/2 upright, n(n−1)/2 inverted), area/n² each.
     const double longest = std::max({length(b - a), length(c - b), length(a - c)});
@@ -85,11 +89,14 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
     // One sum per site for the triangle (sorted by site, added in row order: thread-independent).
     std::vector<std::pair<uint32_t, double>> sums;
     for (auto& row : rows) sums.insert(sums.end(), row.begin(), row.end());
-    std::stable_sort(sums.begin(), sums.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    std::stable_sort(sums.begin(), sums.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
     std::vector<std::pair<uint32_t, double>> merged;
     for (const auto& [k, value] : sums) {
-      if (!merged.empty() && merged.back().first == k) merged.back().second += value;
-      else merged.emplace_back(k, value);
+      if (!merged.empty() && merged.back().first == k)
+        merged.back().second += value;
+      else
+        merged.emplace_back(k, value);
     }
     contributions[t] = std::move(merged);
   };
@@ -107,18 +114,22 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
       writer.put_array(values);
       return writer.take();
     };
-    run_task_farm_everywhere(*cluster, triangles.triangle_count(), [&](std::size_t t) {
-      integrate_triangle(t);
-      Bytes bytes = triangle_bytes(t);
-      std::vector<std::pair<uint32_t, double>>().swap(contributions[t]);
-      return bytes;
-    }, [&](std::size_t t, std::span<const std::byte> result) {
-      ByteReader reader(result);
-      const std::vector<uint32_t> ids = reader.get_array<uint32_t>();
-      const std::vector<double> values = reader.get_array<double>();
-      contributions[t].clear();
-      for (std::size_t e = 0; e < ids.size(); ++e) contributions[t].emplace_back(ids[e], values[e]);
-    }, triangle_bytes);
+    run_task_farm_everywhere(
+        *cluster, triangles.triangle_count(),
+        [&](std::size_t t) {
+          integrate_triangle(t);
+          Bytes bytes = triangle_bytes(t);
+          std::vector<std::pair<uint32_t, double>>().swap(contributions[t]);
+          return bytes;
+        },
+        [&](std::size_t t, std::span<const std::byte> result) {
+          ByteReader reader(result);
+          const std::vector<uint32_t> ids = reader.get_array<uint32_t>();
+          const std::vector<double> values = reader.get_array<double>();
+          contributions[t].clear();
+          for (std::size_t e = 0; e < ids.size(); ++e) contributions[t].emplace_back(ids[e], values[e]);
+        },
+        triangle_bytes);
   }
   std::vector<double> areas(site_count, 0.0);
   for (const auto& sums : contributions)

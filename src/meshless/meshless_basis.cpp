@@ -10,15 +10,23 @@ namespace candela {
 
 MeshlessBasis::MeshlessBasis(const std::vector<Site>& sites, const std::vector<double>& radii, BasisKind kind,
                              RadialKernel kernel, double shepard_power)
-    : sites_(sites), radii_(radii), kind_(kind), kernel_(kernel), shepard_power_(shepard_power), index_(sites) {
+    : sites_(sites),
+      radii_(radii),
+      kind_(kind),
+      kernel_(kernel),
+      shepard_power_(shepard_power),
+      index_(sites) {
   if (radii.size() != sites.size())
     throw std::invalid_argument("meshless basis: " + std::to_string(radii.size()) + " radii for " +
                                 std::to_string(sites.size()) + " sites");
   if (!(shepard_power >= 0)) throw std::invalid_argument("meshless basis: the Shepard power must be >= 0");
   for (uint32_t i = 0; i < radii.size(); ++i) {
-    if (!(radii[i] > 0)) throw std::invalid_argument("meshless basis: radius " + std::to_string(i) + " is not > 0");
-    if (std::isinf(radii[i])) unbounded_.push_back(i);
-    else largest_radius_ = std::max(largest_radius_, radii[i]);
+    if (!(radii[i] > 0))
+      throw std::invalid_argument("meshless basis: radius " + std::to_string(i) + " is not > 0");
+    if (std::isinf(radii[i]))
+      unbounded_.push_back(i);
+    else
+      largest_radius_ = std::max(largest_radius_, radii[i]);
   }
 }
 
@@ -44,12 +52,15 @@ void MeshlessBasis::evaluate(const Site& p, std::vector<std::pair<uint32_t, doub
       case BasisKind::radial: {
         const double t = site_distance(p, centre) / r;
         // 002 eq. 4.7 with r_0 = r_i / 4 (see the header): exp(−½(4t)²), cut at t = 1.
-        if (kernel_ == RadialKernel::gaussian) value = t < 1 ? std::exp(-8 * t * t) : 0.0;
-        else value = cubic_kernel(t);
+        if (kernel_ == RadialKernel::gaussian)
+          value = t < 1 ? std::exp(-8 * t * t) : 0.0;
+        else
+          value = cubic_kernel(t);
         break;
       }
       case BasisKind::normalized:  // 002 eq. 4.9
-        value = cubic_kernel(length(p.position - centre.position) / r) * std::max(0.0, dot(p.normal, centre.normal));
+        value = cubic_kernel(length(p.position - centre.position) / r) *
+                std::max(0.0, dot(p.normal, centre.normal));
         break;
       case BasisKind::shepard: {  // 002 eqs. 4.10–4.11, Franke–Little weights
         const double d = site_distance(p, centre);

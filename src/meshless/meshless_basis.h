@@ -60,12 +60,14 @@ class MeshlessBasis {
   BasisKind kind_;
   RadialKernel kernel_;
   double shepard_power_;
-  double largest_radius_ = 0;  // the finite ones
+  double largest_radius_ = 0;        // the finite ones
   std::vector<uint32_t> unbounded_;  // sites of infinite radius: candidates everywhere
   SiteIndex index_;
 };
 
 // K(t) = 2t³ − 3t² + 1 on [0, 1], 0 beyond (002 eq. 4.8).
-inline double cubic_kernel(double t) { return t >= 1 ? 0.0 : (2 * t - 3) * t * t + 1; }
+inline double cubic_kernel(double t) {
+  return t >= 1 ? 0.0 : (2 * t - 3) * t * t + 1;
+}
 
 }  // namespace candela

@@ -17,10 +17,10 @@ namespace {
 
 TEST(SiteDistance, StretchesTheEuclideanDistanceAsNormalsTurnApart) {
   const Site p{{0, 0, 0}, {0, 0, 1}};
-  EXPECT_DOUBLE_EQ(site_distance(p, {{3, 4, 0}, {0, 0, 1}}), 5);                        // same normal
-  EXPECT_NEAR(site_distance(p, {{3, 4, 0}, {0, std::sin(kPi / 3), 0.5}}), 10, 1e-12);   // 60°: ×2
-  EXPECT_TRUE(std::isinf(site_distance(p, {{3, 4, 0}, {0, 1, 0}})));                     // 90°
-  EXPECT_TRUE(std::isinf(site_distance(p, {{0, 0, 0}, {0, 0, -1}})));                    // opposite
+  EXPECT_DOUBLE_EQ(site_distance(p, {{3, 4, 0}, {0, 0, 1}}), 5);                       // same normal
+  EXPECT_NEAR(site_distance(p, {{3, 4, 0}, {0, std::sin(kPi / 3), 0.5}}), 10, 1e-12);  // 60°: ×2
+  EXPECT_TRUE(std::isinf(site_distance(p, {{3, 4, 0}, {0, 1, 0}})));                   // 90°
+  EXPECT_TRUE(std::isinf(site_distance(p, {{0, 0, 0}, {0, 0, -1}})));                  // opposite
   EXPECT_EQ(site_distance(p, p), 0);
   // Never below the Euclidean distance, and symmetric.
   const Site q{{1, 2, 3}, normalize(Vec3{1, 1, 1})};
@@ -35,8 +35,9 @@ SiteSet plane_sites(int n, uint64_t seed) {
   Pcg32 random(seed, 1);
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i)
-      set.sites.push_back({{(i + 0.25 + 0.5 * random.next_double()) / n, (j + 0.25 + 0.5 * random.next_double()) / n, 0},
-                           {0, 0, 1}});
+      set.sites.push_back(
+          {{(i + 0.25 + 0.5 * random.next_double()) / n, (j + 0.25 + 0.5 * random.next_double()) / n, 0},
+           {0, 0, 1}});
   assign_radii(set, 10);
   return set;
 }
@@ -60,7 +61,7 @@ TEST(SiteRadii, AreTheSiteDistanceOfTheMthNearestNeighbour) {
     for (std::size_t j = 0; j < set.sites.size(); ++j)
       if (j != i) distances.push_back(site_distance(set.sites[i], set.sites[j]));
     std::sort(distances.begin(), distances.end());
-    EXPECT_EQ(set.radius[i], distances[9]) << i;  // brute force, m = 10
+    EXPECT_EQ(set.radius[i], distances[9]) << i;                                      // brute force, m = 10
     EXPECT_DOUBLE_EQ(set.effective_area[i], kPi * distances[9] * distances[9] / 11);  // 002 eq. 5.5
   }
 }
@@ -88,7 +89,8 @@ TEST(MeshlessBasis, PartitionsOfUnitySumToOneAtRandomSites) {
       if (on_plane) {
         p = {{0.05 + 0.9 * random.next_double(), 0.05 + 0.9 * random.next_double(), 0}, {0, 0, 1}};
       } else {
-        const double z = 2 * random.next_double() - 1, phi = 2 * kPi * random.next_double(), r = std::sqrt(1 - z * z);
+        const double z = 2 * random.next_double() - 1, phi = 2 * kPi * random.next_double(),
+                     r = std::sqrt(1 - z * z);
         const Vec3 q{r * std::cos(phi), r * std::sin(phi), z};
         p = {q, q};
       }
@@ -105,7 +107,8 @@ TEST(MeshlessBasis, RadialBasisSumsToAboutOneAndAHalf) {
   const MeshlessBasis radial(set.sites, set.radius, BasisKind::radial);
   Pcg32 random(17, 3);
   double sum = 0;
-  for (int k = 0; k < 200; ++k) sum += radial.sum({{0.2 + 0.6 * random.next_double(), 0.2 + 0.6 * random.next_double(), 0}, {0, 0, 1}});
+  for (int k = 0; k < 200; ++k)
+    sum += radial.sum({{0.2 + 0.6 * random.next_double(), 0.2 + 0.6 * random.next_double(), 0}, {0, 0, 1}});
   sum /= 200;
   RecordProperty("mean_sum", std::to_string(sum));
   EXPECT_GT(sum, 1.0);

@@ -1,10 +1,9 @@
 #include "meshless/site_index.h"
 
-#include <nanoflann.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <nanoflann.hpp>
 
 namespace candela {
 
@@ -14,14 +13,17 @@ namespace {
 struct SitePositions {
   std::span<const Site> sites;
   std::size_t kdtree_get_point_count() const { return sites.size(); }
-  double kdtree_get_pt(std::size_t index, std::size_t axis) const { return sites[index].position[static_cast<int>(axis)]; }
+  double kdtree_get_pt(std::size_t index, std::size_t axis) const {
+    return sites[index].position[static_cast<int>(axis)];
+  }
   template <typename Box>
   bool kdtree_get_bbox(Box&) const {
     return false;  // let nanoflann compute it
   }
 };
 
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, SitePositions>, SitePositions, 3, uint32_t>;
+using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, SitePositions>,
+                                                   SitePositions, 3, uint32_t>;
 
 }  // namespace
 
@@ -48,7 +50,8 @@ void SiteIndex::within_euclidean(const Vec3& point, double radius, std::vector<u
   thread_local std::vector<std::pair<uint32_t, double>> matches;
   // nanoflann's L2 adaptor works in squared distances; a hair more so that points exactly at the
   // radius are kept despite rounding.
-  tree_->tree.radiusSearch(query, radius * radius * (1 + 1e-12), matches, nanoflann::SearchParams(32, 0, false));
+  tree_->tree.radiusSearch(query, radius * radius * (1 + 1e-12), matches,
+                           nanoflann::SearchParams(32, 0, false));
   const std::size_t first = out.size();
   for (const auto& [index, distance_squared] : matches)
     if (distance_squared <= radius * radius * (1 + 1e-12)) out.push_back(index);
@@ -63,7 +66,8 @@ double SiteIndex::mth_nearest_site_distance(const Site& site, std::size_t m, uin
   std::vector<uint32_t> indices;
   std::vector<double> distances_squared;
   std::vector<double> site_distances;
-  for (std::size_t fetch = std::min(sites_.size(), 2 * (m + 1));; fetch = std::min(sites_.size(), 2 * fetch)) {
+  for (std::size_t fetch = std::min(sites_.size(), 2 * (m + 1));;
+       fetch = std::min(sites_.size(), 2 * fetch)) {
     indices.resize(fetch);
     distances_squared.resize(fetch);
     const std::size_t found = tree_->tree.knnSearch(query, fetch, indices.data(), distances_squared.data());

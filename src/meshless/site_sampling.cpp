@@ -1,8 +1,7 @@
 #include "meshless/site_sampling.h"
 
-#include <tbb/parallel_for.h>
-
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -93,7 +92,8 @@ void assign_radii(SiteSet& set, int neighbours) {
   set.effective_area.assign(set.sites.size(), 0.0);
   tbb::parallel_for(std::size_t(0), set.sites.size(), [&](std::size_t i) {
     // 002 §4.2.7 and eq. 5.5: h_i, the site distance holding the m nearest other sites.
-    const double h = index.mth_nearest_site_distance(set.sites[i], static_cast<std::size_t>(neighbours), static_cast<uint32_t>(i));
+    const double h = index.mth_nearest_site_distance(set.sites[i], static_cast<std::size_t>(neighbours),
+                                                     static_cast<uint32_t>(i));
     set.radius[i] = h;
     set.effective_area[i] = std::isfinite(h) ? kPi * h * h / (neighbours + 1) : 0.0;
   });
@@ -107,11 +107,14 @@ SiteSet sample_sites(const Scene& scene, const SiteSamplingSettings& settings) {
   if (settings.neighbours < 1) throw std::invalid_argument("site sampling: neighbours must be >= 1");
   SiteSet set;
   const Bounds3 bounds = scene.bounds();
-  const double scene_size = bounds.empty() || !bounds.is_finite() ? 1.0 : std::max(length(bounds.diagonal()), 1e-300);
+  const double scene_size =
+      bounds.empty() || !bounds.is_finite() ? 1.0 : std::max(length(bounds.diagonal()), 1e-300);
   set.spacing = settings.spacing > 0 ? settings.spacing : scene_size / 50;
   if (set.spacing < 1e-7 * scene_size)
-    throw std::invalid_argument(fmt::format("site sampling: the spacing {:g} is below 1e-7 of the scene's size {:g}; "
-                                            "raise meshless.spacing", set.spacing, scene_size));
+    throw std::invalid_argument(
+        fmt::format("site sampling: the spacing {:g} is below 1e-7 of the scene's size {:g}; "
+                    "raise meshless.spacing",
+                    set.spacing, scene_size));
   SpacingFilter filter(set.spacing);
   const auto offer = [&](const std::optional<FoundSite>& candidate) {
     if (!candidate || !filter.try_keep(candidate->site)) return;

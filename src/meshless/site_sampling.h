@@ -29,10 +29,10 @@ namespace candela {
 class Scene;
 
 struct SiteSamplingSettings {
-  int grid = 64;           // camera rays per image side
-  int rounds = 4;          // rounds of secondary rays
-  double spacing = 0;      // Δ, the least site distance between two sites; 0: the scene's size / 50
-  int neighbours = 10;     // m
+  int grid = 64;        // camera rays per image side
+  int rounds = 4;       // rounds of secondary rays
+  double spacing = 0;   // Δ, the least site distance between two sites; 0: the scene's size / 50
+  int neighbours = 10;  // m
   uint64_t seed = 0;
   std::size_t max_sites = 1u << 22;  // refused beyond (a spacing far too small for the scene)
 };
@@ -48,8 +48,8 @@ struct SiteSet {
   // +1 when the site's normal is the surface's geometric normal, −1 when it was turned (the
   // side the site lies on, which effective areas integrate over).
   std::vector<int8_t> side;
-  double spacing = 0;                  // Δ used
-  std::size_t camera_sites = 0;        // kept from the camera grid
+  double spacing = 0;            // Δ used
+  std::size_t camera_sites = 0;  // kept from the camera grid
 };
 
 // Samples the sites of a prepared scene seen through its camera. Throws std::invalid_argument for

@@ -2,7 +2,6 @@
 #include "meshless/site_sampling.h"
 
 #include <gtest/gtest.h>
-
 #include <tbb/global_control.h>
 
 #include <cmath>
@@ -37,7 +36,7 @@ TEST(SiteSampling, CoversAClosedSphereAndKeepsTheSpacing) {
     const Site& site = set.sites[i];
     EXPECT_NEAR(length(site.position), 2, 1e-9);
     EXPECT_NEAR(dot(site.normal, site.position / 2), -1, 1e-9);  // seen from inside: inward normals
-    reached_back |= site.position.z > 1.5;                        // behind the camera
+    reached_back |= site.position.z > 1.5;                       // behind the camera
     for (std::size_t j = 0; j < i; ++j) EXPECT_GE(site_distance(site, set.sites[j]), settings.spacing);
     area += set.effective_area[i];
   }

@@ -106,36 +106,42 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
     // A chunk's rows as bytes: what a rank sends, and what rank 0 rebuilds from `rows` to pass on.
     // The header holds the chunk's entry count as computed: past the limit rank 0 keeps no rows,
     // and every rank must still count them to refuse the matrix alike.
-    const auto chunk_bytes = [](uint64_t chunk_rays, uint64_t chunk_entries, const Row* chunk_rows, std::size_t count) {
+    const auto chunk_bytes = [](uint64_t chunk_rays, uint64_t chunk_entries, const Row* chunk_rows,
+                                std::size_t count) {
       ByteWriter writer;
       writer.put<uint64_t>(chunk_rays);
       writer.put<uint64_t>(chunk_entries);
       for (std::size_t k = 0; k < count; ++k) writer.put_array(chunk_rows[k]);
       return writer.take();
     };
-    run_task_farm_everywhere(*cluster, tasks, [&](std::size_t task) {
-      const std::size_t first = task * chunk, count = std::min(chunk, n - first);
-      std::vector<Row> chunk_rows(count);
-      std::atomic<uint64_t> chunk_rays{0};
-      tbb::parallel_for(std::size_t(0), count, [&](std::size_t k) { chunk_rays += compute_row(first + k, chunk_rows[k]); });
-      std::size_t entries = 0;
-      for (const Row& row : chunk_rows) entries += row.size();
-      return chunk_bytes(chunk_rays.load(), entries, chunk_rows.data(), count);
-    }, [&](std::size_t task, std::span<const std::byte> result) {
-      const std::size_t first = task * chunk, count = std::min(chunk, n - first);
-      ByteReader reader(result);
-      task_rays[task] = reader.get<uint64_t>();
-      task_entries[task] = reader.get<uint64_t>();
-      keep(task_entries[task]);
-      for (std::size_t k = 0; k < count; ++k) {
-        Row row = reader.get_array<Entry>();
-        // Past the limit nothing more is kept (the build is refused below): memory stays bounded.
-        rows[first + k] = too_many ? Row() : std::move(row);
-      }
-    }, [&](std::size_t task) {
-      const std::size_t first = task * chunk, count = std::min(chunk, n - first);
-      return chunk_bytes(task_rays[task], task_entries[task], rows.data() + first, count);
-    });
+    run_task_farm_everywhere(
+        *cluster, tasks,
+        [&](std::size_t task) {
+          const std::size_t first = task * chunk, count = std::min(chunk, n - first);
+          std::vector<Row> chunk_rows(count);
+          std::atomic<uint64_t> chunk_rays{0};
+          tbb::parallel_for(std::size_t(0), count,
+                            [&](std::size_t k) { chunk_rays += compute_row(first + k, chunk_rows[k]); });
+          std::size_t entries = 0;
+          for (const Row& row : chunk_rows) entries += row.size();
+          return chunk_bytes(chunk_rays.load(), entries, chunk_rows.data(), count);
+        },
+        [&](std::size_t task, std::span<const std::byte> result) {
+          const std::size_t first = task * chunk, count = std::min(chunk, n - first);
+          ByteReader reader(result);
+          task_rays[task] = reader.get<uint64_t>();
+          task_entries[task] = reader.get<uint64_t>();
+          keep(task_entries[task]);
+          for (std::size_t k = 0; k < count; ++k) {
+            Row row = reader.get_array<Entry>();
+            // Past the limit nothing more is kept (the build is refused below): memory stays bounded.
+            rows[first + k] = too_many ? Row() : std::move(row);
+          }
+        },
+        [&](std::size_t task) {
+          const std::size_t first = task * chunk, count = std::min(chunk, n - first);
+          return chunk_bytes(task_rays[task], task_entries[task], rows.data() + first, count);
+        });
     uint64_t rays_elsewhere = 0;
     for (const uint64_t r : task_rays) rays_elsewhere += r;
     rays = rays_elsewhere;  // every row's rays, wherever it was computed
@@ -164,19 +170,24 @@ TransferSolution solve_transfer(const TransferMatrix& transfer, const std::vecto
                                 const std::vector<Color>& eta, double tolerance, std::size_t max_iterations) {
   const auto n = static_cast<std::size_t>(transfer.S.rows());
   if (albedo.size() != n || eta.size() != n)
-    throw std::invalid_argument("meshless solve: " + std::to_string(n) + " sites, " + std::to_string(albedo.size()) +
-                                " albedos, " + std::to_string(eta.size()) + " direct terms");
+    throw std::invalid_argument("meshless solve: " + std::to_string(n) + " sites, " +
+                                std::to_string(albedo.size()) + " albedos, " + std::to_string(eta.size()) +
+                                " direct terms");
   TransferSolution solution;
   solution.lambda = eta;
   double largest_eta = 0;
-  for (const Color& e : eta) largest_eta = std::max({largest_eta, std::fabs(e.r), std::fabs(e.g), std::fabs(e.b)});
+  for (const Color& e : eta)
+    largest_eta = std::max({largest_eta, std::fabs(e.r), std::fabs(e.g), std::fabs(e.b)});
   std::vector<Color> next(n);
   for (std::size_t iteration = 0; iteration < max_iterations; ++iteration) {
     // λ' = η + Q S λ, each row by one thread.
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t j) {
       Color gathered;
-      for (Eigen::SparseMatrix<float, Eigen::RowMajor, int32_t>::InnerIterator entry(transfer.S, static_cast<int32_t>(j)); entry; ++entry)
-        gathered += solution.lambda[static_cast<std::size_t>(entry.col())] * static_cast<double>(entry.value());
+      for (Eigen::SparseMatrix<float, Eigen::RowMajor, int32_t>::InnerIterator entry(transfer.S,
+                                                                                     static_cast<int32_t>(j));
+           entry; ++entry)
+        gathered +=
+            solution.lambda[static_cast<std::size_t>(entry.col())] * static_cast<double>(entry.value());
       next[j] = eta[j] + albedo[j] * gathered;
     });
     double change = 0, largest = 0;

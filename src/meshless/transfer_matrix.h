@@ -19,7 +19,6 @@
 #pragma once
 
 #include <Eigen/SparseCore>
-
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -35,9 +34,9 @@ class Scene;
 struct TransferMatrix {
   Eigen::SparseMatrix<float, Eigen::RowMajor, int32_t> S;  // n × n
   std::size_t entries() const { return static_cast<std::size_t>(S.nonZeros()); }
-  double density() const;       // entries / n²
-  std::size_t bytes() const;    // values, column indices and row offsets
-  double seconds = 0;           // to compute
+  double density() const;     // entries / n²
+  std::size_t bytes() const;  // values, column indices and row offsets
+  double seconds = 0;         // to compute
   uint64_t visibility_rays = 0;
 };
 

@@ -61,7 +61,7 @@ SolutionDisplay::SolutionDisplay(const Scene& scene, const RadiositySolveResult&
       compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity, solution.element_hidden);
   if (display != RadiosityDisplay::gouraud) return;
   // 000 §6.5: the elements drawn as triangles through the scanline rasterizer with their vertex
-  // radiosities as colours, interpolated perspective-correctly (Gouraud). Projected once, here;
+  // radiosities as colors, interpolated perspective-correctly (Gouraud). Projected once, here;
   // draw fills any region from them.
   const Camera& camera = *scene.camera;
   const std::vector<RadiositySurface>& elements = solution.mesh.elements;

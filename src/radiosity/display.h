@@ -4,7 +4,7 @@
 //               nearest the hit point → that element's radiosity B (the exitance, view
 //               independent), shown directly as the seed's radiosity images are.
 //   gouraud     the vertex radiosities of radiosity/vertex_radiosity.h; the elements drawn as
-//               triangles by the scanline rasterizer in 32 × 32 tiles, colours interpolated
+//               triangles by the scanline rasterizer in 32 × 32 tiles, colors interpolated
 //               perspective-correctly.
 //   ray-traced  a ray through each pixel centre; at its hit, the vertex radiosities of the
 //               element hit interpolated at the point (the Gouraud field without its screen-space

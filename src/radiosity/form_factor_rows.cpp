@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <span>
 
-#include "io/byte_stream.h"
 #include "distributed/cluster.h"
 #include "distributed/task_farm.h"
+#include "io/byte_stream.h"
 #include "math/pcg32.h"
 #include "radiosity/delta_form_factors.h"
 #include "radiosity/hemicube_form_factors.h"

@@ -323,7 +323,8 @@ TEST(FormFactorAnalytic, PointToPolygonClipsAtTheHorizon) {
   EXPECT_EQ(point_to_polygon_form_factor({0, 0, 0}, up, below), 0.0);
   // A fine regular polygon tends to the coaxial disc's r²/(h² + r²) (inscribed: slightly below).
   const std::vector<Vec3> ring = disc_polygon({0, 0, 0.8}, 1.3, 4096);
-  const double disc = point_to_polygon_form_factor({0, 0, 0}, up, std::vector<Vec3>(ring.rbegin(), ring.rend()));
+  const double disc =
+      point_to_polygon_form_factor({0, 0, 0}, up, std::vector<Vec3>(ring.rbegin(), ring.rend()));
   EXPECT_NEAR(disc, point_to_coaxial_disc(1.3, 0.8), 1e-6);
   EXPECT_LT(disc, point_to_coaxial_disc(1.3, 0.8));
   EXPECT_THROW(point_to_polygon_form_factor({0, 0, 0}, Vec3{}, floor), std::invalid_argument);
@@ -463,9 +464,11 @@ TEST(HemicubeFormFactors, BackFacesHideButPassNothing) {
   add_quad(facing, {-1, -1, 0.5}, {-1, 2, 0.5}, {2, 2, 0.5}, {2, -1, 0.5}, 2);
   const std::vector<double> seen = hemicube.row(facing, {0.5, 0.5, 0}, {0, 0, 1}, {1, 0, 0}, 0);
   EXPECT_EQ(seen[1], 0.0);
-  EXPECT_NEAR(seen[2], point_to_polygon_form_factor({0.5, 0.5, 0}, {0, 0, 1},
-                                                    std::vector<Vec3>{{-1, -1, 0.5}, {-1, 2, 0.5}, {2, 2, 0.5}, {2, -1, 0.5}}),
-              0.01);
+  EXPECT_NEAR(
+      seen[2],
+      point_to_polygon_form_factor({0.5, 0.5, 0}, {0, 0, 1},
+                                   std::vector<Vec3>{{-1, -1, 0.5}, {-1, 2, 0.5}, {2, 2, 0.5}, {2, -1, 0.5}}),
+      0.01);
 }
 
 TEST(FormFactorRayCast, BackFacingSourcesSendNothing) {
@@ -651,7 +654,8 @@ TEST(FormFactorRayCast, EdgeSharingErrorFallsLikeOneOverN) {
 TEST(FormFactorRayCast, ElementsSampleTheirArea) {
   // A trapezoid (not a parallelogram: the bilinear map's density varies) and a triangle.
   const FormFactorElement trapezoid = FormFactorElement::quad({0, 0, 1}, {0, 2, 1}, {1, 1.5, 1}, {1, 0.5, 1});
-  const FormFactorElement triangle = FormFactorElement::triangle({-1, 0, 2}, {0, 1, 2}, {0.5, -1, 2});  // faces down
+  const FormFactorElement triangle =
+      FormFactorElement::triangle({-1, 0, 2}, {0, 1, 2}, {0.5, -1, 2});  // faces down
   EXPECT_NEAR(trapezoid.area(), 1.5, 1e-15);
   EXPECT_NEAR(triangle.area(), 0.5 * length(cross(Vec3{1.5, -1, 0}, Vec3{1, 1, 0})), 1e-15);
   EXPECT_NEAR(trapezoid.normal().z, -1, 1e-15);  // clockwise seen from above: faces down

@@ -89,8 +89,8 @@ void HemicubeFormFactors::compute_row(const FormFactorGeometry& geometry, const 
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const uint32_t element = geometry.element_of_triangle[t];
     const auto& corner = mesh.triangles[t];
-    if (element >= geometry.element_count || element >= kBackFace || corner[0] >= corner_count || corner[1] >= corner_count ||
-        corner[2] >= corner_count)
+    if (element >= geometry.element_count || element >= kBackFace || corner[0] >= corner_count ||
+        corner[1] >= corner_count || corner[2] >= corner_count)
       throw std::invalid_argument("hemicube form factors: triangle " + std::to_string(t) +
                                   " has an element id or a corner index out of range");
     if (element == source_element) continue;

@@ -63,7 +63,8 @@ void bisect(const CornerTriangle& triangle, double max_edge, std::vector<CornerT
 RadiositySurface make_surface(const Scene& scene, const CornerTriangle& triangle, uint32_t primitive) {
   RadiositySurface surface;
   for (int k = 0; k < 3; ++k) surface.corners[k] = triangle[k].position;
-  const Vec3 face_cross = cross(triangle[1].position - triangle[0].position, triangle[2].position - triangle[0].position);
+  const Vec3 face_cross =
+      cross(triangle[1].position - triangle[0].position, triangle[2].position - triangle[0].position);
   surface.area = 0.5 * length(face_cross);
   surface.normal = normalize(face_cross);
   surface.centroid = (triangle[0].position + triangle[1].position + triangle[2].position) / 3.0;
@@ -75,7 +76,8 @@ RadiositySurface make_surface(const Scene& scene, const CornerTriangle& triangle
   hit.position = surface.centroid;
   hit.geometric_normal = surface.normal;
   hit.shading_normal = surface.normal;
-  hit.object_position = (triangle[0].object_position + triangle[1].object_position + triangle[2].object_position) / 3.0;
+  hit.object_position =
+      (triangle[0].object_position + triangle[1].object_position + triangle[2].object_position) / 3.0;
   hit.uv = Vec2{(triangle[0].uv.x + triangle[1].uv.x + triangle[2].uv.x) / 3.0,
                 (triangle[0].uv.y + triangle[1].uv.y + triangle[2].uv.y) / 3.0};
   // Any tangent frame in the surface (only bump mapping reads it, and ρ does not depend on it).
@@ -147,8 +149,10 @@ double segment_inside(const std::array<Vec2, 3>& corners, const Vec2& a, const V
       continue;
     }
     const double t_edge = -start / change;
-    if (change > 0) t0 = std::max(t0, t_edge);
-    else t1 = std::min(t1, t_edge);
+    if (change > 0)
+      t0 = std::max(t0, t_edge);
+    else
+      t1 = std::min(t1, t_edge);
   }
   return std::max(0.0, t1 - t0);
 }
@@ -162,9 +166,9 @@ double segment_inside(const std::array<Vec2, 3>& corners, const Vec2& a, const V
 // A cut is the infinite line through the contact segment, in the triangle's plane; the pieces on
 // either side (halves of a convex polygon, fanned into triangles with the original winding) carry
 // positions, object positions and uvs interpolated linearly along the cut edges.
-void cut_at_contacts(const Scene& scene, std::vector<CornerTriangle>& triangles, std::vector<uint32_t>& primitives,
-                     const std::vector<CornerTriangle>& cutters, const std::vector<uint32_t>& cutter_primitives,
-                     double tolerance) {
+void cut_at_contacts(const Scene& scene, std::vector<CornerTriangle>& triangles,
+                     std::vector<uint32_t>& primitives, const std::vector<CornerTriangle>& cutters,
+                     const std::vector<uint32_t>& cutter_primitives, double tolerance) {
   const std::size_t count = triangles.size();
   const auto box_of = [](const CornerTriangle& triangle) {
     Bounds3 box;
@@ -177,12 +181,14 @@ void cut_at_contacts(const Scene& scene, std::vector<CornerTriangle>& triangles,
   for (std::size_t c = 0; c < cutters.size(); ++c) cutter_boxes[c] = box_of(cutters[c]);
   std::vector<std::size_t> by_x(cutters.size());
   for (std::size_t c = 0; c < cutters.size(); ++c) by_x[c] = c;
-  std::sort(by_x.begin(), by_x.end(), [&](std::size_t a, std::size_t b) { return cutter_boxes[a].lower.x < cutter_boxes[b].lower.x; });
+  std::sort(by_x.begin(), by_x.end(),
+            [&](std::size_t a, std::size_t b) { return cutter_boxes[a].lower.x < cutter_boxes[b].lower.x; });
   std::vector<std::vector<std::size_t>> touching(count);
   for (std::size_t t = 0; t < count; ++t) {
     const Bounds3 box = box_of(triangles[t]);
     const uint32_t object = scene.primitives[primitives[t]].object;
-    for (std::size_t i = 0; i < by_x.size() && cutter_boxes[by_x[i]].lower.x <= box.upper.x + tolerance; ++i) {
+    for (std::size_t i = 0; i < by_x.size() && cutter_boxes[by_x[i]].lower.x <= box.upper.x + tolerance;
+         ++i) {
       const std::size_t c = by_x[i];
       const Bounds3& other = cutter_boxes[c];
       if (other.upper.x < box.lower.x - tolerance || other.lower.y > box.upper.y + tolerance ||
@@ -207,22 +213,26 @@ void cut_at_contacts(const Scene& scene, std::vector<CornerTriangle>& triangles,
     }
     const Vec3 n = normalize(face);
     const Vec3 axis_u = normalize(triangle[1].position - origin), axis_v = cross(n, axis_u);
-    const auto plane_coordinates = [&](const Vec3& p) { return Vec2{dot(p - origin, axis_u), dot(p - origin, axis_v)}; };
+    const auto plane_coordinates = [&](const Vec3& p) {
+      return Vec2{dot(p - origin, axis_u), dot(p - origin, axis_v)};
+    };
     std::array<Vec2, 3> corners2;
     for (int k = 0; k < 3; ++k) corners2[k] = plane_coordinates(triangle[k].position);
     for (const std::size_t other : touching[t]) {
       // The other triangle's crossing of this plane: the points where its edges meet the plane.
       std::array<double, 3> height;
       for (int k = 0; k < 3; ++k) height[k] = dot(cutters[other][k].position - origin, n);
-      const double highest = std::max({height[0], height[1], height[2]}), lowest = std::min({height[0], height[1], height[2]});
-      if (lowest > tolerance || highest < -tolerance) continue;   // wholly on one side
+      const double highest = std::max({height[0], height[1], height[2]}),
+                   lowest = std::min({height[0], height[1], height[2]});
+      if (lowest > tolerance || highest < -tolerance) continue;    // wholly on one side
       if (highest <= tolerance && lowest >= -tolerance) continue;  // coplanar: no line
       std::vector<Vec2> crossing;
       for (int k = 0; k < 3; ++k) {
         const Vec3& p = cutters[other][k].position;
         const Vec3& q = cutters[other][(k + 1) % 3].position;
         const double hp = height[k], hq = height[(k + 1) % 3];
-        if (std::fabs(hp) <= tolerance) crossing.push_back(plane_coordinates(p));
+        if (std::fabs(hp) <= tolerance)
+          crossing.push_back(plane_coordinates(p));
         else if ((hp > tolerance && hq < -tolerance) || (hp < -tolerance && hq > tolerance))
           crossing.push_back(plane_coordinates(p + (q - p) * (hp / (hp - hq))));
       }
@@ -240,7 +250,8 @@ void cut_at_contacts(const Scene& scene, std::vector<CornerTriangle>& triangles,
       // not run on across the rest of the surface.
       std::vector<CornerTriangle> cut;
       for (const CornerTriangle& piece : pieces) {
-        const std::array<Vec2, 3> piece2{plane_coordinates(piece[0].position), plane_coordinates(piece[1].position),
+        const std::array<Vec2, 3> piece2{plane_coordinates(piece[0].position),
+                                         plane_coordinates(piece[1].position),
                                          plane_coordinates(piece[2].position)};
         if (!(segment_inside(piece2, a, direction) * segment_length > tolerance)) {
           cut.push_back(piece);
@@ -272,7 +283,8 @@ void cut_at_contacts(const Scene& scene, std::vector<CornerTriangle>& triangles,
                                  Vec2{p.uv.x + (q.uv.x - p.uv.x) * f, p.uv.y + (q.uv.y - p.uv.y) * f}});
             }
           }
-          for (std::size_t k = 1; k + 1 < polygon.size(); ++k) cut.push_back({polygon[0], polygon[k], polygon[k + 1]});
+          for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
+            cut.push_back({polygon[0], polygon[k], polygon[k + 1]});
         }
       }
       pieces = std::move(cut);
@@ -288,7 +300,9 @@ void cut_at_contacts(const Scene& scene, std::vector<CornerTriangle>& triangles,
 
 }  // namespace
 
-RadiositySystem RadiosityMesh::patch_system() const { return system_of(patches); }
+RadiositySystem RadiosityMesh::patch_system() const {
+  return system_of(patches);
+}
 ElementSystem RadiosityMesh::element_system() const {
   RadiositySystem surfaces = system_of(elements);
   return {{patch_of_element.begin(), patch_of_element.end()},
@@ -317,7 +331,8 @@ uint32_t RadiosityMesh::element_at(uint32_t primitive, const Vec3& point) const 
   const auto consider = [&](uint32_t e) {
     if (elements[e].primitive != primitive) return;
     const auto& corners = elements[e].corners;
-    const double distance = length_squared(point - closest_point_on_triangle(point, corners[0], corners[1], corners[2]));
+    const double distance =
+        length_squared(point - closest_point_on_triangle(point, corners[0], corners[1], corners[2]));
     if (distance < best_distance || (distance == best_distance && e < best)) {
       best_distance = distance;
       best = e;
@@ -336,7 +351,8 @@ uint32_t RadiosityMesh::element_at(uint32_t primitive, const Vec3& point) const 
     // it was cut), not a point of any element.
     const Bounds3& mesh_box = element_grid.bounds();
     for (int axis = 0; axis < 3; ++axis)
-      if (point[axis] < mesh_box.lower[axis] - reach || point[axis] > mesh_box.upper[axis] + reach) return UINT32_MAX;
+      if (point[axis] < mesh_box.lower[axis] - reach || point[axis] > mesh_box.upper[axis] + reach)
+        return UINT32_MAX;
   }
   for (const uint32_t e : elements_of_primitive[primitive]) consider(e);  // far from every element
   return best;
@@ -378,7 +394,8 @@ std::vector<std::vector<uint32_t>> RadiosityMesh::element_neighbours() const {
       if (other == q || elements[other].object != elements[q].object) return;
       if (dot(elements[other].normal, elements[q].normal) < crease_cosine) return;
       // A shared piece of edge: two corners of one lie on the other's boundary.
-      if (corners_on_boundary(elements[q], elements[other]) >= 2 || corners_on_boundary(elements[other], elements[q]) >= 2)
+      if (corners_on_boundary(elements[q], elements[other]) >= 2 ||
+          corners_on_boundary(elements[other], elements[q]) >= 2)
         list.push_back(other);
     });
     std::sort(list.begin(), list.end());
@@ -421,7 +438,8 @@ std::vector<uint32_t> RadiosityMesh::split_elements(const Scene& scene, const st
       for (const CornerTriangle& piece : pieces) {
         new_elements.push_back(split[q] ? make_surface(scene, piece, elements[q].primitive) : elements[q]);
         new_patch_of_element.push_back(static_cast<uint32_t>(p));
-        new_object_corners.push_back({piece[0].object_position, piece[1].object_position, piece[2].object_position});
+        new_object_corners.push_back(
+            {piece[0].object_position, piece[1].object_position, piece[2].object_position});
         new_uvs.push_back({piece[0].uv, piece[1].uv, piece[2].uv});
         origin.push_back(q);
       }
@@ -451,7 +469,8 @@ struct MeshStart {
 
 MeshStart start_mesh(const Scene& scene, const RadiosityMeshSettings& settings) {
   if (settings.segments < 3) {
-    throw std::invalid_argument("radiosity mesh: segments " + std::to_string(settings.segments) + " (must be >= 3)");
+    throw std::invalid_argument("radiosity mesh: segments " + std::to_string(settings.segments) +
+                                " (must be >= 3)");
   }
   if (!(settings.patch_size >= 0) || !std::isfinite(settings.patch_size) || !(settings.element_size >= 0) ||
       !std::isfinite(settings.element_size)) {
@@ -459,7 +478,8 @@ MeshStart start_mesh(const Scene& scene, const RadiosityMeshSettings& settings) 
   }
   const Bounds3 clip = settings.clip.empty() ? scene.bounds() : settings.clip;
   if (clip.empty() || !clip.is_finite()) {
-    throw std::invalid_argument("radiosity mesh: the scene has no bounded shape and no clip box (where planes end)");
+    throw std::invalid_argument(
+        "radiosity mesh: the scene has no bounded shape and no clip box (where planes end)");
   }
   MeshStart start;
   start.scene_size = length(clip.diagonal());
@@ -478,7 +498,8 @@ MeshStart start_mesh(const Scene& scene, const RadiosityMeshSettings& settings) 
   start.primitives.assign(tessellated.primitives.begin(), tessellated.primitives.end());
   for (std::size_t t = 0; t < start.triangles.size(); ++t)
     for (int k = 0; k < 3; ++k)
-      start.triangles[t][k] = {tessellated.corner_positions[3 * t + k], tessellated.corner_object_positions[3 * t + k],
+      start.triangles[t][k] = {tessellated.corner_positions[3 * t + k],
+                               tessellated.corner_object_positions[3 * t + k],
                                tessellated.corner_uvs[3 * t + k]};
   return start;
 }
@@ -497,7 +518,8 @@ RadiosityMeshEstimate estimate_radiosity_mesh(const Scene& scene, const Radiosit
   // No triangle whose longest edge is at most s is larger than the equilateral one, √3/4 s².
   const double area = total_area(start.triangles), largest = std::sqrt(3.0) / 4;
   RadiosityMeshEstimate estimate;
-  estimate.patches = std::max(static_cast<double>(start.triangles.size()), area / (largest * start.patch_size * start.patch_size));
+  estimate.patches = std::max(static_cast<double>(start.triangles.size()),
+                              area / (largest * start.patch_size * start.patch_size));
   estimate.elements = std::max(estimate.patches, area / (largest * start.element_size * start.element_size));
   return estimate;
 }
@@ -512,11 +534,13 @@ RadiosityMesh build_radiosity_mesh(const Scene& scene, const RadiosityMeshSettin
   std::vector<uint32_t>& primitives = start.primitives;
   // Elements bound the work: refuse a mesh far beyond what any solver could keep (a right
   // triangle with legs s/√2 has area s²/4, the smallest bisection keeps).
-  const double estimated_elements = total_area(triangles) / (0.25 * result.element_size * result.element_size);
+  const double estimated_elements =
+      total_area(triangles) / (0.25 * result.element_size * result.element_size);
   if (estimated_elements > kMaxElements)
-    throw std::invalid_argument("radiosity mesh: about " + std::to_string(static_cast<uint64_t>(estimated_elements)) +
-                                " elements of size " + std::to_string(result.element_size) + " (at most " +
-                                std::to_string(kMaxElements) + "); raise radiosity.element_size and radiosity.patch_size");
+    throw std::invalid_argument(
+        "radiosity mesh: about " + std::to_string(static_cast<uint64_t>(estimated_elements)) +
+        " elements of size " + std::to_string(result.element_size) + " (at most " +
+        std::to_string(kMaxElements) + "); raise radiosity.element_size and radiosity.patch_size");
 
   // Patches: each triangle bisected to patch_size, then cut where other objects meet it.
   std::vector<CornerTriangle> patches;
@@ -542,7 +566,8 @@ RadiosityMesh build_radiosity_mesh(const Scene& scene, const RadiosityMeshSettin
       result.elements_of_primitive[primitive].push_back(static_cast<uint32_t>(result.elements.size()));
       result.elements.push_back(make_surface(scene, element, primitive));
       result.patch_of_element.push_back(patch_index);
-      result.element_object_corners.push_back({element[0].object_position, element[1].object_position, element[2].object_position});
+      result.element_object_corners.push_back(
+          {element[0].object_position, element[1].object_position, element[2].object_position});
       result.element_uvs.push_back({element[0].uv, element[1].uv, element[2].uv});
     }
     result.first_element.push_back(static_cast<uint32_t>(result.elements.size()));

@@ -22,7 +22,8 @@ std::unique_ptr<Scene> scene_with(const std::string& shapes) {
 
 double longest_edge(const RadiositySurface& surface) {
   double longest = 0;
-  for (int k = 0; k < 3; ++k) longest = std::max(longest, length(surface.corners[(k + 1) % 3] - surface.corners[k]));
+  for (int k = 0; k < 3; ++k)
+    longest = std::max(longest, length(surface.corners[(k + 1) % 3] - surface.corners[k]));
   return longest;
 }
 
@@ -67,7 +68,8 @@ TEST(RadiosityMesh, BoxAreaIsExactAndEveryPieceWithinItsBound) {
   // Outward normals: every centroid + normal lies outside the box.
   for (const auto& element : mesh.elements) {
     const Vec3 outside = element.centroid + element.normal * 0.01;
-    EXPECT_TRUE(outside.x < 0 || outside.x > 2 || outside.y < 0 || outside.y > 3 || outside.z < 0 || outside.z > 4);
+    EXPECT_TRUE(outside.x < 0 || outside.x > 2 || outside.y < 0 || outside.y > 3 || outside.z < 0 ||
+                outside.z > 4);
   }
   // The element found at an element's centroid is that element.
   for (uint32_t e = 0; e < mesh.elements.size(); ++e) {
@@ -186,7 +188,8 @@ TEST(RadiosityMesh, BadSettingsAreRefused) {
 
 TEST(RadiosityMesh, NeighboursShareEdgesWithinOneSurfaceAndAreSymmetric) {
   // A unit quad meshed into 8 elements (two triangles, each bisected twice), and a box beside it.
-  const auto scene = scene_with(R"([{"type": "quad", "corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0]},
+  const auto scene =
+      scene_with(R"([{"type": "quad", "corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0]},
                                     {"type": "box", "min": [2, 0, 0], "max": [3, 1, 1]}])");
   RadiosityMeshSettings settings;
   settings.patch_size = 1.5;
@@ -241,7 +244,8 @@ TEST(RadiosityMesh, NeighboursShareEdgesWithinOneSurfaceAndAreSymmetric) {
 // SPEC §10's remedy for light leaks: surfaces cut where other objects meet them, so that no
 // floor element straddles the footprint of a box standing on it.
 TEST(RadiosityMesh, SplitAtContactsCutsTheFloorAlongABoxFootprint) {
-  const auto scene = scene_with(R"([{"type": "quad", "corner": [0, 0, 0], "edge_u": [4, 0, 0], "edge_v": [0, 4, 0]},
+  const auto scene =
+      scene_with(R"([{"type": "quad", "corner": [0, 0, 0], "edge_u": [4, 0, 0], "edge_v": [0, 4, 0]},
                                     {"type": "box", "min": [1.3, 1.1, 0], "max": [2.45, 2.7, 1]}])");
   RadiosityMeshSettings settings;
   settings.patch_size = 1;
@@ -311,7 +315,8 @@ TEST(RadiosityMesh, ElementAtMatchesTheNearestElementFoundByScanning) {
     const double reach = mesh.element_grid.cell_size();
     const Bounds3& box = mesh.element_grid.bounds();
     for (int axis = 0; axis < 3; ++axis)
-      if (point[axis] < box.lower[axis] - reach || point[axis] > box.upper[axis] + reach) expected = UINT32_MAX;
+      if (point[axis] < box.lower[axis] - reach || point[axis] > box.upper[axis] + reach)
+        expected = UINT32_MAX;
     EXPECT_EQ(mesh.element_at(primitive, point), expected) << trial;
   }
 }
@@ -319,7 +324,8 @@ TEST(RadiosityMesh, ElementAtMatchesTheNearestElementFoundByScanning) {
 // The contact cuts stay near the contact: a cylinder standing through a floor cuts the floor
 // around its footprint only, not along lines running across the whole floor.
 TEST(RadiosityMesh, ContactCutsStayNearTheContact) {
-  const auto scene = scene_with(R"([{"type": "quad", "corner": [-5, -5, 0], "edge_u": [10, 0, 0], "edge_v": [0, 10, 0]},
+  const auto scene =
+      scene_with(R"([{"type": "quad", "corner": [-5, -5, 0], "edge_u": [10, 0, 0], "edge_v": [0, 10, 0]},
                                     {"type": "cylinder", "base": [0.3, 0.2, -1], "cap": [0.3, 0.2, 2], "radius": 1}])");
   RadiosityMeshSettings settings;
   settings.patch_size = 1;

@@ -10,7 +10,8 @@ RadiositySettings read_radiosity_settings(const JsonNode& node) {
   settings.ray_cast_samples = node.integer("ray_cast_samples", 4, {1, 64, false, false});
   // 1024: 12 MiB of item buffers per thread; the error falls as 1/R² (000 §6.4), so more buys nothing.
   settings.hemicube_resolution = node.integer("hemicube_resolution", 100, {2, 1024, false, false});
-  if (settings.hemicube_resolution % 2 != 0) node.at("hemicube_resolution").fail("hemicube_resolution must be even");
+  if (settings.hemicube_resolution % 2 != 0)
+    node.at("hemicube_resolution").fail("hemicube_resolution must be even");
   settings.patch_size = node.number("patch_size", 0.0, Range::non_negative());
   settings.element_size = node.number("element_size", 0.0, Range::non_negative());
   if (settings.patch_size > 0 && settings.element_size > settings.patch_size)

@@ -41,14 +41,17 @@ struct RadiositySettings {
   double memory_limit_mib = 0;
 };
 
-inline constexpr auto kRadiositySolverNames = enum_names<RadiositySolver>(
-    {{RadiositySolver::progressive, "progressive"}, {RadiositySolver::gauss_seidel, "gauss-seidel"},
-     {RadiositySolver::gaussian, "gaussian"}});
+inline constexpr auto kRadiositySolverNames =
+    enum_names<RadiositySolver>({{RadiositySolver::progressive, "progressive"},
+                                 {RadiositySolver::gauss_seidel, "gauss-seidel"},
+                                 {RadiositySolver::gaussian, "gaussian"}});
 inline constexpr auto kRadiosityFormFactorNames = enum_names<RadiosityFormFactors>(
     {{RadiosityFormFactors::hemicube, "hemicube"}, {RadiosityFormFactors::ray_cast, "ray-cast"}});
-inline constexpr auto kRadiosityDisplayNames = enum_names<RadiosityDisplay>(
-    {{RadiosityDisplay::flat, "flat"}, {RadiosityDisplay::gouraud, "gouraud"},
-     {RadiosityDisplay::ray_traced, "ray-traced"}, {RadiosityDisplay::elements, "elements"}});
+inline constexpr auto kRadiosityDisplayNames =
+    enum_names<RadiosityDisplay>({{RadiosityDisplay::flat, "flat"},
+                                  {RadiosityDisplay::gouraud, "gouraud"},
+                                  {RadiosityDisplay::ray_traced, "ray-traced"},
+                                  {RadiosityDisplay::elements, "elements"}});
 
 // The "radiosity" object (expected an object; ranges checked, unknown keys refused).
 RadiositySettings read_radiosity_settings(const JsonNode& node);

@@ -19,14 +19,14 @@ struct RadiositySolveResult {
   // surface, like the floor under a box) and receives nothing; its radiosity says nothing about
   // its visible neighbours', so the display leaves it out of their vertex radiosities.
   std::vector<uint8_t> element_hidden;
-  std::size_t steps = 0;                 // shots or sweeps (1 for gaussian)
-  double unshot_fraction = 0;            // progressive: on return; 0 for the direct solvers
+  std::size_t steps = 0;       // shots or sweeps (1 for gaussian)
+  double unshot_fraction = 0;  // progressive: on return; 0 for the direct solvers
   bool converged = true;
-  std::size_t form_factor_rows = 0;      // form-factor rows computed
-  std::size_t form_factors = 0;          // form factors computed (rows × their length)
-  std::size_t subdivision_passes = 0;    // adaptive subdivision passes that split elements
+  std::size_t form_factor_rows = 0;    // form-factor rows computed
+  std::size_t form_factors = 0;        // form factors computed (rows × their length)
+  std::size_t subdivision_passes = 0;  // adaptive subdivision passes that split elements
   double solve_seconds = 0, mesh_seconds = 0;
-  std::size_t form_factor_bytes = 0;     // memory held by the stored form factors
+  std::size_t form_factor_bytes = 0;  // memory held by the stored form factors
 };
 
 }  // namespace candela

@@ -170,7 +170,7 @@ RadiositySolution solve_gaussian_elimination(const RadiositySystem& system,
   const Eigen::MatrixXd& f = dense_source.matrix();
   solution.rows_computed = n;
 
-  // 000 eq. 6-9: (I − diag(ρ)F) B = E, one system per primary colour. Channels with the same
+  // 000 eq. 6-9: (I − diag(ρ)F) B = E, one system per primary color. Channels with the same
   // reflectances share one factorisation, solved together for their right-hand sides.
   solution.radiosity.assign(n, Color());
   Eigen::MatrixXd system_matrix(static_cast<Index>(n), static_cast<Index>(n));

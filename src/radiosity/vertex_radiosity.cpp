@@ -1,11 +1,11 @@
 #include "radiosity/vertex_radiosity.h"
 
 #include <algorithm>
-#include <string>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <string>
 #include <tuple>
 #include <utility>
 
@@ -15,7 +15,9 @@ namespace {
 
 using Edge = std::pair<uint32_t, uint32_t>;  // vertex indices, lower first
 
-Edge make_edge(uint32_t a, uint32_t b) { return a < b ? Edge{a, b} : Edge{b, a}; }
+Edge make_edge(uint32_t a, uint32_t b) {
+  return a < b ? Edge{a, b} : Edge{b, a};
+}
 
 // Whether `point` lies strictly inside the segment a–b (a T-junction vertex on that edge).
 bool strictly_inside_segment(const Vec3& point, const Vec3& a, const Vec3& b) {
@@ -28,7 +30,9 @@ bool strictly_inside_segment(const Vec3& point, const Vec3& a, const Vec3& b) {
   return dot(offset, offset) <= 1e-18 * length_squared;
 }
 
-Color clamped_at_zero(const Color& c) { return {std::max(c.r, 0.0), std::max(c.g, 0.0), std::max(c.b, 0.0)}; }
+Color clamped_at_zero(const Color& c) {
+  return {std::max(c.r, 0.0), std::max(c.g, 0.0), std::max(c.b, 0.0)};
+}
 
 }  // namespace
 
@@ -76,15 +80,16 @@ VertexRadiosity compute_vertex_radiosity(const std::vector<RadiositySurface>& el
   for (std::size_t q = 0; q < elements.size(); ++q) {
     const auto& v = result.element_vertices[q];
     for (int c = 0; c < 3; ++c)
-      elements_of_edge[make_edge(v[static_cast<std::size_t>(c)], v[static_cast<std::size_t>((c + 1) % 3)])].push_back(
-          static_cast<uint32_t>(q));
+      elements_of_edge[make_edge(v[static_cast<std::size_t>(c)], v[static_cast<std::size_t>((c + 1) % 3)])]
+          .push_back(static_cast<uint32_t>(q));
   }
 
   // Edges of one element only are boundary edges, unless they belong to a T-junction: an edge
   // with vertices of its surface strictly inside it, or a piece of such an edge.
   std::vector<std::vector<uint32_t>> vertices_of_object;
   for (uint32_t v = 0; v < vertex_count; ++v) {
-    if (result.object[v] >= vertices_of_object.size()) vertices_of_object.resize(result.object[v] + std::size_t{1});
+    if (result.object[v] >= vertices_of_object.size())
+      vertices_of_object.resize(result.object[v] + std::size_t{1});
     vertices_of_object[result.object[v]].push_back(v);
   }
   std::map<Edge, bool> is_boundary_edge;
@@ -98,7 +103,8 @@ VertexRadiosity compute_vertex_radiosity(const std::vector<RadiositySurface>& el
       if (strictly_inside_segment(result.positions[v], a, b)) on_edge.push_back(v);
     if (on_edge.size() == 2) continue;
     boundary = false;
-    for (std::size_t i = 2; i < on_edge.size(); ++i) elements_of_vertex[on_edge[i]].push_back(elements_of_edge[edge].front());
+    for (std::size_t i = 2; i < on_edge.size(); ++i)
+      elements_of_vertex[on_edge[i]].push_back(elements_of_edge[edge].front());
     for (std::size_t i = 0; i < on_edge.size(); ++i)
       for (std::size_t j = i + 1; j < on_edge.size(); ++j) {
         const auto piece = is_boundary_edge.find(make_edge(on_edge[i], on_edge[j]));
@@ -134,13 +140,15 @@ VertexRadiosity compute_vertex_radiosity(const std::vector<RadiositySurface>& el
       if (result.kind[n] != VertexKind::interior) continue;
       const Vec3 d = result.positions[n] - result.positions[v];
       const double distance = dot(d, d);
-      if (distance < nearest_distance || (distance == nearest_distance && n < nearest)) nearest = n, nearest_distance = distance;
+      if (distance < nearest_distance || (distance == nearest_distance && n < nearest))
+        nearest = n, nearest_distance = distance;
     }
     if (nearest == UINT32_MAX) {
       result.kind[v] = VertexKind::isolated_boundary;  // 000 §6.5, Figure 58b: no general formula
       result.radiosity[v] = mean_of(elements_of_vertex[v]);
     } else {
-      result.radiosity[v] = mean_of(elements_of_edge[make_edge(v, nearest)]) * 2.0 - result.radiosity[nearest];
+      result.radiosity[v] =
+          mean_of(elements_of_edge[make_edge(v, nearest)]) * 2.0 - result.radiosity[nearest];
     }
   }
   for (Color& b : result.radiosity) b = clamped_at_zero(b);

@@ -86,8 +86,10 @@ TEST(VertexRadiosity, VerticesAreNotSharedAcrossObjects) {
   // Two coplanar grids meeting along x = 3, one dark (object 0), one bright (object 1).
   std::vector<RadiositySurface> elements;
   std::vector<Color> radiosity;
-  add_grid(3, 0, 0, [](const Vec3&) { return 1.0; }, elements, radiosity);
-  add_grid(3, 3, 1, [](const Vec3&) { return 5.0; }, elements, radiosity);
+  add_grid(
+      3, 0, 0, [](const Vec3&) { return 1.0; }, elements, radiosity);
+  add_grid(
+      3, 3, 1, [](const Vec3&) { return 5.0; }, elements, radiosity);
   const VertexRadiosity vertices = compute_vertex_radiosity(elements, radiosity);
   EXPECT_EQ(vertices.positions.size(), std::size_t(2 * 16));
   for (std::size_t v = 0; v < vertices.positions.size(); ++v)
@@ -123,7 +125,8 @@ TEST(VertexRadiosity, BoxFacesKeepTheirOwnVerticesAtACrease) {
 }
 
 TEST(VertexRadiosity, SizeMismatchThrows) {
-  EXPECT_THROW(compute_vertex_radiosity({triangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0)}, {}), std::invalid_argument);
+  EXPECT_THROW(compute_vertex_radiosity({triangle({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0)}, {}),
+               std::invalid_argument);
 }
 
 TEST(VertexRadiosity, HiddenElementsKeepTheirOwnVerticesAndLeaveTheOthersAlone) {
@@ -162,7 +165,8 @@ TEST(VertexRadiosity, HiddenElementsKeepTheirOwnVerticesAndLeaveTheOthersAlone) 
   // Empty flags: the plain computation.
   const VertexRadiosity plain = compute_vertex_radiosity(elements, radiosity, {});
   EXPECT_EQ(plain.positions.size(), compute_vertex_radiosity(elements, radiosity).positions.size());
-  EXPECT_THROW(compute_vertex_radiosity(elements, radiosity, std::vector<uint8_t>(3, 0)), std::invalid_argument);
+  EXPECT_THROW(compute_vertex_radiosity(elements, radiosity, std::vector<uint8_t>(3, 0)),
+               std::invalid_argument);
 }
 
 }  // namespace

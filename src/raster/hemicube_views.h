@@ -36,9 +36,8 @@ namespace candela {
 
 enum class HemicubeFace { top, front, back, left, right };
 
-inline constexpr std::array<HemicubeFace, 5> kHemicubeFaces = {HemicubeFace::top, HemicubeFace::front,
-                                                                HemicubeFace::back, HemicubeFace::left,
-                                                                HemicubeFace::right};
+inline constexpr std::array<HemicubeFace, 5> kHemicubeFaces = {
+    HemicubeFace::top, HemicubeFace::front, HemicubeFace::back, HemicubeFace::left, HemicubeFace::right};
 
 // The unit axes of one face's view (see the table above).
 struct HemicubeFaceAxes {

@@ -15,7 +15,8 @@ Eigen::Vector4d to_clip(const Eigen::Matrix4d& clip_from_world, const Vec3& p) {
 }  // namespace
 
 ItemBuffer::ItemBuffer(int width, int height)
-    : rasterizer_(width, height), ids_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), kNoItem) {}
+    : rasterizer_(width, height),
+      ids_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), kNoItem) {}
 
 void ItemBuffer::set_region(int x0, int y0, int x1, int y1) {
   rasterizer_.set_region(x0, y0, x1, y1);
@@ -36,11 +37,12 @@ void ItemBuffer::draw_clip(const Eigen::Vector4d& a, const Eigen::Vector4d& b, c
   corners[2].clip = c;
   uint32_t* ids = ids_.data();
   const int width = rasterizer_.width();
-  rasterizer_.draw_triangle(corners[0], corners[1], corners[2], 0, [ids, width, id](const Fragment& fragment) {
-    ids[static_cast<std::size_t>(fragment.y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(fragment.x)] =
-        id;
-    return true;
-  });
+  rasterizer_.draw_triangle(corners[0], corners[1], corners[2], 0,
+                            [ids, width, id](const Fragment& fragment) {
+                              ids[static_cast<std::size_t>(fragment.y) * static_cast<std::size_t>(width) +
+                                  static_cast<std::size_t>(fragment.x)] = id;
+                              return true;
+                            });
 }
 
 void ItemBuffer::draw(const Eigen::Matrix4d& clip_from_world, const Vec3& p0, const Vec3& p1, const Vec3& p2,

@@ -33,12 +33,14 @@ class ItemBuffer {
   void clear();  // every id to kNoItem, every depth to +∞
 
   // Draws one triangle with the given id: pixels where it is the nearest so far take the id.
-  void draw(const Eigen::Matrix4d& clip_from_world, const Vec3& p0, const Vec3& p1, const Vec3& p2, uint32_t id);
+  void draw(const Eigen::Matrix4d& clip_from_world, const Vec3& p0, const Vec3& p1, const Vec3& p2,
+            uint32_t id);
   // Draws every triangle of the mesh, triangle i with ids[i] (empty: with id i). Each position is
   // transformed once. The mesh must be valid (TriangleMesh::validate: indices in range), which
   // is not checked here. Throws std::invalid_argument when ids is neither empty nor one per
   // triangle.
-  void draw(const Eigen::Matrix4d& clip_from_world, const TriangleMesh& mesh, std::span<const uint32_t> ids = {});
+  void draw(const Eigen::Matrix4d& clip_from_world, const TriangleMesh& mesh,
+            std::span<const uint32_t> ids = {});
 
   // The id at pixel (x, y) (kNoItem where nothing was drawn); throws std::out_of_range outside
   // the image.

@@ -35,8 +35,8 @@ TEST(ItemBuffer, StartsEmptyAndKeepsTheNearestId) {
   other.draw(clip_from_world, near[0], near[1], near[2], 3);
   other.draw(clip_from_world, far[0], far[1], far[2], 7);
   EXPECT_EQ(items.ids(), other.ids());
-  EXPECT_EQ(items.at(32, 24), 3u);   // the centre: the near triangle
-  EXPECT_EQ(items.at(32, 44), 7u);   // below the near one's base: the far triangle
+  EXPECT_EQ(items.at(32, 24), 3u);  // the centre: the near triangle
+  EXPECT_EQ(items.at(32, 44), 7u);  // below the near one's base: the far triangle
   EXPECT_EQ(items.at(0, 0), ItemBuffer::kNoItem);
   // The depth is the ndc depth of what the pixel's ray hits.
   const Ray ray = camera.generate_ray(32.5, 24.5);
@@ -53,10 +53,13 @@ TriangleMesh cube() {
   TriangleMesh mesh;
   for (int i = 0; i < 8; ++i)
     mesh.positions.push_back({(i & 1) ? 1.0 : -1.0, (i & 2) ? 1.0 : -1.0, (i & 4) ? 1.0 : -1.0});
-  const int quads[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
+  const int quads[6][4] = {{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
+                           {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}};
   for (const auto& q : quads) {
-    mesh.triangles.push_back({static_cast<uint32_t>(q[0]), static_cast<uint32_t>(q[1]), static_cast<uint32_t>(q[2])});
-    mesh.triangles.push_back({static_cast<uint32_t>(q[0]), static_cast<uint32_t>(q[2]), static_cast<uint32_t>(q[3])});
+    mesh.triangles.push_back(
+        {static_cast<uint32_t>(q[0]), static_cast<uint32_t>(q[1]), static_cast<uint32_t>(q[2])});
+    mesh.triangles.push_back(
+        {static_cast<uint32_t>(q[0]), static_cast<uint32_t>(q[2]), static_cast<uint32_t>(q[3])});
   }
   return mesh;
 }
@@ -66,14 +69,16 @@ TEST(ItemBuffer, MeshIdsAreTheTrianglesARayCasterSees) {
   // triangle whose hit is nearest along the pixel's ray.
   TriangleMesh mesh = cube();
   const uint32_t base = static_cast<uint32_t>(mesh.positions.size());
-  mesh.positions.insert(mesh.positions.end(), {{-2.2, -0.3, -1.9}, {2.1, 0.4, -2.3}, {1.8, 0.9, 2.4}, {-2.4, 0.1, 2.2}});
+  mesh.positions.insert(mesh.positions.end(),
+                        {{-2.2, -0.3, -1.9}, {2.1, 0.4, -2.3}, {1.8, 0.9, 2.4}, {-2.4, 0.1, 2.2}});
   mesh.triangles.push_back({base, base + 1, base + 2});
   mesh.triangles.push_back({base, base + 2, base + 3});
   const PerspectiveCamera camera({3.1, 2.3, 4.2}, {0.1, -0.2, 0}, {0, 1, 0}, 55, 96, 72);
   const Eigen::Matrix4d clip_from_world = camera.view_projection(0.5, 30);
   for (const bool with_ids : {false, true}) {
     std::vector<uint32_t> ids(mesh.triangles.size());
-    for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = with_ids ? static_cast<uint32_t>(100 + 3 * i) : static_cast<uint32_t>(i);
+    for (std::size_t i = 0; i < ids.size(); ++i)
+      ids[i] = with_ids ? static_cast<uint32_t>(100 + 3 * i) : static_cast<uint32_t>(i);
     ItemBuffer items(96, 72);
     if (with_ids)
       items.draw(clip_from_world, mesh, ids);
@@ -88,7 +93,8 @@ TEST(ItemBuffer, MeshIdsAreTheTrianglesARayCasterSees) {
         for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
           TriangleIntersection hit;
           const auto& c = mesh.triangles[t];
-          if (intersect_triangle(ray, mesh.positions[c[0]], mesh.positions[c[1]], mesh.positions[c[2]], hit) &&
+          if (intersect_triangle(ray, mesh.positions[c[0]], mesh.positions[c[1]], mesh.positions[c[2]],
+                                 hit) &&
               hit.t < nearest) {
             nearest = hit.t;
             expected = ids[t];
@@ -143,14 +149,17 @@ TEST(Hemicube, FacesLookAlongTheDocumentedAxes) {
   const HemicubeFaceAxes top = hemicube_face_axes(normal, hint, HemicubeFace::top);
   EXPECT_NEAR(length(top.forward - normal), 0, 1e-15);
   EXPECT_NEAR(dot(top.up, normal), 0, 1e-15);
-  EXPECT_NEAR(length(top.up - normalize(hint - normal * dot(hint, normal))), 0, 1e-15);  // t: the hint, orthogonalised
+  EXPECT_NEAR(length(top.up - normalize(hint - normal * dot(hint, normal))), 0,
+              1e-15);  // t: the hint, orthogonalised
   const Vec3 t = top.up, b = top.right;
   EXPECT_NEAR(length(cross(normal, t) - b), 0, 1e-15);  // b = n × t
   const struct {
     HemicubeFace face;
     Vec3 forward, right, up;
-  } expected[] = {{HemicubeFace::top, normal, b, t},      {HemicubeFace::front, t, -b, normal},
-                  {HemicubeFace::back, -t, b, normal},    {HemicubeFace::right, b, t, normal},
+  } expected[] = {{HemicubeFace::top, normal, b, t},
+                  {HemicubeFace::front, t, -b, normal},
+                  {HemicubeFace::back, -t, b, normal},
+                  {HemicubeFace::right, b, t, normal},
                   {HemicubeFace::left, -b, -t, normal}};
   const int size = 64;
   for (const auto& e : expected) {
@@ -185,8 +194,8 @@ TEST(Hemicube, FacesLookAlongTheDocumentedAxes) {
   // A point straight along the normal lands at the centre of the top face's image.
   ItemBuffer items(size, size);
   const Vec3 ahead = center + normal * 3;
-  items.draw(hemicube_view_projection(center, normal, hint, HemicubeFace::top, 0.01, 100), ahead - t * 0.3 - b * 0.3,
-             ahead + t * 0.3 - b * 0.3, ahead + b * 0.3, 5);
+  items.draw(hemicube_view_projection(center, normal, hint, HemicubeFace::top, 0.01, 100),
+             ahead - t * 0.3 - b * 0.3, ahead + t * 0.3 - b * 0.3, ahead + b * 0.3, 5);
   EXPECT_EQ(items.at(size / 2, size / 2), 5u);
   EXPECT_EQ(items.at(size / 2 - 1, size / 2 - 1), 5u);
   EXPECT_EQ(items.at(0, 0), ItemBuffer::kNoItem);
@@ -196,10 +205,13 @@ TEST(Hemicube, FiveFacesCoverTheHemisphereExactlyOnce) {
   const Vec3 center{1, 2, 3};
   Pcg32 random(17, 4);
   for (int frame = 0; frame < 4; ++frame) {
-    const Vec3 normal{2 * random.next_double() - 1, 2 * random.next_double() - 1, 2 * random.next_double() - 1};
-    const Vec3 hint = frame == 3 ? normal * 2 : Vec3{random.next_double(), 1, random.next_double()};  // 3: degenerate hint
+    const Vec3 normal{2 * random.next_double() - 1, 2 * random.next_double() - 1,
+                      2 * random.next_double() - 1};
+    const Vec3 hint =
+        frame == 3 ? normal * 2 : Vec3{random.next_double(), 1, random.next_double()};  // 3: degenerate hint
     Eigen::Matrix4d matrices[5];
-    for (int f = 0; f < 5; ++f) matrices[f] = hemicube_view_projection(center, normal, hint, kHemicubeFaces[f], 1e-3, 10);
+    for (int f = 0; f < 5; ++f)
+      matrices[f] = hemicube_view_projection(center, normal, hint, kHemicubeFaces[f], 1e-3, 10);
     const Vec3 n = normalize(normal);
     for (int sample = 0; sample < 20000; ++sample) {
       // Uniform on the sphere.

@@ -80,18 +80,20 @@ int clip_against_plane(const ClipVertex* in, int count, bool far_plane, int vary
 
 Rasterizer::Rasterizer(int width, int height) : Rasterizer(width, height, 0, 0, width, height) {}
 
-Rasterizer::Rasterizer(int width, int height, int x0, int y0, int x1, int y1) : width_(width), height_(height) {
+Rasterizer::Rasterizer(int width, int height, int x0, int y0, int x1, int y1)
+    : width_(width), height_(height) {
   if (width < 1 || height < 1)
-    throw std::invalid_argument("rasterizer: the image must be at least 1 x 1 pixels, not " + std::to_string(width) +
-                                " x " + std::to_string(height));
+    throw std::invalid_argument("rasterizer: the image must be at least 1 x 1 pixels, not " +
+                                std::to_string(width) + " x " + std::to_string(height));
   set_region(x0, y0, x1, y1);
 }
 
 void Rasterizer::set_region(int x0, int y0, int x1, int y1) {
   if (!(0 <= x0 && x0 <= x1 && x1 <= width_ && 0 <= y0 && y0 <= y1 && y1 <= height_))
-    throw std::invalid_argument("rasterizer: region [" + std::to_string(x0) + ", " + std::to_string(x1) + ") x [" +
-                                std::to_string(y0) + ", " + std::to_string(y1) + ") is not inside the " +
-                                std::to_string(width_) + " x " + std::to_string(height_) + " image");
+    throw std::invalid_argument("rasterizer: region [" + std::to_string(x0) + ", " + std::to_string(x1) +
+                                ") x [" + std::to_string(y0) + ", " + std::to_string(y1) +
+                                ") is not inside the " + std::to_string(width_) + " x " +
+                                std::to_string(height_) + " image");
   x0_ = x0;
   y0_ = y0;
   x1_ = x1;
@@ -100,7 +102,9 @@ void Rasterizer::set_region(int x0, int y0, int x1, int y1) {
                 std::numeric_limits<double>::infinity());
 }
 
-void Rasterizer::clear_depth() { std::fill(depth_.begin(), depth_.end(), std::numeric_limits<double>::infinity()); }
+void Rasterizer::clear_depth() {
+  std::fill(depth_.begin(), depth_.end(), std::numeric_limits<double>::infinity());
+}
 
 double Rasterizer::depth_at(int x, int y) const {
   if (x < x0_ || x >= x1_ || y < y0_ || y >= y1_)
@@ -111,11 +115,12 @@ double Rasterizer::depth_at(int x, int y) const {
 }
 
 void Rasterizer::throw_bad_varying_count(int varying_count) {
-  throw std::invalid_argument("rasterizer: varying_count " + std::to_string(varying_count) + " is outside [0, " +
-                              std::to_string(kMaxVaryings) + "]");
+  throw std::invalid_argument("rasterizer: varying_count " + std::to_string(varying_count) +
+                              " is outside [0, " + std::to_string(kMaxVaryings) + "]");
 }
 
-bool Rasterizer::project(const double* clip, const double* varyings, int varying_count, ScreenVertex& out) const {
+bool Rasterizer::project(const double* clip, const double* varyings, int varying_count,
+                         ScreenVertex& out) const {
   const double w = clip[3];
   if (!(w > 0)) return false;
   const double inverse_w = 1 / w;
@@ -129,8 +134,8 @@ bool Rasterizer::project(const double* clip, const double* varyings, int varying
          std::isfinite(inverse_w);
 }
 
-bool Rasterizer::prepare(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c, int varying_count,
-                         ScreenPolygon& polygon) {
+bool Rasterizer::prepare(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c,
+                         int varying_count, ScreenPolygon& polygon) {
   ++statistics_.triangles;
   // A corner that is not finite cannot be placed: the triangle is skipped.
   if (!a.clip.allFinite() || !b.clip.allFinite() || !c.clip.allFinite()) {

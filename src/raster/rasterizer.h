@@ -46,10 +46,10 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
-#include <limits>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -59,7 +59,7 @@ namespace candela {
 inline constexpr int kMaxVaryings = 64;
 
 struct RasterVertex {
-  Eigen::Vector4d clip;                      // clip coordinates
+  Eigen::Vector4d clip;                       // clip coordinates
   std::array<double, kMaxVaryings> varyings;  // the first `varying_count` are interpolated
 };
 
@@ -85,8 +85,8 @@ struct ScreenBounds {
   double lower_x, upper_x, lower_y, upper_y;
   bool in_front;
 };
-inline ScreenBounds screen_bounds(const Eigen::Vector4d& a, const Eigen::Vector4d& b, const Eigen::Vector4d& c,
-                                  int width, int height) {
+inline ScreenBounds screen_bounds(const Eigen::Vector4d& a, const Eigen::Vector4d& b,
+                                  const Eigen::Vector4d& c, int width, int height) {
   constexpr double kUnbounded = std::numeric_limits<double>::infinity();
   ScreenBounds box{kUnbounded, -kUnbounded, kUnbounded, -kUnbounded, true};
   for (const Eigen::Vector4d* corner : {&a, &b, &c}) {
@@ -149,7 +149,10 @@ class Rasterizer {
    public:
     // upper.y ≤ lower.y; a horizontal edge (equal y) is built but never evaluated.
     EdgeWalk(const ScreenVertex& upper, const ScreenVertex& lower)
-        : upper_(upper), lower_(lower), dx_(lower.x - upper.x), dy_(lower.y - upper.y),
+        : upper_(upper),
+          lower_(lower),
+          dx_(lower.x - upper.x),
+          dy_(lower.y - upper.y),
           inverse_dy_(dy_ != 0 ? 1 / dy_ : 0) {}
     double x_at(double y) const { return upper_.x + ((y - upper_.y) * dx_) / dy_; }
     // The attributes at scanline y, linear along the edge (Gouraud's I_Q = u·I_B + (1−u)·I_A).
@@ -171,8 +174,8 @@ class Rasterizer {
   bool prepare(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c, int varying_count,
                ScreenPolygon& polygon);
   // Sutherland–Hodgman against the near and the far plane for a triangle that crosses one.
-  bool clip_and_project(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c, int varying_count,
-                        ScreenPolygon& polygon);
+  bool clip_and_project(const RasterVertex& a, const RasterVertex& b, const RasterVertex& c,
+                        int varying_count, ScreenPolygon& polygon);
   // The perspective division and the viewport mapping; false for a non-finite result or w ≤ 0.
   bool project(const double* clip, const double* varyings, int varying_count, ScreenVertex& out) const;
   // Scales 1/w and varying/w of every corner by the same factor, the largest 1/w becoming 1:

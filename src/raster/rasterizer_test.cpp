@@ -64,7 +64,8 @@ bool top_left_covers(const Point& p0, const Point& p1, const Point& p2, const Po
 // every later triangle is tested afresh (the depth test "disabled").
 class CoverageCounter {
  public:
-  CoverageCounter(int width, int height) : width_(width), counts_(static_cast<std::size_t>(width * height), 0) {}
+  CoverageCounter(int width, int height)
+      : width_(width), counts_(static_cast<std::size_t>(width * height), 0) {}
   auto callback() {
     return [this](const Fragment& f) {
       ++counts_[static_cast<std::size_t>(f.y * width_ + f.x)];
@@ -81,7 +82,8 @@ class CoverageCounter {
 void draw_screen_triangle(Rasterizer& rasterizer, const Point& a, const Point& b, const Point& c,
                           CoverageCounter& counter, double wa = 1, double wb = 1, double wc = 1) {
   const int width = rasterizer.width(), height = rasterizer.height();
-  rasterizer.draw_triangle(screen_vertex(a.x, a.y, width, height, 0, wa), screen_vertex(b.x, b.y, width, height, 0, wb),
+  rasterizer.draw_triangle(screen_vertex(a.x, a.y, width, height, 0, wa),
+                           screen_vertex(b.x, b.y, width, height, 0, wb),
                            screen_vertex(c.x, c.y, width, height, 0, wc), 0, counter.callback());
 }
 
@@ -119,13 +121,13 @@ TEST(Raster, CentresOnEveryKindOfEdgeFollowTheTopLeftRule) {
   // bottom, a vertical left and right edge, apexes on centres. Both windings, and w ≠ 1.
   const int size = 32;
   std::vector<std::array<Point, 3>> triangles = {
-      {Point{4.5, 4.5}, Point{20.5, 4.5}, Point{12.5, 20.5}},   // flat top through centres
-      {Point{12.5, 3.5}, Point{4.5, 19.5}, Point{20.5, 19.5}},  // flat bottom through centres
-      {Point{5.5, 2.5}, Point{5.5, 22.5}, Point{17.5, 12.5}},   // vertical left edge on centres
-      {Point{25.5, 2.5}, Point{25.5, 22.5}, Point{13.5, 12.5}}, // vertical right edge on centres
-      {Point{3.5, 3.5}, Point{27.5, 9.5}, Point{9.5, 27.5}},    // slopes 1/4 and 4 through centres
-      {Point{16.5, 1.5}, Point{30.5, 15.5}, Point{2.5, 29.5}},  // slopes ±1 (diagonals of centres)
-      {Point{8, 8}, Point{24, 8}, Point{8, 24}},                // corners on pixel corners
+      {Point{4.5, 4.5}, Point{20.5, 4.5}, Point{12.5, 20.5}},    // flat top through centres
+      {Point{12.5, 3.5}, Point{4.5, 19.5}, Point{20.5, 19.5}},   // flat bottom through centres
+      {Point{5.5, 2.5}, Point{5.5, 22.5}, Point{17.5, 12.5}},    // vertical left edge on centres
+      {Point{25.5, 2.5}, Point{25.5, 22.5}, Point{13.5, 12.5}},  // vertical right edge on centres
+      {Point{3.5, 3.5}, Point{27.5, 9.5}, Point{9.5, 27.5}},     // slopes 1/4 and 4 through centres
+      {Point{16.5, 1.5}, Point{30.5, 15.5}, Point{2.5, 29.5}},   // slopes ±1 (diagonals of centres)
+      {Point{8, 8}, Point{24, 8}, Point{8, 24}},                 // corners on pixel corners
   };
   Pcg32 random(7, 1);
   for (int i = 0; i < 300; ++i) {
@@ -153,8 +155,8 @@ TEST(Raster, CentresOnEveryKindOfEdgeFollowTheTopLeftRule) {
       for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x)
           ASSERT_EQ(counter.at(x, y), top_left_covers(t[0], t[1], t[2], {x + 0.5, y + 0.5}) ? 1 : 0)
-              << "pixel " << x << "," << y << " triangle (" << t[0].x << "," << t[0].y << ") (" << t[1].x << ","
-              << t[1].y << ") (" << t[2].x << "," << t[2].y << ") reversed " << reversed;
+              << "pixel " << x << "," << y << " triangle (" << t[0].x << "," << t[0].y << ") (" << t[1].x
+              << "," << t[1].y << ") (" << t[2].x << "," << t[2].y << ") reversed " << reversed;
     }
   }
 }
@@ -190,8 +192,10 @@ void expect_fan_covers_once(const Point& centre, const std::vector<Point>& rim, 
         const double e0 = s * edge_function(centre, a, p), e1 = s * edge_function(a, b, p),
                      e2 = s * edge_function(b, centre, p);
         if (e0 >= 0 && e1 >= 0 && e2 >= 0) {
-          if (e1 == 0) on_outer_edge = true;
-          else strictly_inside = true;  // inside, on a spoke or at the centre: interior of the union
+          if (e1 == 0)
+            on_outer_edge = true;
+          else
+            strictly_inside = true;  // inside, on a spoke or at the centre: interior of the union
         }
       }
       const int count = counter.at(x, y);
@@ -213,10 +217,10 @@ TEST(Raster, FanAroundACentreCoversEveryPixelOnce) {
   // On the lattice: the centre on a pixel centre, spokes horizontal, vertical, diagonal and of
   // slopes 1/2 and 2, all through pixel centres; the rim on centres and on pixel corners.
   const Point centre{32.5, 32.5};
-  const std::vector<Point> lattice_rim = {{52.5, 32.5}, {50.5, 41.5}, {46.5, 46.5}, {41.5, 50.5}, {32.5, 52.5},
-                                          {23, 50},     {18.5, 46.5}, {14.5, 41.5}, {12.5, 32.5}, {14.5, 23.5},
-                                          {18.5, 18.5}, {24, 15},     {32.5, 12.5}, {42.5, 14.5}, {46.5, 18.5},
-                                          {50.5, 22.5}};
+  const std::vector<Point> lattice_rim = {{52.5, 32.5}, {50.5, 41.5}, {46.5, 46.5}, {41.5, 50.5},
+                                          {32.5, 52.5}, {23, 50},     {18.5, 46.5}, {14.5, 41.5},
+                                          {12.5, 32.5}, {14.5, 23.5}, {18.5, 18.5}, {24, 15},
+                                          {32.5, 12.5}, {42.5, 14.5}, {46.5, 18.5}, {50.5, 22.5}};
   expect_fan_covers_once(centre, lattice_rim, random, false, size);
   expect_fan_covers_once(centre, lattice_rim, random, true, size);
   // Random non-integer positions: 3 to 40 spokes around a random centre, random w (perspective).
@@ -237,7 +241,8 @@ TEST(Raster, FanAroundACentreCoversEveryPixelOnce) {
 // split along a random diagonal and drawn in a random winding: every centre of the rectangle is
 // covered exactly once (the rectangle's own sides by the top-left rule), none outside.
 void expect_grid_covers_once(const std::vector<double>& xs, const std::vector<double>& ys,
-                             const std::function<Point(int, int)>& vertex, Pcg32& random, bool random_w, int size) {
+                             const std::function<Point(int, int)>& vertex, Pcg32& random, bool random_w,
+                             int size) {
   const int columns = static_cast<int>(xs.size()), rows = static_cast<int>(ys.size());
   std::vector<Point> points;
   std::vector<double> ws;
@@ -306,8 +311,10 @@ TEST(Raster, GridOfQuadsCoversEveryPixelOnce) {
     while (ly.back() < 52) ly.push_back(ly.back() + 3 + 0.5 * (random.next_uint() % 9));
     const auto on_lattice = [&](int i, int j) {
       Point p{lx[static_cast<std::size_t>(i)], ly[static_cast<std::size_t>(j)]};
-      if (i > 0 && i + 1 < static_cast<int>(lx.size())) p.x += 0.5 * (static_cast<int>(random.next_uint() % 3) - 1);
-      if (j > 0 && j + 1 < static_cast<int>(ly.size())) p.y += 0.5 * (static_cast<int>(random.next_uint() % 3) - 1);
+      if (i > 0 && i + 1 < static_cast<int>(lx.size()))
+        p.x += 0.5 * (static_cast<int>(random.next_uint() % 3) - 1);
+      if (j > 0 && j + 1 < static_cast<int>(ly.size()))
+        p.y += 0.5 * (static_cast<int>(random.next_uint() % 3) - 1);
       return p;
     };
     expect_grid_covers_once(lx, ly, on_lattice, random, false, size);
@@ -322,7 +329,8 @@ TEST(Raster, AffineVaryingIsTheLinearFunctionAtPixelCentres) {
   const Point corners[3] = {{3.2, 1.7}, {60.1, 12.3}, {20.4, 30.9}};
   RasterVertex v[3];
   for (int i = 0; i < 3; ++i) {
-    v[i] = screen_vertex(corners[i].x, corners[i].y, width, height, 0.1 * corners[i].x / width - 0.02 * corners[i].y / height);
+    v[i] = screen_vertex(corners[i].x, corners[i].y, width, height,
+                         0.1 * corners[i].x / width - 0.02 * corners[i].y / height);
     v[i].varyings[0] = corners[i].x;
     v[i].varyings[1] = 3 * corners[i].y - corners[i].x;
   }
@@ -392,8 +400,10 @@ TEST(Raster, RegionGivenAtConstructionDrawsAsSetRegionDoes) {
   Rasterizer whole(size, size);
   whole.set_region(16, 8, 48, 40);
   std::vector<std::pair<int, int>> from_tiled, from_whole;
-  tiled.draw_triangle(v[0], v[1], v[2], 0, [&](const Fragment& f) { return from_tiled.emplace_back(f.x, f.y), true; });
-  whole.draw_triangle(v[0], v[1], v[2], 0, [&](const Fragment& f) { return from_whole.emplace_back(f.x, f.y), true; });
+  tiled.draw_triangle(v[0], v[1], v[2], 0,
+                      [&](const Fragment& f) { return from_tiled.emplace_back(f.x, f.y), true; });
+  whole.draw_triangle(v[0], v[1], v[2], 0,
+                      [&](const Fragment& f) { return from_whole.emplace_back(f.x, f.y), true; });
   EXPECT_EQ(from_tiled, from_whole);
   EXPECT_GT(from_tiled.size(), 100u);
   for (const auto& [x, y] : from_tiled) {
@@ -406,7 +416,8 @@ TEST(Raster, RegionGivenAtConstructionDrawsAsSetRegionDoes) {
 TEST(Raster, ShadeReturningFalseLeavesTheDepthBuffer) {
   const int size = 16;
   Rasterizer rasterizer(size, size);
-  RasterVertex near_triangle[3] = {screen_vertex(0, 0, size, size, -0.5), screen_vertex(16, 0, size, size, -0.5),
+  RasterVertex near_triangle[3] = {screen_vertex(0, 0, size, size, -0.5),
+                                   screen_vertex(16, 0, size, size, -0.5),
                                    screen_vertex(0, 16, size, size, -0.5)};
   RasterVertex far_triangle[3] = {screen_vertex(0, 0, size, size, 0.5), screen_vertex(16, 0, size, size, 0.5),
                                   screen_vertex(0, 16, size, size, 0.5)};
@@ -497,14 +508,17 @@ TEST(Raster, PerspectiveCorrectVaryingsEqualTheRayHit) {
 TEST(Raster, NearAndFarClippingMatchARayCaster) {
   const ViewSetup scene;  // eye (0.3, 0.2, 4) looking toward the origin; near 0.5, far 20
   // Crossing the eye plane: one corner behind the eye, the others in front.
-  EXPECT_GT(expect_matches_ray_caster(scene, {0.1, -0.9, 6.5}, {-1.3, -0.7, 1.2}, {1.7, 0.4, 0.9}, 1e-9), 100);
+  EXPECT_GT(expect_matches_ray_caster(scene, {0.1, -0.9, 6.5}, {-1.3, -0.7, 1.2}, {1.7, 0.4, 0.9}, 1e-9),
+            100);
   // Two corners behind the eye (a quad after clipping).
-  EXPECT_GT(expect_matches_ray_caster(scene, {-2.2, -1.1, 7.3}, {2.9, -0.8, 5.9}, {0.4, 1.3, -1.1}, 1e-9), 100);
+  EXPECT_GT(expect_matches_ray_caster(scene, {-2.2, -1.1, 7.3}, {2.9, -0.8, 5.9}, {0.4, 1.3, -1.1}, 1e-9),
+            100);
   // A corner in the eye plane beside the eye (w = 0 there).
   const Vec3 beside_eye = scene.camera.eye_position() + normalize(scene.camera.half_width()) * 1.5;
   EXPECT_GT(expect_matches_ray_caster(scene, beside_eye, {-1.4, -1.1, 0.3}, {1.2, -0.2, -0.8}, 1e-9), 50);
   // Crossing the far plane (cut there) and both planes at once.
-  EXPECT_GT(expect_matches_ray_caster(scene, {-1.2, -0.9, 1.1}, {3.1, 0.8, -30}, {-4.4, 2.2, -25}, 1e-9), 100);
+  EXPECT_GT(expect_matches_ray_caster(scene, {-1.2, -0.9, 1.1}, {3.1, 0.8, -30}, {-4.4, 2.2, -25}, 1e-9),
+            100);
   EXPECT_GT(expect_matches_ray_caster(scene, {0.2, -1.1, 9}, {6.3, 0.8, -40}, {-7.4, 3.1, -35}, 1e-9), 100);
 }
 
@@ -531,7 +545,9 @@ TEST(Raster, MeshCutByTheNearAndFarPlanesStaysWatertight) {
     ++counts[static_cast<std::size_t>(f.y * width + f.x)];
     return false;
   };
-  const auto at = [&](int i, int j) { return scene.vertex(points[static_cast<std::size_t>(j * (cells + 1) + i)]); };
+  const auto at = [&](int i, int j) {
+    return scene.vertex(points[static_cast<std::size_t>(j * (cells + 1) + i)]);
+  };
   for (int j = 0; j < cells; ++j)
     for (int i = 0; i < cells; ++i) {
       if ((i + j) % 2) {
@@ -549,7 +565,8 @@ TEST(Raster, MeshCutByTheNearAndFarPlanesStaysWatertight) {
       const Ray ray = scene.pixel_ray(x, y);
       const double t = (floor_y - ray.origin.y) / ray.direction.y;
       const Vec3 hit = ray.at(t);
-      const bool seen = t > ray.t_min && t < ray.t_max && hit.x > x0 && hit.x < x1 && hit.z > z0 && hit.z < z1;
+      const bool seen =
+          t > ray.t_min && t < ray.t_max && hit.x > x0 && hit.x < x1 && hit.z > z0 && hit.z < z1;
       ASSERT_EQ(counts[static_cast<std::size_t>(y * width + x)], seen ? 1 : 0) << "pixel " << x << "," << y;
       covered += seen;
     }
@@ -563,7 +580,8 @@ TEST(Raster, SkipsTrianglesThatCannotBeDrawn) {
   int fragments = 0;
   const auto count = [&](const Fragment&) { return ++fragments, true; };
   // Entirely behind the eye.
-  rasterizer.draw_triangle(scene.vertex({0, 0, 6}), scene.vertex({1, 0, 7}), scene.vertex({0, 1, 8}), 3, count);
+  rasterizer.draw_triangle(scene.vertex({0, 0, 6}), scene.vertex({1, 0, 7}), scene.vertex({0, 1, 8}), 3,
+                           count);
   // Every corner at the eye (w = 0 and outside the near plane).
   const RasterVertex at_eye = scene.vertex(scene.camera.eye_position());
   rasterizer.draw_triangle(at_eye, at_eye, at_eye, 3, count);
@@ -584,10 +602,10 @@ TEST(Raster, SkipsTrianglesThatCannotBeDrawn) {
 
   // Zero area on screen: collinear corners (exactly, on the lattice).
   Rasterizer square(64, 64);
-  square.draw_triangle(screen_vertex(1, 1, 64, 64), screen_vertex(5, 5, 64, 64), screen_vertex(9, 9, 64, 64), 0,
-                       count);
-  square.draw_triangle(screen_vertex(1, 3, 64, 64), screen_vertex(1, 3, 64, 64, 0, 2), screen_vertex(1, 3, 64, 64), 0,
-                       count);
+  square.draw_triangle(screen_vertex(1, 1, 64, 64), screen_vertex(5, 5, 64, 64), screen_vertex(9, 9, 64, 64),
+                       0, count);
+  square.draw_triangle(screen_vertex(1, 3, 64, 64), screen_vertex(1, 3, 64, 64, 0, 2),
+                       screen_vertex(1, 3, 64, 64), 0, count);
   EXPECT_EQ(fragments, 0);
   EXPECT_EQ(square.statistics().culled, 2u);
 
@@ -660,10 +678,12 @@ TEST(Raster, RegionDrawingEqualsTheSamePixelsOfAFullDraw) {
   Pcg32 random(3, 5);
   std::vector<std::array<Vec3, 3>> triangles;
   for (int i = 0; i < 40; ++i) {
-    const Vec3 centre{4 * random.next_double() - 2, 3 * random.next_double() - 1.5, 4.5 - 9 * random.next_double()};
+    const Vec3 centre{4 * random.next_double() - 2, 3 * random.next_double() - 1.5,
+                      4.5 - 9 * random.next_double()};
     std::array<Vec3, 3> t;
     for (Vec3& p : t)
-      p = centre + Vec3{3 * random.next_double() - 1.5, 3 * random.next_double() - 1.5, 0.6 * random.next_double() - 0.3};
+      p = centre + Vec3{3 * random.next_double() - 1.5, 3 * random.next_double() - 1.5,
+                        0.6 * random.next_double() - 0.3};
     triangles.push_back(t);
   }
   struct Pixel {
@@ -678,8 +698,8 @@ TEST(Raster, RegionDrawingEqualsTheSamePixelsOfAFullDraw) {
       rasterizer.draw_triangle(scene.vertex(triangles[i][0]), scene.vertex(triangles[i][1]),
                                scene.vertex(triangles[i][2]), 3, [&](const Fragment& f) {
                                  EXPECT_TRUE(f.x >= x0 && f.x < x1 && f.y >= y0 && f.y < y1);
-                                 pixels[static_cast<std::size_t>(f.y * width + f.x)] = {static_cast<int>(i), f.depth,
-                                                                                       f.varyings[0]};
+                                 pixels[static_cast<std::size_t>(f.y * width + f.x)] = {
+                                     static_cast<int>(i), f.depth, f.varyings[0]};
                                  return true;
                                });
     return pixels;
@@ -691,8 +711,9 @@ TEST(Raster, RegionDrawingEqualsTheSamePixelsOfAFullDraw) {
   struct Region {
     int x0, y0, x1, y1;
   };
-  for (const Region& r : {Region{0, 0, width, 7}, Region{0, 13, width, 41}, Region{0, 59, width, 60},
-                          Region{17, 9, 53, 44}, Region{1, 0, 2, 60}, Region{40, 30, 80, 60}, Region{5, 5, 5, 9}}) {
+  for (const Region& r :
+       {Region{0, 0, width, 7}, Region{0, 13, width, 41}, Region{0, 59, width, 60}, Region{17, 9, 53, 44},
+        Region{1, 0, 2, 60}, Region{40, 30, 80, 60}, Region{5, 5, 5, 9}}) {
     const bool band = r.x0 == 0 && r.x1 == width;
     const std::vector<Pixel> part = draw(r.x0, r.y0, r.x1, r.y1);
     for (int y = 0; y < height; ++y)
@@ -726,7 +747,8 @@ TEST(Raster, RejectsBadArguments) {
   const RasterVertex v = screen_vertex(1, 1, 8, 4);
   EXPECT_THROW(rasterizer.draw_triangle(v, v, v, kMaxVaryings + 1, [](const Fragment&) { return true; }),
                std::invalid_argument);
-  EXPECT_THROW(rasterizer.draw_triangle(v, v, v, -1, [](const Fragment&) { return true; }), std::invalid_argument);
+  EXPECT_THROW(rasterizer.draw_triangle(v, v, v, -1, [](const Fragment&) { return true; }),
+               std::invalid_argument);
 }
 
 }  // namespace

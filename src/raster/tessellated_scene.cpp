@@ -40,10 +40,12 @@ int segments_for(const Shape& shape, const TessellationRequest& request) {
   const double w = clip.w();
   // Eye inside or near the bounding sphere (perspective w is the depth): the finest.
   if (!(w > radius) && request.clip_from_world(3, 3) == 0) return request.max_segments;
-  const double pixels_per_unit = std::fabs(request.clip_from_world(0, 0)) * 0.5 * request.image_width / std::max(w, 1e-300);
+  const double pixels_per_unit =
+      std::fabs(request.clip_from_world(0, 0)) * 0.5 * request.image_width / std::max(w, 1e-300);
   const double outline_pixels = 2 * kPi * radius * pixels_per_unit;
   if (!std::isfinite(outline_pixels)) return request.max_segments;
-  return static_cast<int>(std::clamp(std::ceil(outline_pixels), 8.0, double(std::max(request.max_segments, 3))));
+  return static_cast<int>(
+      std::clamp(std::ceil(outline_pixels), 8.0, double(std::max(request.max_segments, 3))));
 }
 
 // Splits the triangles [first, end) of mesh in halves across their longest edge while that edge
@@ -153,7 +155,8 @@ TessellatedScene tessellate_scene(const Scene& scene, const TessellationRequest&
           // A triangle mesh keeps the normals the scene gave it: smooth (with its own crease
           // angle), from the file, or flat — as the ray tracer shades it.
           const TriangleMesh& source = mesh_triangle->mesh();
-          n = source.corner_normals.empty() ? face_normal : source.corner_normals[mesh_triangle->triangle_index()][k];
+          n = source.corner_normals.empty() ? face_normal
+                                            : source.corner_normals[mesh_triangle->triangle_index()][k];
         }
         result.corner_normals.push_back(n);
         result.corner_uvs.push_back(mesh.corner_uvs.empty() ? Vec2{} : mesh.corner_uvs[t][k]);

@@ -49,7 +49,8 @@ std::size_t find_cell(const std::vector<double>& cdf, double u) {
 }
 }  // namespace
 
-bool Distribution1D::sample_discrete(double u, std::size_t& index, double& probability, double* remapped) const {
+bool Distribution1D::sample_discrete(double u, std::size_t& index, double& probability,
+                                     double* remapped) const {
   if (!can_sample()) return false;
   u = std::clamp(u, 0.0, kOneMinusEpsilon);
   index = find_cell(cdf_, u);
@@ -90,12 +91,14 @@ double Distribution1D::pdf(double x) const {
 
 Distribution2D::Distribution2D(const std::vector<double>& weights, std::size_t columns, std::size_t rows)
     : columns_(columns), rows_(rows) {
-  if (weights.size() != columns * rows) throw std::invalid_argument("Distribution2D: weights do not fill the grid");
+  if (weights.size() != columns * rows)
+    throw std::invalid_argument("Distribution2D: weights do not fill the grid");
   conditional_.reserve(rows);
   std::vector<double> row_integrals(rows);
   for (std::size_t row = 0; row < rows; ++row) {
-    conditional_.emplace_back(std::vector<double>(weights.begin() + static_cast<std::ptrdiff_t>(row * columns),
-                                                  weights.begin() + static_cast<std::ptrdiff_t>((row + 1) * columns)));
+    conditional_.emplace_back(
+        std::vector<double>(weights.begin() + static_cast<std::ptrdiff_t>(row * columns),
+                            weights.begin() + static_cast<std::ptrdiff_t>((row + 1) * columns)));
     row_integrals[row] = conditional_.back().integral();
   }
   marginal_ = Distribution1D(std::move(row_integrals));
@@ -117,7 +120,8 @@ double Distribution2D::pdf(const Vec2& point) const {
   const std::size_t row = marginal_.cell_of(point.y);
   const Distribution1D& conditional = conditional_[row];
   // p(x, y) = p(y) · p(x | y) = (row integral / total) · (f / row integral) = f / total.
-  return conditional.can_sample() ? conditional.weight(conditional.cell_of(point.x)) / marginal_.integral() : 0;
+  return conditional.can_sample() ? conditional.weight(conditional.cell_of(point.x)) / marginal_.integral()
+                                  : 0;
 }
 
 }  // namespace candela

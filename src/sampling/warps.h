@@ -12,7 +12,9 @@ namespace candela {
 // Shirley–Chiu concentric map onto the unit disc (area preserving: density 1/π).
 Vec2 square_to_uniform_disc_concentric(const Vec2& u);
 Vec2 uniform_disc_concentric_to_square(const Vec2& p);
-inline double uniform_disc_pdf() { return 1.0 / 3.14159265358979323846; }
+inline double uniform_disc_pdf() {
+  return 1.0 / 3.14159265358979323846;
+}
 
 // Uniform on the unit sphere (density 1/(4π)) and on the upper hemisphere z ≥ 0 (1/(2π)).
 Vec3 square_to_uniform_sphere(const Vec2& u);

@@ -7,12 +7,18 @@
 
 namespace candela {
 
-AreaLight::AreaLight(const Vec3& corner, const Vec3& edge_u, const Vec3& edge_v, const Color& exitance, int samples,
-                     bool two_sided)
-    : corner_(corner), edge_u_(edge_u), edge_v_(edge_v), exitance_(exitance), samples_(samples), two_sided_(two_sided) {
+AreaLight::AreaLight(const Vec3& corner, const Vec3& edge_u, const Vec3& edge_v, const Color& exitance,
+                     int samples, bool two_sided)
+    : corner_(corner),
+      edge_u_(edge_u),
+      edge_v_(edge_v),
+      exitance_(exitance),
+      samples_(samples),
+      two_sided_(two_sided) {
   const Vec3 face = cross(edge_u, edge_v);
   area_ = length(face);
-  if (!(area_ > 0) || !std::isfinite(area_)) throw std::invalid_argument("area light: the edges must span an area");
+  if (!(area_ > 0) || !std::isfinite(area_))
+    throw std::invalid_argument("area light: the edges must span an area");
   if (samples < 1) throw std::invalid_argument("area light: samples must be >= 1");
   normal_ = face / area_;
 }

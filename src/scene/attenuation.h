@@ -15,14 +15,17 @@ struct Attenuation {
     polynomial,      // f = min(1, 1 / (c + l d + q d²))   001's f_at
   };
   Mode mode = Mode::none;
-  double d0 = 1;  // linear
+  double d0 = 1;                                               // linear
   double constant = 1, linear_coefficient = 0, quadratic = 0;  // polynomial
 
   double factor(double distance) const {
     switch (mode) {
-      case Mode::none: return 1.0;
-      case Mode::inverse_square: return 1.0 / (4 * kPi * distance * distance);
-      case Mode::linear: return 1.0 / (distance + d0);
+      case Mode::none:
+        return 1.0;
+      case Mode::inverse_square:
+        return 1.0 / (4 * kPi * distance * distance);
+      case Mode::linear:
+        return 1.0 / (distance + d0);
       case Mode::polynomial: {
         const double denominator = constant + linear_coefficient * distance + quadratic * distance * distance;
         return denominator > 1 ? 1.0 / denominator : 1.0;

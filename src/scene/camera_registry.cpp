@@ -1,12 +1,11 @@
 #include "scene/camera_registry.h"
 
-#include <array>
-
 #include <fmt/format.h>
+
+#include <array>
 
 #include "camera/orthographic_camera.h"
 #include "camera/perspective_camera.h"
-
 #include "util/registry.h"
 
 namespace candela {
@@ -28,9 +27,8 @@ std::unique_ptr<Camera> make_perspective(const JsonNode& node, int width, int he
   const Vec3 up = node.vec3("up", {0, 1, 0});
   // 2θ, the horizontal field of view (000 §5.2).
   const double fov = node.number("fov", 60.0, {0, 180, true, true});
-  return checked(node, [&] {
-    return std::make_unique<PerspectiveCamera>(eye, target, up, fov, width, height);
-  });
+  return checked(node,
+                 [&] { return std::make_unique<PerspectiveCamera>(eye, target, up, fov, width, height); });
 }
 
 std::unique_ptr<Camera> make_orthographic(const JsonNode& node, int width, int height) {
@@ -58,20 +56,26 @@ std::unique_ptr<Camera> make_orthographic(const JsonNode& node, int width, int h
 }
 
 const std::array kEntries = {
-    CameraEntry{"perspective", "eye, target, up, horizontal field of view fov in degrees (000 §5.2)",
-                R"({"type": "perspective", "eye": [0, 1, 5], "target": [0, 1, 0], "up": [0, 1, 0], "fov": 60, "width": 320, "height": 240})",
-                make_perspective},
-    CameraEntry{"orthographic",
-                "eye, target, up and the image window [left, right, bottom, top] (or window_height) (001)",
-                R"({"type": "orthographic", "eye": [0, 1, 5], "target": [0, 1, 0], "window": [-2, 2, -1.5, 1.5], "width": 320, "height": 240})",
-                make_orthographic},
+    CameraEntry{
+        "perspective", "eye, target, up, horizontal field of view fov in degrees (000 §5.2)",
+        R"({"type": "perspective", "eye": [0, 1, 5], "target": [0, 1, 0], "up": [0, 1, 0], "fov": 60, "width": 320, "height": 240})",
+        make_perspective},
+    CameraEntry{
+        "orthographic",
+        "eye, target, up and the image window [left, right, bottom, top] (or window_height) (001)",
+        R"({"type": "orthographic", "eye": [0, 1, 5], "target": [0, 1, 0], "window": [-2, 2, -1.5, 1.5], "width": 320, "height": 240})",
+        make_orthographic},
 };
 
 }  // namespace
 
-std::span<const CameraEntry> camera_entries() { return kEntries; }
+std::span<const CameraEntry> camera_entries() {
+  return kEntries;
+}
 
-const CameraEntry* find_camera(std::string_view name) { return find_entry<CameraEntry>(kEntries, name); }
+const CameraEntry* find_camera(std::string_view name) {
+  return find_entry<CameraEntry>(kEntries, name);
+}
 
 std::unique_ptr<Camera> read_camera(const JsonNode& node, int default_width, int default_height) {
   node.expect_object();
@@ -81,12 +85,15 @@ std::unique_ptr<Camera> read_camera(const JsonNode& node, int default_width, int
   constexpr double kMaxPixels = 1 << 28;  // 6 GiB of film
   if (double(width) * height > kMaxPixels)
     node.at(node.has("width") ? "width" : "height")
-        .fail(fmt::format("{}x{} = {} pixels needs {:.1f} GiB of film; the limit is {} pixels: lower camera.width or "
-                          "camera.height", width, height, double(width) * height, double(width) * height * 24 / (1 << 30),
-                          kMaxPixels));
+        .fail(fmt::format(
+            "{}x{} = {} pixels needs {:.1f} GiB of film; the limit is {} pixels: lower camera.width or "
+            "camera.height",
+            width, height, double(width) * height, double(width) * height * 24 / (1 << 30), kMaxPixels));
   const std::string type = node.string("type", "perspective");
   const CameraEntry* entry = find_camera(type);
-  if (!entry) node.at("type").fail("unknown camera \"" + type + "\" (expected one of: " + entry_names<CameraEntry>(kEntries) + ")");
+  if (!entry)
+    node.at("type").fail("unknown camera \"" + type +
+                         "\" (expected one of: " + entry_names<CameraEntry>(kEntries) + ")");
   auto camera = entry->create(node, width, height);
   node.finish();
   return camera;

@@ -103,7 +103,9 @@ std::shared_ptr<const TextureImage> load_texture_image(const JsonNode& file_node
 
 namespace {
 
-Color read_multiplier(const JsonNode& node) { return node.color("multiplier", Color(1), Range::non_negative()); }
+Color read_multiplier(const JsonNode& node) {
+  return node.color("multiplier", Color(1), Range::non_negative());
+}
 
 std::unique_ptr<Environment> make_constant(const JsonNode& node, const LoadContext&) {
   return std::make_unique<ConstantEnvironment>(node.at("color").as_color(Range::non_negative()));
@@ -123,14 +125,17 @@ std::unique_ptr<Environment> make_cube(const JsonNode& node, const LoadContext& 
     // Checked here rather than by CubeMapEnvironment so that the message points at the file.
     const TextureImage& image = *faces[face];
     const std::string dimensions = std::to_string(image.width()) + "×" + std::to_string(image.height());
-    if (image.width() != image.height()) file_node.fail("the image is " + dimensions + "; cube-map faces must be square");
+    if (image.width() != image.height())
+      file_node.fail("the image is " + dimensions + "; cube-map faces must be square");
     if (face > 0 && image.width() != faces[0]->width())
-      file_node.fail("the image is " + dimensions + " but the +x face is " + std::to_string(faces[0]->width()) + "×" +
-                     std::to_string(faces[0]->height()) + "; all six faces must be the same size");
+      file_node.fail("the image is " + dimensions + " but the +x face is " +
+                     std::to_string(faces[0]->width()) + "×" + std::to_string(faces[0]->height()) +
+                     "; all six faces must be the same size");
   }
   faces_node.finish();
-  const CubeLayout layout = node.choice("layout", "inside", {"inside", "opengl"}) == "inside" ? CubeLayout::inside
-                                                                                             : CubeLayout::opengl;
+  const CubeLayout layout = node.choice("layout", "inside", {"inside", "opengl"}) == "inside"
+                                ? CubeLayout::inside
+                                : CubeLayout::opengl;
   return std::make_unique<CubeMapEnvironment>(std::move(faces), multiplier, layout);
 }
 
@@ -153,21 +158,25 @@ std::unique_ptr<Environment> make_equirectangular(const JsonNode& node, const Lo
 const std::array kEntries = {
     EnvironmentEntry{"constant", "the same radiance from every direction",
                      R"({"type": "constant", "color": [0.2, 0.3, 0.5]})", make_constant},
-    EnvironmentEntry{"cube",
-                     "cube map of six square images around the scene (000 §4.1.3); layout \"inside\" (what a 90° "
-                     "camera at the centre sees) or \"opengl\" (sky-box sets); bilinear within a face",
-                     R"({"type": "cube", "faces": {"+x": "sky/px.png", "-x": "sky/nx.png", "+y": "sky/py.png", "-y": "sky/ny.png", "+z": "sky/pz.png", "-z": "sky/nz.png"}, "multiplier": 1, "encoding": "auto", "layout": "inside"})",
-                     make_cube},
-    EnvironmentEntry{"equirectangular",
-                     "latitude/longitude panorama: image centre along forward, top row up; "
-                     "bilinear, repeating in longitude",
-                     R"({"type": "equirectangular", "file": "sky.exr", "up": [0, 1, 0], "forward": [0, 0, -1], "multiplier": [1, 1, 1], "encoding": "linear"})",
-                     make_equirectangular},
+    EnvironmentEntry{
+        "cube",
+        "cube map of six square images around the scene (000 §4.1.3); layout \"inside\" (what a 90° "
+        "camera at the centre sees) or \"opengl\" (sky-box sets); bilinear within a face",
+        R"({"type": "cube", "faces": {"+x": "sky/px.png", "-x": "sky/nx.png", "+y": "sky/py.png", "-y": "sky/ny.png", "+z": "sky/pz.png", "-z": "sky/nz.png"}, "multiplier": 1, "encoding": "auto", "layout": "inside"})",
+        make_cube},
+    EnvironmentEntry{
+        "equirectangular",
+        "latitude/longitude panorama: image centre along forward, top row up; "
+        "bilinear, repeating in longitude",
+        R"({"type": "equirectangular", "file": "sky.exr", "up": [0, 1, 0], "forward": [0, 0, -1], "multiplier": [1, 1, 1], "encoding": "linear"})",
+        make_equirectangular},
 };
 
 }  // namespace
 
-std::span<const EnvironmentEntry> environment_entries() { return kEntries; }
+std::span<const EnvironmentEntry> environment_entries() {
+  return kEntries;
+}
 
 const EnvironmentEntry* find_environment(std::string_view name) {
   return find_entry<EnvironmentEntry>(kEntries, name);

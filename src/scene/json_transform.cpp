@@ -10,8 +10,7 @@ namespace {
 // {"rotate": {"angle": degrees, "axis": [x,y,z]}}, {"matrix": [16 numbers, row-major]}.
 Transform read_transform_step(const JsonNode& step) {
   step.expect_object();
-  if (step.json().size() != 1)
-    step.fail("expected exactly one of translate, rotate, scale, matrix");
+  if (step.json().size() != 1) step.fail("expected exactly one of translate, rotate, scale, matrix");
   Transform result;
   if (const auto translate = step.get("translate")) {
     result = Transform::translate(translate->as_vec3());

@@ -4,8 +4,8 @@
 // Used by shapes (object to world) and solid textures (texture placement in object space).
 #pragma once
 
-#include "math/transform.h"
 #include "io/json_node.h"
+#include "math/transform.h"
 
 namespace candela {
 

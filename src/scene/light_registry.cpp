@@ -2,11 +2,10 @@
 
 #include <array>
 
-#include "scene/directional_light.h"
 #include "scene/area_light.h"
+#include "scene/directional_light.h"
 #include "scene/point_light.h"
 #include "scene/spot_light.h"
-
 #include "util/registry.h"
 
 namespace candela {
@@ -27,12 +26,18 @@ Attenuation read_attenuation(const JsonNode& light) {
     object = node;
     mode = node->at("mode").as_string();
   }
-  if (mode == "none") attenuation.mode = Attenuation::Mode::none;
-  else if (mode == "inverse-square") attenuation.mode = Attenuation::Mode::inverse_square;
-  else if (mode == "linear") attenuation.mode = Attenuation::Mode::linear;
-  else if (mode == "polynomial") attenuation.mode = Attenuation::Mode::polynomial;
-  else (object ? object->at("mode") : *node).fail(
-      "unknown attenuation \"" + mode + "\" (expected one of: none, inverse-square, linear, polynomial)");
+  if (mode == "none")
+    attenuation.mode = Attenuation::Mode::none;
+  else if (mode == "inverse-square")
+    attenuation.mode = Attenuation::Mode::inverse_square;
+  else if (mode == "linear")
+    attenuation.mode = Attenuation::Mode::linear;
+  else if (mode == "polynomial")
+    attenuation.mode = Attenuation::Mode::polynomial;
+  else
+    (object ? object->at("mode") : *node)
+        .fail("unknown attenuation \"" + mode +
+              "\" (expected one of: none, inverse-square, linear, polynomial)");
   if (object) {
     if (attenuation.mode == Attenuation::Mode::linear)
       attenuation.d0 = object->number("d0", 1.0, Range::non_negative());
@@ -81,14 +86,15 @@ std::unique_ptr<Light> make_spot(const JsonNode& node, Color&) {
   const double falloff_start = node.number("falloff_start", cutoff, {0, 90, false, false});
   if (falloff_start > cutoff) node.at("falloff_start").fail("must be <= cutoff");
   const double exponent = node.number("exponent", 0.0, Range::non_negative());
-  return std::make_unique<SpotLight>(position, aim, intensity_of(node), cutoff, falloff_start,
-                                     exponent, read_attenuation(node));
+  return std::make_unique<SpotLight>(position, aim, intensity_of(node), cutoff, falloff_start, exponent,
+                                     read_attenuation(node));
 }
 
 std::unique_ptr<Light> make_area(const JsonNode& node, Color&) {
   const Vec3 corner = node.vec3("corner");
   const Vec3 edge_u = node.vec3("edge_u"), edge_v = node.vec3("edge_v");
-  if (!(length(cross(edge_u, edge_v)) > 0)) node.at("edge_v").fail("must not be parallel to edge_u (the light needs an area)");
+  if (!(length(cross(edge_u, edge_v)) > 0))
+    node.at("edge_v").fail("must not be parallel to edge_u (the light needs an area)");
   const Color exitance = node.color("exitance", Color(1), Range::non_negative());
   const int samples = node.integer("samples", 4, {1, 64, false, false});
   const bool two_sided = node.boolean("two_sided", false);
@@ -96,26 +102,35 @@ std::unique_ptr<Light> make_area(const JsonNode& node, Color&) {
 }
 
 const std::array kEntries = {
-    LightEntry{"ambient", "uniform ambient light Ia (000 §2.4)",
-               R"({"type": "ambient", "intensity": 0.3})", make_ambient},
-    LightEntry{"point", "point source with attenuation",
-               R"({"type": "point", "position": [0, 5, 0], "intensity": 1, "attenuation": {"mode": "linear", "d0": 1}})",
-               make_point},
+    LightEntry{"ambient", "uniform ambient light Ia (000 §2.4)", R"({"type": "ambient", "intensity": 0.3})",
+               make_ambient},
+    LightEntry{
+        "point", "point source with attenuation",
+        R"({"type": "point", "position": [0, 5, 0], "intensity": 1, "attenuation": {"mode": "linear", "d0": 1}})",
+        make_point},
     LightEntry{"directional", "source at infinity; direction is the way the light travels",
                R"({"type": "directional", "direction": [0, -1, 0], "intensity": [1, 1, 0.9]})",
                make_directional},
-    LightEntry{"spot", "cone of light: cutoff and falloff_start angles in degrees, exponent",
-               R"({"type": "spot", "position": [0, 5, 0], "target": [0, 0, 0], "intensity": 2, "cutoff": 30, "falloff_start": 20, "exponent": 1, "attenuation": "none"})",
-               make_spot},
-    LightEntry{"area", "Lambertian parallelogram corner + s·edge_u + t·edge_v emitting exitance from edge_u × edge_v; samples² shadow rays",
-               R"({"type": "area", "corner": [-0.5, 4, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "exitance": 10, "samples": 4})",
-               make_area},
+    LightEntry{
+        "spot", "cone of light: cutoff and falloff_start angles in degrees, exponent",
+        R"({"type": "spot", "position": [0, 5, 0], "target": [0, 0, 0], "intensity": 2, "cutoff": 30, "falloff_start": 20, "exponent": 1, "attenuation": "none"})",
+        make_spot},
+    LightEntry{
+        "area",
+        "Lambertian parallelogram corner + s·edge_u + t·edge_v emitting exitance from edge_u × edge_v; "
+        "samples² shadow rays",
+        R"({"type": "area", "corner": [-0.5, 4, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "exitance": 10, "samples": 4})",
+        make_area},
 };
 
 }  // namespace
 
-std::span<const LightEntry> light_entries() { return kEntries; }
+std::span<const LightEntry> light_entries() {
+  return kEntries;
+}
 
-const LightEntry* find_light(std::string_view name) { return find_entry<LightEntry>(kEntries, name); }
+const LightEntry* find_light(std::string_view name) {
+  return find_entry<LightEntry>(kEntries, name);
+}
 
 }  // namespace candela

@@ -1,11 +1,11 @@
 #include "scene/material_registry.h"
 
+#include <fmt/format.h>
+
 #include <array>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
-
-#include <fmt/format.h>
 
 #include "scene/environment_registry.h"
 #include "scene/json_transform.h"
@@ -45,8 +45,9 @@ BumpMap read_bump(const JsonNode& node, const LoadContext& context) {
   if (const auto* planar = dynamic_cast<const Texture2D*>(bump.height.get())) {
     const auto* spherical = dynamic_cast<const SphericalMapping*>(&planar->mapping());
     if (spherical && !spherical->has_center())
-      height.fail("a spherical mapping without \"center\" reads only the surface normal, which the bump's "
-                  "finite differences do not move: give the sphere's centre (object coordinates)");
+      height.fail(
+          "a spherical mapping without \"center\" reads only the surface normal, which the bump's "
+          "finite differences do not move: give the sphere's centre (object coordinates)");
   }
   bump.scale = node.number("scale", 1.0, {-1e6, 1e6, false, false});
   bump.delta = node.number("delta", 1e-4, {0, 1, true, false});
@@ -61,10 +62,11 @@ double constant_value(const std::shared_ptr<const Texture>& texture) {
 
 Material read_classic(const JsonNode& node, const LoadContext& context, SpecularModel fallback) {
   Material material;
-  const std::string specular = node.choice(
-      "specular",
-      fallback == SpecularModel::phong ? "phong" : fallback == SpecularModel::blinn_phong ? "blinn-phong" : "cook-torrance",
-      {"phong", "blinn-phong", "cook-torrance"});
+  const std::string specular = node.choice("specular",
+                                           fallback == SpecularModel::phong         ? "phong"
+                                           : fallback == SpecularModel::blinn_phong ? "blinn-phong"
+                                                                                    : "cook-torrance",
+                                           {"phong", "blinn-phong", "cook-torrance"});
   material.specular_model = specular == "phong"         ? SpecularModel::phong
                             : specular == "blinn-phong" ? SpecularModel::blinn_phong
                                                         : SpecularModel::cook_torrance;
@@ -75,7 +77,8 @@ Material read_classic(const JsonNode& node, const LoadContext& context, Specular
   if (const auto ks = node.get("ks")) material.ks = read_scalar_texture(*ks, context, Range::non_negative());
   material.shininess = constant_texture(20.0);
   if (material.specular_model == SpecularModel::cook_torrance) {
-    if (const auto m = node.get("roughness")) material.roughness = read_scalar_texture(*m, context, Range::positive());
+    if (const auto m = node.get("roughness"))
+      material.roughness = read_scalar_texture(*m, context, Range::positive());
     // The path tracer's facet distribution (docs/materials.md, "Path tracing").
     material.microfacet = node.choice("microfacet", "beckmann", {"beckmann", "ggx"}) == "ggx"
                               ? MicrofacetDistribution::ggx
@@ -89,12 +92,14 @@ Material read_classic(const JsonNode& node, const LoadContext& context, Specular
   // values are scaled down where they exceed 1 (Material::at).
   if (material.kr->is_constant() && material.kt->is_constant()) {
     const double sum = constant_value(material.kr) + constant_value(material.kt);
-    if (sum > 1) node.at(node.has("kt") ? "kt" : "kr").fail(fmt::format("kr + kt must be <= 1 (found {})", sum));
+    if (sum > 1)
+      node.at(node.has("kt") ? "kt" : "kr").fail(fmt::format("kr + kt must be <= 1 (found {})", sum));
   }
   if (const auto ior = node.get("ior")) material.ior = read_scalar_texture(*ior, context, Range::positive());
   if (material.specular_model == SpecularModel::cook_torrance) {
     // The Fresnel index defaults to the refraction index when that is a constant.
-    const Color fallback_ior = material.ior->is_constant() && node.has("ior") ? Color(constant_value(material.ior)) : Color(1.5);
+    const Color fallback_ior =
+        material.ior->is_constant() && node.has("ior") ? Color(constant_value(material.ior)) : Color(1.5);
     material.fresnel_ior = node.color("fresnel_ior", fallback_ior, Range::positive());
     // Cook and Torrance's way to a metal: its measured normal-incidence reflectance F0 per
     // channel gives n = (1 + √F0)/(1 − √F0).
@@ -109,7 +114,8 @@ Material read_classic(const JsonNode& node, const LoadContext& context, Specular
   }
   material.absorption = node.color("absorption", Color(), Range::non_negative());
   material.emission = node.color("emission", Color(), Range::non_negative());  // 000 eq. 6-7's E
-  if (const auto transparency = node.get("transparency")) material.transparency = read_transparency(*transparency);
+  if (const auto transparency = node.get("transparency"))
+    material.transparency = read_transparency(*transparency);
   if (const auto bump = node.get("bump")) material.bump = read_bump(*bump, context);
   return material;
 }
@@ -167,22 +173,23 @@ std::shared_ptr<const TextureMapping> make_cylindrical_mapping(const JsonNode* n
   const Vec3 axis = vec3_or(node, "axis", {0, 1, 0});
   const Vec3 reference = vec3_or(node, "reference", {1, 0, 0});
   const double height = node ? node->number("height", 1.0, Range::positive()) : 1.0;
-  return checked(node, [&] {
-    return std::make_shared<CylindricalMapping>(center, axis, reference, height, uv);
-  });
+  return checked(node,
+                 [&] { return std::make_shared<CylindricalMapping>(center, axis, reference, height, uv); });
 }
 
 const std::array kMappings = {
-    MappingEntry{"uv", "the shape's own parametric uv (polygon, disc, cylinder, cone, torus, box, sphere, OBJ vt)",
+    MappingEntry{"uv",
+                 "the shape's own parametric uv (polygon, disc, cylinder, cone, torus, box, sphere, OBJ vt)",
                  R"({"type": "uv", "scale": [4, 2], "offset": [0, 0]})", make_uv_mapping},
     MappingEntry{"spherical", "latitude/longitude of 000 §4.1.1 from the normal, or from a centre",
                  R"({"type": "spherical", "pole": [0, 1, 0], "equator": [1, 0, 0]})", make_spherical_mapping},
     MappingEntry{"planar", "u = (p − origin)·u_axis, v = (p − origin)·v_axis in object coordinates",
                  R"({"type": "planar", "origin": [0, 0, 0], "u_axis": [1, 0, 0], "v_axis": [0, 0, -1]})",
                  make_planar_mapping},
-    MappingEntry{"cylindrical", "u = angle about the axis / 2π from reference, v = height / height",
-                 R"({"type": "cylindrical", "center": [0, 0, 0], "axis": [0, 1, 0], "reference": [1, 0, 0], "height": 2})",
-                 make_cylindrical_mapping},
+    MappingEntry{
+        "cylindrical", "u = angle about the axis / 2π from reference, v = height / height",
+        R"({"type": "cylindrical", "center": [0, 0, 0], "axis": [0, 1, 0], "reference": [1, 0, 0], "height": 2})",
+        make_cylindrical_mapping},
 };
 
 UvTransform read_uv_transform(const JsonNode& node) {
@@ -254,18 +261,20 @@ std::shared_ptr<const Texture> make_image(const JsonNode& node, const LoadContex
 }
 
 const std::array kMaterials = {
-    MaterialEntry{"phong",
-                  "local model ka·Ia + Σ Ip·f_at·s·[kd(N·L) + ks(R·V)^n] with Whitted's kr, kt and ior; "
-                  "\"specular\" picks phong, blinn-phong or cook-torrance",
-                  R"({"type": "phong", "kd": [0.7, 0.2, 0.2], "ks": 0.5, "n": 40, "kr": 0.2, "kt": 0, "ior": 1.5})",
-                  make_phong},
+    MaterialEntry{
+        "phong",
+        "local model ka·Ia + Σ Ip·f_at·s·[kd(N·L) + ks(R·V)^n] with Whitted's kr, kt and ior; "
+        "\"specular\" picks phong, blinn-phong or cook-torrance",
+        R"({"type": "phong", "kd": [0.7, 0.2, 0.2], "ks": 0.5, "n": 40, "kr": 0.2, "kt": 0, "ior": 1.5})",
+        make_phong},
     MaterialEntry{"blinn-phong", "as phong with the specular term ks(N·H)^n",
                   R"({"type": "blinn-phong", "kd": [0.2, 0.5, 0.2], "ks": 0.4, "n": 80})", make_blinn_phong},
-    MaterialEntry{"cook-torrance",
-                  "specular term ks·(N·L)·DGF/(π(N·V)(N·L)) (000 §4.2.2): Beckmann roughness m, "
-                  "Fresnel index per RGB channel (fresnel_ior, or fresnel_f0 the reflectance at normal incidence)",
-                  R"({"type": "cook-torrance", "kd": [0.1, 0.05, 0.02], "ks": 1, "roughness": 0.3, "fresnel_f0": [0.9, 0.7, 0.3]})",
-                  make_cook_torrance},
+    MaterialEntry{
+        "cook-torrance",
+        "specular term ks·(N·L)·DGF/(π(N·V)(N·L)) (000 §4.2.2): Beckmann roughness m, "
+        "Fresnel index per RGB channel (fresnel_ior, or fresnel_f0 the reflectance at normal incidence)",
+        R"({"type": "cook-torrance", "kd": [0.1, 0.05, 0.02], "ks": 1, "roughness": 0.3, "fresnel_f0": [0.9, 0.7, 0.3]})",
+        make_cook_torrance},
 };
 
 }  // namespace
@@ -278,7 +287,8 @@ std::shared_ptr<const TextureMapping> read_mapping(const JsonNode& texture) {
   const MappingEntry* entry = find_mapping(name);
   if (!entry)
     (is_object ? mapping->at("type") : *mapping)
-        .fail("unknown mapping \"" + name + "\" (expected one of: " + entry_names<MappingEntry>(kMappings) + ")");
+        .fail("unknown mapping \"" + name + "\" (expected one of: " + entry_names<MappingEntry>(kMappings) +
+              ")");
   if (!is_object) return entry->create(nullptr, {});
   const UvTransform uv = read_uv_transform(*mapping);
   auto result = entry->create(&*mapping, uv);
@@ -317,7 +327,8 @@ std::shared_ptr<const Texture> make_marble(const JsonNode& node, const LoadConte
 
 std::shared_ptr<const Texture> make_noise(const JsonNode& node, const LoadContext&, TextureUse) {
   NoiseParameters p;
-  p.mode = node.choice("mode", "fbm", {"fbm", "turbulence"}) == "fbm" ? NoiseMode::fbm : NoiseMode::turbulence;
+  p.mode =
+      node.choice("mode", "fbm", {"fbm", "turbulence"}) == "fbm" ? NoiseMode::fbm : NoiseMode::turbulence;
   p.octaves = node.integer("octaves", p.octaves, kOctaves);
   p.lacunarity = node.number("lacunarity", p.lacunarity, Range::positive());
   p.gain = node.number("gain", p.gain, Range::positive());
@@ -345,7 +356,8 @@ std::shared_ptr<const Texture> make_waves(const JsonNode& node, const LoadContex
     item.finish();
     waves.push_back(wave);
   }
-  return checked_texture(node, [&] { return std::make_shared<WavesTexture>(std::move(waves), read_mapping(node)); });
+  return checked_texture(
+      node, [&] { return std::make_shared<WavesTexture>(std::move(waves), read_mapping(node)); });
 }
 
 const std::array kTextures = {
@@ -353,60 +365,80 @@ const std::array kTextures = {
     TextureEntry{"checkerboard", "solid 3D checkerboard of cell size `size` in object space",
                  R"({"type": "checkerboard", "even": [0.9, 0.9, 0.9], "odd": [0.1, 0.1, 0.1], "size": 1})",
                  make_checkerboard},
-    TextureEntry{"checker2d", "checkerboard of unit cells in (u, v) through a mapping",
-                 R"({"type": "checker2d", "even": [0.9, 0.9, 0.9], "odd": [0.2, 0.2, 0.2], "mapping": {"type": "uv", "scale": [8, 4]}})",
-                 make_checker2d},
-    TextureEntry{"wood", "concentric rings about the z axis perturbed by gradient noise",
-                 R"({"type": "wood", "light": [0.75, 0.52, 0.3], "dark": [0.45, 0.26, 0.12], "ring_frequency": 6, "turbulence": 0.4})",
-                 make_wood},
-    TextureEntry{"marble", "sin(frequency·x + turbulence) veins (Perlin 1985)",
-                 R"({"type": "marble", "base": [0.9, 0.9, 0.88], "vein": [0.3, 0.3, 0.35], "frequency": 4, "turbulence": 5})",
-                 make_marble},
+    TextureEntry{
+        "checker2d", "checkerboard of unit cells in (u, v) through a mapping",
+        R"({"type": "checker2d", "even": [0.9, 0.9, 0.9], "odd": [0.2, 0.2, 0.2], "mapping": {"type": "uv", "scale": [8, 4]}})",
+        make_checker2d},
+    TextureEntry{
+        "wood", "concentric rings about the z axis perturbed by gradient noise",
+        R"({"type": "wood", "light": [0.75, 0.52, 0.3], "dark": [0.45, 0.26, 0.12], "ring_frequency": 6, "turbulence": 0.4})",
+        make_wood},
+    TextureEntry{
+        "marble", "sin(frequency·x + turbulence) veins (Perlin 1985)",
+        R"({"type": "marble", "base": [0.9, 0.9, 0.88], "vein": [0.3, 0.3, 0.35], "frequency": 4, "turbulence": 5})",
+        make_marble},
     TextureEntry{"noise", "gradient-noise grey value (fbm or turbulence), for heights and masks",
                  R"({"type": "noise", "mode": "fbm", "octaves": 4, "scale": 4})", make_noise},
     TextureEntry{"waves", "sum of sine waves over (u, v), for bump heights (000 §4.2.1)",
                  R"({"type": "waves", "waves": [{"amplitude": 1, "frequency": [8, 0]}], "mapping": "uv"})",
                  make_waves},
-    TextureEntry{"image", "PNG, JPG, EXR or PFM image, bilinear, wrap repeat/clamp/mirror",
-                 R"({"type": "image", "file": "textures/checker.png", "wrap": "repeat", "mapping": {"type": "uv", "scale": 2}})",
-                 make_image},
+    TextureEntry{
+        "image", "PNG, JPG, EXR or PFM image, bilinear, wrap repeat/clamp/mirror",
+        R"({"type": "image", "file": "textures/checker.png", "wrap": "repeat", "mapping": {"type": "uv", "scale": 2}})",
+        make_image},
 };
 
 }  // namespace
 
-std::span<const MaterialEntry> material_entries() { return kMaterials; }
-const MaterialEntry* find_material(std::string_view name) { return find_entry<MaterialEntry>(kMaterials, name); }
-std::span<const TextureEntry> texture_entries() { return kTextures; }
-const TextureEntry* find_texture(std::string_view name) { return find_entry<TextureEntry>(kTextures, name); }
-std::span<const MappingEntry> mapping_entries() { return kMappings; }
-const MappingEntry* find_mapping(std::string_view name) { return find_entry<MappingEntry>(kMappings, name); }
+std::span<const MaterialEntry> material_entries() {
+  return kMaterials;
+}
+const MaterialEntry* find_material(std::string_view name) {
+  return find_entry<MaterialEntry>(kMaterials, name);
+}
+std::span<const TextureEntry> texture_entries() {
+  return kTextures;
+}
+const TextureEntry* find_texture(std::string_view name) {
+  return find_entry<TextureEntry>(kTextures, name);
+}
+std::span<const MappingEntry> mapping_entries() {
+  return kMappings;
+}
+const MappingEntry* find_mapping(std::string_view name) {
+  return find_entry<MappingEntry>(kMappings, name);
+}
 
 Material read_material(const JsonNode& node, const LoadContext& context) {
   node.expect_object();
   const std::string type = node.string("type", "phong");
   const MaterialEntry* entry = find_material(type);
   if (!entry)
-    node.at("type").fail("unknown material \"" + type + "\" (expected one of: " + entry_names<MaterialEntry>(kMaterials) + ")");
+    node.at("type").fail("unknown material \"" + type +
+                         "\" (expected one of: " + entry_names<MaterialEntry>(kMaterials) + ")");
   Material material = entry->create(node, context);
   node.allow({"name"});
   node.finish();
   return material;
 }
 
-std::shared_ptr<const Texture> read_texture(const JsonNode& node, const LoadContext& context, TextureUse use) {
+std::shared_ptr<const Texture> read_texture(const JsonNode& node, const LoadContext& context,
+                                            TextureUse use) {
   if (!node.json().is_object())
     return std::make_shared<ConstantTexture>(node.as_color(Range::non_negative()));
   const JsonNode type = node.at("type");
   const std::string name = type.as_string();
   const TextureEntry* entry = find_texture(name);
   if (!entry)
-    type.fail("unknown texture \"" + name + "\" (expected one of: " + entry_names<TextureEntry>(kTextures) + ")");
+    type.fail("unknown texture \"" + name + "\" (expected one of: " + entry_names<TextureEntry>(kTextures) +
+              ")");
   auto texture = entry->create(node, context, use);
   node.finish();
   return texture;
 }
 
-std::shared_ptr<const Texture> read_scalar_texture(const JsonNode& node, const LoadContext& context, Range range) {
+std::shared_ptr<const Texture> read_scalar_texture(const JsonNode& node, const LoadContext& context,
+                                                   Range range) {
   if (node.json().is_number()) return constant_texture(node.as_number(range));
   if (!node.json().is_object()) node.fail("expected a number or a texture object with a \"type\"");
   auto texture = read_texture(node, context, TextureUse::scalar);

@@ -12,7 +12,8 @@ const nlohmann::json& empty_object() {
 PluginSettings::PluginSettings()
     : document_(std::make_shared<const JsonDocument>(JsonDocument::parse("{}", "<defaults>"))) {}
 
-PluginSettings::PluginSettings(std::shared_ptr<const JsonDocument> document) : document_(std::move(document)) {}
+PluginSettings::PluginSettings(std::shared_ptr<const JsonDocument> document)
+    : document_(std::move(document)) {}
 
 bool PluginSettings::has(std::string_view key) const {
   const nlohmann::json& root = document_->root();

@@ -29,7 +29,8 @@ void Scene::prepare() {
   for (Material& material : materials) material.prepare();
   if (environment) environment->prepare_sampling();
   const AcceleratorEntry* entry = find_accelerator(render.accelerator);
-  if (!entry) throw std::invalid_argument("unknown accelerator " + render.accelerator);  // checked by the loader
+  if (!entry)
+    throw std::invalid_argument("unknown accelerator " + render.accelerator);  // checked by the loader
   const auto start = std::chrono::steady_clock::now();
   accelerator_ = entry->create(plugin_settings.node(entry->name), render.bounding_volume);
   accelerator_->build(primitives);

@@ -8,20 +8,20 @@
 #include <map>
 #include <sstream>
 
-#include "geometry/transformed_shape.h"
 #include "accel/accelerator_registry.h"
 #include "accel/bounding_volume.h"
 #include "camera/antialiasing.h"
 #include "camera/pixel_filter.h"
+#include "geometry/transformed_shape.h"
+#include "io/json_node.h"
 #include "scene/camera_registry.h"
 #include "scene/environment_registry.h"
-#include "io/json_node.h"
 #include "scene/json_transform.h"
 #include "scene/light_registry.h"
 #include "scene/load_context.h"
-#include "shading/environment.h"
 #include "scene/material_registry.h"
 #include "scene/shape_registry.h"
+#include "shading/environment.h"
 #include "util/registry.h"
 
 namespace candela {
@@ -38,7 +38,8 @@ void read_light_list(const JsonNode& lights, Color& ambient, std::vector<std::un
     const JsonNode type = node.at("type");
     const LightEntry* entry = find_light(type.as_string());
     if (!entry)
-      type.fail("unknown light \"" + type.as_string() + "\" (expected one of: " + entry_names(light_entries()) + ")");
+      type.fail("unknown light \"" + type.as_string() +
+                "\" (expected one of: " + entry_names(light_entries()) + ")");
     auto light = entry->create(node, ambient);
     node.allow({"name"});
     node.finish();
@@ -71,8 +72,9 @@ class SceneReader {
     if (const auto environment = root_.get("environment")) {
       scene->environment = read_environment(*environment, context_);
       if (root_.has("background"))
-        scene->warnings.push_back(root_.at("background").location().describe() +
-                                  ": background is not used: the environment map gives what rays leaving the scene see");
+        scene->warnings.push_back(
+            root_.at("background").location().describe() +
+            ": background is not used: the environment map gives what rays leaving the scene see");
     }
     scene->ambient = root_.color("ambient", Color(0), Range::non_negative());
     read_settings();
@@ -101,8 +103,7 @@ class SceneReader {
       const auto [previous, inserted] = path_of_name.emplace(name, node.path());
       if (!inserted)
         name_node.fail("duplicate camera name \"" + name + "\" (" + previous->second + " has it already)");
-      scene_->cameras.push_back(
-          {name, read_camera(node, scene_->camera->width(), scene_->camera->height())});
+      scene_->cameras.push_back({name, read_camera(node, scene_->camera->width(), scene_->camera->height())});
     }
   }
 
@@ -111,7 +112,8 @@ class SceneReader {
   static void check_camera_name(const JsonNode& node, const std::string& name) {
     if (name.empty()) node.fail("a camera name must not be empty");
     const bool allowed = std::all_of(name.begin(), name.end(), [](char c) {
-      return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+      return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+             c == '-';
     });
     if (!allowed)
       node.fail("camera name \"" + name +
@@ -136,8 +138,8 @@ class SceneReader {
       if (const auto volume = render->get("bounding_volume")) {
         const auto kind = kBoundingVolumeNames.value(volume->as_string());
         if (!kind)
-          volume->fail("unknown bounding volume \"" + volume->as_string() + "\" (expected one of: " +
-                       kBoundingVolumeNames.names() + ")");
+          volume->fail("unknown bounding volume \"" + volume->as_string() +
+                       "\" (expected one of: " + kBoundingVolumeNames.names() + ")");
         scene_->render.bounding_volume = *kind;
       }
       scene_->render.ray_offset = render->number("ray_offset", 0.0, Range::non_negative());
@@ -165,8 +167,8 @@ class SceneReader {
     if (const auto mode = aa.get("mode")) {
       const auto value = kAntialiasingModeNames.value(mode->as_string());
       if (!value)
-        mode->fail("unknown anti-aliasing mode \"" + mode->as_string() + "\" (expected one of: " +
-                   kAntialiasingModeNames.names() + ")");
+        mode->fail("unknown anti-aliasing mode \"" + mode->as_string() +
+                   "\" (expected one of: " + kAntialiasingModeNames.names() + ")");
       settings.mode = *value;
     }
     settings.n = aa.integer("n", settings.n, {1, 64, false, false});
@@ -180,7 +182,8 @@ class SceneReader {
     if (const auto filter = aa.get("filter")) {
       settings.filter = filter->as_string();
       if (!find_pixel_filter(settings.filter))
-        filter->fail("unknown filter \"" + settings.filter + "\" (expected one of: " + pixel_filter_names() + ")");
+        filter->fail("unknown filter \"" + settings.filter + "\" (expected one of: " + pixel_filter_names() +
+                     ")");
     }
     settings.filter_parameters.radius = aa.number("filter_radius", 0.0, Range::non_negative());
     settings.filter_parameters.sigma = aa.number("filter_sigma", 0.0, Range::non_negative());
@@ -220,8 +223,9 @@ class SceneReader {
       if (found == named_materials_.end()) {
         std::string known;
         for (const auto& [key, index] : named_materials_) known += (known.empty() ? "" : ", ") + key;
-        node->fail("unknown material \"" + name + "\"" +
-                   (known.empty() ? std::string(" (no materials are defined)") : " (defined: " + known + ")"));
+        node->fail(
+            "unknown material \"" + name + "\"" +
+            (known.empty() ? std::string(" (no materials are defined)") : " (defined: " + known + ")"));
       }
       return found->second;
     }
@@ -239,7 +243,8 @@ class SceneReader {
       const JsonNode type = node.at("type");
       const ShapeEntry* entry = find_shape(type.as_string());
       if (!entry)
-        type.fail("unknown shape \"" + type.as_string() + "\" (expected one of: " + entry_names(shape_entries()) + ")");
+        type.fail("unknown shape \"" + type.as_string() +
+                  "\" (expected one of: " + entry_names(shape_entries()) + ")");
       SceneObject object;
       object.type = std::string(entry->name);
       object.name = node.string("name", fmt::format("{}#{}", entry->name, i));
@@ -270,7 +275,8 @@ class SceneReader {
   std::map<std::string, uint32_t> named_materials_;
 };
 
-std::unique_ptr<Scene> load_document(std::shared_ptr<JsonDocument> document, const std::string& base_directory,
+std::unique_ptr<Scene> load_document(std::shared_ptr<JsonDocument> document,
+                                     const std::string& base_directory,
                                      const std::vector<std::string>& overrides,
                                      std::span<const SettingsSection> plugin_sections) {
   for (const auto& assignment : overrides) document->apply_override(assignment);
@@ -284,7 +290,8 @@ std::unique_ptr<Scene> load_document(std::shared_ptr<JsonDocument> document, con
 }  // namespace
 
 std::unique_ptr<Scene> read_scene_text(const std::string& text, const std::string& name,
-                                       const std::string& base_directory, const std::vector<std::string>& overrides,
+                                       const std::string& base_directory,
+                                       const std::vector<std::string>& overrides,
                                        std::span<const SettingsSection> plugin_sections) {
   auto document = std::make_shared<JsonDocument>(JsonDocument::parse(text, name));
   return load_document(std::move(document), base_directory, overrides, plugin_sections);
@@ -321,11 +328,13 @@ std::vector<LightSetup> load_light_setups_text(const std::string& text, const st
     frame.expect_object();
     LightSetup setup;
     setup.name = frame.string("name", "frame" + std::to_string(i));
-    if (setup.name.empty() || setup.name.find_first_not_of(
-                                  "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") != std::string::npos)
+    if (setup.name.empty() ||
+        setup.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") !=
+            std::string::npos)
       frame.at("name").fail("must be letters, digits, '_' or '-' (it goes into file names)");
     for (const LightSetup& earlier : setups)
-      if (earlier.name == setup.name) frame.at("name").fail("\"" + setup.name + "\" names an earlier frame too");
+      if (earlier.name == setup.name)
+        frame.at("name").fail("\"" + setup.name + "\" names an earlier frame too");
     setup.ambient = frame.color("ambient", Color(0), Range::non_negative());
     read_light_list(frame.at("lights"), setup.ambient, setup.lights);
     frame.finish();

@@ -19,7 +19,8 @@ std::unique_ptr<Scene> read_scene_file(const std::string& path, const std::vecto
 // The same for text held in memory; name stands for the file in messages, base_directory
 // resolves relative mesh paths.
 std::unique_ptr<Scene> read_scene_text(const std::string& text, const std::string& name,
-                                       const std::string& base_directory, const std::vector<std::string>& overrides,
+                                       const std::string& base_directory,
+                                       const std::vector<std::string>& overrides,
                                        std::span<const SettingsSection> plugin_sections);
 // Light set-ups for relighting (candela render --relight FILE): a JSON object
 // {"frames": [{"name": "noon", "ambient": 0.1, "lights": [... as a scene's "lights" ...]}, ...]}.

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "geometry/shape.h"
-#include "math/transform.h"
 #include "io/json_node.h"
+#include "math/transform.h"
 #include "scene/load_context.h"
 
 namespace candela {

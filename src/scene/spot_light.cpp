@@ -8,9 +8,8 @@
 
 namespace candela {
 
-SpotLight::SpotLight(const Vec3& position, const Vec3& target, const Color& intensity,
-                     double cutoff_degrees, double falloff_start_degrees, double exponent,
-                     const Attenuation& attenuation)
+SpotLight::SpotLight(const Vec3& position, const Vec3& target, const Color& intensity, double cutoff_degrees,
+                     double falloff_start_degrees, double exponent, const Attenuation& attenuation)
     : position_(position),
       intensity_(intensity),
       cos_cutoff_(std::cos(degrees_to_radians(cutoff_degrees))),

@@ -9,9 +9,8 @@ namespace candela {
 // cutoff, a smooth step between (pbrt's spot light), times (cos α)^exponent (Warn's model).
 class SpotLight final : public Light {
  public:
-  SpotLight(const Vec3& position, const Vec3& target, const Color& intensity,
-            double cutoff_degrees, double falloff_start_degrees, double exponent,
-            const Attenuation& attenuation);
+  SpotLight(const Vec3& position, const Vec3& target, const Color& intensity, double cutoff_degrees,
+            double falloff_start_degrees, double exponent, const Attenuation& attenuation);
   bool illuminate(const Vec3& point, LightSample& sample) const override;
   std::string_view type_name() const override { return "spot"; }
   // The factor for a direction at angle alpha from the axis, given as cos(alpha).

@@ -32,23 +32,23 @@ enum class MicrofacetDistribution : uint8_t { beckmann, ggx };
 // One lobe's parameters (a plain value: Bsdf keeps them in a fixed array).
 struct BsdfLobe {
   LobeType type = LobeType::lambert;
-  Color weight;                 // lambert: ρ; phong: ks; microfacet: ks (scales D·G·F/(4 cos cos));
-                                // mirror: kr; dielectric: kt (scales both Fresnel parts)
-  double exponent = 1;          // phong: n of cos^n α, α the angle between wi and the mirror of wo
-  double alpha = 0.3;           // microfacet roughness (Beckmann: rms slope m)
+  Color weight;         // lambert: ρ; phong: ks; microfacet: ks (scales D·G·F/(4 cos cos));
+                        // mirror: kr; dielectric: kt (scales both Fresnel parts)
+  double exponent = 1;  // phong: n of cos^n α, α the angle between wi and the mirror of wo
+  double alpha = 0.3;   // microfacet roughness (Beckmann: rms slope m)
   MicrofacetDistribution distribution = MicrofacetDistribution::beckmann;
   Color fresnel_ior{1.5, 1.5, 1.5};  // microfacet: unpolarised dielectric Fresnel per channel
-  double ior = 1.5;             // dielectric: index inside relative to outside
+  double ior = 1.5;                  // dielectric: index inside relative to outside
 };
 
 struct BsdfSample {
-  Vec3 wi;              // world, unit
-  Color weight;         // f·|cos θ_i|/pdf, already divided by the probability of the chosen lobe;
-                        // for a delta lobe the fraction of radiance carried over
-  double pdf = 0;       // solid-angle density of wi under sample() (all non-delta lobes mixed); 0 when delta
-  bool delta = false;   // from a mirror or dielectric lobe: no MIS, evaluate() does not see it
+  Vec3 wi;             // world, unit
+  Color weight;        // f·|cos θ_i|/pdf, already divided by the probability of the chosen lobe;
+                       // for a delta lobe the fraction of radiance carried over
+  double pdf = 0;      // solid-angle density of wi under sample() (all non-delta lobes mixed); 0 when delta
+  bool delta = false;  // from a mirror or dielectric lobe: no MIS, evaluate() does not see it
   bool transmission = false;
-  double eta = 1;       // n_t/n_i when the sample crossed the surface, else 1 (Russian roulette's η²)
+  double eta = 1;  // n_t/n_i when the sample crossed the surface, else 1 (Russian roulette's η²)
 };
 
 inline constexpr int kMaxBsdfLobes = 4;
@@ -57,7 +57,8 @@ class Bsdf {
  public:
   // shading: the frame of the (bumped, interpolated) shading normal, oriented to the geometric
   // normal's side; geometric_normal: unit, the outside of the surface.
-  Bsdf(const ShadingFrame& shading, const Vec3& geometric_normal) : frame_(shading), geometric_(geometric_normal) {}
+  Bsdf(const ShadingFrame& shading, const Vec3& geometric_normal)
+      : frame_(shading), geometric_(geometric_normal) {}
   // Adds a lobe; lobes beyond kMaxBsdfLobes or with a black weight are dropped.
   void add(const BsdfLobe& lobe);
   int lobe_count() const { return count_; }

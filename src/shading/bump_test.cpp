@@ -57,7 +57,8 @@ TEST(Bump, HeightImageSlopeBetweenTexelCentres) {
   // f_u = scale·3 anywhere strictly between the first and last centres.
   auto image = std::make_shared<const TextureImage>(3, 1, std::vector<float>{0, 0, 0, 1, 1, 1, 2, 2, 2});
   BumpMap bump;
-  bump.height = std::make_shared<ImageTexture>(image, WrapMode::clamp, Color(1), std::make_shared<ParametricMapping>());
+  bump.height =
+      std::make_shared<ImageTexture>(image, WrapMode::clamp, Color(1), std::make_shared<ParametricMapping>());
   bump.scale = 0.2;
   for (const double u : {0.25, 0.4, 0.6, 0.75}) {
     const Vec3 n = bumped_normal(bump, plane_hit(u, 0.5));

@@ -18,8 +18,7 @@ void validate(const Color& even, const Color& odd, double size) {
 
 }  // namespace
 
-CheckerboardTexture::CheckerboardTexture(const Color& even, const Color& odd, double size,
-                                         const Vec3& offset)
+CheckerboardTexture::CheckerboardTexture(const Color& even, const Color& odd, double size, const Vec3& offset)
     : even_(even), odd_(odd), inverse_size_(1.0 / size), offset_(offset) {
   validate(even, odd, size);
   if (!is_finite(offset)) throw std::invalid_argument("offset must have finite components");

@@ -15,8 +15,7 @@ class CheckerboardTexture final : public SolidTexture {
   // Cells shifted by `offset` (in object units): q = object position + offset.
   CheckerboardTexture(const Color& even, const Color& odd, double size, const Vec3& offset);
   // Cells placed, turned and scaled by a transform: q = texture_from_object(object position).
-  CheckerboardTexture(const Color& even, const Color& odd, double size,
-                      const Transform& texture_from_object);
+  CheckerboardTexture(const Color& even, const Color& odd, double size, const Transform& texture_from_object);
   Color at(const Vec3& p) const override;
   std::string_view type_name() const override { return "checkerboard"; }
 

@@ -63,9 +63,13 @@ Vec3 uniform_sphere(const Vec2& u) {
 constexpr double kWeightFloor = 1e-3;
 }  // namespace
 
-bool Environment::sample(const Vec2&, Vec3&, double&, Color&) const { return false; }
+bool Environment::sample(const Vec2&, Vec3&, double&, Color&) const {
+  return false;
+}
 
-double Environment::pdf(const Vec3&) const { return 0; }
+double Environment::pdf(const Vec3&) const {
+  return 0;
+}
 
 bool ConstantEnvironment::sample(const Vec2& u, Vec3& direction, double& density, Color& radiance) const {
   if (color_.is_black()) return false;
@@ -75,13 +79,16 @@ bool ConstantEnvironment::sample(const Vec2& u, Vec3& direction, double& density
   return true;
 }
 
-double ConstantEnvironment::pdf(const Vec3&) const { return color_.is_black() ? 0 : 1 / (4 * kPi); }
+double ConstantEnvironment::pdf(const Vec3&) const {
+  return color_.is_black() ? 0 : 1 / (4 * kPi);
+}
 
 CubeMapEnvironment::CubeMapEnvironment(std::array<std::shared_ptr<const TextureImage>, 6> faces,
                                        const Color& multiplier, CubeLayout layout)
     : faces_(std::move(faces)), multiplier_(multiplier), layout_(layout) {
   for (int face = 0; face < 6; ++face)
-    if (!faces_[face]) throw std::invalid_argument(std::string("cube map face ") + kFaceNames[face] + " is missing");
+    if (!faces_[face])
+      throw std::invalid_argument(std::string("cube map face ") + kFaceNames[face] + " is missing");
   const int size = faces_[0]->width();
   for (int face = 0; face < 6; ++face) {
     const TextureImage& image = *faces_[face];
@@ -144,14 +151,15 @@ void CubeMapEnvironment::prepare_sampling() {
   }
   const double floor = kWeightFloor * total / static_cast<double>(weights.size());
   for (int face = 0; face < 6; ++face) {
-    for (int j = 0; j < n; ++j) {      // t cell, from the top row
-      for (int i = 0; i < n; ++i) {    // s cell
+    for (int j = 0; j < n; ++j) {    // t cell, from the top row
+      for (int i = 0; i < n; ++i) {  // s cell
         const int column = layout_ == CubeLayout::inside ? n - 1 - i : i;
-        const int row = n - 1 - j;     // TextureImage rows count from the bottom
+        const int row = n - 1 - j;  // TextureImage rows count from the bottom
         const double a0 = 2.0 * i / n - 1, a1 = 2.0 * (i + 1) / n - 1;
         const double b0 = 2.0 * j / n - 1, b1 = 2.0 * (j + 1) / n - 1;
         weights[(std::size_t(face) * n + j) * n + i] =
-            (face_weights[face][std::size_t(row) * n + column] + floor) * rectangle_solid_angle(a0, a1, b0, b1);
+            (face_weights[face][std::size_t(row) * n + column] + floor) *
+            rectangle_solid_angle(a0, a1, b0, b1);
       }
     }
   }
@@ -168,12 +176,24 @@ bool CubeMapEnvironment::sample(const Vec2& u, Vec3& direction, double& density,
   // The inverse of face_coordinates (OpenGL 4.6 Table 8.19) with |ma| = 1.
   Vec3 r;
   switch (face) {
-    case positive_x: r = {1, -tc, -sc}; break;
-    case negative_x: r = {-1, -tc, sc}; break;
-    case positive_y: r = {sc, 1, tc}; break;
-    case negative_y: r = {sc, -1, -tc}; break;
-    case positive_z: r = {sc, -tc, 1}; break;
-    default: r = {-sc, -tc, -1}; break;
+    case positive_x:
+      r = {1, -tc, -sc};
+      break;
+    case negative_x:
+      r = {-1, -tc, sc};
+      break;
+    case positive_y:
+      r = {sc, 1, tc};
+      break;
+    case negative_y:
+      r = {sc, -1, -tc};
+      break;
+    case positive_z:
+      r = {sc, -tc, 1};
+      break;
+    default:
+      r = {-sc, -tc, -1};
+      break;
   }
   direction = normalize(r);
   // The density of the direction as pdf() computes it (the same bits; a direction rounding
@@ -196,16 +216,19 @@ double CubeMapEnvironment::pdf(const Vec3& direction) const {
   return cell_density / 24 * distance_squared * std::sqrt(distance_squared);
 }
 
-EquirectangularEnvironment::EquirectangularEnvironment(std::shared_ptr<const TextureImage> image, const Vec3& up,
-                                                       const Vec3& forward, const Color& multiplier)
+EquirectangularEnvironment::EquirectangularEnvironment(std::shared_ptr<const TextureImage> image,
+                                                       const Vec3& up, const Vec3& forward,
+                                                       const Color& multiplier)
     : image_(std::move(image)), multiplier_(multiplier) {
   if (!image_) throw std::invalid_argument("equirectangular environment needs an image");
   if (!(length(up) > 0) || !is_finite(up)) throw std::invalid_argument("up must be a non-zero vector");
-  if (!(length(forward) > 0) || !is_finite(forward)) throw std::invalid_argument("forward must be a non-zero vector");
+  if (!(length(forward) > 0) || !is_finite(forward))
+    throw std::invalid_argument("forward must be a non-zero vector");
   up_ = normalize(up);
   // Gram-Schmidt: forward keeps only its part orthogonal to up.
   const Vec3 across = forward - dot(forward, up_) * up_;
-  if (!(length(across) > 1e-9 * length(forward))) throw std::invalid_argument("forward must not be parallel to up");
+  if (!(length(across) > 1e-9 * length(forward)))
+    throw std::invalid_argument("forward must not be parallel to up");
   forward_ = normalize(across);
   right_ = cross(forward_, up_);
 }
@@ -242,7 +265,8 @@ void EquirectangularEnvironment::prepare_sampling() {
   distribution_ = Distribution2D(weights, std::size_t(w), std::size_t(h));
 }
 
-bool EquirectangularEnvironment::sample(const Vec2& u, Vec3& direction, double& density, Color& radiance) const {
+bool EquirectangularEnvironment::sample(const Vec2& u, Vec3& direction, double& density,
+                                        Color& radiance) const {
   Vec2 point;
   double cell_density = 0;
   if (!distribution_.sample_continuous(u, point, cell_density)) return false;

@@ -49,7 +49,8 @@ double sphere_quadrature(F f, int n_theta, int n_phi) {
 void check_environment(const Environment& environment, double quadrature_tolerance, uint64_t seed) {
   SCOPED_TRACE(std::string(environment.type_name()));
   // The reference: ∫ L dω (luminance) and ∫ pdf dω by quadrature.
-  const double integral = sphere_quadrature([&](const Vec3& d) { return luminance(environment.radiance(d)); }, 800, 1600);
+  const double integral =
+      sphere_quadrature([&](const Vec3& d) { return luminance(environment.radiance(d)); }, 800, 1600);
   const double pdf_integral = sphere_quadrature([&](const Vec3& d) { return environment.pdf(d); }, 800, 1600);
   EXPECT_NEAR(pdf_integral, 1, quadrature_tolerance);
 
@@ -89,7 +90,8 @@ TEST(EnvironmentSampling, ConstantIsUniformAndBlackSamplesNothing) {
 }
 
 TEST(EnvironmentSampling, Equirectangular) {
-  EquirectangularEnvironment environment(test_image(16, 8, 5, 6, 0.3), {0, 1, 0.2}, {1, 0, 0.3}, Color(1, 0.8, 1.2));
+  EquirectangularEnvironment environment(test_image(16, 8, 5, 6, 0.3), {0, 1, 0.2}, {1, 0, 0.3},
+                                         Color(1, 0.8, 1.2));
   Vec3 d;
   double pdf;
   Color radiance;
@@ -104,12 +106,14 @@ TEST(EnvironmentSampling, Equirectangular) {
     Vec3 forward = Vec3{1, 0, 0.3} - up * dot(Vec3{1, 0, 0.3}, up);
     forward = normalize(forward);
     const Vec3 right = cross(forward, up);
-    return forward * (std::sin(theta) * std::cos(phi)) + right * (std::sin(theta) * std::sin(phi)) + up * std::cos(theta);
+    return forward * (std::sin(theta) * std::cos(phi)) + right * (std::sin(theta) * std::sin(phi)) +
+           up * std::cos(theta);
   };
   const Vec2 check = environment.panorama_coordinates(direction_at(5.5 / 16, 1.5 / 8));
   EXPECT_NEAR(check.x, 5.5 / 16, 1e-12);
   EXPECT_NEAR(check.y, 1.5 / 8, 1e-12);
-  EXPECT_GT(environment.pdf(direction_at(5.5 / 16, 1.5 / 8)), 50 * environment.pdf(direction_at(12.5 / 16, 1.5 / 8)));
+  EXPECT_GT(environment.pdf(direction_at(5.5 / 16, 1.5 / 8)),
+            50 * environment.pdf(direction_at(12.5 / 16, 1.5 / 8)));
   // Black: nothing to sample.
   EquirectangularEnvironment black(test_image(4, 2, 0, 0, 0), {0, 0, 1}, {1, 0, 0}, Color(0));
   black.prepare_sampling();

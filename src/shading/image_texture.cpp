@@ -14,7 +14,10 @@ std::shared_ptr<const TextureMapping> non_null(std::shared_ptr<const TextureMapp
 
 ImageTexture::ImageTexture(std::shared_ptr<const TextureImage> image, WrapMode wrap, const Color& multiplier,
                            std::shared_ptr<const TextureMapping> mapping)
-    : Texture2D(non_null(std::move(mapping))), image_(std::move(image)), wrap_(wrap), multiplier_(multiplier) {
+    : Texture2D(non_null(std::move(mapping))),
+      image_(std::move(image)),
+      wrap_(wrap),
+      multiplier_(multiplier) {
   if (!image_) throw std::invalid_argument("ImageTexture needs an image");
 }
 

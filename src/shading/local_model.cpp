@@ -7,8 +7,8 @@
 
 namespace candela {
 
-Color direct_term(const Material& material, const SurfaceProperties& at, const Vec3& N,
-                  const Vec3& V, const Vec3& L, const Color& light_intensity) {
+Color direct_term(const Material& material, const SurfaceProperties& at, const Vec3& N, const Vec3& V,
+                  const Vec3& L, const Color& light_intensity) {
   const double n_dot_l = dot(N, L);
   if (n_dot_l <= 0) return {};
   Color specular;

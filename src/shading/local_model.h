@@ -14,7 +14,7 @@ namespace candela {
 
 // The bracket for one light, times the light's arriving intensity. N is the shading normal
 // on the viewer's side, V the unit vector toward the viewer, L toward the light.
-Color direct_term(const Material& material, const SurfaceProperties& at, const Vec3& N,
-                  const Vec3& V, const Vec3& L, const Color& light_intensity);
+Color direct_term(const Material& material, const SurfaceProperties& at, const Vec3& N, const Vec3& V,
+                  const Vec3& L, const Color& light_intensity);
 
 }  // namespace candela

@@ -14,9 +14,15 @@ bool is_constant_zero(const std::shared_ptr<const Texture>& texture) {
 
 // Textures may give anything (noise and waves go negative, a float image may hold anything):
 // reflectances are kept >= 0 and NaN reads as 0, so no pixel turns negative or NaN.
-double at_least_zero(double value) { return value > 0 ? value : 0.0; }
-Color at_least_zero(const Color& c) { return {at_least_zero(c.r), at_least_zero(c.g), at_least_zero(c.b)}; }
-double in_unit_interval(double value) { return value > 0 ? std::min(value, 1.0) : 0.0; }
+double at_least_zero(double value) {
+  return value > 0 ? value : 0.0;
+}
+Color at_least_zero(const Color& c) {
+  return {at_least_zero(c.r), at_least_zero(c.g), at_least_zero(c.b)};
+}
+double in_unit_interval(double value) {
+  return value > 0 ? std::min(value, 1.0) : 0.0;
+}
 
 }  // namespace
 
@@ -30,9 +36,12 @@ std::shared_ptr<const Texture> constant_texture(const Color& value) {
 double Transparency::at(double n_z) const {
   n_z = std::clamp(n_z, 0.0, 1.0);
   switch (model) {
-    case TransparencyModel::none: return 0;
-    case TransparencyModel::constant: return t_min;
-    case TransparencyModel::linear: return t_min + (t_max - t_min) * n_z;  // 000 §4.4
+    case TransparencyModel::none:
+      return 0;
+    case TransparencyModel::constant:
+      return t_min;
+    case TransparencyModel::linear:
+      return t_min + (t_max - t_min) * n_z;  // 000 §4.4
     case TransparencyModel::nonlinear:
       return t_min + (t_max - t_min) * (1 - std::pow(1 - n_z, exponent));  // 000 §4.4
   }

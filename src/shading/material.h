@@ -4,7 +4,6 @@
 #pragma once
 
 #include <algorithm>
-
 #include <memory>
 #include <string>
 
@@ -27,7 +26,7 @@ enum class TransparencyModel { none, constant, linear, nonlinear };
 
 struct Transparency {
   TransparencyModel model = TransparencyModel::none;
-  double t_min = 0;     // also the constant model's t
+  double t_min = 0;  // also the constant model's t
   double t_max = 0;
   double exponent = 2;  // m of the nonlinear model, "of the order of 2 or 3"
   bool active() const { return model != TransparencyModel::none; }
@@ -57,9 +56,9 @@ struct SurfaceProperties {
 
 struct Material {
   std::string name;
-  std::shared_ptr<const Texture> kd;  // diffuse reflectance per channel (000 §2.9)
-  std::shared_ptr<const Texture> ka;  // ambient reflectance; null: ka = kd (000 eq. 5-2: kd·Ia)
-  std::shared_ptr<const Texture> ks;  // local specular weight, colorless (000 §2.9)
+  std::shared_ptr<const Texture> kd;         // diffuse reflectance per channel (000 §2.9)
+  std::shared_ptr<const Texture> ka;         // ambient reflectance; null: ka = kd (000 eq. 5-2: kd·Ia)
+  std::shared_ptr<const Texture> ks;         // local specular weight, colorless (000 §2.9)
   std::shared_ptr<const Texture> shininess;  // n of (R·V)^n or (N·H)^n
   SpecularModel specular_model = SpecularModel::phong;
   std::shared_ptr<const Texture> roughness;  // Cook-Torrance m: rms slope of the facets
@@ -67,10 +66,10 @@ struct Material {
   // Path tracing (shading/material_bsdf.h): the facet distribution of the cook_torrance
   // microfacet lobe, Beckmann (the local model's D) or GGX; the local model always uses Beckmann.
   MicrofacetDistribution microfacet = MicrofacetDistribution::beckmann;
-  std::shared_ptr<const Texture> kr;         // global specular reflection (000 eq. 5-2)
-  std::shared_ptr<const Texture> kt;         // global specular transmission (refraction)
-  std::shared_ptr<const Texture> ior;        // index of refraction for kt (000 eq. 5-6)
-  Color absorption;                          // per unit length inside: exp(-a·d) on shadow rays
+  std::shared_ptr<const Texture> kr;   // global specular reflection (000 eq. 5-2)
+  std::shared_ptr<const Texture> kt;   // global specular transmission (refraction)
+  std::shared_ptr<const Texture> ior;  // index of refraction for kt (000 eq. 5-6)
+  Color absorption;                    // per unit length inside: exp(-a·d) on shadow rays
   // Emitted exitance E per channel (≥ 0): the self-luminous surfaces of classic radiosity
   // (000 eq. 6-7's E_i); the local model adds it as seen, independent of the lights.
   Color emission;

@@ -127,11 +127,9 @@ TEST(Noise, FractalNoiseWithOneOctaveIsTheNoise) {
 
 TEST(Noise, FractalNoiseSumsScaledOctaves) {
   const Vec3 p{0.61, -1.3, 2.27};
-  const double expected = gradient_noise(p) + 0.4 * gradient_noise(p * 3) +
-                          0.16 * gradient_noise(p * 9);
+  const double expected = gradient_noise(p) + 0.4 * gradient_noise(p * 3) + 0.16 * gradient_noise(p * 9);
   EXPECT_NEAR(fractal_noise(p, 3, 3, 0.4), expected, 1e-15);
-  const double expected_turbulence = std::fabs(gradient_noise(p)) +
-                                     0.5 * std::fabs(gradient_noise(p * 2)) +
+  const double expected_turbulence = std::fabs(gradient_noise(p)) + 0.5 * std::fabs(gradient_noise(p * 2)) +
                                      0.25 * std::fabs(gradient_noise(p * 4));
   EXPECT_NEAR(turbulence(p, 3), expected_turbulence, 1e-15);
   EXPECT_EQ(fractal_noise(p, 0), 0.0);

@@ -8,7 +8,9 @@
 namespace candela {
 
 // 000 eq. 5-5: R = 2N(N·V) − V; V points away from the surface (toward the viewer).
-inline Vec3 reflect(const Vec3& V, const Vec3& N) { return 2 * dot(N, V) * N - V; }
+inline Vec3 reflect(const Vec3& V, const Vec3& N) {
+  return 2 * dot(N, V) * N - V;
+}
 
 // 000 eq. 5-7: T = (η1/η2)[N(N·V) − V] − N sqrt(1 − (η1/η2)²[1 − (N·V)²]), with N on the
 // side of V and eta = η1/η2. Returns false on total internal reflection (|S'| > 1).

@@ -14,7 +14,9 @@ namespace candela {
 
 namespace {
 
-[[noreturn]] void reject(const std::string& what) { throw std::invalid_argument(what); }
+[[noreturn]] void reject(const std::string& what) {
+  throw std::invalid_argument(what);
+}
 
 void require_finite(double value, const char* name) {
   if (!std::isfinite(value)) reject(std::string(name) + " must be a finite number");
@@ -35,8 +37,8 @@ void require_finite(const Color& color, const char* name) {
 
 void require_octaves(int octaves) {
   if (octaves < 1 || octaves > kMaxOctaves)
-    reject("octaves must be in [1, " + std::to_string(kMaxOctaves) + "] (found " +
-           std::to_string(octaves) + ")");
+    reject("octaves must be in [1, " + std::to_string(kMaxOctaves) + "] (found " + std::to_string(octaves) +
+           ")");
 }
 
 void require_mapping(const TextureMapping* mapping) {
@@ -49,7 +51,9 @@ double smoothstep(double edge0, double edge1, double x) {
   return t * t * (3 - 2 * t);
 }
 
-Color mix(const Color& a, const Color& b, double t) { return a + (b - a) * t; }
+Color mix(const Color& a, const Color& b, double t) {
+  return a + (b - a) * t;
+}
 
 }  // namespace
 
@@ -173,8 +177,8 @@ WavesTexture::WavesTexture(std::vector<Wave> waves, std::shared_ptr<const Textur
 double WavesTexture::value(const Vec2& uv) const {
   double sum = 0;
   for (const Wave& wave : waves_)
-    sum += wave.amplitude *
-           std::sin(2 * kPi * (wave.frequency.x * uv.x + wave.frequency.y * uv.y) + wave.phase);
+    sum +=
+        wave.amplitude * std::sin(2 * kPi * (wave.frequency.x * uv.x + wave.frequency.y * uv.y) + wave.phase);
   return sum;
 }
 

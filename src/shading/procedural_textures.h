@@ -33,8 +33,7 @@ int floor_parity(double x);
 // (0, 0) is `even` and (1, 0), (0, 1) are `odd`.
 class Checkerboard2DTexture final : public Texture2D {
  public:
-  Checkerboard2DTexture(const Color& even, const Color& odd,
-                        std::shared_ptr<const TextureMapping> mapping);
+  Checkerboard2DTexture(const Color& even, const Color& odd, std::shared_ptr<const TextureMapping> mapping);
   Color lookup(const Vec2& uv) const override;
   std::string_view type_name() const override { return "checker2d"; }
 
@@ -86,7 +85,7 @@ struct MarbleParameters {
   double turbulence = 4;   // amplitude of the turbulence added to the sine's phase (≥ 0)
   double noise_scale = 2;  // frequency of the turbulence
   int octaves = 5;
-  double sharpness = 3;    // exponent on the value (> 0)
+  double sharpness = 3;  // exponent on the value (> 0)
 };
 
 class MarbleTexture final : public SolidTexture {
@@ -107,7 +106,8 @@ class MarbleTexture final : public SolidTexture {
 //   turbulence: value = offset + amplitude · turbulence(scale · p, …)
 // where … is (octaves, lacunarity, gain).
 // fbm is centred on offset + amplitude/2 (the noise has mean 0); turbulence() is ≥ 0, so the
-// turbulence mode never goes below offset for a positive amplitude. Neither is clamped: several octaves can take fbm a little outside [0, 1].
+// turbulence mode never goes below offset for a positive amplitude. Neither is clamped: several octaves can
+// take fbm a little outside [0, 1].
 enum class NoiseMode { fbm, turbulence };
 
 struct NoiseParameters {
@@ -117,7 +117,7 @@ struct NoiseParameters {
   double gain = 0.5;      // amplitude ratio between octaves (> 0)
   double amplitude = 1;
   double offset = 0;
-  double scale = 1;       // frequency multiplier on p (> 0)
+  double scale = 1;  // frequency multiplier on p (> 0)
 };
 
 class NoiseTexture final : public SolidTexture {

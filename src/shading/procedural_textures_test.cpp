@@ -114,8 +114,7 @@ TEST(Checker2D, RejectsBadParameters) {
 Color old_checkerboard(const Color& even, const Color& odd, double size, const Vec3& offset,
                        const Vec3& position) {
   const Vec3 p = (position + offset) * (1.0 / size) + Vec3{1e-9, 1e-9, 1e-9};
-  const auto cell = static_cast<long long>(std::floor(p.x)) +
-                    static_cast<long long>(std::floor(p.y)) +
+  const auto cell = static_cast<long long>(std::floor(p.x)) + static_cast<long long>(std::floor(p.y)) +
                     static_cast<long long>(std::floor(p.z));
   return (cell & 1) ? odd : even;
 }
@@ -152,8 +151,7 @@ TEST(Checkerboard3D, PlacedByATransform) {
   for (int i = 0; i < 2000; ++i) {
     const Vec3 p = random_point(rng, 10);
     EXPECT_EQ(scaled.evaluate(hit_at_object(p)), half.evaluate(hit_at_object(p)));
-    EXPECT_EQ(shifted.evaluate(hit_at_object(p)),
-              old_checkerboard(kWhite, kBlack, 1, {1, 0, 0}, p));
+    EXPECT_EQ(shifted.evaluate(hit_at_object(p)), old_checkerboard(kWhite, kBlack, 1, {1, 0, 0}, p));
   }
   EXPECT_EQ(turned.evaluate(hit_at_object({0.5, 0.5, 0.5})), kBlack);   // → (−0.5, 0.5, 0.5)
   EXPECT_EQ(turned.evaluate(hit_at_object({0.5, -0.5, 0.5})), kWhite);  // → (0.5, 0.5, 0.5)
@@ -258,8 +256,7 @@ TEST(ProceduralMarble, WithoutTurbulenceItIsTheSineFormula) {
   const MarbleTexture marble(parameters);
   for (double x : {-1.3, 0.0, 0.2, 0.31415926, 0.7, 2.9}) {
     const double value = 0.5 + 0.5 * std::sin(5 * x);
-    const Color expected =
-        parameters.base + (parameters.vein - parameters.base) * std::pow(value, 2.5);
+    const Color expected = parameters.base + (parameters.vein - parameters.base) * std::pow(value, 2.5);
     EXPECT_EQ(marble.evaluate(hit_at_object({x, 0.4, -7})), expected) << x;
   }
   // The veins are planes x = const: y and z do not matter.
@@ -369,8 +366,7 @@ TEST(ProceduralWaves, IsTheSumOfSines) {
   // At (0, 0): 0.5·sin 0 + 0.25·sin(π/2) + 0.1·sin 1.
   EXPECT_NEAR(texture.value({0, 0}), 0.25 + 0.1 * std::sin(1.0), 1e-15);
   // At (0.125, 0): 0.5·sin(π/2) + 0.25·sin(π/4 + π/2) + 0.1·sin(−π + 1).
-  EXPECT_NEAR(texture.value({0.125, 0}),
-              0.5 + 0.25 * std::sqrt(0.5) + 0.1 * std::sin(1.0 - kPi), 1e-15);
+  EXPECT_NEAR(texture.value({0.125, 0}), 0.5 + 0.25 * std::sqrt(0.5) + 0.1 * std::sin(1.0 - kPi), 1e-15);
   for (const Vec2 uv : {Vec2{0.3, 0.7}, Vec2{-1.2, 0.05}, Vec2{4.5, -2.25}}) {
     double expected = 0;
     for (const Wave& w : waves)

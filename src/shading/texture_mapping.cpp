@@ -12,7 +12,8 @@ namespace {
 
 Vec3 unit_or_throw(const Vec3& v, const char* what) {
   const double l = length(v);
-  if (!(l > 0) || !std::isfinite(l)) throw std::invalid_argument(std::string(what) + " must be a non-zero vector");
+  if (!(l > 0) || !std::isfinite(l))
+    throw std::invalid_argument(std::string(what) + " must be a non-zero vector");
   return v / l;
 }
 
@@ -20,7 +21,8 @@ Vec3 unit_or_throw(const Vec3& v, const char* what) {
 Vec3 orthogonal_unit(const Vec3& v, const Vec3& axis, const char* what) {
   const Vec3 w = v - axis * dot(v, axis);
   const double l = length(w);
-  if (!(l > 1e-9 * length(v))) throw std::invalid_argument(std::string(what) + " must not be parallel to the axis");
+  if (!(l > 1e-9 * length(v)))
+    throw std::invalid_argument(std::string(what) + " must not be parallel to the axis");
   return w / l;
 }
 
@@ -59,9 +61,11 @@ Vec2 SphericalMapping::raw(const SurfaceHit& hit) const {
   return of_direction(d / l);
 }
 
-PlanarMapping::PlanarMapping(const Vec3& origin, const Vec3& u_axis, const Vec3& v_axis, const UvTransform& uv)
+PlanarMapping::PlanarMapping(const Vec3& origin, const Vec3& u_axis, const Vec3& v_axis,
+                             const UvTransform& uv)
     : TextureMapping(uv), origin_(origin), u_axis_(u_axis), v_axis_(v_axis) {
-  if (!(length(cross(u_axis, v_axis)) > 0)) throw std::invalid_argument("u_axis and v_axis must be non-zero and not parallel");
+  if (!(length(cross(u_axis, v_axis)) > 0))
+    throw std::invalid_argument("u_axis and v_axis must be non-zero and not parallel");
 }
 
 Vec2 PlanarMapping::raw(const SurfaceHit& hit) const {

@@ -34,7 +34,8 @@ TEST(SphericalMapping, SeedFormulasAtKnownPoints) {
   EXPECT_NEAR(mapping.map(hit_with_normal({0, -1, 0})).x, 0.75, 1e-15);
   // Latitude 30° north at longitude 60°: φ = 120°, v = 2/3; u = acos(cos 60° sin 120° / sin 120°)/2π.
   const double latitude = kPi / 6, longitude = kPi / 3;
-  const Vec3 n{std::cos(latitude) * std::cos(longitude), std::cos(latitude) * std::sin(longitude), std::sin(latitude)};
+  const Vec3 n{std::cos(latitude) * std::cos(longitude), std::cos(latitude) * std::sin(longitude),
+               std::sin(latitude)};
   const Vec2 uv = mapping.map(hit_with_normal(n));
   EXPECT_NEAR(uv.y, 2.0 / 3.0, 1e-12);
   EXPECT_NEAR(uv.x, 1.0 / 6.0, 1e-12);

@@ -33,10 +33,16 @@ void install_interrupt_handler() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
-bool cancel_requested() { return cancelled.load(std::memory_order_relaxed); }
+bool cancel_requested() {
+  return cancelled.load(std::memory_order_relaxed);
+}
 
-void request_cancellation() { cancelled.store(true, std::memory_order_relaxed); }
+void request_cancellation() {
+  cancelled.store(true, std::memory_order_relaxed);
+}
 
-void reset_cancellation() { cancelled.store(false, std::memory_order_relaxed); }
+void reset_cancellation() {
+  cancelled.store(false, std::memory_order_relaxed);
+}
 
 }  // namespace candela

@@ -14,7 +14,8 @@ namespace candela {
 template <typename Enum, std::size_t N>
 class EnumNames {
  public:
-  constexpr explicit EnumNames(std::array<std::pair<Enum, std::string_view>, N> entries) : entries_(entries) {}
+  constexpr explicit EnumNames(std::array<std::pair<Enum, std::string_view>, N> entries)
+      : entries_(entries) {}
 
   // The name of a value ("?" for a value not in the table, which a complete table never sees).
   constexpr std::string_view name(Enum value) const {

@@ -1,13 +1,12 @@
 #include "util/progress.h"
 
-#include <unistd.h>
-
 #include <fmt/format.h>
+#include <unistd.h>
 
 namespace candela {
 
-ProgressReporter::ProgressReporter(std::string label, uint64_t total, std::string unit,
-                                   bool quiet, std::FILE* stream)
+ProgressReporter::ProgressReporter(std::string label, uint64_t total, std::string unit, bool quiet,
+                                   std::FILE* stream)
     : label_(std::move(label)),
       unit_(std::move(unit)),
       total_(total),
@@ -17,7 +16,9 @@ ProgressReporter::ProgressReporter(std::string label, uint64_t total, std::strin
       start_(std::chrono::steady_clock::now()),
       last_print_(start_) {}
 
-ProgressReporter::~ProgressReporter() { finish(); }
+ProgressReporter::~ProgressReporter() {
+  finish();
+}
 
 void ProgressReporter::advance(uint64_t amount) {
   const uint64_t done = done_.fetch_add(amount) + amount;
@@ -50,8 +51,8 @@ void ProgressReporter::print(uint64_t done, bool final_line) {
     const int filled = total_ ? static_cast<int>(kWidth * done / total_) : kWidth;
     const double remaining = done > 0 ? elapsed * (double(total_) - done) / done : 0;
     fmt::print(stream_, "\r{} [{}{}] {:3d}% {}/{} {}{}{} {:.1f}s elapsed, {:.1f}s left ", label_,
-               std::string(filled, '#'), std::string(kWidth - filled, ' '), percent, done, total_,
-               unit_, detail_.empty() ? "" : ", ", detail_, elapsed, remaining);
+               std::string(filled, '#'), std::string(kWidth - filled, ' '), percent, done, total_, unit_,
+               detail_.empty() ? "" : ", ", detail_, elapsed, remaining);
     if (final_line) fmt::print(stream_, "\n");
   } else {
     // Plain lines: at every 10% step and at most every 5 s otherwise, never more often.

@@ -49,7 +49,9 @@ TEST(Progress, DetailFollowsTheCount) {
   EXPECT_NE(text.find("radiosity: 100% (10/10 per mille, unshot 4.5%, "), std::string::npos) << text;
 }
 
-TEST(Progress, QuietPrintsNothing) { EXPECT_TRUE(run_to_file(true).empty()); }
+TEST(Progress, QuietPrintsNothing) {
+  EXPECT_TRUE(run_to_file(true).empty());
+}
 
 }  // namespace
 }  // namespace candela

@@ -39,7 +39,8 @@ nlohmann::json RunStatistics::to_json() const {
       sum += count;
       most = std::max(most, count);
     }
-    return nlohmann::json{{"mean", counts.empty() ? 0.0 : double(sum) / double(counts.size())}, {"max", most}};
+    return nlohmann::json{{"mean", counts.empty() ? 0.0 : double(sum) / double(counts.size())},
+                          {"max", most}};
   };
   if (!primary_per_pixel.empty()) out["rays"]["primary_per_pixel"] = mean_max(primary_per_pixel);
   if (!samples_per_pixel.empty()) out["samples_per_pixel"] = mean_max(samples_per_pixel);
@@ -56,8 +57,8 @@ std::string RunStatistics::summary() const {
     total += seconds;
   }
   text += fmt::format("  {:<16} {:>10.3f} s\n", "total", total);
-  text += fmt::format("  rays: {} primary, {} shadow, {} reflected, {} refracted ({} total",
-                      rays.primary, rays.shadow, rays.reflected, rays.refracted, rays.total());
+  text += fmt::format("  rays: {} primary, {} shadow, {} reflected, {} refracted ({} total", rays.primary,
+                      rays.shadow, rays.reflected, rays.refracted, rays.total());
   double render_seconds = 0;
   for (const auto& [name, seconds] : phases)
     if (name == "render") render_seconds = seconds;
@@ -66,7 +67,8 @@ std::string RunStatistics::summary() const {
   if (!primary_per_pixel.empty() && pixels > 0) {
     uint32_t most = 0;
     for (const uint32_t count : primary_per_pixel) most = std::max(most, count);
-    text += fmt::format("  primary rays per pixel: mean {:.3f}, max {}\n", double(rays.primary) / double(pixels), most);
+    text += fmt::format("  primary rays per pixel: mean {:.3f}, max {}\n",
+                        double(rays.primary) / double(pixels), most);
   }
   text += fmt::format("  pixels: {}, threads: {}, peak memory: {:.1f} MiB\n", pixels, threads,
                       peak_memory_bytes() / (1024.0 * 1024.0));

@@ -315,9 +315,9 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
       if (other.method == "path") continue;
       const std::string other_method = other.method;
       const double seconds = std::max(other.seconds, 1e-6);
-      CrossMethodEntry entry = render_entry(scene, options, "path", "path (equal time: " + other_method + ")",
-                                            "path-equal-time-" + other_method,
-                                            {"spp=0", fmt::format("time={:.17g}", seconds)});
+      CrossMethodEntry entry =
+          render_entry(scene, options, "path", "path (equal time: " + other_method + ")",
+                       "path-equal-time-" + other_method, {"spp=0", fmt::format("time={:.17g}", seconds)});
       entry.equal_time_to = other_method;
       entry.facts.emplace_back("time limit (s)", fmt::format("{:.3g}", seconds));
       report.entries.push_back(std::move(entry));

@@ -51,9 +51,9 @@ struct CrossMethodOptions {
   bool quiet = false;  // passed on to the methods (no progress output)
   // Scene description for the page.
   std::string scene_path;
-  std::string scene_text;               // the scene file's text (its method objects are shown)
-  std::vector<std::string> overrides;   // --set key=value, shown on the page
-  int threads = 0;                      // worker threads the run may use
+  std::string scene_text;              // the scene file's text (its method objects are shown)
+  std::vector<std::string> overrides;  // --set key=value, shown on the page
+  int threads = 0;                     // worker threads the run may use
   // Told one line per step ("rendering radiosity"); may be empty.
   std::function<void(const std::string&)> log;
 };
@@ -65,9 +65,9 @@ struct CrossMethodEntry {
   std::string key;            // file stem: "whitted", "path-equal-time-radiosity", "reference"
   std::string equal_time_to;  // the method whose time limited this path run, or ""
   double seconds = -1;        // render time; < 0: unknown (a reference read from a file)
-  nlohmann::json statistics = nlohmann::json::object();  // RunStatistics::to_json()
+  nlohmann::json statistics = nlohmann::json::object();    // RunStatistics::to_json()
   std::vector<std::pair<std::string, std::string>> facts;  // a few key facts, name → value
-  ImageComparison errors;     // against the reference (not set for the reference itself)
+  ImageComparison errors;  // against the reference (not set for the reference itself)
   Film image{0, 0};
 };
 
@@ -100,7 +100,8 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
 std::string html_escape(std::string_view text);
 // A few facts from a method's statistics: spp for path, patches and elements for radiosity, sites
 // for meshless, rays for the ray tracers ...
-std::vector<std::pair<std::string, std::string>> key_facts(const std::string& method, const nlohmann::json& statistics);
+std::vector<std::pair<std::string, std::string>> key_facts(const std::string& method,
+                                                           const nlohmann::json& statistics);
 // Each method's object of the scene text (JSON, comments allowed), null where absent.
 nlohmann::json method_settings(const std::string& scene_text, const std::vector<std::string>& methods);
 std::string cross_method_html(const CrossMethodReport& report);

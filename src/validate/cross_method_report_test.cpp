@@ -17,8 +17,9 @@ TEST(CrossMethodReport, KeyFactsPerMethod) {
   const auto path_facts = key_facts("path", path);
   ASSERT_GE(path_facts.size(), 2u);
   EXPECT_EQ(path_facts[0], std::make_pair(std::string("spp"), std::string("16")));
-  const nlohmann::json radiosity = {{"radiosity", {{"patches", 40}, {"elements", 160}, {"solver", "progressive"}}},
-                                    {"rays", {{"total", 0}}}};
+  const nlohmann::json radiosity = {
+      {"radiosity", {{"patches", 40}, {"elements", 160}, {"solver", "progressive"}}},
+      {"rays", {{"total", 0}}}};
   const auto radiosity_facts = key_facts("radiosity", radiosity);
   ASSERT_EQ(radiosity_facts.size(), 3u);  // no rays: none traced
   EXPECT_EQ(radiosity_facts[0].first, "patches");

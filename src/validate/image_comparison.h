@@ -50,15 +50,16 @@ struct ImageComparison {
 // mask: null, or width·height bytes, row by row from the top, non-zero where the pixel counts.
 // Throws std::invalid_argument when the sizes differ (naming both) or the mask excludes every
 // pixel.
-ImageComparison compare_images(const Film& image, const Film& reference, const std::vector<uint8_t>* mask = nullptr);
+ImageComparison compare_images(const Film& image, const Film& reference,
+                               const std::vector<uint8_t>* mask = nullptr);
 
 // 1 where the mask image's luminance is above kMaskThreshold, else 0.
 std::vector<uint8_t> mask_from_image(const Film& mask);
 
 // What a difference picture shows per pixel, from the luminances Y_A and Y_B:
 enum class DifferenceMetric {
-  absolute,  // |Y_A − Y_B|
-  relative,  // |Y_A − Y_B| / (|Y_B| + kRelativeMseEpsilon)
+  absolute,           // |Y_A − Y_B|
+  relative,           // |Y_A − Y_B| / (|Y_B| + kRelativeMseEpsilon)
   signed_difference,  // Y_A − Y_B
 };
 

@@ -33,7 +33,8 @@ class Canvas {
       const double t = static_cast<double>(i) / steps;
       const double along = run + t * length;
       if (dashed && std::fmod(along, 10.0) >= 6.0) continue;
-      const int x = static_cast<int>(std::lround(x0 + t * dx)), y = static_cast<int>(std::lround(y0 + t * dy));
+      const int x = static_cast<int>(std::lround(x0 + t * dx)),
+                y = static_cast<int>(std::lround(y0 + t * dy));
       const int lo = -(width - 1) / 2, hi = width / 2;
       for (int oy = lo; oy <= hi; ++oy)
         for (int ox = lo; ox <= hi; ++ox) set(x + ox, y + oy, c);
@@ -45,7 +46,8 @@ class Canvas {
       if (const PixelGlyph* glyph = pixel_font_glyph(ch))
         for (int row = 0; row < kPixelFontHeight; ++row)
           for (int col = 0; col < kPixelFontWidth; ++col)
-            if ((*glyph)[row] & (4 >> col)) fill(x + col * kScale, y + row * kScale, x + (col + 1) * kScale, y + (row + 1) * kScale, c);
+            if ((*glyph)[row] & (4 >> col))
+              fill(x + col * kScale, y + row * kScale, x + (col + 1) * kScale, y + (row + 1) * kScale, c);
       x += kGlyphAdvance;
     }
   }
@@ -96,7 +98,8 @@ Film draw_line_plot(const std::vector<PlotPanel>& panels, int panel_width, int p
       y_min = std::floor(y_min / step + 1e-9) * step;
     }
     const double x_min = panel.x_min, x_max = panel.x_max > panel.x_min ? panel.x_max : panel.x_min + 1;
-    const int x0 = p * panel_width + left, x1 = (p + 1) * panel_width - right, y0 = top, y1 = panel_height - bottom;
+    const int x0 = p * panel_width + left, x1 = (p + 1) * panel_width - right, y0 = top,
+              y1 = panel_height - bottom;
     auto px = [&](double x) { return x0 + (x - x_min) / (x_max - x_min) * (x1 - x0); };
     auto py = [&](double y) { return y1 - (y - y_min) / (y_max - y_min) * (y1 - y0); };
     canvas.clip_x0 = 0;
@@ -133,7 +136,8 @@ Film draw_line_plot(const std::vector<PlotPanel>& panels, int panel_width, int p
       const std::size_t n = std::min(c.x.size(), c.y.size());
       for (std::size_t i = 0; i + 1 < n; ++i)
         if (std::isfinite(c.y[i]) && std::isfinite(c.y[i + 1]))
-          canvas.line(px(c.x[i]), py(c.y[i]), px(c.x[i + 1]), py(c.y[i + 1]), c.color, c.width, c.dashed, run);
+          canvas.line(px(c.x[i]), py(c.y[i]), px(c.x[i + 1]), py(c.y[i + 1]), c.color, c.width, c.dashed,
+                      run);
     }
     // Legend: a box per curve, top right.
     if (p == 0) {

@@ -16,14 +16,14 @@ namespace candela {
 struct PlotCurve {
   std::vector<double> x, y;  // the same length; drawn as a polyline in the order given
   Color color;
-  int width = 1;             // line width in pixels
+  int width = 1;  // line width in pixels
   bool dashed = false;
 };
 
 struct PlotPanel {
   std::vector<PlotCurve> curves;
-  double x_min = 0, x_max = 1;  // the x range shown
-  double y_min = 0, y_max = 0;  // the y range shown; y_max <= y_min: from the curves (with 0)
+  double x_min = 0, x_max = 1;    // the x range shown
+  double y_min = 0, y_max = 0;    // the y range shown; y_max <= y_min: from the curves (with 0)
   double x_tick = 0, y_tick = 0;  // tick spacing; 0: about five ticks
 };
 

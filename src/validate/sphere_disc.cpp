@@ -14,9 +14,9 @@
 
 #include "camera/tone_map.h"
 #include "integrators/meshless_method.h"
+#include "integrators/scene_loading.h"
 #include "io/image_writer.h"
 #include "math/constants.h"
-#include "integrators/scene_loading.h"
 #include "util/atomic_file.h"
 #include "validate/line_plot.h"
 
@@ -493,11 +493,11 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
       entry["diverged"] = !std::isfinite(mean.rms);  // JSON has no infinity: the errors are then null
       entry["seconds"] = curves.seconds;
       bases[std::string(kBasisNames.name(kind))][fmt::format("delta{}", spacing)] = entry;
-      say(
-          fmt::format("{:<10} delta {}: {:>5} sites, RMS {:.4g} ({:.3g} %), max {:.4g} ({:.3g} %), indirect "
-                      "RMS {:.4g}; {:.1f} s",
-                      std::string(kBasisNames.name(kind)), spacing, curves.sites, mean.rms, 100 * mean.rms_relative, mean.max,
-                      100 * mean.max_relative, indirect.rms, curves.seconds));
+      say(fmt::format(
+          "{:<10} delta {}: {:>5} sites, RMS {:.4g} ({:.3g} %), max {:.4g} ({:.3g} %), indirect "
+          "RMS {:.4g}; {:.1f} s",
+          std::string(kBasisNames.name(kind)), spacing, curves.sites, mean.rms, 100 * mean.rms_relative,
+          mean.max, 100 * mean.max_relative, indirect.rms, curves.seconds));
 
       const Color color = basis_color(kind);
       PlotPanel disc = disc_axes, sphere = sphere_axes;
@@ -524,7 +524,8 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
     for (const BasisKind kind : kinds) {
       const nlohmann::json& rms = bases[std::string(kBasisNames.name(kind))][key]["rms"];
       if (!rms.is_number() || !std::isfinite(rms.get<double>())) continue;
-      if (winner.empty() || rms.get<double>() < least) winner = std::string(kBasisNames.name(kind)), least = rms.get<double>();
+      if (winner.empty() || rms.get<double>() < least)
+        winner = std::string(kBasisNames.name(kind)), least = rms.get<double>();
     }
     best[key] = winner;
     // All three bases against the reference's total.

@@ -30,29 +30,28 @@
 #pragma once
 
 #include <cstddef>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "meshless/meshless_basis.h"
 
 namespace candela {
 
 struct SphereDiscScene {
-  double sphere_radius = 5;   // r
-  double disc_radius = 40;    // R
-  double height = 20;         // h: the sphere's centre above the disc
-  double sphere_albedo = 0.9; // β
-  double disc_albedo = 0.9;   // δ
-  double light = 0.9;         // μ: the irradiance of the light on a surface facing it
+  double sphere_radius = 5;    // r
+  double disc_radius = 40;     // R
+  double height = 20;          // h: the sphere's centre above the disc
+  double sphere_albedo = 0.9;  // β
+  double disc_albedo = 0.9;    // δ
+  double light = 0.9;          // μ: the irradiance of the light on a surface facing it
 };
 
 struct ReferenceSettings {
-  int disc_rings = 100;    // n
-  int sphere_rings = 100;  // m
-  int azimuths = 100;      // k
-  int iterations = 100;    // of λ ← η + Rλ (Jacobi, as the thesis's eq. 5.8)
+  int disc_rings = 100;        // n
+  int sphere_rings = 100;      // m
+  int azimuths = 100;          // k
+  int iterations = 100;        // of λ ← η + Rλ (Jacobi, as the thesis's eq. 5.8)
   bool average_direct = true;  // the direct term the rings send: averaged over each cell (see above)
 };
 
@@ -67,8 +66,8 @@ class ReferenceSolution {
   const SphereDiscScene& scene() const { return scene_; }
   const ReferenceSettings& settings() const { return settings_; }
   // The nodes and the solution there: direct (pointwise, eqs. 7.5–7.6) and total = direct + indirect.
-  std::vector<double> u, disc_direct, disc_total;           // n disc rings
-  std::vector<double> alpha, sphere_direct, sphere_total;   // m sphere rings, α in radians
+  std::vector<double> u, disc_direct, disc_total;          // n disc rings
+  std::vector<double> alpha, sphere_direct, sphere_total;  // m sphere rings, α in radians
   double last_change = 0;  // the largest change of the last iteration, over the largest total
 
   // The total at any point (Nyström: the direct term plus the quadrature of what the converged
@@ -90,10 +89,10 @@ class ReferenceSolution {
 
 struct FeSettings {
   BasisKind basis = BasisKind::normalized;
-  double spacing = 3;   // Δ
-  int grid = 256;       // camera rays per side (an orthographic camera over the disc, from above)
-  int rounds = 8;       // rounds of secondary rays
-  int azimuths = 100;   // points per ring for the azimuth mean
+  double spacing = 3;  // Δ
+  int grid = 256;      // camera rays per side (an orthographic camera over the disc, from above)
+  int rounds = 8;      // rounds of secondary rays
+  int azimuths = 100;  // points per ring for the azimuth mean
 };
 
 // The scene as candela/1 JSON (y up: disc in y = 0, sphere centre at y = h, light along −y).
@@ -121,13 +120,12 @@ struct CurveErrors {
 CurveErrors curve_errors(const std::vector<double>& disc_fe, const std::vector<double>& disc_reference,
                          const std::vector<double>& sphere_fe, const std::vector<double>& sphere_reference);
 
-
 // The whole validation (`candela validate sphere-disc`): the reference, the refined reference
 // (n = m = k = 4× — its values at the reference's nodes show that the reference has converged),
 // and the FE solutions for the three bases at Δ = 3 and Δ = 1, written to directory:
 // reference_disc.csv, reference_sphere.csv, fe_<basis>_delta<Δ>_disc.csv / _sphere.csv,
-// errors.json and PNG plots. quick (for tests): a disc of radius 15, n = m = k = 30, a 64² camera grid. Every file is
-// written atomically; progress lines go to log when not null. Returns errors.json's content.
+// errors.json and PNG plots. quick (for tests): a disc of radius 15, n = m = k = 30, a 64² camera grid. Every
+// file is written atomically; progress lines go to log when not null. Returns errors.json's content.
 struct SphereDiscRun {
   bool quick = false;
   bool refine = true;  // also solve the refined reference

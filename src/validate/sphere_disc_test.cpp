@@ -35,7 +35,8 @@ TEST(SphereDisc, NoReflectionWithoutAlbedo) {
   SphereDiscScene scene;
   scene.sphere_albedo = 0;
   const ReferenceSolution reference(scene, coarse());
-  for (std::size_t j = 0; j < reference.u.size(); ++j) EXPECT_DOUBLE_EQ(reference.disc_total[j], reference.disc_direct[j]);
+  for (std::size_t j = 0; j < reference.u.size(); ++j)
+    EXPECT_DOUBLE_EQ(reference.disc_total[j], reference.disc_direct[j]);
   for (std::size_t i = 0; i < reference.alpha.size(); ++i) EXPECT_DOUBLE_EQ(reference.sphere_total[i], 0);
   // The sphere black, the disc still lit: the disc's indirect light is 0, the sphere's underside 0.
   scene.sphere_albedo = 0.9;
@@ -82,7 +83,8 @@ TEST(SphereDisc, ReferenceConverges) {
   for (std::size_t j = 0; j < a.u.size(); ++j) EXPECT_NEAR(a.disc_total[j], b.disc_total[j], 1e-12);
   for (std::size_t i = 0; i < a.alpha.size(); ++i) EXPECT_NEAR(a.sphere_total[i], b.sphere_total[i], 1e-12);
   const ReferenceSolution fine(scene, coarse(80));
-  for (std::size_t j = 0; j < a.u.size(); ++j) EXPECT_NEAR(fine.disc_at(a.u[j]), a.disc_total[j], 2e-3) << a.u[j];
+  for (std::size_t j = 0; j < a.u.size(); ++j)
+    EXPECT_NEAR(fine.disc_at(a.u[j]), a.disc_total[j], 2e-3) << a.u[j];
   for (std::size_t i = 0; i < a.alpha.size(); ++i)
     EXPECT_NEAR(fine.sphere_at(a.alpha[i]), a.sphere_total[i], 2e-3) << a.alpha[i];
   // The Nyström evaluation at a node is the node's value.
@@ -117,7 +119,9 @@ TEST(SphereDisc, FiniteElementErrorFallsWithDensity) {
       const FeCurves curves = solve_fe(scene, settings, reference.u, reference.alpha);
       EXPECT_GT(curves.sphere_sites, 10u);
       EXPECT_TRUE(curves.converged);
-      rms[index++] = curve_errors(curves.disc_mean, reference.disc_total, curves.sphere_mean, reference.sphere_total).rms;
+      rms[index++] =
+          curve_errors(curves.disc_mean, reference.disc_total, curves.sphere_mean, reference.sphere_total)
+              .rms;
     }
     EXPECT_LT(rms[1], rms[0]) << std::string(kBasisNames.name(kind)) << ": " << rms[0] << " -> " << rms[1];
     // Δ = 1: the shadow edge u = r, smoothed over ~Δ, dominates; the radial basis, not a partition
