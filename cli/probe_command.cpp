@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "commands.h"
+#include "integrators/method_registry.h"
 #include "integrators/probe.h"
 #include "io/false_color.h"
 #include "io/image_writer.h"
@@ -52,9 +53,10 @@ int run_probe(ProbeOptions& options) {
   if (!(options.efficacy > 0) || !std::isfinite(options.efficacy))
     throw BadArgument("--efficacy must be > 0");
   if (options.threads < 0) throw BadArgument("--threads must be >= 0 (0: all cores)");
-  if (options.method != "path" && options.method != "radiosity" && options.method != "meshless")
-    throw BadArgument("--method " + options.method + " cannot be probed (expected one of: " + kProbeMethods +
-                      ")");
+  const MethodEntry* entry = find_method(options.method);
+  if (!entry || !entry->capabilities.probe)
+    throw BadArgument("--method " + options.method +
+                      " cannot be probed (expected one of: " + probe_method_names() + ")");
   if (options.output.size() < 5 || options.output.substr(options.output.size() - 4) != ".csv")
     throw BadArgument("-o " + options.output + ": expected a .csv file");
   check_writable(options.output, "-o");
@@ -164,8 +166,7 @@ void add_probe_command(CLI::App& app, std::function<int()>& run) {
   CLI::App* command =
       app.add_subcommand("probe", "Irradiance and radiance at sensor points or over a work plane");
   command->add_option("scene", options->scene.scene_path, "Scene file (candela/1 JSON)")->required();
-  command->add_option("--method", options->method,
-                      std::string("Method: ") + kProbeMethods + " (default path)");
+  command->add_option("--method", options->method, "Method: " + probe_method_names() + " (default path)");
   command->add_option("--points", options->points_path, "CSV of sensor points: x,y,z,nx,ny,nz per line");
   command
       ->add_option("--grid", options->grid,

@@ -239,9 +239,7 @@ int report_interrupted_before(std::size_t skipped, const char* what) {
 // their capabilities.
 [[noreturn]] void refuse_option(const std::string& option_needs, bool MethodCapabilities::*capability,
                                 const MethodEntry& entry) {
-  std::vector<std::string_view> able;
-  for (const MethodEntry& candidate : method_entries())
-    if (candidate.capabilities.*capability) able.push_back(candidate.name);
+  const std::vector<std::string_view> able = method_names_with(capability);
   std::string names;
   for (std::size_t i = 0; i < able.size(); ++i)
     names += (i == 0 ? "" : i + 1 == able.size() ? " or " : ", ") + std::string(able[i]);

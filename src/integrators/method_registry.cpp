@@ -27,6 +27,7 @@ MethodCapabilities radiosity() {
   MethodCapabilities capabilities;
   capabilities.solution = true;
   capabilities.checkpoints = true;
+  capabilities.probe = true;  // integrators/probe.h
   return capabilities;
 }
 
@@ -34,6 +35,7 @@ MethodCapabilities meshless() {
   MethodCapabilities capabilities;
   capabilities.sites_image = true;
   capabilities.relighting = true;
+  capabilities.probe = true;  // integrators/probe.h
   return capabilities;
 }
 
@@ -41,6 +43,7 @@ MethodCapabilities path() {
   MethodCapabilities capabilities;
   capabilities.progressive_passes = true;
   capabilities.checkpoints = true;
+  capabilities.probe = true;  // integrators/probe.h
   return capabilities;
 }
 
@@ -103,6 +106,13 @@ const MethodEntry* find_method(std::string_view name) {
 
 std::string method_names() {
   return entry_names<MethodEntry>(kEntries);
+}
+
+std::vector<std::string_view> method_names_with(bool MethodCapabilities::*capability) {
+  std::vector<std::string_view> names;
+  for (const MethodEntry& entry : kEntries)
+    if (entry.capabilities.*capability) names.push_back(entry.name);
+  return names;
 }
 
 std::unique_ptr<Method> create_method(const MethodEntry& entry, const Scene& scene,

@@ -25,6 +25,7 @@ struct MethodCapabilities {
   bool relighting = false;          // other light set-ups from the same geometry, cheaply
   bool progressive_passes = false;  // samples per pixel and a time limit (path.spp, path.time)
   bool checkpoints = false;         // checkpoint and resume (RenderRequest::checkpoint, resume)
+  bool probe = false;               // irradiance at sensor points (integrators/probe.h)
 };
 
 struct MethodEntry {
@@ -37,6 +38,8 @@ struct MethodEntry {
 
 std::span<const MethodEntry> method_entries();
 const MethodEntry* find_method(std::string_view name);
+// The methods whose capabilities have `capability`, in registry order.
+std::vector<std::string_view> method_names_with(bool MethodCapabilities::*capability);
 std::string method_names();  // "local, whitted"
 
 // The method made from the scene's settings object for it, with `overrides` applied to that object

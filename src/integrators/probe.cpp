@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "integrators/light_sampler.h"
+#include "integrators/method_registry.h"
 #include "integrators/path_tracer.h"
 #include "integrators/solution_field.h"
 #include "math/constants.h"
@@ -124,6 +125,13 @@ ProbeResult probe_field(const Scene& scene, const SolutionField& field, const Li
 
 }  // namespace
 
+std::string probe_method_names() {
+  std::string names;
+  for (const std::string_view name : method_names_with(&MethodCapabilities::probe))
+    names += (names.empty() ? "" : ", ") + std::string(name);
+  return names;
+}
+
 std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>& points,
                                const ProbeSettings& settings, nlohmann::json* facts) {
   if (settings.samples < 1) throw std::invalid_argument("probe: samples must be >= 1");
@@ -137,7 +145,7 @@ std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>
     field = make_meshless_field(scene);
   } else if (settings.method != "path") {
     throw std::invalid_argument("probe: method \"" + settings.method +
-                                "\" cannot be probed (expected one of: " + kProbeMethods + ")");
+                                "\" cannot be probed (expected one of: " + probe_method_names() + ")");
   }
   std::vector<ProbeResult> results(points.size());
   tbb::enumerable_thread_specific<RayCounts> counts;

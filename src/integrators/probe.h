@@ -43,7 +43,8 @@ struct ProbeSettings {
 };
 
 // The methods probe() answers for.
-inline constexpr const char* kProbeMethods = "path, radiosity, meshless";
+// "path, radiosity, meshless": the methods whose capabilities say probe.
+std::string probe_method_names();
 
 // Throws std::invalid_argument for another method. Fills facts (when not null) with what the
 // solution measured and how many rays found no solution (off the radiosity mesh, no site near).
