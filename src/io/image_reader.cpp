@@ -31,18 +31,6 @@
 
 namespace candela {
 
-std::string_view color_encoding_name(ColorEncoding encoding) {
-  switch (encoding) {
-    case ColorEncoding::automatic:
-      return "auto";
-    case ColorEncoding::srgb:
-      return "srgb";
-    case ColorEncoding::linear:
-      return "linear";
-  }
-  return "?";
-}
-
 RgbImage::RgbImage(int width, int height, std::vector<float> rgb)
     : width_(width), height_(height), rgb_(std::move(rgb)) {
   if (width <= 0 || height <= 0)

@@ -16,6 +16,7 @@
 
 #include "camera/film.h"
 #include "math/vector.h"
+#include "util/enum_names.h"
 
 namespace candela {
 
@@ -28,7 +29,8 @@ enum class ColorEncoding {
 };
 
 // The names the scene format uses: "auto", "srgb", "linear".
-std::string_view color_encoding_name(ColorEncoding encoding);
+inline constexpr auto kColorEncodingNames = enum_names<ColorEncoding>(
+    {{ColorEncoding::automatic, "auto"}, {ColorEncoding::srgb, "srgb"}, {ColorEncoding::linear, "linear"}});
 
 // Linear float RGB pixels (3 floats a pixel, not Color's doubles: pictures can be large), row by
 // row starting with the BOTTOM row (y = 0).

@@ -14,17 +14,11 @@
 namespace candela {
 
 ColorEncoding read_color_encoding(const JsonNode& owner) {
-  const std::string encoding = owner.choice("encoding", "auto", {"auto", "srgb", "linear"});
-  if (encoding == "srgb") return ColorEncoding::srgb;
-  if (encoding == "linear") return ColorEncoding::linear;
-  return ColorEncoding::automatic;
+  return owner.enumeration("encoding", ColorEncoding::automatic, kColorEncodingNames);
 }
 
 WrapMode read_wrap_mode(const JsonNode& owner) {
-  const std::string wrap = owner.choice("wrap", "repeat", {"repeat", "clamp", "mirror"});
-  if (wrap == "clamp") return WrapMode::clamp;
-  if (wrap == "mirror") return WrapMode::mirror;
-  return WrapMode::repeat;
+  return owner.enumeration("wrap", WrapMode::repeat, kWrapModeNames);
 }
 
 namespace {

@@ -5,18 +5,6 @@
 
 namespace candela {
 
-std::string_view wrap_mode_name(WrapMode wrap) {
-  switch (wrap) {
-    case WrapMode::repeat:
-      return "repeat";
-    case WrapMode::clamp:
-      return "clamp";
-    case WrapMode::mirror:
-      return "mirror";
-  }
-  return "?";
-}
-
 namespace {
 
 // One axis of a bilinear lookup: the two texel indices to blend and the weight of the second.

@@ -15,6 +15,7 @@
 
 #include "io/image_reader.h"
 #include "math/vector.h"
+#include "util/enum_names.h"
 
 namespace candela {
 
@@ -26,7 +27,8 @@ enum class WrapMode {
 };
 
 // The names the scene format uses: "repeat", "clamp", "mirror".
-std::string_view wrap_mode_name(WrapMode wrap);
+inline constexpr auto kWrapModeNames = enum_names<WrapMode>(
+    {{WrapMode::repeat, "repeat"}, {WrapMode::clamp, "clamp"}, {WrapMode::mirror, "mirror"}});
 
 class TextureImage {
  public:

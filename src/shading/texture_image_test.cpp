@@ -41,7 +41,7 @@ TEST(TextureImage, BilinearAtTexelCentresGivesTheTexels) {
     for (int y = 0; y < 2; ++y)
       for (int x = 0; x < 4; ++x)
         EXPECT_EQ(image.bilinear({(x + 0.5) / 4, (y + 0.5) / 2}, wrap), image.texel(x, y))
-            << wrap_mode_name(wrap) << " " << x << ", " << y;
+            << kWrapModeNames.name(wrap) << " " << x << ", " << y;
 }
 
 TEST(TextureImage, BilinearHalfwayIsTheAverage) {
@@ -105,7 +105,7 @@ TEST(TextureImage, NonFiniteAndHugeCoordinatesStayInside) {
     EXPECT_EQ(image.bilinear({std::nan(""), 0.25}, wrap), image.bilinear({0.0, 0.25}, wrap));
     EXPECT_EQ(image.bilinear({0.125, INFINITY}, wrap), image.bilinear({0.125, 0.0}, wrap));
     const Color far = image.bilinear({1e300, -1e300}, wrap);
-    EXPECT_TRUE(std::isfinite(far.r) && far.r >= 0 && far.r <= 7) << wrap_mode_name(wrap);
+    EXPECT_TRUE(std::isfinite(far.r) && far.r >= 0 && far.r <= 7) << kWrapModeNames.name(wrap);
   }
 }
 
