@@ -95,8 +95,10 @@ RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet, nlohmann::j
   return solve_radiosity(scene, settings_of(scene), options);
 }
 
-std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(
-    const Scene& scene, const RadiositySettings& settings, const RenderRequest& request, bool& reused) const {
+std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(const Scene& scene,
+                                                                             const RenderRequest& request,
+                                                                             bool& reused) const {
+  const RadiositySettings& settings = settings_;
   const std::string key = solution_key(scene, settings);
   Cluster* cluster = several_ranks(request);
   std::lock_guard lock(cache_mutex_);
@@ -150,7 +152,7 @@ RenderResult RadiosityMethod::render(const Scene& scene, const RenderRequest& re
   RunStatistics& statistics = output.statistics;
   const RadiositySettings& settings = settings_;
   bool reused = false;
-  const std::shared_ptr<const Solved> solved = solution_for(scene, settings, request, reused);
+  const std::shared_ptr<const Solved> solved = solution_for(scene, request, reused);
   const RadiositySolveResult& solution = solved->result;
   nlohmann::json facts = solved->facts;
   facts["solution_reused"] = reused;

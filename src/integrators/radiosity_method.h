@@ -77,8 +77,8 @@ class RadiosityMethod final : public Method {
   // else a new one, which replaces it.
   // With a checkpoint to write or resume from (request.checkpoint / resume: progressive solver
   // only) the solve is this run's own and not kept.
-  std::shared_ptr<const Solved> solution_for(const Scene& scene, const RadiositySettings& settings,
-                                             const RenderRequest& request, bool& reused) const;
+  std::shared_ptr<const Solved> solution_for(const Scene& scene, const RenderRequest& request,
+                                             bool& reused) const;
 
   RadiositySettings settings_;
   mutable std::mutex cache_mutex_;

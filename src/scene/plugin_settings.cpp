@@ -9,8 +9,11 @@ const nlohmann::json& empty_object() {
 }
 }  // namespace
 
-PluginSettings::PluginSettings()
-    : document_(std::make_shared<const JsonDocument>(JsonDocument::parse("{}", "<defaults>"))) {}
+// One empty document serves every scene made without a file.
+PluginSettings::PluginSettings() {
+  static const auto empty = std::make_shared<const JsonDocument>(JsonDocument::parse("{}", "<defaults>"));
+  document_ = empty;
+}
 
 PluginSettings::PluginSettings(std::shared_ptr<const JsonDocument> document)
     : document_(std::move(document)) {}

@@ -96,7 +96,6 @@ CrossMethodEntry render_entry(Scene& scene, const CrossMethodOptions& options, c
   entry.key = key;
   RunStatistics statistics;
   statistics.threads = options.threads;
-  Film film(width, height);
   RenderRequest request;
   request.region = {0, 0, width, height};
   request.quiet = options.quiet;
@@ -104,7 +103,7 @@ CrossMethodEntry render_entry(Scene& scene, const CrossMethodOptions& options, c
   try {
     const std::unique_ptr<Method> method = create_method(*registered, scene, settings);
     RenderResult result = method->render(scene, request);
-    film = std::move(result.film);
+    entry.image = std::move(result.film);
     statistics.absorb(std::move(result.statistics));
   } catch (const InputError& e) {
     throw InputError(e.location(), "method " + label + ": " + e.message());
@@ -116,7 +115,6 @@ CrossMethodEntry render_entry(Scene& scene, const CrossMethodOptions& options, c
   statistics.extra["method"] = method_name;
   entry.statistics = statistics.to_json();
   entry.facts = key_facts(method_name, entry.statistics);
-  entry.image = std::move(film);
   const fs::path directory(options.output_directory);
   write_image(entry.image, (directory / (key + ".png")).string(), scene.display);
   write_image(entry.image, (directory / (key + ".exr")).string(), scene.display);
