@@ -16,6 +16,7 @@
 #include "commands.h"
 #include "distributed/cluster.h"
 #include "integrators/method_registry.h"
+#include "io/checkpoint_file.h"
 #include "io/image_writer.h"
 #include "output_paths.h"
 #include "radiosity/solution_export.h"
@@ -212,7 +213,7 @@ void write_statistics(const RunStatistics& statistics, const std::string& path) 
 }
 
 // After Ctrl-C, once the image in progress (and its statistics) is written: says what it holds,
-// where the path tracer's checkpoint is, and what was skipped. Returns the exit status.
+// where the checkpoint is, and what was skipped. Returns the exit status.
 int report_interrupted(const RunStatistics& statistics, const std::string& output, std::size_t skipped) {
   const nlohmann::json& extra = statistics.extra;
   const bool partial = extra.value("interrupted", false);
@@ -490,8 +491,14 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
     request.region = region;
     request.quiet = options.quiet;
     request.sites_image = !options.show_sites.empty();
-    request.checkpoint = path_for_view(options.checkpoint, view, views.size());
-    request.resume = options.resume;
+    // The method hands out its checkpoints; rank 0 writes them and alone reads the one resumed.
+    const std::string checkpoint_path =
+        options.checkpoint.empty() ? std::string() : path_for_view(options.checkpoint, view, views.size());
+    request.checkpoint = !checkpoint_path.empty();
+    if (request.checkpoint && root)
+      request.save_checkpoint = [&](const Bytes& sealed) { write_checkpoint_file(checkpoint_path, sealed); };
+    if (!options.resume.empty())
+      request.resume = root ? read_checkpoint_file(options.resume) : SealedCheckpoint{options.resume, {}};
     // A view-independent solution (radiosity) is the same for every view; an image is not.
     request.fingerprint = entry->capabilities.solution ? fingerprint : fingerprint + " camera " + view.name;
     if (options.checkpoint_every) request.checkpoint_interval = *options.checkpoint_every;
@@ -519,6 +526,10 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
     }
 
     Stopwatch write_timer;
+    if (result.checkpoint) {
+      write_checkpoint_file(checkpoint_path, *result.checkpoint);
+      statistics.extra["checkpoint"] = checkpoint_path;
+    }
     write_image(film, output, scene->display);
     if (!aa_map_path.empty()) write_aa_map(statistics, film.width(), film.height(), aa_map_path);
     nlohmann::json& method_facts_out = statistics.extra[std::string(method->name())];

@@ -788,11 +788,14 @@ TEST_F(Cli, RadiosityResumeGivesTheUninterruptedImageByteForByte) {
   const auto full = nlohmann::json::parse(full_file), resumed = nlohmann::json::parse(resumed_file);
   EXPECT_EQ(resumed["radiosity"]["resumed_from_shots"], 40);
   EXPECT_EQ(resumed["radiosity"]["steps"], full["radiosity"]["steps"]);
+  EXPECT_EQ(resumed["checkpoint"], "r.ckpt");  // written by candela render, not by the method
   // Other settings that shape the solution cannot continue it; the direct solvers have no checkpoints.
   EXPECT_EQ(run(common + "--set radiosity.hemicube_resolution=50 --resume r.ckpt -o other.pfm", output), 2);
   EXPECT_NE(output.find("another scene or other settings"), std::string::npos) << output;
   EXPECT_EQ(run(common + "--set radiosity.solver=gauss-seidel --checkpoint g.ckpt -o g.pfm", output), 2);
   EXPECT_NE(output.find("checkpoints are for radiosity.solver"), std::string::npos) << output;
+  EXPECT_NE(output.find(": radiosity.solver: checkpoints"), std::string::npos)
+      << output;  // the setting named
   EXPECT_FALSE(fs::exists(directory_ / "g.pfm"));
 }
 

@@ -220,7 +220,7 @@ TEST(Interrupt, CtrlCWritesThePartialImageAndACheckpointThatResumes) {
   EXPECT_TRUE(statistics["interrupted"].get<bool>());
   const auto passes = statistics["path"]["spp"].get<uint64_t>();
   ASSERT_GT(passes, 0u);
-  EXPECT_EQ(read_path_checkpoint(checkpoint.string()).passes, passes);
+  EXPECT_EQ(unseal_path_checkpoint(read_checkpoint_file(checkpoint.string())).passes, passes);
   const Film partial = read_pfm(output.string());
   EXPECT_EQ(partial.width(), 12);
   EXPECT_FALSE(all_black(partial));

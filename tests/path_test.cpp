@@ -5,7 +5,9 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "integrators/light_sampler.h"
 #include "integrators/path_checkpoint.h"
@@ -209,42 +211,59 @@ TEST(PathTracer, ImagesDoNotDependOnTheThreadCount) {
 }
 
 TEST(PathTracer, ResumingACheckpointGivesTheUninterruptedImage) {
-  const testing::ScratchDirectory directory("path-resume");
-  const std::string checkpoint = (directory.path() / "box.checkpoint").string();
-  const auto render = [&](int spp, const std::string& save, const std::string& resume) {
+  // The method hands its final state out (RenderResult::checkpoint) and continues from it
+  // (RenderRequest::resume); it writes no file.
+  const auto render = [&](int spp, bool checkpoint, const std::optional<Bytes>& resume) {
     const auto scene = small_box(spp);
     const auto method = create_method(*find_method("path"), *scene);
-    Film film(scene->camera->width(), scene->camera->height());
-    RenderRequest request{{0, 0, film.width(), film.height()}, true};
-    request.checkpoint = save;
-    request.resume = resume;
+    RenderRequest request{{0, 0, scene->camera->width(), scene->camera->height()}, true};
+    request.checkpoint = checkpoint;
+    if (resume) request.resume = SealedCheckpoint{"box.checkpoint", *resume};
     request.fingerprint = "box";
-    RunStatistics statistics;
-    testing::render_into(*method, *scene, request, film, statistics);
-    return film;
+    return method->render(*scene, request);
   };
-  const Film uninterrupted = render(7, "", "");
-  render(3, checkpoint, "");
-  EXPECT_EQ(read_path_checkpoint(checkpoint).passes, 3u);
-  const Film resumed = render(7, checkpoint, checkpoint);
-  for (std::size_t i = 0; i < resumed.pixels().size(); ++i)
-    ASSERT_EQ(resumed.pixels()[i], uninterrupted.pixels()[i]) << i;
-  EXPECT_EQ(read_path_checkpoint(checkpoint).passes, 7u);
+  const RenderResult uninterrupted = render(7, false, std::nullopt);
+  EXPECT_FALSE(uninterrupted.checkpoint);
+  const RenderResult first = render(3, true, std::nullopt);
+  ASSERT_TRUE(first.checkpoint);
+  EXPECT_EQ(unseal_path_checkpoint({"first", *first.checkpoint}).passes, 3u);
+  const RenderResult resumed = render(7, true, *first.checkpoint);
+  for (std::size_t i = 0; i < resumed.film.pixels().size(); ++i)
+    ASSERT_EQ(resumed.film.pixels()[i], uninterrupted.film.pixels()[i]) << i;
+  ASSERT_TRUE(resumed.checkpoint);
+  EXPECT_EQ(unseal_path_checkpoint({"resumed", *resumed.checkpoint}).passes, 7u);
+  EXPECT_EQ(resumed.statistics.extra["path"]["resumed_from_spp"], 3);
+  // Another scene's state is refused, naming where it came from.
+  try {
+    const auto scene = small_box(7);
+    RenderRequest request{{0, 0, scene->camera->width(), scene->camera->height()}, true};
+    request.resume = SealedCheckpoint{"box.checkpoint", *first.checkpoint};
+    request.fingerprint = "another box";
+    (void)create_method(*find_method("path"), *scene)->render(*scene, request);
+    ADD_FAILURE() << "another scene's checkpoint was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.location().file, "box.checkpoint");
+    EXPECT_NE(e.message().find("another scene"), std::string::npos) << e.message();
+  }
 }
 
-// "--checkpoint FILE every N seconds": with an interval shorter than a pass, a checkpoint follows
-// every pass but the last, and the final state is written once more at the end.
-TEST(PathTracer, CheckpointsAreWrittenEveryIntervalAndAtTheEnd) {
-  const testing::ScratchDirectory directory("path-interval");
+// "--checkpoint FILE every N seconds": with an interval shorter than a pass, a checkpoint is handed
+// out after every pass but the last, and the final state is returned at the end.
+TEST(PathTracer, CheckpointsAreHandedOutEveryIntervalAndAtTheEnd) {
   auto scene = small_box(4);
   const auto method = create_method(*find_method("path"), *scene, {"checkpoint_interval=1e-9"});
-  Film film(scene->camera->width(), scene->camera->height());
-  RenderRequest request{{0, 0, film.width(), film.height()}, true};
-  request.checkpoint = (directory.path() / "every.ckpt").string();
-  RunStatistics statistics;
-  testing::render_into(*method, *scene, request, film, statistics);
-  EXPECT_EQ(statistics.extra["path"]["checkpoints_written"], 4);  // after passes 1, 2, 3 and at the end
-  EXPECT_EQ(read_path_checkpoint(request.checkpoint).passes, 4u);
+  RenderRequest request{{0, 0, scene->camera->width(), scene->camera->height()}, true};
+  request.checkpoint = true;
+  std::vector<uint64_t> saved_passes;
+  request.save_checkpoint = [&](const Bytes& sealed) {
+    saved_passes.push_back(unseal_path_checkpoint({"saved", sealed}).passes);
+  };
+  const RenderResult result = method->render(*scene, request);
+  EXPECT_EQ(saved_passes, (std::vector<uint64_t>{1, 2, 3}));
+  ASSERT_TRUE(result.checkpoint);
+  EXPECT_EQ(unseal_path_checkpoint({"final", *result.checkpoint}).passes, 4u);
+  EXPECT_EQ(result.statistics.extra["path"]["checkpoints_written"],
+            4);  // after passes 1, 2, 3 and at the end
 }
 
 TEST(PathCheckpoint, RoundTripsExactlyAndRefusesDamage) {
@@ -257,8 +276,8 @@ TEST(PathCheckpoint, RoundTripsExactlyAndRefusesDamage) {
   written.seconds = 1.25;
   written.rays.primary = 36;
   written.sums = {Color(0.1, 1e-300, 3), Color(1.0 / 3), Color(7, 8, 9), Color(-0.0, 2, 5e300)};
-  write_path_checkpoint(file, written);
-  const PathCheckpoint read = read_path_checkpoint(file);
+  write_checkpoint_file(file, seal_path_checkpoint(written));
+  const PathCheckpoint read = unseal_path_checkpoint(read_checkpoint_file(file));
   EXPECT_EQ(read.fingerprint, written.fingerprint);
   EXPECT_EQ(read.passes, 9u);
   EXPECT_EQ(read.rays.primary, 36u);
@@ -273,7 +292,7 @@ TEST(PathCheckpoint, RoundTripsExactlyAndRefusesDamage) {
   const auto expect_refused = [&](const std::string& damaged, const std::string& why) {
     std::ofstream(file, std::ios::binary | std::ios::trunc) << damaged;
     try {
-      read_path_checkpoint(file);
+      (void)unseal_path_checkpoint(read_checkpoint_file(file));
       ADD_FAILURE() << why << " was accepted";
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find("c.checkpoint"), std::string::npos) << e.what();

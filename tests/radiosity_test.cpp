@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "integrators/radiosity_method.h"
 #include "integrators/scene_loading.h"
 #include "integrators/whitted.h"
+#include "radiosity/radiosity_checkpoint.h"
 #include "radiosity/solvers.h"
 #include "render_support.h"
 
@@ -429,6 +431,51 @@ TEST(RadiosityMethod, OneSolutionServesEveryView) {
   EXPECT_FALSE(other_statistics.extra["radiosity"]["solution_reused"].get<bool>());
   testing::render_into(*changed, *other, {{0, 0, 24, 24}, true}, first, other_statistics);
   EXPECT_TRUE(other_statistics.extra["radiosity"]["solution_reused"].get<bool>());
+}
+
+// Issue 10 through the method (issue 18: a method writes no file): the progressive solve hands its
+// state out, intermediate ones through save_checkpoint and the final one in the result, and goes on
+// from the final one to the uninterrupted image; a checkpoint never reuses a cached solution.
+TEST(RadiosityMethod, ProgressiveStateIsHandedOutAndResumedToTheUninterruptedImage) {
+  const std::vector<std::string> small = {"camera.width=16", "camera.height=16",
+                                          "radiosity.hemicube_resolution=30", "radiosity.threshold=0.02"};
+  const auto scene = cornell_box(small);
+  const auto run = [&](const std::vector<std::string>& settings, bool checkpoint,
+                       const std::optional<Bytes>& resume, double interval = 0) {
+    const auto method = create_method(*find_method("radiosity"), *scene, settings);
+    RenderRequest request{{0, 0, 16, 16}, true};
+    request.fingerprint = "box";
+    request.checkpoint = checkpoint;
+    request.checkpoint_interval = interval;
+    if (resume) request.resume = SealedCheckpoint{"box.ckpt", *resume};
+    int saved = 0;
+    if (checkpoint) request.save_checkpoint = [&](const Bytes&) { ++saved; };
+    RenderResult result = method->render(*scene, request);
+    result.statistics.extra["saved_here"] = saved;
+    return result;
+  };
+  const RenderResult whole = run({}, false, std::nullopt);
+  EXPECT_FALSE(whole.checkpoint);
+  const RenderResult part = run({"max_steps=10"}, true, std::nullopt, 1e-9);
+  ASSERT_TRUE(part.checkpoint);
+  const RadiosityCheckpoint state = unseal_radiosity_checkpoint({"part", *part.checkpoint});
+  EXPECT_EQ(state.steps, 10u);
+  // Every shot but none after the last one hands out an intermediate state (interval ≈ 0).
+  EXPECT_GE(part.statistics.extra["saved_here"].get<int>(), 9);
+  EXPECT_EQ(part.statistics.extra["radiosity"]["checkpoints_written"],
+            part.statistics.extra["saved_here"].get<int>() + 1);
+  const RenderResult resumed = run({}, true, *part.checkpoint);
+  EXPECT_EQ(resumed.statistics.extra["radiosity"]["resumed_from_shots"], 10);
+  EXPECT_FALSE(resumed.statistics.extra["radiosity"]["solution_reused"].get<bool>());
+  for (std::size_t i = 0; i < whole.film.pixels().size(); ++i)
+    ASSERT_EQ(resumed.film.pixels()[i], whole.film.pixels()[i]) << i;
+  // Other settings that shape the solution: refused, naming the checkpoint's source.
+  try {
+    (void)run({"hemicube_resolution=40"}, false, *part.checkpoint);
+    ADD_FAILURE() << "a checkpoint of other settings was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.location().file, "box.ckpt");
+  }
 }
 
 // 000 §6.5, SPEC §10 "Display": the radiosity.display setting, "gouraud" by default.

@@ -1,6 +1,7 @@
 // A rendering method (local, whitted, raster, radiosity, meshless, path), made by the method
-// registry from its settings. A method reads the Scene, never edits it, and writes no file but its
-// checkpoints: it returns its image and extras (RenderResult) for the caller to write.
+// registry from its settings. A method reads the Scene, never edits it, and writes no file: it
+// returns its image and extras (RenderResult), and hands out its checkpoints, for the caller to
+// write.
 #pragma once
 
 #include <cstdint>
@@ -13,6 +14,7 @@
 
 #include "camera/film.h"
 #include "integrators/ray_tree.h"
+#include "io/checkpoint_file.h"
 #include "scene/scene.h"
 #include "util/statistics.h"
 
@@ -33,12 +35,18 @@ struct RenderRequest {
   bool quiet = false;
   // Extras to compute besides the image, when the method can give them (MethodCapabilities).
   bool sites_image = false;  // meshless: the image with its sites drawn (seed 002 Figure 4.7)
-  // The progressive run (path; progressive radiosity; SPEC §12, §15): the file the method writes
-  // its state to every checkpoint_interval seconds and when it ends, the checkpoint it continues
-  // from, and what ties a checkpoint to the scene that made it (the caller's part: the scene
-  // file's contents and overrides; the method adds its own settings). Empty: none.
-  std::string checkpoint = {};
-  std::string resume = {};
+  // The progressive run (path; progressive radiosity; SPEC §12, §15), for methods whose
+  // capabilities say checkpoints. With `checkpoint` set, the method returns its final state in
+  // RenderResult::checkpoint (also when interrupted) and, when save_checkpoint is given, hands it
+  // its state every checkpoint_interval seconds while work remains; the caller stores them
+  // (candela render: the --checkpoint file, atomically). `resume` is a state to continue from:
+  // every rank is given one, only rank 0's bytes are read (it need not be on the others' disks),
+  // and errors name its source. `fingerprint` ties a checkpoint to the scene that made it (the
+  // caller's part: the scene file's contents and overrides; the method adds its own settings).
+  // A checkpoint is sealed bytes (io/checkpoint_file.h); only rank 0 hands checkpoints out.
+  bool checkpoint = false;
+  std::function<void(const Bytes& sealed)> save_checkpoint = {};
+  std::optional<SealedCheckpoint> resume = {};
   std::string fingerprint = {};
   // Seconds between checkpoints; 0: the method's default (path.checkpoint_interval; 60 for
   // progressive radiosity).
@@ -48,7 +56,7 @@ struct RenderRequest {
   std::function<void(uint64_t passes)> after_pass = {};
   // The ranks to split the work across (issue 11, docs/distributed.md); null or one rank: this
   // process alone. Every rank calls render with the same scene and request; rank 0's result
-  // holds the image, and only rank 0 writes checkpoints. Statistics are totals over the ranks.
+  // holds the image and the checkpoints. Statistics are totals over the ranks.
   Cluster* cluster = nullptr;
 };
 
@@ -60,6 +68,7 @@ struct RenderResult {
   RunStatistics statistics;
   std::optional<Film> sites_image;                       // when requested (RenderRequest::sites_image)
   std::shared_ptr<const RadiositySolveResult> solution;  // a view-independent solution (radiosity)
+  std::optional<Bytes> checkpoint;  // the final state, sealed (RenderRequest::checkpoint; rank 0)
 };
 
 class Method {

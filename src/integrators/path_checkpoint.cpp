@@ -1,14 +1,12 @@
 #include "integrators/path_checkpoint.h"
 
-#include "io/checkpoint_file.h"
-
 namespace candela {
 
 namespace {
 constexpr char kMagic[] = "CANDELA-PATH-CHECKPOINT 1\n";
 }  // namespace
 
-void write_path_checkpoint(const std::string& path, const PathCheckpoint& checkpoint) {
+Bytes seal_path_checkpoint(const PathCheckpoint& checkpoint) {
   CheckpointWriter out(kMagic);
   out.put_string(checkpoint.fingerprint);
   for (const int v : {checkpoint.region.x0, checkpoint.region.y0, checkpoint.region.x1, checkpoint.region.y1})
@@ -19,11 +17,11 @@ void write_path_checkpoint(const std::string& path, const PathCheckpoint& checkp
                                checkpoint.rays.refracted})
     out.put(count);
   out.put_colors(checkpoint.sums);
-  out.write(path);
+  return out.seal();
 }
 
-PathCheckpoint read_path_checkpoint(const std::string& path) {
-  CheckpointReader in(path, kMagic);
+PathCheckpoint unseal_path_checkpoint(const SealedCheckpoint& sealed) {
+  CheckpointReader in(sealed, kMagic);
   PathCheckpoint checkpoint;
   checkpoint.fingerprint = in.get_string();
   checkpoint.region.x0 = in.get<int32_t>();

@@ -1,8 +1,8 @@
-// The path tracer's progressive state on disk (SPEC §15: long runs checkpoint and resume): the
-// per-pixel sums of every pass so far, exactly as doubles, so that resuming and finishing gives
-// the image an uninterrupted run gives, bit for bit (each pixel's passes are added in pass order
-// either way). Written atomically (no half-written checkpoint ever replaces a good one); read
-// back with its size and checksum verified.
+// The path tracer's progressive state as a checkpoint (SPEC §15: long runs checkpoint and resume):
+// the per-pixel sums of every pass so far, exactly as doubles, so that resuming and finishing
+// gives the image an uninterrupted run gives, bit for bit (each pixel's passes are added in pass
+// order either way). Sealed in the byte format of io/checkpoint_file.h (which the caller writes
+// to a file and reads back); unsealed with its size and checksum verified.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "integrators/method.h"
+#include "io/checkpoint_file.h"
 #include "math/vector.h"
 #include "util/statistics.h"
 
@@ -25,9 +26,9 @@ struct PathCheckpoint {
   std::vector<Color> sums;  // region.width() × region.height(), row by row
 };
 
-// Throws std::runtime_error when the file cannot be written (the old one, if any, stays).
-void write_path_checkpoint(const std::string& path, const PathCheckpoint& checkpoint);
-// Throws InputError naming the file when it is missing, truncated, corrupt or not a checkpoint.
-PathCheckpoint read_path_checkpoint(const std::string& path);
+Bytes seal_path_checkpoint(const PathCheckpoint& checkpoint);
+// Throws InputError naming the checkpoint's source when it is truncated, corrupt or not a path
+// tracer's checkpoint.
+PathCheckpoint unseal_path_checkpoint(const SealedCheckpoint& sealed);
 
 }  // namespace candela

@@ -285,9 +285,9 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
   // every rank.
   std::exception_ptr resume_error;
   try {
-    if (!request.resume.empty() && (!cluster || cluster->root())) {
-      PathCheckpoint resumed = read_path_checkpoint(request.resume);
-      const SourceLocation where{request.resume, 0, 0, {}};
+    if (request.resume && (!cluster || cluster->root())) {
+      PathCheckpoint resumed = unseal_path_checkpoint(*request.resume);
+      const SourceLocation where{request.resume->source, 0, 0, {}};
       if (resumed.fingerprint != fingerprint)
         throw InputError(where, "the checkpoint was made for another scene or other settings (" +
                                     resumed.fingerprint + "), not this one (" + fingerprint + ")");
@@ -323,24 +323,24 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
   Stopwatch timer, since_checkpoint;
   int checkpoints = 0;
   uint64_t seconds_reported = 0;
-  const auto save = [&] {
-    if (request.checkpoint.empty() || (cluster && !cluster->root())) return;  // rank 0 writes
+  const bool hands_out_checkpoints = request.checkpoint && (!cluster || cluster->root());
+  const auto sealed_state = [&] {
     RayCounts rays = state.rays;
     for (const RayCounts& c : counts) rays += c;
     PathCheckpoint snapshot{
         state.fingerprint, state.region, state.passes, state.seconds + timer.seconds(), rays, {}};
     snapshot.sums = state.sums;
-    write_path_checkpoint(request.checkpoint, snapshot);
     ++checkpoints;
     since_checkpoint = Stopwatch();
+    return seal_path_checkpoint(snapshot);
   };
   bool interrupted = false;
   uint64_t dropped_across_ranks = 0;
   // Between passes (rounds across ranks): a checkpoint when the interval is up and passes remain.
   const auto save_if_due = [&] {
-    if (!request.checkpoint.empty() && since_checkpoint.seconds() >= settings.checkpoint_interval &&
-        state.passes < last_pass)
-      save();
+    if (hands_out_checkpoints && request.save_checkpoint &&
+        since_checkpoint.seconds() >= settings.checkpoint_interval && state.passes < last_pass)
+      request.save_checkpoint(sealed_state());
   };
   // A pass's value at one pixel: one uniform point of its square (box filter), the path's radiance.
   const auto sample_pixel = [&](uint64_t pass, int i, int j, RayCounts& rays) {
@@ -368,7 +368,7 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
     // Across ranks (issue 11): rounds of passes; in a round every tile goes to some rank with its
     // sums so far, which adds the round's passes pixel by pixel in pass order — the very
     // additions one process makes — and sends the sums back. Rank 0 decides each round (how many
-    // passes, or stop: spp reached, time up, Ctrl-C), keeps the sums and writes the checkpoints. A
+    // passes, or stop: spp reached, time up, Ctrl-C), keeps the sums and hands out the checkpoints. A
     // round cut short is dropped, so the sums always hold whole passes.
     const std::vector<PixelRect> tiles = distributed_tiles({0, 0, width, height});
     std::vector<uint64_t> tiles_by_rank(static_cast<std::size_t>(cluster->size()), 0);
@@ -470,7 +470,7 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
       const double per_pass = round_time.seconds() / double(round_count);
       double budget = std::clamp(double(width) * height / 2e5, 1.0, 30.0);
       if (timed) budget = std::min(budget, settings.time - timer.seconds());
-      if (!request.checkpoint.empty()) budget = std::min(budget, settings.checkpoint_interval);
+      if (request.checkpoint) budget = std::min(budget, settings.checkpoint_interval);
       passes_per_round =
           per_pass > 0 ? std::clamp<uint64_t>(static_cast<uint64_t>(budget / per_pass), 1, 256) : 256;
       save_if_due();
@@ -522,7 +522,7 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
     }
   }
   progress.finish();
-  save();  // the final state, so that a later run can go on from it
+  if (hands_out_checkpoints) output.checkpoint = sealed_state();  // a later run can go on from it
 
   const double scale = state.passes > 0 ? 1.0 / double(state.passes) : 0.0;
   for (int j = 0; j < height; ++j)
@@ -545,14 +545,13 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
                           {"dropped_samples", dropped},
                           {"checkpoints_written", checkpoints},
                           {"seconds_all_runs", state.seconds + timer.seconds()}};
-  if (!request.resume.empty()) facts["resumed_from_spp"] = first_pass;
+  if (request.resume) facts["resumed_from_spp"] = first_pass;
   if (cluster) statistics.extra["distributed"] = distributed;
   if (interrupted) {  // Ctrl-C: the mean of the whole passes, which the checkpoint holds too
     statistics.extra["interrupted"] = true;
     statistics.extra["completed"] =
         fmt::format("{} passes{}", state.passes - first_pass,
                     first_pass > 0 ? fmt::format(" ({} in all)", state.passes) : "");
-    if (!request.checkpoint.empty()) statistics.extra["checkpoint"] = request.checkpoint;
   }
   if (lights.empty())
     facts["warning"] =

@@ -48,13 +48,13 @@ std::string checkpoint_fingerprint(const Scene& scene, const RadiositySettings& 
 // scene's) and sends it to the others, so that every rank shoots the same way from the same state.
 RadiosityCheckpoint resumed_state(const RenderRequest& request, const std::string& fingerprint,
                                   Cluster* cluster) {
-  const SourceLocation where{request.resume, 0, 0, {}};
+  const SourceLocation where{request.resume->source, 0, 0, {}};
   const bool root = !cluster || cluster->root();
   RadiosityCheckpoint resumed;
   std::exception_ptr error;
   try {
     if (root) {
-      resumed = read_radiosity_checkpoint(request.resume);
+      resumed = unseal_radiosity_checkpoint(*request.resume);
       if (resumed.fingerprint != fingerprint)
         throw InputError(where, "the checkpoint was made for another scene or other settings (" +
                                     resumed.fingerprint + "), not this one (" + fingerprint + ")");
@@ -103,23 +103,23 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
   Cluster* cluster = several_ranks(request);
   std::lock_guard lock(cache_mutex_);
   // A checkpoint to write or resume from asks for this run's own solve.
-  const bool checkpointing = !request.checkpoint.empty() || !request.resume.empty();
+  const bool checkpointing = request.checkpoint || request.resume;
   reused = !checkpointing && cached_ && cached_key_ == key;
   if (reused) return cached_;
   auto solved = std::make_shared<Solved>();
   ProgressiveCheckpointing run;
   RadiosityCheckpoint resumed;
   if (checkpointing) {
-    const SourceLocation where{!request.resume.empty() ? request.resume : request.checkpoint, 0, 0, {}};
     if (settings.solver != RadiositySolver::progressive || settings.subdivision_threshold > 0)
-      throw InputError(where,
+      throw InputError({scene.source, 0, 0, "radiosity.solver"},
                        "checkpoints are for radiosity.solver \"progressive\" without adaptive subdivision "
                        "(radiosity.subdivision_threshold 0)");
     run.fingerprint = checkpoint_fingerprint(scene, settings, request);
     if (request.checkpoint_interval > 0) run.interval = request.checkpoint_interval;
-    // Rank 0 alone writes checkpoints.
-    if (!cluster || cluster->root()) run.path = request.checkpoint;
-    if (!request.resume.empty()) {
+    // Rank 0 alone hands out checkpoints.
+    run.hands_out = request.checkpoint && (!cluster || cluster->root());
+    run.save = request.save_checkpoint;
+    if (request.resume) {
       resumed = resumed_state(request, run.fingerprint, cluster);
       run.resume = &resumed;
     }
@@ -134,10 +134,11 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
     solved->result = solve_radiosity(scene, settings, options);
   } catch (const std::invalid_argument& e) {
     if (!run.resume) throw;
-    throw InputError({request.resume, 0, 0, {}}, e.what());
+    throw InputError({request.resume->source, 0, 0, {}}, e.what());
   }
   if (checkpointing) {
     solved->facts["checkpoints_written"] = run.checkpoints_written;
+    solved->checkpoint = std::move(run.final_state);
     if (run.resume) solved->facts["resumed_from_shots"] = resumed.steps;
     return solved;  // not kept: the next render may resume from elsewhere
   }
@@ -162,6 +163,7 @@ RenderResult RadiosityMethod::render(const Scene& scene, const RenderRequest& re
   }
   // The same solution serves every view: the caller may export it (candela render --export-solution).
   output.solution = std::shared_ptr<const RadiositySolveResult>(solved, &solved->result);
+  output.checkpoint = solved->checkpoint;
   const PixelRect region = request.region;
   Stopwatch display_time;
   const SolutionDisplay display(scene, solution, settings.display);

@@ -44,6 +44,7 @@
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -71,11 +72,12 @@ class RadiosityMethod final : public Method {
  private:
   struct Solved {
     RadiositySolveResult result;
-    nlohmann::json facts;  // what the solve measured, for --stats
+    nlohmann::json facts;             // what the solve measured, for --stats
+    std::optional<Bytes> checkpoint;  // the final state, with RenderRequest::checkpoint
   };
   // The cached solution when the scene and its settings are the ones last solved (reused set),
   // else a new one, which replaces it.
-  // With a checkpoint to write or resume from (request.checkpoint / resume: progressive solver
+  // With a checkpoint to hand out or resume from (request.checkpoint / resume: progressive solver
   // only) the solve is this run's own and not kept.
   std::shared_ptr<const Solved> solution_for(const Scene& scene, const RenderRequest& request,
                                              bool& reused) const;

@@ -86,7 +86,7 @@ void write_bytes(const std::string& path, const std::string& bytes) {
 // The message of the InputError reading `path` as a test checkpoint gives, with the file named.
 std::string checkpoint_error(const std::string& path) {
   try {
-    CheckpointReader in(path, "TEST-CHECKPOINT 1\n");
+    CheckpointReader in(read_checkpoint_file(path), "TEST-CHECKPOINT 1\n");
     (void)in.get_string();
     (void)in.get_colors();
     (void)in.get<double>();
@@ -106,11 +106,11 @@ TEST(CheckpointFile, RoundTripsAndRefusesEveryDamage) {
   out.put_string("fingerprint");
   out.put_colors({Color(0.1, 1e-300, 3), Color(-0.0, 2, 5e300)});
   out.put(1.0 / 3);
-  out.write(path);
+  write_checkpoint_file(path, out.seal());
   const std::string bytes = read_bytes(path);
   EXPECT_EQ(bytes.rfind("TEST-CHECKPOINT 1\n", 0), 0u);
   {
-    CheckpointReader in(path, "TEST-CHECKPOINT 1\n");
+    CheckpointReader in(read_checkpoint_file(path), "TEST-CHECKPOINT 1\n");
     EXPECT_EQ(in.get_string(), "fingerprint");
     const std::vector<Color> colors = in.get_colors();
     ASSERT_EQ(colors.size(), 2u);
@@ -132,7 +132,7 @@ TEST(CheckpointFile, RoundTripsAndRefusesEveryDamage) {
     CheckpointWriter file("TEST-CHECKPOINT 1\n");
     const Bytes& raw = fields.bytes();
     for (const std::byte b : raw) file.put(b);
-    file.write(path);
+    write_checkpoint_file(path, file.seal());
   };
   ByteWriter short_fields;
   short_fields.put_string("fingerprint");

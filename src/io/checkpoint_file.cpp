@@ -30,23 +30,35 @@ void CheckpointWriter::put_colors(const std::vector<Color>& colors) {
   put_array(colors);
 }
 
-void CheckpointWriter::write(const std::string& path) const {
-  std::string file(as_text(bytes()));
-  const uint64_t checksum = fnv1a_64(file);
-  file.append(reinterpret_cast<const char*>(&checksum), sizeof(checksum));
-  write_atomically(path, [&](const std::string& temporary) {
-    std::ofstream out(temporary, std::ios::binary);
-    out.write(file.data(), static_cast<std::streamsize>(file.size()));
-    out.close();
-    if (!out) throw std::runtime_error("cannot write the checkpoint " + path);
-  });
+Bytes CheckpointWriter::seal() const {
+  Bytes sealed = bytes();
+  const uint64_t checksum = fnv1a_64(as_text(sealed));
+  const auto* checksum_bytes = reinterpret_cast<const std::byte*>(&checksum);
+  sealed.insert(sealed.end(), checksum_bytes, checksum_bytes + sizeof(checksum));
+  return sealed;
 }
 
-CheckpointReader::CheckpointReader(const std::string& path, std::string_view magic)
-    : path_(path), reader_(bytes_, "checkpoint") {
+void write_checkpoint_file(const std::string& path, const Bytes& sealed) {
+  try {
+    write_text_atomically(path, as_text(sealed));
+  } catch (const std::exception&) {
+    throw std::runtime_error("cannot write the checkpoint " + path);
+  }
+}
+
+SealedCheckpoint read_checkpoint_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) fail("cannot open the checkpoint");
+  if (!in) throw InputError({path, 0, 0, {}}, "cannot open the checkpoint");
   const std::string file{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) throw InputError({path, 0, 0, {}}, "cannot read the checkpoint");
+  SealedCheckpoint sealed{path, Bytes(file.size())};
+  if (!file.empty()) std::memcpy(sealed.bytes.data(), file.data(), file.size());
+  return sealed;
+}
+
+CheckpointReader::CheckpointReader(const SealedCheckpoint& sealed, std::string_view magic)
+    : source_(sealed.source), reader_(fields_, "checkpoint") {
+  const std::string_view file = as_text(sealed.bytes);
   if (file.compare(0, magic.size(), magic) != 0)
     fail("not a " + std::string(magic.substr(0, magic.find_last_not_of(" \n") + 1)) + " checkpoint");
   if (file.size() < magic.size() + sizeof(uint64_t)) fail("the checkpoint is truncated");
@@ -56,9 +68,9 @@ CheckpointReader::CheckpointReader(const std::string& path, std::string_view mag
   if (checksum != fnv1a_64(checked))
     fail("the checkpoint is corrupt (checksum mismatch: truncated or changed)");
   const std::string_view fields = checked.substr(magic.size());
-  bytes_.resize(fields.size());
-  if (!fields.empty()) std::memcpy(bytes_.data(), fields.data(), fields.size());
-  reader_ = ByteReader(bytes_, "checkpoint");
+  fields_.resize(fields.size());
+  if (!fields.empty()) std::memcpy(fields_.data(), fields.data(), fields.size());
+  reader_ = ByteReader(fields_, "checkpoint");
 }
 
 std::string CheckpointReader::get_string() {
@@ -83,7 +95,7 @@ void CheckpointReader::finish() const {
 }
 
 void CheckpointReader::fail(const std::string& message) const {
-  throw InputError({path_, 0, 0, {}}, message);
+  throw InputError({source_, 0, 0, {}}, message);
 }
 
 void CheckpointReader::fail_read(const ByteStreamError& error) const {

@@ -46,12 +46,12 @@ ElementSolution shoot_progressively(const RadiosityMesh& mesh, const ElementRows
     refinement.restore(state.radiosity, state.unshot, static_cast<std::size_t>(state.steps));
   }
   Stopwatch since_checkpoint;
-  const auto save = [&] {
-    if (!checkpointing || checkpointing->path.empty()) return;  // (rank 0 alone is given a checkpoint path)
-    write_radiosity_checkpoint(checkpointing->path, {checkpointing->fingerprint, refinement.steps(),
-                                                     refinement.radiosity(), refinement.unshot_radiosity()});
+  const bool hands_out = checkpointing && checkpointing->hands_out;  // (rank 0 alone hands them out)
+  const auto sealed_state = [&] {
     ++checkpointing->checkpoints_written;
     since_checkpoint = Stopwatch();
+    return seal_radiosity_checkpoint({checkpointing->fingerprint, refinement.steps(), refinement.radiosity(),
+                                      refinement.unshot_radiosity()});
   };
   uint64_t progress_done = 0;
   const auto on_step = [&](std::size_t steps, double fraction) {
@@ -59,9 +59,8 @@ ElementSolution shoot_progressively(const RadiosityMesh& mesh, const ElementRows
         static_cast<uint64_t>(1000 * progressive_convergence_progress(fraction, settings.threshold));
     progress.set_detail(fmt::format("unshot {:.3g}% after {} steps", 100 * fraction, steps));
     if (done > progress_done) progress.advance(done - progress_done), progress_done = done;
-    if (checkpointing && !checkpointing->path.empty() &&
-        since_checkpoint.seconds() >= checkpointing->interval)
-      save();
+    if (hands_out && checkpointing->save && since_checkpoint.seconds() >= checkpointing->interval)
+      checkpointing->save(sealed_state());
   };
   // Ctrl-C: the solution so far (several ranks agree every 256 shots, so they shoot alike; a shot
   // takes microseconds, an agreement between nodes tens of them).
@@ -72,7 +71,8 @@ ElementSolution shoot_progressively(const RadiosityMesh& mesh, const ElementRows
   const ProgressiveRunResult run =
       refinement.run(settings.threshold, max_steps > refinement.steps() ? max_steps - refinement.steps() : 0,
                      on_step, cancelled);
-  save();  // the final state: a later run goes on from it (after Ctrl-C, or with a lower threshold)
+  // The final state: a later run goes on from it (after Ctrl-C, or with a lower threshold).
+  if (hands_out) checkpointing->final_state = sealed_state();
   ElementSolution solution;
   solution.radiosity = refinement.radiosity();
   solution.displayed = refinement.display_radiosities(settings.ambient);

@@ -16,7 +16,9 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "radiosity/radiosity_checkpoint.h"
@@ -28,15 +30,18 @@ namespace candela {
 class Cluster;
 class Scene;
 
-// Checkpointing a progressive solution (issue 10): where its state goes every `interval` seconds
-// and when the shooting ends (converged, out of steps or interrupted), and the state it starts
-// from instead of B = E, ΔB = E.
+// Checkpointing a progressive solution (issue 10): the state sealed (radiosity_checkpoint.h) and
+// handed to `save` every `interval` seconds while shots remain, and kept in final_state when the
+// shooting ends (converged, out of steps or interrupted); and the state it starts from instead of
+// B = E, ΔB = E.
 struct ProgressiveCheckpointing {
-  std::string path;  // empty: none written (every rank but 0)
+  bool hands_out = false;                              // false: no checkpoints (every rank but 0)
+  std::function<void(const Bytes& sealed)> save = {};  // empty: the final state alone
   std::string fingerprint;
   double interval = 60;
   const RadiosityCheckpoint* resume = nullptr;
-  int checkpoints_written = 0;  // counted by the solve
+  std::optional<Bytes> final_state = {};  // set by the solve when hands_out
+  int checkpoints_written = 0;            // counted by the solve, the final state included
 };
 
 struct RadiositySolveOptions {
