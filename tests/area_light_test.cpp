@@ -21,7 +21,7 @@ double irradiance(const Light& light, const Vec3& x, const Vec3& n) {
   double sum = 0;
   for (int k = 0; k < light.sample_count(); ++k) {
     LightSample sample;
-    if (light.illuminate_sample(x, k, sample))
+    if (light.illuminate_sample(x, k, {0.5, 0.5}, sample))
       sum += sample.intensity.g * std::max(0.0, dot(n, sample.direction));
   }
   return sum;
@@ -42,11 +42,11 @@ TEST(AreaLight, IrradianceIsTheExitanceTimesThePointToPolygonFormFactor) {
   EXPECT_NEAR(centre.intensity.g, 3 * kInvPi / (100.0 * 100.0), 1e-15);
   // Behind it: nothing, unless two-sided.
   LightSample behind;
-  EXPECT_FALSE(light.illuminate_sample({0.5, 0.5, 2}, 0, behind));
+  EXPECT_FALSE(light.illuminate_sample({0.5, 0.5, 2}, 0, {0.5, 0.5}, behind));
   EXPECT_FALSE(light.illuminate({0.5, 0.5, 2}, behind));
   const AreaLight both({0, 0, 1}, {0, 1, 0}, {1, 0, 0}, Color(3.0), 4, true);
-  EXPECT_TRUE(both.illuminate_sample({0.5, 0.5, 2}, 0, behind));
-  EXPECT_FALSE(light.illuminate_sample({0.5, 0.5, 0}, 256, behind));  // no such sample
+  EXPECT_TRUE(both.illuminate_sample({0.5, 0.5, 2}, 0, {0.5, 0.5}, behind));
+  EXPECT_FALSE(light.illuminate_sample({0.5, 0.5, 0}, 256, {0.5, 0.5}, behind));  // no such sample
   EXPECT_THROW(AreaLight({0, 0, 0}, {1, 0, 0}, {2, 0, 0}, Color(1.0), 4, false), std::invalid_argument);
   EXPECT_THROW(AreaLight({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, Color(1.0), 0, false), std::invalid_argument);
 }

@@ -118,17 +118,40 @@ TEST(PathTracer, IrradianceFromADiscAndASphereMatchesTheirFormFactors) {
 }
 
 // Under a uniform sky of 1 an unoccluded point facing up receives irradiance 1 (display units:
-// the background's value), and a floor of ρ = 0.5 shows 0.5.
+// the sky's value), and a floor of ρ = 0.5 shows 0.5.
 TEST(PathTracer, UniformSkyGivesUnitIrradianceAndTheFloorItsAlbedo) {
   const auto scene =
       scene_from(R"("camera": {"eye": [0, 3, 0], "target": [0, 0, 0], "up": [0, 0, -1], "fov": 40,
       "width": 16, "height": 16},
-    "background": [1, 1, 1], "path": {"spp": 16},
+    "environment": {"type": "constant", "color": [1, 1, 1]}, "path": {"spp": 16},
     "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": {"kd": 0.5}}])");
   expect_estimate(irradiance(*scene, {0, 0.5, 0}, {0, 1, 0}, 2000), 1.0, "sky");
   const Film film = testing::render_scene(*scene, "path");
   const Estimate floor = estimate(film.width() * film.height(), [&](int i) { return film.pixels()[i]; });
   expect_estimate(floor, 0.5, "floor");
+}
+
+// Issue 19, one rule for every method: the background colours rays that leave the scene from the
+// camera (directly, in mirrors, through glass) and lights nothing. Under a white background the
+// same floor is black, while a mirror shows the background.
+TEST(PathTracer, TheBackgroundLightsNothingButIsSeenInMirrors) {
+  const auto floor_only =
+      scene_from(R"("camera": {"eye": [0, 3, 0], "target": [0, 0, 0], "up": [0, 0, -1], "fov": 40,
+      "width": 8, "height": 8},
+    "background": [1, 1, 1], "path": {"spp": 4},
+    "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": {"kd": 0.5}}])");
+  const Film dark = testing::render_scene(*floor_only, "path");
+  for (const Color& pixel : dark.pixels()) ASSERT_EQ(pixel, Color(0));
+  const auto mirror =
+      scene_from(R"("camera": {"eye": [0, 3, 0], "target": [0, 0, 0], "up": [0, 0, -1], "fov": 40,
+      "width": 8, "height": 8},
+    "background": [0.25, 0.5, 1], "path": {"spp": 4},
+    "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": {"kd": 0, "kr": 1}}])");
+  const Film seen = testing::render_scene(*mirror, "path");
+  for (const Color& pixel : seen.pixels()) {
+    EXPECT_NEAR(pixel.r, 0.25, 1e-9);
+    EXPECT_NEAR(pixel.b, 1.0, 1e-9);
+  }
 }
 
 // Under the latitude-longitude sky of scenes/textures/sky.exr, the irradiance of a point facing up

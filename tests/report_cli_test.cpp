@@ -126,9 +126,10 @@ TEST_F(ReportCli, WritesThePageTheJsonAndEveryImage) {
   for (const char* key : {"whitted", "radiosity", "meshless", "path", "path-equal-time-whitted",
                           "path-equal-time-radiosity", "path-equal-time-meshless"})
     EXPECT_TRUE(rmse.count(key)) << key;
-  // Whitted misses all the light the lamp sheds; 4 samples of the path tracer only add noise.
+  // Whitted sees the lamp's direct light (issue 19) but none of what the walls pass on; 4 samples
+  // of the path tracer only add noise.
   EXPECT_LT(rmse["path"], rmse["whitted"]);
-  EXPECT_LT(rmse["path"], 0.6 * rmse["whitted"]);                   // about 0.3 with seeds 0 to 3
+  EXPECT_LT(rmse["path"], 0.75 * rmse["whitted"]);                  // about 0.62 with seed 0
   EXPECT_EQ(report["methods"][3]["statistics"]["path"]["spp"], 4);  // the scene's path.spp
   EXPECT_EQ(report["methods"][4]["equal_time_to"], "whitted");
   EXPECT_GT(report["difference"]["high"].get<double>(), 0);

@@ -86,11 +86,16 @@ Color local_illumination(const Scene& scene, const Intersection& hit, const Surf
   if (at.kd.is_black() && at.ks <= 0) return result;
   const double offset = scene.ray_offset(surface.position);
   const Vec3 shadow_origin = surface.position + geometric * offset;
-  for (const auto& light : scene.lights) {
+  // Issue 19: every emitter — the lights and the emissive surfaces — each sample of an area light
+  // or an emissive surface jittered within its cell per shading point (no stepped penumbrae).
+  const StratumJitter jitter{true, scene.render.seed};
+  for (std::size_t e = 0; e < scene.emitter_count(); ++e) {
+    const Light& light = scene.emitter(e);
     // Each of the light's samples (one, or an area light's samples²) with its own shadow ray.
-    for (int index = 0; index < light->sample_count(); ++index) {
+    for (int index = 0; index < light.sample_count(); ++index) {
       LightSample sample;
-      if (!light->illuminate_sample(surface.position, index, sample)) continue;
+      if (!light.illuminate_sample(surface.position, index, jitter.at(surface.position, e, index), sample))
+        continue;
       // 001's I_lum: only where N·L > 0; a light behind the surface itself casts no light on it.
       if (dot(N, sample.direction) <= 0 || dot(geometric, sample.direction) <= 0) continue;
       Color s(1);

@@ -27,14 +27,8 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     }
     surface_cdf_.back() = 1;
   }
-  if (scene.environment) {
-    environment_ = scene.environment.get();
-  } else if (!scene.background.is_black()) {
-    const Color& b = scene.background;
-    background_ = std::make_unique<ConstantEnvironment>(
-        Color(std::max(b.r, 0.0), std::max(b.g, 0.0), std::max(b.b, 0.0)));
-    environment_ = background_.get();
-  }
+  // The background lights nothing (issue 19): a sky is an environment ({"type": "constant"}).
+  if (scene.environment) environment_ = scene.environment.get();
   choice_count_ =
       static_cast<int>(scene.lights.size()) + (surfaces_.empty() ? 0 : 1) + (environment_ ? 1 : 0);
   if (!surfaces_.empty()) {

@@ -3,7 +3,7 @@
 // against it (multiple importance sampling).
 //
 // The choices: each scene light (point, spot, directional, area), the emissive surfaces as one
-// group, and the environment (the environment map, or a non-black background color) — each
+// group, and the environment (a map or a constant sky; the background color lights nothing) — each
 // with the same probability; inside the group, an emissive primitive by its power
 // (luminance of E × area). Emissive primitives whose shape cannot be sampled (the plane) are
 // left to BSDF sampling alone.
@@ -35,8 +35,7 @@ class LightSampler {
   // The probability that choose() picks primitive (0 when it is not a sampled emitter).
   double surface_probability(uint32_t primitive) const;
   double environment_probability() const { return environment_ ? 1.0 / choice_count_ : 0.0; }
-  // The environment that next-event estimation samples (the scene's map, or the background as a
-  // constant one), or null when nothing arrives from outside.
+  // The environment that next-event estimation samples, or null when nothing arrives from outside.
   const Environment* environment() const { return environment_; }
   std::size_t emissive_primitive_count() const { return surfaces_.size(); }
 
@@ -46,7 +45,6 @@ class LightSampler {
   std::vector<uint32_t> surfaces_;           // emissive, sampleable primitives
   std::vector<double> surface_cdf_;          // running power fractions, last = 1
   std::vector<double> surface_probability_;  // per primitive of the scene (empty without emitters)
-  std::unique_ptr<Environment> background_;  // the background color as an environment
   const Environment* environment_ = nullptr;
 };
 

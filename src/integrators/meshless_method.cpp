@@ -12,6 +12,7 @@
 #include "integrators/solution_field.h"
 #include "meshless/effective_area.h"
 #include "meshless/meshless_basis.h"
+#include "scene/direct_irradiance.h"
 #include "scene/light.h"
 #include "scene/scene.h"
 #include "util/cancellation.h"
@@ -46,29 +47,11 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 // What a surface point reflects of the lights directly: ρ Σ I·max(0, n·L)·V over every light sample
-// (opaque shadows).
+// (opaque shadows), each area light's samples jittered in their cells as the local model's are.
 Color direct_light(const Scene& scene, const Vec3& point, const Vec3& normal, const Color& albedo) {
   if (albedo.is_black()) return Color();
-  Color sum;
-  const double offset = scene.ray_offset(point);
-  const Vec3 origin = point + normal * offset;
-  for (const auto& light : scene.lights)
-    for (int index = 0; index < light->sample_count(); ++index) {  // an area light's samples²
-      LightSample sample;
-      if (!light->illuminate_sample(point, index, sample)) continue;
-      const double cosine = dot(normal, sample.direction);
-      if (!(cosine > 0)) continue;
-      Ray shadow;
-      shadow.origin = origin;
-      shadow.direction = sample.direction;
-      // Short of the light by the offset at both ends, as the local model: an emissive quad drawn
-      // where an area light is must not shadow it.
-      shadow.t_max = std::isinf(sample.distance) ? kInfinity : sample.distance - 2 * offset;
-      if (!(shadow.t_max > 0)) continue;
-      if (scene.occluded(shadow)) continue;
-      sum += sample.intensity * cosine;
-    }
-  return albedo * sum;
+  return albedo * direct_irradiance(scene, point, normal, EmitterSet::all_but_surfaces,
+                                    StratumJitter{true, scene.render.seed});
 }
 
 // Seed 002 Figure 4.7: the image with every site the eye can see drawn as a red dot (3 × 3

@@ -20,6 +20,7 @@
 #include "shading/material_bsdf.h"
 #include "util/cancellation.h"
 #include "util/error.h"
+#include "util/hash.h"
 #include "util/progress.h"
 
 namespace candela {
@@ -155,6 +156,9 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
   for (;; ++state.depth) {
     Intersection hit;
     if (!scene.intersect(state.ray, hit)) {
+      // Issue 19: the background colours what the camera sees (directly, or in mirrors and
+      // through glass) and lights nothing; an environment lights the scene too.
+      if (!scene.environment && !state.specular) break;
       const Color background = scene.background_along(state.ray.direction);
       if (!background.is_black()) {
         double weight = 1;
@@ -217,12 +221,6 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
     }
   }
   return L;
-}
-
-uint64_t mix64(uint64_t z) {  // splitmix64's finaliser
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
 }
 
 }  // namespace
@@ -555,7 +553,9 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
   }
   if (lights.empty())
     facts["warning"] =
-        "nothing emits light (no lights, emissive surfaces, environment or background): the image is black";
+        "nothing emits light (no lights, emissive surfaces or environment; the background lights nothing): "
+        "the "
+        "image shows the background alone";
   statistics.extra["path"] = facts;
   return output;
 }

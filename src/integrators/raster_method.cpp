@@ -55,12 +55,13 @@ class RasterShader {
         eye_(scene.camera->eye_position()),
         view_direction_(scene.camera->view_direction()) {
     if (settings_.shading == RasterShading::dot_product &&
-        kSurfaceVaryings + kPerLight * static_cast<int>(scene.lights.size()) > kMaxVaryings)
+        kSurfaceVaryings + kPerLight * static_cast<int>(scene.emitter_count()) > kMaxVaryings)
       throw InputError({scene.source, 0, 0, "raster.shading"},
                        "\"dotproduct\" interpolates " + std::to_string(kPerLight) +
                            " values per light and supports at most " +
                            std::to_string((kMaxVaryings - kSurfaceVaryings) / kPerLight) +
-                           " lights (the scene has " + std::to_string(scene.lights.size()) + ")");
+                           " lights (the scene has " + std::to_string(scene.emitter_count()) +
+                           ", its emissive surfaces included)");
   }
 
   int varying_count() const {
@@ -72,7 +73,7 @@ class RasterShader {
       case RasterShading::phong:
         return kNormal + 3;
       case RasterShading::dot_product:
-        return kSurfaceVaryings + kPerLight * static_cast<int>(scene_.lights.size());
+        return kSurfaceVaryings + kPerLight * static_cast<int>(scene_.emitter_count());
     }
     return 0;
   }
@@ -156,10 +157,10 @@ class RasterShader {
     hit.geometric_normal = hit.shading_normal = N;
     const SurfaceProperties at = material.at(hit);
     double* light_out = out + kSurfaceVaryings;
-    for (const auto& light : scene_.lights) {
+    for (std::size_t e = 0; e < scene_.emitter_count(); ++e) {
       LightSample sample;
       Vec3 L;
-      if (light->illuminate(p, sample))
+      if (scene_.emitter(e).illuminate(p, sample))
         L = sample.direction;
       else
         L = -N;  // outside a spot cone: no light from it here
@@ -226,12 +227,13 @@ class RasterShader {
     Color result = at.ka * scene_.ambient;
     const double offset = scene_.ray_offset(p);
     const double* light_in = v + kSurfaceVaryings;
-    for (const auto& light : scene_.lights) {
+    for (std::size_t e = 0; e < scene_.emitter_count(); ++e) {
+      const Light& light = scene_.emitter(e);
       const double n_dot_l = light_in[0];
       const Color specular{light_in[1], light_in[2], light_in[3]};
       light_in += kPerLight;
       LightSample sample;
-      if (n_dot_l <= 0 || !light->illuminate(p, sample)) continue;
+      if (n_dot_l <= 0 || !light.illuminate(p, sample)) continue;
       Color s(1);
       if (settings_.shadows) {
         const double reach = std::isfinite(sample.distance) ? sample.distance - 2 * offset : kInfinity;

@@ -108,7 +108,7 @@ RadiositySystem system_of(const std::vector<RadiositySurface>& surfaces) {
   for (const RadiositySurface& surface : surfaces) {
     system.areas.push_back(surface.area);
     system.reflectance.push_back(surface.reflectance);
-    system.emission.push_back(surface.emission);
+    system.emission.push_back(surface.emission + surface.first_shot);
   }
   return system;
 }

@@ -45,6 +45,10 @@ struct RadiositySurface {
   uint32_t primitive = 0, object = 0, material = 0;
   Color reflectance;  // ρ = kd at the centroid, clamped to [0, 1]
   Color emission;     // E of the material
+  // ρ times the direct light of the scene's lights (point, spot, directional, area) on the
+  // surface, averaged over it: radiosity's first shot (first_shot.h); the solvers' source term is
+  // emission + first_shot.
+  Color first_shot;
 };
 
 struct RadiosityMesh {
@@ -67,7 +71,8 @@ struct RadiosityMesh {
   SurfaceGrid element_grid;
 
   // The patches as a radiosity system (areas, ρ, E), and the elements as the receivers of a
-  // substructured system (their patches, areas, ρ, E; 000 §6.7.1).
+  // substructured system (their patches, areas, ρ, E; 000 §6.7.1); E is each surface's emission
+  // plus its first shot.
   RadiositySystem patch_system() const;
   ElementSystem element_system() const;
   double patch_area() const;    // Σ patch areas

@@ -11,6 +11,7 @@
 #include "distributed/cluster.h"
 #include "radiosity/adaptive_subdivision.h"
 #include "radiosity/diagnostics.h"
+#include "radiosity/first_shot.h"
 #include "radiosity/form_factor_memory.h"
 #include "radiosity/form_factor_rows.h"
 #include "radiosity/solvers.h"
@@ -116,6 +117,9 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
   }
   result.mesh = build_radiosity_mesh(scene, mesh_settings);
   result.mesh_seconds = mesh_time.seconds();
+  Stopwatch first_shot_time;
+  shoot_scene_lights(scene, result.mesh, all_rows(result.mesh.elements.size()), options.seed, options.quiet);
+  double first_shot_seconds = first_shot_time.seconds();
   Stopwatch solve_time;
   double form_factor_seconds = 0;  // of solve_seconds, the time spent computing form factors
   RadiosityMesh& mesh = result.mesh;
@@ -146,7 +150,8 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
     }
     reciprocity = measure_reciprocity(mesh.patches, patch_rows);
     if (stopped()) {  // Ctrl-C: not solved, B = E
-      for (const RadiositySurface& patch : mesh.patches) patch_radiosity.push_back(patch.emission);
+      for (const RadiositySurface& patch : mesh.patches)
+        patch_radiosity.push_back(patch.emission + patch.first_shot);
       patch_converged = false;
     } else {
       const RadiositySystem patches = mesh.patch_system();
@@ -199,6 +204,11 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
     if (std::find(split.begin(), split.end(), true) == split.end()) break;
     const std::vector<uint32_t> new_rows = split_elements_keeping_rows(scene, settings, split, mesh, rows);
     {
+      Stopwatch shot_time;
+      shoot_scene_lights(scene, mesh, new_rows, options.seed, true);
+      first_shot_seconds += shot_time.seconds();
+    }
+    {
       Stopwatch form_factor_time;
       fill_element_form_factor_rows(scene, settings, options.seed, mesh, new_rows, *rows.form_factors,
                                     rows.sums, cluster);
@@ -248,7 +258,9 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
            {"form_factor_memory_mib", static_cast<double>(result.form_factor_bytes) / 1048576.0},
            {"mesh_seconds", result.mesh_seconds},
            {"solve_seconds", result.solve_seconds},
-           {"form_factor_seconds", form_factor_seconds}};
+           {"form_factor_seconds", form_factor_seconds},
+           {"scene_lights", scene.lights.size()},
+           {"first_shot_seconds", first_shot_seconds}};
     if (reciprocity.measured) {  // progressive: up to 2,048 patches
       out["reciprocity_error"] = reciprocity.mean_error;
       out["reciprocity_error_max"] = reciprocity.max_error;

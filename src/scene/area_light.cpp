@@ -42,9 +42,10 @@ bool AreaLight::illuminate(const Vec3& point, LightSample& sample) const {
   return from(point, corner_ + (edge_u_ + edge_v_) * 0.5, area_, sample);
 }
 
-bool AreaLight::illuminate_sample(const Vec3& point, int index, LightSample& sample) const {
+bool AreaLight::illuminate_sample(const Vec3& point, int index, const Vec2& within,
+                                  LightSample& sample) const {
   if (index < 0 || index >= samples_ * samples_) return false;
-  const double s = (index % samples_ + 0.5) / samples_, t = (index / samples_ + 0.5) / samples_;
+  const double s = (index % samples_ + within.x) / samples_, t = (index / samples_ + within.y) / samples_;
   return from(point, corner_ + edge_u_ * s + edge_v_ * t, area_ / (samples_ * samples_), sample);
 }
 

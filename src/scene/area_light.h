@@ -3,8 +3,8 @@
 // exitance E (the same unit as a material's `emission`) from its front side (edge_u × edge_v), or
 // from both sides.
 //
-// The irradiance it gives a point x is ∫ (E/π) cos θ_l cos θ_x / d² dA. Sampled on the centres of
-// samples × samples equal cells (deterministic, the same for every point): sample k at y_k carries
+// The irradiance it gives a point x is ∫ (E/π) cos θ_l cos θ_x / d² dA. Sampled in
+// samples × samples equal cells (at the centres, or jittered per shading point): sample k at y_k carries
 // intensity (E/π) cos θ_l (A/samples²) / d², so that Σ_k intensity_k · cos θ_x is the irradiance —
 // the quantity the local model's diffuse term multiplies by kd, as for a point light with
 // inverse-square attenuation. The light itself is not seen by camera rays (give it an emissive
@@ -21,7 +21,8 @@ class AreaLight final : public Light {
   AreaLight(const Vec3& corner, const Vec3& edge_u, const Vec3& edge_v, const Color& exitance, int samples,
             bool two_sided);
   bool illuminate(const Vec3& point, LightSample& sample) const override;
-  bool illuminate_sample(const Vec3& point, int index, LightSample& sample) const override;
+  bool illuminate_sample(const Vec3& point, int index, const Vec2& within,
+                         LightSample& sample) const override;
   int sample_count() const override { return samples_ * samples_; }
   // A uniform point of the parallelogram carrying the whole area.
   bool illuminate_random(const Vec3& point, const Vec2& u, LightSample& sample) const override;

@@ -1,9 +1,16 @@
-// Light sources of the local model (SPEC §7). Ambient light is a scene-wide color.
+// Emitters (SPEC §7, issue 19): one interface for the scene file's lights (point, spot,
+// directional, area) and for emissive surfaces (surface_light.h), which the local model, the
+// rasterizer, radiosity's first shot and meshless η all read the same way. Ambient light is not
+// an emitter: it is the local model's constant term, a scene-wide color.
 #pragma once
 
+#include <bit>
+#include <cstddef>
+#include <cstdint>
 #include <string_view>
 
 #include "math/vector.h"
+#include "util/hash.h"
 
 namespace candela {
 
@@ -14,20 +21,41 @@ struct LightSample {
   Color intensity;  // Ip · f_at (· spot factor)
 };
 
+// Where in each cell (stratum) of a light's fixed sample set a shading point takes its sample: the
+// centre (`jittered` false), or a point of the cell drawn from a hash of the shading point, the
+// light, the cell and the seed — different from pixel to pixel, so that penumbrae are noise
+// rather than stepped bands, yet a pure function of the point, so images do not depend on the
+// thread count or on the order in which points are shaded.
+struct StratumJitter {
+  bool jittered = false;
+  uint64_t seed = 0;
+  Vec2 at(const Vec3& point, std::size_t light, int cell) const {
+    if (!jittered) return {0.5, 0.5};
+    uint64_t key = mix64(seed ^ 0x6a09e667f3bcc909ULL);
+    for (const double coordinate : {point.x, point.y, point.z})
+      key = mix64(key ^ std::bit_cast<uint64_t>(coordinate));
+    key = mix64(key ^ (static_cast<uint64_t>(light) << 32 | static_cast<uint32_t>(cell)));
+    return {static_cast<double>(key >> 40) * 0x1p-24, static_cast<double>(key & 0xffffffULL) * 0x1p-24};
+  }
+};
+
 class Light {
  public:
   virtual ~Light() = default;
   // False when the point receives nothing (outside a spot cone). A light made of many points
-  // (an area light) answers here as one point at its centre carrying all of it; methods that
-  // trace shadows use the samples below instead.
+  // (an area light, an emissive surface) answers here as one point at its centre carrying all of
+  // it; methods that trace shadows use the samples below instead.
   virtual bool illuminate(const Vec3& point, LightSample& sample) const = 0;
   virtual std::string_view type_name() const = 0;
 
   // The light as sample_count() point samples whose intensities add up to what it sends: one for
-  // the point-like lights, a fixed stratified set for an area light (the same for every point,
-  // so images do not depend on anything but the point).
+  // the point-like lights; for an area light or an emissive surface one per cell of a fixed
+  // stratification, sample `index` taken at `within` ∈ [0, 1)² of its cell ({0.5, 0.5}: the
+  // centre; StratumJitter says where).
   virtual int sample_count() const { return 1; }
-  virtual bool illuminate_sample(const Vec3& point, int index, LightSample& sample) const {
+  virtual bool illuminate_sample(const Vec3& point, int index, const Vec2& within,
+                                 LightSample& sample) const {
+    (void)within;
     return index == 0 && illuminate(point, sample);
   }
   // One random point of the light (u uniform in [0, 1)²) carrying the whole light, so that its

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "accel/accelerator_registry.h"
+#include "scene/environment_light.h"
 #include "shading/environment.h"
 
 namespace candela {
@@ -27,7 +28,10 @@ Color Scene::background_along(const Vec3& direction) const {
 
 void Scene::prepare() {
   for (Material& material : materials) material.prepare();
-  if (environment) environment->prepare_sampling();
+  if (environment) {
+    environment->prepare_sampling();
+    environment_light = std::make_unique<EnvironmentLight>(*environment, render.environment_light_samples);
+  }
   const AcceleratorEntry* entry = find_accelerator(render.accelerator);
   if (!entry)
     throw std::invalid_argument("unknown accelerator " + render.accelerator);  // checked by the loader

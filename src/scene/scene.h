@@ -16,6 +16,7 @@
 #include "camera/tone_map.h"
 #include "scene/light.h"
 #include "scene/plugin_settings.h"
+#include "scene/surface_light.h"
 #include "shading/material.h"
 #include "util/error.h"
 
@@ -25,11 +26,13 @@ struct RenderSettings {
   std::string method = "whitted";
   SourceLocation method_location;
   uint64_t seed = 0;
-  std::string accelerator = "list";
+  std::string accelerator = "bvh";
   // The list accelerator tests each scene object's volume before its primitives.
   BoundingVolumeKind bounding_volume = BoundingVolumeKind::none;
   double ray_offset = 0;  // 0: derived from the scene's extent (see Scene::ray_offset)
   int tile_size = 16;
+  int surface_light_samples = 4;      // per side: an emissive surface's samples² shadow rays
+  int environment_light_samples = 4;  // per side: the environment's samples² shadow rays
 };
 
 // One entry of the scene file's "shapes" array.
@@ -68,7 +71,24 @@ class Scene {
   std::vector<Primitive> primitives;
   std::vector<SceneObject> objects;
   std::vector<Material> materials;
-  std::vector<std::unique_ptr<Light>> lights;
+  std::vector<std::unique_ptr<Light>> lights;  // the "lights" array
+  // The emissive objects as lights (surface_light.h), made by the loader.
+  std::vector<std::unique_ptr<SurfaceLight>> surface_lights;
+  // The environment as a light (environment_light.h), made by prepare() when there is one.
+  std::unique_ptr<Light> environment_light;
+  // Every emitter a shadow ray can aim at: the lights, the surface lights, then the environment
+  // (relighting swaps `lights`, so this is counted, never cached).
+  std::size_t emitter_count() const {
+    return lights.size() + surface_lights.size() + (environment_light ? 1 : 0);
+  }
+  const Light& emitter(std::size_t i) const {
+    if (i < lights.size()) return *lights[i];
+    i -= lights.size();
+    return i < surface_lights.size() ? *surface_lights[i] : *environment_light;
+  }
+  bool is_surface_emitter(std::size_t i) const {
+    return i >= lights.size() && i < lights.size() + surface_lights.size();
+  }
   Color ambient;     // Ia
   Color background;  // what a ray that leaves the scene returns, without an environment
   std::unique_ptr<Environment> environment;  // environment map (000 §4.1.3), or null

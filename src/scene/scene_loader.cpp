@@ -81,6 +81,7 @@ class SceneReader {
     read_materials();
     read_lights();
     read_shapes();
+    make_surface_lights();
     root_.finish();
     scene->prepare();
     return scene;
@@ -144,6 +145,8 @@ class SceneReader {
       }
       scene_->render.ray_offset = render->number("ray_offset", 0.0, Range::non_negative());
       scene_->render.tile_size = render->integer("tile_size", 16, {1, 4096, false, false});
+      scene_->render.surface_light_samples = render->integer(
+          "surface_light_samples", scene_->render.surface_light_samples, {1, 64, false, false});
       render->finish();
     }
     if (const auto film = root_.get("film")) {
@@ -265,6 +268,31 @@ class SceneReader {
         scene_->shapes.push_back(std::move(shape));
       }
       scene_->objects.push_back(std::move(object));
+    }
+  }
+
+  // Issue 19: every emissive object is a light for the methods that aim shadow rays at emitters
+  // (one per object and emissive material). A surface that cannot be sampled (an unbounded
+  // plane) lights the scene only where rays happen to hit it (the path tracer's BSDF rays).
+  void make_surface_lights() {
+    for (const SceneObject& object : scene_->objects) {
+      std::map<uint32_t, std::vector<const Shape*>> shapes_by_material;
+      for (uint32_t p = object.first_primitive; p < object.first_primitive + object.primitive_count; ++p) {
+        const Primitive& primitive = scene_->primitives[p];
+        if (!scene_->materials[primitive.material].emission.is_black())
+          shapes_by_material[primitive.material].push_back(primitive.shape);
+      }
+      for (const auto& [material, shapes] : shapes_by_material) {
+        try {
+          scene_->surface_lights.push_back(
+              std::make_unique<SurfaceLight>(object.name, shapes, scene_->materials[material].emission,
+                                             scene_->render.surface_light_samples));
+        } catch (const std::invalid_argument&) {
+          scene_->warnings.push_back("the emissive " + object.type + " \"" + object.name +
+                                     "\" cannot be sampled: only the path tracer's rays that hit it see its "
+                                     "light (local, whitted, raster and meshless do not)");
+        }
+      }
     }
   }
 

@@ -1,0 +1,27 @@
+// What a surface point receives straight from the emitters, with opaque shadows: the sum over every
+// sample of the chosen emitters of I · max(0, n·L) · V (V = 0 when something lies between) — the
+// irradiance, in the units in which a diffuse surface of reflectance ρ reflects ρ times it. One
+// implementation for the methods that light diffuse points from the lights: meshless η (seed 002
+// §4.3, the hybrid method's direct part) and radiosity's first shot (issue 19: point, spot,
+// directional and area lights light each element, the approach of Lightscape and of Radiance's
+// direct component). The local model's own loop (integrators/direct_lighting.h) adds transparent
+// shadows and the specular term.
+#pragma once
+
+#include "math/vector.h"
+#include "scene/light.h"
+
+namespace candela {
+
+class Scene;
+
+enum class EmitterSet {
+  all_but_surfaces,  // the "lights" array and the environment (radiosity meshes the emissive
+                     // surfaces as emitters of its own)
+  everything,        // the lights, the emissive surfaces and the environment (Scene::emitter)
+};
+
+Color direct_irradiance(const Scene& scene, const Vec3& point, const Vec3& normal, EmitterSet emitters,
+                        const StratumJitter& jitter);
+
+}  // namespace candela
