@@ -17,6 +17,7 @@
 #include "scene/scene.h"
 #include "util/cancellation.h"
 #include "util/memory.h"
+#include "util/progress.h"
 
 namespace candela {
 
@@ -46,12 +47,15 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// What a surface point reflects of the lights directly: ρ Σ I·max(0, n·L)·V over every light sample
-// (opaque shadows), each area light's samples jittered in their cells as the local model's are.
+// What a surface point reflects of the emitters directly: ρ Σ I·max(0, n·L)·V over every sample of
+// the lights, the emissive surfaces and the environment (opaque shadows), the samples of each
+// jittered in their cells as the local model's are. Issue 19: an emissive surface lights the
+// sites through these shadow rays, not through the sites that land on it, so a lamp's power no
+// longer depends on them; its own emission is drawn where the camera sees it, never transferred.
 Color direct_light(const Scene& scene, const Vec3& point, const Vec3& normal, const Color& albedo) {
   if (albedo.is_black()) return Color();
-  return albedo * direct_irradiance(scene, point, normal, EmitterSet::all_but_surfaces,
-                                    StratumJitter{true, scene.render.seed});
+  const StratumJitter jitter{true, scene.render.seed};
+  return albedo * direct_irradiance(scene, point, normal, EmitterSet::everything, jitter);
 }
 
 // Seed 002 Figure 4.7: the image with every site the eye can see drawn as a red dot (3 × 3
@@ -141,7 +145,7 @@ std::size_t transfer_entry_limit() {
 // build_meshless_geometry; when cancellable, null once Ctrl-C arrives between its phases
 // (sampling, areas, transfer matrix).
 std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const MeshlessSettings& settings,
-                                                 bool cancellable, Cluster* cluster = nullptr) {
+                                                 bool cancellable, bool quiet, Cluster* cluster = nullptr) {
   // Every rank stops at the same phase (a collective when distributed).
   const auto stop = [&] { return cancellable && cancelled_anywhere(cluster); };
   auto geometry = std::make_shared<MeshlessGeometry>();
@@ -169,8 +173,12 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const Meshl
         integrate_effective_areas(scene, *geometry->basis, sites, sites.spacing / 4, 64, cluster);
   geometry->area_seconds = seconds_since(start);
   if (stop()) return nullptr;
-  geometry->matrix =
-      compute_transfer_matrix(scene, sites.sites, geometry->areas, transfer_entry_limit(), cluster);
+  // Issue 19: the longest phase shows its rows (rank 0, for every rank).
+  ProgressReporter progress("transfer matrix", sites.sites.size(), "sites",
+                            quiet || (cluster && !cluster->root()));
+  geometry->matrix = compute_transfer_matrix(scene, sites.sites, geometry->areas, transfer_entry_limit(),
+                                             cluster, &progress);
+  progress.finish();
   return geometry;
 }
 
@@ -178,7 +186,7 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const Meshl
 
 std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene,
                                                           const MeshlessSettings& settings) {
-  return build_geometry(scene, settings, false);
+  return build_geometry(scene, settings, false, true);
 }
 
 MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& settings,
@@ -188,8 +196,7 @@ MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& sett
   MeshlessLighting lighting;
   lighting.eta.resize(sites.sites.size());
   tbb::parallel_for(std::size_t(0), sites.sites.size(), [&](std::size_t i) {
-    lighting.eta[i] = sites.emission[i] +
-                      direct_light(scene, sites.sites[i].position, sites.sites[i].normal, sites.albedo[i]);
+    lighting.eta[i] = direct_light(scene, sites.sites[i].position, sites.sites[i].normal, sites.albedo[i]);
   });
   lighting.transfer = solve_transfer(geometry.matrix, sites.albedo, lighting.eta, settings.tolerance,
                                      static_cast<std::size_t>(settings.max_iterations));
@@ -225,12 +232,12 @@ MeshlessSolution solve_meshless(const Scene& scene, const MeshlessSettings& sett
 }
 
 std::shared_ptr<const MeshlessGeometry> MeshlessMethod::geometry_for(const Scene& scene, bool& reused,
-                                                                     Cluster* cluster) const {
+                                                                     Cluster* cluster, bool quiet) const {
   const std::string key = geometry_key(scene, settings_);
   std::lock_guard lock(cache_mutex_);
   reused = cached_ && cached_key_ == key;
   if (reused) return cached_;
-  std::shared_ptr<const MeshlessGeometry> geometry = build_geometry(scene, settings_, true, cluster);
+  std::shared_ptr<const MeshlessGeometry> geometry = build_geometry(scene, settings_, true, quiet, cluster);
   if (!geometry) return nullptr;  // Ctrl-C: nothing kept
   cached_ = std::move(geometry);
   cached_key_ = key;
@@ -245,7 +252,8 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
   // other light set-ups: --relight); the direct light and the iteration are redone every time.
   bool reused = false;
   Cluster* cluster = several_ranks(request);
-  const std::shared_ptr<const MeshlessGeometry> geometry = geometry_for(scene, reused, cluster);
+  const std::shared_ptr<const MeshlessGeometry> geometry =
+      geometry_for(scene, reused, cluster, request.quiet);
   // Ctrl-C before λ exists: the film stays black.
   const auto interrupted = [&](const char* completed) {
     statistics.extra["interrupted"] = true;
@@ -285,18 +293,19 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
             global += solution.transfer.lambda[i] * phi;
             direct += solution.eta[i] * phi;
           }
+          // An emitter is drawn with its own emission (λ and η hold only reflected light).
+          const Material& material = scene.material_of(hit);
           switch (settings.display) {
             case MeshlessDisplay::global:
-              color = global;
+              color = material.emission + global;
               break;
             case MeshlessDisplay::direct:
-              color = direct;
+              color = material.emission + direct;
               break;
             case MeshlessDisplay::indirect:
               color = global - direct;
               break;
             case MeshlessDisplay::hybrid: {
-              const Material& material = scene.material_of(hit);
               const Color albedo = material.at(hit.surface).diffuse_albedo();
               color =
                   material.emission + direct_light(scene, p.position, p.normal, albedo) + (global - direct);
@@ -340,13 +349,14 @@ class MeshlessField final : public SolutionField {
     thread_local std::vector<std::pair<uint32_t, double>> weights;
     geometry_->basis->evaluate(p, weights);
     if (weights.empty()) return false;
-    exitance = Color();
+    exitance = scene_.material_of(hit).emission;  // λ holds the reflected light alone
     for (const auto& [i, phi] : weights) exitance += lighting_.transfer.lambda[i] * phi;
     return true;
   }
-  // η's direct term for a white receiver: the same light samples and shadows.
+  // What rays cannot hit: the lights (the same samples and shadows as η).
   Color direct_irradiance(const Vec3& point, const Vec3& normal) const override {
-    return direct_light(scene_, point, normal, Color(1));
+    return candela::direct_irradiance(scene_, point, normal, EmitterSet::lights,
+                                      StratumJitter{true, scene_.render.seed});
   }
 
  private:

@@ -106,8 +106,8 @@ class MeshlessMethod final : public Method {
   RenderResult render(const Scene& scene, const RenderRequest& request) const override;
 
  private:
-  std::shared_ptr<const MeshlessGeometry> geometry_for(const Scene& scene, bool& reused,
-                                                       Cluster* cluster) const;
+  std::shared_ptr<const MeshlessGeometry> geometry_for(const Scene& scene, bool& reused, Cluster* cluster,
+                                                       bool quiet) const;
   MeshlessSettings settings_;
   mutable std::mutex cache_mutex_;
   mutable std::shared_ptr<const MeshlessGeometry> cached_;

@@ -58,10 +58,11 @@ ProbeResult probe_field(const Scene& scene, const SolutionField& field, const Li
                         uint64_t& uncovered, RayCounts& rays) {
   const ShadingFrame frame = ShadingFrame::from_normal(point.normal);
   const Vec3 origin = sensor_origin(scene, point);
-  // The exitance the ray sees (the background's value where it leaves) and the hit's primitive.
+  // The exitance the ray sees (the environment's where it leaves: the background lights nothing)
+  // and the hit's primitive.
   const auto seen = [&](const Ray& ray, Intersection& hit, bool& found) {
     found = scene.intersect(ray, hit);
-    if (!found) return scene.background_along(ray.direction);
+    if (!found) return scene.sky_along(ray.direction);
     Color b;
     if (field.exitance(ray, hit, b)) return b;
     ++uncovered;

@@ -6,6 +6,7 @@
 #include "integrators/solution_field.h"
 #include "radiosity/display.h"
 #include "radiosity/vertex_radiosity.h"
+#include "scene/direct_irradiance.h"
 
 namespace candela {
 namespace {
@@ -13,8 +14,9 @@ namespace {
 // The ray-traced display's field: the vertex radiosities interpolated over the element hit.
 class RadiosityField final : public SolutionField {
  public:
-  explicit RadiosityField(RadiositySolveResult solution)
-      : solution_(std::move(solution)),
+  RadiosityField(const Scene& scene, RadiositySolveResult solution)
+      : scene_(scene),
+        solution_(std::move(solution)),
         vertices_(compute_vertex_radiosity(solution_.mesh.elements, solution_.element_radiosity,
                                            solution_.element_hidden)) {}
   bool exitance(const Ray& ray, const Intersection& hit, Color& exitance) const override {
@@ -28,11 +30,14 @@ class RadiosityField final : public SolutionField {
     exitance = ray_traced_radiosity(solution_, vertices_, element, hit);
     return true;
   }
-  Color direct_irradiance(const Vec3&, const Vec3&) const override {
-    return {};
-  }  // emissive surfaces only (000 §6)
+  // What rays cannot hit: the lights, as the first shot lit the elements (radiosity/first_shot.h).
+  Color direct_irradiance(const Vec3& point, const Vec3& normal) const override {
+    return candela::direct_irradiance(scene_, point, normal, EmitterSet::lights,
+                                      StratumJitter{true, scene_.render.seed});
+  }
 
  private:
+  const Scene& scene_;
   RadiositySolveResult solution_;
   VertexRadiosity vertices_;
 };
@@ -40,7 +45,7 @@ class RadiosityField final : public SolutionField {
 }  // namespace
 
 std::unique_ptr<SolutionField> make_radiosity_field(const Scene& scene, bool quiet) {
-  return std::make_unique<RadiosityField>(solve_radiosity(scene, quiet));
+  return std::make_unique<RadiosityField>(scene, solve_radiosity(scene, quiet));
 }
 
 }  // namespace candela

@@ -16,8 +16,8 @@ class SolutionField {
   // origin; false when the solution does not cover that point (off the mesh, no site near).
   virtual bool exitance(const Ray& ray, const Intersection& hit, Color& exitance) const = 0;
   // The irradiance the scene's lights (point, spot, directional, area: rays never hit them) give
-  // the sensor at point facing normal, in the solution's own model — black when the solution
-  // ignores them (classic radiosity lights by emissive surfaces only).
+  // the sensor at point facing normal, in the solution's own model (emissive surfaces and the
+  // environment are found by the gathering rays).
   virtual Color direct_irradiance(const Vec3& point, const Vec3& normal) const = 0;
 };
 

@@ -12,6 +12,7 @@
 #include "distributed/task_farm.h"
 #include "math/constants.h"
 #include "scene/scene.h"
+#include "util/progress.h"
 
 namespace candela {
 
@@ -38,7 +39,7 @@ using Row = std::vector<Entry>;
 
 TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Site>& sites,
                                        const std::vector<double>& effective_area, std::size_t max_entries,
-                                       Cluster* cluster) {
+                                       Cluster* cluster, ProgressReporter* progress) {
   if (effective_area.size() != sites.size())
     throw std::invalid_argument("transfer matrix: " + std::to_string(effective_area.size()) + " areas for " +
                                 std::to_string(sites.size()) + " sites");
@@ -96,6 +97,7 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
       if (too_many.load(std::memory_order_relaxed)) return;
       rays += compute_row(j, rows[j]);
       keep(rows[j].size());
+      if (progress) progress->advance();
     });
   } else {
     // Across ranks (issue 11): chunks of receivers handed out dynamically, every rank ends with
@@ -137,6 +139,7 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
             // Past the limit nothing more is kept (the build is refused below): memory stays bounded.
             rows[first + k] = too_many ? Row() : std::move(row);
           }
+          if (progress) progress->advance(count);
         },
         [&](std::size_t task) {
           const std::size_t first = task * chunk, count = std::min(chunk, n - first);

@@ -29,6 +29,7 @@
 namespace candela {
 
 class Cluster;
+class ProgressReporter;
 class Scene;
 
 struct TransferMatrix {
@@ -45,9 +46,10 @@ struct TransferMatrix {
 // max_entries refuses (std::invalid_argument naming the spacing) before more would be kept.
 // With a cluster of several ranks the rows are computed across them and every rank gets all of
 // S, the same as one process computes (issue 11).
+// progress, when given, is advanced once per row (rank 0 counts every rank's rows).
 TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Site>& sites,
                                        const std::vector<double>& effective_area, std::size_t max_entries = 0,
-                                       Cluster* cluster = nullptr);
+                                       Cluster* cluster = nullptr, ProgressReporter* progress = nullptr);
 
 struct TransferSolution {
   std::vector<Color> lambda;

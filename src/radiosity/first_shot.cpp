@@ -51,7 +51,7 @@ void shoot_scene_lights(const Scene& scene, RadiosityMesh& mesh, std::span<const
       for (Vec3 point : points) {
         Vec3 normal = element.normal;
         onto_surface(shape, element, point, normal);
-        sum += direct_irradiance(scene, point, normal, EmitterSet::all_but_surfaces, jitter);
+        sum += direct_irradiance(scene, point, normal, EmitterSet::lights_and_environment, jitter);
       }
       element.first_shot = element.reflectance * sum * 0.25;
       progress.advance();

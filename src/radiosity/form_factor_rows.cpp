@@ -15,6 +15,7 @@
 #include "radiosity/ray_cast_form_factors.h"
 #include "scene/scene.h"
 #include "util/cancellation.h"
+#include "util/progress.h"
 
 namespace candela {
 namespace {
@@ -32,7 +33,7 @@ void compute_form_factor_rows(const Scene& scene, const RadiositySettings& setti
                               const std::vector<RadiositySurface>& surfaces, std::span<const uint32_t> rows,
                               const std::vector<RadiositySurface>& targets,
                               const FormFactorGeometry& geometry, Skipped skipped, Sink write,
-                              std::span<double> sums) {
+                              std::span<double> sums, ProgressReporter* progress) {
   if (settings.form_factors == RadiosityFormFactors::hemicube) {
     const auto table = std::make_shared<const DeltaFormFactors>(settings.hemicube_resolution);
     tbb::enumerable_thread_specific<std::unique_ptr<HemicubeFormFactors>> hemicubes;
@@ -47,6 +48,7 @@ void compute_form_factor_rows(const Scene& scene, const RadiositySettings& setti
                             static_cast<uint32_t>(skipped(i)), row);
       for (std::size_t j = 0; j < row.size(); ++j) write(k, j, row[j]);
       sums[k] = row_sum(row);
+      if (progress) progress->advance();
     });
   } else {
     std::vector<FormFactorElement> sources;
@@ -70,6 +72,7 @@ void compute_form_factor_rows(const Scene& scene, const RadiositySettings& setti
         sum += form_factor;
       }
       sums[k] = sum;
+      if (progress) progress->advance();
     });
   }
 }
@@ -80,9 +83,12 @@ void fill_form_factor_rows(const Scene& scene, const RadiositySettings& settings
                            const std::vector<RadiositySurface>& surfaces, const std::vector<uint32_t>& rows,
                            const std::vector<RadiositySurface>& targets, const FormFactorGeometry& geometry,
                            Skipped skipped, Matrix& matrix, std::vector<double>& sums_by_row,
-                           Cluster* cluster) {
+                           Cluster* cluster, bool quiet) {
   using Scalar = typename Matrix::Scalar;
   std::vector<double> sums(rows.size());
+  // Issue 19: the rows take half a minute on large meshes; rank 0 shows them (every rank's rows
+  // come back to it).
+  ProgressReporter progress("form factors", rows.size(), "rows", quiet || (cluster && !cluster->root()));
   if (!cluster || !cluster->distributed()) {
     compute_form_factor_rows(
         scene, settings, seed, surfaces, rows, targets, geometry, skipped,
@@ -90,7 +96,7 @@ void fill_form_factor_rows(const Scene& scene, const RadiositySettings& settings
           matrix(static_cast<Eigen::Index>(rows[k]), static_cast<Eigen::Index>(j)) =
               static_cast<Scalar>(value);
         },
-        sums);
+        sums, &progress);
   } else {
     // Chunks of about 8 a rank's worth of threads, at most 64 rows: enough to balance, few messages.
     const std::size_t chunk =
@@ -117,7 +123,7 @@ void fill_form_factor_rows(const Scene& scene, const RadiositySettings& settings
               [&](std::size_t k, std::size_t j, double value) {
                 values[k * columns + j] = static_cast<Scalar>(value);
               },
-              chunk_sums);
+              chunk_sums, nullptr);
           return chunk_bytes(values, chunk_sums);
         },
         [&](std::size_t task, std::span<const std::byte> result) {
@@ -131,6 +137,7 @@ void fill_form_factor_rows(const Scene& scene, const RadiositySettings& settings
                   values[k * columns + j];
             sums[first + k] = chunk_sums[k];
           }
+          progress.advance(chunk_sums.size());
         },
         [&](std::size_t task) {
           const std::size_t first = task * chunk, count = std::min(chunk, rows.size() - first);
@@ -142,6 +149,7 @@ void fill_form_factor_rows(const Scene& scene, const RadiositySettings& settings
           return chunk_bytes(values, std::span<const double>(sums).subspan(first, count));
         });
   }
+  progress.finish();
   for (std::size_t k = 0; k < rows.size(); ++k) sums_by_row[rows[k]] = sums[k];
 }
 
@@ -155,18 +163,19 @@ std::vector<uint32_t> all_rows(std::size_t count) {
 
 void fill_patch_form_factor_rows(const Scene& scene, const RadiositySettings& settings, uint64_t seed,
                                  const RadiosityMesh& mesh, Eigen::MatrixXd& rows, std::vector<double>& sums,
-                                 Cluster* cluster) {
+                                 Cluster* cluster, bool quiet) {
   fill_form_factor_rows(
       scene, settings, seed, mesh.patches, all_rows(mesh.patches.size()), mesh.patches, mesh.patch_geometry,
-      [](std::size_t i) { return i; }, rows, sums, cluster);
+      [](std::size_t i) { return i; }, rows, sums, cluster, quiet);
 }
 
 void fill_element_form_factor_rows(const Scene& scene, const RadiositySettings& settings, uint64_t seed,
                                    const RadiosityMesh& mesh, const std::vector<uint32_t>& elements,
-                                   ElementToPatch& matrix, std::vector<double>& sums, Cluster* cluster) {
+                                   ElementToPatch& matrix, std::vector<double>& sums, Cluster* cluster,
+                                   bool quiet) {
   fill_form_factor_rows(
       scene, settings, seed, mesh.elements, elements, mesh.patches, mesh.patch_geometry,
-      [&](std::size_t q) { return std::size_t{mesh.patch_of_element[q]}; }, matrix, sums, cluster);
+      [&](std::size_t q) { return std::size_t{mesh.patch_of_element[q]}; }, matrix, sums, cluster, quiet);
 }
 
 }  // namespace candela

@@ -8,7 +8,7 @@
 // ranks (issue 11) the rows go out in chunks (dynamic scheduling) and every rank ends with every
 // row, converted to the matrix's scalar where it was computed: the same values as one process,
 // so every rank's solve — and its solution — is that of one process. Ctrl-C leaves the rows not
-// begun zero.
+// begun zero. Unless quiet, a progress bar counts the rows (rank 0's, for all ranks).
 #pragma once
 
 #include <Eigen/Dense>
@@ -40,13 +40,14 @@ std::vector<uint32_t> all_rows(std::size_t count);
 // (patches × patches), and their sums into sums (one per patch). seed: the ray-cast streams.
 void fill_patch_form_factor_rows(const Scene& scene, const RadiositySettings& settings, uint64_t seed,
                                  const RadiosityMesh& mesh, Eigen::MatrixXd& rows, std::vector<double>& sums,
-                                 Cluster* cluster);
+                                 Cluster* cluster, bool quiet = true);
 
 // The element rows F_qj of the elements `elements` (a form factor to every patch; none to the
 // element's own patch) into those rows of matrix (elements × patches) and of sums; the other rows
 // are left as they are.
 void fill_element_form_factor_rows(const Scene& scene, const RadiositySettings& settings, uint64_t seed,
                                    const RadiosityMesh& mesh, const std::vector<uint32_t>& elements,
-                                   ElementToPatch& matrix, std::vector<double>& sums, Cluster* cluster);
+                                   ElementToPatch& matrix, std::vector<double>& sums, Cluster* cluster,
+                                   bool quiet = true);
 
 }  // namespace candela

@@ -145,7 +145,8 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
                                static_cast<Eigen::Index>(patch_count));
     {
       Stopwatch form_factor_time;
-      fill_patch_form_factor_rows(scene, settings, options.seed, mesh, patch_rows, patch_sums, cluster);
+      fill_patch_form_factor_rows(scene, settings, options.seed, mesh, patch_rows, patch_sums, cluster,
+                                  options.quiet);
       form_factor_seconds += form_factor_time.seconds();
     }
     reciprocity = measure_reciprocity(mesh.patches, patch_rows);
@@ -178,7 +179,7 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
   {
     Stopwatch form_factor_time;
     fill_element_form_factor_rows(scene, settings, options.seed, mesh, all_rows(mesh.elements.size()),
-                                  *rows.form_factors, rows.sums, cluster);
+                                  *rows.form_factors, rows.sums, cluster, options.quiet);
     form_factor_seconds += form_factor_time.seconds();
   }
   // Ctrl-C before every row was computed: the rows not begun are zero.
@@ -211,7 +212,7 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
     {
       Stopwatch form_factor_time;
       fill_element_form_factor_rows(scene, settings, options.seed, mesh, new_rows, *rows.form_factors,
-                                    rows.sums, cluster);
+                                    rows.sums, cluster, options.quiet);
       form_factor_seconds += form_factor_time.seconds();
     }
     form_factor_rows += new_rows.size();

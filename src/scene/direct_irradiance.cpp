@@ -12,7 +12,8 @@ Color direct_irradiance(const Scene& scene, const Vec3& point, const Vec3& norma
   const double offset = scene.ray_offset(point);
   const Vec3 origin = point + normal * offset;
   for (std::size_t e = 0; e < scene.emitter_count(); ++e) {
-    if (emitters == EmitterSet::all_but_surfaces && scene.is_surface_emitter(e)) continue;
+    if (emitters != EmitterSet::everything && scene.is_surface_emitter(e)) continue;
+    if (emitters == EmitterSet::lights && e >= scene.lights.size()) break;
     const Light& light = scene.emitter(e);
     for (int index = 0; index < light.sample_count(); ++index) {  // an area light's samples²
       LightSample sample;

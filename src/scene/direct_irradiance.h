@@ -16,9 +16,10 @@ namespace candela {
 class Scene;
 
 enum class EmitterSet {
-  all_but_surfaces,  // the "lights" array and the environment (radiosity meshes the emissive
-                     // surfaces as emitters of its own)
-  everything,        // the lights, the emissive surfaces and the environment (Scene::emitter)
+  lights,                  // the "lights" array alone (what rays cannot hit: probe's sensors)
+  lights_and_environment,  // and the environment (radiosity meshes the emissive surfaces as
+                           // emitters of its own)
+  everything,              // the lights, the emissive surfaces and the environment (Scene::emitter)
 };
 
 Color direct_irradiance(const Scene& scene, const Vec3& point, const Vec3& normal, EmitterSet emitters,

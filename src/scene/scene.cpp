@@ -26,6 +26,10 @@ Color Scene::background_along(const Vec3& direction) const {
   return {c.r > 0 ? c.r : 0.0, c.g > 0 ? c.g : 0.0, c.b > 0 ? c.b : 0.0};
 }
 
+Color Scene::sky_along(const Vec3& direction) const {
+  return environment ? background_along(direction) : Color();
+}
+
 void Scene::prepare() {
   for (Material& material : materials) material.prepare();
   if (environment) {

@@ -110,6 +110,9 @@ class Scene {
   // What a ray leaving the scene along the unit direction sees: the environment map, or the
   // background color.
   Color background_along(const Vec3& direction) const;
+  // What arrives from outside the scene along a direction as light: the environment's radiance,
+  // black without one (the background lights nothing, issue 19).
+  Color sky_along(const Vec3& direction) const;
 
   const Material& material_of(const Intersection& hit) const {
     return materials[primitives[hit.primitive].material];

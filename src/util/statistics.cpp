@@ -57,13 +57,18 @@ std::string RunStatistics::summary() const {
     total += seconds;
   }
   text += fmt::format("  {:<16} {:>10.3f} s\n", "total", total);
-  text += fmt::format("  rays: {} primary, {} shadow, {} reflected, {} refracted ({} total", rays.primary,
-                      rays.shadow, rays.reflected, rays.refracted, rays.total());
-  double render_seconds = 0;
-  for (const auto& [name, seconds] : phases)
-    if (name == "render") render_seconds = seconds;
-  if (render_seconds > 0) text += fmt::format(", {:.2f} Mrays/s", rays.total() / render_seconds / 1e6);
-  text += ")\n";
+  // Issue 19: no "0 rays, 0.00 Mrays/s" for a method that traced none (a rasterized display).
+  if (rays.total() == 0) {
+    text += "  rays: none traced\n";
+  } else {
+    text += fmt::format("  rays: {} primary, {} shadow, {} reflected, {} refracted ({} total", rays.primary,
+                        rays.shadow, rays.reflected, rays.refracted, rays.total());
+    double render_seconds = 0;
+    for (const auto& [name, seconds] : phases)
+      if (name == "render") render_seconds = seconds;
+    if (render_seconds > 0) text += fmt::format(", {:.2f} Mrays/s", rays.total() / render_seconds / 1e6);
+    text += ")\n";
+  }
   if (!primary_per_pixel.empty() && pixels > 0) {
     uint32_t most = 0;
     for (const uint32_t count : primary_per_pixel) most = std::max(most, count);

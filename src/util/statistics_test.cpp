@@ -1,0 +1,26 @@
+#include "util/statistics.h"
+
+#include <gtest/gtest.h>
+
+namespace candela {
+namespace {
+
+// Issue 19: a method that traced no ray in the phase (a rasterized display) is not summarised as
+// "0 rays, 0.00 Mrays/s"; one that did gets its rate.
+TEST(RunStatistics, SummarySaysNoRaysRatherThanZeroMraysPerSecond) {
+  RunStatistics rasterized;
+  rasterized.add_phase("render", 2.0);
+  const std::string none = rasterized.summary();
+  EXPECT_NE(none.find("rays: none traced"), std::string::npos) << none;
+  EXPECT_EQ(none.find("Mrays/s"), std::string::npos) << none;
+
+  RunStatistics traced;
+  traced.add_phase("render", 2.0);
+  traced.rays.primary = 3'000'000;
+  traced.rays.shadow = 1'000'000;
+  const std::string rate = traced.summary();
+  EXPECT_NE(rate.find("(4000000 total, 2.00 Mrays/s)"), std::string::npos) << rate;
+}
+
+}  // namespace
+}  // namespace candela
