@@ -60,8 +60,8 @@ class MeshlessBasis {
   BasisKind kind_;
   RadialKernel kernel_;
   double shepard_power_;
-  double largest_radius_ = 0;        // the finite ones
-  std::vector<uint32_t> unbounded_;  // sites of infinite radius: candidates everywhere
+  double largest_radius_ = 0;        // the Euclidean search's reach: all finite supports but the widest 1 %
+  std::vector<uint32_t> unbounded_;  // sites of infinite or widest support: candidates everywhere
   SiteIndex index_;
 };
 

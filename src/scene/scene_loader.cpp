@@ -147,6 +147,8 @@ class SceneReader {
       scene_->render.tile_size = render->integer("tile_size", 16, {1, 4096, false, false});
       scene_->render.surface_light_samples = render->integer(
           "surface_light_samples", scene_->render.surface_light_samples, {1, 64, false, false});
+      scene_->render.environment_light_samples = render->integer(
+          "environment_light_samples", scene_->render.environment_light_samples, {1, 64, false, false});
       render->finish();
     }
     if (const auto film = root_.get("film")) {

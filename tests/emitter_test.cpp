@@ -1,0 +1,112 @@
+// Issue 19, "one emitter model": three small closed-or-open diffuse rooms, each lit by one kind of
+// emitter only — (a) a point light, (b) an emissive quad, (c) a constant sky seen through the open
+// top — rendered by radiosity, meshless (hybrid and global displays) and the path tracer: every
+// method's mean luminance within 3 % of the path tracer's (radiosity within 2 %), and the
+// direct-only images (local, against path with one bounce) within 1 %. No method gives a black
+// image for a lit scene.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "integrators/scene_loading.h"
+#include "render_support.h"
+#include "scene/environment_light.h"
+#include "scene/surface_light.h"
+
+namespace candela {
+namespace {
+
+// A 4 × 4 × 4 room of diffuse quads (floor 0.5, back 0.6, sides 0.4, front 0.5, ceiling 0.5 unless
+// open), the camera inside; `emitters` adds the lights, materials or environment, `more_shapes`
+// shapes.
+std::string room(const std::string& emitters, bool open_top, const std::string& more_shapes = "") {
+  const auto quad = [](const char* corner, const char* u, const char* v, double kd) {
+    return std::string(R"({"type": "quad", "corner": )") + corner + R"(, "edge_u": )" + u +
+           R"(, "edge_v": )" + v + R"(, "material": {"kd": )" + std::to_string(kd) + "}}";
+  };
+  std::string shapes = quad("[0, 0, 0]", "[0, 0, 4]", "[4, 0, 0]", 0.5) + ", " +
+                       quad("[0, 0, 0]", "[4, 0, 0]", "[0, 4, 0]", 0.6) + ", " +
+                       quad("[0, 0, 0]", "[0, 4, 0]", "[0, 0, 4]", 0.4) + ", " +
+                       quad("[4, 0, 0]", "[0, 0, 4]", "[0, 4, 0]", 0.4) + ", " +
+                       quad("[0, 0, 4]", "[0, 4, 0]", "[4, 0, 0]", 0.5);
+  if (!open_top) shapes += ", " + quad("[0, 4, 0]", "[4, 0, 0]", "[0, 0, 4]", 0.5);
+  shapes += more_shapes;
+  return R"({"format": "candela/1",
+    "camera": {"eye": [2, 2, 3.9], "target": [2, 1.6, 0], "fov": 70, "width": 16, "height": 12},
+    "radiosity": {"patch_size": 0.5, "element_size": 0.5, "threshold": 0.001},
+    "path": {"spp": 1024},
+    "render": {"environment_light_samples": 16},
+    "aa": {"mode": "uniform", "n": 4},
+    "shapes": [)" +
+         shapes + "]" + emitters + "}";
+}
+
+const char* kPointLight =
+    R"(, "lights": [{"type": "point", "position": [2, 3.5, 2], "intensity": 4, "attenuation": "inverse-square"}])";
+const char* kEmissiveQuad = R"(, "materials": {"lamp": {"kd": 0, "emission": 4}})";
+const char* kSky = R"(, "environment": {"type": "constant", "color": [1, 1, 1]})";
+
+double mean_luminance(const Film& film) {
+  double sum = 0;
+  for (const Color& pixel : film.pixels()) sum += luminance(pixel);
+  return sum / double(film.pixels().size());
+}
+
+struct Case {
+  const char* name;
+  std::string scene;
+};
+
+std::vector<Case> cases() {
+  // The lamp: a 1 × 1 quad facing down just below the ceiling (radiosity patches are one-sided:
+  // the light its back sends up onto the ceiling stays between the two).
+  const std::string lamp = room(
+      kEmissiveQuad, false,
+      R"(, {"type": "quad", "corner": [1.5, 3.999, 1.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "material": "lamp"})");
+  return {{"point light", room(kPointLight, false)},
+          {"emissive quad", lamp},
+          {"sky through the open top", room(kSky, true)}};
+}
+
+TEST(Emitters, EveryMethodSeesEveryKindOfEmitter) {
+  for (const Case& c : cases()) {
+    const auto scene = load_scene_text(c.scene, "room.json", ".");
+    const double reference = mean_luminance(testing::render_scene(*scene, "path"));
+    ASSERT_GT(reference, 0.01) << c.name;
+    const double radiosity = mean_luminance(testing::render_scene(*scene, "radiosity"));
+    EXPECT_NEAR(radiosity / reference, 1, 0.02) << c.name << ": radiosity";
+    for (const char* display : {"hybrid", "global"}) {
+      const auto meshless_scene =
+          load_scene_text(c.scene, "room.json", ".", {std::string("meshless.display=") + display});
+      const double meshless = mean_luminance(testing::render_scene(*meshless_scene, "meshless"));
+      EXPECT_NEAR(meshless / reference, 1, 0.03) << c.name << ": meshless " << display;
+    }
+    // Direct light alone: the local model against the path tracer with one bounce.
+    const auto one_bounce = load_scene_text(c.scene, "room.json", ".", {"path.max_depth=1"});
+    const double direct_reference = mean_luminance(testing::render_scene(*one_bounce, "path"));
+    const double local = mean_luminance(testing::render_scene(*scene, "local"));
+    ASSERT_GT(direct_reference, 0.005) << c.name;
+    EXPECT_NEAR(local / direct_reference, 1, 0.01) << c.name << ": local";
+    EXPECT_GT(mean_luminance(testing::render_scene(*scene, "whitted")), 0.9 * local) << c.name;
+  }
+}
+
+// The emissive surfaces and the environment are lights of the scene (issue 19): made by the
+// loader, one per emissive object, with the samples the scene asks for.
+TEST(Emitters, EmissiveObjectsAndTheEnvironmentBecomeLights) {
+  const auto scene = load_scene_text(room(kSky, true), "room.json", ".", {"render.surface_light_samples=3"});
+  EXPECT_TRUE(scene->surface_lights.empty());
+  ASSERT_TRUE(scene->environment_light);
+  EXPECT_EQ(scene->environment_light->sample_count(), 16 * 16);
+  EXPECT_EQ(scene->emitter_count(), 1u);
+  const auto lit = load_scene_text(cases()[1].scene, "room.json", ".", {"render.surface_light_samples=3"});
+  ASSERT_EQ(lit->surface_lights.size(), 1u);
+  EXPECT_EQ(lit->surface_lights[0]->sample_count(), 9);
+  EXPECT_EQ(lit->surface_lights[0]->type_name(), "surface");
+  EXPECT_DOUBLE_EQ(lit->surface_lights[0]->area(), 1.0);
+  EXPECT_FALSE(lit->environment_light);
+}
+
+}  // namespace
+}  // namespace candela
