@@ -278,37 +278,47 @@ SamplingResult sample_image(const AntialiasingSettings& settings, uint64_t seed,
     lattice = std::make_unique<LatticeSampler>(settings, seed, region, target, sampled, counted);
 
   const TileGrid tiles(sampled, std::max(tile_size, 1));
-  std::vector<SplatFilm> tile_films(static_cast<std::size_t>(tiles.count()));
-  std::vector<uint8_t> tile_finished(tile_films.size(), 0);
-  tbb::parallel_for(int64_t(0), tiles.count(), [&](int64_t index) {
-    if (cancel_requested()) return;  // Ctrl-C: the tiles not begun stay black
-    const PixelBox tile = tiles.at(index, sampled);
-    SplatFilm splats(tile.grown(reach).clipped(target));
-    for (int y = tile.y0; y < tile.y1; ++y)
-      for (int x = tile.x0; x < tile.x1; ++x) {
-        const SampleSink emit = [&](double dx, double dy, double a, const Color& value) {
-          splats.splat(*filter, x, y, dx, dy, a, value);
-        };
-        const bool counted_here = target.contains(x, y);
-        const std::size_t pixel =
-            counted_here ? std::size_t(y - target.y0) * target.width() + (x - target.x0) : 0;
-        if (lattice) {
-          const uint32_t used = lattice->pixel(x, y, emit);
-          if (counted_here) result.samples_per_pixel[pixel] = used;
-        } else {
-          points.pixel(x, y, emit);
-          if (counted_here)
-            result.samples_per_pixel[pixel] = result.traced_per_pixel[pixel] = points.samples_per_pixel();
-        }
-      }
-    tile_films[static_cast<std::size_t>(index)] = std::move(splats);
-    tile_finished[static_cast<std::size_t>(index)] = 1;
-    if (tile_done) tile_done();
-  });
-  // The tiles' films added in tile order: the same sums whatever thread made which tile.
+  std::vector<uint8_t> tile_finished(static_cast<std::size_t>(tiles.count()), 0);
   SplatFilm whole(target);
-  for (std::size_t index = 0; index < tile_films.size(); ++index)
-    if (tile_finished[index]) whole.add(tile_films[index]);
+  // A tile splats into the pixels within `reach` of its own. Tiles k apart (k − 1 tiles between
+  // them) reach no common pixel when (k − 1)·tile ≥ 2·reach: the tiles of one class
+  // (tx mod k, ty mod k) splat into the film in parallel without sharing a pixel, and the classes
+  // go one after the other in a fixed order, so every pixel gets its sums in the same order
+  // whatever the thread count — and whatever region is asked for, the tiles being aligned on the
+  // image's own grid.
+  const int k = 1 + (2 * reach + tiles.tile - 1) / tiles.tile;
+  std::vector<std::vector<int64_t>> classes(std::size_t(k) * k);
+  for (int64_t index = 0; index < tiles.count(); ++index) {
+    const int tx = tiles.tx0 + static_cast<int>(index % tiles.columns);
+    const int ty = tiles.ty0 + static_cast<int>(index / tiles.columns);
+    classes[std::size_t(ty % k) * k + std::size_t(tx % k)].push_back(index);
+  }
+  for (const std::vector<int64_t>& members : classes) {
+    tbb::parallel_for(std::size_t(0), members.size(), [&](std::size_t member) {
+      if (cancel_requested()) return;  // Ctrl-C: the tiles not begun stay black
+      const int64_t index = members[member];
+      const PixelBox tile = tiles.at(index, sampled);
+      for (int y = tile.y0; y < tile.y1; ++y)
+        for (int x = tile.x0; x < tile.x1; ++x) {
+          const SampleSink emit = [&](double dx, double dy, double a, const Color& value) {
+            whole.splat(*filter, x, y, dx, dy, a, value);
+          };
+          const bool counted_here = target.contains(x, y);
+          const std::size_t pixel =
+              counted_here ? std::size_t(y - target.y0) * target.width() + (x - target.x0) : 0;
+          if (lattice) {
+            const uint32_t used = lattice->pixel(x, y, emit);
+            if (counted_here) result.samples_per_pixel[pixel] = used;
+          } else {
+            points.pixel(x, y, emit);
+            if (counted_here)
+              result.samples_per_pixel[pixel] = result.traced_per_pixel[pixel] = points.samples_per_pixel();
+          }
+        }
+      tile_finished[static_cast<std::size_t>(index)] = 1;
+      if (tile_done) tile_done();
+    });
+  }
   tbb::parallel_for(target.y0, target.y1, [&](int y) {
     for (int x = target.x0; x < target.x1; ++x) {
       const bool finished = tile_finished[static_cast<std::size_t>(tiles.index_of(x, y))] != 0;

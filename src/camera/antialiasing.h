@@ -16,8 +16,9 @@
 // With the box of radius 0.5 that is each pixel's own samples' mean (for a lattice mode the
 // area-weighted mean of its leaves, 000 §5.8.2); a wider filter spreads a sample over its
 // neighbours. The image is cut into tiles of tile_size pixels, aligned on the image's own grid;
-// each tile splats its pixels' samples into a film of its pixels and the ring the filter reaches,
-// and the films are added in tile order, so neither the thread count nor how a caller cuts the
+// a tile splats its pixels' samples into the film, reaching the ring of pixels around it that
+// the filter reaches. Tiles far enough apart to share no pixel run in parallel, in classes taken
+// one after the other in a fixed order, so neither the thread count nor how a caller cuts the
 // image into regions (distributed tiles, --crop) changes a pixel. A region also samples the ring
 // of pixels around it that its filter reaches, so that its border pixels get every sample they
 // would have in the whole image.

@@ -50,19 +50,6 @@ void SplatFilm::splat(const PixelFilter& filter, int px, int py, double dx, doub
   }
 }
 
-void SplatFilm::add(const SplatFilm& other) {
-  const PixelBox shared = box_.clipped(other.box_);
-  for (int y = shared.y0; y < shared.y1; ++y)
-    for (int x = shared.x0; x < shared.x1; ++x) {
-      Sums& to = at(x, y);
-      const Sums& from = other.at(x, y);
-      to.weighted += from.weighted;
-      to.weight += from.weight;
-      to.own += from.own;
-      to.own_weight += from.own_weight;
-    }
-}
-
 Color SplatFilm::resolve(int x, int y) const {
   const Sums& sums = at(x, y);
   if (sums.weight > 1e-12) return sums.weighted / sums.weight;

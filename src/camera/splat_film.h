@@ -2,9 +2,9 @@
 // that splat across pixels"): a rectangle of pixels, each holding Σ w·L and Σ w of the samples
 // splatted into it. A sample lands in every pixel whose centre lies within the filter's support
 // of it, with weight w = a·f(sample − centre) (a: the sample's own weight, a leaf square's area
-// for the lattice modes); the pixel's value is Σ w·L / Σ w. Films of overlapping rectangles add
-// up over the pixels they share: sample_image fills one per tile (its pixels and the ring the
-// filter reaches) and adds them in a fixed tile order, so the sums do not depend on the threads.
+// for the lattice modes); the pixel's value is Σ w·L / Σ w. Splats into different pixels may run
+// concurrently; sample_image orders the tiles so that no two threads splat into one pixel and
+// every pixel gets its sums in a fixed order.
 #pragma once
 
 #include <vector>
@@ -41,9 +41,6 @@ class SplatFilm {
   // sums each pixel's own samples in the order they come. The box's pixel (px, py), when it holds
   // it, also keeps the plain a-weighted mean of its own samples (the fallback of resolve).
   void splat(const PixelFilter& filter, int px, int py, double dx, double dy, double a, const Color& value);
-
-  // Adds other's sums into the pixels both boxes hold.
-  void add(const SplatFilm& other);
 
   // Σ w·L / Σ w at pixel (x, y) of the image; where the weights cancel (Σ w ≤ 1e-12: negative
   // lobes, a narrow Gaussian far from every sample) the plain mean of the pixel's own samples.
