@@ -64,7 +64,12 @@ TEST_F(Cli, RendersTheDefaultSceneToPng) {
   EXPECT_NE(output.find("primary"), std::string::npos);  // the summary
   std::ifstream stats_file(directory_ / "stats.json");
   const auto stats = nlohmann::json::parse(stats_file);
-  EXPECT_EQ(stats["rays"]["primary"], 40 * 30);
+  // 000 Figure 49's anti-aliasing: adaptive, corner rays (41 × 31) and more on the edges, at most
+  // the 5 × 5 lattice points of max_level 2 for one pixel.
+  EXPECT_GT(stats["rays"]["primary"].get<int>(), 41 * 31);
+  EXPECT_LE(stats["samples_per_pixel"]["max"].get<int>(), 25);
+  EXPECT_GT(stats["samples_per_pixel"]["max"].get<int>(), 4);
+  EXPECT_EQ(stats["antialiasing"], "adaptive");
   EXPECT_GT(stats["rays"]["shadow"].get<int>(), 0);
   EXPECT_GT(stats["rays"]["reflected"].get<int>(), 0);
   EXPECT_TRUE(stats["phases_seconds"].contains("render"));
@@ -604,7 +609,9 @@ namespace {
 // Issue 9: "--checkpoint FILE ... and --resume FILE continuing to the same result as an
 // uninterrupted run (a test compares)" — byte for byte, through the command line.
 TEST_F(Cli, PathResumeGivesTheUninterruptedImageByteForByte) {
-  const std::string size = "-q --method path --set camera.width=24 --set camera.height=18 ";
+  // aa.mode "none": the default scene's adaptive anti-aliasing is not the path tracer's.
+  const std::string size =
+      "-q --method path --set aa.mode=none --set aa.filter=box --set camera.width=24 --set camera.height=18 ";
   std::string output;
   ASSERT_EQ(run("render " + size + "--spp 5 -o full.pfm", output), 0) << output;
   ASSERT_EQ(run("render " + size + "--spp 2 --checkpoint state.ckpt -o part.pfm", output), 0) << output;
@@ -638,14 +645,58 @@ TEST_F(Cli, PathOptionsNeedThePathMethod) {
       << output;
   EXPECT_NE(output.find("need --method path"), std::string::npos) << output;
   EXPECT_FALSE(fs::exists(directory_ / "out.png"));
-  EXPECT_NE(run("render -q --method path --resume missing.ckpt -o out.png", output), 0);
+  EXPECT_NE(
+      run("render -q --method path --set aa.mode=none --set aa.filter=box --resume missing.ckpt -o out.png",
+          output),
+      0);
   EXPECT_NE(output.find("no such checkpoint"), std::string::npos) << output;
+}
+
+// Issue 19: an aa setting a method cannot do is an error naming both, exit status 2, nothing
+// written, and no work done (radiosity refuses before its solve).
+TEST_F(Cli, AnAntialiasingSettingAMethodCannotDoIsRefusedNamingBoth) {
+  std::string output;
+  EXPECT_EQ(
+      run("render -q --method raster --set camera.width=16 --set camera.height=12 --set aa.mode=jittered "
+          "-o out.png",
+          output),
+      2);
+  EXPECT_NE(output.find("raster cannot do aa.mode \"jittered\""), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(directory_ / "out.png"));
+  // The default scene's own settings (Figure 49: adaptive with jitter, Gaussian).
+  EXPECT_EQ(run("render -q --method path --set camera.width=16 --set camera.height=12 -o out.png", output),
+            2);
+  EXPECT_NE(output.find("path cannot do aa.mode \"adaptive\""), std::string::npos) << output;
+  EXPECT_EQ(run("render -q --method raster --set camera.width=16 --set camera.height=12 -o out.png", output),
+            2);
+  EXPECT_NE(output.find("raster cannot do aa.jitter true"), std::string::npos) << output;
+  EXPECT_EQ(run("render -q --method path --set aa.mode=none --set aa.filter=gaussian -o out.png", output), 2);
+  EXPECT_NE(output.find("path cannot do aa.filter \"gaussian\""), std::string::npos) << output;
+  const std::string cornell =
+      "'" CANDELA_SOURCE_DIR "/scenes/cornell-box.json' -q --set camera.width=16 --set camera.height=12 ";
+  EXPECT_EQ(run("render " + cornell + "--set aa.mode=adaptive --set aa.jitter=true -o out.png --stats s.json",
+                output),
+            2);
+  EXPECT_NE(output.find("radiosity cannot do aa.jitter true"), std::string::npos) << output;
+  EXPECT_NE(output.find("gouraud"), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(directory_ / "out.png"));
+  EXPECT_FALSE(fs::exists(directory_ / "s.json"));
+  // What each can do, it does.
+  EXPECT_EQ(run("render " + cornell + "--set aa.mode=adaptive --set aa.filter=mitchell -o out.png", output),
+            0)
+      << output;
+  EXPECT_EQ(
+      run("render -q --method raster --set camera.width=16 --set camera.height=12 --set aa.jitter=false -o "
+          "raster.png",
+          output),
+      0)
+      << output;
 }
 
 TEST_F(Cli, PathTimeLimitRendersAtLeastOnePass) {
   std::string output;
-  ASSERT_EQ(run("render -q --method path --set camera.width=16 --set camera.height=12 --time 0.3 -o out.png "
-                "--stats s.json",
+  ASSERT_EQ(run("render -q --method path --set aa.mode=none --set aa.filter=box --set camera.width=16 --set "
+                "camera.height=12 --time 0.3 -o out.png --stats s.json",
                 output),
             0)
       << output;

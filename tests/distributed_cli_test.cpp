@@ -69,14 +69,26 @@ class Distributed : public ::testing::Test {
 const std::string kCornell =
     "'" CANDELA_SOURCE_DIR "/scenes/cornell-box.json' -q --set camera.width=96 --set camera.height=96";
 
-// The test: the built-in scene (Whitted, 500 × 500), PNG byte for byte.
+// The test: the built-in scene (Whitted, 500 × 500, adaptive anti-aliasing with the
+// Gaussian of 000 Figure 49), PNG byte for byte.
 TEST_F(Distributed, BuiltInSceneOnTwoRanksIsByteIdentical) {
   expect_identical("default", "render -q", "png");
   const nlohmann::json stats = json("default-2.json");
   const auto& by_rank = stats["distributed"]["tiles_by_rank"];
   EXPECT_EQ(by_rank[0].get<int>() + by_rank[1].get<int>(), 64);  // 8 × 8 tiles of 64 pixels
   EXPECT_GT(stats["distributed"]["rank0_bytes_received"].get<double>(), 0);
-  EXPECT_EQ(stats["rays"]["primary"], 500 * 500);  // every rank's rays counted once
+  // Every rank's rays counted once: the per-pixel counts are the single process's; the total also
+  // holds each tile's ring of pixels that the filter reaches, sampled again by its tile.
+  std::string output;
+  ASSERT_EQ(run(0, "render -q -o single.png --stats single.json", output), 0) << output;
+  const nlohmann::json single = json("single.json");
+  EXPECT_EQ(stats["rays"]["primary_per_pixel"], single["rays"]["primary_per_pixel"]);
+  EXPECT_GT(stats["rays"]["primary"].get<int>(), single["rays"]["primary"].get<int>());
+  EXPECT_LT(stats["rays"]["primary"].get<double>(), 1.1 * single["rays"]["primary"].get<double>());
+  ASSERT_EQ(run(2, "render -q --set aa.mode=none --set aa.filter=box -o none.png --stats none.json", output),
+            0)
+      << output;
+  EXPECT_EQ(json("none.json")["rays"]["primary"], 500 * 500);  // no ring: exactly one ray a pixel
 }
 
 TEST_F(Distributed, LocalAndAdaptiveWhittedWithTheirSampleMaps) {
@@ -196,7 +208,11 @@ TEST_F(Distributed, BadInputIsReportedOnceAndWritesNothing) {
   ASSERT_EQ(run(0, "render " + kCornell + " --method path --spp 2 --checkpoint box.ckpt -o box.pfm", output),
             0)
       << output;
-  EXPECT_NE(run(2, "render -q --method path --spp 4 --resume box.ckpt -o other.pfm", output), 0);
+  EXPECT_NE(run(2,
+                "render -q --method path --set aa.mode=none --set aa.filter=box --spp 4 --resume box.ckpt -o "
+                "other.pfm",
+                output),
+            0);
   EXPECT_NE(output.find("another scene"), std::string::npos) << output;
   EXPECT_FALSE(exists("other.pfm"));
 

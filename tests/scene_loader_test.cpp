@@ -93,9 +93,9 @@ TEST(SceneLoader, BadAntialiasingSettings) {
   expect_error(std::string(kHeader) + R"(  "aa": {"threshold": [0.2, -0.1, 0.3]}
 })",
                "aa.threshold[1]", 4, 29, "");
-  expect_error(std::string(kHeader) + R"(  "aa": {"filter": "lanczos"}
+  expect_error(std::string(kHeader) + R"(  "aa": {"filter": "sinc"}
 })",
-               "aa.filter", 4, 20, "unknown filter \"lanczos\"");
+               "aa.filter", 4, 20, "unknown filter \"sinc\"");
   expect_error(std::string(kHeader) + R"(  "aa": {"nn": 2}
 })",
                "aa.nn", 4, 16, "unknown key \"nn\"");

@@ -65,120 +65,77 @@ bool exceeds(const Color& threshold, const Color& c00, const Color& c10, const C
   return false;
 }
 
-// Once cancel_requested() (Ctrl-C), tiles not yet begun are skipped: they keep the film's black and
-// get no tile_done.
-template <typename PixelFunction>
-void for_each_tile(int width, int height, int tile, const std::function<void()>& tile_done,
-                   const PixelFunction& pixel) {
-  const int tiles_x = (width + tile - 1) / tile;
-  const int64_t count = sampling_tile_count(width, height, tile);
-  tbb::parallel_for(int64_t(0), count, [&](int64_t index) {
-    if (cancel_requested()) return;  // Ctrl-C: the tiles not begun stay black
-    const int x_begin = static_cast<int>(index % tiles_x) * tile;
-    const int y_begin = static_cast<int>(index / tiles_x) * tile;
-    const int x_end = std::min(x_begin + tile, width);
-    const int y_end = std::min(y_begin + tile, height);
-    for (int y = y_begin; y < y_end; ++y)
-      for (int x = x_begin; x < x_end; ++x) pixel(x, y);
-    if (tile_done) tile_done();
-  });
-}
+// A pixel's samples, handed to emit(dx, dy, a, value): offset (dx, dy) in [0, 1)² within the
+// pixel, own weight a (1 for a point sample, the area for a leaf square).
+using SampleSink = std::function<void(double dx, double dy, double a, const Color& value)>;
 
-// none, uniform, jittered: each pixel alone.
-void sample_pixels(const AntialiasingSettings& settings, uint64_t seed, const SamplingRegion& region,
-                   int tile, const RadianceFunction& radiance, Film& film, SamplingResult& result,
-                   const std::function<void()>& tile_done) {
-  const bool single = settings.mode == AntialiasingMode::none;
-  const int n = single ? 1 : settings.n;
-  const bool jittered = settings.mode == AntialiasingMode::jittered;
-  const std::unique_ptr<PixelFilter> filter =
-      single ? nullptr : create_pixel_filter(settings.filter, settings.filter_parameters);
-  for_each_tile(film.width(), film.height(), tile, tile_done, [&](int px, int py) {
-    const int x = region.x0 + px, y = region.y0 + py;
-    const std::size_t index = std::size_t(py) * film.width() + px;
-    result.traced_per_pixel[index] = result.samples_per_pixel[index] = static_cast<uint32_t>(n * n);
-    if (single) {
-      film.at(px, py) = radiance(x + 0.5, y + 0.5);
-      return;
-    }
-    Pcg32 rng = pixel_rng(seed, static_cast<uint32_t>(x), static_cast<uint32_t>(y));
-    Color weighted, plain;
-    double weight_sum = 0;
-    for (int j = 0; j < n; ++j) {
-      for (int i = 0; i < n; ++i) {
-        const double u = jittered ? rng.next_double() : 0.5;
-        const double v = jittered ? rng.next_double() : 0.5;
-        const double dx = (i + u) / n, dy = (j + v) / n;
-        const Color value = radiance(x + dx, y + dy);
-        const double weight = filter->evaluate(dx - 0.5, dy - 0.5);
-        weighted += value * weight;
-        weight_sum += weight;
-        plain += value;
+// none, uniform, jittered: each pixel alone, from its own random stream.
+class PointSampler {
+ public:
+  PointSampler(const AntialiasingSettings& settings, uint64_t seed, const RadianceFunction& radiance)
+      : single_(settings.mode == AntialiasingMode::none),
+        n_(single_ ? 1 : settings.n),
+        jittered_(settings.mode == AntialiasingMode::jittered),
+        seed_(seed),
+        radiance_(radiance) {}
+
+  uint32_t samples_per_pixel() const { return static_cast<uint32_t>(n_ * n_); }
+
+  void pixel(int x, int y, const SampleSink& emit) const {
+    if (single_) return emit(0.5, 0.5, 1.0, radiance_(x + 0.5, y + 0.5));
+    Pcg32 rng = pixel_rng(seed_, static_cast<uint32_t>(x), static_cast<uint32_t>(y));
+    for (int j = 0; j < n_; ++j) {
+      for (int i = 0; i < n_; ++i) {
+        const double u = jittered_ ? rng.next_double() : 0.5;
+        const double v = jittered_ ? rng.next_double() : 0.5;
+        const double dx = (i + u) / n_, dy = (j + v) / n_;
+        emit(dx, dy, 1.0, radiance_(x + dx, y + dy));
       }
     }
-    // A filter that gives the pixel's own samples no net weight falls back to the plain mean.
-    film.at(px, py) = weight_sum > 1e-12 ? weighted / weight_sum : plain / double(n * n);
-  });
-}
+  }
 
-// corners: the (W+1)×(H+1) lattice of the region's pixel corners, traced once by rows.
-void sample_corners(const AntialiasingSettings& settings, uint64_t seed, const SamplingRegion& region,
-                    int tile, const RadianceFunction& radiance, Film& film, SamplingResult& result,
-                    const std::function<void()>& tile_done) {
-  const int width = film.width(), height = film.height();
-  const Lattice lattice{1, settings.jitter, seed, region.image_width, region.image_height};
-  std::vector<Color> corners(std::size_t(width + 1) * (height + 1));
-  tbb::parallel_for(0, height + 1, [&](int j) {
-    if (cancel_requested()) return;
-    for (int i = 0; i <= width; ++i) {
-      double x, y;
-      lattice.position(region.x0 + i, region.y0 + j, x, y);
-      corners[std::size_t(j) * (width + 1) + i] = radiance(x, y);
-    }
-  });
-  for (int j = 0; j <= height; ++j)
-    for (int i = 0; i <= width; ++i)
-      ++result.traced_per_pixel[std::size_t(std::min(j, height - 1)) * width + std::min(i, width - 1)];
-  for_each_tile(width, height, tile, tile_done, [&](int px, int py) {
-    const auto corner = [&](int i, int j) { return corners[std::size_t(py + j) * (width + 1) + px + i]; };
-    film.at(px, py) = (corner(0, 0) + corner(1, 0) + corner(0, 1) + corner(1, 1)) / 4.0;
-    result.samples_per_pixel[std::size_t(py) * width + px] = 4;
-  });
-}
+ private:
+  bool single_;
+  int n_;
+  bool jittered_;
+  uint64_t seed_;
+  const RadianceFunction& radiance_;
+};
 
-// adaptive: one cache of lattice values for the whole region.
-class AdaptiveSampler {
+// corners (max_level 0) and adaptive: one cache of lattice values for the sampled pixels.
+class LatticeSampler {
  public:
-  AdaptiveSampler(const AntialiasingSettings& settings, uint64_t seed, const SamplingRegion& region,
-                  const RadianceFunction& radiance, const Film& film, SamplingResult& result)
-      : settings_(settings),
-        region_(region),
+  LatticeSampler(const AntialiasingSettings& settings, uint64_t seed, const SamplingRegion& region,
+                 const PixelBox& target, const PixelBox& sampled, const RadianceFunction& radiance)
+      : max_level_(settings.mode == AntialiasingMode::corners ? 0 : settings.max_level),
+        threshold_(settings.threshold),
+        image_width_(region.image_width),
+        image_height_(region.image_height),
+        target_(target),
         radiance_(radiance),
-        width_(film.width()),
-        height_(film.height()),
-        result_(result),
-        traced_(std::size_t(film.width()) * film.height()) {
-    const int64_t scale = int64_t(1) << settings.max_level;
+        traced_(std::size_t(target.width()) * target.height()) {
+    const int64_t scale = int64_t(1) << max_level_;
     lattice_ = {scale, settings.jitter, seed, region.image_width * scale, region.image_height * scale};
     // Room for the corners and some subdivision from the start: growing the table while every
     // thread inserts costs more than the tracing near edges.
-    cache_.rehash(std::size_t(film.width() + 1) * (film.height() + 1) * 2);
+    cache_.rehash(std::size_t(sampled.width() + 1) * (sampled.height() + 1) * 2);
   }
 
-  Color pixel(int px, int py) {
+  // Emits the pixel's leaf squares, each at its centre with its area; returns how many distinct
+  // lattice points its squares used.
+  uint32_t pixel(int x, int y, const SampleSink& emit) {
     const int64_t s = lattice_.scale;
-    const int64_t ix = (region_.x0 + px) * s, iy = (region_.y0 + py) * s;
+    const int64_t ix = x * s, iy = y * s;
     std::vector<uint64_t> used;
-    const Color value = square(ix, iy, s, 0, value_at(ix, iy, used), value_at(ix + s, iy, used),
-                               value_at(ix, iy + s, used), value_at(ix + s, iy + s, used), used);
+    const Leaf leaf{ix, iy, emit};
+    square(leaf, ix, iy, s, 0, value_at(ix, iy, used), value_at(ix + s, iy, used), value_at(ix, iy + s, used),
+           value_at(ix + s, iy + s, used), used);
     std::sort(used.begin(), used.end());
-    result_.samples_per_pixel[std::size_t(py) * width_ + px] =
-        static_cast<uint32_t>(std::unique(used.begin(), used.end()) - used.begin());
-    return value;
+    return static_cast<uint32_t>(std::unique(used.begin(), used.end()) - used.begin());
   }
 
-  void finish() {
-    for (std::size_t i = 0; i < traced_.size(); ++i) result_.traced_per_pixel[i] = traced_[i].load();
+  uint32_t traced(int x, int y) const {
+    return traced_[std::size_t(y - target_.y0) * target_.width() + (x - target_.x0)].load();
   }
 
  private:
@@ -191,20 +148,30 @@ class AdaptiveSampler {
   };
   using Cache = tbb::concurrent_hash_map<uint64_t, Color, KeyHash>;
 
-  Color square(int64_t ix, int64_t iy, int64_t size, int level, const Color& c00, const Color& c10,
-               const Color& c01, const Color& c11, std::vector<uint64_t>& used) {
-    if (level >= settings_.max_level || !exceeds(settings_.threshold, c00, c10, c01, c11))
-      return (c00 + c10 + c01 + c11) / 4.0;
+  struct Leaf {
+    int64_t pixel_x, pixel_y;  // the pixel's corner on the lattice
+    const SampleSink& emit;
+  };
+
+  void square(const Leaf& leaf, int64_t ix, int64_t iy, int64_t size, int level, const Color& c00,
+              const Color& c10, const Color& c01, const Color& c11, std::vector<uint64_t>& used) {
+    if (level >= max_level_ || !exceeds(threshold_, c00, c10, c01, c11)) {
+      // The leaf at its (unjittered) centre, weighted by its area: exact binary fractions.
+      const double s = double(lattice_.scale);
+      const double dx = (double(ix - leaf.pixel_x) + double(size) / 2) / s;
+      const double dy = (double(iy - leaf.pixel_y) + double(size) / 2) / s;
+      const double side = double(size) / s;
+      leaf.emit(dx, dy, side * side, (c00 + c10 + c01 + c11) / 4.0);
+      return;
+    }
     const int64_t h = size / 2;
     const Color top = value_at(ix + h, iy, used), left = value_at(ix, iy + h, used);
     const Color centre = value_at(ix + h, iy + h, used);
     const Color right = value_at(ix + size, iy + h, used), bottom = value_at(ix + h, iy + size, used);
-    // Four equal areas: the area-weighted mean is the plain mean of the quadrants.
-    return (square(ix, iy, h, level + 1, c00, top, left, centre, used) +
-            square(ix + h, iy, h, level + 1, top, c10, centre, right, used) +
-            square(ix, iy + h, h, level + 1, left, centre, c01, bottom, used) +
-            square(ix + h, iy + h, h, level + 1, centre, right, bottom, c11, used)) /
-           4.0;
+    square(leaf, ix, iy, h, level + 1, c00, top, left, centre, used);
+    square(leaf, ix + h, iy, h, level + 1, top, c10, centre, right, used);
+    square(leaf, ix, iy + h, h, level + 1, left, centre, c01, bottom, used);
+    square(leaf, ix + h, iy + h, h, level + 1, centre, right, bottom, c11, used);
   }
 
   Color value_at(int64_t ix, int64_t iy, std::vector<uint64_t>& used) {
@@ -219,28 +186,70 @@ class AdaptiveSampler {
       double x, y;
       lattice_.position(ix, iy, x, y);
       writer->second = radiance_(x, y);
+      // Counted for the image pixel whose square holds the point (the right and bottom image
+      // edges for the last column and row), when that pixel is the region's.
       const int64_t s = lattice_.scale;
-      const int64_t px = std::min<int64_t>(ix / s - region_.x0, width_ - 1);
-      const int64_t py = std::min<int64_t>(iy / s - region_.y0, height_ - 1);
-      traced_[std::size_t(py) * width_ + px].fetch_add(1, std::memory_order_relaxed);
+      const int px = static_cast<int>(std::min<int64_t>(ix / s, image_width_ - 1));
+      const int py = static_cast<int>(std::min<int64_t>(iy / s, image_height_ - 1));
+      if (target_.contains(px, py))
+        traced_[std::size_t(py - target_.y0) * target_.width() + (px - target_.x0)].fetch_add(
+            1, std::memory_order_relaxed);
     }
     return writer->second;
   }
 
-  const AntialiasingSettings& settings_;
-  SamplingRegion region_;
+  int max_level_;
+  Color threshold_;
+  int image_width_, image_height_;
+  PixelBox target_;
   const RadianceFunction& radiance_;
-  int width_, height_;
-  SamplingResult& result_;
   Lattice lattice_;
   Cache cache_;
   std::vector<std::atomic<uint32_t>> traced_;
 };
 
+// The image-aligned tiles of tile_size that cover `sampled`, row by row.
+struct TileGrid {
+  int tile = 1;
+  int tx0 = 0, ty0 = 0, columns = 0, rows = 0;
+  TileGrid(const PixelBox& sampled, int tile_size) : tile(tile_size) {
+    if (sampled.empty()) return;
+    tx0 = sampled.x0 / tile, ty0 = sampled.y0 / tile;
+    columns = (sampled.x1 - 1) / tile - tx0 + 1;
+    rows = (sampled.y1 - 1) / tile - ty0 + 1;
+  }
+  int64_t count() const { return int64_t(columns) * rows; }
+  PixelBox at(int64_t index, const PixelBox& sampled) const {
+    const int x0 = (tx0 + static_cast<int>(index % columns)) * tile;
+    const int y0 = (ty0 + static_cast<int>(index / columns)) * tile;
+    return PixelBox{x0, y0, x0 + tile, y0 + tile}.clipped(sampled);
+  }
+  int64_t index_of(int x, int y) const { return int64_t(y / tile - ty0) * columns + (x / tile - tx0); }
+};
+
+PixelBox image_box(const SamplingRegion& region) {
+  return {0, 0, region.image_width, region.image_height};
+}
+
+PixelBox target_box(const SamplingRegion& region, int width, int height) {
+  return {region.x0, region.y0, region.x0 + width, region.y0 + height};
+}
+
 }  // namespace
 
-int64_t sampling_tile_count(int width, int height, int tile_size) {
+int64_t tile_count(int width, int height, int tile_size) {
   return int64_t((width + tile_size - 1) / tile_size) * ((height + tile_size - 1) / tile_size);
+}
+
+PixelBox sampled_pixels(const AntialiasingSettings& settings, const SamplingRegion& region, int width,
+                        int height) {
+  const auto filter = create_pixel_filter(settings.filter, settings.filter_parameters);
+  return target_box(region, width, height).grown(filter_reach(*filter)).clipped(image_box(region));
+}
+
+int64_t sampling_tile_count(const AntialiasingSettings& settings, const SamplingRegion& region, int width,
+                            int height, int tile_size) {
+  return TileGrid(sampled_pixels(settings, region, width, height), tile_size).count();
 }
 
 SamplingResult sample_image(const AntialiasingSettings& settings, uint64_t seed, const SamplingRegion& region,
@@ -251,28 +260,75 @@ SamplingResult sample_image(const AntialiasingSettings& settings, uint64_t seed,
   result.traced_per_pixel.assign(pixels, 0);
   result.samples_per_pixel.assign(pixels, 0);
   if (pixels == 0) return result;
+  const std::unique_ptr<PixelFilter> filter =
+      create_pixel_filter(settings.filter, settings.filter_parameters);
+  const PixelBox target = target_box(region, film.width(), film.height());
+  const PixelBox sampled = target.grown(filter_reach(*filter)).clipped(image_box(region));
+  const int reach = filter_reach(*filter);
   std::atomic<uint64_t> traced{0};
   const RadianceFunction counted = [&](double x, double y) {
     traced.fetch_add(1, std::memory_order_relaxed);
     return radiance(x, y);
   };
-  switch (settings.mode) {
-    case AntialiasingMode::none:
-    case AntialiasingMode::uniform:
-    case AntialiasingMode::jittered:
-      sample_pixels(settings, seed, region, tile_size, counted, film, result, tile_done);
-      break;
-    case AntialiasingMode::corners:
-      sample_corners(settings, seed, region, tile_size, counted, film, result, tile_done);
-      break;
-    case AntialiasingMode::adaptive: {
-      AdaptiveSampler sampler(settings, seed, region, counted, film, result);
-      for_each_tile(film.width(), film.height(), tile_size, tile_done,
-                    [&](int px, int py) { film.at(px, py) = sampler.pixel(px, py); });
-      sampler.finish();
-      break;
-    }
+  const bool lattice_mode =
+      settings.mode == AntialiasingMode::corners || settings.mode == AntialiasingMode::adaptive;
+  const PointSampler points(settings, seed, counted);
+  std::unique_ptr<LatticeSampler> lattice;
+  if (lattice_mode)
+    lattice = std::make_unique<LatticeSampler>(settings, seed, region, target, sampled, counted);
+
+  const TileGrid tiles(sampled, std::max(tile_size, 1));
+  std::vector<uint8_t> tile_finished(static_cast<std::size_t>(tiles.count()), 0);
+  SplatFilm whole(target);
+  // A tile splats into the pixels within `reach` of its own. Tiles k apart (k − 1 tiles between
+  // them) reach no common pixel when (k − 1)·tile ≥ 2·reach: the tiles of one class
+  // (tx mod k, ty mod k) splat into the film in parallel without sharing a pixel, and the classes
+  // go one after the other in a fixed order, so every pixel gets its sums in the same order
+  // whatever the thread count — and whatever region is asked for, the tiles being aligned on the
+  // image's own grid.
+  const int k = 1 + (2 * reach + tiles.tile - 1) / tiles.tile;
+  std::vector<std::vector<int64_t>> classes(std::size_t(k) * k);
+  for (int64_t index = 0; index < tiles.count(); ++index) {
+    const int tx = tiles.tx0 + static_cast<int>(index % tiles.columns);
+    const int ty = tiles.ty0 + static_cast<int>(index / tiles.columns);
+    classes[std::size_t(ty % k) * k + std::size_t(tx % k)].push_back(index);
   }
+  for (const std::vector<int64_t>& members : classes) {
+    tbb::parallel_for(std::size_t(0), members.size(), [&](std::size_t member) {
+      if (cancel_requested()) return;  // Ctrl-C: the tiles not begun stay black
+      const int64_t index = members[member];
+      const PixelBox tile = tiles.at(index, sampled);
+      for (int y = tile.y0; y < tile.y1; ++y)
+        for (int x = tile.x0; x < tile.x1; ++x) {
+          const SampleSink emit = [&](double dx, double dy, double a, const Color& value) {
+            whole.splat(*filter, x, y, dx, dy, a, value);
+          };
+          const bool counted_here = target.contains(x, y);
+          const std::size_t pixel =
+              counted_here ? std::size_t(y - target.y0) * target.width() + (x - target.x0) : 0;
+          if (lattice) {
+            const uint32_t used = lattice->pixel(x, y, emit);
+            if (counted_here) result.samples_per_pixel[pixel] = used;
+          } else {
+            points.pixel(x, y, emit);
+            if (counted_here)
+              result.samples_per_pixel[pixel] = result.traced_per_pixel[pixel] = points.samples_per_pixel();
+          }
+        }
+      tile_finished[static_cast<std::size_t>(index)] = 1;
+      if (tile_done) tile_done();
+    });
+  }
+  tbb::parallel_for(target.y0, target.y1, [&](int y) {
+    for (int x = target.x0; x < target.x1; ++x) {
+      const bool finished = tile_finished[static_cast<std::size_t>(tiles.index_of(x, y))] != 0;
+      film.at(x - target.x0, y - target.y0) = finished ? whole.resolve(x, y) : Color();
+      if (lattice) {
+        const std::size_t pixel = std::size_t(y - target.y0) * target.width() + (x - target.x0);
+        result.traced_per_pixel[pixel] = lattice->traced(x, y);
+      }
+    }
+  });
   result.traced = traced.load();
   return result;
 }

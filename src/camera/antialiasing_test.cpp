@@ -9,6 +9,7 @@
 #include <mutex>
 #include <numbers>
 #include <set>
+#include <string>
 #include <utility>
 
 #include "math/pcg32.h"
@@ -300,6 +301,169 @@ TEST(Antialiasing, ImagesDoNotDependOnTheThreadCount) {
     EXPECT_EQ(one.result.traced_per_pixel, two.result.traced_per_pixel) << mode;
     EXPECT_EQ(one.result.samples_per_pixel, two.result.samples_per_pixel) << mode;
   }
+}
+
+// Every mode with and without lattice jitter, for the tests that go over all of them.
+std::vector<AntialiasingSettings> every_mode() {
+  std::vector<AntialiasingSettings> all;
+  for (const AntialiasingMode mode :
+       {AntialiasingMode::none, AntialiasingMode::uniform, AntialiasingMode::jittered,
+        AntialiasingMode::corners, AntialiasingMode::adaptive})
+    all.push_back(with_mode(mode, 3));
+  for (const AntialiasingMode mode : {AntialiasingMode::corners, AntialiasingMode::adaptive}) {
+    all.push_back(with_mode(mode));
+    all.back().jitter = true;
+    all.back().max_level = 3;
+  }
+  return all;
+}
+
+std::string describe(const AntialiasingSettings& settings) {
+  return std::string(kAntialiasingModeNames.name(settings.mode)) + (settings.jitter ? "+jitter" : "") + " " +
+         settings.filter;
+}
+
+// The box of radius 0.5 is each pixel's mean of its own samples, summed in the order they are
+// taken: the images of before reconstruction filters splatted across pixels, bit for bit.
+TEST(Antialiasing, BoxOfHalfAPixelIsTheMeanOfEachPixelsOwnSamples) {
+  const auto scene = [](double x, double y) {
+    return Color(0.5 + 0.5 * std::sin(x * 1.7) * std::cos(y * 2.3), x * y > 40 ? 1.0 : 0.1, 0.3);
+  };
+  for (const AntialiasingMode mode : {AntialiasingMode::uniform, AntialiasingMode::jittered}) {
+    for (const int n : {1, 3}) {
+      const Render r = render(with_mode(mode, n), scene, 5);
+      for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+          Pcg32 rng = pixel_rng(7, static_cast<uint32_t>(x), static_cast<uint32_t>(y));
+          Color sum;
+          double weight = 0;
+          for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+              const double u = mode == AntialiasingMode::jittered ? rng.next_double() : 0.5;
+              const double v = mode == AntialiasingMode::jittered ? rng.next_double() : 0.5;
+              sum += scene(x + (i + u) / n, y + (j + v) / n) * 1.0;
+              weight += 1.0;
+            }
+          const Color expected = sum / weight;
+          ASSERT_EQ(std::memcmp(&r.film.at(x, y), &expected, sizeof(Color)), 0)
+              << kAntialiasingModeNames.name(mode) << " n=" << n << " pixel " << x << "," << y;
+        }
+    }
+  }
+  const Render none = render(with_mode(AntialiasingMode::none), scene);
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) EXPECT_EQ(none.film.at(x, y), scene(x + 0.5, y + 0.5));
+}
+
+// Issue 19's test of a real reconstruction filter: a bright line one pixel wide (column 7) stays
+// in the columns its samples fall in under the box, and spreads by exactly the filter's reach
+// (the pixels whose centres lie within the radius of a sample) under wider filters.
+TEST(Antialiasing, AOnePixelLineWidensByTheFilterRadiusAndStaysPutUnderTheBox) {
+  constexpr int kColumn = 7;
+  const auto line = [](double x, double) { return Color(x >= kColumn && x < kColumn + 1 ? 1.0 : 0.0); };
+  // The columns holding any light, for each row alike.
+  const auto lit_columns = [](const Film& film) {
+    std::set<int> columns;
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x)
+        if (film.at(x, y).r != 0) columns.insert(x);
+    return columns;
+  };
+  for (AntialiasingSettings settings : every_mode()) {
+    const std::set<int> boxed = lit_columns(render(settings, line).film);
+    ASSERT_FALSE(boxed.empty()) << describe(settings);
+    const bool point_samples = settings.mode == AntialiasingMode::none ||
+                               settings.mode == AntialiasingMode::uniform ||
+                               settings.mode == AntialiasingMode::jittered;
+    if (point_samples) {
+      // Point samples inside the column: the box keeps the line in its column, at full strength.
+      EXPECT_EQ(boxed, std::set<int>{kColumn}) << describe(settings);
+      const Render r = render(settings, line);
+      for (int y = 0; y < kHeight; ++y) EXPECT_EQ(r.film.at(kColumn, y).r, 1.0) << describe(settings);
+    }
+    for (const auto& [radius, reach] : {std::pair{1.5, 1}, std::pair{2.5, 2}, std::pair{2.2, 2}}) {
+      settings.filter = "gaussian";
+      settings.filter_parameters = {radius, 0};
+      const Render r = render(settings, line);
+      const auto widened = [&](int by) {
+        std::set<int> columns;
+        for (const int column : boxed)
+          for (int k = -by; k <= by; ++k) columns.insert(column + k);
+        return columns;
+      };
+      const std::set<int> lit = lit_columns(r.film);
+      if (point_samples) {
+        // Every sample lies in [7, 8): it reaches the pixels whose centres are within the radius.
+        EXPECT_EQ(lit, widened(reach)) << describe(settings) << " radius " << radius;
+      } else {
+        // A leaf square is splatted from its centre, somewhere inside its pixel: at least one pixel
+        // farther each side than the box, never past the reach.
+        const std::set<int> least = widened(1), most = widened(reach);
+        EXPECT_TRUE(std::includes(lit.begin(), lit.end(), least.begin(), least.end()))
+            << describe(settings) << " radius " << radius;
+        EXPECT_TRUE(std::includes(most.begin(), most.end(), lit.begin(), lit.end()))
+            << describe(settings) << " radius " << radius;
+      }
+      // Spread, not copied: the line's own column loses light to its neighbours, which get less
+      // the farther they are.
+      for (int y = 0; y < kHeight; ++y) {
+        EXPECT_LT(r.film.at(kColumn, y).r, 1.0) << describe(settings);
+        EXPECT_GT(r.film.at(kColumn + 1, y).r, r.film.at(kColumn + reach + 1, y).r) << describe(settings);
+      }
+    }
+    settings.filter_parameters = {};
+  }
+}
+
+TEST(Antialiasing, EveryFilterAndModeIsThreadIndependentAndCropsKeepThePixels) {
+  const auto scene = [](double x, double y) {
+    return Color(0.5 + 0.5 * std::sin(x * 1.7) * std::cos(y * 2.3), x * y > 40 ? 1.0 : 0.1,
+                 (int(x) + int(y)) % 3 == 0 ? 0.9 : 0.2);
+  };
+  for (const PixelFilterEntry& filter : pixel_filter_entries()) {
+    for (AntialiasingSettings settings : every_mode()) {
+      settings.filter = filter.name;
+      Render one, two;
+      {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+        one = render(settings, scene, 3);
+      }
+      {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+        two = render(settings, scene, 3);
+      }
+      EXPECT_EQ(std::memcmp(one.film.pixels().data(), two.film.pixels().data(),
+                            one.film.pixels().size() * sizeof(Color)),
+                0)
+          << describe(settings);
+      EXPECT_EQ(one.result.traced_per_pixel, two.result.traced_per_pixel) << describe(settings);
+      EXPECT_EQ(one.result.samples_per_pixel, two.result.samples_per_pixel) << describe(settings);
+      // A region (a distributed tile, --crop) samples the ring its filter reaches: its pixels are
+      // the whole image's, bit for bit.
+      Film part(7, 5);
+      const RadianceFunction radiance = [&](double x, double y) { return scene(x, y); };
+      sample_image(settings, 7, {5, 4, kWidth, kHeight}, 3, radiance, part);
+      for (int y = 0; y < part.height(); ++y)
+        for (int x = 0; x < part.width(); ++x)
+          ASSERT_EQ(std::memcmp(&part.at(x, y), &one.film.at(x + 5, y + 4), sizeof(Color)), 0)
+              << describe(settings) << " pixel " << x + 5 << "," << y + 4;
+    }
+  }
+}
+
+TEST(Antialiasing, AdaptiveSamplesAreReconstructedWithTheFilter) {
+  // Before, aa.filter was ignored by adaptive: now a wider filter changes the image.
+  AntialiasingSettings settings = with_mode(AntialiasingMode::adaptive);
+  settings.max_level = 3;
+  const HalfPlane edge(30);
+  const Render boxed = render(settings, edge);
+  settings.filter = "gaussian";
+  const Render smooth = render(settings, edge);
+  EXPECT_EQ(boxed.result.traced, smooth.result.traced);  // the same samples
+  double largest = 0;
+  for (std::size_t i = 0; i < boxed.film.pixels().size(); ++i)
+    largest = std::max(largest, std::fabs(boxed.film.pixels()[i].r - smooth.film.pixels()[i].r));
+  EXPECT_GT(largest, 0.1);
 }
 
 TEST(Antialiasing, ACroppedRegionKeepsThePixelValues) {

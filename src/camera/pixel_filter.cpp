@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "util/registry.h"
@@ -10,27 +11,39 @@ namespace candela {
 
 namespace {
 
+constexpr double kPi = std::numbers::pi;
+
 class BoxFilter final : public PixelFilter {
  public:
   explicit BoxFilter(double radius) : PixelFilter(radius) {}
   std::string_view name() const override { return "box"; }
-  double evaluate_1d(double d) const override { return std::fabs(d) <= radius_ ? 0.5 / radius_ : 0.0; }
+
+ private:
+  double profile(double) const override { return 0.5 / radius_; }
 };
 
-// exp(-d²/2σ²) truncated to |d| <= radius and renormalised to integrate to 1 there.
+// The tent (1 - |d| / radius) / radius: linear interpolation between pixel centres at radius 1.
+class TriangleFilter final : public PixelFilter {
+ public:
+  explicit TriangleFilter(double radius) : PixelFilter(radius) {}
+  std::string_view name() const override { return "triangle"; }
+
+ private:
+  double profile(double d) const override { return (1 - std::fabs(d) / radius_) / radius_; }
+};
+
+// exp(-d²/2σ²) truncated to |d| <= radius and renormalised to integrate to 1 there (000 §5.8.1:
+// "weights the samples by their distance from the pixel centre").
 class GaussianFilter final : public PixelFilter {
  public:
   GaussianFilter(double radius, double sigma)
       : PixelFilter(radius),
         sigma_(sigma),
-        scale_(1.0 / (sigma * std::sqrt(2.0 * M_PI) * std::erf(radius / (sigma * std::sqrt(2.0))))) {}
+        scale_(1.0 / (sigma * std::sqrt(2.0 * kPi) * std::erf(radius / (sigma * std::sqrt(2.0))))) {}
   std::string_view name() const override { return "gaussian"; }
-  double evaluate_1d(double d) const override {
-    if (std::fabs(d) > radius_) return 0.0;
-    return scale_ * std::exp(-d * d / (2 * sigma_ * sigma_));
-  }
 
  private:
+  double profile(double d) const override { return scale_ * std::exp(-d * d / (2 * sigma_ * sigma_)); }
   double sigma_, scale_;
 };
 
@@ -40,7 +53,9 @@ class MitchellFilter final : public PixelFilter {
  public:
   explicit MitchellFilter(double radius) : PixelFilter(radius) {}
   std::string_view name() const override { return "mitchell"; }
-  double evaluate_1d(double d) const override {
+
+ private:
+  double profile(double d) const override {
     const double x = std::fabs(2 * d / radius_);
     constexpr double b = 1.0 / 3.0, c = 1.0 / 3.0;
     double k = 0;
@@ -53,9 +68,52 @@ class MitchellFilter final : public PixelFilter {
   }
 };
 
+double sinc(double x) {
+  return std::fabs(x) < 1e-8 ? 1.0 : std::sin(kPi * x) / (kPi * x);
+}
+
+// Lanczos: the sinc of the ideal low-pass filter (zeros at every other pixel centre) windowed by
+// the wider sinc(d / radius) (pbrt-v4's LanczosSincFilter with tau = radius). Its integral has no
+// closed form: Simpson's rule once, here, makes it integrate to 1.
+class LanczosFilter final : public PixelFilter {
+ public:
+  explicit LanczosFilter(double radius) : PixelFilter(radius) {
+    constexpr int kIntervals = 4096;  // even
+    const double h = 2 * radius / kIntervals;
+    double sum = windowed_sinc(-radius) + windowed_sinc(radius);
+    for (int i = 1; i < kIntervals; ++i) sum += (i % 2 ? 4 : 2) * windowed_sinc(-radius + i * h);
+    scale_ = 1 / (sum * h / 3);
+  }
+  std::string_view name() const override { return "lanczos"; }
+
+ private:
+  double windowed_sinc(double d) const { return sinc(d) * sinc(d / radius_); }
+  double profile(double d) const override { return scale_ * windowed_sinc(d); }
+  double scale_ = 1;
+};
+
+// The four-term Blackman-Harris window (Harris 1978: a0..a3 = 0.35875, 0.48829, 0.14128,
+// 0.01168) centred on the pixel: g(d) = Σ a_k cos(kπ d / radius), whose integral over
+// [-radius, radius] is 2 radius a0 (the cosines span whole periods).
+class BlackmanHarrisFilter final : public PixelFilter {
+ public:
+  explicit BlackmanHarrisFilter(double radius) : PixelFilter(radius) {}
+  std::string_view name() const override { return "blackman-harris"; }
+
+ private:
+  static constexpr double a0 = 0.35875, a1 = 0.48829, a2 = 0.14128, a3 = 0.01168;
+  double profile(double d) const override {
+    const double t = kPi * d / radius_;
+    return (a0 + a1 * std::cos(t) + a2 * std::cos(2 * t) + a3 * std::cos(3 * t)) / (2 * radius_ * a0);
+  }
+};
+
 double checked_radius(const PixelFilterParameters& parameters, double fallback) {
   const double radius = parameters.radius == 0 ? fallback : parameters.radius;
   if (!(radius > 0) || !std::isfinite(radius)) throw std::invalid_argument("filter radius must be > 0");
+  // Each sample reaches the pixels within the radius: past 16 a sample would touch over a
+  // thousand pixels.
+  if (radius > 16) throw std::invalid_argument("filter radius must be at most 16 pixels");
   return radius;
 }
 
@@ -63,6 +121,10 @@ const std::array kEntries{
     PixelFilterEntry{"box", 0.5,
                      [](const PixelFilterParameters& p) -> std::unique_ptr<PixelFilter> {
                        return std::make_unique<BoxFilter>(checked_radius(p, 0.5));
+                     }},
+    PixelFilterEntry{"triangle", 1.0,
+                     [](const PixelFilterParameters& p) -> std::unique_ptr<PixelFilter> {
+                       return std::make_unique<TriangleFilter>(checked_radius(p, 1.0));
                      }},
     PixelFilterEntry{"gaussian", 1.5,
                      [](const PixelFilterParameters& p) -> std::unique_ptr<PixelFilter> {
@@ -75,6 +137,14 @@ const std::array kEntries{
     PixelFilterEntry{"mitchell", 2.0,
                      [](const PixelFilterParameters& p) -> std::unique_ptr<PixelFilter> {
                        return std::make_unique<MitchellFilter>(checked_radius(p, 2.0));
+                     }},
+    PixelFilterEntry{"lanczos", 2.0,
+                     [](const PixelFilterParameters& p) -> std::unique_ptr<PixelFilter> {
+                       return std::make_unique<LanczosFilter>(checked_radius(p, 2.0));
+                     }},
+    PixelFilterEntry{"blackman-harris", 1.5,
+                     [](const PixelFilterParameters& p) -> std::unique_ptr<PixelFilter> {
+                       return std::make_unique<BlackmanHarrisFilter>(checked_radius(p, 1.5));
                      }},
 };
 

@@ -1,7 +1,10 @@
-// Pixel reconstruction filters (000 §5.8.1): box, Gaussian and Mitchell-Netravali, found by name
-// in a registry. Each is separable, f(dx, dy) = g(dx) g(dy), over the square |dx|, |dy| <= radius,
-// and integrates to 1 over it. The anti-aliasing modes that take several samples inside a pixel
-// weight them by f(offset from the pixel centre), normalised over the pixel's own samples.
+// Pixel reconstruction filters (000 §5.8.1; pbrt-v4's filters): box, triangle, Gaussian,
+// Mitchell-Netravali, Lanczos (windowed sinc) and Blackman-Harris, found by name in a registry.
+// Each is separable, f(dx, dy) = g(dx) g(dy), over the square -radius <= dx, dy < radius, and
+// integrates to 1 over it. sample_image (camera/antialiasing.h) splats every sample into each
+// pixel whose centre lies within the radius with weight f(sample - centre) and divides each pixel
+// by its weight sum (camera/splat_film.h), so a filter wider than a pixel spreads a sample across
+// pixels: a real reconstruction filter, not a reweighting of the pixel's own samples.
 #pragma once
 
 #include <memory>
@@ -21,12 +24,15 @@ class PixelFilter {
   virtual ~PixelFilter() = default;
   virtual std::string_view name() const = 0;
   double radius() const { return radius_; }
-  // The weight of a sample (dx, dy) pixels from the pixel centre; 0 outside the support.
+  // The weight of a sample (dx, dy) pixels from the pixel centre; 0 outside the support
+  // [-radius, radius)² (half-open, so that the box of radius 0.5 gives each sample to one pixel).
   double evaluate(double dx, double dy) const { return evaluate_1d(dx) * evaluate_1d(dy); }
-  virtual double evaluate_1d(double d) const = 0;
+  double evaluate_1d(double d) const { return d >= -radius_ && d < radius_ ? profile(d) : 0.0; }
 
  protected:
   explicit PixelFilter(double radius) : radius_(radius) {}
+  // g(d) for -radius <= d < radius.
+  virtual double profile(double d) const = 0;
   double radius_;
 };
 

@@ -41,11 +41,32 @@ TEST(PixelFilter, ShapesAreAsDocumented) {
   EXPECT_GT(mitchell->evaluate_1d(0), 0);
   EXPECT_LT(mitchell->evaluate_1d(1.5), 0);
   EXPECT_NEAR(mitchell->evaluate_1d(0), (6 - 2.0 / 3) / 6, 1e-12);
+  // The tent: 1/r at the centre, half that halfway out.
+  const auto triangle = create_pixel_filter("triangle", {});
+  EXPECT_EQ(triangle->radius(), 1.0);
+  EXPECT_DOUBLE_EQ(triangle->evaluate_1d(0), 1.0);
+  EXPECT_DOUBLE_EQ(triangle->evaluate_1d(0.5), 0.5);
+  // Lanczos: zero at every other pixel centre (the sinc's zeros), negative between 1 and 2.
+  const auto lanczos = create_pixel_filter("lanczos", {});
+  EXPECT_EQ(lanczos->radius(), 2.0);
+  EXPECT_NEAR(lanczos->evaluate_1d(1.0), 0.0, 1e-12);
+  EXPECT_LT(lanczos->evaluate_1d(1.5), 0);
+  // Blackman-Harris: a0 + a1 + a2 + a3 = 1 at the centre, over 2 r a0; nearly zero at the edge.
+  const auto blackman_harris = create_pixel_filter("blackman-harris", {2.0, 0});
+  EXPECT_NEAR(blackman_harris->evaluate_1d(0), 1.0 / (2 * 2.0 * 0.35875), 1e-12);
+  EXPECT_LT(blackman_harris->evaluate_1d(1.999), 1e-4);
+}
+
+TEST(PixelFilter, SupportIsHalfOpenSoTheHalfPixelBoxPartitionsTheImage) {
+  const auto box = create_pixel_filter("box", {});
+  EXPECT_GT(box->evaluate_1d(-0.5), 0);
+  EXPECT_EQ(box->evaluate_1d(0.5), 0);  // a sample on a pixel border belongs to one pixel
 }
 
 TEST(PixelFilter, UnknownNamesAndBadParametersAreRejected) {
-  EXPECT_EQ(find_pixel_filter("lanczos"), nullptr);
-  EXPECT_THROW(create_pixel_filter("lanczos", {}), std::invalid_argument);
+  EXPECT_EQ(find_pixel_filter("sinc"), nullptr);
+  EXPECT_THROW(create_pixel_filter("sinc", {}), std::invalid_argument);
+  EXPECT_THROW(create_pixel_filter("gaussian", {17, 0}), std::invalid_argument);
   EXPECT_THROW(create_pixel_filter("box", {-1, 0}), std::invalid_argument);
   EXPECT_THROW(create_pixel_filter("gaussian", {1, -0.5}), std::invalid_argument);
 }

@@ -4,9 +4,11 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 
+#include "camera/antialiasing.h"
 #include "distributed/cluster.h"
 #include "integrators/distributed_tiles.h"
 #include "integrators/solution_field.h"
@@ -277,47 +279,49 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
   const Camera& camera = *scene.camera;
   const PixelRect region = request.region;
   const auto start = std::chrono::steady_clock::now();
-  // The pixels of area into target (area-sized).
-  const auto draw = [&](const PixelRect& area, Film& target) {
-    tbb::parallel_for(area.y0, area.y1, [&](int y) {
-      std::vector<std::pair<uint32_t, double>> weights;
-      for (int x = area.x0; x < area.x1; ++x) {
-        const Ray ray = camera.generate_ray(x + 0.5, y + 0.5);
-        Intersection hit;
-        Color color = scene.background_along(ray.direction);
-        if (scene.intersect(ray, hit)) {
-          const Site p{hit.surface.position, face_forward(hit.surface.geometric_normal, -ray.direction)};
-          basis.evaluate(p, weights);
-          Color global, direct;
-          for (const auto& [i, phi] : weights) {
-            global += solution.transfer.lambda[i] * phi;
-            direct += solution.eta[i] * phi;
-          }
-          // An emitter is drawn with its own emission (λ and η hold only reflected light).
-          const Material& material = scene.material_of(hit);
-          switch (settings.display) {
-            case MeshlessDisplay::global:
-              color = material.emission + global;
-              break;
-            case MeshlessDisplay::direct:
-              color = material.emission + direct;
-              break;
-            case MeshlessDisplay::indirect:
-              color = global - direct;
-              break;
-            case MeshlessDisplay::hybrid: {
-              const Color albedo = material.at(hit.surface).diffuse_albedo();
-              color =
-                  material.emission + direct_light(scene, p.position, p.normal, albedo) + (global - direct);
-              break;
-            }
-          }
-          if (weights.empty() && settings.display != MeshlessDisplay::hybrid)
-            color = scene.background_along(ray.direction);
-        }
-        target.at(x - area.x0, y - area.y0) = color;
+  // The radiance of the display along the camera ray through image point (x, y).
+  const RadianceFunction radiance = [&](double x, double y) {
+    thread_local std::vector<std::pair<uint32_t, double>> weights;
+    const Ray ray = camera.generate_ray(x, y);
+    Intersection hit;
+    Color color = scene.background_along(ray.direction);
+    if (!scene.intersect(ray, hit)) return color;
+    const Site p{hit.surface.position, face_forward(hit.surface.geometric_normal, -ray.direction)};
+    basis.evaluate(p, weights);
+    Color global, direct;
+    for (const auto& [i, phi] : weights) {
+      global += solution.transfer.lambda[i] * phi;
+      direct += solution.eta[i] * phi;
+    }
+    // An emitter is drawn with its own emission (λ and η hold only reflected light).
+    const Material& material = scene.material_of(hit);
+    switch (settings.display) {
+      case MeshlessDisplay::global:
+        color = material.emission + global;
+        break;
+      case MeshlessDisplay::direct:
+        color = material.emission + direct;
+        break;
+      case MeshlessDisplay::indirect:
+        color = global - direct;
+        break;
+      case MeshlessDisplay::hybrid: {
+        const Color albedo = material.at(hit.surface).diffuse_albedo();
+        color = material.emission + direct_light(scene, p.position, p.normal, albedo) + (global - direct);
+        break;
       }
-    });
+    }
+    if (weights.empty() && settings.display != MeshlessDisplay::hybrid)
+      color = scene.background_along(ray.direction);
+    return color;
+  };
+  // The pixels of area into target (area-sized), through the scene's aa sampling and filter.
+  std::atomic<uint64_t> camera_rays{0};
+  const auto draw = [&](const PixelRect& area, Film& target) {
+    const SamplingRegion at{area.x0, area.y0, camera.width(), camera.height()};
+    const SamplingResult sampled =
+        sample_image(scene.antialiasing, scene.render.seed, at, scene.render.tile_size, radiance, target);
+    camera_rays.fetch_add(sampled.traced, std::memory_order_relaxed);
   };
   draw_across_ranks(request.cluster, region, draw, film,
                     statistics);  // issue 11: every rank holds the same λ
@@ -325,7 +329,10 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
   if (request.sites_image && (!cluster || cluster->root()))
     output.sites_image = with_sites_drawn(scene, solution.sites, region, film);
   const auto pixel_count = static_cast<uint64_t>(region.width()) * region.height();
-  statistics.rays.primary += pixel_count;
+  RayCounts primary;
+  primary.primary = camera_rays.load();
+  if (cluster) sum_across_ranks(*cluster, primary);  // every rank traced its own tiles
+  statistics.rays.primary += primary.primary;
   statistics.pixels += pixel_count;
   facts["display_seconds"] = seconds_since(start);
   statistics.extra["meshless"] = std::move(facts);

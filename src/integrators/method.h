@@ -13,6 +13,7 @@
 #include <string_view>
 
 #include "camera/film.h"
+#include "integrators/antialiasing_support.h"
 #include "integrators/ray_tree.h"
 #include "io/checkpoint_file.h"
 #include "scene/scene.h"
@@ -79,7 +80,19 @@ class Method {
   // The ray tree of pixel (x, y) and its radiance, for methods whose capabilities say ray_trees;
   // the others throw std::logic_error.
   virtual RayTree pixel_ray_tree(const Scene& scene, int x, int y, Color& radiance) const;
+  // Why the method cannot honour the scene's "aa" settings (none when it can). By default a
+  // method takes its own pixel samples (the path tracer): aa.mode "none" with the box filter only.
+  virtual std::optional<AntialiasingRefusal> antialiasing_refusal(const Scene& scene) const;
 };
+
+inline std::optional<AntialiasingRefusal> Method::antialiasing_refusal(const Scene& scene) const {
+  return own_pixel_sampling_refusal(
+      scene.antialiasing, "it takes its own samples of each pixel, uniformly random points box-filtered");
+}
+
+// Throws the InputError of method.antialiasing_refusal(scene), naming the method, the setting
+// and its value (SPEC §17: never a silent fallback).
+void refuse_unsupported_antialiasing(const Method& method, const Scene& scene);
 
 inline RayTree Method::pixel_ray_tree(const Scene&, int, int, Color&) const {
   throw std::logic_error(std::string(name()) + " traces no ray trees");

@@ -94,6 +94,20 @@ std::array<SettingsSection, kEntries.size()> make_sections() {
   return sections;
 }
 
+// The method made from its settings object with the overrides applied.
+std::unique_ptr<Method> made_from_settings(const MethodEntry& entry, const Scene& scene,
+                                           const std::vector<std::string>& overrides) {
+  if (overrides.empty()) return entry.create(scene.plugin_settings.node(entry.name));
+  // A document of the object alone, the overrides applied to it (errors name the assignment).
+  const JsonNode original = scene.plugin_settings.node(entry.name);
+  JsonDocument document =
+      JsonDocument::parse(nlohmann::json{{std::string(entry.name), original.json()}}.dump(), scene.source);
+  for (const std::string& assignment : overrides)
+    document.apply_override(std::string(entry.name) + "." + assignment);
+  const JsonNode root(document, document.root(), "");
+  return entry.create(root.at(entry.name));
+}
+
 }  // namespace
 
 std::span<const MethodEntry> method_entries() {
@@ -117,15 +131,9 @@ std::vector<std::string_view> method_names_with(bool MethodCapabilities::*capabi
 
 std::unique_ptr<Method> create_method(const MethodEntry& entry, const Scene& scene,
                                       const std::vector<std::string>& overrides) {
-  if (overrides.empty()) return entry.create(scene.plugin_settings.node(entry.name));
-  // A document of the object alone, the overrides applied to it (errors name the assignment).
-  const JsonNode original = scene.plugin_settings.node(entry.name);
-  JsonDocument document =
-      JsonDocument::parse(nlohmann::json{{std::string(entry.name), original.json()}}.dump(), scene.source);
-  for (const std::string& assignment : overrides)
-    document.apply_override(std::string(entry.name) + "." + assignment);
-  const JsonNode root(document, document.root(), "");
-  return entry.create(root.at(entry.name));
+  std::unique_ptr<Method> method = made_from_settings(entry, scene, overrides);
+  refuse_unsupported_antialiasing(*method, scene);
+  return method;
 }
 
 std::span<const SettingsSection> method_settings_sections() {

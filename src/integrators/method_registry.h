@@ -43,7 +43,8 @@ std::vector<std::string_view> method_names_with(bool MethodCapabilities::*capabi
 std::string method_names();  // "local, whitted"
 
 // The method made from the scene's settings object for it, with `overrides` applied to that object
-// first ("spp=16": keys within it, as --set path.spp=16 would).
+// first ("spp=16": keys within it, as --set path.spp=16 would). An InputError when the method
+// cannot honour the scene's "aa" settings (Method::antialiasing_refusal), before any work.
 std::unique_ptr<Method> create_method(const MethodEntry& entry, const Scene& scene,
                                       const std::vector<std::string>& overrides = {});
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <atomic>
 #include <exception>
 #include <stdexcept>
 #include <string>
@@ -148,7 +149,16 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
   return solved;
 }
 
+std::optional<AntialiasingRefusal> RadiosityMethod::antialiasing_refusal(const Scene& scene) const {
+  // The ray-cast displays take any samples; gouraud rasterizes at a grid's.
+  if (settings_.display != RadiosityDisplay::gouraud) return std::nullopt;
+  std::optional<AntialiasingRefusal> refusal = sample_grid_refusal(scene.antialiasing, *scene.camera);
+  if (refusal) refusal->reason = "radiosity.display \"gouraud\": " + refusal->reason;
+  return refusal;
+}
+
 RenderResult RadiosityMethod::render(const Scene& scene, const RenderRequest& request) const {
+  refuse_unsupported_antialiasing(*this, scene);  // before the solve
   RenderResult output(request.region);
   RunStatistics& statistics = output.statistics;
   const RadiositySettings& settings = settings_;
@@ -167,13 +177,21 @@ RenderResult RadiosityMethod::render(const Scene& scene, const RenderRequest& re
   const PixelRect region = request.region;
   Stopwatch display_time;
   const SolutionDisplay display(scene, solution, settings.display);
+  std::atomic<uint64_t> samples{0};
   // Issue 11: every rank holds the same solution.
   draw_across_ranks(
       request.cluster, region,
-      [&](const PixelRect& area, Film& target) { display.draw(area.x0, area.y0, target); }, output.film,
-      statistics);
+      [&](const PixelRect& area, Film& target) {
+        samples.fetch_add(display.draw(area.x0, area.y0, target), std::memory_order_relaxed);
+      },
+      output.film, statistics);
   const auto pixel_count = static_cast<uint64_t>(region.width()) * region.height();
-  if (display.casts_primary_rays()) statistics.rays.primary += pixel_count;  // rasterized: none
+  if (display.casts_primary_rays()) {  // rasterized: none
+    RayCounts primary;
+    primary.primary = samples.load();
+    if (Cluster* cluster = several_ranks(request)) sum_across_ranks(*cluster, primary);
+    statistics.rays.primary += primary.primary;
+  }
   statistics.pixels += pixel_count;
   facts["display"] = kRadiosityDisplayNames.name(settings.display);
   facts["display_seconds"] = display_time.seconds();

@@ -68,6 +68,9 @@ class RadiosityMethod final : public Method {
   explicit RadiosityMethod(const RadiositySettings& settings = {}) : settings_(settings) {}
   std::string_view name() const override { return "radiosity"; }
   RenderResult render(const Scene& scene, const RenderRequest& request) const override;
+  // flat, ray-traced, elements: every aa mode and filter; gouraud: the modes whose samples lie on
+  // a grid (camera/sample_grid.h).
+  std::optional<AntialiasingRefusal> antialiasing_refusal(const Scene& scene) const override;
 
  private:
   struct Solved {

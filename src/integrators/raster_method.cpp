@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "camera/antialiasing.h"
+#include "camera/sample_grid.h"
 #include "integrators/direct_lighting.h"
 #include "raster/rasterizer.h"
 #include "raster/tessellated_scene.h"
@@ -260,12 +262,27 @@ struct TileBuffers {
 
 }  // namespace
 
+std::optional<AntialiasingRefusal> RasterMethod::antialiasing_refusal(const Scene& scene) const {
+  return sample_grid_refusal(scene.antialiasing, *scene.camera);
+}
+
 RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& request) const {
+  refuse_unsupported_antialiasing(*this, scene);
   RenderResult output(request.region);
   Film& film = output.film;
   RunStatistics& statistics = output.statistics;
   const PixelRect region = request.region;
   const Camera& camera = *scene.camera;
+  // The scene is drawn at the points of the aa mode's sample grid (camera/sample_grid.h), over
+  // every pixel sample_image asks about, and sample_image reconstructs the pixels from them.
+  const SampleGrid grid = *sample_grid(scene.antialiasing);
+  const int grid_width = static_cast<int>(grid.end(camera.width()));
+  const int grid_height = static_cast<int>(grid.end(camera.height()));
+  const SamplingRegion sampling{region.x0, region.y0, camera.width(), camera.height()};
+  const PixelBox pixels = sampled_pixels(scene.antialiasing, sampling, region.width(), region.height());
+  const PixelBox samples_box{static_cast<int>(grid.first(pixels.x0)), static_cast<int>(grid.first(pixels.y0)),
+                             static_cast<int>(grid.end(pixels.x1)), static_cast<int>(grid.end(pixels.y1))};
+  Film samples(samples_box.width(), samples_box.height());
   Stopwatch tessellation_time;
   // Unbounded shapes (planes) are cut by a box around the scene, the eye and the planes' points
   // nearest the eye, a hundred times its size: a floor reaches a horizon far beyond the scene.
@@ -273,7 +290,10 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
   // Depth range: everything inside the clip box; near small enough for the closest surface.
   const double far = 2 * length(clip.diagonal());
   const double near = far * 1e-8;
-  const Eigen::Matrix4d clip_from_world = camera.view_projection(near, far);
+  Eigen::Matrix4d clip_from_world = camera.view_projection(near, far);
+  // The grid's rasterizer has its pixel centres on the sample points.
+  clip_from_world.row(0) *= grid.ndc_scale(camera.width());
+  clip_from_world.row(1) *= grid.ndc_scale(camera.height());
   TessellationRequest tessellation;
   tessellation.max_segments = settings_.segments;
   tessellation.crease_angle_degrees = settings_.crease_angle;
@@ -307,11 +327,14 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
     if (!flat_colors.empty()) flat_colors[t] = shader.flat(static_cast<uint32_t>(t), context);
   });
 
-  // Tiles of the region, each with the triangles whose screen bounds reach it (a triangle
-  // with a vertex behind the eye plane may reach anywhere once clipped: every tile gets it).
+  // Tiles of the grid samples, aligned on the grid's own tiles of 32 (a scanline started inside a
+  // span agrees with a whole-image draw only to rounding, so every region starts its spans where
+  // the whole image does), each with the triangles whose screen bounds reach it (a triangle with
+  // a vertex behind the eye plane may reach anywhere once clipped: every tile gets it).
   const int tile = 32;
-  const int tiles_x = (region.width() + tile - 1) / tile;
-  const int tiles_y = (region.height() + tile - 1) / tile;
+  const int first_tx = samples_box.x0 / tile, first_ty = samples_box.y0 / tile;
+  const int tiles_x = (samples_box.x1 - 1) / tile - first_tx + 1;
+  const int tiles_y = (samples_box.y1 - 1) / tile - first_ty + 1;
   std::vector<std::vector<uint32_t>> bins(std::size_t(tiles_x) * tiles_y);
   for (std::size_t t = 0; t < triangle_count; ++t) {
     // Outside one of the six clip planes with all three corners: in no tile.
@@ -324,18 +347,18 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
     }
     if (outside_all != 0) continue;
     int tx0 = 0, ty0 = 0, tx1 = tiles_x - 1, ty1 = tiles_y - 1;
-    const auto [lower_x, upper_x, lower_y, upper_y, in_front] =
-        screen_bounds(clip_positions[3 * t], clip_positions[3 * t + 1], clip_positions[3 * t + 2],
-                      camera.width(), camera.height());
+    const auto [lower_x, upper_x, lower_y, upper_y, in_front] = screen_bounds(
+        clip_positions[3 * t], clip_positions[3 * t + 1], clip_positions[3 * t + 2], grid_width, grid_height);
     if (in_front) {
-      if (!(upper_x >= region.x0 && lower_x <= region.x1 && upper_y >= region.y0 && lower_y <= region.y1))
+      if (!(upper_x >= samples_box.x0 && lower_x <= samples_box.x1 && upper_y >= samples_box.y0 &&
+            lower_y <= samples_box.y1))
         continue;
-      const auto tile_of = [&](double v, int origin, int count) {
-        return std::clamp(static_cast<int>(std::floor((std::clamp(v, -1e9, 1e9) - origin) / tile)), 0,
+      const auto tile_of = [&](double v, int first, int count) {
+        return std::clamp(static_cast<int>(std::floor(std::clamp(v, -1e9, 1e9) / tile)) - first, 0,
                           count - 1);
       };
-      tx0 = tile_of(lower_x, region.x0, tiles_x), tx1 = tile_of(upper_x, region.x0, tiles_x);
-      ty0 = tile_of(lower_y, region.y0, tiles_y), ty1 = tile_of(upper_y, region.y0, tiles_y);
+      tx0 = tile_of(lower_x, first_tx, tiles_x), tx1 = tile_of(upper_x, first_tx, tiles_x);
+      ty0 = tile_of(lower_y, first_ty, tiles_y), ty1 = tile_of(upper_y, first_ty, tiles_y);
     }
     for (int ty = ty0; ty <= ty1; ++ty)
       for (int tx = tx0; tx <= tx1; ++tx)
@@ -346,10 +369,12 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
   std::atomic<int> tiles_done{0};
   tbb::parallel_for(0, tiles_x * tiles_y, [&](int index) {
     if (cancel_requested()) return;  // Ctrl-C: the tiles not begun stay black
-    const int x0 = region.x0 + (index % tiles_x) * tile, y0 = region.y0 + (index / tiles_x) * tile;
-    const int x1 = std::min(x0 + tile, region.x1), y1 = std::min(y0 + tile, region.y1);
+    const int x0 = std::max(samples_box.x0, (first_tx + index % tiles_x) * tile);
+    const int y0 = std::max(samples_box.y0, (first_ty + index / tiles_x) * tile);
+    const int x1 = std::min((first_tx + index % tiles_x + 1) * tile, samples_box.x1);
+    const int y1 = std::min((first_ty + index / tiles_x + 1) * tile, samples_box.y1);
     const int w = x1 - x0;
-    Rasterizer rasterizer(camera.width(), camera.height(), x0, y0, x1, y1);  // cleared
+    Rasterizer rasterizer(grid_width, grid_height, x0, y0, x1, y1);  // cleared
     TileBuffers buffers;
     buffers.triangle.assign(std::size_t(w) * (y1 - y0), UINT32_MAX);
     buffers.varyings.assign(buffers.triangle.size() * stride, 0.0);
@@ -375,10 +400,11 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
       for (int x = x0; x < x1; ++x) {
         const std::size_t pixel = std::size_t(y - y0) * w + (x - x0);
         const uint32_t t = buffers.triangle[pixel];
-        film.at(x - region.x0, y - region.y0) =
-            t == UINT32_MAX ? scene.background_along(camera.generate_ray(x + 0.5, y + 0.5).direction)
-                            : shader.shade(t, buffers.varyings.data() + pixel * stride,
-                                           flat_colors.empty() ? Color() : flat_colors[t], context);
+        samples.at(x - samples_box.x0, y - samples_box.y0) =
+            t == UINT32_MAX
+                ? scene.background_along(camera.generate_ray(grid.position(x), grid.position(y)).direction)
+                : shader.shade(t, buffers.varyings.data() + pixel * stride,
+                               flat_colors.empty() ? Color() : flat_colors[t], context);
       }
     RasterStatistics& total = tile_statistics.local();
     const RasterStatistics& own = rasterizer.statistics();
@@ -388,6 +414,13 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
     progress.advance();
   });
   progress.finish();
+  // The pixels from the grid's samples, reconstructed with the scene's filter.
+  const RadianceFunction sample_at = [&](double x, double y) {
+    const auto i = std::clamp<int64_t>(grid.index(x) - samples_box.x0, 0, samples.width() - 1);
+    const auto j = std::clamp<int64_t>(grid.index(y) - samples_box.y0, 0, samples.height() - 1);
+    return samples.at(static_cast<int>(i), static_cast<int>(j));
+  };
+  sample_image(scene.antialiasing, scene.render.seed, sampling, scene.render.tile_size, sample_at, film);
   if (cancel_requested()) {
     statistics.extra["interrupted"] = true;
     statistics.extra["completed"] = fmt::format("{} of {} tiles", tiles_done.load(), tiles_x * tiles_y);

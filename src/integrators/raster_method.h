@@ -16,6 +16,11 @@
 // the rasterizer keeps the nearest triangle's interpolated values per pixel and each pixel is
 // shaded once, so the image does not depend on the drawing order of hidden triangles or on the
 // thread count. Surfaces are two-sided; uncovered pixels show the background or environment.
+// Anti-aliasing (the scene's "aa"): the scene is drawn at the points of the mode's sample grid —
+// the pixel centres (none), the image at n× (uniform), the corner lattice of spacing
+// 2^-max_level (corners, adaptive: every lattice point is drawn, adaptive reads those its
+// subdivision asks for) — and sample_image reconstructs the pixels from them with the scene's
+// filter, as it does the ray tracers' samples. Jittered samples lie off any grid: refused.
 // Not drawn here: reflection, refraction, the see-through blend, bump mapping (ray tracing's).
 #pragma once
 
@@ -46,6 +51,9 @@ class RasterMethod final : public Method {
   explicit RasterMethod(const RasterSettings& settings = {}) : settings_(settings) {}
   std::string_view name() const override { return "raster"; }
   RenderResult render(const Scene& scene, const RenderRequest& request) const override;
+  // The aa modes whose samples lie on a grid (camera/sample_grid.h): none, uniform, and corners
+  // and adaptive without jitter; every filter.
+  std::optional<AntialiasingRefusal> antialiasing_refusal(const Scene& scene) const override;
 
  private:
   RasterSettings settings_;

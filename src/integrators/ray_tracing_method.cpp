@@ -23,9 +23,11 @@ RenderResult RayTracingMethod::render(const Scene& scene, const RenderRequest& r
   const int tile = scene.render.tile_size;
   Cluster* cluster = several_ranks(request);
   // Across ranks the tiles are the larger ones handed out; rank 0 shows their progress.
-  const int64_t tile_count =
-      sampling_tile_count(region.width(), region.height(), cluster ? kDistributedTileSize : tile);
-  ProgressReporter progress("render", static_cast<uint64_t>(tile_count), "tiles",
+  const SamplingRegion sampling{region.x0, region.y0, scene.camera->width(), scene.camera->height()};
+  const int64_t tiles_total =
+      cluster ? tile_count(region.width(), region.height(), kDistributedTileSize)
+              : sampling_tile_count(scene.antialiasing, sampling, region.width(), region.height(), tile);
+  ProgressReporter progress("render", static_cast<uint64_t>(tiles_total), "tiles",
                             request.quiet || (cluster && !cluster->root()));
   // Counts are per thread and summed at the end; the random stream is reseeded per ray from the
   // pixel that holds the sample point, so values never depend on the thread.
@@ -56,9 +58,9 @@ RenderResult RayTracingMethod::render(const Scene& scene, const RenderRequest& r
         *cluster, region,
         [&](const PixelRect& piece) {
           RenderedTile rendered{Film(piece.width(), piece.height()), {}};
-          const SamplingRegion sampling{piece.x0, piece.y0, scene.camera->width(), scene.camera->height()};
+          const SamplingRegion at_piece{piece.x0, piece.y0, scene.camera->width(), scene.camera->height()};
           SamplingResult sampled =
-              sample_image(scene.antialiasing, scene.render.seed, sampling, tile, radiance, rendered.film);
+              sample_image(scene.antialiasing, scene.render.seed, at_piece, tile, radiance, rendered.film);
           rendered.counts = std::move(sampled.traced_per_pixel);
           rendered.counts.insert(rendered.counts.end(), sampled.samples_per_pixel.begin(),
                                  sampled.samples_per_pixel.end());
@@ -80,7 +82,6 @@ RenderResult RayTracingMethod::render(const Scene& scene, const RenderRequest& r
     interrupted = run.interrupted;
     statistics.extra["distributed"] = distributed_facts(*cluster, run.tiles_by_rank, "tiles");
   } else {
-    const SamplingRegion sampling{region.x0, region.y0, scene.camera->width(), scene.camera->height()};
     result = sample_image(scene.antialiasing, scene.render.seed, sampling, tile, radiance, film, [&] {
       tiles_done.fetch_add(1, std::memory_order_relaxed);
       progress.advance();
@@ -89,7 +90,7 @@ RenderResult RayTracingMethod::render(const Scene& scene, const RenderRequest& r
   progress.finish();
   if (interrupted || cancel_requested()) {  // Ctrl-C: the tiles not rendered are black
     statistics.extra["interrupted"] = true;
-    statistics.extra["completed"] = fmt::format("{} of {} tiles", tiles_done.load(), tile_count);
+    statistics.extra["completed"] = fmt::format("{} of {} tiles", tiles_done.load(), tiles_total);
   }
   RayCounts total;
   for (const TraceContext& context : contexts) total += context.counts;

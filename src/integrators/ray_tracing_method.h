@@ -1,6 +1,6 @@
-// Methods that compute a radiance per camera ray: tiles rendered in parallel (TBB), one ray
-// through each pixel centre, a per-pixel random stream so images do not depend on the thread
-// count (SPEC §6).
+// Methods that compute a radiance per camera ray: tiles rendered in parallel (TBB), the rays
+// where the scene's aa settings put them (camera/antialiasing.h: every mode and filter), a
+// per-pixel random stream so images do not depend on the thread count (SPEC §6).
 #pragma once
 
 #include <memory>
@@ -24,6 +24,10 @@ class RayTracingMethod : public Method {
   virtual Color trace_primary(const Scene& scene, const Ray& ray, TraceContext& context) const = 0;
   // Traces pixel (x, y) alone and returns its ray tree.
   RayTree pixel_ray_tree(const Scene& scene, int x, int y, Color& radiance) const override;
+  // Every aa mode and filter: the rays go wherever sample_image asks.
+  std::optional<AntialiasingRefusal> antialiasing_refusal(const Scene&) const override {
+    return std::nullopt;
+  }
 };
 
 }  // namespace candela

@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <optional>
+#include <stdexcept>
 
+#include "camera/antialiasing.h"
 #include "math/bounds.h"
 #include "scene/scene.h"
 
@@ -60,6 +63,10 @@ SolutionDisplay::SolutionDisplay(const Scene& scene, const RadiositySolveResult&
   vertices_ =
       compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity, solution.element_hidden);
   if (display != RadiosityDisplay::gouraud) return;
+  // The method refuses the aa settings without a grid before any work (sample_grid_refusal).
+  const std::optional<SampleGrid> grid = sample_grid(scene.antialiasing);
+  if (!grid) throw std::logic_error("the gouraud display needs aa settings whose samples lie on a grid");
+  grid_ = *grid;
   // 000 §6.5: the elements drawn as triangles through the scanline rasterizer with their vertex
   // radiosities as colors, interpolated perspective-correctly (Gouraud). Projected once, here;
   // draw fills any region from them.
@@ -71,7 +78,12 @@ SolutionDisplay::SolutionDisplay(const Scene& scene, const RadiositySolveResult&
   for (const RadiositySurface& element : elements)
     for (const Vec3& corner : element.corners) bounds.extend(corner);
   const double far = 2 * length(bounds.diagonal()) + 1;
-  const Eigen::Matrix4d clip_from_world = camera.view_projection(far * 1e-8, far);
+  Eigen::Matrix4d clip_from_world = camera.view_projection(far * 1e-8, far);
+  // The grid's rasterizer has its pixel centres on the sample points.
+  clip_from_world.row(0) *= grid_.ndc_scale(camera.width());
+  clip_from_world.row(1) *= grid_.ndc_scale(camera.height());
+  const int grid_width = static_cast<int>(grid_.end(camera.width()));
+  const int grid_height = static_cast<int>(grid_.end(camera.height()));
   triangles_.resize(elements.size());
   bounds_on_screen_.resize(elements.size());
   for (std::size_t q = 0; q < elements.size(); ++q) {
@@ -83,28 +95,53 @@ SolutionDisplay::SolutionDisplay(const Scene& scene, const RadiositySolveResult&
       vertex.varyings[0] = b.r, vertex.varyings[1] = b.g, vertex.varyings[2] = b.b;
     }
     bounds_on_screen_[q] = screen_bounds(triangles_[q][0].clip, triangles_[q][1].clip, triangles_[q][2].clip,
-                                         camera.width(), camera.height());
+                                         grid_width, grid_height);
   }
 }
 
-void SolutionDisplay::draw(int x0, int y0, Film& film) const {
-  if (display_ == RadiosityDisplay::gouraud) return draw_rasterized(x0, y0, film);
-  draw_ray_cast(x0, y0, film);
+uint64_t SolutionDisplay::draw(int x0, int y0, Film& film) const {
+  const Camera& camera = *scene_.camera;
+  const AntialiasingSettings& aa = scene_.antialiasing;
+  const SamplingRegion at{x0, y0, camera.width(), camera.height()};
+  if (display_ != RadiosityDisplay::gouraud) {
+    const RadianceFunction radiance = [&](double x, double y) { return ray_cast(x, y); };
+    return sample_image(aa, scene_.render.seed, at, scene_.render.tile_size, radiance, film).traced;
+  }
+  // The grid samples of every pixel sample_image asks about, rasterized first.
+  const PixelBox pixels = sampled_pixels(aa, at, film.width(), film.height());
+  const int64_t gx0 = grid_.first(pixels.x0), gy0 = grid_.first(pixels.y0);
+  Film samples(static_cast<int>(grid_.end(pixels.x1) - gx0), static_cast<int>(grid_.end(pixels.y1) - gy0));
+  draw_rasterized(gx0, gy0, samples);
+  const RadianceFunction radiance = [&](double x, double y) {
+    const auto i = std::clamp<int64_t>(grid_.index(x) - gx0, 0, samples.width() - 1);
+    const auto j = std::clamp<int64_t>(grid_.index(y) - gy0, 0, samples.height() - 1);
+    return samples.at(static_cast<int>(i), static_cast<int>(j));
+  };
+  return sample_image(aa, scene_.render.seed, at, scene_.render.tile_size, radiance, film).traced;
 }
 
-// Tiles of 32 × 32 pixels, each drawn by one thread from the same inputs with its own depth
-// buffer, so the image does not depend on the thread count; pixels no element covers show the
+// Tiles of 32 × 32 grid samples, each drawn by one thread from the same inputs with its own depth
+// buffer, so the image does not depend on the thread count; samples no element covers show the
 // background.
-void SolutionDisplay::draw_rasterized(int x0, int y0, Film& film) const {
+void SolutionDisplay::draw_rasterized(int64_t gx0, int64_t gy0, Film& samples) const {
   const Camera& camera = *scene_.camera;
-  const int region_x1 = x0 + film.width(), region_y1 = y0 + film.height();
+  const int grid_width = static_cast<int>(grid_.end(camera.width()));
+  const int grid_height = static_cast<int>(grid_.end(camera.height()));
+  const int x0 = static_cast<int>(gx0), y0 = static_cast<int>(gy0);
+  const int region_x1 = x0 + samples.width(), region_y1 = y0 + samples.height();
+  // Tiles aligned on the grid's own 32-sample tiles, whatever the region: a scanline started
+  // inside a span agrees with a whole-image draw only to rounding, so every region starts its
+  // spans where the whole image does.
   const int tile = 32;
-  const int tiles_x = (film.width() + tile - 1) / tile, tiles_y = (film.height() + tile - 1) / tile;
+  const int first_x = x0 / tile, first_y = y0 / tile;
+  const int tiles_x = (region_x1 - 1) / tile - first_x + 1, tiles_y = (region_y1 - 1) / tile - first_y + 1;
   tbb::parallel_for(0, tiles_x * tiles_y, [&](int index) {
-    const int tile_x0 = x0 + (index % tiles_x) * tile, tile_y0 = y0 + (index / tiles_x) * tile;
-    const int tile_x1 = std::min(tile_x0 + tile, region_x1), tile_y1 = std::min(tile_y0 + tile, region_y1);
+    const int tile_x0 = std::max(x0, (first_x + index % tiles_x) * tile);
+    const int tile_y0 = std::max(y0, (first_y + index / tiles_x) * tile);
+    const int tile_x1 = std::min((first_x + index % tiles_x + 1) * tile, region_x1);
+    const int tile_y1 = std::min((first_y + index / tiles_x + 1) * tile, region_y1);
     const int w = tile_x1 - tile_x0;
-    Rasterizer rasterizer(camera.width(), camera.height(), tile_x0, tile_y0, tile_x1, tile_y1);  // cleared
+    Rasterizer rasterizer(grid_width, grid_height, tile_x0, tile_y0, tile_x1, tile_y1);  // cleared
     std::vector<Color> colors(std::size_t(w) * (tile_y1 - tile_y0));
     std::vector<bool> covered(colors.size(), false);
     for (std::size_t q = 0; q < triangles_.size(); ++q) {
@@ -122,39 +159,34 @@ void SolutionDisplay::draw_rasterized(int x0, int y0, Film& film) const {
     for (int y = tile_y0; y < tile_y1; ++y)
       for (int x = tile_x0; x < tile_x1; ++x) {
         const std::size_t pixel = std::size_t(y - tile_y0) * w + (x - tile_x0);
-        film.at(x - x0, y - y0) =
+        samples.at(x - x0, y - y0) =
             covered[pixel] ? colors[pixel]
-                           : scene_.background_along(camera.generate_ray(x + 0.5, y + 0.5).direction);
+                           : scene_.background_along(
+                                 camera.generate_ray(grid_.position(x), grid_.position(y)).direction);
       }
   });
 }
 
-// By ray casting: the radiosity (view independent: B itself) where each pixel's ray hits.
-void SolutionDisplay::draw_ray_cast(int x0, int y0, Film& film) const {
+// By ray casting: the radiosity (view independent: B itself) where the ray hits.
+Color SolutionDisplay::ray_cast(double x, double y) const {
   const Camera& camera = *scene_.camera;
-  tbb::parallel_for(y0, y0 + film.height(), [&](int y) {
-    for (int x = x0; x < x0 + film.width(); ++x) {
-      const Ray ray = camera.generate_ray(x + 0.5, y + 0.5);
-      Intersection hit;
-      Color color;
-      const uint32_t element = scene_.intersect(ray, hit)
-                                   ? solution_.mesh.element_at(hit.primitive, hit.surface.position)
-                                   : UINT32_MAX;
-      if (element == UINT32_MAX) {
-        color = scene_.background_along(ray.direction);  // a miss, or off the mesh (as the Gouraud display)
-      } else if (display_ == RadiosityDisplay::ray_traced) {
-        color = ray_traced_radiosity(solution_, vertices_, element, hit);
-      } else if (display_ == RadiosityDisplay::elements) {
-        const Vec3 next = camera.generate_ray(x + 1.5, y + 0.5).direction;
-        color = element_outline(
-            solution_, element, hit,
-            length(hit.surface.position - ray.origin) * length(normalize(next) - normalize(ray.direction)));
-      } else {
-        color = solution_.element_radiosity[element];
-      }
-      film.at(x - x0, y - y0) = color;
-    }
-  });
+  const Ray ray = camera.generate_ray(x, y);
+  Intersection hit;
+  const uint32_t element = scene_.intersect(ray, hit)
+                               ? solution_.mesh.element_at(hit.primitive, hit.surface.position)
+                               : UINT32_MAX;
+  if (element == UINT32_MAX)
+    return scene_.background_along(ray.direction);  // a miss, or off the mesh (as the Gouraud display)
+  if (display_ == RadiosityDisplay::ray_traced)
+    return ray_traced_radiosity(solution_, vertices_, element, hit);
+  if (display_ == RadiosityDisplay::elements) {
+    // The outline about a pixel wide: the width one pixel covers at the hit.
+    const Vec3 next = camera.generate_ray(x + 1, y).direction;
+    return element_outline(
+        solution_, element, hit,
+        length(hit.surface.position - ray.origin) * length(normalize(next) - normalize(ray.direction)));
+  }
+  return solution_.element_radiosity[element];
 }
 
 }  // namespace candela

@@ -1,17 +1,19 @@
 // A radiosity solution drawn for the scene's camera (000 §6.5, SPEC §10 "Display"; setting
-// radiosity.display):
-//   flat        one ray through each pixel centre; its hit → the element of the hit primitive
+// radiosity.display), its pixels sampled and reconstructed by sample_image with the scene's aa
+// settings (SPEC §17):
+//   flat        a ray through each sample point; its hit → the element of the hit primitive
 //               nearest the hit point → that element's radiosity B (the exitance, view
 //               independent), shown directly as the seed's radiosity images are.
 //   gouraud     the vertex radiosities of radiosity/vertex_radiosity.h; the elements drawn as
 //               triangles by the scanline rasterizer in 32 × 32 tiles, colors interpolated
-//               perspective-correctly.
-//   ray-traced  a ray through each pixel centre; at its hit, the vertex radiosities of the
+//               perspective-correctly, at the points of the aa mode's sample grid
+//               (camera/sample_grid.h: no jitter).
+//   ray-traced  a ray through each sample point; at its hit, the vertex radiosities of the
 //               element hit interpolated at the point (the Gouraud field without its screen-space
 //               interpolation).
 //   elements    the element mesh (000 Figure 65): each element flat, its edges drawn dark.
-// Pixels no surface covers show the background. Each pixel depends only on the solution and its
-// own ray or tile, so the image does not depend on the thread count.
+// Pixels no surface covers show the background. Each sample depends only on the solution and its
+// own ray or grid tile, so the image does not depend on the thread count.
 #pragma once
 
 #include <array>
@@ -20,6 +22,7 @@
 
 #include "accel/accelerator.h"
 #include "camera/film.h"
+#include "camera/sample_grid.h"
 #include "radiosity/radiosity_settings.h"
 #include "radiosity/radiosity_solve_result.h"
 #include "radiosity/vertex_radiosity.h"
@@ -37,22 +40,25 @@ class SolutionDisplay {
   SolutionDisplay(const Scene& scene, const RadiositySolveResult& solution, RadiosityDisplay display);
 
   // Draws the pixels [x0, x0 + film.width()) × [y0, y0 + film.height()) of the camera's image
-  // into film.
-  void draw(int x0, int y0, Film& film) const;
+  // into film; returns the samples taken (rays, or grid samples for gouraud).
+  uint64_t draw(int x0, int y0, Film& film) const;
 
   // Whether a ray goes through every pixel (every display but gouraud, which rasterizes).
   bool casts_primary_rays() const { return display_ != RadiosityDisplay::gouraud; }
 
  private:
-  void draw_rasterized(int x0, int y0, Film& film) const;
-  void draw_ray_cast(int x0, int y0, Film& film) const;
+  // The grid samples [gx0, gx0 + samples.width()) × [gy0, …) into samples.
+  void draw_rasterized(int64_t gx0, int64_t gy0, Film& samples) const;
+  // The display along the camera ray through image point (x, y).
+  Color ray_cast(double x, double y) const;
 
   const Scene& scene_;
   const RadiositySolveResult& solution_;
   RadiosityDisplay display_;
+  SampleGrid grid_;           // gouraud
   VertexRadiosity vertices_;  // gouraud, ray-traced
-  // gouraud: every element's triangle in clip space, and its screen bounds (unbounded when a
-  // corner is behind the near plane).
+  // gouraud: every element's triangle in clip space (the grid's: camera/sample_grid.h), and its
+  // bounds on the grid (unbounded when a corner is behind the near plane).
   std::vector<std::array<RasterVertex, 3>> triangles_;
   std::vector<ScreenBounds> bounds_on_screen_;
 };

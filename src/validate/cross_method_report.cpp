@@ -121,7 +121,8 @@ CrossMethodEntry render_entry(Scene& scene, const CrossMethodOptions& options, c
   return entry;
 }
 
-// The methods whose scene-file objects the page shows: those rendered, and "aa" for ray tracers.
+// The methods whose scene-file objects the page shows: those rendered, and "aa", whose sampling
+// and reconstruction filter every method's pixels go through (or which it refuses).
 std::vector<std::string> settings_keys(const CrossMethodReport& report) {
   std::vector<std::string> keys;
   const auto add = [&](const std::string& key) {
@@ -129,7 +130,7 @@ std::vector<std::string> settings_keys(const CrossMethodReport& report) {
   };
   for (const CrossMethodEntry& entry : report.entries) {
     add(entry.method);
-    if (entry.method == "whitted" || entry.method == "local") add("aa");
+    add("aa");
   }
   if (report.reference_rendered) add("path");
   return keys;

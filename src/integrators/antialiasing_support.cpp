@@ -1,0 +1,68 @@
+#include "integrators/antialiasing_support.h"
+
+#include <fmt/format.h>
+
+#include "camera/sample_grid.h"
+#include "integrators/method.h"
+#include "util/error.h"
+
+namespace candela {
+
+namespace {
+
+std::string quoted_mode(AntialiasingMode mode) {
+  return fmt::format("\"{}\"", kAntialiasingModeNames.name(mode));
+}
+
+// The most grid samples a rasterized view keeps (24 bytes each: 3 GiB).
+constexpr int64_t kMaxGridSamples = int64_t(1) << 27;
+
+}  // namespace
+
+std::optional<AntialiasingRefusal> own_pixel_sampling_refusal(const AntialiasingSettings& settings,
+                                                              const std::string& how) {
+  if (settings.mode != AntialiasingMode::none)
+    return AntialiasingRefusal{"aa.mode", quoted_mode(settings.mode), how + "; use aa.mode \"none\""};
+  const double radius = settings.filter_parameters.radius;
+  if (settings.filter != "box" || (radius != 0 && radius != 0.5))
+    return AntialiasingRefusal{"aa.filter", fmt::format("\"{}\"", settings.filter),
+                               how + "; use aa.filter \"box\" of radius 0.5"};
+  return std::nullopt;
+}
+
+std::optional<AntialiasingRefusal> sample_grid_refusal(const AntialiasingSettings& settings,
+                                                       const Camera& camera) {
+  const std::optional<SampleGrid> grid = sample_grid(settings);
+  if (!grid) {
+    const std::string reason =
+        "it rasterizes at the points of a regular grid and jittered points lie off it; use aa.mode "
+        "\"none\", \"uniform\" (the image at n× resolution), or \"corners\" or \"adaptive\" without "
+        "aa.jitter";
+    if (settings.mode == AntialiasingMode::jittered)
+      return AntialiasingRefusal{"aa.mode", quoted_mode(settings.mode), reason};
+    return AntialiasingRefusal{"aa.jitter", "true",
+                               fmt::format("with aa.mode {}: {}", quoted_mode(settings.mode), reason)};
+  }
+  const int64_t samples =
+      (grid->end(camera.width()) - grid->first(0)) * (grid->end(camera.height()) - grid->first(0));
+  if (samples > kMaxGridSamples) {
+    const bool uniform = settings.mode == AntialiasingMode::uniform;
+    return AntialiasingRefusal{
+        uniform ? "aa.n" : "aa.max_level", std::to_string(uniform ? settings.n : settings.max_level),
+        fmt::format("the grid of {} × {} samples it would rasterize is over the {} samples it may hold; "
+                    "lower it",
+                    grid->end(camera.width()), grid->end(camera.height()), kMaxGridSamples)};
+  }
+  return std::nullopt;
+}
+
+std::string describe_refusal(std::string_view method, const AntialiasingRefusal& refusal) {
+  return fmt::format("{} cannot do {} {} ({})", method, refusal.key, refusal.value, refusal.reason);
+}
+
+void refuse_unsupported_antialiasing(const Method& method, const Scene& scene) {
+  if (const auto refusal = method.antialiasing_refusal(scene))
+    throw InputError({scene.source, 0, 0, refusal->key}, describe_refusal(method.name(), *refusal));
+}
+
+}  // namespace candela

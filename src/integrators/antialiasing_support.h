@@ -1,0 +1,38 @@
+// Which anti-aliasing settings (the scene's "aa" object) a method can honour (SPEC §17: every
+// image-producing method gets its pixels from the one camera sampling and reconstruction, or
+// refuses a mode it cannot do — never a silent fallback). A method says why it cannot; the
+// refusal is an InputError naming the method, the setting and its value, given by create_method
+// (integrators/method_registry.h) before any work.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "camera/antialiasing.h"
+#include "camera/camera.h"
+
+namespace candela {
+
+class Scene;
+
+struct AntialiasingRefusal {
+  std::string key;     // "aa.mode", "aa.jitter", "aa.filter", "aa.n", …
+  std::string value;   // as the scene file writes it: "\"adaptive\"", "true"
+  std::string reason;  // why, and what the method can do instead
+};
+
+// The refusal of a method that takes its own pixel samples (the path tracer: one uniformly
+// random point of the pixel per pass, box-filtered): everything but aa.mode "none" with the box
+// filter of radius 0.5.
+std::optional<AntialiasingRefusal> own_pixel_sampling_refusal(const AntialiasingSettings& settings,
+                                                              const std::string& how);
+
+// The refusal of a view that rasterizes (camera/sample_grid.h): jittered samples, a jittered
+// lattice, and a grid too large to hold (aa.n, aa.max_level).
+std::optional<AntialiasingRefusal> sample_grid_refusal(const AntialiasingSettings& settings,
+                                                       const Camera& camera);
+
+// "raster cannot do aa.mode \"adaptive\" (…)".
+std::string describe_refusal(std::string_view method, const AntialiasingRefusal& refusal);
+
+}  // namespace candela

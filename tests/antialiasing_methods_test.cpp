@@ -1,0 +1,188 @@
+// SPEC §17 and issue 19 §2: every image-producing method takes its pixels from the one camera
+// sampling and reconstruction (camera/antialiasing.h) — every aa mode and pixel filter either
+// honoured, with the same bytes on one and two threads, or refused before any work with an error
+// naming the method and the setting.
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "integrators/method_registry.h"
+#include "integrators/scene_loading.h"
+#include "util/error.h"
+
+namespace candela {
+namespace {
+
+// A method as its entry makes it, with settings of its own object.
+struct MethodVariant {
+  std::string method;
+  std::vector<std::string> settings;
+  // Which settings it honours: every one, those on a grid (no jitter), or aa.mode "none" with the
+  // box alone.
+  enum class Takes { everything, grid, own_samples } takes;
+  std::string label() const { return method + (settings.empty() ? "" : " " + settings[0]); }
+};
+
+std::vector<MethodVariant> every_method_view() {
+  using Takes = MethodVariant::Takes;
+  std::vector<MethodVariant> all{{"local", {}, Takes::everything},
+                                 {"whitted", {}, Takes::everything},
+                                 {"raster", {"shading=\"phong\""}, Takes::grid},
+                                 {"raster", {"shading=\"gouraud\""}, Takes::grid},
+                                 {"radiosity", {"display=\"gouraud\""}, Takes::grid},
+                                 {"path", {"spp=1"}, Takes::own_samples}};
+  for (const char* display : {"flat", "ray-traced", "elements"})
+    all.push_back({"radiosity", {std::string("display=\"") + display + "\""}, Takes::everything});
+  for (const char* display : {"global", "direct", "indirect", "hybrid"})
+    all.push_back({"meshless", {std::string("display=\"") + display + "\""}, Takes::everything});
+  return all;
+}
+
+// A small room every method lights: a point light for the local model, an emissive quad for
+// radiosity, ambient light, and edges (a box, a sphere, the walls) for the filters to act on.
+const char* const kRoom = R"({
+  "format": "candela/1",
+  "camera": {"eye": [0, 1.2, 4], "target": [0, 0.8, 0], "fov": 60, "width": 18, "height": 14},
+  "background": [0.2, 0.3, 0.5],
+  "ambient": 0.2,
+  "lights": [{"type": "point", "position": [1, 2.5, 2], "intensity": 1}],
+  "radiosity": {"patch_size": 1, "element_size": 1, "hemicube_resolution": 20},
+  "meshless": {"spacing": 0.6, "grid": 8, "rounds": 1},
+  "path": {"spp": 1},
+  "materials": {"white": {"kd": 0.7}, "red": {"kd": [0.7, 0.2, 0.1]}, "lamp": {"kd": 0, "emission": 8}},
+  "shapes": [
+    {"type": "quad", "corner": [-2, 0, 2], "edge_u": [4, 0, 0], "edge_v": [0, 0, -4], "material": "white"},
+    {"type": "quad", "corner": [-2, 0, -2], "edge_u": [4, 0, 0], "edge_v": [0, 3, 0], "material": "white"},
+    {"type": "box", "min": [-0.5, 0, -0.5], "max": [0.3, 0.9, 0.3], "material": "red"},
+    {"type": "sphere", "center": [0.9, 0.5, 0.4], "radius": 0.5, "material": "white"},
+    {"type": "quad", "corner": [-0.5, 2.9, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "material": "lamp"}
+  ]
+})";
+
+std::unique_ptr<Scene> room() {
+  return load_scene_text(kRoom, "room.json", ".");
+}
+
+// What a refusal names: the setting and its value.
+std::string refused_setting(const MethodVariant& variant, const AntialiasingSettings& settings) {
+  const std::string mode = "aa.mode \"" + std::string(kAntialiasingModeNames.name(settings.mode)) + "\"";
+  if (variant.takes == MethodVariant::Takes::own_samples)
+    return settings.mode != AntialiasingMode::none ? mode : "aa.filter \"" + settings.filter + "\"";
+  return settings.mode == AntialiasingMode::jittered ? mode : "aa.jitter true";
+}
+
+std::vector<AntialiasingSettings> every_mode() {
+  std::vector<AntialiasingSettings> all;
+  for (const AntialiasingMode mode :
+       {AntialiasingMode::none, AntialiasingMode::uniform, AntialiasingMode::jittered,
+        AntialiasingMode::corners, AntialiasingMode::adaptive}) {
+    AntialiasingSettings settings;
+    settings.mode = mode;
+    settings.n = 2;
+    settings.max_level = 2;
+    settings.threshold = Color(0.05);  // subdivide on every visible edge
+    all.push_back(settings);
+    if (mode == AntialiasingMode::corners || mode == AntialiasingMode::adaptive) {
+      settings.jitter = true;
+      all.push_back(settings);
+    }
+  }
+  return all;
+}
+
+bool honoured(const MethodVariant& variant, const AntialiasingSettings& settings) {
+  switch (variant.takes) {
+    case MethodVariant::Takes::everything:
+      return true;
+    case MethodVariant::Takes::grid:
+      return settings.mode != AntialiasingMode::jittered && !settings.jitter;
+    case MethodVariant::Takes::own_samples:
+      return settings.mode == AntialiasingMode::none && settings.filter == "box";
+  }
+  return false;
+}
+
+Film render_with(const Method& method, const Scene& scene, std::size_t threads) {
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+  RenderRequest request;
+  request.region = {0, 0, scene.camera->width(), scene.camera->height()};
+  request.quiet = true;
+  return method.render(scene, request).film;
+}
+
+TEST(EveryMethodSampling, OneAndTwoThreadsGiveTheSameBytesForEveryFilterAndModeOrARefusal) {
+  auto scene = room();
+  for (const MethodVariant& variant : every_method_view()) {
+    scene->antialiasing = {};
+    const auto method = create_method(*find_method(variant.method), *scene, variant.settings);
+    int rendered = 0;
+    for (const PixelFilterEntry& filter : pixel_filter_entries()) {
+      for (AntialiasingSettings settings : every_mode()) {
+        settings.filter = filter.name;
+        scene->antialiasing = settings;
+        const std::string what = variant.label() + ", aa.mode " +
+                                 std::string(kAntialiasingModeNames.name(settings.mode)) +
+                                 (settings.jitter ? " with jitter" : "") + ", filter " + filter.name;
+        if (!honoured(variant, settings)) {
+          // Refused, by create_method as by the method itself, naming both.
+          try {
+            create_method(*find_method(variant.method), *scene, variant.settings);
+            ADD_FAILURE() << what << ": not refused";
+          } catch (const InputError& e) {
+            const std::string message = e.what();
+            EXPECT_NE(message.find(variant.method + " cannot do aa."), std::string::npos) << message;
+            EXPECT_NE(message.find(refused_setting(variant, settings)), std::string::npos) << message;
+          }
+          EXPECT_THROW(refuse_unsupported_antialiasing(*method, *scene), InputError) << what;
+          continue;
+        }
+        EXPECT_NO_THROW(refuse_unsupported_antialiasing(*method, *scene)) << what;
+        const Film one = render_with(*method, *scene, 1);
+        const Film two = render_with(*method, *scene, 2);
+        ASSERT_EQ(one.pixels().size(), two.pixels().size());
+        double brightest = 0;
+        for (const Color& c : one.pixels()) brightest = std::max({brightest, c.r, c.g, c.b});
+        EXPECT_GT(brightest, 0.1) << what;  // an image, not a black film
+        EXPECT_EQ(std::memcmp(one.pixels().data(), two.pixels().data(), one.pixels().size() * sizeof(Color)),
+                  0)
+            << what;
+        ++rendered;
+      }
+    }
+    EXPECT_GT(rendered, 0) << variant.label();
+  }
+}
+
+// The filter reaches every method's pixels: a wider Gaussian changes each method's image (the
+// rasterized views and the ray-cast displays alike), and aa.mode "uniform" changes it again.
+TEST(EveryMethodSampling, TheFilterAndTheModeReachEveryMethodThatTakesThem) {
+  auto scene = room();
+  for (const MethodVariant& variant : every_method_view()) {
+    if (variant.takes == MethodVariant::Takes::own_samples) continue;
+    scene->antialiasing = {};
+    const auto method = create_method(*find_method(variant.method), *scene, variant.settings);
+    const Film plain = render_with(*method, *scene, 2);
+    scene->antialiasing.filter = "gaussian";
+    const Film filtered = render_with(*method, *scene, 2);
+    scene->antialiasing.filter = "box";
+    scene->antialiasing.mode = AntialiasingMode::uniform;
+    scene->antialiasing.n = 3;
+    const Film supersampled = render_with(*method, *scene, 2);
+    EXPECT_NE(
+        std::memcmp(plain.pixels().data(), filtered.pixels().data(), plain.pixels().size() * sizeof(Color)),
+        0)
+        << variant.label();
+    EXPECT_NE(std::memcmp(plain.pixels().data(), supersampled.pixels().data(),
+                          plain.pixels().size() * sizeof(Color)),
+              0)
+        << variant.label();
+  }
+}
+
+}  // namespace
+}  // namespace candela
