@@ -548,6 +548,7 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
     statistics.extra["scene"] = scene->source;
     statistics.extra["camera"] = view.name;
     statistics.extra["method"] = std::string(method->name());
+    statistics.extra["emitters"] = emitter_facts(*scene, *entry);
     statistics.extra["output"] = output;
     statistics.extra["image"] = {{"width", film.width()}, {"height", film.height()}};
     statistics.extra["primitives"] = scene->primitives.size();

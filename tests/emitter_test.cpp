@@ -9,10 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "integrators/method_registry.h"
 #include "integrators/scene_loading.h"
 #include "render_support.h"
 #include "scene/environment_light.h"
 #include "scene/surface_light.h"
+#include "util/error.h"
 
 namespace candela {
 namespace {
@@ -107,6 +109,68 @@ TEST(Emitters, EmissiveObjectsAndTheEnvironmentBecomeLights) {
   EXPECT_EQ(lit->surface_lights[0]->type_name(), "surface");
   EXPECT_DOUBLE_EQ(lit->surface_lights[0]->area(), 1.0);
   EXPECT_FALSE(lit->environment_light);
+}
+
+}  // namespace
+}  // namespace candela
+
+namespace candela {
+namespace {
+
+// Bad input (issue 19): an emitter a method cannot account for is an error naming both and where
+// the emitter is, never a dark image. An emissive unbounded plane cannot be sampled for shadow
+// rays; the path tracer and radiosity (which meshes it within the scene's bounds) take it.
+TEST(Emitters, AnEmitterAMethodCannotSampleIsRefusedNamingBoth) {
+  const auto scene = load_scene_text(R"({"format": "candela/1",
+    "camera": {"eye": [0, 2, 4], "target": [0, 0, 0], "width": 4, "height": 4},
+    "shapes": [
+      {"type": "sphere", "center": [0, 0.5, 0], "radius": 0.5, "material": {"kd": 0.5}},
+      {"name": "glowing floor", "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": {"kd": 0, "emission": 1}}]})",
+                                     "glow.json", ".");
+  ASSERT_EQ(scene->unsampled_emitters.size(), 1u);
+  for (const char* method : {"local", "whitted", "raster", "meshless"}) {
+    try {
+      (void)create_method(*find_method(method), *scene);
+      ADD_FAILURE() << method << " accepted an emitter it cannot sample";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.location().file, "glow.json") << method;
+      EXPECT_EQ(e.location().line, 5) << method;  // the plane's entry
+      EXPECT_NE(e.message().find(std::string(method) +
+                                 " cannot light the scene by the emissive plane \"glowing floor\""),
+                std::string::npos)
+          << e.message();
+      EXPECT_NE(e.message().find("radiosity or path"), std::string::npos) << e.message();
+    }
+  }
+  EXPECT_NO_THROW((void)create_method(*find_method("path"), *scene));
+  EXPECT_NO_THROW((void)create_method(*find_method("radiosity"), *scene));
+}
+
+TEST(Emitters, DotProductShadingRefusesTheEnvironment) {
+  const auto scene = load_scene_text(room(kSky, true), "room.json", ".", {"raster.shading=dotproduct"});
+  try {
+    (void)testing::render_scene(*scene, "raster");
+    ADD_FAILURE() << "dotproduct shading accepted an environment light";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.location().json_path, "raster.shading");
+    EXPECT_NE(e.message().find("raster cannot light the scene by the environment"), std::string::npos)
+        << e.message();
+  }
+}
+
+// --stats and candela report say which emitters a method accounted for, and how.
+TEST(Emitters, FactsListTheScenesEmittersAndHowTheMethodTakesThem) {
+  const auto scene = load_scene_text(cases()[1].scene, "room.json", ".");
+  const nlohmann::json facts = emitter_facts(*scene, *find_method("radiosity"));
+  EXPECT_TRUE(facts["lights"].empty());
+  ASSERT_EQ(facts["emissive_surfaces"].size(), 1u);
+  EXPECT_EQ(facts["emissive_surfaces"][0], "quad#6");
+  EXPECT_TRUE(facts["environment"].is_null());
+  EXPECT_FALSE(facts["background_lights"].get<bool>());
+  EXPECT_NE(facts["accounted_by"].get<std::string>().find("first shot"), std::string::npos);
+  const nlohmann::json point =
+      emitter_facts(*load_scene_text(cases()[0].scene, "room.json", "."), *find_method("path"));
+  EXPECT_EQ(point["lights"]["point"], 1);
 }
 
 }  // namespace

@@ -10,6 +10,8 @@
 #include "integrators/raster_method.h"
 #include "integrators/whitted.h"
 #include "radiosity/radiosity_settings.h"
+#include "shading/environment.h"
+#include "util/error.h"
 #include "util/registry.h"
 
 namespace candela {
@@ -20,6 +22,13 @@ MethodCapabilities ray_tracer() {
   MethodCapabilities capabilities;
   capabilities.ray_trees = true;
   capabilities.samples_per_pixel = true;
+  capabilities.samples_emissive_surfaces = true;
+  return capabilities;
+}
+
+MethodCapabilities raster() {
+  MethodCapabilities capabilities;
+  capabilities.samples_emissive_surfaces = true;
   return capabilities;
 }
 
@@ -35,6 +44,7 @@ MethodCapabilities meshless() {
   MethodCapabilities capabilities;
   capabilities.sites_image = true;
   capabilities.relighting = true;
+  capabilities.samples_emissive_surfaces = true;
   capabilities.probe = true;  // integrators/probe.h
   return capabilities;
 }
@@ -47,38 +57,44 @@ MethodCapabilities path() {
   return capabilities;
 }
 
+constexpr std::string_view kShadowRays =
+    "shadow rays to every light, to jittered points of each emissive surface and to the environment";
+
 const std::array kEntries = {
-    MethodEntry{"local", "ray casting with the local model only (001, 000 §2)", ray_tracer(),
+    MethodEntry{"local", "ray casting with the local model only (001, 000 §2)", kShadowRays, ray_tracer(),
                 [](const JsonNode& settings) -> std::unique_ptr<Method> {
                   return std::make_unique<LocalMethod>(read_local_settings(settings));
                 }},
-    MethodEntry{"whitted", "recursive Whitted ray tracing (000 §5, 001)", ray_tracer(),
+    MethodEntry{"whitted", "recursive Whitted ray tracing (000 §5, 001)", kShadowRays, ray_tracer(),
                 [](const JsonNode& settings) -> std::unique_ptr<Method> {
                   return std::make_unique<WhittedMethod>(read_whitted_settings(settings));
                 }},
-    MethodEntry{"raster",
-                "scanline z-buffer rasterizer, flat / Gouraud / Phong / dot-product shading (000 §3)",
-                {},
-                [](const JsonNode& settings) -> std::unique_ptr<Method> {
-                  return std::make_unique<RasterMethod>(read_raster_settings(settings));
-                }},
+    MethodEntry{
+        "raster", "scanline z-buffer rasterizer, flat / Gouraud / Phong / dot-product shading (000 §3)",
+        "the local model's shadow rays at the shading points (dotproduct: one point per light)", raster(),
+        [](const JsonNode& settings) -> std::unique_ptr<Method> {
+          return std::make_unique<RasterMethod>(read_raster_settings(settings));
+        }},
     MethodEntry{
         "radiosity",
         "classic radiosity: hemicube form factors, progressive refinement with substructuring (000 §6)",
+        "lights and environment: the first shot (shadow rays from each element); emissive surfaces: emitters "
+        "of "
+        "the mesh (front side)",
         radiosity(),
         [](const JsonNode& settings) -> std::unique_ptr<Method> {
           return std::make_unique<RadiosityMethod>(read_radiosity_settings(settings));
         }},
     MethodEntry{"meshless",
                 "meshless finite-element radiosity: sites, radial / normalized / Shepard bases (002)",
-                meshless(),
+                "every emitter lights η by shadow rays from the sites (and per pixel in hybrid)", meshless(),
                 [](const JsonNode& settings) -> std::unique_ptr<Method> {
                   return std::make_unique<MeshlessMethod>(read_meshless_settings(settings));
                 }},
     MethodEntry{
         "path",
         "path-traced reference: next-event estimation, MIS, Russian roulette, progressive passes (SPEC §12)",
-        path(),
+        "next-event estimation and BSDF rays with MIS, for every emitter", path(),
         [](const JsonNode& settings) -> std::unique_ptr<Method> {
           return std::make_unique<PathMethod>(read_path_settings(settings));
         }},
@@ -133,7 +149,41 @@ std::unique_ptr<Method> create_method(const MethodEntry& entry, const Scene& sce
                                       const std::vector<std::string>& overrides) {
   std::unique_ptr<Method> method = made_from_settings(entry, scene, overrides);
   refuse_unsupported_antialiasing(*method, scene);
+  // Issue 19: an emitter a method cannot account for is an error naming both, never a dark image.
+  if (entry.capabilities.samples_emissive_surfaces && !scene.unsampled_emitters.empty()) {
+    const UnsampledEmitter& emitter = scene.unsampled_emitters.front();
+    throw InputError(
+        emitter.location,
+        std::string(entry.name) + " cannot light the scene by the emissive " + emitter.type + " \"" +
+            emitter.name +
+            "\": it cannot be sampled for shadow rays (unbounded); bound it (a quad, a disc) or "
+            "render with " +
+            [] {
+              std::string able;
+              for (const MethodEntry& other : kEntries)
+                if (!other.capabilities.samples_emissive_surfaces)
+                  able += (able.empty() ? "" : " or ") + std::string(other.name);
+              return able;
+            }());
+  }
   return method;
+}
+
+nlohmann::json emitter_facts(const Scene& scene, const MethodEntry& entry) {
+  nlohmann::json lights = nlohmann::json::object();
+  for (const auto& light : scene.lights) {
+    const std::string type(light->type_name());
+    lights[type] = lights.value(type, 0) + 1;
+  }
+  nlohmann::json surfaces = nlohmann::json::array();
+  for (const auto& surface : scene.surface_lights) surfaces.push_back(surface->object_name());
+  for (const UnsampledEmitter& emitter : scene.unsampled_emitters) surfaces.push_back(emitter.name);
+  return {{"lights", lights},
+          {"emissive_surfaces", surfaces},
+          {"environment", scene.environment ? nlohmann::json(std::string(scene.environment->type_name()))
+                                            : nlohmann::json(nullptr)},
+          {"background_lights", false},
+          {"accounted_by", std::string(entry.emitters)}};
 }
 
 std::span<const SettingsSection> method_settings_sections() {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <span>
 #include <string>
 #include <string_view>
@@ -26,11 +27,16 @@ struct MethodCapabilities {
   bool progressive_passes = false;  // samples per pixel and a time limit (path.spp, path.time)
   bool checkpoints = false;         // checkpoint and resume (RenderRequest::checkpoint, resume)
   bool probe = false;               // irradiance at sensor points (integrators/probe.h)
+  // Lights emissive surfaces by shadow rays to points sampled on them (scene/surface_light.h):
+  // refuses a scene with an emissive surface that cannot be sampled (Scene::unsampled_emitters).
+  bool samples_emissive_surfaces = false;
 };
 
 struct MethodEntry {
   std::string_view name;  // also the key of its settings object in the scene file
   std::string_view description;
+  // How it accounts for each kind of emitter (issue 19; docs/scene-format.md, "Emitters").
+  std::string_view emitters;
   MethodCapabilities capabilities;
   // Reads the settings object (ranges checked, unknown keys refused: InputError) and makes the method.
   std::unique_ptr<Method> (*create)(const JsonNode& settings);
@@ -41,6 +47,11 @@ const MethodEntry* find_method(std::string_view name);
 // The methods whose capabilities have `capability`, in registry order.
 std::vector<std::string_view> method_names_with(bool MethodCapabilities::*capability);
 std::string method_names();  // "local, whitted"
+
+// What a render by this method lit the scene with: the scene's emitters by kind (lights by type,
+// the emissive objects by name, the environment) and how the method accounts for them — in
+// --stats and in candela report.
+nlohmann::json emitter_facts(const Scene& scene, const MethodEntry& entry);
 
 // The method made from the scene's settings object for it, with `overrides` applied to that object
 // first ("spp=16": keys within it, as --set path.spp=16 would). An InputError when the method

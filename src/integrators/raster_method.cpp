@@ -56,6 +56,11 @@ class RasterShader {
         perspective_(scene.camera->type_name() == "perspective"),
         eye_(scene.camera->eye_position()),
         view_direction_(scene.camera->view_direction()) {
+    // Issue 19: the sky has no one direction to interpolate N·L toward.
+    if (settings_.shading == RasterShading::dot_product && scene.environment_light)
+      throw InputError({scene.source, 0, 0, "raster.shading"},
+                       "raster cannot light the scene by the environment with \"dotproduct\" shading (it "
+                       "interpolates N·L toward one point per light); use \"phong\" or \"gouraud\"");
     if (settings_.shading == RasterShading::dot_product &&
         kSurfaceVaryings + kPerLight * static_cast<int>(scene.emitter_count()) > kMaxVaryings)
       throw InputError({scene.source, 0, 0, "raster.shading"},

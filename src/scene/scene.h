@@ -52,6 +52,14 @@ struct NamedCamera {
 
 class Environment;
 
+// An emissive object whose surface cannot be sampled (an unbounded plane): the methods that light
+// emissive surfaces by shadow rays refuse the scene, naming it (issue 19).
+struct UnsampledEmitter {
+  std::string name;  // the object's
+  std::string type;  // its shape type
+  SourceLocation location;
+};
+
 class Scene {
  public:
   Scene();
@@ -74,6 +82,7 @@ class Scene {
   std::vector<std::unique_ptr<Light>> lights;  // the "lights" array
   // The emissive objects as lights (surface_light.h), made by the loader.
   std::vector<std::unique_ptr<SurfaceLight>> surface_lights;
+  std::vector<UnsampledEmitter> unsampled_emitters;
   // The environment as a light (environment_light.h), made by prepare() when there is one.
   std::unique_ptr<Light> environment_light;
   // Every emitter a shadow ray can aim at: the lights, the surface lights, then the environment

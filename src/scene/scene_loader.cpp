@@ -270,14 +270,17 @@ class SceneReader {
         scene_->shapes.push_back(std::move(shape));
       }
       scene_->objects.push_back(std::move(object));
+      object_locations_.push_back(node.location());
     }
   }
 
   // Issue 19: every emissive object is a light for the methods that aim shadow rays at emitters
   // (one per object and emissive material). A surface that cannot be sampled (an unbounded
-  // plane) lights the scene only where rays happen to hit it (the path tracer's BSDF rays).
+  // plane) lights the scene only where rays happen to hit it (the path tracer's BSDF rays,
+  // radiosity's form factors): the methods that need its samples refuse it.
   void make_surface_lights() {
-    for (const SceneObject& object : scene_->objects) {
+    for (std::size_t index = 0; index < scene_->objects.size(); ++index) {
+      const SceneObject& object = scene_->objects[index];
       std::map<uint32_t, std::vector<const Shape*>> shapes_by_material;
       for (uint32_t p = object.first_primitive; p < object.first_primitive + object.primitive_count; ++p) {
         const Primitive& primitive = scene_->primitives[p];
@@ -290,15 +293,14 @@ class SceneReader {
               std::make_unique<SurfaceLight>(object.name, shapes, scene_->materials[material].emission,
                                              scene_->render.surface_light_samples));
         } catch (const std::invalid_argument&) {
-          scene_->warnings.push_back("the emissive " + object.type + " \"" + object.name +
-                                     "\" cannot be sampled: only the path tracer's rays that hit it see its "
-                                     "light (local, whitted, raster and meshless do not)");
+          scene_->unsampled_emitters.push_back({object.name, object.type, object_locations_[index]});
         }
       }
     }
   }
 
   JsonNode root_;
+  std::vector<SourceLocation> object_locations_;  // where each object's entry of "shapes" is
   std::span<const SettingsSection> plugin_sections_;
   Scene* scene_ = nullptr;
   LoadContext context_;

@@ -66,7 +66,8 @@ std::string RunStatistics::summary() const {
     double render_seconds = 0;
     for (const auto& [name, seconds] : phases)
       if (name == "render") render_seconds = seconds;
-    if (render_seconds > 0) text += fmt::format(", {:.2f} Mrays/s", rays.total() / render_seconds / 1e6);
+    // Three significant digits: a slow render reads 0.00185 Mrays/s, not 0.00.
+    if (render_seconds > 0) text += fmt::format(", {:#.3g} Mrays/s", rays.total() / render_seconds / 1e6);
     text += ")\n";
   }
   if (!primary_per_pixel.empty() && pixels > 0) {

@@ -20,6 +20,12 @@ TEST(RunStatistics, SummarySaysNoRaysRatherThanZeroMraysPerSecond) {
   traced.rays.shadow = 1'000'000;
   const std::string rate = traced.summary();
   EXPECT_NE(rate.find("(4000000 total, 2.00 Mrays/s)"), std::string::npos) << rate;
+  // A slow render keeps its digits (issue 19: 8 bunnies by the list read "0.00 Mrays/s").
+  RunStatistics slow;
+  slow.add_phase("render", 10.8);
+  slow.rays.primary = 20'000;
+  const std::string slow_rate = slow.summary();
+  EXPECT_NE(slow_rate.find("0.00185 Mrays/s"), std::string::npos) << slow_rate;
 }
 
 }  // namespace

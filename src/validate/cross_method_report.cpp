@@ -113,6 +113,7 @@ CrossMethodEntry render_entry(Scene& scene, const CrossMethodOptions& options, c
   entry.seconds = timer.seconds();
   statistics.add_phase("render", entry.seconds);
   statistics.extra["method"] = method_name;
+  statistics.extra["emitters"] = emitter_facts(scene, *registered);
   entry.statistics = statistics.to_json();
   entry.facts = key_facts(method_name, entry.statistics);
   const fs::path directory(options.output_directory);
@@ -205,6 +206,24 @@ std::string html_escape(std::string_view text) {
   return out;
 }
 
+namespace {
+
+// "2 point, 1 area, emissive lamp, environment constant" from emitter_facts.
+std::string emitters_text(const nlohmann::json& emitters) {
+  std::string text;
+  const auto add = [&](const std::string& part) { text += (text.empty() ? "" : ", ") + part; };
+  if (emitters.contains("lights") && emitters.at("lights").is_object())
+    for (const auto& [type, count] : emitters.at("lights").items()) add(fact_text(count) + " " + type);
+  if (emitters.contains("emissive_surfaces") && emitters.at("emissive_surfaces").is_array())
+    for (const auto& name : emitters.at("emissive_surfaces"))
+      if (name.is_string()) add("emissive " + name.get<std::string>());
+  if (emitters.contains("environment") && emitters.at("environment").is_string())
+    add("environment " + emitters.at("environment").get<std::string>());
+  return text.empty() ? std::string("none") : text;
+}
+
+}  // namespace
+
 std::vector<std::pair<std::string, std::string>> key_facts(const std::string& method,
                                                            const nlohmann::json& statistics) {
   std::vector<std::pair<std::string, std::string>> facts;
@@ -232,6 +251,9 @@ std::vector<std::pair<std::string, std::string>> key_facts(const std::string& me
   } else {
     take(statistics, "antialiasing", "aa");
   }
+  // Issue 19: which of the scene's emitters the method accounted for (every one, each its own way).
+  if (statistics.contains("emitters") && statistics.at("emitters").is_object())
+    facts.emplace_back("emitters", emitters_text(statistics.at("emitters")));
   if (statistics.contains("rays") && statistics.at("rays").contains("total")) {
     const nlohmann::json& total = statistics.at("rays").at("total");
     if (total.is_number() && total.get<double>() > 0) facts.emplace_back("rays", fact_text(total));
