@@ -72,7 +72,7 @@ std::unique_ptr<Scene> room() {
 std::string refused_setting(const MethodVariant& variant, const AntialiasingSettings& settings) {
   const std::string mode = "aa.mode \"" + std::string(kAntialiasingModeNames.name(settings.mode)) + "\"";
   if (variant.takes == MethodVariant::Takes::own_samples)
-    return settings.mode != AntialiasingMode::none ? mode : "aa.filter \"" + settings.filter + "\"";
+    return mode;  // the path tracer takes every filter, its passes are its samples
   return settings.mode == AntialiasingMode::jittered ? mode : "aa.jitter true";
 }
 
@@ -102,7 +102,7 @@ bool honoured(const MethodVariant& variant, const AntialiasingSettings& settings
     case MethodVariant::Takes::grid:
       return settings.mode != AntialiasingMode::jittered && !settings.jitter;
     case MethodVariant::Takes::own_samples:
-      return settings.mode == AntialiasingMode::none && settings.filter == "box";
+      return settings.mode == AntialiasingMode::none;
   }
   return false;
 }
@@ -163,12 +163,16 @@ TEST(EveryMethodSampling, OneAndTwoThreadsGiveTheSameBytesForEveryFilterAndModeO
 TEST(EveryMethodSampling, TheFilterAndTheModeReachEveryMethodThatTakesThem) {
   auto scene = room();
   for (const MethodVariant& variant : every_method_view()) {
-    if (variant.takes == MethodVariant::Takes::own_samples) continue;
     scene->antialiasing = {};
     const auto method = create_method(*find_method(variant.method), *scene, variant.settings);
     const Film plain = render_with(*method, *scene, 2);
     scene->antialiasing.filter = "gaussian";
     const Film filtered = render_with(*method, *scene, 2);
+    EXPECT_NE(
+        std::memcmp(plain.pixels().data(), filtered.pixels().data(), plain.pixels().size() * sizeof(Color)),
+        0)
+        << variant.label();
+    if (variant.takes == MethodVariant::Takes::own_samples) continue;  // the path tracer: mode none only
     scene->antialiasing.filter = "box";
     scene->antialiasing.mode = AntialiasingMode::uniform;
     scene->antialiasing.n = 3;

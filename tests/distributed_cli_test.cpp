@@ -107,6 +107,14 @@ TEST_F(Distributed, PathTracedImageIsByteIdentical) {
   EXPECT_GE(json("path-2.json")["distributed"]["rounds"].get<int>(), 1);
 }
 
+// Issue 19: the path tracer's samples splatted with a wide filter across the tiles' borders (each
+// tile samples the ring of pixels its filter reaches) join into the single process's image.
+TEST_F(Distributed, PathTracedImageWithAGaussianFilterIsByteIdentical) {
+  expect_identical(
+      "path-gaussian",
+      "render " + kCornell + " --method path --spp 3 --set aa.filter=gaussian --set aa.filter_radius=2");
+}
+
 // A checkpoint made by one process continues on two ranks, and one made on two ranks continues
 // alone: both give the uninterrupted image.
 TEST_F(Distributed, PathCheckpointsResumeAcrossRankCounts) {

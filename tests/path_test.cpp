@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <optional>
@@ -270,6 +271,44 @@ TEST(PathTracer, ResumingACheckpointGivesTheUninterruptedImage) {
   }
 }
 
+// Issue 19, one film: the path tracer's samples are splatted with the scene's filter (Σ w·L / Σ w
+// across pixels); a checkpoint holds both sums, so resuming still gives the uninterrupted image,
+// and a crop's pixels are the whole image's (its ring of pixels is sampled too).
+TEST(PathTracer, FilteredPassesResumeAndCropToTheWholeImage) {
+  const auto render = [&](int spp, const PixelRect& region, bool checkpoint,
+                          const std::optional<Bytes>& resume) {
+    const auto scene = small_box(spp);
+    scene->antialiasing.filter = "gaussian";
+    scene->antialiasing.filter_parameters.radius = 1.5;
+    const auto method = create_method(*find_method("path"), *scene);
+    RenderRequest request{region, true};
+    request.checkpoint = checkpoint;
+    if (resume) request.resume = SealedCheckpoint{"box.checkpoint", *resume};
+    request.fingerprint = "box";
+    return method->render(*scene, request);
+  };
+  const auto whole_region = [&] {
+    const auto scene = small_box(1);
+    return PixelRect{0, 0, scene->camera->width(), scene->camera->height()};
+  }();
+  const RenderResult whole = render(5, whole_region, false, std::nullopt);
+  const RenderResult part = render(2, whole_region, true, std::nullopt);
+  ASSERT_TRUE(part.checkpoint);
+  const RenderResult resumed = render(5, whole_region, false, *part.checkpoint);
+  for (std::size_t i = 0; i < whole.film.pixels().size(); ++i)
+    ASSERT_EQ(resumed.film.pixels()[i], whole.film.pixels()[i]) << i;
+  // The filter really spreads: the box gives another image.
+  const auto box_scene = small_box(5);
+  const Film box = testing::render_scene(*box_scene, "path");
+  EXPECT_NE(std::memcmp(box.pixels().data(), whole.film.pixels().data(), box.pixels().size() * sizeof(Color)),
+            0);
+  const PixelRect crop{3, 2, 9, 7};
+  const RenderResult cropped = render(5, crop, false, std::nullopt);
+  for (int y = crop.y0; y < crop.y1; ++y)
+    for (int x = crop.x0; x < crop.x1; ++x)
+      ASSERT_EQ(cropped.film.at(x - crop.x0, y - crop.y0), whole.film.at(x, y)) << x << ", " << y;
+}
+
 // "--checkpoint FILE every N seconds": with an interval shorter than a pass, a checkpoint is handed
 // out after every pass but the last, and the final state is returned at the end.
 TEST(PathTracer, CheckpointsAreHandedOutEveryIntervalAndAtTheEnd) {
@@ -299,6 +338,7 @@ TEST(PathCheckpoint, RoundTripsExactlyAndRefusesDamage) {
   written.seconds = 1.25;
   written.rays.primary = 36;
   written.sums = {Color(0.1, 1e-300, 3), Color(1.0 / 3), Color(7, 8, 9), Color(-0.0, 2, 5e300)};
+  written.weights = {9, 9.5, 1.0 / 7, 0};
   write_checkpoint_file(file, seal_path_checkpoint(written));
   const PathCheckpoint read = unseal_path_checkpoint(read_checkpoint_file(file));
   EXPECT_EQ(read.fingerprint, written.fingerprint);
@@ -306,6 +346,7 @@ TEST(PathCheckpoint, RoundTripsExactlyAndRefusesDamage) {
   EXPECT_EQ(read.rays.primary, 36u);
   EXPECT_EQ(read.region.x1, 4);
   for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(read.sums[i], written.sums[i]);
+  EXPECT_EQ(read.weights, written.weights);
   // Truncated, or one byte changed: refused with the file's name.
   std::string bytes;
   {

@@ -23,11 +23,7 @@ std::optional<AntialiasingRefusal> own_pixel_sampling_refusal(const Antialiasing
                                                               const std::string& how) {
   if (settings.mode != AntialiasingMode::none)
     return AntialiasingRefusal{"aa.mode", quoted_mode(settings.mode), how + "; use aa.mode \"none\""};
-  const double radius = settings.filter_parameters.radius;
-  if (settings.filter != "box" || (radius != 0 && radius != 0.5))
-    return AntialiasingRefusal{"aa.filter", fmt::format("\"{}\"", settings.filter),
-                               how + "; use aa.filter \"box\" of radius 0.5"};
-  return std::nullopt;
+  return std::nullopt;  // every filter: the samples are splatted with it
 }
 
 std::optional<AntialiasingRefusal> sample_grid_refusal(const AntialiasingSettings& settings,

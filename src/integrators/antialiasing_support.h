@@ -22,8 +22,8 @@ struct AntialiasingRefusal {
 };
 
 // The refusal of a method that takes its own pixel samples (the path tracer: one uniformly
-// random point of the pixel per pass, box-filtered): everything but aa.mode "none" with the box
-// filter of radius 0.5.
+// random point of the pixel per pass, its passes the anti-aliasing, every sample splatted with
+// aa.filter): every aa.mode but "none".
 std::optional<AntialiasingRefusal> own_pixel_sampling_refusal(const AntialiasingSettings& settings,
                                                               const std::string& how);
 

@@ -87,7 +87,8 @@ class Method {
 
 inline std::optional<AntialiasingRefusal> Method::antialiasing_refusal(const Scene& scene) const {
   return own_pixel_sampling_refusal(
-      scene.antialiasing, "it takes its own samples of each pixel, uniformly random points box-filtered");
+      scene.antialiasing,
+      "it takes its own samples of each pixel, a uniformly random point a pass, splatted with aa.filter");
 }
 
 // Throws the InputError of method.antialiasing_refusal(scene), naming the method, the setting

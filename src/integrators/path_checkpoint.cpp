@@ -3,7 +3,7 @@
 namespace candela {
 
 namespace {
-constexpr char kMagic[] = "CANDELA-PATH-CHECKPOINT 1\n";
+constexpr char kMagic[] = "CANDELA-PATH-CHECKPOINT 2\n";  // 2: with the filter weights
 }  // namespace
 
 Bytes seal_path_checkpoint(const PathCheckpoint& checkpoint) {
@@ -17,6 +17,7 @@ Bytes seal_path_checkpoint(const PathCheckpoint& checkpoint) {
                                checkpoint.rays.refracted})
     out.put(count);
   out.put_colors(checkpoint.sums);
+  out.put_array(checkpoint.weights);
   return out.seal();
 }
 
@@ -35,10 +36,12 @@ PathCheckpoint unseal_path_checkpoint(const SealedCheckpoint& sealed) {
   checkpoint.rays.reflected = in.get<uint64_t>();
   checkpoint.rays.refracted = in.get<uint64_t>();
   checkpoint.sums = in.get_colors();
+  checkpoint.weights = in.get_doubles();
   in.finish();
   const PixelRect& r = checkpoint.region;
   if (r.width() <= 0 || r.height() <= 0 ||
-      checkpoint.sums.size() != uint64_t(r.width()) * uint64_t(r.height()))
+      checkpoint.sums.size() != uint64_t(r.width()) * uint64_t(r.height()) ||
+      checkpoint.weights.size() != checkpoint.sums.size())
     in.fail("the checkpoint is corrupt (image size)");
   return checkpoint;
 }

@@ -1,5 +1,6 @@
 // The path tracer's progressive state as a checkpoint (SPEC §15: long runs checkpoint and resume):
-// the per-pixel sums of every pass so far, exactly as doubles, so that resuming and finishing
+// the per-pixel sums of every pass so far (Σ w·L and Σ w of the reconstruction filter), exactly as
+// doubles, so that resuming and finishing
 // gives the image an uninterrupted run gives, bit for bit (each pixel's passes are added in pass
 // order either way). Sealed in the byte format of io/checkpoint_file.h (which the caller writes
 // to a file and reads back); unsealed with its size and checksum verified.
@@ -23,7 +24,8 @@ struct PathCheckpoint {
   uint64_t passes = 0;
   double seconds = 0;  // rendering time spent so far (all runs together)
   RayCounts rays;
-  std::vector<Color> sums;  // region.width() × region.height(), row by row
+  std::vector<Color> sums;      // Σ w·L: region.width() × region.height(), row by row
+  std::vector<double> weights;  // Σ w of the reconstruction filter (the pass count for the box)
 };
 
 Bytes seal_path_checkpoint(const PathCheckpoint& checkpoint);

@@ -9,6 +9,8 @@
 #include <atomic>
 #include <cmath>
 
+#include "camera/pixel_filter.h"
+#include "camera/splat_film.h"
 #include "distributed/cluster.h"
 #include "distributed/task_farm.h"
 #include "integrators/distributed_tiles.h"
@@ -136,6 +138,12 @@ Color sample_light(const Scene& scene, const LightSampler& lights, const Vec3& p
   }
   return {};
 }
+
+// One pass's sample of a pixel: where in the pixel (dx, dy ∈ [0, 1)) and what the path brought.
+struct PassSample {
+  Color value;
+  double dx = 0.5, dy = 0.5;
+};
 
 // Where a path stands between bounces.
 struct PathState {
@@ -278,6 +286,7 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
   state.fingerprint = fingerprint;
   state.region = region;
   state.sums.assign(std::size_t(width) * height, Color());
+  state.weights.assign(std::size_t(width) * height, 0.0);
   Cluster* cluster = several_ranks(request);
   // Only rank 0 reads the checkpoint (the others are given sums with each tile); a bad one stops
   // every rank.
@@ -312,7 +321,6 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
   const LightSampler lights(scene);
 
   tbb::enumerable_thread_specific<RayCounts> counts;
-  tbb::enumerable_thread_specific<uint64_t> invalid;
   const int tile = std::max(1, scene.render.tile_size);
   const uint64_t progress_total =
       settings.spp > 0 ? last_pass - first_pass : static_cast<uint64_t>(std::ceil(settings.time));
@@ -326,8 +334,9 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
     RayCounts rays = state.rays;
     for (const RayCounts& c : counts) rays += c;
     PathCheckpoint snapshot{
-        state.fingerprint, state.region, state.passes, state.seconds + timer.seconds(), rays, {}};
+        state.fingerprint, state.region, state.passes, state.seconds + timer.seconds(), rays, {}, {}};
     snapshot.sums = state.sums;
+    snapshot.weights = state.weights;
     ++checkpoints;
     since_checkpoint = Stopwatch();
     return seal_path_checkpoint(snapshot);
@@ -340,13 +349,77 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
         since_checkpoint.seconds() >= settings.checkpoint_interval && state.passes < last_pass)
       request.save_checkpoint(sealed_state());
   };
-  // A pass's value at one pixel: one uniform point of its square (box filter), the path's radiance.
-  const auto sample_pixel = [&](uint64_t pass, int i, int j, RayCounts& rays) {
+  // A pass's sample of one pixel (i, j of the region; outside it too, for the filter's ring): one
+  // uniform point of its square and the path's radiance there (a non-finite one — an exploded
+  // weight — dropped as zero, never allowed to poison the pixels).
+  const auto sample_pixel = [&](uint64_t pass, int i, int j, RayCounts& rays, uint64_t& dropped) {
     const auto x = static_cast<uint32_t>(region.x0 + i), y = static_cast<uint32_t>(region.y0 + j);
     Pcg32 rng = path_pixel_rng(scene.render.seed, pass, x, y);
-    const double sx = x + rng.next_double(), sy = y + rng.next_double();
+    PassSample sample;
+    sample.dx = rng.next_double();
+    sample.dy = rng.next_double();
     ++rays.primary;
-    return path_radiance(scene, settings, lights, scene.camera->generate_ray(sx, sy), rng, rays);
+    sample.value = path_radiance(scene, settings, lights,
+                                 scene.camera->generate_ray(x + sample.dx, y + sample.dy), rng, rays);
+    if (!is_finite(sample.value)) {
+      sample.value = Color();
+      ++dropped;
+    }
+    return sample;
+  };
+  // Issue 19, one film: every sample is splatted with the scene's aa.filter into the pixels within
+  // its reach (pbrt-v4's film), gathered here per pixel in a fixed order, so the image does not
+  // depend on the threads or on the tiles. The pixels [x0, x1) × [y0, y1) of the region take their
+  // passes from the samples of the box grown by the reach (clipped to the image).
+  const std::unique_ptr<PixelFilter> filter =
+      create_pixel_filter(scene.antialiasing.filter, scene.antialiasing.filter_parameters);
+  const int reach = filter_reach(*filter);
+  const PixelBox image{-region.x0, -region.y0, scene.camera->width() - region.x0,
+                       scene.camera->height() - region.y0};
+  const auto samples_box = [&](const PixelBox& pixels) { return pixels.grown(reach).clipped(image); };
+  // One pass of the pixels of `pixels` into sums and weights (pixels-sized), its samples taken
+  // into `samples` (samples_box(pixels)-sized); false when Ctrl-C cut the pass short.
+  const auto run_pass = [&](uint64_t pass, const PixelBox& pixels, std::vector<PassSample>& samples,
+                            Color* sums, double* weights, uint64_t& dropped_here) {
+    const PixelBox box = samples_box(pixels);
+    samples.resize(std::size_t(box.width()) * box.height());
+    std::atomic<bool> cut_short{false};
+    std::atomic<uint64_t> dropped_now{0};
+    tbb::parallel_for(tbb::blocked_range2d<int>(box.y0, box.y1, tile, box.x0, box.x1, tile),
+                      [&](const tbb::blocked_range2d<int>& block) {
+                        if (cancel_requested()) {
+                          cut_short.store(true, std::memory_order_relaxed);
+                          return;
+                        }
+                        RayCounts& rays = counts.local();
+                        // Only the pixels' own samples count as dropped (a ring sample is some
+                        // other tile's own).
+                        uint64_t dropped_block = 0, ring = 0;
+                        for (int j = block.rows().begin(); j < block.rows().end(); ++j)
+                          for (int i = block.cols().begin(); i < block.cols().end(); ++i)
+                            samples[std::size_t(j - box.y0) * box.width() + (i - box.x0)] =
+                                sample_pixel(pass, i, j, rays, pixels.contains(i, j) ? dropped_block : ring);
+                        dropped_now += dropped_block;
+                      });
+    if (cut_short.load()) return false;
+    tbb::parallel_for(
+        tbb::blocked_range2d<int>(pixels.y0, pixels.y1, tile, pixels.x0, pixels.x1, tile),
+        [&](const tbb::blocked_range2d<int>& block) {
+          for (int qy = block.rows().begin(); qy < block.rows().end(); ++qy)
+            for (int qx = block.cols().begin(); qx < block.cols().end(); ++qx) {
+              const std::size_t q = std::size_t(qy - pixels.y0) * pixels.width() + (qx - pixels.x0);
+              for (int py = std::max(qy - reach, box.y0); py < std::min(qy + reach + 1, box.y1); ++py)
+                for (int px = std::max(qx - reach, box.x0); px < std::min(qx + reach + 1, box.x1); ++px) {
+                  const PassSample& sample = samples[std::size_t(py - box.y0) * box.width() + (px - box.x0)];
+                  const double w = filter->evaluate(sample.dx - 0.5 + (px - qx), sample.dy - 0.5 + (py - qy));
+                  if (w == 0) continue;
+                  sums[q] += sample.value * w;
+                  weights[q] += w;
+                }
+            }
+        });
+    dropped_here += dropped_now.load();
+    return true;
   };
   const auto after_pass = [&](uint64_t passes_done) {
     if (request.after_pass) request.after_pass(passes_done);
@@ -392,6 +465,7 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
       if (round_count == 0) break;
       Stopwatch round_time;
       std::vector<Color> round_sums = cluster->root() ? state.sums : std::vector<Color>();
+      std::vector<double> round_weights = cluster->root() ? state.weights : std::vector<double>();
       bool whole = true;
       uint64_t round_dropped = 0;
       TaskFarm farm;
@@ -400,42 +474,39 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
         const PixelRect& t = tiles[task];
         ByteWriter writer;
         for (int j = t.y0; j < t.y1; ++j)
-          for (int i = t.x0; i < t.x1; ++i) writer.put(state.sums[std::size_t(j) * width + i]);
+          for (int i = t.x0; i < t.x1; ++i) {
+            writer.put(state.sums[std::size_t(j) * width + i]);
+            writer.put(state.weights[std::size_t(j) * width + i]);
+          }
         return writer.take();
       };
       farm.work = [&](std::size_t task, std::span<const std::byte> input) {
         const PixelRect& t = tiles[task];
+        const PixelBox pixels{t.x0, t.y0, t.x1, t.y1};
         std::vector<Color> sums(std::size_t(t.width()) * t.height());
+        std::vector<double> weights(sums.size());
         ByteReader reader(input);
-        for (Color& sum : sums) sum = reader.get<Color>();
-        std::atomic<uint64_t> tile_dropped{0};
+        for (std::size_t k = 0; k < sums.size(); ++k) {
+          sums[k] = reader.get<Color>();
+          weights[k] = reader.get<double>();
+        }
+        uint64_t tile_dropped = 0;
         bool cut_short = false;
+        std::vector<PassSample> samples;
         for (uint64_t pass = round_first; pass < round_first + round_count; ++pass) {
-          if (cancel_requested()) {
+          // The tile samples its ring too: a ring pixel's sample is a function of the pixel and the
+          // pass, the same as the tile that owns it takes, so the tiles join into one image.
+          if (cancel_requested() ||
+              !run_pass(pass, pixels, samples, sums.data(), weights.data(), tile_dropped)) {
             cut_short = true;
             break;
           }
-          tbb::parallel_for(tbb::blocked_range2d<int>(t.y0, t.y1, tile, t.x0, t.x1, tile),
-                            [&](const tbb::blocked_range2d<int>& block) {
-                              RayCounts& rays = counts.local();
-                              for (int j = block.rows().begin(); j < block.rows().end(); ++j)
-                                for (int i = block.cols().begin(); i < block.cols().end(); ++i) {
-                                  const Color value = sample_pixel(pass, i, j, rays);
-                                  // A non-finite sample is dropped (adds zero), as in one process.
-                                  Color& sum = sums[std::size_t(j - t.y0) * t.width() + (i - t.x0)];
-                                  if (is_finite(value)) {
-                                    sum += value;
-                                  } else {
-                                    sum += Color();
-                                    ++tile_dropped;
-                                  }
-                                }
-                            });
         }
         ByteWriter writer;
         writer.put<uint8_t>(cut_short ? 0 : 1);
-        writer.put<uint64_t>(tile_dropped.load());
+        writer.put<uint64_t>(tile_dropped);
         writer.put_array(sums);
+        writer.put_array(weights);
         return writer.take();
       };
       farm.collect = [&](std::size_t task, Bytes result) {
@@ -444,9 +515,13 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
         if (reader.get<uint8_t>() == 0) whole = false;
         round_dropped += reader.get<uint64_t>();
         const std::vector<Color> sums = reader.get_array<Color>();
+        const std::vector<double> weights = reader.get_array<double>();
         for (int j = t.y0; j < t.y1; ++j)
-          for (int i = t.x0; i < t.x1; ++i)
+          for (int i = t.x0; i < t.x1; ++i) {
             round_sums[std::size_t(j) * width + i] = sums[std::size_t(j - t.y0) * t.width() + (i - t.x0)];
+            round_weights[std::size_t(j) * width + i] =
+                weights[std::size_t(j - t.y0) * t.width() + (i - t.x0)];
+          }
       };
       farm.stop = [] { return cancel_requested(); };
       const TaskFarmReport report = run_task_farm(*cluster, farm);
@@ -459,6 +534,7 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
         continue;  // the next plan says stop
       }
       state.sums.swap(round_sums);
+      state.weights.swap(round_weights);
       dropped_across_ranks += round_dropped;
       for (uint64_t pass = 0; pass < round_count; ++pass) after_pass(++state.passes);
       // Rounds of a second for every 200,000 pixels (1 to 30 s): each round sends every tile's
@@ -476,61 +552,50 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
     distributed = distributed_facts(*cluster, tiles_by_rank, "tiles");
     distributed["rounds"] = rounds;
   } else {
-    // A pass goes to its own buffer and is added to the sums only once every pixel has it: a pass
+    // A pass goes to its own buffers and is added to the sums only once every pixel has it: a pass
     // cut short by Ctrl-C is dropped, so the sums (and the checkpoint) always hold whole passes.
-    std::vector<Color> pass_values(state.sums.size());
-    const tbb::blocked_range2d<int> blocks(0, height, tile, 0, width, tile);
+    const PixelBox pixels{0, 0, width, height};
+    std::vector<PassSample> samples;
+    std::vector<Color> pass_sums(state.sums.size());
+    std::vector<double> pass_weights(state.sums.size());
+    uint64_t dropped_here = 0;
     while (state.passes < last_pass) {
       if (cancel_requested()) {
         interrupted = true;
         break;
       }
-      const uint64_t pass = state.passes;
-      std::atomic<bool> cut_short{false};
-      tbb::parallel_for(blocks, [&](const tbb::blocked_range2d<int>& block) {
-        if (cancel_requested()) {
-          cut_short.store(true, std::memory_order_relaxed);
-          return;
-        }
-        RayCounts& rays = counts.local();
-        for (int j = block.rows().begin(); j < block.rows().end(); ++j)
-          for (int i = block.cols().begin(); i < block.cols().end(); ++i) {
-            const Color value = sample_pixel(pass, i, j, rays);
-            // A non-finite sample (an exploded weight) is dropped, not allowed to poison the pixel.
-            if (is_finite(value)) {
-              pass_values[std::size_t(j) * width + i] = value;
-            } else {
-              pass_values[std::size_t(j) * width + i] = Color();
-              ++invalid.local();
-            }
-          }
-      });
-      if (cut_short.load()) {  // some blocks were skipped: the pass is not whole
-        interrupted = true;
+      std::fill(pass_sums.begin(), pass_sums.end(), Color());
+      std::fill(pass_weights.begin(), pass_weights.end(), 0.0);
+      uint64_t pass_dropped = 0;
+      if (!run_pass(state.passes, pixels, samples, pass_sums.data(), pass_weights.data(), pass_dropped)) {
+        interrupted = true;  // some blocks were skipped: the pass is not whole
         break;
       }
-      tbb::parallel_for(blocks, [&](const tbb::blocked_range2d<int>& block) {
-        for (int j = block.rows().begin(); j < block.rows().end(); ++j)
-          for (int i = block.cols().begin(); i < block.cols().end(); ++i)
-            state.sums[std::size_t(j) * width + i] += pass_values[std::size_t(j) * width + i];
+      dropped_here += pass_dropped;
+      tbb::parallel_for(std::size_t(0), state.sums.size(), [&](std::size_t k) {
+        state.sums[k] += pass_sums[k];
+        state.weights[k] += pass_weights[k];
       });
       after_pass(++state.passes);
       if (timed && timer.seconds() >= settings.time) break;
       save_if_due();
     }
+    dropped_across_ranks += dropped_here;
   }
   progress.finish();
   if (hands_out_checkpoints) output.checkpoint = sealed_state();  // a later run can go on from it
 
-  const double scale = state.passes > 0 ? 1.0 / double(state.passes) : 0.0;
+  // Σ w·L / Σ w (with the box of half a pixel Σ w is the pass count, as before the film).
   for (int j = 0; j < height; ++j)
-    for (int i = 0; i < width; ++i) film.at(i, j) = state.sums[std::size_t(j) * width + i] * scale;
+    for (int i = 0; i < width; ++i) {
+      const std::size_t k = std::size_t(j) * width + i;
+      film.at(i, j) = state.weights[k] > 1e-12 ? state.sums[k] * (1.0 / state.weights[k]) : Color();
+    }
 
   RayCounts rays;
   for (const RayCounts& c : counts) rays += c;
   if (cluster) sum_across_ranks(*cluster, rays);
-  uint64_t dropped = dropped_across_ranks;
-  for (const uint64_t d : invalid) dropped += d;
+  const uint64_t dropped = dropped_across_ranks;
   statistics.rays += rays;
   statistics.pixels += uint64_t(width) * height;
   nlohmann::json facts = {{"spp", state.passes},

@@ -90,6 +90,15 @@ std::vector<Color> CheckpointReader::get_colors() {
   }
 }
 
+std::vector<double> CheckpointReader::get_doubles() {
+  try {
+    return reader_.get_array<double>();
+  } catch (const ByteStreamError& e) {
+    if (e.kind() == ByteStreamError::Kind::long_array) fail("the checkpoint is corrupt (value count)");
+    fail_read(e);
+  }
+}
+
 void CheckpointReader::finish() const {
   if (reader_.remaining() != 0) fail("the checkpoint has bytes this version does not know");
 }

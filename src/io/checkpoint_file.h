@@ -55,6 +55,7 @@ class CheckpointReader {
   }
   std::string get_string();
   std::vector<Color> get_colors();
+  std::vector<double> get_doubles();
   // Every byte before the checksum was read; InputError otherwise.
   void finish() const;
   [[noreturn]] void fail(const std::string& message) const;
