@@ -11,18 +11,9 @@
 
 #include "math/pcg32.h"
 #include "util/cancellation.h"
+#include "util/hash.h"
 
 namespace candela {
-
-namespace {
-
-uint64_t mix64(uint64_t z) {  // splitmix64's finaliser
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-}  // namespace
 
 uint64_t lattice_key_hash(uint64_t key) {
   return mix64(key);
