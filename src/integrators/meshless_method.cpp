@@ -172,7 +172,7 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const Meshl
   geometry->areas = sites.effective_area;  // the thesis's πh²/(m + 1)
   if (settings.effective_area == MeshlessAreas::integrated)
     geometry->areas =
-        integrate_effective_areas(scene, *geometry->basis, sites, sites.spacing / 4, 64, cluster);
+        integrate_effective_areas(scene, *geometry->basis, sites, sites.spacing / 4, 64, cluster, quiet);
   geometry->area_seconds = seconds_since(start);
   if (stop()) return nullptr;
   // Issue 19: the longest phase shows its rows (rank 0, for every rank).

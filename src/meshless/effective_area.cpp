@@ -9,12 +9,13 @@
 #include "distributed/task_farm.h"
 #include "raster/tessellated_scene.h"
 #include "scene/scene.h"
+#include "util/progress.h"
 
 namespace candela {
 
 std::vector<double> integrate_effective_areas(const Scene& scene, const MeshlessBasis& basis,
                                               const SiteSet& sites, double cell, int segments,
-                                              Cluster* cluster) {
+                                              Cluster* cluster, bool quiet) {
   const std::size_t site_count = sites.sites.size();
   // The sides sites lie on, per object: bit 0 the geometric normal's side, bit 1 the other.
   std::vector<uint8_t> sides_with_sites(scene.objects.size(), 0);
@@ -49,6 +50,10 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
   // Per triangle in parallel, each thread summing into its own vector; the per-triangle sums are
   // added in triangle order afterwards, so the result does not depend on the thread count.
   std::vector<std::vector<std::pair<uint32_t, double>>> contributions(triangles.triangle_count());
+  // Issue 19: seconds on a large scene; rank 0 counts every rank's triangles.
+  ProgressReporter progress_bar("effective areas", triangles.triangle_count(), "triangles",
+                                quiet || (cluster && !cluster->root()));
+  ProgressReporter* progress = &progress_bar;
   const auto integrate_triangle = [&](std::size_t t) {
     const Vec3 a = triangles.corner_positions[3 * t], b = triangles.corner_positions[3 * t + 1],
                c = triangles.corner_positions[3 * t + 2];
@@ -99,6 +104,7 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
         merged.emplace_back(k, value);
     }
     contributions[t] = std::move(merged);
+    if (!cluster || !cluster->distributed()) progress->advance();
   };
   if (!cluster || !cluster->distributed()) {
     tbb::parallel_for(std::size_t(0), triangles.triangle_count(), integrate_triangle);
@@ -128,9 +134,11 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
           const std::vector<double> values = reader.get_array<double>();
           contributions[t].clear();
           for (std::size_t e = 0; e < ids.size(); ++e) contributions[t].emplace_back(ids[e], values[e]);
+          progress->advance();
         },
         triangle_bytes);
   }
+  progress_bar.finish();
   std::vector<double> areas(site_count, 0.0);
   for (const auto& sums : contributions)
     for (const auto& [k, value] : sums) areas[k] += value;

@@ -27,9 +27,10 @@ class Scene;
 
 // cell widens when the surfaces would need more than about 4 million midpoints. Throws
 // std::invalid_argument unless cell > 0 and segments ≥ 3. With a cluster of several ranks the
-// triangles are shared out among them; every rank gets the same areas as one process.
+// triangles are shared out among them; every rank gets the same areas as one process. Unless
+// quiet, a progress bar counts the triangles.
 std::vector<double> integrate_effective_areas(const Scene& scene, const MeshlessBasis& basis,
                                               const SiteSet& sites, double cell, int segments = 64,
-                                              Cluster* cluster = nullptr);
+                                              Cluster* cluster = nullptr, bool quiet = true);
 
 }  // namespace candela
