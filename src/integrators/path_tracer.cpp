@@ -552,30 +552,22 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
     distributed = distributed_facts(*cluster, tiles_by_rank, "tiles");
     distributed["rounds"] = rounds;
   } else {
-    // A pass goes to its own buffers and is added to the sums only once every pixel has it: a pass
-    // cut short by Ctrl-C is dropped, so the sums (and the checkpoint) always hold whole passes.
+    // A pass's samples are all taken before any is added to the sums: a pass cut short by Ctrl-C
+    // is dropped, so the sums (and the checkpoint) always hold whole passes. Each sum takes its
+    // terms one by one in pass order, then sample order — the very additions a tile makes on
+    // another rank — so one process and several give the same bits with every filter.
     const PixelBox pixels{0, 0, width, height};
     std::vector<PassSample> samples;
-    std::vector<Color> pass_sums(state.sums.size());
-    std::vector<double> pass_weights(state.sums.size());
     uint64_t dropped_here = 0;
     while (state.passes < last_pass) {
       if (cancel_requested()) {
         interrupted = true;
         break;
       }
-      std::fill(pass_sums.begin(), pass_sums.end(), Color());
-      std::fill(pass_weights.begin(), pass_weights.end(), 0.0);
-      uint64_t pass_dropped = 0;
-      if (!run_pass(state.passes, pixels, samples, pass_sums.data(), pass_weights.data(), pass_dropped)) {
+      if (!run_pass(state.passes, pixels, samples, state.sums.data(), state.weights.data(), dropped_here)) {
         interrupted = true;  // some blocks were skipped: the pass is not whole
         break;
       }
-      dropped_here += pass_dropped;
-      tbb::parallel_for(std::size_t(0), state.sums.size(), [&](std::size_t k) {
-        state.sums[k] += pass_sums[k];
-        state.weights[k] += pass_weights[k];
-      });
       after_pass(++state.passes);
       if (timed && timer.seconds() >= settings.time) break;
       save_if_due();
