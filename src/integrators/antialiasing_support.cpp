@@ -21,8 +21,9 @@ constexpr int64_t kMaxGridSamples = int64_t(1) << 27;
 
 std::optional<AntialiasingRefusal> own_pixel_sampling_refusal(const AntialiasingSettings& settings,
                                                               const std::string& how) {
-  if (settings.mode != AntialiasingMode::none)
-    return AntialiasingRefusal{"aa.mode", quoted_mode(settings.mode), how + "; use aa.mode \"none\""};
+  if (settings.mode == AntialiasingMode::corners || settings.mode == AntialiasingMode::adaptive)
+    return AntialiasingRefusal{"aa.mode", quoted_mode(settings.mode),
+                               how + "; use aa.mode \"none\", \"jittered\" or \"uniform\""};
   return std::nullopt;  // every filter: the samples are splatted with it
 }
 

@@ -88,7 +88,7 @@ class Method {
 inline std::optional<AntialiasingRefusal> Method::antialiasing_refusal(const Scene& scene) const {
   return own_pixel_sampling_refusal(
       scene.antialiasing,
-      "it takes its own samples of each pixel, a uniformly random point a pass, splatted with aa.filter");
+      "its passes take one point of each pixel each (aa.n × aa.n cells in turn), splatted with aa.filter");
 }
 
 // Throws the InputError of method.antialiasing_refusal(scene), naming the method, the setting

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cmath>
 
+#include "camera/antialiasing.h"
 #include "camera/pixel_filter.h"
 #include "camera/splat_film.h"
 #include "distributed/cluster.h"
@@ -349,15 +350,25 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
         since_checkpoint.seconds() >= settings.checkpoint_interval && state.passes < last_pass)
       request.save_checkpoint(sealed_state());
   };
-  // A pass's sample of one pixel (i, j of the region; outside it too, for the filter's ring): one
-  // uniform point of its square and the path's radiance there (a non-finite one — an exploded
-  // weight — dropped as zero, never allowed to poison the pixels).
+  // A pass's sample of one pixel (i, j of the region; outside it too, for the filter's ring): a
+  // point of its square and the path's radiance there (a non-finite one — an exploded weight —
+  // dropped as zero, never allowed to poison the pixels). The point, by aa.mode: "none" uniform in
+  // the square; "jittered" n × n the passes take the n² cells in turn (pass k the cell k mod n²),
+  // a random point in each — stratified across passes; "uniform" the cells' centres in turn.
+  const AntialiasingSettings& aa = scene.antialiasing;
+  const int cells = aa.mode == AntialiasingMode::none ? 1 : aa.n;
   const auto sample_pixel = [&](uint64_t pass, int i, int j, RayCounts& rays, uint64_t& dropped) {
     const auto x = static_cast<uint32_t>(region.x0 + i), y = static_cast<uint32_t>(region.y0 + j);
     Pcg32 rng = path_pixel_rng(scene.render.seed, pass, x, y);
     PassSample sample;
     sample.dx = rng.next_double();
     sample.dy = rng.next_double();
+    if (cells > 1) {
+      const auto cell = static_cast<int>(pass % uint64_t(cells * cells));
+      const bool centred = aa.mode == AntialiasingMode::uniform;
+      sample.dx = (cell % cells + (centred ? 0.5 : sample.dx)) / cells;
+      sample.dy = (cell / cells + (centred ? 0.5 : sample.dy)) / cells;
+    }
     ++rays.primary;
     sample.value = path_radiance(scene, settings, lights,
                                  scene.camera->generate_ray(x + sample.dx, y + sample.dy), rng, rays);
