@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "closed_cube.h"
 #include "integrators/scene_loading.h"
 #include "render_support.h"
 
@@ -34,24 +35,11 @@ std::unique_ptr<Scene> sphere_furnace(const std::string& method, const std::stri
 
 // The camera inside a closed cube of six quads facing in (classic radiosity's patches are one-sided).
 std::unique_ptr<Scene> cube_furnace(const std::string& method, const std::string& settings) {
-  const std::string m = material_json();
   return load_scene_text(R"({"format": "candela/1",
     "camera": {"eye": [1, 1.1, 1.7], "target": [0.9, 0.8, 0], "fov": 80, "width": 16, "height": 16},
     "render": {"method": ")" +
-                             method + R"("}, )" + settings + R"(
-    "shapes": [
-      {"type": "quad", "corner": [0, 0, 0], "edge_u": [0, 0, 2], "edge_v": [2, 0, 0], "material": )" +
-                             m + R"(},
-      {"type": "quad", "corner": [0, 2, 0], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2], "material": )" +
-                             m + R"(},
-      {"type": "quad", "corner": [0, 0, 0], "edge_u": [0, 2, 0], "edge_v": [0, 0, 2], "material": )" +
-                             m + R"(},
-      {"type": "quad", "corner": [2, 0, 0], "edge_u": [0, 0, 2], "edge_v": [0, 2, 0], "material": )" +
-                             m + R"(},
-      {"type": "quad", "corner": [0, 0, 0], "edge_u": [2, 0, 0], "edge_v": [0, 2, 0], "material": )" +
-                             m + R"(},
-      {"type": "quad", "corner": [0, 0, 2], "edge_u": [0, 2, 0], "edge_v": [2, 0, 0], "material": )" +
-                             m + R"(}]})",
+                             method + R"("}, )" + settings + testing::closed_cube_shapes(material_json()) +
+                             "}",
                          "cube-furnace.json", ".");
 }
 

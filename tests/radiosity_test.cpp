@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "closed_cube.h"
 #include "integrators/method_registry.h"
 #include "integrators/radiosity_method.h"
 #include "integrators/scene_loading.h"
@@ -87,20 +88,7 @@ TEST(RadiosityEmission, RayTracerShowsSelfLuminousSurfacesWithoutLights) {
 
 // A closed cube [0, 2]³ of six quads facing inward, every one emitting E and reflecting ρ.
 std::string furnace_scene(const std::string& radiosity) {
-  const std::string material = R"("material": {"kd": 0.6, "emission": 1})";
-  return R"("radiosity": )" + radiosity + R"(, "shapes": [
-      {"type": "quad", "corner": [0, 0, 0], "edge_u": [0, 0, 2], "edge_v": [2, 0, 0], )" +
-         material + R"(},
-      {"type": "quad", "corner": [0, 2, 0], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2], )" +
-         material + R"(},
-      {"type": "quad", "corner": [0, 0, 0], "edge_u": [0, 2, 0], "edge_v": [0, 0, 2], )" +
-         material + R"(},
-      {"type": "quad", "corner": [2, 0, 0], "edge_u": [0, 0, 2], "edge_v": [0, 2, 0], )" +
-         material + R"(},
-      {"type": "quad", "corner": [0, 0, 0], "edge_u": [2, 0, 0], "edge_v": [0, 2, 0], )" +
-         material + R"(},
-      {"type": "quad", "corner": [0, 0, 2], "edge_u": [0, 2, 0], "edge_v": [2, 0, 0], )" +
-         material + R"(}])";
+  return R"("radiosity": )" + radiosity + ", " + testing::closed_cube_shapes(R"({"kd": 0.6, "emission": 1})");
 }
 
 const char* kFurnaceCamera =

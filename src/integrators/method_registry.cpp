@@ -124,6 +124,21 @@ std::unique_ptr<Method> made_from_settings(const MethodEntry& entry, const Scene
   return entry.create(root.at(entry.name));
 }
 
+// Issue 19: an emitter a method cannot account for is an error naming both, never a dark image.
+void refuse_unsampled_emitters(const MethodEntry& entry, const Scene& scene) {
+  if (!entry.capabilities.samples_emissive_surfaces || scene.unsampled_emitters.empty()) return;
+  std::string able;  // the methods that take such a surface
+  for (const MethodEntry& other : kEntries)
+    if (!other.capabilities.samples_emissive_surfaces)
+      able += (able.empty() ? "" : " or ") + std::string(other.name);
+  const UnsampledEmitter& emitter = scene.unsampled_emitters.front();
+  throw InputError(emitter.location, std::string(entry.name) + " cannot light the scene by the emissive " +
+                                         emitter.type + " \"" + emitter.name +
+                                         "\": it cannot be sampled for shadow rays (unbounded); bound it (a "
+                                         "quad, a disc) or render with " +
+                                         able);
+}
+
 }  // namespace
 
 std::span<const MethodEntry> method_entries() {
@@ -149,23 +164,7 @@ std::unique_ptr<Method> create_method(const MethodEntry& entry, const Scene& sce
                                       const std::vector<std::string>& overrides) {
   std::unique_ptr<Method> method = made_from_settings(entry, scene, overrides);
   refuse_unsupported_antialiasing(*method, scene);
-  // Issue 19: an emitter a method cannot account for is an error naming both, never a dark image.
-  if (entry.capabilities.samples_emissive_surfaces && !scene.unsampled_emitters.empty()) {
-    const UnsampledEmitter& emitter = scene.unsampled_emitters.front();
-    throw InputError(
-        emitter.location,
-        std::string(entry.name) + " cannot light the scene by the emissive " + emitter.type + " \"" +
-            emitter.name +
-            "\": it cannot be sampled for shadow rays (unbounded); bound it (a quad, a disc) or "
-            "render with " +
-            [] {
-              std::string able;
-              for (const MethodEntry& other : kEntries)
-                if (!other.capabilities.samples_emissive_surfaces)
-                  able += (able.empty() ? "" : " or ") + std::string(other.name);
-              return able;
-            }());
-  }
+  refuse_unsampled_emitters(entry, scene);
   return method;
 }
 

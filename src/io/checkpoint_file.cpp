@@ -81,22 +81,23 @@ std::string CheckpointReader::get_string() {
   }
 }
 
-std::vector<Color> CheckpointReader::get_colors() {
+template <typename T>
+std::vector<T> CheckpointReader::get_array(const char* counted) {
   try {
-    return reader_.get_array<Color>();
+    return reader_.get_array<T>();
   } catch (const ByteStreamError& e) {
-    if (e.kind() == ByteStreamError::Kind::long_array) fail("the checkpoint is corrupt (color count)");
+    if (e.kind() == ByteStreamError::Kind::long_array)
+      fail(std::string("the checkpoint is corrupt (") + counted + " count)");
     fail_read(e);
   }
 }
 
+std::vector<Color> CheckpointReader::get_colors() {
+  return get_array<Color>("color");
+}
+
 std::vector<double> CheckpointReader::get_doubles() {
-  try {
-    return reader_.get_array<double>();
-  } catch (const ByteStreamError& e) {
-    if (e.kind() == ByteStreamError::Kind::long_array) fail("the checkpoint is corrupt (value count)");
-    fail_read(e);
-  }
+  return get_array<double>("value");
 }
 
 void CheckpointReader::finish() const {

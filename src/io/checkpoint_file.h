@@ -61,6 +61,9 @@ class CheckpointReader {
   [[noreturn]] void fail(const std::string& message) const;
 
  private:
+  // An array; a count past the bytes left is "the checkpoint is corrupt (<counted> count)".
+  template <typename T>
+  std::vector<T> get_array(const char* counted);
   [[noreturn]] void fail_read(const ByteStreamError& error) const;
   std::string source_;
   Bytes fields_;  // after the magic, without the checksum

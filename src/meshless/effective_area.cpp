@@ -51,9 +51,8 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
   // added in triangle order afterwards, so the result does not depend on the thread count.
   std::vector<std::vector<std::pair<uint32_t, double>>> contributions(triangles.triangle_count());
   // Issue 19: seconds on a large scene; rank 0 counts every rank's triangles.
-  ProgressReporter progress_bar("effective areas", triangles.triangle_count(), "triangles",
-                                quiet || (cluster && !cluster->root()));
-  ProgressReporter* progress = &progress_bar;
+  ProgressReporter progress("effective areas", triangles.triangle_count(), "triangles",
+                            quiet || (cluster && !cluster->root()));
   const auto integrate_triangle = [&](std::size_t t) {
     const Vec3 a = triangles.corner_positions[3 * t], b = triangles.corner_positions[3 * t + 1],
                c = triangles.corner_positions[3 * t + 2];
@@ -104,7 +103,7 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
         merged.emplace_back(k, value);
     }
     contributions[t] = std::move(merged);
-    if (!cluster || !cluster->distributed()) progress->advance();
+    if (!cluster || !cluster->distributed()) progress.advance();
   };
   if (!cluster || !cluster->distributed()) {
     tbb::parallel_for(std::size_t(0), triangles.triangle_count(), integrate_triangle);
@@ -134,11 +133,11 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
           const std::vector<double> values = reader.get_array<double>();
           contributions[t].clear();
           for (std::size_t e = 0; e < ids.size(); ++e) contributions[t].emplace_back(ids[e], values[e]);
-          progress->advance();
+          progress.advance();
         },
         triangle_bytes);
   }
-  progress_bar.finish();
+  progress.finish();
   std::vector<double> areas(site_count, 0.0);
   for (const auto& sums : contributions)
     for (const auto& [k, value] : sums) areas[k] += value;

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "closed_cube.h"
 #include "scene/scene_loader.h"
 
 namespace candela {
@@ -11,22 +12,9 @@ namespace {
 
 // A closed cube [0, 2]³ of six quads facing inward.
 std::unique_ptr<Scene> closed_cube() {
-  const std::string material = R"("material": {"kd": 0.6})";
   return read_scene_text(
-      R"({"format": "candela/1", "camera": {"eye": [1, 1, 1.9], "target": [1, 1, 0], "fov": 80, "width": 8, "height": 8},
-      "shapes": [
-      {"type": "quad", "corner": [0, 0, 0], "edge_u": [0, 0, 2], "edge_v": [2, 0, 0], )" +
-          material + R"(},
-      {"type": "quad", "corner": [0, 2, 0], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2], )" +
-          material + R"(},
-      {"type": "quad", "corner": [0, 0, 0], "edge_u": [0, 2, 0], "edge_v": [0, 0, 2], )" +
-          material + R"(},
-      {"type": "quad", "corner": [2, 0, 0], "edge_u": [0, 0, 2], "edge_v": [0, 2, 0], )" +
-          material + R"(},
-      {"type": "quad", "corner": [0, 0, 0], "edge_u": [2, 0, 0], "edge_v": [0, 2, 0], )" +
-          material + R"(},
-      {"type": "quad", "corner": [0, 0, 2], "edge_u": [0, 2, 0], "edge_v": [2, 0, 0], )" +
-          material + R"(}]})",
+      R"({"format": "candela/1", "camera": {"eye": [1, 1, 1.9], "target": [1, 1, 0], "fov": 80, "width": 8, "height": 8}, )" +
+          testing::closed_cube_shapes(R"({"kd": 0.6})") + "}",
       "test.json", ".", {}, {});
 }
 

@@ -45,7 +45,7 @@ bool AreaLight::illuminate(const Vec3& point, LightSample& sample) const {
 bool AreaLight::illuminate_sample(const Vec3& point, int index, const Vec2& within,
                                   LightSample& sample) const {
   if (index < 0 || index >= samples_ * samples_) return false;
-  const double s = (index % samples_ + within.x) / samples_, t = (index / samples_ + within.y) / samples_;
+  const auto [s, t] = stratum_point(index, samples_, within);
   return from(point, corner_ + edge_u_ * s + edge_v_ * t, area_ / (samples_ * samples_), sample);
 }
 

@@ -30,8 +30,7 @@ bool EnvironmentLight::illuminate(const Vec3&, LightSample& sample) const {
 bool EnvironmentLight::illuminate_sample(const Vec3&, int index, const Vec2& within,
                                          LightSample& sample) const {
   if (index < 0 || index >= samples_ * samples_) return false;
-  return from({(index % samples_ + within.x) / samples_, (index / samples_ + within.y) / samples_},
-              samples_ * samples_, sample);
+  return from(stratum_point(index, samples_, within), samples_ * samples_, sample);
 }
 
 bool EnvironmentLight::illuminate_random(const Vec3&, const Vec2& u, LightSample& sample) const {

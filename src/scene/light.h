@@ -39,6 +39,12 @@ struct StratumJitter {
   }
 };
 
+// Cell `index` of samples × samples equal cells of [0, 1)², row by row, at `within` of the cell:
+// the point a stratified light's sample is taken at (area lights, surfaces, the environment).
+inline Vec2 stratum_point(int index, int samples, const Vec2& within) {
+  return {(index % samples + within.x) / samples, (index / samples + within.y) / samples};
+}
+
 class Light {
  public:
   virtual ~Light() = default;

@@ -49,8 +49,7 @@ bool SurfaceLight::illuminate(const Vec3& point, LightSample& sample) const {
 bool SurfaceLight::illuminate_sample(const Vec3& point, int index, const Vec2& within,
                                      LightSample& sample) const {
   if (index < 0 || index >= samples_ * samples_) return false;
-  const Vec2 u{(index % samples_ + within.x) / samples_, (index / samples_ + within.y) / samples_};
-  return from(point, u, samples_ * samples_, sample);
+  return from(point, stratum_point(index, samples_, within), samples_ * samples_, sample);
 }
 
 bool SurfaceLight::illuminate_random(const Vec3& point, const Vec2& u, LightSample& sample) const {
