@@ -22,9 +22,8 @@ namespace {
 struct MethodVariant {
   std::string method;
   std::vector<std::string> settings;
-  // Which settings it honours: every one, those on a grid (no jitter), or aa.mode "none" with the
-  // box alone.
-  enum class Takes { everything, grid, own_samples } takes;
+  // Which settings it honours: every one, or those on a grid (no jitter).
+  enum class Takes { everything, grid } takes;
   std::string label() const { return method + (settings.empty() ? "" : " " + settings[0]); }
 };
 
@@ -35,7 +34,7 @@ std::vector<MethodVariant> every_method_view() {
                                  {"raster", {"shading=\"phong\""}, Takes::grid},
                                  {"raster", {"shading=\"gouraud\""}, Takes::grid},
                                  {"radiosity", {"display=\"gouraud\""}, Takes::grid},
-                                 {"path", {"spp=1"}, Takes::own_samples}};
+                                 {"path", {"spp=1"}, Takes::everything}};
   for (const char* display : {"flat", "ray-traced", "elements"})
     all.push_back({"radiosity", {std::string("display=\"") + display + "\""}, Takes::everything});
   for (const char* display : {"global", "direct", "indirect", "hybrid"})
@@ -69,10 +68,8 @@ std::unique_ptr<Scene> room() {
 }
 
 // What a refusal names: the setting and its value.
-std::string refused_setting(const MethodVariant& variant, const AntialiasingSettings& settings) {
+std::string refused_setting(const AntialiasingSettings& settings) {
   const std::string mode = "aa.mode \"" + std::string(kAntialiasingModeNames.name(settings.mode)) + "\"";
-  if (variant.takes == MethodVariant::Takes::own_samples)
-    return mode;  // the path tracer takes every filter, its passes are its samples
   return settings.mode == AntialiasingMode::jittered ? mode : "aa.jitter true";
 }
 
@@ -101,8 +98,6 @@ bool honoured(const MethodVariant& variant, const AntialiasingSettings& settings
       return true;
     case MethodVariant::Takes::grid:
       return settings.mode != AntialiasingMode::jittered && !settings.jitter;
-    case MethodVariant::Takes::own_samples:
-      return settings.mode != AntialiasingMode::corners && settings.mode != AntialiasingMode::adaptive;
   }
   return false;
 }
@@ -136,7 +131,7 @@ TEST(EveryMethodSampling, OneAndTwoThreadsGiveTheSameBytesForEveryFilterAndModeO
           } catch (const InputError& e) {
             const std::string message = e.what();
             EXPECT_NE(message.find(variant.method + " cannot do aa."), std::string::npos) << message;
-            EXPECT_NE(message.find(refused_setting(variant, settings)), std::string::npos) << message;
+            EXPECT_NE(message.find(refused_setting(settings)), std::string::npos) << message;
           }
           EXPECT_THROW(refuse_unsupported_antialiasing(*method, *scene), InputError) << what;
           continue;

@@ -9,8 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "integrators/light_sampler.h"
 #include "integrators/method_registry.h"
 #include "integrators/scene_loading.h"
+#include "math/constants.h"
 #include "render_support.h"
 #include "scene/environment_light.h"
 #include "scene/surface_light.h"
@@ -109,6 +111,42 @@ TEST(Emitters, EmissiveObjectsAndTheEnvironmentBecomeLights) {
   EXPECT_EQ(lit->surface_lights[0]->type_name(), "surface");
   EXPECT_DOUBLE_EQ(lit->surface_lights[0]->area(), 1.0);
   EXPECT_FALSE(lit->environment_light);
+}
+
+// The path tracer's light selection reads the one emitter model: each emitter by its power
+// (Light::power, the scene's bounding radius for the point light and the sky), and a BSDF ray
+// that hits a lamp is weighed with the very density next-event estimation draws it with.
+TEST(Emitters, ThePathTracerChoosesEmittersByPowerAndWeighsHitsByTheirDensity) {
+  const std::string lamp =
+      R"(, {"type": "quad", "corner": [1.5, 3.5, 1.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "material": "lamp"})";
+  const std::string emitters = std::string(R"(, "materials": {"lamp": {"kd": 0, "emission": 4}})") +
+                               R"(, "environment": {"type": "constant", "color": [1, 1, 1]})" +
+                               R"(, "lights": [{"type": "point", "position": [2, 3, 2], "intensity": 4}])";
+  const auto scene = load_scene_text(room(emitters, true, lamp), "room.json", ".");
+  ASSERT_EQ(scene->emitter_count(), 3u);  // the point light, the lamp, the sky
+  const LightSampler lights(*scene);
+  const double r = 0.5 * length(scene->bounds().diagonal());  // the room: r² = 12
+  EXPECT_NEAR(r * r, 12, 1e-9);
+  // Point light without attenuation: 4 · 4π r²; the lamp: 4 · 2 sides · 1 m²; the sky: 1 · 4π r².
+  const double powers[] = {4 * 4 * kPi * 12, 8, 4 * kPi * 12};
+  const double total = powers[0] + powers[1] + powers[2];
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(lights.probability(i), powers[i] / total, 1e-12) << i;
+  int picked[3] = {0, 0, 0};
+  for (int k = 0; k < 1000; ++k) ++picked[lights.choose((k + 0.5) / 1000).emitter];
+  EXPECT_NEAR(picked[1], 1000 * powers[1] / total, 1);
+  // The lamp's sample from a floor point, and the ray toward it: the same density both ways.
+  const Vec3 floor_point{2.2, 0, 1.7};
+  LightSample sample;
+  ASSERT_TRUE(scene->emitter(1).illuminate_random(floor_point, {0.3, 0.8}, sample));
+  Intersection hit;
+  ASSERT_TRUE(scene->intersect(Ray{floor_point + Vec3{0, 1e-6, 0}, sample.direction}, hit));
+  EXPECT_NEAR(length(hit.surface.position - floor_point), sample.distance, 1e-5);
+  EXPECT_NEAR(
+      lights.surface_pdf(hit.primitive, floor_point, hit.surface) / (lights.probability(1) * sample.pdf), 1,
+      1e-4);
+  EXPECT_EQ(scene->emitter(1).emitted_radiance(sample.direction), scene->material_of(hit).emission);
+  EXPECT_NEAR(lights.environment_pdf({0, 1, 0}), lights.probability(2) / (4 * kPi), 1e-12);
+  EXPECT_EQ(lights.emissive_primitive_count(), 1u);
 }
 
 }  // namespace

@@ -309,6 +309,63 @@ TEST(PathTracer, FilteredPassesResumeAndCropToTheWholeImage) {
       ASSERT_EQ(cropped.film.at(x - crop.x0, y - crop.y0), whole.film.at(x, y)) << x << ", " << y;
 }
 
+// Issue 19, aa for every method: "corners" and "adaptive" passes are the camera sampler's lattice
+// images (Figure 49's setting: adaptive, jittered lattice, Gaussian). The image does not depend on
+// the thread count, a crop's pixels are the whole image's, a resumed run gives the uninterrupted
+// image, and the passes converge to what jittered passes converge to.
+TEST(PathTracer, LatticePassesAreDeterministicCropAndResumeAndConverge) {
+  const auto adaptive_box = [](int spp, AntialiasingMode mode) {
+    auto scene = small_box(spp);
+    scene->antialiasing.mode = mode;
+    scene->antialiasing.jitter = true;
+    scene->antialiasing.filter = "gaussian";
+    return scene;
+  };
+  const auto render = [&](const Scene& scene, const PixelRect& region, bool checkpoint,
+                          const std::optional<Bytes>& resume) {
+    const auto method = create_method(*find_method("path"), scene);
+    RenderRequest request{region, true};
+    request.checkpoint = checkpoint;
+    if (resume) request.resume = SealedCheckpoint{"box.checkpoint", *resume};
+    request.fingerprint = "box";
+    return method->render(scene, request);
+  };
+  for (const AntialiasingMode mode : {AntialiasingMode::corners, AntialiasingMode::adaptive}) {
+    SCOPED_TRACE(std::string(kAntialiasingModeNames.name(mode)));
+    const auto scene = adaptive_box(4, mode);
+    const PixelRect whole{0, 0, scene->camera->width(), scene->camera->height()};
+    const Film one = testing::render_scene(*scene, "path", 1);
+    const Film two = testing::render_scene(*scene, "path", 2);
+    for (std::size_t i = 0; i < one.pixels().size(); ++i) ASSERT_EQ(one.pixels()[i], two.pixels()[i]) << i;
+    const PixelRect crop{3, 2, 9, 7};
+    const RenderResult cropped = render(*scene, crop, false, std::nullopt);
+    for (int y = crop.y0; y < crop.y1; ++y)
+      for (int x = crop.x0; x < crop.x1; ++x)
+        ASSERT_EQ(cropped.film.at(x - crop.x0, y - crop.y0), two.at(x, y)) << x << ", " << y;
+    const RenderResult part = render(*adaptive_box(2, mode), whole, true, std::nullopt);
+    ASSERT_TRUE(part.checkpoint);
+    const RenderResult resumed = render(*scene, whole, false, *part.checkpoint);
+    for (std::size_t i = 0; i < one.pixels().size(); ++i)
+      ASSERT_EQ(resumed.film.pixels()[i], one.pixels()[i]) << i;
+  }
+  // The adaptive image's mean and the jittered one's agree within their noise (both 64 passes);
+  // adaptive subdivides where corners differ, so it traces more rays than the corners alone.
+  const auto mean_of = [](const Film& film) {
+    double sum = 0;
+    for (const Color& c : film.pixels()) sum += luminance(c);
+    return sum / double(film.pixels().size());
+  };
+  RunStatistics adaptive_rays, jittered_rays;
+  const Film adaptive =
+      testing::render_scene(*adaptive_box(64, AntialiasingMode::adaptive), "path", 2, adaptive_rays);
+  const Film jittered =
+      testing::render_scene(*adaptive_box(64, AntialiasingMode::jittered), "path", 2, jittered_rays);
+  EXPECT_NEAR(mean_of(adaptive) / mean_of(jittered), 1.0, 0.03);
+  const auto corner_rays = uint64_t(64) * (12 + 1) * (10 + 1);
+  EXPECT_GT(adaptive_rays.rays.primary, corner_rays);
+  EXPECT_EQ(jittered_rays.rays.primary, uint64_t(64) * 12 * 10);
+}
+
 // "--checkpoint FILE every N seconds": with an interval shorter than a pass, a checkpoint is handed
 // out after every pass but the last, and the final state is returned at the end.
 TEST(PathTracer, CheckpointsAreHandedOutEveryIntervalAndAtTheEnd) {

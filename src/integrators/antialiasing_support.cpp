@@ -19,14 +19,6 @@ constexpr int64_t kMaxGridSamples = int64_t(1) << 27;
 
 }  // namespace
 
-std::optional<AntialiasingRefusal> own_pixel_sampling_refusal(const AntialiasingSettings& settings,
-                                                              const std::string& how) {
-  if (settings.mode == AntialiasingMode::corners || settings.mode == AntialiasingMode::adaptive)
-    return AntialiasingRefusal{"aa.mode", quoted_mode(settings.mode),
-                               how + "; use aa.mode \"none\", \"jittered\" or \"uniform\""};
-  return std::nullopt;  // every filter: the samples are splatted with it
-}
-
 std::optional<AntialiasingRefusal> sample_grid_refusal(const AntialiasingSettings& settings,
                                                        const Camera& camera) {
   const std::optional<SampleGrid> grid = sample_grid(settings);

@@ -21,13 +21,6 @@ struct AntialiasingRefusal {
   std::string reason;  // why, and what the method can do instead
 };
 
-// The refusal of a method that takes its own pixel samples (the path tracer: one point of the
-// pixel per pass — uniform, or the n × n cells of "jittered" and "uniform" in turn — its passes
-// the anti-aliasing, every sample splatted with aa.filter): the lattice modes, "corners" and
-// "adaptive", whose contrast test has no meaning for progressive passes.
-std::optional<AntialiasingRefusal> own_pixel_sampling_refusal(const AntialiasingSettings& settings,
-                                                              const std::string& how);
-
 // The refusal of a view that rasterizes (camera/sample_grid.h): jittered samples, a jittered
 // lattice, and a grid too large to hold (aa.n, aa.max_level).
 std::optional<AntialiasingRefusal> sample_grid_refusal(const AntialiasingSettings& settings,

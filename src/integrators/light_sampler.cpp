@@ -1,63 +1,71 @@
 #include "integrators/light_sampler.h"
 
 #include <algorithm>
+#include <cmath>
+#include <unordered_map>
 
 namespace candela {
 
 LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
+  const Bounds3& bounds = scene.bounds();
+  double radius = bounds.empty() || !bounds.is_finite() ? 0.0 : 0.5 * length(bounds.diagonal());
+  if (!(radius > 0)) radius = 1;  // planes alone: any common scale will do
+  const std::size_t count = scene.emitter_count();
+  std::vector<double> power(count, 0.0);
   double total = 0;
-  std::vector<double> power;
-  for (uint32_t p = 0; p < scene.primitives.size(); ++p) {
-    const Primitive& primitive = scene.primitives[p];
-    const Color& emission = scene.materials[primitive.material].emission;
-    if (emission.is_black()) continue;
-    const double area = primitive.shape->area();
-    const double weight = luminance(emission) * area;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double weight = luminance(scene.emitter(i).power(radius));
     if (!(weight > 0) || !std::isfinite(weight)) continue;
-    surfaces_.push_back(p);
-    power.push_back(weight);
+    power[i] = weight;
     total += weight;
   }
-  if (!surfaces_.empty()) {
-    surface_probability_.assign(scene.primitives.size(), 0.0);
-    double running = 0;
-    for (std::size_t i = 0; i < surfaces_.size(); ++i) {
-      running += power[i];
-      surface_cdf_.push_back(running / total);
-    }
-    surface_cdf_.back() = 1;
+  probability_.assign(count, 0.0);
+  if (!(total > 0)) return;
+  double running = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (power[i] == 0) continue;
+    probability_[i] = power[i] / total;
+    running += probability_[i];
+    chosen_.push_back(i);
+    cumulative_.push_back(running);
   }
-  // The background lights nothing (issue 19): a sky is an environment ({"type": "constant"}).
-  if (scene.environment) environment_ = scene.environment.get();
-  choice_count_ =
-      static_cast<int>(scene.lights.size()) + (surfaces_.empty() ? 0 : 1) + (environment_ ? 1 : 0);
-  if (!surfaces_.empty()) {
-    const double group = 1.0 / choice_count_;
-    double previous = 0;
-    for (std::size_t i = 0; i < surfaces_.size(); ++i) {
-      surface_probability_[surfaces_[i]] = group * (surface_cdf_[i] - previous);
-      previous = surface_cdf_[i];
+  cumulative_.back() = 1;
+
+  // A BSDF ray that hits an emissive primitive is weighed by the chance that next-event
+  // estimation picks that primitive: its object's probability times its share of the area.
+  std::unordered_map<const Shape*, uint32_t> primitive_of;
+  for (uint32_t p = 0; p < scene.primitives.size(); ++p) primitive_of.emplace(scene.primitives[p].shape, p);
+  for (std::size_t k = 0; k < scene.surface_lights.size(); ++k) {
+    const SurfaceLight& light = *scene.surface_lights[k];
+    const double chosen = probability_[scene.lights.size() + k];
+    if (chosen == 0) continue;
+    if (primitive_choice_.empty()) primitive_choice_.assign(scene.primitives.size(), 0.0);
+    for (const Shape* shape : light.shapes()) {
+      const auto found = primitive_of.find(shape);
+      if (found == primitive_of.end()) continue;
+      primitive_choice_[found->second] = chosen * shape->area() / light.area();
+      ++emissive_primitives_;
     }
+  }
+  if (scene.environment_light && scene.environment) {
+    environment_ = scene.environment.get();
+    environment_probability_ = probability_[count - 1];
   }
 }
 
 LightSampler::Choice LightSampler::choose(double u) const {
-  const double scaled = u * choice_count_;
-  const int slot = std::min(static_cast<int>(scaled), choice_count_ - 1);
-  const int light_count = static_cast<int>(scene_.lights.size());
-  if (slot < light_count) return {Kind::scene_light, static_cast<uint32_t>(slot), 1.0 / choice_count_};
-  if (slot == light_count && !surfaces_.empty()) {
-    // The rest of u picks the primitive: it is uniform in [0, 1) again.
-    const double v = std::clamp(scaled - slot, 0.0, 1.0);
-    const auto found = std::upper_bound(surface_cdf_.begin(), surface_cdf_.end(), v);
-    const std::size_t i = std::min<std::size_t>(found - surface_cdf_.begin(), surfaces_.size() - 1);
-    return {Kind::surface, surfaces_[i], surface_probability_[surfaces_[i]]};
-  }
-  return {Kind::environment, 0, 1.0 / choice_count_};
+  const auto found = std::upper_bound(cumulative_.begin(), cumulative_.end(), u);
+  const std::size_t i = std::min<std::size_t>(found - cumulative_.begin(), chosen_.size() - 1);
+  return {chosen_[i], probability_[chosen_[i]]};
 }
 
-double LightSampler::surface_probability(uint32_t primitive) const {
-  return primitive < surface_probability_.size() ? surface_probability_[primitive] : 0.0;
+double LightSampler::surface_pdf(uint32_t primitive, const Vec3& from, const SurfaceHit& at) const {
+  if (primitive >= primitive_choice_.size() || primitive_choice_[primitive] == 0) return 0;
+  return primitive_choice_[primitive] * scene_.primitives[primitive].shape->pdf_from(from, at);
+}
+
+double LightSampler::environment_pdf(const Vec3& direction) const {
+  return environment_ ? environment_probability_ * environment_->pdf(direction) : 0.0;
 }
 
 }  // namespace candela

@@ -104,10 +104,6 @@ class MeshlessMethod final : public Method {
   explicit MeshlessMethod(const MeshlessSettings& settings = {}) : settings_(settings) {}
   std::string_view name() const override { return "meshless"; }
   RenderResult render(const Scene& scene, const RenderRequest& request) const override;
-  // Every display casts camera rays where sample_image asks: every aa mode and filter.
-  std::optional<AntialiasingRefusal> antialiasing_refusal(const Scene&) const override {
-    return std::nullopt;
-  }
 
  private:
   std::shared_ptr<const MeshlessGeometry> geometry_for(const Scene& scene, bool& reused, Cluster* cluster,

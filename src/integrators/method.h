@@ -80,16 +80,13 @@ class Method {
   // The ray tree of pixel (x, y) and its radiance, for methods whose capabilities say ray_trees;
   // the others throw std::logic_error.
   virtual RayTree pixel_ray_tree(const Scene& scene, int x, int y, Color& radiance) const;
-  // Why the method cannot honour the scene's "aa" settings (none when it can). By default a
-  // method takes its own pixel samples (the path tracer): aa.mode "none" with the box filter only.
-  virtual std::optional<AntialiasingRefusal> antialiasing_refusal(const Scene& scene) const;
+  // Why the method cannot honour the scene's "aa" settings (none when it can; by default it can:
+  // the path tracer and the ray tracers take every mode and filter).
+  virtual std::optional<AntialiasingRefusal> antialiasing_refusal(const Scene& scene) const {
+    (void)scene;
+    return std::nullopt;
+  }
 };
-
-inline std::optional<AntialiasingRefusal> Method::antialiasing_refusal(const Scene& scene) const {
-  return own_pixel_sampling_refusal(
-      scene.antialiasing,
-      "its passes take one point of each pixel each (aa.n × aa.n cells in turn), splatted with aa.filter");
-}
 
 // Throws the InputError of method.antialiasing_refusal(scene), naming the method, the setting
 // and its value (SPEC §17: never a silent fallback).

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <cmath>
 
 #include "camera/antialiasing.h"
@@ -88,56 +89,30 @@ bool unoccluded_surface(const Scene& scene, const Vec3& position, const Vec3& ge
   return !scene.occluded(Ray{origin, segment / distance, 0, distance});
 }
 
-// One next-event estimate at a surface point: a light chosen by the sampler, a point or direction
-// on it, weighted against BSDF sampling (MIS) where a BSDF-sampled ray could have found it too.
+// One next-event estimate at a surface point: an emitter chosen by its power, a point or direction
+// of it drawn by the emitter's own sampling (Light::illuminate_random), weighted against BSDF
+// sampling (MIS) where a BSDF-sampled ray could have found it too (LightSample::pdf > 0).
 Color sample_light(const Scene& scene, const LightSampler& lights, const Vec3& position,
                    const Vec3& geometric_normal, const Vec3& shading_normal, const Bsdf& bsdf, const Vec3& wo,
                    Pcg32& rng, RayCounts& rays) {
   if (lights.empty()) return {};
   const LightSampler::Choice choice = lights.choose(rng.next_double());
   const Vec2 u{rng.next_double(), rng.next_double()};
-  switch (choice.kind) {
-    case LightSampler::Kind::scene_light: {
-      LightSample sample;
-      if (!scene.lights[choice.index]->illuminate_random(position, u, sample)) return {};
-      const Color f = bsdf.evaluate(wo, sample.direction);
-      if (f.is_black()) return {};
-      if (!unoccluded(scene, position, geometric_normal, sample.direction, sample.distance, rays)) return {};
-      // A point-like light: no BSDF-sampled ray can hit it, so no MIS.
-      return f * sample.intensity *
-             (kPi * std::fabs(dot(shading_normal, sample.direction)) / choice.probability);
-    }
-    case LightSampler::Kind::surface: {
-      const Primitive& primitive = scene.primitives[choice.index];
-      SurfaceSample sample;
-      if (!primitive.shape->sample_from(position, u, sample) || !(sample.pdf > 0)) return {};
-      const Vec3 to_light = sample.position - position;
-      const double distance = length(to_light);
-      if (!(distance > 0)) return {};
-      const Vec3 L = to_light / distance;
-      const Color f = bsdf.evaluate(wo, L);
-      if (f.is_black()) return {};
-      if (!unoccluded_surface(scene, position, geometric_normal, sample.position, sample.normal, rays))
-        return {};
-      const double light_pdf = choice.probability * sample.pdf;
-      const double weight = power_heuristic(light_pdf, bsdf.pdf(wo, L));
-      const Color& emission = scene.materials[primitive.material].emission;
-      return f * emission * (std::fabs(dot(shading_normal, L)) * weight / light_pdf);
-    }
-    case LightSampler::Kind::environment: {
-      Vec3 L;
-      double pdf = 0;
-      Color radiance;
-      if (!lights.environment()->sample(u, L, pdf, radiance) || !(pdf > 0)) return {};
-      const Color f = bsdf.evaluate(wo, L);
-      if (f.is_black()) return {};
-      if (!unoccluded(scene, position, geometric_normal, L, kInfinity, rays)) return {};
-      const double light_pdf = choice.probability * pdf;
-      const double weight = power_heuristic(light_pdf, bsdf.pdf(wo, L));
-      return f * scene.background_along(L) * (std::fabs(dot(shading_normal, L)) * weight / light_pdf);
-    }
-  }
-  return {};
+  LightSample sample;
+  if (!scene.emitter(choice.emitter).illuminate_random(position, u, sample)) return {};
+  const Vec3& L = sample.direction;
+  const Color f = bsdf.evaluate(wo, L);
+  if (f.is_black()) return {};
+  const bool on_surface = sample.normal != Vec3{};
+  if (on_surface ? !unoccluded_surface(scene, position, geometric_normal, position + L * sample.distance,
+                                       sample.normal, rays)
+                 : !unoccluded(scene, position, geometric_normal, L, sample.distance, rays))
+    return {};
+  // A point-like light (pdf 0): no BSDF-sampled ray can hit it, so no MIS.
+  const double weight =
+      sample.pdf > 0 ? power_heuristic(choice.probability * sample.pdf, bsdf.pdf(wo, L)) : 1.0;
+  // The intensity is (light/π) / pdf already: π · f · intensity · cos θ / P(choice).
+  return f * sample.intensity * (kPi * std::fabs(dot(shading_normal, L)) * weight / choice.probability);
 }
 
 // One pass's sample of a pixel: where in the pixel (dx, dy ∈ [0, 1)) and what the path brought.
@@ -171,11 +146,8 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
       const Color background = scene.background_along(state.ray.direction);
       if (!background.is_black()) {
         double weight = 1;
-        if (!state.specular && lights.environment()) {
-          const double light_pdf =
-              lights.environment_probability() * lights.environment()->pdf(state.ray.direction);
-          weight = power_heuristic(state.bsdf_pdf, light_pdf);
-        }
+        if (!state.specular && lights.has_environment())
+          weight = power_heuristic(state.bsdf_pdf, lights.environment_pdf(state.ray.direction));
         L += state.beta * background * weight;
       }
       break;
@@ -186,12 +158,8 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
     if (!material.emission.is_black()) {
       double weight = 1;
       if (!state.specular) {
-        const double choice = lights.surface_probability(hit.primitive);
-        if (choice > 0) {
-          const double light_pdf =
-              choice * scene.primitives[hit.primitive].shape->pdf_from(state.previous, surface);
-          weight = power_heuristic(state.bsdf_pdf, light_pdf);
-        }
+        const double light_pdf = lights.surface_pdf(hit.primitive, state.previous, surface);
+        if (light_pdf > 0) weight = power_heuristic(state.bsdf_pdf, light_pdf);
       }
       L += state.beta * material.emission * weight;
     }
@@ -236,6 +204,11 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
 
 Pcg32 path_pixel_rng(uint64_t seed, uint64_t pass, uint32_t x, uint32_t y) {
   return Pcg32(mix64(seed * 0x9e3779b97f4a7c15ULL + pass), (static_cast<uint64_t>(y) << 32) | x);
+}
+
+Pcg32 path_point_rng(uint64_t seed, uint64_t pass, double x, double y) {
+  return Pcg32(mix64(seed * 0x9e3779b97f4a7c15ULL + pass),
+               mix64(std::bit_cast<uint64_t>(x) ^ mix64(std::bit_cast<uint64_t>(y))));
 }
 
 Color path_radiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights,
@@ -378,6 +351,44 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
     }
     return sample;
   };
+  // aa.mode "corners" and "adaptive": each pass is the camera sampler's own lattice image
+  // (camera/antialiasing.h: corner rays shared with the neighbours, squares split where the
+  // contrast of their corners exceeds aa.threshold, leaves splatted with aa.filter), its lattice
+  // jittered afresh each pass when aa.jitter is set; a lattice point's path takes its random stream
+  // from the point and the pass, so a tile and the whole image trace the same paths. The pixel is
+  // the mean of its passes' images.
+  const bool lattice_passes = aa.mode == AntialiasingMode::corners || aa.mode == AntialiasingMode::adaptive;
+  const auto run_lattice_pass = [&](uint64_t pass, const PixelBox& pixels, Color* sums, double* weights,
+                                    uint64_t& dropped_here) {
+    const SamplingRegion at{region.x0 + pixels.x0, region.y0 + pixels.y0, scene.camera->width(),
+                            scene.camera->height()};
+    // The pixels' own samples count as dropped: those of the ring are some other tile's own.
+    const double x0 = at.x0, y0 = at.y0, x1 = at.x0 + pixels.width(), y1 = at.y0 + pixels.height();
+    std::atomic<uint64_t> dropped_now{0};
+    const RadianceFunction radiance = [&](double x, double y) {
+      Pcg32 rng = path_point_rng(scene.render.seed, pass, x, y);
+      RayCounts& rays = counts.local();
+      ++rays.primary;
+      Color value = path_radiance(scene, settings, lights, scene.camera->generate_ray(x, y), rng, rays);
+      if (!is_finite(value)) {
+        value = Color();
+        if (x >= x0 && x < x1 && y >= y0 && y < y1) ++dropped_now;
+      }
+      return value;
+    };
+    Film image(pixels.width(), pixels.height());
+    sample_image(aa, mix64(scene.render.seed ^ mix64(pass + 0x5851f42d4c957f2dULL)), at, tile, radiance,
+                 image);
+    if (cancel_requested()) return false;  // tiles of the pass may have been skipped
+    for (int j = 0; j < pixels.height(); ++j)
+      for (int i = 0; i < pixels.width(); ++i) {
+        const std::size_t q = std::size_t(j) * pixels.width() + i;
+        sums[q] += image.at(i, j);
+        weights[q] += 1;
+      }
+    dropped_here += dropped_now.load();
+    return true;
+  };
   // Issue 19, one film: every sample is splatted with the scene's aa.filter into the pixels within
   // its reach (pbrt-v4's film), gathered here per pixel in a fixed order, so the image does not
   // depend on the threads or on the tiles. The pixels [x0, x1) × [y0, y1) of the region take their
@@ -392,6 +403,7 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
   // into `samples` (samples_box(pixels)-sized); false when Ctrl-C cut the pass short.
   const auto run_pass = [&](uint64_t pass, const PixelBox& pixels, std::vector<PassSample>& samples,
                             Color* sums, double* weights, uint64_t& dropped_here) {
+    if (lattice_passes) return run_lattice_pass(pass, pixels, sums, weights, dropped_here);
     const PixelBox box = samples_box(pixels);
     samples.resize(std::size_t(box.width()) * box.height());
     std::atomic<bool> cut_short{false};
@@ -607,7 +619,7 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
                           {"roulette_depth", settings.roulette_depth},
                           {"emissive_primitives", lights.emissive_primitive_count()},
                           {"scene_lights", scene.lights.size()},
-                          {"environment", lights.environment() != nullptr},
+                          {"environment", lights.has_environment()},
                           {"dropped_samples", dropped},
                           {"checkpoints_written", checkpoints},
                           {"seconds_all_runs", state.seconds + timer.seconds()}};

@@ -45,6 +45,9 @@ Color path_irradiance(const Scene& scene, const PathSettings& settings, const Li
 
 // The stream of pass `pass` at image pixel (x, y): independent of the thread and of the region.
 Pcg32 path_pixel_rng(uint64_t seed, uint64_t pass, uint32_t x, uint32_t y);
+// The stream of pass `pass` at image point (x, y) of aa.mode "corners" and "adaptive": a lattice
+// point's, independent of the thread, of the region and of which pixel asked first.
+Pcg32 path_point_rng(uint64_t seed, uint64_t pass, double x, double y);
 
 class PathMethod final : public Method {
  public:

@@ -70,9 +70,7 @@ ProbeResult probe_field(const Scene& scene, const SolutionField& field, const Li
   };
   // The density the light strategy gives the direction toward hit.
   const auto light_pdf = [&](const Intersection& hit) {
-    const double choice = lights.surface_probability(hit.primitive);
-    return choice > 0 ? choice * scene.primitives[hit.primitive].shape->pdf_from(point.position, hit.surface)
-                      : 0.0;
+    return lights.surface_pdf(hit.primitive, point.position, hit.surface);
   };
   const int k = std::max(1, static_cast<int>(std::ceil(std::sqrt(double(settings.samples)))));
   const int n = k * k;
@@ -96,19 +94,24 @@ ProbeResult probe_field(const Scene& scene, const SolutionField& field, const Li
     for (int s = 0; s < n; ++s) {
       const LightSampler::Choice choice = lights.choose(rng.next_double());
       const Vec2 u{rng.next_double(), rng.next_double()};
-      if (choice.kind != LightSampler::Kind::surface) continue;  // only surfaces carry a solution
-      SurfaceSample sample;
-      if (!scene.primitives[choice.index].shape->sample_from(point.position, u, sample) || !(sample.pdf > 0))
+      if (!scene.is_surface_emitter(choice.emitter)) continue;  // only surfaces carry a solution
+      LightSample sample;
+      if (!scene.emitter(choice.emitter).illuminate_random(point.position, u, sample) || !(sample.pdf > 0))
         continue;
-      const Vec3 direction = normalize(sample.position - origin);
+      const Vec3 target = point.position + sample.direction * sample.distance;
+      const Vec3 direction = normalize(target - origin);
       const double cosine = dot(direction, point.normal);
       if (!(cosine > 0)) continue;
       ++rays.shadow;
       Intersection hit;
       bool found = false;
       const Color b = seen(Ray{origin, direction}, hit, found);
-      if (!found || hit.primitive != choice.index) continue;  // hidden, or missed by rounding
-      const double p_light = choice.probability * sample.pdf;
+      // Hidden (something nearer than the sampled point), or missed by rounding.
+      if (!found ||
+          length(hit.surface.position - target) > 2 * scene.ray_offset(target) + 1e-9 * sample.distance)
+        continue;
+      const double p_light = light_pdf(hit);
+      if (!(p_light > 0)) continue;
       const double weight = power_heuristic(p_light, cosine * kInvPi);
       sum += b * (kInvPi * cosine * weight / p_light);
     }

@@ -24,10 +24,6 @@ class RayTracingMethod : public Method {
   virtual Color trace_primary(const Scene& scene, const Ray& ray, TraceContext& context) const = 0;
   // Traces pixel (x, y) alone and returns its ray tree.
   RayTree pixel_ray_tree(const Scene& scene, int x, int y, Color& radiance) const override;
-  // Every aa mode and filter: the rays go wherever sample_image asks.
-  std::optional<AntialiasingRefusal> antialiasing_refusal(const Scene&) const override {
-    return std::nullopt;
-  }
 };
 
 }  // namespace candela

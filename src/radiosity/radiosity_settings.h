@@ -28,7 +28,9 @@ struct RadiositySettings {
   double threshold = 0.001;
   int max_steps = 100000;  // shots (progressive) or sweeps (gauss-seidel) at most
   bool ambient = true;     // progressive: add the ambient term of 000 §6.6.2 for display
-  RadiosityDisplay display = RadiosityDisplay::gouraud;
+  // Ray-traced by default: the Gouraud field (000 §6.5) looked up at each hit, so every aa mode of
+  // the scene (the default scene's jittered lattice too) reaches it; gouraud rasterizes.
+  RadiosityDisplay display = RadiosityDisplay::ray_traced;
   // Adaptive subdivision (000 §6.7.2): after a solution, every element whose radiosity differs
   // from a neighbour's by more than this fraction of the largest reflected radiosity is split,
   // and the scene solved again, until no pair differs by more (0: off) or the elements reach

@@ -24,6 +24,7 @@ AreaLight::AreaLight(const Vec3& corner, const Vec3& edge_u, const Vec3& edge_v,
 }
 
 bool AreaLight::from(const Vec3& point, const Vec3& y, double patch_area, LightSample& sample) const {
+  sample = {};
   const Vec3 to_light = y - point;
   const double d2 = dot(to_light, to_light);
   if (!(d2 > 0)) return false;

@@ -27,6 +27,7 @@ class AreaLight final : public Light {
   // A uniform point of the parallelogram carrying the whole area.
   bool illuminate_random(const Vec3& point, const Vec2& u, LightSample& sample) const override;
   std::string_view type_name() const override { return "area"; }
+  Color power(double) const override { return exitance_ * (area_ * (two_sided_ ? 2 : 1)); }
   double area() const { return area_; }
 
  private:

@@ -16,6 +16,8 @@ class DirectionalLight final : public Light {
     return true;
   }
   std::string_view type_name() const override { return "directional"; }
+  // The flux through the scene's disc across the beam, π r² · I.
+  Color power(double scene_radius) const override { return intensity_ * (kPi * scene_radius * scene_radius); }
 
  private:
   Vec3 to_light_;

@@ -1,5 +1,6 @@
 #include "scene/environment_light.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -10,9 +11,23 @@ namespace candela {
 EnvironmentLight::EnvironmentLight(const Environment& environment, int samples)
     : environment_(environment), samples_(samples) {
   if (samples < 1) throw std::invalid_argument("environment light: samples must be >= 1");
+  // The mean over the sphere by the midpoint rule in (cos θ, φ) — cells of equal solid angle — on
+  // a grid finer than a texel of the maps used in practice (exact for a constant sky).
+  constexpr int kBands = 128, kSectors = 256;
+  Color sum;
+  for (int band = 0; band < kBands; ++band) {
+    const double z = 1 - 2 * (band + 0.5) / kBands;
+    const double ring = std::sqrt(std::max(0.0, 1 - z * z));
+    for (int sector = 0; sector < kSectors; ++sector) {
+      const double phi = 2 * kPi * (sector + 0.5) / kSectors;
+      sum += environment_.radiance({ring * std::cos(phi), z, ring * std::sin(phi)});
+    }
+  }
+  mean_radiance_ = sum / double(kBands * kSectors);
 }
 
 bool EnvironmentLight::from(const Vec2& u, int cells, LightSample& sample) const {
+  sample = {};
   Vec3 direction;
   double pdf = 0;
   Color radiance;
@@ -20,6 +35,7 @@ bool EnvironmentLight::from(const Vec2& u, int cells, LightSample& sample) const
   sample.direction = direction;
   sample.distance = kInfinity;
   sample.intensity = radiance * (kInvPi / (cells * pdf));
+  sample.pdf = pdf;
   return std::isfinite(sample.intensity.r + sample.intensity.g + sample.intensity.b);
 }
 

@@ -12,6 +12,7 @@
 // for the area lights, area_light.h).
 #pragma once
 
+#include "math/constants.h"
 #include "scene/light.h"
 #include "shading/environment.h"
 
@@ -28,11 +29,19 @@ class EnvironmentLight final : public Light {
                          LightSample& sample) const override;
   bool illuminate_random(const Vec3& point, const Vec2& u, LightSample& sample) const override;
   std::string_view type_name() const override { return "environment"; }
+  // 4π r² times the radiance averaged over the sphere: the power a uniform sky of that radiance
+  // sends into the scene's sphere.
+  Color power(double scene_radius) const override {
+    return mean_radiance_ * (4 * kPi * scene_radius * scene_radius);
+  }
+  Color emitted_radiance(const Vec3& direction) const override { return environment_.radiance(direction); }
+  const Color& mean_radiance() const { return mean_radiance_; }
 
  private:
   bool from(const Vec2& u, int cells, LightSample& sample) const;
   const Environment& environment_;
   int samples_;
+  Color mean_radiance_;
 };
 
 }  // namespace candela

@@ -14,11 +14,19 @@
 
 namespace candela {
 
-// Light arriving at a point from one source, before shadowing.
+// Light arriving at a point from one source, before shadowing. Every light sets all of it.
 struct LightSample {
-  Vec3 direction;   // L: unit, from the point toward the light
-  double distance;  // to the light; infinity for a directional light
-  Color intensity;  // Ip · f_at (· spot factor)
+  Vec3 direction;       // L: unit, from the point toward the light
+  double distance = 0;  // to the light; infinity for a directional light
+  Color intensity;      // Ip · f_at (· spot factor)
+  // The solid-angle density of `direction` when the light is one a ray can hit (an emissive
+  // surface, the environment), so that a BSDF-sampled ray that finds it can weigh itself against
+  // the light's sampling (MIS): 1/(cells · pdf) is in `intensity` already. 0 for the point-like
+  // lights and the area light, which no ray can hit.
+  double pdf = 0;
+  // The emitter's surface normal at the sampled point (emissive surfaces, whose shadow rays stop
+  // short of the surface on the side they arrive from); zero for the others.
+  Vec3 normal{};
 };
 
 // Where in each cell (stratum) of a light's fixed sample set a shading point takes its sample: the
@@ -53,6 +61,21 @@ class Light {
   // it; methods that trace shadows use the samples below instead.
   virtual bool illuminate(const Vec3& point, LightSample& sample) const = 0;
   virtual std::string_view type_name() const = 0;
+
+  // The power the light sends (pbrt's Light::Phi), in the images' units times area: an emitter of
+  // exitance E and area A sends E·A. For the lights that fall off slower than 1/d² or not at all
+  // (a point light without inverse-square attenuation, a directional light, the environment) it is
+  // the power that reaches a sphere of radius scene_radius around the scene (the light at its
+  // centre): the measure the path tracer chooses its lights by.
+  virtual Color power(double scene_radius) const = 0;
+  // What a ray that reaches the light travelling along `direction` (a unit vector from the scene
+  // toward the light) brings back, in the images' units: an emissive surface's emission (alike on
+  // both sides), the environment's radiance seen along the direction; black for the lights no ray
+  // can hit (point-like lights, the area light).
+  virtual Color emitted_radiance(const Vec3& direction) const {
+    (void)direction;
+    return {};
+  }
 
   // The light as sample_count() point samples whose intensities add up to what it sends: one for
   // the point-like lights; for an area light or an emissive surface one per cell of a fixed

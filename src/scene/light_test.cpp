@@ -2,10 +2,16 @@
 
 #include <cmath>
 
+#include "geometry/quad.h"
+#include "geometry/sphere.h"
 #include "math/constants.h"
+#include "scene/area_light.h"
 #include "scene/directional_light.h"
+#include "scene/environment_light.h"
 #include "scene/point_light.h"
 #include "scene/spot_light.h"
+#include "scene/surface_light.h"
+#include "shading/environment.h"
 
 namespace candela {
 namespace {
@@ -59,6 +65,97 @@ TEST(Lights, AttenuationFactors) {
   a.quadratic = 0.125;
   EXPECT_NEAR(a.factor(4), 1 / (0.5 + 1 + 2), 1e-15);
   EXPECT_EQ(a.factor(0), 1.0);  // 1/0.5 clamped to 1
+}
+
+// The luminance of the power that crosses the sphere of `radius` about the origin, by the
+// midpoint rule over bands × sectors cells of equal area: each cell's irradiance from every sample
+// of the light (Σ intensity · cos θ, the lights' own convention) times its area. A light inside
+// lights the sphere's inner faces; a light from outside (`from_outside`) the outer ones, the flux
+// that enters.
+double flux_through_sphere(const Light& light, double radius, bool from_outside) {
+  constexpr int kBands = 300, kSectors = 600;
+  const double cell_area = 4 * kPi * radius * radius / (kBands * kSectors);
+  double flux = 0;
+  for (int band = 0; band < kBands; ++band) {
+    const double z = 1 - 2 * (band + 0.5) / kBands;
+    const double ring = std::sqrt(1 - z * z);
+    for (int sector = 0; sector < kSectors; ++sector) {
+      const double phi = 2 * kPi * (sector + 0.5) / kSectors;
+      const Vec3 outward{ring * std::cos(phi), z, ring * std::sin(phi)};
+      const Vec3 facing = from_outside ? outward : -outward;
+      for (int k = 0; k < light.sample_count(); ++k) {
+        LightSample sample;
+        if (!light.illuminate_sample(outward * radius, k, {0.5, 0.5}, sample)) continue;
+        flux += luminance(sample.intensity) * std::max(0.0, dot(facing, sample.direction)) * cell_area;
+      }
+    }
+  }
+  return flux;
+}
+
+// Issue 19, one emitter model: Light::power is the power each light sends — measured here as what
+// crosses a sphere around it, from the lights' own illumination — the measure the path tracer
+// chooses lights by (for the lights that fall off slower than 1/d², what reaches the sphere of the
+// scene's radius).
+TEST(Lights, PowerIsWhatCrossesASphereAroundTheLight) {
+  const double r = 5;
+  Attenuation linear;
+  linear.mode = Attenuation::Mode::linear;
+  linear.d0 = 1;
+  const PointLight point({0, 0, 0}, Color(3), linear);
+  EXPECT_NEAR(flux_through_sphere(point, r, false) / luminance(point.power(r)), 1, 1e-6);
+  EXPECT_NEAR(luminance(point.power(r)), 3 * 4 * kPi * r * r / (r + 1), 1e-9);
+  Attenuation inverse_square;
+  inverse_square.mode = Attenuation::Mode::inverse_square;
+  EXPECT_NEAR(luminance(PointLight({0, 0, 0}, Color(3), inverse_square).power(r)), 3, 1e-12);
+  // The smooth step between 20° and 30° sends half of what the full cone between would.
+  const SpotLight spot({0, 0, 0}, {0, -1, 0.2}, Color(2), 30, 20, 0, Attenuation{});
+  EXPECT_NEAR(flux_through_sphere(spot, r, false) / luminance(spot.power(r)), 1, 2e-3);
+  const DirectionalLight sun({1, -2, 0.5}, Color(0.7));
+  EXPECT_NEAR(flux_through_sphere(sun, r, true) / luminance(sun.power(r)), 1, 1e-3);
+  for (const bool two_sided : {false, true}) {
+    const AreaLight area({-0.5, 1, -0.25}, {1, 0, 0}, {0, 0.2, 0.5}, Color(4), 6, two_sided);
+    EXPECT_NEAR(flux_through_sphere(area, r, false) / luminance(area.power(r)), 1, 2e-3) << two_sided;
+    EXPECT_NEAR(luminance(area.power(r)), 4 * area.area() * (two_sided ? 2 : 1), 1e-12);
+    EXPECT_EQ(area.emitted_radiance({0, 1, 0}), Color());  // no ray sees it
+  }
+  // An emissive surface sends its exitance from both sides: two quads of one object.
+  const Quad quad({-1, -1, 0}, {2, 0, 0}, {0, 1.5, 0});
+  const Quad tilted({0.5, 1, 1}, {0, 0.5, 0.5}, {0.8, 0, 0});
+  const SurfaceLight surface("lamp", {&quad, &tilted}, Color(1.5), 8);
+  EXPECT_NEAR(luminance(surface.power(r)), 1.5 * 2 * (3 + 0.8 * std::sqrt(0.5)), 1e-12);
+  EXPECT_NEAR(flux_through_sphere(surface, r, false) / luminance(surface.power(r)), 1, 3e-3);
+  EXPECT_EQ(surface.emitted_radiance({0, 0, 1}), Color(1.5));
+  // A uniform sky of color C: irradiance C on every element of the sphere, 4π r² C in all.
+  ConstantEnvironment sky_color(Color(0.8, 0.6, 0.4));
+  const EnvironmentLight sky(sky_color, 8);
+  EXPECT_NEAR(sky.mean_radiance().g, 0.6, 1e-12);
+  EXPECT_NEAR(flux_through_sphere(sky, r, true) / luminance(sky.power(r)), 1, 2e-3);
+  EXPECT_EQ(sky.emitted_radiance({0, 1, 0}), Color(0.8, 0.6, 0.4));
+}
+
+// The random sample of an emitter a ray can hit gives the density of its direction (for MIS):
+// Σ intensity·cos / pdf-weighted estimates agree with the stratified set, and pdf is the emitter's
+// own density (the sphere's cone, the quad's area measure).
+TEST(Lights, RandomSamplesOfSurfacesAndTheSkyCarryTheirDensity) {
+  const Sphere ball({0, 3, 0}, 1);
+  const SurfaceLight surface("ball", {&ball}, Color(2), 4);
+  LightSample sample;
+  ASSERT_TRUE(surface.illuminate_random({0, 0, 0}, {0.3, 0.6}, sample));
+  // Uniform in the cone of half-angle asin(1/3): pdf = 1 / (2π (1 − cos θmax)).
+  const double cos_max = std::sqrt(1 - 1.0 / 9);
+  EXPECT_NEAR(sample.pdf, 1 / (2 * kPi * (1 - cos_max)), 1e-9);
+  EXPECT_NEAR(sample.intensity.r, 2 * kInvPi / sample.pdf, 1e-9);
+  EXPECT_NEAR(length(sample.normal), 1, 1e-12);
+  EXPECT_LT(dot(sample.normal, sample.direction), 0);  // it faces the point
+  ConstantEnvironment white(Color(1));
+  const EnvironmentLight sky(white, 2);
+  ASSERT_TRUE(sky.illuminate_random({0, 0, 0}, {0.3, 0.6}, sample));
+  EXPECT_NEAR(sample.pdf, 1 / (4 * kPi), 1e-12);
+  EXPECT_EQ(sample.normal, Vec3{});
+  const PointLight point({0, 3, 0}, Color(1), Attenuation{});
+  ASSERT_TRUE(point.illuminate_random({0, 0, 0}, {0.3, 0.6}, sample));
+  EXPECT_EQ(sample.pdf, 0);  // no ray can hit it
 }
 
 }  // namespace

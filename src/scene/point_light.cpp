@@ -3,6 +3,7 @@
 namespace candela {
 
 bool PointLight::illuminate(const Vec3& point, LightSample& sample) const {
+  sample = {};
   const Vec3 to_light = position_ - point;
   sample.distance = length(to_light);
   if (!(sample.distance > 0)) return false;

@@ -31,7 +31,13 @@ double SpotLight::cone_factor(double cos_alpha) const {
   return factor;
 }
 
+Color SpotLight::power(double scene_radius) const {
+  const double cone = 0.5 * (1 - 0.5 * (cos_cutoff_ + cos_falloff_start_));
+  return intensity_ * (cone * attenuation_.factor(scene_radius) * 4 * kPi * scene_radius * scene_radius);
+}
+
 bool SpotLight::illuminate(const Vec3& point, LightSample& sample) const {
+  sample = {};
   const Vec3 to_light = position_ - point;
   sample.distance = length(to_light);
   if (!(sample.distance > 0)) return false;

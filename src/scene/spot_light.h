@@ -13,6 +13,9 @@ class SpotLight final : public Light {
             double falloff_start_degrees, double exponent, const Attenuation& attenuation);
   bool illuminate(const Vec3& point, LightSample& sample) const override;
   std::string_view type_name() const override { return "spot"; }
+  // A point light's power times the part of the sphere its cone covers, the smooth step counted
+  // half (pbrt's SpotLight::Phi); the (cos α)^exponent factor is left out.
+  Color power(double scene_radius) const override;
   // The factor for a direction at angle alpha from the axis, given as cos(alpha).
   double cone_factor(double cos_alpha) const;
 

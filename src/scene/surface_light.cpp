@@ -23,6 +23,7 @@ SurfaceLight::SurfaceLight(std::string object_name, const std::vector<const Shap
 }
 
 bool SurfaceLight::from(const Vec3& point, Vec2 u, int cells, LightSample& sample) const {
+  sample = {};
   // u.x picks a shape by its area, then is stretched back over [0, 1) within it.
   const double at = u.x * area_;
   const auto found = std::upper_bound(cumulative_area_.begin(), cumulative_area_.end(), at);
@@ -39,6 +40,8 @@ bool SurfaceLight::from(const Vec3& point, Vec2 u, int cells, LightSample& sampl
   sample.direction = to_light / distance;
   sample.distance = distance;
   sample.intensity = emission_ * (kInvPi / (cells * probability * on_surface.pdf));
+  sample.pdf = probability * on_surface.pdf;
+  sample.normal = on_surface.normal;
   return std::isfinite(sample.intensity.r + sample.intensity.g + sample.intensity.b);
 }
 

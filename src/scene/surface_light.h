@@ -32,10 +32,14 @@ class SurfaceLight final : public Light {
                          LightSample& sample) const override;
   bool illuminate_random(const Vec3& point, const Vec2& u, LightSample& sample) const override;
   std::string_view type_name() const override { return "surface"; }
+  Color power(double) const override { return emission_ * (2 * area_); }  // both sides
+  Color emitted_radiance(const Vec3&) const override { return emission_; }
 
   const std::string& object_name() const { return object_name_; }
   const Color& emission() const { return emission_; }
   double area() const { return area_; }
+  // The shapes it samples (those of area > 0), each chosen with probability area / area().
+  const std::vector<const Shape*>& shapes() const { return shapes_; }
 
  private:
   // The light from the point u ∈ [0, 1)² maps to, as one of `cells` equal parts of the surface.
