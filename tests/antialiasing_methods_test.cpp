@@ -182,5 +182,33 @@ TEST(EveryMethodSampling, TheFilterAndTheModeReachEveryMethodThatTakesThem) {
   }
 }
 
+// A rasterized view's grid is checked for every view the scene can be rendered from (its named
+// cameras, candela render --camera), before any work: a small main camera does not let a huge
+// named view through to allocate its grid.
+TEST(EveryMethodSampling, TheGridOfEveryNamedViewIsCheckedBeforeAnyWork) {
+  std::string text = kRoom;
+  const std::string camera =
+      R"("camera": {"eye": [0, 1.2, 4], "target": [0, 0.8, 0], "fov": 60, "width": 18, "height": 14},)";
+  ASSERT_NE(text.find(camera), std::string::npos);
+  text.replace(
+      text.find(camera), camera.size(),
+      camera +
+          R"( "cameras": [{"name": "poster", "eye": [0, 1.2, 4], "target": [0, 0.8, 0], "width": 12000, "height": 9000}],)");
+  const auto scene = load_scene_text(text, "room.json", ".", {"aa.mode=uniform", "aa.n=4"});
+  for (const char* method : {"raster", "radiosity"}) {
+    try {
+      (void)create_method(*find_method(method), *scene,
+                          {std::string(method) == "radiosity" ? "display=\"gouraud\"" : "shading=\"phong\""});
+      ADD_FAILURE() << method << ": the 48000 × 36000 grid of \"poster\" was not refused";
+    } catch (const InputError& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find(std::string(method) + " cannot do aa.n 4"), std::string::npos) << message;
+      EXPECT_NE(message.find("for camera \"poster\""), std::string::npos) << message;
+    }
+  }
+  // The ray-cast views take it (their samples are not held at once).
+  EXPECT_NO_THROW((void)create_method(*find_method("local"), *scene));
+}
+
 }  // namespace
 }  // namespace candela

@@ -4,6 +4,7 @@
 
 #include "camera/sample_grid.h"
 #include "integrators/method.h"
+#include "scene/scene.h"
 #include "util/error.h"
 
 namespace candela {
@@ -17,10 +18,25 @@ std::string quoted_mode(AntialiasingMode mode) {
 // The most grid samples a rasterized view keeps (24 bytes each: 3 GiB).
 constexpr int64_t kMaxGridSamples = int64_t(1) << 27;
 
+// The grid of a view over the samples it may hold.
+std::optional<AntialiasingRefusal> grid_size_refusal(const AntialiasingSettings& settings,
+                                                     const SampleGrid& grid, const Camera& camera,
+                                                     const std::string& view) {
+  const int64_t samples =
+      (grid.end(camera.width()) - grid.first(0)) * (grid.end(camera.height()) - grid.first(0));
+  if (samples <= kMaxGridSamples) return std::nullopt;
+  const bool uniform = settings.mode == AntialiasingMode::uniform;
+  return AntialiasingRefusal{
+      uniform ? "aa.n" : "aa.max_level", std::to_string(uniform ? settings.n : settings.max_level),
+      fmt::format("the grid of {} × {} samples it would rasterize{} is over the {} samples it may hold; "
+                  "lower it",
+                  grid.end(camera.width()), grid.end(camera.height()), view, kMaxGridSamples)};
+}
+
 }  // namespace
 
 std::optional<AntialiasingRefusal> sample_grid_refusal(const AntialiasingSettings& settings,
-                                                       const Camera& camera) {
+                                                       const Scene& scene) {
   const std::optional<SampleGrid> grid = sample_grid(settings);
   if (!grid) {
     const std::string reason =
@@ -32,16 +48,11 @@ std::optional<AntialiasingRefusal> sample_grid_refusal(const AntialiasingSetting
     return AntialiasingRefusal{"aa.jitter", "true",
                                fmt::format("with aa.mode {}: {}", quoted_mode(settings.mode), reason)};
   }
-  const int64_t samples =
-      (grid->end(camera.width()) - grid->first(0)) * (grid->end(camera.height()) - grid->first(0));
-  if (samples > kMaxGridSamples) {
-    const bool uniform = settings.mode == AntialiasingMode::uniform;
-    return AntialiasingRefusal{
-        uniform ? "aa.n" : "aa.max_level", std::to_string(uniform ? settings.n : settings.max_level),
-        fmt::format("the grid of {} × {} samples it would rasterize is over the {} samples it may hold; "
-                    "lower it",
-                    grid->end(camera.width()), grid->end(camera.height()), kMaxGridSamples)};
-  }
+  if (auto refusal = grid_size_refusal(settings, *grid, *scene.camera, "")) return refusal;
+  for (const NamedCamera& named : scene.cameras)
+    if (auto refusal =
+            grid_size_refusal(settings, *grid, *named.camera, " for camera \"" + named.name + "\""))
+      return refusal;
   return std::nullopt;
 }
 

@@ -22,9 +22,10 @@ struct AntialiasingRefusal {
 };
 
 // The refusal of a view that rasterizes (camera/sample_grid.h): jittered samples, a jittered
-// lattice, and a grid too large to hold (aa.n, aa.max_level).
+// lattice, and a grid too large to hold (aa.n, aa.max_level) for the scene's camera or any of its
+// named cameras (the views of candela render --camera).
 std::optional<AntialiasingRefusal> sample_grid_refusal(const AntialiasingSettings& settings,
-                                                       const Camera& camera);
+                                                       const Scene& scene);
 
 // "raster cannot do aa.mode \"adaptive\" (…)".
 std::string describe_refusal(std::string_view method, const AntialiasingRefusal& refusal);

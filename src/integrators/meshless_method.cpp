@@ -159,7 +159,12 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const Meshl
   sampling.neighbours = settings.neighbours;
   sampling.seed = scene.render.seed;
   sampling.max_sites = static_cast<std::size_t>(settings.max_sites);
-  geometry->sites = sample_sites(scene, sampling);
+  {
+    ProgressReporter progress("sites", 1 + static_cast<uint64_t>(settings.rounds), "rounds",
+                              quiet || (cluster && !cluster->root()));
+    geometry->sites = sample_sites(scene, sampling, &progress);
+    progress.finish();
+  }
   geometry->sampling_seconds = seconds_since(start);
   if (stop()) return nullptr;
   const SiteSet& sites = geometry->sites;
@@ -192,7 +197,7 @@ std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene,
 }
 
 MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& settings,
-                                const MeshlessGeometry& geometry) {
+                                const MeshlessGeometry& geometry, bool quiet) {
   const SiteSet& sites = geometry.sites;
   const auto start = std::chrono::steady_clock::now();
   MeshlessLighting lighting;
@@ -200,8 +205,10 @@ MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& sett
   tbb::parallel_for(std::size_t(0), sites.sites.size(), [&](std::size_t i) {
     lighting.eta[i] = direct_light(scene, sites.sites[i].position, sites.sites[i].normal, sites.albedo[i]);
   });
+  ProgressReporter progress("meshless solve", 1000, "per mille of convergence", quiet);
   lighting.transfer = solve_transfer(geometry.matrix, sites.albedo, lighting.eta, settings.tolerance,
-                                     static_cast<std::size_t>(settings.max_iterations));
+                                     static_cast<std::size_t>(settings.max_iterations), &progress);
+  progress.finish();
   lighting.seconds = seconds_since(start);
   return lighting;
 }
@@ -265,7 +272,8 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
   };
   if (!geometry) return interrupted("transfer matrix not finished");
   if (cancelled_anywhere(cluster)) return interrupted("sites and transfer matrix; no lighting");
-  const MeshlessLighting lighting = light_meshless(scene, settings_, *geometry);
+  const MeshlessLighting lighting =
+      light_meshless(scene, settings_, *geometry, request.quiet || (cluster && !cluster->root()));
   nlohmann::json facts = geometry_facts(settings_, *geometry);
   add_lighting_facts(lighting, facts);
   facts["geometry_reused"] = reused;

@@ -82,8 +82,9 @@ struct MeshlessLighting {
 
 std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene,
                                                           const MeshlessSettings& settings);
+// Direct light η at every site and the solve for λ; quiet: no progress bar.
 MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& settings,
-                                const MeshlessGeometry& geometry);
+                                const MeshlessGeometry& geometry, bool quiet = true);
 
 struct MeshlessSolution {
   SiteSet sites;

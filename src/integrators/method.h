@@ -86,6 +86,9 @@ class Method {
     (void)scene;
     return std::nullopt;
   }
+  // Throws the InputError of a scene the method cannot render with its settings (an emitter its
+  // shading cannot take), so that create_method refuses it before any work; render checks again.
+  virtual void refuse_scene(const Scene& scene) const { (void)scene; }
 };
 
 // Throws the InputError of method.antialiasing_refusal(scene), naming the method, the setting

@@ -165,6 +165,7 @@ std::unique_ptr<Method> create_method(const MethodEntry& entry, const Scene& sce
   std::unique_ptr<Method> method = made_from_settings(entry, scene, overrides);
   refuse_unsupported_antialiasing(*method, scene);
   refuse_unsampled_emitters(entry, scene);
+  method->refuse_scene(scene);
   return method;
 }
 

@@ -55,7 +55,8 @@ nlohmann::json emitter_facts(const Scene& scene, const MethodEntry& entry);
 
 // The method made from the scene's settings object for it, with `overrides` applied to that object
 // first ("spp=16": keys within it, as --set path.spp=16 would). An InputError when the method
-// cannot honour the scene's "aa" settings (Method::antialiasing_refusal), before any work.
+// cannot honour the scene's "aa" settings (Method::antialiasing_refusal), cannot light the scene
+// by one of its emitters, or refuses the scene otherwise (Method::refuse_scene), before any work.
 std::unique_ptr<Method> create_method(const MethodEntry& entry, const Scene& scene,
                                       const std::vector<std::string>& overrides = {});
 

@@ -152,7 +152,7 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
 std::optional<AntialiasingRefusal> RadiosityMethod::antialiasing_refusal(const Scene& scene) const {
   // The ray-cast displays take any samples; gouraud rasterizes at a grid's.
   if (settings_.display != RadiosityDisplay::gouraud) return std::nullopt;
-  std::optional<AntialiasingRefusal> refusal = sample_grid_refusal(scene.antialiasing, *scene.camera);
+  std::optional<AntialiasingRefusal> refusal = sample_grid_refusal(scene.antialiasing, scene);
   if (refusal) refusal->reason = "radiosity.display \"gouraud\": " + refusal->reason;
   return refusal;
 }

@@ -47,6 +47,23 @@ constexpr int kSurfaceVaryings = 8;  // position, object position, uv
 constexpr int kPerLight = 4;         // dot-product mode: N·L and the specular color
 
 // Everything the shading of one scene needs, shared by all tiles.
+// Issue 19: "dotproduct" interpolates N·L toward one point per light, so it cannot take the sky
+// (no one direction) nor more lights than the rasterizer's varyings hold.
+void refuse_dot_product_scene(const RasterSettings& settings, const Scene& scene) {
+  if (settings.shading != RasterShading::dot_product) return;
+  if (scene.environment_light)
+    throw InputError({scene.source, 0, 0, "raster.shading"},
+                     "raster cannot light the scene by the environment with \"dotproduct\" shading (it "
+                     "interpolates N·L toward one point per light); use \"phong\" or \"gouraud\"");
+  if (kSurfaceVaryings + kPerLight * static_cast<int>(scene.emitter_count()) > kMaxVaryings)
+    throw InputError({scene.source, 0, 0, "raster.shading"},
+                     "\"dotproduct\" interpolates " + std::to_string(kPerLight) +
+                         " values per light and supports at most " +
+                         std::to_string((kMaxVaryings - kSurfaceVaryings) / kPerLight) +
+                         " lights (the scene has " + std::to_string(scene.emitter_count()) +
+                         ", its emissive surfaces included)");
+}
+
 class RasterShader {
  public:
   RasterShader(const Scene& scene, const TessellatedScene& triangles, const RasterSettings& settings)
@@ -56,19 +73,7 @@ class RasterShader {
         perspective_(scene.camera->type_name() == "perspective"),
         eye_(scene.camera->eye_position()),
         view_direction_(scene.camera->view_direction()) {
-    // Issue 19: the sky has no one direction to interpolate N·L toward.
-    if (settings_.shading == RasterShading::dot_product && scene.environment_light)
-      throw InputError({scene.source, 0, 0, "raster.shading"},
-                       "raster cannot light the scene by the environment with \"dotproduct\" shading (it "
-                       "interpolates N·L toward one point per light); use \"phong\" or \"gouraud\"");
-    if (settings_.shading == RasterShading::dot_product &&
-        kSurfaceVaryings + kPerLight * static_cast<int>(scene.emitter_count()) > kMaxVaryings)
-      throw InputError({scene.source, 0, 0, "raster.shading"},
-                       "\"dotproduct\" interpolates " + std::to_string(kPerLight) +
-                           " values per light and supports at most " +
-                           std::to_string((kMaxVaryings - kSurfaceVaryings) / kPerLight) +
-                           " lights (the scene has " + std::to_string(scene.emitter_count()) +
-                           ", its emissive surfaces included)");
+    refuse_dot_product_scene(settings_, scene);
   }
 
   int varying_count() const {
@@ -267,8 +272,12 @@ struct TileBuffers {
 
 }  // namespace
 
+void RasterMethod::refuse_scene(const Scene& scene) const {
+  refuse_dot_product_scene(settings_, scene);
+}
+
 std::optional<AntialiasingRefusal> RasterMethod::antialiasing_refusal(const Scene& scene) const {
-  return sample_grid_refusal(scene.antialiasing, *scene.camera);
+  return sample_grid_refusal(scene.antialiasing, scene);
 }
 
 RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& request) const {

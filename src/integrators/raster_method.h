@@ -54,6 +54,8 @@ class RasterMethod final : public Method {
   // The aa modes whose samples lie on a grid (camera/sample_grid.h): none, uniform, and corners
   // and adaptive without jitter; every filter.
   std::optional<AntialiasingRefusal> antialiasing_refusal(const Scene& scene) const override;
+  // "dotproduct" shading and the environment, or more lights than it interpolates.
+  void refuse_scene(const Scene& scene) const override;
 
  private:
   RasterSettings settings_;

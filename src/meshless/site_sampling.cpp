@@ -14,6 +14,7 @@
 #include "math/pcg32.h"
 #include "meshless/site_index.h"
 #include "scene/scene.h"
+#include "util/progress.h"
 
 namespace candela {
 
@@ -99,7 +100,7 @@ void assign_radii(SiteSet& set, int neighbours) {
   });
 }
 
-SiteSet sample_sites(const Scene& scene, const SiteSamplingSettings& settings) {
+SiteSet sample_sites(const Scene& scene, const SiteSamplingSettings& settings, ProgressReporter* progress) {
   if (settings.grid < 1) throw std::invalid_argument("site sampling: grid must be >= 1");
   if (settings.rounds < 0) throw std::invalid_argument("site sampling: rounds must be >= 0");
   if (!(settings.spacing >= 0) || !std::isfinite(settings.spacing))
@@ -139,6 +140,12 @@ SiteSet sample_sites(const Scene& scene, const SiteSamplingSettings& settings) {
   });
   for (const auto& candidate : found) offer(candidate);
   set.camera_sites = set.sites.size();
+  const auto advance = [&] {
+    if (!progress) return;
+    progress->set_detail(fmt::format("{} sites", set.sites.size()));
+    progress->advance();
+  };
+  advance();
 
   // 2–3. Rounds of secondary rays about the normals, pruned as they are added.
   for (int round = 0; round < settings.rounds; ++round) {
@@ -153,6 +160,7 @@ SiteSet sample_sites(const Scene& scene, const SiteSamplingSettings& settings) {
       found[i] = site_along(scene, ray);
     });
     for (const auto& candidate : found) offer(candidate);
+    advance();
   }
   assign_radii(set, settings.neighbours);
   return set;

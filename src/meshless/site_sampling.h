@@ -26,6 +26,7 @@
 
 namespace candela {
 
+class ProgressReporter;
 class Scene;
 
 struct SiteSamplingSettings {
@@ -52,10 +53,12 @@ struct SiteSet {
   std::size_t camera_sites = 0;  // kept from the camera grid
 };
 
-// Samples the sites of a prepared scene seen through its camera. Throws std::invalid_argument for
-// bad settings (grid < 1, rounds < 0, negative spacing, neighbours < 1) or when more than
+// Samples the sites of a prepared scene seen through its camera; progress, when given, advances
+// once for the camera grid and once per round (1 + rounds in all). Throws std::invalid_argument
+// for bad settings (grid < 1, rounds < 0, negative spacing, neighbours < 1) or when more than
 // max_sites would be kept.
-SiteSet sample_sites(const Scene& scene, const SiteSamplingSettings& settings);
+SiteSet sample_sites(const Scene& scene, const SiteSamplingSettings& settings,
+                     ProgressReporter* progress = nullptr);
 
 // Radii and effective areas for given sites (step 4), m = neighbours: what sample_sites does last,
 // for sites placed by other means (tests, a regular lattice).

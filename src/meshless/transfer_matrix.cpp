@@ -1,5 +1,6 @@
 #include "meshless/transfer_matrix.h"
 
+#include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -170,7 +171,8 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
 }
 
 TransferSolution solve_transfer(const TransferMatrix& transfer, const std::vector<Color>& albedo,
-                                const std::vector<Color>& eta, double tolerance, std::size_t max_iterations) {
+                                const std::vector<Color>& eta, double tolerance, std::size_t max_iterations,
+                                ProgressReporter* progress) {
   const auto n = static_cast<std::size_t>(transfer.S.rows());
   if (albedo.size() != n || eta.size() != n)
     throw std::invalid_argument("meshless solve: " + std::to_string(n) + " sites, " +
@@ -182,6 +184,7 @@ TransferSolution solve_transfer(const TransferMatrix& transfer, const std::vecto
   for (const Color& e : eta)
     largest_eta = std::max({largest_eta, std::fabs(e.r), std::fabs(e.g), std::fabs(e.b)});
   std::vector<Color> next(n);
+  uint64_t progress_done = 0;
   for (std::size_t iteration = 0; iteration < max_iterations; ++iteration) {
     // λ' = η + Q S λ, each row by one thread.
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t j) {
@@ -202,6 +205,12 @@ TransferSolution solve_transfer(const TransferMatrix& transfer, const std::vecto
     solution.lambda.swap(next);
     solution.iterations = iteration + 1;
     solution.final_change = largest > 0 ? change / largest : 0;
+    if (progress) {
+      const auto done = static_cast<uint64_t>(1000 * convergence_progress(solution.final_change, tolerance));
+      progress->set_detail(
+          fmt::format("change {:.3g} after {} iterations", solution.final_change, solution.iterations));
+      if (done > progress_done) progress->advance(done - progress_done), progress_done = done;
+    }
     // Diverging (a row of R summing past 1) or overflowed: stop and say so.
     if (!std::isfinite(largest) || !std::isfinite(change) || largest > 1e12 * std::max(largest_eta, 1e-300)) {
       solution.diverged = true;

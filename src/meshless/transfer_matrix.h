@@ -59,9 +59,11 @@ struct TransferSolution {
   double final_change = 0;  // the last iteration's largest change over the largest λ
 };
 
-// λ = η + Q S λ by the iteration of 002 §5.2.4 (Q = albedo). Throws std::invalid_argument for
-// mismatched sizes.
+// λ = η + Q S λ by the iteration of 002 §5.2.4 (Q = albedo); progress, when given, advances in
+// per mille of convergence (the change's way down to the tolerance, on a log scale). Throws
+// std::invalid_argument for mismatched sizes.
 TransferSolution solve_transfer(const TransferMatrix& transfer, const std::vector<Color>& albedo,
-                                const std::vector<Color>& eta, double tolerance, std::size_t max_iterations);
+                                const std::vector<Color>& eta, double tolerance, std::size_t max_iterations,
+                                ProgressReporter* progress = nullptr);
 
 }  // namespace candela

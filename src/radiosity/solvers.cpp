@@ -433,12 +433,6 @@ std::vector<Color> ProgressiveRefinement::display_radiosities(bool with_ambient)
   return display;
 }
 
-double progressive_convergence_progress(double unshot_fraction, double threshold) {
-  if (unshot_fraction <= threshold || threshold >= 1) return 1.0;
-  if (unshot_fraction >= 1 || threshold <= 0) return 0.0;
-  return std::clamp(std::log(unshot_fraction) / std::log(threshold), 0.0, 1.0);
-}
-
 // ---- Substructuring ------------------------------------------------------------------------
 
 FormFactorSource element_to_patch_source(std::shared_ptr<const ElementToPatch> element_to_patch) {

@@ -212,10 +212,6 @@ class ProgressiveRefinement {
   std::size_t steps_ = 0, rows_computed_ = 0;
 };
 
-// How far a progressive run has come on a log scale, for progress bars: 0 at unshot fraction 1,
-// 1 at the threshold (log(fraction) / log(threshold), clamped to [0, 1]); 1 when threshold ≥ 1.
-double progressive_convergence_progress(double unshot_fraction, double threshold);
-
 // ---- Substructuring (000 §6.7.1) ---------------------------------------------------------
 
 // The element rows as a form-factor source (rows = elements, columns = patches) that reads the

@@ -402,15 +402,6 @@ TEST(RadiositySolverProgressive, AmbientIsExactInTheUniformClosedSphere) {
   }
 }
 
-TEST(RadiositySolverProgressive, ConvergenceProgressIsLogarithmic) {
-  EXPECT_DOUBLE_EQ(progressive_convergence_progress(1.0, 0.001), 0.0);
-  EXPECT_NEAR(progressive_convergence_progress(0.1, 0.001), 1.0 / 3, 1e-12);
-  EXPECT_NEAR(progressive_convergence_progress(0.01, 0.001), 2.0 / 3, 1e-12);
-  EXPECT_DOUBLE_EQ(progressive_convergence_progress(0.001, 0.001), 1.0);
-  EXPECT_DOUBLE_EQ(progressive_convergence_progress(0.0, 0.001), 1.0);
-  EXPECT_DOUBLE_EQ(progressive_convergence_progress(0.5, 0.0), 0.0);
-}
-
 // ---- Energy ----------------------------------------------------------------------------------
 
 TEST(RadiositySolverEnergy, ClosedSphereAbsorbsWhatItEmits) {

@@ -3,7 +3,16 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace candela {
+
+double convergence_progress(double remaining_fraction, double threshold) {
+  if (remaining_fraction <= threshold || threshold >= 1) return 1.0;
+  if (remaining_fraction >= 1 || threshold <= 0) return 0.0;
+  return std::clamp(std::log(remaining_fraction) / std::log(threshold), 0.0, 1.0);
+}
 
 ProgressReporter::ProgressReporter(std::string label, uint64_t total, std::string unit, bool quiet,
                                    std::FILE* stream)

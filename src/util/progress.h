@@ -11,6 +11,11 @@
 
 namespace candela {
 
+// How far an iteration that stops at a threshold has come, on a log scale, for progress bars: 0 at
+// a remaining fraction (radiosity's unshot flux, meshless's relative change) of 1, 1 at the
+// threshold (log(fraction) / log(threshold), clamped to [0, 1]); 1 when threshold ≥ 1.
+double convergence_progress(double remaining_fraction, double threshold);
+
 class ProgressReporter {
  public:
   // unit names what is counted ("tiles").

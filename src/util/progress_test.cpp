@@ -53,5 +53,14 @@ TEST(Progress, QuietPrintsNothing) {
   EXPECT_TRUE(run_to_file(true).empty());
 }
 
+TEST(Progress, ConvergenceProgressIsLogarithmic) {
+  EXPECT_DOUBLE_EQ(convergence_progress(1.0, 0.001), 0.0);
+  EXPECT_NEAR(convergence_progress(0.1, 0.001), 1.0 / 3, 1e-12);
+  EXPECT_NEAR(convergence_progress(0.01, 0.001), 2.0 / 3, 1e-12);
+  EXPECT_DOUBLE_EQ(convergence_progress(0.001, 0.001), 1.0);
+  EXPECT_DOUBLE_EQ(convergence_progress(0.0, 0.001), 1.0);
+  EXPECT_DOUBLE_EQ(convergence_progress(0.5, 0.0), 0.0);
+}
+
 }  // namespace
 }  // namespace candela
