@@ -2,7 +2,8 @@
 # The cross-method validation of docs/validation.md (SPEC §13, issue 9 item 6): the diffuse Cornell
 # box (scenes/cornell-box.json, 256 × 256) by classic radiosity (hemicube and ray-cast form
 # factors), meshless radiosity (each basis), Whitted and the path tracer, every image measured
-# against a high-sample path-traced reference; plus the path tracer at equal time to each method.
+# against a high-sample path-traced reference; plus the path tracer at equal time to each method;
+# then the same room lit by a point light only (scenes/cornell-box-point.json).
 #
 #   scripts/validation-figures.sh            # after scripts/build.sh; ≈ 15 min on 2 cores
 #   REFERENCE_SPP=2048 scripts/validation-figures.sh   # a quicker, noisier reference
@@ -74,4 +75,22 @@ for report_dir in "$work"/radiosity-* "$work"/meshless-*; do
     "$candela" compare "$image" "$reference" --mask "$work/no-lamp-mask.png" --json "$docs/$name-$base-no-lamp.json" > /dev/null
   done
 done
-echo "validation: reports in $work, pictures and report.json files in $docs"
+# The same room lit by a point light only (scenes/cornell-box-point.json), against its own
+# reference of as many samples.
+point_scene=scenes/cornell-box-point.json
+point_docs=docs/images/validation/cornell-point
+point_reference="$work/point-reference.exr"
+mkdir -p "$point_docs"
+if [ ! -f "$point_reference" ] || [ "${RENDER_REFERENCE:-0}" = 1 ]; then
+  resume=()
+  if [ -f "$work/point-reference.ckpt" ]; then resume=(--resume "$work/point-reference.ckpt"); fi
+  "$candela" render "$point_scene" --method path --spp "$spp" "${resume[@]}" \
+    --checkpoint "$work/point-reference.ckpt" --checkpoint-every 60 -q -o "$point_reference" \
+    --stats "$work/point-reference-stats.json"
+fi
+"$candela" report "$point_scene" --reference "$point_reference" --set render.seed=1 -q -o "$work/point" \
+  --methods radiosity,whitted,meshless,path --spp 64
+cp "$work/point/report.json" "$point_docs/report.json"
+cp "$work/point"/*.png "$point_docs/"
+
+echo "validation: reports in $work, pictures and report.json files in $docs and $point_docs"
