@@ -1,29 +1,21 @@
 #include "scene/environment_light.h"
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "math/constants.h"
+#include "sampling/sphere_quadrature.h"
 
 namespace candela {
 
 EnvironmentLight::EnvironmentLight(const Environment& environment, int samples)
     : environment_(environment), samples_(samples) {
   if (samples < 1) throw std::invalid_argument("environment light: samples must be >= 1");
-  // The mean over the sphere by the midpoint rule in (cos θ, φ) — cells of equal solid angle — on
-  // a grid finer than a texel of the maps used in practice (exact for a constant sky).
-  constexpr int kBands = 128, kSectors = 256;
-  Color sum;
-  for (int band = 0; band < kBands; ++band) {
-    const double z = 1 - 2 * (band + 0.5) / kBands;
-    const double ring = std::sqrt(std::max(0.0, 1 - z * z));
-    for (int sector = 0; sector < kSectors; ++sector) {
-      const double phi = 2 * kPi * (sector + 0.5) / kSectors;
-      sum += environment_.radiance({ring * std::cos(phi), z, ring * std::sin(phi)});
-    }
-  }
-  mean_radiance_ = sum / double(kBands * kSectors);
+  // The mean over the sphere on a grid finer than a texel of the maps used in practice (exact for
+  // a constant sky).
+  mean_radiance_ = integrate_over_sphere(
+                       [&](const Vec3& direction) { return environment_.radiance(direction); }, 128, 256) /
+                   (4 * kPi);
 }
 
 bool EnvironmentLight::from(const Vec2& u, int cells, LightSample& sample) const {

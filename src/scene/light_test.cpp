@@ -5,6 +5,7 @@
 #include "geometry/quad.h"
 #include "geometry/sphere.h"
 #include "math/constants.h"
+#include "sampling/sphere_quadrature.h"
 #include "scene/area_light.h"
 #include "scene/directional_light.h"
 #include "scene/environment_light.h"
@@ -67,30 +68,22 @@ TEST(Lights, AttenuationFactors) {
   EXPECT_EQ(a.factor(0), 1.0);  // 1/0.5 clamped to 1
 }
 
-// The luminance of the power that crosses the sphere of `radius` about the origin, by the
-// midpoint rule over bands × sectors cells of equal area: each cell's irradiance from every sample
-// of the light (Σ intensity · cos θ, the lights' own convention) times its area. A light inside
-// lights the sphere's inner faces; a light from outside (`from_outside`) the outer ones, the flux
-// that enters.
+// The luminance of the power that crosses the sphere of `radius` about the origin: the irradiance
+// of every sample of the light (Σ intensity · cos θ, the lights' own convention) integrated over
+// the sphere (r² dω). A light inside lights the sphere's inner faces; a light from outside
+// (`from_outside`) the outer ones, the flux that enters.
 double flux_through_sphere(const Light& light, double radius, bool from_outside) {
-  constexpr int kBands = 300, kSectors = 600;
-  const double cell_area = 4 * kPi * radius * radius / (kBands * kSectors);
-  double flux = 0;
-  for (int band = 0; band < kBands; ++band) {
-    const double z = 1 - 2 * (band + 0.5) / kBands;
-    const double ring = std::sqrt(1 - z * z);
-    for (int sector = 0; sector < kSectors; ++sector) {
-      const double phi = 2 * kPi * (sector + 0.5) / kSectors;
-      const Vec3 outward{ring * std::cos(phi), z, ring * std::sin(phi)};
-      const Vec3 facing = from_outside ? outward : -outward;
-      for (int k = 0; k < light.sample_count(); ++k) {
-        LightSample sample;
-        if (!light.illuminate_sample(outward * radius, k, {0.5, 0.5}, sample)) continue;
-        flux += luminance(sample.intensity) * std::max(0.0, dot(facing, sample.direction)) * cell_area;
-      }
+  const auto irradiance = [&](const Vec3& outward) {
+    const Vec3 facing = from_outside ? outward : -outward;
+    double sum = 0;
+    for (int k = 0; k < light.sample_count(); ++k) {
+      LightSample sample;
+      if (!light.illuminate_sample(outward * radius, k, {0.5, 0.5}, sample)) continue;
+      sum += luminance(sample.intensity) * std::max(0.0, dot(facing, sample.direction));
     }
-  }
-  return flux;
+    return sum;
+  };
+  return radius * radius * integrate_over_sphere(irradiance, 300, 600);
 }
 
 // Issue 19, one emitter model: Light::power is the power each light sends — measured here as what

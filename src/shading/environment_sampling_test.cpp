@@ -11,6 +11,7 @@
 
 #include "math/constants.h"
 #include "math/pcg32.h"
+#include "sampling/sphere_quadrature.h"
 #include "shading/environment.h"
 
 namespace candela {
@@ -31,27 +32,13 @@ std::shared_ptr<const TextureImage> test_image(int w, int h, int bright_x, int b
   return std::make_shared<const TextureImage>(w, h, std::move(rgb));
 }
 
-// ∫ f(ω) dω over the sphere by the midpoint rule in (cos θ, φ) about +z.
-template <typename F>
-double sphere_quadrature(F f, int n_theta, int n_phi) {
-  double sum = 0;
-  for (int i = 0; i < n_theta; ++i) {
-    const double z = 1 - 2 * (i + 0.5) / n_theta;
-    const double r = std::sqrt(1 - z * z);
-    for (int j = 0; j < n_phi; ++j) {
-      const double phi = 2 * kPi * (j + 0.5) / n_phi;
-      sum += f(Vec3{r * std::cos(phi), r * std::sin(phi), z});
-    }
-  }
-  return sum * 4 * kPi / (double(n_theta) * n_phi);
-}
-
 void check_environment(const Environment& environment, double quadrature_tolerance, uint64_t seed) {
   SCOPED_TRACE(std::string(environment.type_name()));
   // The reference: ∫ L dω (luminance) and ∫ pdf dω by quadrature.
   const double integral =
-      sphere_quadrature([&](const Vec3& d) { return luminance(environment.radiance(d)); }, 800, 1600);
-  const double pdf_integral = sphere_quadrature([&](const Vec3& d) { return environment.pdf(d); }, 800, 1600);
+      integrate_over_sphere([&](const Vec3& d) { return luminance(environment.radiance(d)); }, 800, 1600);
+  const double pdf_integral =
+      integrate_over_sphere([&](const Vec3& d) { return environment.pdf(d); }, 800, 1600);
   EXPECT_NEAR(pdf_integral, 1, quadrature_tolerance);
 
   Pcg32 rng(seed, 11);
