@@ -110,8 +110,12 @@ double Cylinder::pdf_area(const SurfaceHit&) const {
 void Cylinder::tessellate(const TessellationSettings& settings, TriangleMesh& mesh) const {
   MeshAppender out(mesh);
   const std::vector<Vec2> circle = unit_circle(turn_divisions(settings));
-  append_truncated_cone(frame_.base(), frame_.axis(), frame_.height(), frame_.x_axis(), frame_.y_axis(),
-                        radius_, radius_, capped_, circle, out);
+  // Area-true (tessellation.h): the rims moved out from the axis by one factor.
+  const auto build = [&](double scale, MeshAppender& to) {
+    append_truncated_cone(frame_.base(), frame_.axis(), frame_.height(), frame_.x_axis(), frame_.y_axis(),
+                          radius_ * scale, radius_ * scale, capped_, circle, to);
+  };
+  build(area_true_scale(settings, area(), build), out);
 }
 
 }  // namespace candela

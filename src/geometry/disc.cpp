@@ -67,9 +67,13 @@ void Disc::tessellate(const TessellationSettings& settings, TriangleMesh& mesh) 
   MeshAppender out(mesh);
   const std::vector<Vec2> circle = unit_circle(turn_divisions(settings));
   // v = 0 on the rim, 1 on the inner rim; u counter-clockwise about the normal from u_axis_.
-  append_revolution_grid({circle_points(center_, u_axis_, v_axis_, radius_, circle),
-                          circle_points(center_, u_axis_, v_axis_, inner_radius_, circle)},
-                         /*wrap_rings=*/false, out);
+  // Area-true (tessellation.h): both rims moved out from the centre by one factor.
+  const auto build = [&](double scale, MeshAppender& to) {
+    append_revolution_grid({circle_points(center_, u_axis_, v_axis_, radius_ * scale, circle),
+                            circle_points(center_, u_axis_, v_axis_, inner_radius_ * scale, circle)},
+                           /*wrap_rings=*/false, to);
+  };
+  build(area_true_scale(settings, area(), build), out);
 }
 
 double Disc::area() const {

@@ -24,6 +24,10 @@ struct TessellationSettings {
   // Divisions of a full turn: sphere longitudes (and half as many latitudes), cylinder, cone,
   // disc and torus around their axis (the torus tube too). At least 3.
   int segments = 32;
+  // Curved shapes keep their surface's area (geometry/tessellation.h): their points move out from
+  // the centre or axis by the one factor that gives the inscribed polyhedron the surface's area
+  // back. false: every point on the surface (an inscribed polyhedron, smaller by ≈ (2π/N)²/6).
+  bool area_true = true;
   // Where an unbounded shape (the plane) is cut: the plane's polygon inside this box.
   Bounds3 clip;
 };

@@ -72,15 +72,20 @@ void Sphere::tessellate(const TessellationSettings& settings, TriangleMesh& mesh
   const std::vector<Vec2> circle = unit_circle(longitudes);
   // Ring j at v = j / bands, i.e. polar angle θ = π (1 - v), from the -z pole up; the poles
   // are set exactly (sin π is not 0 in floating point), so they collapse to single vertices.
-  std::vector<std::vector<Vec3>> rings(bands + 1);
-  for (int j = 0; j <= bands; ++j) {
-    const double theta = kPi * (1.0 - static_cast<double>(j) / bands);
-    const double cos_theta = j == 0 ? -1.0 : (j == bands ? 1.0 : std::cos(theta));
-    const double sin_theta = (j == 0 || j == bands) ? 0.0 : std::sin(theta);
-    rings[j] = circle_points(center_ + Vec3{0, 0, radius_ * cos_theta}, {1, 0, 0}, {0, 1, 0},
-                             radius_ * sin_theta, circle);
-  }
-  append_revolution_grid(rings, /*wrap_rings=*/false, out);
+  // Area-true (tessellation.h): every point moved out from the centre by one factor.
+  const auto build = [&](double scale, MeshAppender& to) {
+    const double radius = radius_ * scale;
+    std::vector<std::vector<Vec3>> rings(bands + 1);
+    for (int j = 0; j <= bands; ++j) {
+      const double theta = kPi * (1.0 - static_cast<double>(j) / bands);
+      const double cos_theta = j == 0 ? -1.0 : (j == bands ? 1.0 : std::cos(theta));
+      const double sin_theta = (j == 0 || j == bands) ? 0.0 : std::sin(theta);
+      rings[j] = circle_points(center_ + Vec3{0, 0, radius * cos_theta}, {1, 0, 0}, {0, 1, 0},
+                               radius * sin_theta, circle);
+    }
+    append_revolution_grid(rings, /*wrap_rings=*/false, to);
+  };
+  build(area_true_scale(settings, area(), build), out);
 }
 
 }  // namespace candela

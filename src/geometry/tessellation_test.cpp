@@ -3,6 +3,7 @@
 // ray hits' uvs, closed shapes are watertight, and the plane is cut exactly by the clip box.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -29,9 +30,10 @@
 namespace candela {
 namespace {
 
-TriangleMesh tessellated(const Shape& shape, int segments, const Bounds3& clip = {}) {
+TriangleMesh tessellated(const Shape& shape, int segments, const Bounds3& clip = {}, bool area_true = true) {
   TessellationSettings settings;
   settings.segments = segments;
+  settings.area_true = area_true;
   settings.clip = clip;
   TriangleMesh mesh;
   shape.tessellate(settings, mesh);
@@ -265,13 +267,29 @@ bool hit_near(const Shape& shape, const TriangleMesh& mesh, std::size_t triangle
   return true;
 }
 
-TEST(Tessellation, VerticesLieOnTheSurface) {
+// Flat shapes' vertices lie on them; curved shapes' lie just off them, moved out by the area-true
+// factor (tessellation.h: 1 + (2π/N)²/12 for a disc of N segments), within twice that.
+TEST(Tessellation, VerticesLieOnTheSurfaceOrJustOffItToKeepTheArea) {
+  const std::vector<std::string> curved{
+      "sphere", "cylinder", "open cylinder", "truncated cone",  "pointed cone", "cone pointed at its base",
+      "torus",  "disc",     "annulus",       "mirrored sphere", "mirrored cone"};
   for (const Case& c : all_cases()) {
     SCOPED_TRACE(c.name);
     const auto shape = c.make();
-    const TriangleMesh mesh = tessellated(*shape, 24, c.clip);
+    const int segments = 24;
+    const TriangleMesh mesh = tessellated(*shape, segments, c.clip);
     ASSERT_FALSE(mesh.triangles.empty());
-    for (const Vec3& p : mesh.positions) EXPECT_LT(c.residual(p), 1e-12 * c.size) << p;
+    const bool is_curved = std::find(curved.begin(), curved.end(), c.name) != curved.end();
+    const double turn = 2 * kPi / segments;
+    const double tolerance = is_curved ? turn * turn / 6 * c.size : 1e-12 * c.size;
+    double farthest = 0;
+    for (const Vec3& p : mesh.positions) {
+      EXPECT_LT(c.residual(p), tolerance) << p;
+      farthest = std::max(farthest, c.residual(p));
+    }
+    if (is_curved) {
+      EXPECT_GT(farthest, 1e-4 * c.size);  // really moved out
+    }
     EXPECT_TRUE(mesh.corner_normals.empty());
     EXPECT_EQ(mesh.corner_uvs.size(), mesh.triangles.size());
     // No zero-area triangles, and no vertex that no triangle uses.
@@ -299,6 +317,8 @@ TEST(Tessellation, WindingFollowsTheGeometricNormalOfTheRayTest) {
   }
 }
 
+// On the inscribed tessellation (vertices on the surface, area_true off); the area-true one is the
+// same grid with the same uvs, its points moved out (checked here too).
 TEST(Tessellation, CornerUvsAreTheRayHitUvs) {
   // At each corner, moved a millionth of the way towards the triangle's centroid: that keeps
   // the point inside the parameter domain (on the right side of a seam, off a pole or a rim),
@@ -307,7 +327,15 @@ TEST(Tessellation, CornerUvsAreTheRayHitUvs) {
   for (const Case& c : all_cases()) {
     SCOPED_TRACE(c.name);
     const auto shape = c.make();
-    const TriangleMesh mesh = tessellated(*shape, 12, c.clip);
+    const TriangleMesh mesh = tessellated(*shape, 12, c.clip, /*area_true=*/false);
+    const TriangleMesh area_true = tessellated(*shape, 12, c.clip);
+    EXPECT_EQ(area_true.triangles, mesh.triangles);
+    ASSERT_EQ(area_true.corner_uvs.size(), mesh.corner_uvs.size());
+    for (std::size_t t = 0; t < mesh.corner_uvs.size(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(area_true.corner_uvs[t][k].x, mesh.corner_uvs[t][k].x) << t;
+        EXPECT_EQ(area_true.corner_uvs[t][k].y, mesh.corner_uvs[t][k].y) << t;
+      }
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
       const auto& uvs = mesh.corner_uvs[t];
       for (int k = 0; k < 3; ++k) {
@@ -376,7 +404,7 @@ struct AreaCase {
   double area;
 };
 
-TEST(Tessellation, CurvedAreasConvergeAsOneOverSegmentsSquared) {
+TEST(Tessellation, CurvedAreasAreTheSurfacesOwnAtEverySegmentCount) {
   const double slant = std::sqrt(2.0 * 2.0 + 0.8 * 0.8);
   const std::vector<AreaCase> cases{
       {"sphere",
@@ -420,19 +448,13 @@ TEST(Tessellation, CurvedAreasConvergeAsOneOverSegmentsSquared) {
        },
        kPi * 3},
   };
+  // Issue 20: the tessellation's area is the surface's at every segment count (inscribed, a disc
+  // lost 2.55 % at 16 segments and a sphere 3.2 %, converging only as 1/N²).
   for (const AreaCase& c : cases) {
     SCOPED_TRACE(c.name);
     const auto shape = c.make();
-    std::vector<double> errors;
-    for (const int segments : {16, 32, 64, 128}) {
-      errors.push_back(std::fabs(total_area(tessellated(*shape, segments)) - c.area) / c.area);
-    }
-    for (std::size_t i = 0; i + 1 < errors.size(); ++i) {
-      const double ratio = errors[i] / errors[i + 1];
-      EXPECT_GT(ratio, 3.6) << "doubling the segments from " << (16 << i);
-      EXPECT_LT(ratio, 4.4) << "doubling the segments from " << (16 << i);
-    }
-    EXPECT_LT(errors.back(), 2e-3);
+    for (const int segments : {3, 5, 16, 32, 128})
+      EXPECT_NEAR(total_area(tessellated(*shape, segments)) / c.area, 1, 1e-9) << segments << " segments";
   }
 }
 

@@ -177,12 +177,16 @@ void Torus::tessellate(const TessellationSettings& settings, TriangleMesh& mesh)
   const std::vector<Vec2> ring_circle = unit_circle(ring_divisions);
   const std::vector<Vec2> tube_circle = unit_circle(tube_divisions);
   // Ring j at tube angle θ = 2π j / tube_divisions: p = (R + r cos θ) radial(φ) + r sin θ axis.
-  std::vector<std::vector<Vec3>> rings;
-  for (const Vec2& tube : tube_circle) {
-    rings.push_back(circle_points(center_ + axis_ * (minor_radius_ * tube.y), x_axis_, y_axis_,
-                                  major_radius_ + minor_radius_ * tube.x, ring_circle));
-  }
-  append_revolution_grid(rings, /*wrap_rings=*/true, out);
+  // Area-true (tessellation.h): the tube's points moved out from its centre line by one factor.
+  const auto build = [&](double scale, MeshAppender& to) {
+    const double minor = minor_radius_ * scale;
+    std::vector<std::vector<Vec3>> rings;
+    for (const Vec2& tube : tube_circle)
+      rings.push_back(circle_points(center_ + axis_ * (minor * tube.y), x_axis_, y_axis_,
+                                    major_radius_ + minor * tube.x, ring_circle));
+    append_revolution_grid(rings, /*wrap_rings=*/true, to);
+  };
+  build(area_true_scale(settings, area(), build), out);
 }
 
 }  // namespace candela

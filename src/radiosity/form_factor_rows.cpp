@@ -4,8 +4,10 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <memory>
 #include <span>
 
+#include "accel/accelerator_registry.h"
 #include "distributed/cluster.h"
 #include "distributed/task_farm.h"
 #include "io/byte_stream.h"
@@ -13,12 +15,31 @@
 #include "radiosity/delta_form_factors.h"
 #include "radiosity/hemicube_form_factors.h"
 #include "radiosity/ray_cast_form_factors.h"
-#include "scene/scene.h"
 #include "util/cancellation.h"
 #include "util/progress.h"
 
 namespace candela {
 namespace {
+
+// A triangle mesh as occluders: an accelerator over its triangles.
+class TriangleOccluders {
+ public:
+  explicit TriangleOccluders(const TriangleMesh& mesh)
+      : mesh_(std::make_shared<const TriangleMesh>(mesh)),
+        triangles_(make_triangles(mesh_)),
+        accelerator_(create_default_accelerator(*find_accelerator("bvh"))) {
+    primitives_.reserve(triangles_.size());
+    for (const auto& triangle : triangles_) primitives_.push_back({triangle.get(), 0, 0});
+    accelerator_->build(primitives_);
+  }
+  const Accelerator& accelerator() const { return *accelerator_; }
+
+ private:
+  std::shared_ptr<const TriangleMesh> mesh_;
+  std::vector<std::unique_ptr<Shape>> triangles_;
+  std::vector<Primitive> primitives_;
+  std::unique_ptr<Accelerator> accelerator_;
+};
 
 // Orients the hemicube around a surface's normal: its first edge (never along the normal).
 Vec3 tangent_of(const RadiositySurface& surface) {
@@ -29,7 +50,7 @@ Vec3 tangent_of(const RadiositySurface& surface) {
 // write(k, j, F), in parallel; row k's sum into sums[k]. A surface's row skips the target
 // `skipped(i)`.
 template <typename Sink, typename Skipped>
-void compute_form_factor_rows(const Scene& scene, const RadiositySettings& settings, uint64_t seed,
+void compute_form_factor_rows(const Accelerator* occluders, const RadiositySettings& settings, uint64_t seed,
                               const std::vector<RadiositySurface>& surfaces, std::span<const uint32_t> rows,
                               const std::vector<RadiositySurface>& targets,
                               const FormFactorGeometry& geometry, Skipped skipped, Sink write,
@@ -66,8 +87,8 @@ void compute_form_factor_rows(const Scene& scene, const RadiositySettings& setti
       for (std::size_t j = 0; j < sources.size(); ++j) {
         double form_factor = 0;
         if (j != skipped(i))
-          form_factor = point_to_element_form_factor(surface.centroid, surface.normal, sources[j],
-                                                     &scene.accelerator(), ray_cast, random);
+          form_factor = point_to_element_form_factor(surface.centroid, surface.normal, sources[j], occluders,
+                                                     ray_cast, random);
         write(k, j, form_factor);
         sum += form_factor;
       }
@@ -79,7 +100,7 @@ void compute_form_factor_rows(const Scene& scene, const RadiositySettings& setti
 
 // The rows `rows` of matrix (and of sums_by_row), on this process or farmed out across the ranks.
 template <typename Matrix, typename Skipped>
-void fill_form_factor_rows(const Scene& scene, const RadiositySettings& settings, uint64_t seed,
+void fill_form_factor_rows(const RadiositySettings& settings, uint64_t seed,
                            const std::vector<RadiositySurface>& surfaces, const std::vector<uint32_t>& rows,
                            const std::vector<RadiositySurface>& targets, const FormFactorGeometry& geometry,
                            Skipped skipped, Matrix& matrix, std::vector<double>& sums_by_row,
@@ -89,9 +110,17 @@ void fill_form_factor_rows(const Scene& scene, const RadiositySettings& settings
   // Issue 19: the rows take half a minute on large meshes; rank 0 shows them (every rank's rows
   // come back to it).
   ProgressReporter progress("form factors", rows.size(), "rows", quiet || (cluster && !cluster->root()));
+  // Issue 20: ray-cast visibility is decided against the targets themselves — the surfaces
+  // radiosity models, which the hemicube draws too — not the scene's analytic shapes: the elements
+  // of a tessellated sphere or cylinder lie inside the analytic surface, which would block every
+  // ray they send.
+  std::unique_ptr<TriangleOccluders> occluders;
+  if (settings.form_factors == RadiosityFormFactors::ray_cast)
+    occluders = std::make_unique<TriangleOccluders>(geometry.mesh);
+  const Accelerator* visibility = occluders ? &occluders->accelerator() : nullptr;
   if (!cluster || !cluster->distributed()) {
     compute_form_factor_rows(
-        scene, settings, seed, surfaces, rows, targets, geometry, skipped,
+        visibility, settings, seed, surfaces, rows, targets, geometry, skipped,
         [&](std::size_t k, std::size_t j, double value) {
           matrix(static_cast<Eigen::Index>(rows[k]), static_cast<Eigen::Index>(j)) =
               static_cast<Scalar>(value);
@@ -118,8 +147,8 @@ void fill_form_factor_rows(const Scene& scene, const RadiositySettings& settings
           std::vector<Scalar> values(count * columns, Scalar(0));
           std::vector<double> chunk_sums(count);
           compute_form_factor_rows(
-              scene, settings, seed, surfaces, std::span<const uint32_t>(rows).subspan(first, count), targets,
-              geometry, skipped,
+              visibility, settings, seed, surfaces, std::span<const uint32_t>(rows).subspan(first, count),
+              targets, geometry, skipped,
               [&](std::size_t k, std::size_t j, double value) {
                 values[k * columns + j] = static_cast<Scalar>(value);
               },
@@ -161,20 +190,20 @@ std::vector<uint32_t> all_rows(std::size_t count) {
   return rows;
 }
 
-void fill_patch_form_factor_rows(const Scene& scene, const RadiositySettings& settings, uint64_t seed,
-                                 const RadiosityMesh& mesh, Eigen::MatrixXd& rows, std::vector<double>& sums,
-                                 Cluster* cluster, bool quiet) {
+void fill_patch_form_factor_rows(const RadiositySettings& settings, uint64_t seed, const RadiosityMesh& mesh,
+                                 Eigen::MatrixXd& rows, std::vector<double>& sums, Cluster* cluster,
+                                 bool quiet) {
   fill_form_factor_rows(
-      scene, settings, seed, mesh.patches, all_rows(mesh.patches.size()), mesh.patches, mesh.patch_geometry,
+      settings, seed, mesh.patches, all_rows(mesh.patches.size()), mesh.patches, mesh.patch_geometry,
       [](std::size_t i) { return i; }, rows, sums, cluster, quiet);
 }
 
-void fill_element_form_factor_rows(const Scene& scene, const RadiositySettings& settings, uint64_t seed,
+void fill_element_form_factor_rows(const RadiositySettings& settings, uint64_t seed,
                                    const RadiosityMesh& mesh, const std::vector<uint32_t>& elements,
                                    ElementToPatch& matrix, std::vector<double>& sums, Cluster* cluster,
                                    bool quiet) {
   fill_form_factor_rows(
-      scene, settings, seed, mesh.elements, elements, mesh.patches, mesh.patch_geometry,
+      settings, seed, mesh.elements, elements, mesh.patches, mesh.patch_geometry,
       [&](std::size_t q) { return std::size_t{mesh.patch_of_element[q]}; }, matrix, sums, cluster, quiet);
 }
 

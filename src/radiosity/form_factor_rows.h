@@ -24,7 +24,6 @@
 namespace candela {
 
 class Cluster;
-class Scene;
 
 // The element rows a solve keeps (000 §6.7.1: elements receive from patches), with each row's
 // sum (000 eq. 6-6: 1 in a closed scene; below kHiddenRowSum for a hidden element).
@@ -38,14 +37,15 @@ std::vector<uint32_t> all_rows(std::size_t count);
 
 // The patch rows F_ij of the direct solvers (i, j patches; F_ii not computed, 0) into rows
 // (patches × patches), and their sums into sums (one per patch). seed: the ray-cast streams.
-void fill_patch_form_factor_rows(const Scene& scene, const RadiositySettings& settings, uint64_t seed,
-                                 const RadiosityMesh& mesh, Eigen::MatrixXd& rows, std::vector<double>& sums,
-                                 Cluster* cluster, bool quiet = true);
+// Visibility is the patches' own: the hemicube draws them, ray casting tests them (issue 20).
+void fill_patch_form_factor_rows(const RadiositySettings& settings, uint64_t seed, const RadiosityMesh& mesh,
+                                 Eigen::MatrixXd& rows, std::vector<double>& sums, Cluster* cluster,
+                                 bool quiet = true);
 
 // The element rows F_qj of the elements `elements` (a form factor to every patch; none to the
 // element's own patch) into those rows of matrix (elements × patches) and of sums; the other rows
 // are left as they are.
-void fill_element_form_factor_rows(const Scene& scene, const RadiositySettings& settings, uint64_t seed,
+void fill_element_form_factor_rows(const RadiositySettings& settings, uint64_t seed,
                                    const RadiosityMesh& mesh, const std::vector<uint32_t>& elements,
                                    ElementToPatch& matrix, std::vector<double>& sums, Cluster* cluster,
                                    bool quiet = true);

@@ -25,7 +25,7 @@ namespace candela {
 class Scene;
 
 struct RadiosityMeshSettings {
-  int segments = 16;        // divisions of a full turn of a curved shape (≥ 3)
+  int segments = 32;        // divisions of a full turn of a curved shape (≥ 3)
   double patch_size = 0;    // the longest patch edge; 0: the scene size / 8
   double element_size = 0;  // the longest element edge; 0: patch_size / 2 (≤ patch_size)
   // Cut every surface along the lines where other objects meet it before meshing (the remedy

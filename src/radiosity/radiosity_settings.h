@@ -22,7 +22,9 @@ struct RadiositySettings {
   int ray_cast_samples = 4;       // per side of the source: 16 visibility rays per form factor
   double patch_size = 0;          // the longest patch edge; 0: the scene size / 8
   double element_size = 0;        // the longest element edge; 0: patch_size / 2
-  int segments = 16;              // tessellation of curved shapes: divisions of a full turn
+  // Tessellation of curved shapes: divisions of a full turn (area-true, geometry/tessellation.h);
+  // 32 keeps a sphere's form factors within 0.25 % of Howell's from any side (issue 20).
+  int segments = 32;
   // progressive: stop when the unshot flux is this fraction of the emitted flux (000 §6.6);
   // gauss-seidel: stop when a sweep changes no radiosity by more than this fraction of max B.
   double threshold = 0.001;

@@ -144,7 +144,7 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
                                static_cast<Eigen::Index>(patch_count));
     {
       Stopwatch form_factor_time;
-      fill_patch_form_factor_rows(scene, settings, options.seed, mesh, patch_rows, patch_sums, cluster,
+      fill_patch_form_factor_rows(settings, options.seed, mesh, patch_rows, patch_sums, cluster,
                                   options.quiet);
       form_factor_seconds += form_factor_time.seconds();
     }
@@ -177,7 +177,7 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
                    std::vector<double>(mesh.elements.size())};
   {
     Stopwatch form_factor_time;
-    fill_element_form_factor_rows(scene, settings, options.seed, mesh, all_rows(mesh.elements.size()),
+    fill_element_form_factor_rows(settings, options.seed, mesh, all_rows(mesh.elements.size()),
                                   *rows.form_factors, rows.sums, cluster, options.quiet);
     form_factor_seconds += form_factor_time.seconds();
   }
@@ -210,8 +210,8 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
     }
     {
       Stopwatch form_factor_time;
-      fill_element_form_factor_rows(scene, settings, options.seed, mesh, new_rows, *rows.form_factors,
-                                    rows.sums, cluster, options.quiet);
+      fill_element_form_factor_rows(settings, options.seed, mesh, new_rows, *rows.form_factors, rows.sums,
+                                    cluster, options.quiet);
       form_factor_seconds += form_factor_time.seconds();
     }
     form_factor_rows += new_rows.size();
