@@ -19,6 +19,7 @@
 #include "io/image_writer.h"
 #include "output_paths.h"
 #include "scene_options.h"
+#include "thread_limit.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/statistics.h"
@@ -52,7 +53,6 @@ int run_probe(ProbeOptions& options) {
   if (options.samples < 1) throw BadArgument("--samples must be >= 1");
   if (!(options.efficacy > 0) || !std::isfinite(options.efficacy))
     throw BadArgument("--efficacy must be > 0");
-  if (options.threads < 0) throw BadArgument("--threads must be >= 0 (0: all cores)");
   const MethodEntry* entry = find_method(options.method);
   if (!entry || !entry->capabilities.probe)
     throw BadArgument("--method " + options.method +
@@ -87,9 +87,7 @@ int run_probe(ProbeOptions& options) {
     points = read_probe_points(options.points_path);
   }
   std::optional<tbb::global_control> thread_limit;
-  if (options.threads > 0)
-    thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
-                         static_cast<std::size_t>(options.threads));
+  limit_threads(options.threads, thread_limit);
 
   Stopwatch timer;
   std::unique_ptr<Scene> scene = options.scene.load();

@@ -22,6 +22,7 @@
 #include "radiosity/solution_export.h"
 #include "scene/scene_loader.h"
 #include "scene_options.h"
+#include "thread_limit.h"
 #include "util/atomic_file.h"
 #include "util/cancellation.h"
 #include "util/error.h"
@@ -291,7 +292,6 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   ImageFormat format;
   if (!image_format_for_path(options.output, format))
     throw BadArgument("-o " + options.output + ": unsupported extension (expected .png, .exr or .pfm)");
-  if (options.threads < 0) throw BadArgument("--threads must be >= 0 (0: all cores)");
   if (options.seed && (*options.seed < 0 || *options.seed > (int64_t(1) << 53)))
     throw BadArgument("--seed must be in [0, 2^53]");
   // Fail before the work, not after it: every output must be writable.
@@ -324,10 +324,7 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   std::vector<LightSetup>& relight_frames = job.relight_frames;
   if (!options.relight.empty()) relight_frames = load_light_setups(options.relight);
   const std::vector<std::string> camera_requests = split_camera_names(options.cameras);
-  std::optional<tbb::global_control>& thread_limit = job.thread_limit;  // lives as long as the job
-  if (options.threads > 0)
-    thread_limit.emplace(tbb::global_control::max_allowed_parallelism,
-                         static_cast<std::size_t>(options.threads));
+  limit_threads(options.threads, job.thread_limit);  // lives as long as the job
   job.threads =
       static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
 

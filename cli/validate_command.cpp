@@ -1,4 +1,5 @@
-// candela validate sphere-disc --out DIR [--quick]: the built-in validation cases (SPEC §13).
+// candela validate sphere-disc --out DIR [--quick] [--threads N]: the built-in validation cases
+// (SPEC §13).
 //   sphere-disc  the sphere over a disc of seed 002 chapter 7 (validate/sphere_disc.h): the
 //                reference by quadrature and the meshless FE solution for each basis at Δ = 3 and
 //                Δ = 1; CSV, PNG plots and errors.json in DIR (see docs/validation/sphere-disc.md).
@@ -7,9 +8,11 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "commands.h"
+#include "thread_limit.h"
 #include "validate/sphere_disc.h"
 
 namespace candela::cli {
@@ -21,11 +24,14 @@ struct ValidateOptions {
   std::string out;
   bool quick = false;
   bool quiet = false;
+  int threads = 0;
 };
 
 int run_validate(const ValidateOptions& options) {
   if (options.name != "sphere-disc")
     throw BadArgument(fmt::format("unknown validation case '{}' (known: sphere-disc)", options.name));
+  std::optional<tbb::global_control> thread_limit;
+  limit_threads(options.threads, thread_limit);
   namespace fs = std::filesystem;
   std::error_code error;
   fs::create_directories(options.out, error);
@@ -53,6 +59,7 @@ void add_validate_command(CLI::App& app, std::function<int()>& run) {
       ->required();
   command->add_flag("--quick", options->quick, "Coarser reference and sampling (for tests)");
   command->add_flag("-q,--quiet", options->quiet, "No progress lines");
+  command->add_option("--threads", options->threads, "Worker threads (default: all cores)");
   command->callback([options, &run]() {
     run = [options]() { return run_reporting_bad_input([&] { return run_validate(*options); }); };
   });

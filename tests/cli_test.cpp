@@ -598,6 +598,16 @@ TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
   EXPECT_EQ(run("validate sphere-disc --quick --out file/sub", output), 2) << output;
   EXPECT_NE(output.find("--out"), std::string::npos) << output;
   EXPECT_EQ(run("validate no-such-case --out x", output), 2) << output;
+  // Issue 20: --threads, and the results (all but the times) do not depend on it.
+  ASSERT_EQ(run("validate sphere-disc --quick -q --threads 1 --out sd1", output), 0) << output;
+  std::ifstream one_thread_file(directory_ / "sd1" / "errors.json");
+  nlohmann::json one_thread = nlohmann::json::parse(one_thread_file)["bases"], two_threads = errors["bases"];
+  for (nlohmann::json* bases : {&one_thread, &two_threads})
+    for (auto& basis : *bases)
+      for (auto& delta : basis) delta.erase("seconds");
+  EXPECT_EQ(one_thread, two_threads);
+  EXPECT_EQ(run("validate sphere-disc --quick -q --threads -1 --out sd2", output), 2) << output;
+  EXPECT_NE(output.find("--threads must be >= 0"), std::string::npos) << output;
 }
 
 }  // namespace

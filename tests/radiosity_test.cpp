@@ -180,7 +180,10 @@ TEST(RadiosityMethod, SettingsAreCheckedAndUnknownKeysRefused) {
   EXPECT_THROW(load(R"({"ray_cast_samples": 0})"), std::exception);
   EXPECT_THROW(load(R"({"hemicube_resolution": 51})"), std::exception);
   EXPECT_THROW(load(R"({"hemicube_resolution": 0})"), std::exception);
-  EXPECT_THROW(load(R"({"threshold": 0})"), std::exception);
+  EXPECT_EQ(radiosity_settings(*load(R"({"threshold": 0, "max_steps": 10})")).threshold,
+            0);  // max_steps alone
+  EXPECT_THROW(load(R"({"threshold": -0.1})"), std::exception);
+  EXPECT_THROW(load(R"({"threshold": 1.5})"), std::exception);
   EXPECT_THROW(load(R"({"solver": "jacobi"})"), std::exception);
   EXPECT_THROW(load(R"({"form_factors": "analytic"})"), std::exception);
   EXPECT_THROW(load(R"({"patch_size": 1, "element_size": 2})"), std::exception);
