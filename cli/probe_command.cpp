@@ -108,15 +108,16 @@ int run_probe(ProbeOptions& options) {
   write_atomically(options.output, [&](const std::string& temporary) {
     std::ofstream out(temporary);
     out << "x,y,z,nx,ny,nz,irradiance_r,irradiance_g,irradiance_b,radiance_r,radiance_g,radiance_b,"
-           "illuminance_lux\n";
+           "illuminance_lux,illuminance_error_lux\n";
     for (std::size_t i = 0; i < results.size(); ++i) {
       const ProbePoint& p = points[i];
       const ProbeResult& r = results[i];
-      out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_number(p.position.x),
+      out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_number(p.position.x),
                          csv_number(p.position.y), csv_number(p.position.z), csv_number(p.normal.x),
                          csv_number(p.normal.y), csv_number(p.normal.z), csv_number(r.irradiance.r),
                          csv_number(r.irradiance.g), csv_number(r.irradiance.b), csv_number(r.radiance.r),
-                         csv_number(r.radiance.g), csv_number(r.radiance.b), csv_number(illuminance[i]));
+                         csv_number(r.radiance.g), csv_number(r.radiance.b), csv_number(illuminance[i]),
+                         csv_number(options.efficacy * r.irradiance_error));
     }
     out.close();
     if (!out) throw std::runtime_error("cannot write " + options.output);
@@ -138,17 +139,21 @@ int run_probe(ProbeOptions& options) {
       std::cout << fmt::format("illuminance scale: 0 to {} lux\n", format_scale_value(high));
   }
   if (!options.quiet) {
-    double low = std::numeric_limits<double>::infinity(), high = 0, sum = 0;
-    for (const double v : illuminance) {
-      low = std::min(low, v);
-      high = std::max(high, v);
-      sum += v;
+    double low = std::numeric_limits<double>::infinity(), high = 0, sum = 0, error_sum = 0;
+    for (std::size_t i = 0; i < illuminance.size(); ++i) {
+      low = std::min(low, illuminance[i]);
+      high = std::max(high, illuminance[i]);
+      sum += illuminance[i];
+      error_sum += options.efficacy * results[i].irradiance_error;
     }
+    // The standard error falls as 1/√samples: 4× the samples halve it.
     std::cout << fmt::format(
         "probed {} points with {} ({} samples each) in {:.2f} s: illuminance min {:.4g}, mean {:.4g}, "
-        "max {:.4g} lux (efficacy {} lm/W); wrote {}\n",
+        "max {:.4g} lux (efficacy {} lm/W), standard error {:.3g} lux on average ({:.2g} % of the mean); "
+        "wrote {}\n",
         points.size(), settings.method, settings.samples, timer.seconds(), low,
-        sum / double(illuminance.size()), high, options.efficacy, options.output);
+        sum / double(illuminance.size()), high, options.efficacy, error_sum / double(illuminance.size()),
+        sum > 0 ? 100 * error_sum / sum : 0.0, options.output);
     if (facts.contains("rays_without_solution") && facts["rays_without_solution"].get<uint64_t>() > 0)
       std::cerr << fmt::format(
           "candela: warning: {} probe rays hit surfaces the {} solution does not cover (counted as 0)\n",

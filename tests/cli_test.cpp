@@ -763,14 +763,18 @@ TEST_F(Cli, ProbeWritesIrradianceRadianceAndIlluminanceAtPoints) {
   const auto rows = read_csv_rows(directory_ / "out.csv", header);
   EXPECT_EQ(header,
             "x,y,z,nx,ny,nz,irradiance_r,irradiance_g,irradiance_b,radiance_r,radiance_g,radiance_b,"
-            "illuminance_lux");
+            "illuminance_lux,illuminance_error_lux");
   ASSERT_EQ(rows.size(), 2u);
-  ASSERT_EQ(rows[0].size(), 13u);
+  ASSERT_EQ(rows[0].size(), 14u);
+  // Issue 20: the standard error of the gathering, a small fraction of the value at 4,096 rays.
+  EXPECT_GT(rows[0][13], 0);
+  EXPECT_LT(rows[0][13], 0.01 * rows[0][12]);
   EXPECT_NEAR(rows[0][6], 3 * 0.55411, 0.01 * 3 * 0.55411);
   EXPECT_NEAR(rows[0][9], 3 / M_PI, 1e-6);
   EXPECT_NEAR(rows[0][12], 179 * rows[0][7], 1e-6 * rows[0][12]);  // white light: Y = the channels
   EXPECT_EQ(rows[1][6], 0);                                        // facing away from the lamp
   EXPECT_NE(output.find("probed 2 points with radiosity"), std::string::npos) << output;
+  EXPECT_NE(output.find("standard error"), std::string::npos) << output;
 }
 
 TEST_F(Cli, ProbeGridWritesAFalseColorImageOfTheIlluminance) {

@@ -4,9 +4,11 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <stdexcept>
+#include <vector>
 
 #include "integrators/light_sampler.h"
 #include "integrators/method_registry.h"
@@ -22,6 +24,13 @@
 namespace candela {
 
 namespace {
+
+// The mean of n samples' luminances and its standard error from their sum and sum of squares.
+double standard_error(double sum, double sum_of_squares, int n) {
+  if (n < 2) return 0;
+  const double mean = sum / n;
+  return std::sqrt(std::max(0.0, (sum_of_squares - n * mean * mean) / (double(n - 1) * n)));
+}
 
 // The stream of sample `sample` at probe point `index`: apart from the image pixels' streams (a
 // seed of its own; PCG32 drops the sequence's top bit, so a flag there would not do).
@@ -39,14 +48,19 @@ ProbeResult probe_path(const Scene& scene, const PathSettings& path, const Light
                        const ProbePoint& point, std::size_t index, const ProbeSettings& settings,
                        RayCounts& rays) {
   Color irradiance, radiance;
+  double sum = 0, sum_of_squares = 0;
   const Ray look{sensor_origin(scene, point), point.normal};
   for (int s = 0; s < settings.samples; ++s) {
     Pcg32 rng = probe_rng(settings.seed, uint64_t(s), index);
-    irradiance += path_irradiance(scene, path, lights, point.position, point.normal, rng, rays);
+    const Color sample = path_irradiance(scene, path, lights, point.position, point.normal, rng, rays);
+    irradiance += sample;
+    sum += luminance(sample);
+    sum_of_squares += luminance(sample) * luminance(sample);
     radiance += path_radiance(scene, path, lights, look, rng, rays);
   }
   // path_irradiance is in display units already irradiance; path_radiance is π × radiance.
-  return {irradiance / settings.samples, radiance / (settings.samples * kPi)};
+  return {irradiance / settings.samples, radiance / (settings.samples * kPi),
+          standard_error(sum, sum_of_squares, settings.samples)};
 }
 
 // E = ∫ (B/π) cos θ dω by two strategies combined with MIS (the power heuristic): k × k stratified
@@ -75,7 +89,9 @@ ProbeResult probe_field(const Scene& scene, const SolutionField& field, const Li
   const int k = std::max(1, static_cast<int>(std::ceil(std::sqrt(double(settings.samples)))));
   const int n = k * k;
   Pcg32 rng = probe_rng(settings.seed, 0, index);
-  Color sum;
+  // Sample s's part of the estimate, both strategies' (the k × k cosine strata, then the light
+  // points): their spread gives the standard error.
+  std::vector<Color> parts(static_cast<std::size_t>(n));
   for (int j = 0; j < k; ++j)
     for (int i = 0; i < k; ++i) {
       const Vec2 u{(i + rng.next_double()) / k, (j + rng.next_double()) / k};
@@ -88,7 +104,7 @@ ProbeResult probe_field(const Scene& scene, const SolutionField& field, const Li
       const double p_cosine = cosine_hemisphere_pdf(local);
       const double weight = found ? power_heuristic(p_cosine, light_pdf(hit)) : 1.0;
       // (B/π)·cos/pdf with pdf = cos/π: B.
-      sum += b * weight;
+      parts[std::size_t(j) * k + i] += b * weight;
     }
   if (!lights.empty())
     for (int s = 0; s < n; ++s) {
@@ -113,14 +129,21 @@ ProbeResult probe_field(const Scene& scene, const SolutionField& field, const Li
       const double p_light = light_pdf(hit);
       if (!(p_light > 0)) continue;
       const double weight = power_heuristic(p_light, cosine * kInvPi);
-      sum += b * (kInvPi * cosine * weight / p_light);
+      parts[s] += b * (kInvPi * cosine * weight / p_light);
     }
+  Color sum;
+  double luminance_sum = 0, luminance_squares = 0;
+  for (const Color& part : parts) {
+    sum += part;
+    luminance_sum += luminance(part);
+    luminance_squares += luminance(part) * luminance(part);
+  }
   const Color irradiance = sum / double(n) + field.direct_irradiance(point.position, point.normal);
   ++rays.primary;
   Intersection hit;
   bool found = false;
   const Color radiance = seen(Ray{origin, point.normal}, hit, found) / kPi;
-  return {irradiance, radiance};
+  return {irradiance, radiance, standard_error(luminance_sum, luminance_squares, n)};
 }
 
 [[noreturn]] void fail(const std::string& path, int line, int column, const std::string& message) {

@@ -33,6 +33,11 @@ struct ProbePoint {
 struct ProbeResult {
   Color irradiance;  // W/m²
   Color radiance;    // W/(m²·sr)
+  // The estimated standard error (1σ) of the irradiance's luminance, W/m²: the spread of the
+  // samples' luminances over √samples (issue 20: 256 samples give 2–4 % noise; this says how many
+  // to ask for). The radiosity and meshless solutions' own errors are not in it, only their
+  // gathering's.
+  double irradiance_error = 0;
 };
 
 struct ProbeSettings {
