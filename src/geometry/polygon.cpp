@@ -12,6 +12,38 @@
 
 namespace candela {
 
+namespace {
+
+// Twice the signed area of the triangle a b c in the plane: > 0 when counter-clockwise.
+double orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
+
+}  // namespace
+
+void Polygon::refuse_crossing_edges() const {
+  // Issue 20: a self-intersecting polygon (a pentagram drawn through its five points) has no one
+  // fill rule: the ray test's crossing count leaves its centre empty (even-odd) while ear
+  // clipping — raster, radiosity, sampling — filled a different shape. Such a polygon is refused:
+  // every polygon accepted is simple, and every method sees the same one.
+  const std::size_t count = projected_.size();
+  for (std::size_t i = 0; i < count; ++i)
+    for (std::size_t j = i + 2; j < count; ++j) {
+      if (i == 0 && j == count - 1) continue;  // neighbours through the first vertex
+      const Vec2 &a = projected_[i], &b = projected_[(i + 1) % count];
+      const Vec2 &c = projected_[j], &d = projected_[(j + 1) % count];
+      const double c_side = orientation(a, b, c), d_side = orientation(a, b, d);
+      const double a_side = orientation(c, d, a), b_side = orientation(c, d, b);
+      if (((c_side < 0 && d_side > 0) || (c_side > 0 && d_side < 0)) &&
+          ((a_side < 0 && b_side > 0) || (a_side > 0 && b_side < 0)))
+        throw std::invalid_argument("polygon edges " + std::to_string(i) + "–" +
+                                    std::to_string((i + 1) % count) + " and " + std::to_string(j) + "–" +
+                                    std::to_string((j + 1) % count) +
+                                    " cross: a self-intersecting polygon has no one inside; split it into "
+                                    "simple polygons (a star as its outline of 2n vertices)");
+    }
+}
+
 Polygon::Polygon(std::vector<Vec3> vertices) : vertices_(std::move(vertices)) {
   const size_t count = vertices_.size();
   if (count < 3) throw std::invalid_argument("polygon needs at least 3 vertices");
@@ -37,6 +69,7 @@ Polygon::Polygon(std::vector<Vec3> vertices) : vertices_(std::move(vertices)) {
   v_index_ = (dropped + 2) % 3;
   projected_.reserve(count);
   for (const Vec3& vertex : vertices_) projected_.push_back({vertex[u_index_], vertex[v_index_]});
+  refuse_crossing_edges();
   // The uv frame along the first edge of non-zero length (within the plane).
   Vec3 edge;
   for (size_t i = 1; i < count && length_squared(edge) == 0; ++i) {
@@ -138,11 +171,6 @@ Bounds3 Polygon::bounds() const {
 }
 
 namespace {
-
-// Twice the signed area of the triangle a b c in the plane: > 0 when counter-clockwise.
-double orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-}
 
 // Whether p lies in the counter-clockwise triangle a b c: with its boundary when closed,
 // strictly inside otherwise.

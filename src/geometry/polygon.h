@@ -8,15 +8,14 @@
 
 namespace candela {
 
-// A planar polygon, convex or not (000 §5.6.2): the plane test of eq. 5-12/5-13, then the
-// Jordan curve test on the projection onto the coordinate plane where the polygon is largest,
-// counting crossings of the +u half-axis from the hit point. A vertex on that half-axis counts
-// as lying on the +v side, so a polygon's points are counted once: edges shared by two
-// polygons of one plane belong to exactly one of them. A ray parallel to the plane misses.
-// The normal is Newell's (counter-clockwise vertices give it by the right-hand rule); both
-// sides are hit and the normal is not flipped. uv: coordinates along the first edge (u) and
-// normal x first edge (v) from the first vertex, scaled so the polygon's bounding rectangle in
-// that frame is [0,1]^2; dpdu x dpdv points along the normal.
+// A planar simple polygon, convex or not (000 §5.6.2; edges that cross are refused): the plane test of eq.
+// 5-12/5-13, then the Jordan curve test on the projection onto the coordinate plane where the polygon is
+// largest, counting crossings of the +u half-axis from the hit point. A vertex on that half-axis counts as
+// lying on the +v side, so a polygon's points are counted once: edges shared by two polygons of one plane
+// belong to exactly one of them. A ray parallel to the plane misses. The normal is Newell's
+// (counter-clockwise vertices give it by the right-hand rule); both sides are hit and the normal is not
+// flipped. uv: coordinates along the first edge (u) and normal x first edge (v) from the first vertex, scaled
+// so the polygon's bounding rectangle in that frame is [0,1]^2; dpdu x dpdv points along the normal.
 class Polygon final : public Shape {
  public:
   explicit Polygon(std::vector<Vec3> vertices);
@@ -45,6 +44,8 @@ class Polygon final : public Shape {
   double nearest_t(const Ray& ray) const;
   // The Jordan test on the projection (000 Figure 42).
   bool contains_projected(double u, double v) const;
+  // Throws std::invalid_argument when two edges that share no vertex cross (issue 20).
+  void refuse_crossing_edges() const;
   std::vector<Vec3> vertices_;
   std::vector<Vec2> projected_;  // the vertices on the (u_index_, v_index_) plane
   Vec3 normal_;

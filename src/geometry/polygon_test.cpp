@@ -190,6 +190,25 @@ TEST(Polygon, RejectsBadArguments) {
   EXPECT_THROW(Polygon({{0, 0, 0}, {1, 0, 0}, {1, 1, 0.1}, {0, 1, 0}}),
                std::invalid_argument);  // not planar
   EXPECT_THROW(Polygon({{0, 0, 0}, {1, 0, 0}, {1, std::nan(""), 0}}), std::invalid_argument);
+  // Issue 20: self-intersecting (a bowtie, a pentagram through its five points) — no one fill rule
+  // (the ray test's even-odd count against ear clipping's filled shape): refused, naming the edges.
+  try {
+    const Polygon bowtie({{0, 0, 0}, {2, 1, 0}, {2, 0, 0}, {0, 1.5, 0}});  // lobes of unequal area
+    ADD_FAILURE() << "the bowtie was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("polygon edges 0–1 and 2–3 cross"), std::string::npos) << e.what();
+  }
+  std::vector<Vec3> pentagram;
+  for (int i = 0; i < 5; ++i) {
+    const double angle = (2 * i % 5) * 2 * kPi / 5;
+    pentagram.push_back({std::cos(angle), std::sin(angle), 0});
+  }
+  try {
+    const Polygon polygon(pentagram);
+    ADD_FAILURE() << "the pentagram was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("polygon edges 0–1 and 2–3 cross"), std::string::npos) << e.what();
+  }
   // Planar within the tolerance is accepted.
   EXPECT_NO_THROW(Polygon({{0, 0, 0}, {1, 0, 0}, {1, 1, 1e-9}, {0, 1, 0}}));
 }
