@@ -115,6 +115,15 @@ TEST_F(Distributed, PathTracedImageWithAGaussianFilterIsByteIdentical) {
       "render " + kCornell + " --method path --spp 3 --set aa.filter=gaussian --set aa.filter_radius=2");
 }
 
+// The path tracer's lattice passes (aa.mode adaptive, jittered lattice, Gaussian): each tile takes
+// the lattice points of its ring too, seeded by the point and the pass, and the tiles join into
+// the single process's image.
+TEST_F(Distributed, PathTracedAdaptiveLatticePassesAreByteIdentical) {
+  expect_identical("path-adaptive", "render " + kCornell +
+                                        " --method path --spp 2 --set aa.mode=adaptive --set aa.jitter=true "
+                                        "--set aa.filter=gaussian");
+}
+
 // A checkpoint made by one process continues on two ranks, and one made on two ranks continues
 // alone: both give the uninterrupted image.
 TEST_F(Distributed, PathCheckpointsResumeAcrossRankCounts) {
