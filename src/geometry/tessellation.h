@@ -45,14 +45,17 @@ inline int turn_divisions(const TessellationSettings& settings) {
 // Appends triangles to a mesh that may already hold other shapes' triangles. Vertices are
 // candidates, welded by exact position, until a triangle uses them: only then do they enter
 // mesh.positions, so a shape whose triangles are all degenerate leaves the mesh untouched.
+// Made without a mesh it only measures: the area of the triangles it is given (area_true_scale's
+// trial builds), without welding or storing anything.
 class MeshAppender {
  public:
+  MeshAppender() = default;
   // Corner normals are the caller's (compute_corner_normals once every shape is in, SPEC §9):
   // a mesh that already has them is a std::logic_error. A mesh whose triangles have no corner
   // uvs gets the default ones written out ((0,0), (1,0), (1,1), which mean the same), so that
   // the appended triangles can carry theirs. Throws std::invalid_argument when corner_uvs is
   // neither empty nor one entry per triangle.
-  explicit MeshAppender(TriangleMesh& mesh) : mesh_(mesh) {
+  explicit MeshAppender(TriangleMesh& mesh) : mesh_(&mesh) {
     if (!mesh.corner_normals.empty())
       throw std::logic_error("tessellate appends to meshes without corner normals; compute them afterwards");
     if (mesh.corner_uvs.empty()) {
@@ -65,6 +68,10 @@ class MeshAppender {
   // A candidate vertex, the same id for the same position (-0 and +0 alike); the id is this
   // appender's, not an index into the mesh.
   uint32_t vertex(const Vec3& position) {
+    if (!mesh_) {  // measuring: no welding (a weld only ever removes zero-area triangles)
+      candidates_.push_back(position);
+      return static_cast<uint32_t>(candidates_.size() - 1);
+    }
     const auto [it, inserted] = ids_.emplace(std::array<double, 3>{position.x, position.y, position.z},
                                              static_cast<uint32_t>(candidates_.size()));
     if (inserted) {
@@ -81,61 +88,79 @@ class MeshAppender {
     const Vec3& p0 = candidates_[corners[0]];
     const Vec3 face_cross = cross(candidates_[corners[1]] - p0, candidates_[corners[2]] - p0);
     if (!(length_squared(face_cross) > 0)) return;
+    area_ += 0.5 * length(face_cross);
+    if (!mesh_) return;
     std::array<uint32_t, 3> indices;
     for (int k = 0; k < 3; ++k) indices[k] = mesh_index(corners[k]);
-    mesh_.triangles.push_back(indices);
-    mesh_.corner_uvs.push_back(uvs);
+    mesh_->triangles.push_back(indices);
+    mesh_->corner_uvs.push_back(uvs);
   }
+  // The area of the triangles appended so far.
+  double area() const { return area_; }
 
  private:
   static constexpr uint32_t kNotInMesh = std::numeric_limits<uint32_t>::max();
 
   uint32_t mesh_index(uint32_t vertex) {
     if (mesh_index_[vertex] == kNotInMesh) {
-      if (mesh_.positions.size() >= kNotInMesh) throw std::length_error("mesh has too many vertices");
-      mesh_index_[vertex] = static_cast<uint32_t>(mesh_.positions.size());
-      mesh_.positions.push_back(candidates_[vertex]);
+      if (mesh_->positions.size() >= kNotInMesh) throw std::length_error("mesh has too many vertices");
+      mesh_index_[vertex] = static_cast<uint32_t>(mesh_->positions.size());
+      mesh_->positions.push_back(candidates_[vertex]);
     }
     return mesh_index_[vertex];
   }
 
-  TriangleMesh& mesh_;
+  TriangleMesh* mesh_ = nullptr;  // null: measuring
+  double area_ = 0;
   std::map<std::array<double, 3>, uint32_t> ids_;
   std::vector<Vec3> candidates_;
   std::vector<uint32_t> mesh_index_;
 };
 
-// The area of triangles [first, end) of the mesh.
-inline double triangles_area(const TriangleMesh& mesh, std::size_t first = 0) {
-  double area = 0;
-  for (std::size_t t = first; t < mesh.triangles.size(); ++t) area += 0.5 * length(mesh.face_cross(t));
-  return area;
-}
-
 // The scale ≥ 1 by which build(scale, out) — a shape appending its triangles with its points
 // moved away from its centre or axis by `scale` — covers target_area, the analytic surface's
 // (see the area-true convention above); the area must grow with the scale. 1 when
 // settings.area_true is off, when the triangles at scale 1 already cover it (a flat shape) or when
-// target_area is not a positive number. Bisection to a relative width of 1e-13.
+// target_area is not a positive number. The trial builds only measure (MeshAppender without a
+// mesh). The first guess, √(target / area at 1), is the answer when the area goes as scale² (a
+// sphere, a disc); otherwise a bracketed secant (the Illinois rule) takes a few more, to 1e-13.
 template <typename Build>
 double area_true_scale(const TessellationSettings& settings, double target_area, const Build& build) {
-  if (!settings.area_true) return 1;
-  const auto area_at = [&](double scale) {
-    TriangleMesh scratch;
-    MeshAppender out(scratch);
-    build(scale, out);
-    return triangles_area(scratch);
+  if (!settings.area_true || !(target_area > 0) || !std::isfinite(target_area)) return 1;
+  const auto excess_at = [&](double scale) {  // area over target, relative
+    MeshAppender measure;
+    build(scale, measure);
+    return measure.area() / target_area - 1;
   };
-  if (!(target_area > 0) || !std::isfinite(target_area)) return 1;
-  const double unscaled = area_at(1);
-  if (!(unscaled > 0) || unscaled >= target_area) return 1;
-  double low = 1, high = std::sqrt(target_area / unscaled);  // exact when the area goes as scale²
-  for (int k = 0; k < 64 && area_at(high) < target_area; ++k) low = high, high *= 1.5;
-  for (int k = 0; k < 200 && high - low > 1e-13 * high; ++k) {
-    const double middle = 0.5 * (low + high);
-    (area_at(middle) < target_area ? low : high) = middle;
+  double low = 1, low_excess = excess_at(1);
+  if (!(low_excess < 0) || !(low_excess > -1)) return 1;
+  double high = 1 / std::sqrt(1 + low_excess), high_excess = excess_at(high);
+  for (int k = 0; k < 64 && high_excess < 0; ++k) {
+    low = high, low_excess = high_excess;
+    high *= 1.5, high_excess = excess_at(high);
   }
-  return 0.5 * (low + high);
+  constexpr double kTolerance = 1e-13;
+  if (std::fabs(high_excess) <= kTolerance) return high;
+  // The secant runs on weighted excesses (Illinois); the ends' true ones decide what is returned.
+  double low_true = low_excess, high_true = high_excess;
+  int kept = 0;  // which end the last step replaced: −1 low, +1 high
+  for (int k = 0; k < 200; ++k) {
+    double scale = high - high_excess * (high - low) / (high_excess - low_excess);
+    if (!(scale > low && scale < high)) scale = 0.5 * (low + high);
+    const double excess = excess_at(scale);
+    if (std::fabs(excess) <= kTolerance) return scale;
+    if (excess < 0) {
+      low = scale, low_excess = low_true = excess;
+      if (kept == -1) high_excess *= 0.5;  // Illinois: the end kept twice weighs half
+      kept = -1;
+    } else {
+      high = scale, high_excess = high_true = excess;
+      if (kept == 1) low_excess *= 0.5;
+      kept = 1;
+    }
+    if (high - low <= kTolerance * high) break;
+  }
+  return std::fabs(low_true) < std::fabs(high_true) ? low : high;
 }
 
 // (cos, sin) of 2π k / divisions for k in [0, divisions). Every shape takes its angles from

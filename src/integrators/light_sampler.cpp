@@ -33,8 +33,10 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
 
   // A BSDF ray that hits an emissive primitive is weighed by the chance that next-event
   // estimation picks that primitive: its object's probability times its share of the area.
+  // (The map holds every primitive, a mesh's millions too: made only when there are emitters.)
   std::unordered_map<const Shape*, uint32_t> primitive_of;
-  for (uint32_t p = 0; p < scene.primitives.size(); ++p) primitive_of.emplace(scene.primitives[p].shape, p);
+  if (!scene.surface_lights.empty())
+    for (uint32_t p = 0; p < scene.primitives.size(); ++p) primitive_of.emplace(scene.primitives[p].shape, p);
   for (std::size_t k = 0; k < scene.surface_lights.size(); ++k) {
     const SurfaceLight& light = *scene.surface_lights[k];
     const double chosen = probability_[scene.lights.size() + k];

@@ -202,13 +202,21 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
 
 }  // namespace
 
+namespace {
+
+// The state every stream of pass `pass` starts from; the stream picks the pixel or point.
+uint64_t pass_state(uint64_t seed, uint64_t pass) {
+  return mix64(seed * 0x9e3779b97f4a7c15ULL + pass);
+}
+
+}  // namespace
+
 Pcg32 path_pixel_rng(uint64_t seed, uint64_t pass, uint32_t x, uint32_t y) {
-  return Pcg32(mix64(seed * 0x9e3779b97f4a7c15ULL + pass), (static_cast<uint64_t>(y) << 32) | x);
+  return Pcg32(pass_state(seed, pass), (static_cast<uint64_t>(y) << 32) | x);
 }
 
 Pcg32 path_point_rng(uint64_t seed, uint64_t pass, double x, double y) {
-  return Pcg32(mix64(seed * 0x9e3779b97f4a7c15ULL + pass),
-               mix64(std::bit_cast<uint64_t>(x) ^ mix64(std::bit_cast<uint64_t>(y))));
+  return Pcg32(pass_state(seed, pass), mix64(std::bit_cast<uint64_t>(x) ^ mix64(std::bit_cast<uint64_t>(y))));
 }
 
 Color path_radiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights,

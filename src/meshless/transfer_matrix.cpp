@@ -184,7 +184,6 @@ TransferSolution solve_transfer(const TransferMatrix& transfer, const std::vecto
   for (const Color& e : eta)
     largest_eta = std::max({largest_eta, std::fabs(e.r), std::fabs(e.g), std::fabs(e.b)});
   std::vector<Color> next(n);
-  uint64_t progress_done = 0;
   for (std::size_t iteration = 0; iteration < max_iterations; ++iteration) {
     // λ' = η + Q S λ, each row by one thread.
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t j) {
@@ -209,7 +208,7 @@ TransferSolution solve_transfer(const TransferMatrix& transfer, const std::vecto
       const auto done = static_cast<uint64_t>(1000 * convergence_progress(solution.final_change, tolerance));
       progress->set_detail(
           fmt::format("change {:.3g} after {} iterations", solution.final_change, solution.iterations));
-      if (done > progress_done) progress->advance(done - progress_done), progress_done = done;
+      progress->advance_to(done);
     }
     // Diverging (a row of R summing past 1) or overflowed: stop and say so.
     if (!std::isfinite(largest) || !std::isfinite(change) || largest > 1e12 * std::max(largest_eta, 1e-300)) {

@@ -54,11 +54,10 @@ ElementSolution shoot_progressively(const RadiosityMesh& mesh, const ElementRows
     return seal_radiosity_checkpoint({checkpointing->fingerprint, refinement.steps(), refinement.radiosity(),
                                       refinement.unshot_radiosity()});
   };
-  uint64_t progress_done = 0;
   const auto on_step = [&](std::size_t steps, double fraction) {
     const auto done = static_cast<uint64_t>(1000 * convergence_progress(fraction, settings.threshold));
     progress.set_detail(fmt::format("unshot {:.3g}% after {} steps", 100 * fraction, steps));
-    if (done > progress_done) progress.advance(done - progress_done), progress_done = done;
+    progress.advance_to(done);
     if (hands_out && checkpointing->save && since_checkpoint.seconds() >= checkpointing->interval)
       checkpointing->save(sealed_state());
   };

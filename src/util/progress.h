@@ -23,6 +23,12 @@ class ProgressReporter {
                    std::FILE* stream = stderr);
   ~ProgressReporter();
   void advance(uint64_t amount = 1);
+  // Advances to `done` when that is further than so far (a measure that only grows in steps, like
+  // per mille of convergence); one caller at a time.
+  void advance_to(uint64_t done) {
+    const uint64_t so_far = done_.load();
+    if (done > so_far) advance(done - so_far);
+  }
   // A short text shown after the count from the next print on (e.g. "unshot 0.42%").
   void set_detail(std::string detail);
   void finish();
