@@ -168,13 +168,17 @@ TEST_F(Distributed, RadiosityCheckpointResumesOnTwoRanks) {
 }
 
 TEST_F(Distributed, MeshlessTransferRowsAcrossRanksGiveTheSameImage) {
-  expect_identical("meshless", "render " + kCornell + " --method meshless --set meshless.spacing=0.5");
+  expect_identical(
+      "meshless",
+      "render " + kCornell + " --method meshless --set meshless.spacing=0.5 --set meshless.gather_rays=16");
   const nlohmann::json two = json("meshless-2.json");
   std::string output;
-  ASSERT_EQ(
-      run(0, "render " + kCornell + " --method meshless --set meshless.spacing=0.5 -o m.pfm --stats m.json",
-          output),
-      0);
+  ASSERT_EQ(run(0,
+                "render " + kCornell +
+                    " --method meshless --set meshless.spacing=0.5 --set meshless.gather_rays=16 -o m.pfm "
+                    "--stats m.json",
+                output),
+            0);
   EXPECT_EQ(json("m.json")["meshless"]["transfer_entries"], two["meshless"]["transfer_entries"]);
   EXPECT_EQ(json("m.json")["meshless"]["visibility_rays"], two["meshless"]["visibility_rays"]);
 }

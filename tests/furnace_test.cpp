@@ -8,7 +8,9 @@
 #include <string>
 
 #include "closed_cube.h"
+#include "integrators/meshless_method.h"
 #include "integrators/scene_loading.h"
+#include "meshless/transfer_matrix.h"
 #include "render_support.h"
 
 namespace candela {
@@ -101,19 +103,64 @@ TEST(Furnace, RadiosityGivesEOverOneMinusRhoInACube) {
 }
 
 TEST(Furnace, MeshlessGivesEOverOneMinusRhoInASphere) {
-  // The radial basis cannot: it is no partition of unity (Σφ ≈ 1.4, docs/methods/meshless.md), so
-  // a constant field comes out scaled — the thesis's reason for the normalized basis.
-  for (const std::string basis : {"normalized", "shepard"}) {
+  // Issue 20: the radial basis too, now normalised (a partition of unity).
+  for (const std::string basis : {"normalized", "shepard", "radial"}) {
     const auto scene = sphere_furnace(
         "meshless", R"("meshless": {"basis": ")" + basis + R"(", "spacing": 0.3, "grid": 24, "rounds": 6},)");
     const Film film = testing::render_scene(*scene, "meshless", 2);
-    // Not 1 %: the effective areas are integrated over the tessellated sphere, a few tenths of a
-    // percent short, so the rows of S sum to s ≈ 0.996 and B = E/(1 − ρs) falls short by
-    // ρ(1 − s)/(1 − ρ) — 1.5 % at ρ = 0.8 (measured 2.3 % at spacing 0.3, 1.5 % at 0.2).
-    const double tolerance = 0.03;
+    // Every row of S sums to 1 inside the sphere (meshless/transfer_matrix.h); what is left is the
+    // direct light's noise and the iteration's tolerance.
     for (const Color& pixel : film.pixels())
-      for (int c = 0; c < 3; ++c) ASSERT_NEAR(pixel[c], kExpected[c], tolerance * kExpected[c]) << basis;
+      for (int c = 0; c < 3; ++c) ASSERT_NEAR(pixel[c], kExpected[c], 0.01 * kExpected[c]) << basis;
   }
+}
+
+// Issue 20 item 3: a closed box of six glowing walls, ρ = 0.5, 0.9 and 0.95, through every basis —
+// every pixel within 2 % of E/(1 − ρ). Before, the point-to-point form factors lost up to 9 % of
+// each row along the edges (rows summed to 0.91 there, 0.985 elsewhere) and the furnace came out
+// 13.4 % (normalized) and 8.9 % (Shepard) dark at ρ = 0.9; and the direct light of a site beside a
+// glowing wall, by the walls' samples alone, was spiky enough to leave the mean 2 % short.
+TEST(Furnace, MeshlessGivesEOverOneMinusRhoInACube) {
+  for (const double albedo : {0.5, 0.9, 0.95})
+    for (const std::string basis : {"normalized", "shepard", "radial"}) {
+      const std::string material = R"({"kd": )" + std::to_string(albedo) + R"(, "emission": 1})";
+      const auto scene = load_scene_text(R"({"format": "candela/1",
+        "camera": {"eye": [1, 1.1, 1.7], "target": [0.9, 0.8, 0], "fov": 80, "width": 16, "height": 16},
+        "render": {"method": "meshless"},
+        "meshless": {"basis": ")" + basis + R"(", "spacing": 0.15, "grid": 32, "rounds": 6}, )" +
+                                             testing::closed_cube_shapes(material) + "}",
+                                         "cube-furnace.json", ".");
+      const Film film = testing::render_scene(*scene, "meshless", 2);
+      const double expected = 1 / (1 - albedo);
+      for (const Color& pixel : film.pixels())
+        ASSERT_NEAR(pixel.g, expected, 0.02 * expected) << basis << ", rho " << albedo;
+    }
+}
+
+// The rows of S in a closed box sum to 1 within 0.5 % (the issue's bound; by construction they do
+// to float rounding), for receivers at the edges and corners as much as in the middle of a wall.
+TEST(Furnace, MeshlessRowsOfAClosedBoxSumToOne) {
+  const auto scene = load_scene_text(R"({"format": "candela/1",
+    "camera": {"eye": [1, 1.1, 1.7], "target": [0.9, 0.8, 0], "fov": 80, "width": 16, "height": 16},
+    "render": {"method": "meshless"}, "meshless": {"spacing": 0.15, "grid": 32, "rounds": 6}, )" +
+                                         testing::closed_cube_shapes(material_json()) + "}",
+                                     "cube-rows.json", ".");
+  const MeshlessSolution solution =
+      solve_meshless(*scene, read_meshless_settings(scene->plugin_settings.node("meshless")));
+  const auto& S = solution.matrix.S;
+  ASSERT_GT(S.rows(), 300);
+  int near_edge = 0;
+  for (int32_t j = 0; j < S.rows(); ++j) {
+    double sum = 0;
+    for (Eigen::SparseMatrix<float, Eigen::RowMajor, int32_t>::InnerIterator entry(S, j); entry; ++entry)
+      sum += entry.value();
+    EXPECT_NEAR(sum, 1, 0.005) << "row " << j;
+    const Vec3 p = solution.sites.sites[static_cast<std::size_t>(j)].position;
+    int inside = 0;  // coordinates strictly inside (0.1, 1.9): a site off every edge by 0.1 has 2
+    for (int c = 0; c < 3; ++c) inside += p[c] > 0.1 && p[c] < 1.9;
+    near_edge += inside < 2;
+  }
+  EXPECT_GT(near_edge, 50);  // the edges are sampled: the bound holds where it used to fail
 }
 
 }  // namespace

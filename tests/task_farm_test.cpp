@@ -12,6 +12,7 @@
 
 #include "distributed/cluster.h"
 #include "integrators/scene_loading.h"
+#include "meshless/meshless_basis.h"
 #include "meshless/site_sampling.h"
 #include "meshless/transfer_matrix.h"
 #include "scene/scene.h"
@@ -180,12 +181,16 @@ TEST(TransferMatrix, RowsAcrossRanksAreTheSingleProcessRows) {
   sampling.rounds = 2;
   const SiteSet sites = sample_sites(*scene, sampling);
   ASSERT_GT(sites.sites.size(), 100u);
-  const TransferMatrix alone = compute_transfer_matrix(*scene, sites.sites, sites.effective_area);
+  const MeshlessBasis basis(sites.sites, sites.radius, BasisKind::normalized);
+  TransferSettings settings;
+  settings.gather_rays = 16;  // what is shared is the test, not the rows' precision
+  const TransferMatrix alone = compute_transfer_matrix(*scene, sites, basis, sites.effective_area, settings);
   const TransferMatrix shared =
-      compute_transfer_matrix(*scene, sites.sites, sites.effective_area, 0, &cluster);
+      compute_transfer_matrix(*scene, sites, basis, sites.effective_area, settings, &cluster);
   ASSERT_EQ(shared.S.rows(), alone.S.rows());
   ASSERT_EQ(shared.entries(), alone.entries());
   EXPECT_EQ(shared.visibility_rays, alone.visibility_rays);
+  EXPECT_EQ(shared.far_field_scale, alone.far_field_scale);
   for (Eigen::Index j = 0; j < alone.S.outerSize(); ++j) {
     ASSERT_EQ(shared.S.outerIndexPtr()[j], alone.S.outerIndexPtr()[j]) << "row " << j;
   }
@@ -193,9 +198,10 @@ TEST(TransferMatrix, RowsAcrossRanksAreTheSingleProcessRows) {
     ASSERT_EQ(shared.S.innerIndexPtr()[e], alone.S.innerIndexPtr()[e]) << "entry " << e;
     ASSERT_EQ(shared.S.valuePtr()[e], alone.S.valuePtr()[e]) << "entry " << e;  // bit for bit
   }
-  EXPECT_THROW(
-      compute_transfer_matrix(*scene, sites.sites, sites.effective_area, alone.entries() / 3, &cluster),
-      std::invalid_argument);
+  TransferSettings limited = settings;
+  limited.max_entries = alone.entries() / 3;
+  EXPECT_THROW(compute_transfer_matrix(*scene, sites, basis, sites.effective_area, limited, &cluster),
+               std::invalid_argument);
 }
 
 TEST(Cluster, CollectivesAgree) {

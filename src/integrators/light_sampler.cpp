@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
+
+#include "scene/surface_emitter_index.h"
 
 namespace candela {
 
@@ -33,22 +34,17 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
 
   // A BSDF ray that hits an emissive primitive is weighed by the chance that next-event
   // estimation picks that primitive: its object's probability times its share of the area.
-  // (The map holds every primitive, a mesh's millions too: made only when there are emitters.)
-  std::unordered_map<const Shape*, uint32_t> primitive_of;
-  if (!scene.surface_lights.empty())
-    for (uint32_t p = 0; p < scene.primitives.size(); ++p) primitive_of.emplace(scene.primitives[p].shape, p);
-  for (std::size_t k = 0; k < scene.surface_lights.size(); ++k) {
-    const SurfaceLight& light = *scene.surface_lights[k];
-    const double chosen = probability_[scene.lights.size() + k];
-    if (chosen == 0) continue;
-    if (primitive_choice_.empty()) primitive_choice_.assign(scene.primitives.size(), 0.0);
-    for (const Shape* shape : light.shapes()) {
-      const auto found = primitive_of.find(shape);
-      if (found == primitive_of.end()) continue;
-      primitive_choice_[found->second] = chosen * shape->area() / light.area();
+  const SurfaceEmitterIndex emitters(scene);
+  if (!emitters.empty())
+    for (uint32_t p = 0; p < scene.primitives.size(); ++p) {
+      const uint32_t light = emitters.light_of(p);
+      if (light == SurfaceEmitterIndex::kNone) continue;
+      const double chosen = probability_[scene.lights.size() + light];
+      if (chosen == 0) continue;
+      if (primitive_choice_.empty()) primitive_choice_.assign(scene.primitives.size(), 0.0);
+      primitive_choice_[p] = chosen * emitters.share_of(p);
       ++emissive_primitives_;
     }
-  }
   if (scene.environment_light && scene.environment) {
     environment_ = scene.environment.get();
     environment_probability_ = probability_[count - 1];

@@ -59,6 +59,8 @@ struct MeshlessSettings {
   MeshlessDisplay display = MeshlessDisplay::global;
   double shepard_power = 2;
   int max_sites = 50000;  // refused beyond: the transfer matrix grows as n²
+  int gather_rays = 256;  // per site, for the transfer matrix's near field (meshless/transfer_matrix.h)
+  double near_field = 2;  // the near field: elements closer than this many of their radii
 };
 // Ranges checked, unknown keys refused.
 MeshlessSettings read_meshless_settings(const JsonNode& node);
@@ -91,6 +93,7 @@ struct MeshlessSolution {
   std::vector<Color> eta;     // η: emitted and directly reflected
   TransferSolution transfer;  // λ
   TransferMatrix matrix;      // S
+  std::vector<double> areas;  // A_k, the effective areas
 };
 
 // Samples, builds and solves; fills facts for --stats when given.

@@ -17,11 +17,7 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
                                               const SiteSet& sites, double cell, int segments,
                                               Cluster* cluster, bool quiet) {
   const std::size_t site_count = sites.sites.size();
-  // The sides sites lie on, per object: bit 0 the geometric normal's side, bit 1 the other.
-  std::vector<uint8_t> sides_with_sites(scene.objects.size(), 0);
-  for (std::size_t i = 0; i < site_count && i < sites.object.size(); ++i)
-    if (sites.object[i] < sides_with_sites.size())
-      sides_with_sites[sites.object[i]] |= sites.side[i] > 0 ? 1 : 2;
+  const std::vector<uint8_t> object_sides = sides_with_sites(sites, scene.objects.size());
   if (!(cell > 0) || !std::isfinite(cell))
     throw std::invalid_argument("effective areas: the cell size must be > 0");
   if (segments < 3) throw std::invalid_argument("effective areas: segments must be >= 3");
@@ -60,8 +56,7 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
     const double area = 0.5 * length(face);
     if (!(area > 0)) return;
     const Vec3 normal = face / (2 * area);
-    const uint8_t sides =
-        triangles.objects[t] < sides_with_sites.size() ? sides_with_sites[triangles.objects[t]] : 0;
+    const uint8_t sides = triangles.objects[t] < object_sides.size() ? object_sides[triangles.objects[t]] : 0;
     if (sides == 0) return;
     // n × n similar sub-triangles (n² of them: n(n+1)/2 upright, n(n−1)/2 inverted), area/n² each.
     const double longest = std::max({length(b - a), length(c - b), length(a - c)});

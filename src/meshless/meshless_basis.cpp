@@ -39,6 +39,9 @@ MeshlessBasis::MeshlessBasis(const std::vector<Site>& sites, const std::vector<d
     for (uint32_t i = 0; i < radii.size(); ++i)
       if (std::isfinite(radii[i]) && radii[i] > largest_radius_) unbounded_.push_back(i);
   }
+  std::sort(unbounded_.begin(), unbounded_.end());
+  is_unbounded_.assign(radii.size(), 0);
+  for (const uint32_t i : unbounded_) is_unbounded_[i] = 1;
 }
 
 void MeshlessBasis::evaluate(const Site& p, std::vector<std::pair<uint32_t, double>>& weights) const {
@@ -50,9 +53,9 @@ void MeshlessBasis::evaluate(const Site& p, std::vector<std::pair<uint32_t, doub
   candidates.clear();
   index_.within_euclidean(p.position, reach, candidates);
   if (!unbounded_.empty()) {
+    // Once each: the unbounded ones the search found too are dropped, then all of them added.
+    std::erase_if(candidates, [&](uint32_t i) { return is_unbounded_[i] != 0; });
     candidates.insert(candidates.end(), unbounded_.begin(), unbounded_.end());
-    std::sort(candidates.begin(), candidates.end());
-    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
   }
   double total = 0;
   for (const uint32_t i : candidates) {
@@ -91,7 +94,10 @@ void MeshlessBasis::evaluate(const Site& p, std::vector<std::pair<uint32_t, doub
       total += value;
     }
   }
-  if (kind_ == BasisKind::radial || weights.empty()) return;
+  // In increasing i (the search returns them in its own order): sorting the few non-zero weights
+  // costs less than sorting the candidates.
+  std::sort(weights.begin(), weights.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  if (weights.empty()) return;
   if (std::isinf(total)) {
     // Shepard at a centre: the infinite weights share 1, the rest get 0.
     std::size_t at_centre = 0;

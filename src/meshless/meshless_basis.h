@@ -1,15 +1,20 @@
 // The three finite-element bases of the meshless method over a set of sites (seed 002 §3.3, §4.2;
 // SPEC §11), evaluated at any site p of the scene through a k-d tree (SiteIndex):
 //
-//   radial      φ_i(p) = Ψ(||p, p_i||) with the Gaussian Ψ(d) = exp(−½(d/r_0)²) cut at 4 r_0
-//               (002 eqs. 4.6–4.7, §3.3.2), r_0 = r_i / 4, or its cubic stand-in K(d/r_i), K(t) =
-//               2t³ − 3t² + 1 for t ≤ 1, else 0 (eq. 4.8). Neither interpolating nor a partition
-//               of unity (Σ φ ≈ 1.4 where m = 10 sites are evenly spread).
+//   radial      φ_i(p) = Ψ_i(p) / Σ_j Ψ_j(p) with Ψ_i(p) = Ψ(||p, p_i||), the Gaussian
+//               Ψ(d) = exp(−½(d/r_0)²) cut at 4 r_0 (002 eqs. 4.6–4.7, §3.3.2), r_0 = r_i / 4, or its
+//               cubic stand-in K(d/r_i), K(t) = 2t³ − 3t² + 1 for t ≤ 1, else 0 (eq. 4.8).
 //               Why r_0 = r_i / 4: eq. 4.7 writes r_i where §3.3.2 writes r_0, "the effective
 //               radius of the support", but every element must vanish beyond r_i (eq. 4.5) and the
 //               cubic K(d/r_i), support r_i, stands in for the same Gaussian (eq. 4.8, Figure 4.4);
 //               with r_0 = r_i the Gaussians sum to about 2(m + 1) = 22 and every image comes out
 //               twenty times too bright (measured: sphere-over-disc RMS error 1,500 %).
+//               Why normalised (issue 20): the thesis's Ψ_i are neither interpolating nor a
+//               partition of unity — Σ Ψ ≈ 1.4 where m = 10 sites are evenly spread, which made
+//               a furnace 43–46 % too bright and the iteration diverge on sphere-over-disc — and
+//               its collocation λ ← η + QSλ holds only for a partition of unity. Divided by their
+//               sum they are one (the normalised radial basis functions of Moody and Darken),
+//               differing from `normalized` in the kernel (Gaussian of the site distance) only.
 //   normalized  φ_i(p) = Ψ_i(p) / Σ_j Ψ_j(p) with Ψ_j(p) = K(|ṗ − ṗ_j| / r_j) · max(0, p⃗·p⃗_j)
 //               (eq. 4.9 in 3.28): a partition of unity wherever some Ψ_j(p) > 0.
 //   shepard     φ_i(p) = w_i(p) / Σ_j w_j(p), w_i = ||p, p_i||^−k (eqs. 4.10–4.11, k = 2) within the
@@ -60,8 +65,9 @@ class MeshlessBasis {
   BasisKind kind_;
   RadialKernel kernel_;
   double shepard_power_;
-  double largest_radius_ = 0;        // the Euclidean search's reach: all finite supports but the widest 1 %
-  std::vector<uint32_t> unbounded_;  // sites of infinite or widest support: candidates everywhere
+  double largest_radius_ = 0;          // the Euclidean search's reach: all finite supports but the widest 1 %
+  std::vector<uint32_t> unbounded_;    // sites of infinite or widest support: candidates everywhere
+  std::vector<uint8_t> is_unbounded_;  // per site: in unbounded_
   SiteIndex index_;
 };
 

@@ -86,6 +86,13 @@ Vec3 cosine_direction(const Vec3& n, Pcg32& random) {
 
 }  // namespace
 
+std::vector<uint8_t> sides_with_sites(const SiteSet& set, std::size_t object_count) {
+  std::vector<uint8_t> sides(object_count, 0);
+  for (std::size_t i = 0; i < set.sites.size() && i < set.object.size() && i < set.side.size(); ++i)
+    if (set.object[i] < object_count) sides[set.object[i]] |= set.side[i] > 0 ? 1 : 2;
+  return sides;
+}
+
 void assign_radii(SiteSet& set, int neighbours) {
   if (neighbours < 1) throw std::invalid_argument("site radii: neighbours must be >= 1");
   const SiteIndex index(set.sites);

@@ -60,6 +60,11 @@ struct SiteSet {
 SiteSet sample_sites(const Scene& scene, const SiteSamplingSettings& settings,
                      ProgressReporter* progress = nullptr);
 
+// Per scene object (object_count of them), the sides sites lie on: bit 0 (1) the geometric normal's
+// side, bit 1 (2) the other. A side no site lies on — a disc's underside, a room's outer walls — is
+// no part of the solution, however far an element's support reaches.
+std::vector<uint8_t> sides_with_sites(const SiteSet& set, std::size_t object_count);
+
 // Radii and effective areas for given sites (step 4), m = neighbours: what sample_sites does last,
 // for sites placed by other means (tests, a regular lattice).
 void assign_radii(SiteSet& set, int neighbours);

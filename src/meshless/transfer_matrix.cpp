@@ -12,6 +12,10 @@
 
 #include "distributed/task_farm.h"
 #include "math/constants.h"
+#include "math/pcg32.h"
+#include "meshless/meshless_basis.h"
+#include "meshless/site_sampling.h"
+#include "sampling/warps.h"
 #include "scene/scene.h"
 #include "util/progress.h"
 
@@ -38,26 +42,87 @@ using Row = std::vector<Entry>;
 
 }  // namespace
 
-TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Site>& sites,
-                                       const std::vector<double>& effective_area, std::size_t max_entries,
-                                       Cluster* cluster, ProgressReporter* progress) {
+TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_set,
+                                       const MeshlessBasis& basis, const std::vector<double>& effective_area,
+                                       const TransferSettings& settings, Cluster* cluster,
+                                       ProgressReporter* progress) {
+  const std::vector<Site>& sites = site_set.sites;
   if (effective_area.size() != sites.size())
     throw std::invalid_argument("transfer matrix: " + std::to_string(effective_area.size()) + " areas for " +
                                 std::to_string(sites.size()) + " sites");
+  if (site_set.radius.size() != sites.size())
+    throw std::invalid_argument("transfer matrix: " + std::to_string(site_set.radius.size()) + " radii for " +
+                                std::to_string(sites.size()) + " sites");
+  if (settings.gather_rays < 1) throw std::invalid_argument("transfer matrix: gather_rays must be >= 1");
+  if (!(settings.near_field >= 0)) throw std::invalid_argument("transfer matrix: near_field must be >= 0");
+  const std::size_t max_entries = settings.max_entries;
   const auto start = std::chrono::steady_clock::now();
   const std::size_t n = sites.size();
+  const std::vector<uint8_t> object_sides = sides_with_sites(site_set, scene.objects.size());
+  // N rays on a √N × √N grid of strata (the rest, when N is no square, unstratified).
+  const int strata = static_cast<int>(std::sqrt(static_cast<double>(settings.gather_rays)));
+  const double ray_weight = 1.0 / settings.gather_rays;
   TransferMatrix result;
   std::vector<Row> rows(n);
   std::atomic<uint64_t> rays{0};
+  std::vector<double> far_scales(n, 0.0);  // per row, 0 where it has no far field
   std::atomic<std::size_t> kept{0};
   std::atomic<bool> too_many{false};
-  // Row j: what receiver j gathers from every other site; returns the visibility rays it traced.
+  const auto near = [&](std::size_t j, std::size_t k) {
+    const double r = site_set.radius[k];
+    return k == j || !std::isfinite(r) ||
+           length(sites[j].position - sites[k].position) < settings.near_field * r;
+  };
+  // Row j: what receiver j gathers from every site; returns the shadow rays it traced.
   const auto compute_row = [&](std::size_t j, Row& row) -> uint64_t {
     const Site& receiver = sites[j];
-    const double receiver_offset = scene.ray_offset(receiver.position);
+    const Vec3 origin = receiver.position + receiver.normal * scene.ray_offset(receiver.position);
+    // The hemisphere: the near elements' integrals and the far field's total.
+    thread_local std::vector<std::pair<uint32_t, double>> weights;
+    std::vector<std::pair<int32_t, double>> near_entries;
+    double far_gathered = 0;
+    Vec3 b1, b2;
+    orthonormal_basis(receiver.normal, b1, b2);
+    Pcg32 random(settings.seed ^ 0x6D65736868656D69ull, j);
+    // No near element reaches a point farther than this from p_j (a support is a ball of radius
+    // r_k in Euclidean terms too): beyond it a hit needs no basis evaluation — most of them, as a
+    // site's near elements are mostly on its own plane, where no ray lands.
+    double near_reach = 0;
+    for (std::size_t k = 0; k < n; ++k)
+      if (near(j, k))
+        near_reach = std::max(near_reach, length(sites[k].position - receiver.position) + site_set.radius[k]);
+    for (int s = 0; s < settings.gather_rays; ++s) {
+      Vec2 u{random.next_double(), random.next_double()};
+      if (s < strata * strata) u = Vec2{(s % strata + u.x) / strata, (s / strata + u.y) / strata};
+      const Vec3 local = square_to_cosine_hemisphere(u);
+      Ray ray;
+      ray.origin = origin;
+      ray.direction = normalize(b1 * local.x + b2 * local.y + receiver.normal * local.z);
+      Intersection hit;
+      if (!scene.intersect(ray, hit)) continue;
+      const Site q{hit.surface.position, face_forward(hit.surface.geometric_normal, -ray.direction)};
+      // Only the sides sites lie on belong to the solution (as in the effective areas).
+      const uint32_t object = scene.primitives[hit.primitive].object;
+      const uint8_t side = dot(q.normal, hit.surface.geometric_normal) > 0 ? 1 : 2;
+      if (object >= object_sides.size() || !(object_sides[object] & side)) continue;
+      if (!(length(q.position - receiver.position) < near_reach)) {
+        // Far elements only, and they are a partition of unity there: a gap between their
+        // supports takes the far field's light rather than swallowing it.
+        far_gathered += ray_weight;
+        continue;
+      }
+      basis.evaluate(q, weights);
+      for (const auto& [k, phi] : weights) {
+        if (near(j, k))
+          near_entries.emplace_back(static_cast<int32_t>(k), phi * ray_weight);
+        else
+          far_gathered += phi * ray_weight;
+      }
+    }
     uint64_t row_rays = 0;
+    double far_sum = 0;
     for (std::size_t k = 0; k < n; ++k) {
-      if (k == j || !(effective_area[k] > 0)) continue;
+      if (!(effective_area[k] > 0) || near(j, k)) continue;
       const Site& sender = sites[k];
       const Vec3 between = receiver.position - sender.position;  // v_kj · d
       const double d2 = dot(between, between);
@@ -66,11 +131,11 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
       const Vec3 v = between / d;
       const double cos_sender = dot(v, sender.normal), cos_receiver = -dot(v, receiver.normal);
       if (!(cos_sender > 0) || !(cos_receiver > 0)) continue;
-      // 002 eq. 5.2 times A_k, clamped at 1 for close pairs (see the header).
-      const double transfer = std::min(1.0, cos_sender * cos_receiver * effective_area[k] / (kPi * d2));
+      const double transfer =
+          cos_sender * cos_receiver * effective_area[k] / (kPi * d2);  // 002 eq. 5.2 × A_k
       // V: a shadow ray from the receiver toward the sender, both ends off their surfaces.
       Ray ray;
-      ray.origin = receiver.position + receiver.normal * receiver_offset;
+      ray.origin = origin;
       const Vec3 target = sender.position + sender.normal * scene.ray_offset(sender.position);
       const Vec3 to_target = target - ray.origin;
       const double distance = length(to_target);
@@ -80,14 +145,25 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
       ++row_rays;
       if (scene.occluded(ray)) continue;
       row.push_back({static_cast<int32_t>(k), static_cast<float>(transfer)});
+      far_sum += transfer;
     }
-    // A receiver sees at most its hemisphere: Σ_k F A_k ≤ 1 (000 eq. 6-6 for closed scenes). Near a
-    // corner eq. 5.2 overshoots (the sites across it are closer than their areas are wide); such
-    // a row is scaled back to 1, or the iteration would diverge.
-    double row_sum = 0;
-    for (const Entry& entry : row) row_sum += entry.value;
-    if (row_sum > 1)
-      for (Entry& entry : row) entry.value = static_cast<float>(entry.value / row_sum);
+    // The far field's shape from eq. 5.2, its total from the rays.
+    if (far_sum > 0) {
+      const double scale = far_gathered / far_sum;
+      far_scales[j] = scale;
+      for (Entry& entry : row) entry.value = static_cast<float>(entry.value * scale);
+    }
+    // The near entries, one per element (added up in ray order), and the row in column order.
+    std::stable_sort(near_entries.begin(), near_entries.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t e = 0; e < near_entries.size();) {
+      double total = 0;
+      const int32_t column = near_entries[e].first;
+      for (; e < near_entries.size() && near_entries[e].first == column; ++e) total += near_entries[e].second;
+      row.push_back({column, static_cast<float>(total)});
+    }
+    std::sort(row.begin(), row.end(), [](const Entry& a, const Entry& b) { return a.column < b.column; });
+    std::erase_if(row, [](const Entry& entry) { return !(entry.value > 0); });
     return row_rays;
   };
   const auto keep = [&](std::size_t entries) {
@@ -109,11 +185,13 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
     // A chunk's rows as bytes: what a rank sends, and what rank 0 rebuilds from `rows` to pass on.
     // The header holds the chunk's entry count as computed: past the limit rank 0 keeps no rows,
     // and every rank must still count them to refuse the matrix alike.
-    const auto chunk_bytes = [](uint64_t chunk_rays, uint64_t chunk_entries, const Row* chunk_rows,
-                                std::size_t count) {
+    const auto chunk_bytes = [&](uint64_t chunk_rays, uint64_t chunk_entries, std::size_t first,
+                                 std::size_t count, const Row* chunk_rows) {
       ByteWriter writer;
       writer.put<uint64_t>(chunk_rays);
       writer.put<uint64_t>(chunk_entries);
+      writer.put_array(std::vector<double>(far_scales.begin() + static_cast<std::ptrdiff_t>(first),
+                                           far_scales.begin() + static_cast<std::ptrdiff_t>(first + count)));
       for (std::size_t k = 0; k < count; ++k) writer.put_array(chunk_rows[k]);
       return writer.take();
     };
@@ -127,7 +205,7 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
                             [&](std::size_t k) { chunk_rays += compute_row(first + k, chunk_rows[k]); });
           std::size_t entries = 0;
           for (const Row& row : chunk_rows) entries += row.size();
-          return chunk_bytes(chunk_rays.load(), entries, chunk_rows.data(), count);
+          return chunk_bytes(chunk_rays.load(), entries, first, count, chunk_rows.data());
         },
         [&](std::size_t task, std::span<const std::byte> result) {
           const std::size_t first = task * chunk, count = std::min(chunk, n - first);
@@ -135,6 +213,8 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
           task_rays[task] = reader.get<uint64_t>();
           task_entries[task] = reader.get<uint64_t>();
           keep(task_entries[task]);
+          const std::vector<double> scales = reader.get_array<double>();
+          std::copy(scales.begin(), scales.end(), far_scales.begin() + static_cast<std::ptrdiff_t>(first));
           for (std::size_t k = 0; k < count; ++k) {
             Row row = reader.get_array<Entry>();
             // Past the limit nothing more is kept (the build is refused below): memory stays bounded.
@@ -144,7 +224,7 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
         },
         [&](std::size_t task) {
           const std::size_t first = task * chunk, count = std::min(chunk, n - first);
-          return chunk_bytes(task_rays[task], task_entries[task], rows.data() + first, count);
+          return chunk_bytes(task_rays[task], task_entries[task], first, count, rows.data() + first);
         });
     uint64_t rays_elsewhere = 0;
     for (const uint64_t r : task_rays) rays_elsewhere += r;
@@ -166,6 +246,12 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Sit
   }
   result.S.finalize();
   result.visibility_rays = rays;
+  result.gather_rays = static_cast<uint64_t>(n) * static_cast<uint64_t>(settings.gather_rays);
+  double scale_sum = 0;
+  std::size_t scaled_rows = 0;
+  for (const double scale : far_scales)
+    if (scale > 0) scale_sum += scale, ++scaled_rows;
+  result.far_field_scale = scaled_rows > 0 ? scale_sum / static_cast<double>(scaled_rows) : 1.0;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -1,17 +1,23 @@
 // The transfer operator of the meshless method (seed 002 §5.2, SPEC §11), stored sparse:
 //
-//   R = Q S,  Q = diag(β(ṗ_j)) per channel,  S_jk = V(ṗ_k, ṗ_j) F(p_k, p_j) A_k          (5.6, 5.7)
-//   F(p_k, p_j) = max(0, v_kj·p⃗_k) max(0, −v_kj·p⃗_j) / (π d²)                        (5.2)
+//   R = Q S,  Q = diag(β(ṗ_j)) per channel,  S_jk = ∫ φ_k(q) G(q, ṗ_j) V(q, ṗ_j) dq            (5.6, 5.7)
+//   G(q, p_j) = max(0, v·q⃗) max(0, −v·p⃗_j) / (π d²),  v from q to p_j, d = |ṗ_j − q|
 //
-// with d the distance between the sites, v_kj the direction from p_k to p_j and A_k the element's
-// effective area. Close pairs: F·A_k of eq. 5.2 grows without bound as d → 0 (two sites on either
-// side of a room's corner, which the spacing Δ does not keep apart since their site distance is
-// infinite), so S_jk is clamped at 1 — no element passes a site more than all it sends. (A disc
-// form factor cos cos A/(πd² + A) also stays bounded, but it undercounts near neighbours on curved
-// surfaces: 2.3 % low in the sphere furnace against 0.5 % for eq. 5.2.) A row whose entries add up
-// past 1 — more than the receiver's hemisphere, which happens only near such corners — is scaled
-// back to 1.
-// V is a shadow ray between the sites, each end moved off its surface along its normal.
+// which for a partition of unity adds up, over k, to the share of p_j's hemisphere that sees the
+// elements' surfaces: 1 in a closed room (000 eq. 6-6). The thesis takes the kernel at the centre,
+// S_jk ≈ F(p_k, p_j) A_k (eq. 5.2) with A_k the element's effective area; that is good far away
+// and wrong close by (issue 20: rows of a closed box summed to 0.91 along its edges and 0.985–0.99
+// elsewhere, a furnace at ρ = 0.9 came out 13 % dark, and a row could pass 1 across a corner,
+// where eq. 5.2 grows without bound). So each row is made of two parts:
+//   - the near field, the elements with |ṗ_k − ṗ_j| < near_field · r_k (and the receiver's own):
+//     the integral itself, by `gather_rays` stratified cosine-distributed rays from p_j — a ray
+//     that hits q adds φ_k(q)/N to S_jk, so the hit's share of the hemisphere is split among the
+//     elements covering q exactly as the basis splits the surface there;
+//   - the far field: eq. 5.2 with a shadow ray between the sites for its shape (smooth and
+//     noiseless where the elements are small as seen from p_j), scaled so that it adds up to what
+//     the same rays found of the far elements (Σ over hits of the far φ_k(q), over N).
+// A row then sums to the rays' share that hit covered surface, which is 1 in a closed room
+// whatever the spacing; the rays are seeded per receiver, so S does not depend on threads or ranks.
 //
 // The solution (002 §5.2.4): λ ← η + Q S λ, per channel, from λ = η, until no coefficient changes by
 // more than tolerance × the largest; λ are the coefficients of the radiosity (exitance) in the
@@ -29,27 +35,43 @@
 namespace candela {
 
 class Cluster;
+class MeshlessBasis;
 class ProgressReporter;
 class Scene;
+struct SiteSet;
+
+struct TransferSettings {
+  int gather_rays = 256;        // N: per receiver, for the near field and the far field's total
+  double near_field = 2;        // elements closer than this many of their radii are integrated
+  uint64_t seed = 0;            // the rays' streams: one per (seed, receiver)
+  std::size_t max_entries = 0;  // refused past this (0: no limit)
+};
 
 struct TransferMatrix {
   Eigen::SparseMatrix<float, Eigen::RowMajor, int32_t> S;  // n × n
   std::size_t entries() const { return static_cast<std::size_t>(S.nonZeros()); }
-  double density() const;     // entries / n²
-  std::size_t bytes() const;  // values, column indices and row offsets
-  double seconds = 0;         // to compute
-  uint64_t visibility_rays = 0;
+  double density() const;        // entries / n²
+  std::size_t bytes() const;     // values, column indices and row offsets
+  double seconds = 0;            // to compute
+  uint64_t visibility_rays = 0;  // shadow rays between sites
+  uint64_t gather_rays = 0;      // the rows' hemisphere rays
+  // Σ over rows of (the far field's total by the rays) / (its total by eq. 5.2), over the rows
+  // that have both: how far eq. 5.2 is from the integral on this scene (1 where it is exact).
+  double far_field_scale = 1;
 };
 
-// S for the sites with effective areas A_k; the scene's accelerator answers visibility. Rows in
-// parallel, each by one thread into its own place: the result does not depend on the thread count.
-// max_entries refuses (std::invalid_argument naming the spacing) before more would be kept.
-// With a cluster of several ranks the rows are computed across them and every rank gets all of
-// S, the same as one process computes (issue 11).
-// progress, when given, is advanced once per row (rank 0 counts every rank's rows).
-TransferMatrix compute_transfer_matrix(const Scene& scene, const std::vector<Site>& sites,
-                                       const std::vector<double>& effective_area, std::size_t max_entries = 0,
-                                       Cluster* cluster = nullptr, ProgressReporter* progress = nullptr);
+// S for the sites (positions, normals, the objects and sides they lie on), their basis (which
+// refers to the same sites) and their effective areas A_k; the scene's accelerator traces the rays.
+// Rows in parallel, each by one thread into its own place: the result does not depend on the
+// thread count. settings.max_entries refuses (std::invalid_argument naming the spacing) before
+// more would be kept. With a cluster of several ranks the rows are computed across them and every
+// rank gets all of S, the same as one process computes (issue 11). progress, when given, is
+// advanced once per row (rank 0 counts every rank's rows). Throws std::invalid_argument for
+// mismatched sizes, gather_rays < 1 or near_field < 0.
+TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& sites, const MeshlessBasis& basis,
+                                       const std::vector<double>& effective_area,
+                                       const TransferSettings& settings = {}, Cluster* cluster = nullptr,
+                                       ProgressReporter* progress = nullptr);
 
 struct TransferSolution {
   std::vector<Color> lambda;

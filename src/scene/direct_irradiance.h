@@ -8,12 +8,27 @@
 // shadows and the specular term.
 #pragma once
 
+#include "math/pcg32.h"
 #include "math/vector.h"
 #include "scene/light.h"
 
 namespace candela {
 
 class Scene;
+class SurfaceEmitterIndex;
+
+// Rays besides the lights' samples for the emissive surfaces: `rays` cosine-distributed
+// directions about the normal, drawn from `random`. A ray that hits an emissive surface adds its
+// emission, and both it and that surface's light samples are weighed by the power heuristic
+// (Veach 1997 §9.2, the sample counts in the densities), so a point beside a large emitter — a
+// glowing room's wall next to its neighbour, where a light sample's 1/d² makes the estimate
+// spiky and its mean unreliable — is lit as smoothly as one far from it, and a small emitter
+// keeps its light samples. The environment and the other lights keep their samples alone.
+struct HemisphereRays {
+  const SurfaceEmitterIndex& emitters;
+  int rays = 0;
+  Pcg32& random;
+};
 
 enum class EmitterSet {
   lights,                  // the "lights" array alone (what rays cannot hit: probe's sensors)
@@ -23,6 +38,6 @@ enum class EmitterSet {
 };
 
 Color direct_irradiance(const Scene& scene, const Vec3& point, const Vec3& normal, EmitterSet emitters,
-                        const StratumJitter& jitter);
+                        const StratumJitter& jitter, const HemisphereRays* hemisphere = nullptr);
 
 }  // namespace candela
