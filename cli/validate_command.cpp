@@ -1,8 +1,10 @@
-// candela validate sphere-disc --out DIR [--quick] [--threads N]: the built-in validation cases
-// (SPEC §13).
-//   sphere-disc  the sphere over a disc of seed 002 chapter 7 (validate/sphere_disc.h): the
-//                reference by quadrature and the meshless FE solution for each basis at Δ = 3 and
-//                Δ = 1; CSV, PNG plots and errors.json in DIR (see docs/validation/sphere-disc.md).
+// candela validate CASE --out DIR [--quick] [--threads N]: the built-in validation cases (SPEC §13).
+//   sphere-disc   the sphere over a disc of seed 002 chapter 7 (validate/sphere_disc.h): the
+//                 reference by quadrature and the meshless FE solution for each basis at Δ = 3 and
+//                 Δ = 1; CSV, PNG plots and errors.json in DIR (see docs/validation/sphere-disc.md).
+//   form-factors  Howell's closed forms through the radiosity method at three refinements, and the
+//                 furnace for every method (validate/form_factor_validation.h); CSV, PNG plots and
+//                 results.json in DIR (see docs/validation/form-factors.md).
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -13,6 +15,7 @@
 
 #include "commands.h"
 #include "thread_limit.h"
+#include "validate/form_factor_validation.h"
 #include "validate/sphere_disc.h"
 
 namespace candela::cli {
@@ -28,8 +31,9 @@ struct ValidateOptions {
 };
 
 int run_validate(const ValidateOptions& options) {
-  if (options.name != "sphere-disc")
-    throw BadArgument(fmt::format("unknown validation case '{}' (known: sphere-disc)", options.name));
+  if (options.name != "sphere-disc" && options.name != "form-factors")
+    throw BadArgument(
+        fmt::format("unknown validation case '{}' (known: sphere-disc, form-factors)", options.name));
   std::optional<tbb::global_control> thread_limit;
   limit_threads(options.threads, thread_limit);
   namespace fs = std::filesystem;
@@ -38,6 +42,13 @@ int run_validate(const ValidateOptions& options) {
   if (error || !fs::is_directory(options.out))
     throw BadArgument(fmt::format("--out: cannot create the directory '{}'{}", options.out,
                                   error ? ": " + error.message() : ""));
+  if (options.name == "form-factors") {
+    FormFactorRun run;
+    run.quick = options.quick;
+    run_form_factor_validation(options.out, run, options.quiet ? nullptr : &std::cout);
+    if (!options.quiet) std::cout << fmt::format("written to {}\n", options.out);
+    return 0;
+  }
   SphereDiscRun run;
   run.quick = options.quick;
   const nlohmann::json errors =
@@ -53,8 +64,9 @@ int run_validate(const ValidateOptions& options) {
 
 void add_validate_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<ValidateOptions>();
-  CLI::App* command = app.add_subcommand("validate", "Run a built-in validation case (sphere-disc)");
-  command->add_option("name", options->name, "The case: sphere-disc")->required();
+  CLI::App* command =
+      app.add_subcommand("validate", "Run a built-in validation case (sphere-disc, form-factors)");
+  command->add_option("name", options->name, "The case: sphere-disc or form-factors")->required();
   command->add_option("--out", options->out, "Directory for the CSV files, plots and errors.json")
       ->required();
   command->add_flag("--quick", options->quick, "Coarser reference and sampling (for tests)");

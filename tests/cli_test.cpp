@@ -585,8 +585,8 @@ TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
       EXPECT_TRUE(fs::exists(out / (name + ".png"))) << name;
       const nlohmann::json& entry = errors["bases"][basis][delta];
       ASSERT_TRUE(entry.is_object()) << name;
-      // The radial basis's iteration diverges (docs/validation/sphere-disc.md): its errors are null.
-      if (std::string(basis) == "radial" && entry["diverged"].get<bool>()) continue;
+      // Issue 20: the radial basis, normalised, converges like the others.
+      EXPECT_FALSE(entry["diverged"].get<bool>()) << name;
       for (const char* key : {"rms", "max", "rms_relative", "max_relative"}) {
         ASSERT_TRUE(entry[key].is_number()) << name << " " << key;
         EXPECT_TRUE(std::isfinite(entry[key].get<double>())) << name << " " << key;
@@ -598,6 +598,8 @@ TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
   EXPECT_EQ(run("validate sphere-disc --quick --out file/sub", output), 2) << output;
   EXPECT_NE(output.find("--out"), std::string::npos) << output;
   EXPECT_EQ(run("validate no-such-case --out x", output), 2) << output;
+  EXPECT_NE(output.find("known: sphere-disc, form-factors"), std::string::npos) << output;
+  EXPECT_EQ(run("validate form-factors --quick --out file/sub", output), 2) << output;
   // Issue 20: --threads, and the results (all but the times) do not depend on it.
   ASSERT_EQ(run("validate sphere-disc --quick -q --threads 1 --out sd1", output), 0) << output;
   std::ifstream one_thread_file(directory_ / "sd1" / "errors.json");

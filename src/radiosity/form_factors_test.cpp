@@ -18,6 +18,7 @@
 #include "geometry/triangle_mesh.h"
 #include "math/constants.h"
 #include "math/pcg32.h"
+#include "radiosity/configuration_factors.h"
 #include "radiosity/delta_form_factors.h"
 #include "radiosity/hemicube_form_factors.h"
 #include "radiosity/ray_cast_form_factors.h"
@@ -27,40 +28,6 @@ namespace {
 
 // ---------------------------------------------------------------------------------------------
 // Closed forms (Howell's catalogue)
-
-// C-11, "identical, parallel, directly opposed rectangles" a × b at distance c, X = a/c, Y = b/c:
-// F = 2/(πXY) { ln[(1+X²)(1+Y²)/(1+X²+Y²)]^½ + X√(1+Y²) atan(X/√(1+Y²))
-//               + Y√(1+X²) atan(Y/√(1+X²)) − X atan X − Y atan Y }.
-double parallel_rectangles(double X, double Y) {
-  return 2 / (kPi * X * Y) *
-         (0.5 * std::log((1 + X * X) * (1 + Y * Y) / (1 + X * X + Y * Y)) +
-          X * std::sqrt(1 + Y * Y) * std::atan(X / std::sqrt(1 + Y * Y)) +
-          Y * std::sqrt(1 + X * X) * std::atan(Y / std::sqrt(1 + X * X)) - X * std::atan(X) -
-          Y * std::atan(Y));
-}
-
-// C-14, "two finite rectangles of the same length, having one common edge, at an angle of 90°":
-// from rectangle 1 (width w) to rectangle 2 (height h), common edge l, W = w/l, H = h/l:
-// F_12 = 1/(πW) ( W atan(1/W) + H atan(1/H) − √(H²+W²) atan(1/√(H²+W²))
-//        + ¼ ln{ (1+W²)(1+H²)/(1+W²+H²) · [W²(1+W²+H²)/((1+W²)(W²+H²))]^{W²}
-//                · [H²(1+H²+W²)/((1+H²)(H²+W²))]^{H²} } ).
-double perpendicular_rectangles(double W, double H) {
-  const double W2 = W * W, H2 = H * H;
-  const double log_term = std::log((1 + W2) * (1 + H2) / (1 + W2 + H2)) +
-                          W2 * std::log(W2 * (1 + W2 + H2) / ((1 + W2) * (W2 + H2))) +
-                          H2 * std::log(H2 * (1 + H2 + W2) / ((1 + H2) * (H2 + W2)));
-  return (W * std::atan(1 / W) + H * std::atan(1 / H) -
-          std::sqrt(H2 + W2) * std::atan(1 / std::sqrt(H2 + W2)) + 0.25 * log_term) /
-         (kPi * W);
-}
-
-// C-41, "disk to parallel coaxial disk": radii r1 (from), r2 (to), distance h, R = r/h,
-// X = 1 + (1 + R2²)/R1²: F_12 = ½ [X − √(X² − 4 (r2/r1)²)].
-double coaxial_discs(double r1, double r2, double h) {
-  const double R1 = r1 / h, R2 = r2 / h;
-  const double X = 1 + (1 + R2 * R2) / (R1 * R1);
-  return 0.5 * (X - std::sqrt(X * X - 4 * (r2 / r1) * (r2 / r1)));
-}
 
 // "Plane element to plane parallel rectangle; normal to element passes through a corner of the
 // rectangle", rectangle a × b at distance c, A = a/c, B = b/c:
@@ -80,11 +47,6 @@ double point_to_perpendicular_rectangle(double w, double h, double c) {
   const double X = h / w, Y = c / w;
   return (std::atan(1 / Y) - Y / std::sqrt(X * X + Y * Y) * std::atan(1 / std::sqrt(X * X + Y * Y))) /
          (2 * kPi);
-}
-
-// "Plane element to a parallel coaxial disk" of radius r at distance h: F = r²/(h² + r²).
-double point_to_coaxial_disc(double r, double h) {
-  return r * r / (h * h + r * r);
 }
 
 // The centre of a unit square facing a parallel unit square at distance 1 (four corner rectangles).

@@ -9,8 +9,11 @@
 namespace candela {
 
 double convergence_progress(double remaining_fraction, double threshold) {
+  // Issue 20: a threshold of 0 (radiosity runs until nothing is left to shoot or max_steps) is
+  // measured against 10⁻¹⁵, about what double precision resolves of a total, not left at 0.
+  if (!(threshold > 0)) threshold = 1e-15;
   if (remaining_fraction <= threshold || threshold >= 1) return 1.0;
-  if (remaining_fraction >= 1 || threshold <= 0) return 0.0;
+  if (remaining_fraction >= 1) return 0.0;
   return std::clamp(std::log(remaining_fraction) / std::log(threshold), 0.0, 1.0);
 }
 

@@ -13,7 +13,8 @@ namespace candela {
 
 // How far an iteration that stops at a threshold has come, on a log scale, for progress bars: 0 at
 // a remaining fraction (radiosity's unshot flux, meshless's relative change) of 1, 1 at the
-// threshold (log(fraction) / log(threshold), clamped to [0, 1]); 1 when threshold ≥ 1.
+// threshold (log(fraction) / log(threshold), clamped to [0, 1]); 1 when threshold ≥ 1; a threshold
+// of 0 (or below) counts as 10⁻¹⁵.
 double convergence_progress(double remaining_fraction, double threshold);
 
 class ProgressReporter {

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "camera/tone_map.h"
+#include "io/image_writer.h"
 #include "io/pixel_font.h"
 
 namespace candela {
@@ -154,6 +156,13 @@ Film draw_line_plot(const std::vector<PlotPanel>& panels, int panel_width, int p
     }
   }
   return film;
+}
+
+void write_line_plot_png(const std::string& path, const std::vector<PlotPanel>& panels, int panel_width,
+                         int panel_height) {
+  DisplaySettings display;
+  display.srgb = false;  // the colors as given
+  write_png(draw_line_plot(panels, panel_width, panel_height), path, display);
 }
 
 }  // namespace candela

@@ -31,4 +31,8 @@ struct PlotPanel {
 // the first panel, in order) sits in the first panel's top right corner.
 Film draw_line_plot(const std::vector<PlotPanel>& panels, int panel_width = 480, int panel_height = 360);
 
+// draw_line_plot written as a PNG of the colors as given (no sRGB curve).
+void write_line_plot_png(const std::string& path, const std::vector<PlotPanel>& panels, int panel_width = 480,
+                         int panel_height = 360);
+
 }  // namespace candela

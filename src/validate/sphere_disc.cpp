@@ -319,10 +319,7 @@ std::string csv(const char* header, const std::vector<double>& x,
 }
 
 void write_plot(const std::filesystem::path& path, const std::vector<PlotPanel>& panels) {
-  const Film film = draw_line_plot(panels);
-  DisplaySettings display;
-  display.srgb = false;  // the colors as given
-  write_png(film, path.string(), display);
+  write_line_plot_png(path.string(), panels);
 }
 
 const Color kReferenceTotal(0, 0, 0), kReferenceDirect(0.6, 0.6, 0.6);
