@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "geometry/flipped_shape.h"
 #include "geometry/plane.h"
 #include "geometry/transformed_shape.h"
 #include "math/constants.h"
@@ -17,6 +18,11 @@ bool world_plane(const Shape& shape, Vec3& point, Vec3& normal) {
   if (const auto* plane = dynamic_cast<const Plane*>(&shape)) {
     point = plane->point();
     normal = plane->normal();
+    return true;
+  }
+  if (const auto* flipped = dynamic_cast<const FlippedShape*>(&shape)) {
+    if (!world_plane(flipped->shape(), point, normal)) return false;
+    normal = -normal;
     return true;
   }
   if (const auto* placed = dynamic_cast<const TransformedShape*>(&shape)) {

@@ -12,6 +12,7 @@
 #include "accel/bounding_volume.h"
 #include "camera/antialiasing.h"
 #include "camera/pixel_filter.h"
+#include "geometry/flipped_shape.h"
 #include "geometry/transformed_shape.h"
 #include "io/json_node.h"
 #include "scene/camera_registry.h"
@@ -256,6 +257,8 @@ class SceneReader {
       const uint32_t material = material_for(node);
       Transform transform;
       if (const auto transform_node = node.get("transform")) transform = read_transform(*transform_node);
+      // Issue 20: any shape's normals turned the other way (geometry/flipped_shape.h).
+      const bool flip_normals = node.boolean("flip_normals", false);
       ShapeBuild build = entry->create(node, transform, context_);
       node.finish();
       object.first_primitive = static_cast<uint32_t>(scene_->primitives.size());
@@ -265,6 +268,7 @@ class SceneReader {
         std::unique_ptr<Shape> shape = std::move(build.shapes[s]);
         if (!build.transform_applied && !transform.is_identity())
           shape = std::make_unique<TransformedShape>(std::move(shape), transform);
+        if (flip_normals) shape = std::make_unique<FlippedShape>(std::move(shape));
         const int own = build.materials[s];
         scene_->primitives.push_back({shape.get(), own >= 0 ? uint32_t(own) : material, object_index});
         scene_->shapes.push_back(std::move(shape));
