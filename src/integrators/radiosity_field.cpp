@@ -20,7 +20,7 @@ class RadiosityField final : public SolutionField {
         vertices_(compute_vertex_radiosity(solution_.mesh.elements, solution_.element_radiosity,
                                            solution_.element_hidden)) {}
   bool exitance(const Ray& ray, const Intersection& hit, Color& exitance) const override {
-    const uint32_t element = solution_.mesh.element_at(hit.primitive, hit.surface.position);
+    const uint32_t element = solution_.mesh.element_at(hit.primitive, hit.surface.position, -ray.direction);
     if (element == UINT32_MAX) return false;
     // Patches are one-sided (000 §6): nothing leaves a patch's back.
     if (dot(ray.direction, solution_.mesh.elements[element].normal) > 0) {

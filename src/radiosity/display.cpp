@@ -96,6 +96,17 @@ SolutionDisplay::SolutionDisplay(const Scene& scene, const RadiositySolveResult&
     }
     bounds_on_screen_[q] = screen_bounds(triangles_[q][0].clip, triangles_[q][1].clip, triangles_[q][2].clip,
                                          grid_width, grid_height);
+    // A two-sided surface's element seen from behind: its twin is drawn there (issue 20). Its
+    // winding on screen says which side faces the eye (counter-clockwise, y up: the front).
+    if (elements[q].two_sided && bounds_on_screen_[q].in_front) {
+      const auto ndc = [&](int k) {
+        const Eigen::Vector4d& c = triangles_[q][k].clip;
+        return Vec2{c.x() / c.w(), c.y() / c.w()};
+      };
+      const Vec2 a = ndc(0), b = ndc(1), c = ndc(2);
+      if ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x) < 0)
+        bounds_on_screen_[q] = {1, -1, 1, -1, false};  // an empty box: never drawn
+    }
   }
 }
 
@@ -172,9 +183,10 @@ Color SolutionDisplay::ray_cast(double x, double y) const {
   const Camera& camera = *scene_.camera;
   const Ray ray = camera.generate_ray(x, y);
   Intersection hit;
-  const uint32_t element = scene_.intersect(ray, hit)
-                               ? solution_.mesh.element_at(hit.primitive, hit.surface.position)
-                               : UINT32_MAX;
+  const uint32_t element =
+      scene_.intersect(ray, hit)
+          ? solution_.mesh.element_at(hit.primitive, hit.surface.position, -ray.direction)
+          : UINT32_MAX;
   if (element == UINT32_MAX)
     return scene_.background_along(ray.direction);  // a miss, or off the mesh (as the Gouraud display)
   if (display_ == RadiosityDisplay::ray_traced)

@@ -100,8 +100,13 @@ void HemicubeFormFactors::compute_row(const FormFactorGeometry& geometry, const 
     // whose back faces the point still hides what lies behind it, but passes no energy.
     const Vec3& a = visible_.positions[corner[0]];
     const Vec3 front = cross(visible_.positions[corner[1]] - a, visible_.positions[corner[2]] - a);
+    const bool seen_from_front = dot(front, a) < 0;
+    // A two-sided surface's back: its twin, facing the point, is drawn in its place (the two
+    // would otherwise fight over the same cells).
+    if (!seen_from_front && t < geometry.hidden_from_behind.size() && geometry.hidden_from_behind[t])
+      continue;
     visible_.triangles.push_back(corner);
-    visible_elements_.push_back(dot(front, a) < 0 ? element : kBackFace);
+    visible_elements_.push_back(seen_from_front ? element : kBackFace);
   }
   const double reach = std::sqrt(reach_squared);
   if (visible_.triangles.empty() || !(reach > 0) || !std::isfinite(reach)) return;

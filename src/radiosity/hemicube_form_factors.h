@@ -49,6 +49,9 @@ struct FormFactorGeometry {
   TriangleMesh mesh;
   std::vector<uint32_t> element_of_triangle;  // one per triangle of mesh
   uint32_t element_count = 0;
+  // Per triangle (or empty: none): seen from behind it is not drawn at all — one side of a
+  // two-sided surface, whose twin on the other side (wound the other way) hides what it hides.
+  std::vector<uint8_t> hidden_from_behind;
 
   // Throws std::invalid_argument for an invalid mesh (TriangleMesh::validate), a count of
   // element ids other than one per triangle, or an id ≥ element_count.

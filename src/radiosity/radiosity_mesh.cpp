@@ -71,6 +71,7 @@ RadiositySurface make_surface(const Scene& scene, const CornerTriangle& triangle
   surface.primitive = primitive;
   surface.object = scene.primitives[primitive].object;
   surface.material = scene.primitives[primitive].material;
+  surface.two_sided = scene.objects[surface.object].two_sided;
 
   SurfaceHit hit;
   hit.position = surface.centroid;
@@ -98,6 +99,7 @@ FormFactorGeometry geometry_of(const std::vector<RadiositySurface>& surfaces) {
     for (const Vec3& corner : surfaces[i].corners) geometry.mesh.positions.push_back(corner);
     geometry.mesh.triangles.push_back({first, first + 1, first + 2});
     geometry.element_of_triangle.push_back(i);
+    geometry.hidden_from_behind.push_back(surfaces[i].two_sided ? 1 : 0);
   }
   geometry.element_count = static_cast<uint32_t>(surfaces.size());
   return geometry;
@@ -323,19 +325,30 @@ double RadiosityMesh::element_area() const {
   return sum;
 }
 
-uint32_t RadiosityMesh::element_at(uint32_t primitive, const Vec3& point) const {
+uint32_t RadiosityMesh::element_at(uint32_t primitive, const Vec3& point, const Vec3& toward) const {
   if (primitive >= elements_of_primitive.size()) return UINT32_MAX;
   uint32_t best = UINT32_MAX;
   double best_distance = std::numeric_limits<double>::infinity();
-  // The nearest element, ties to the lowest index (the same answer in any visiting order).
+  bool best_faces = false;
+  // Twins of a two-sided surface are the same triangle wound both ways: their distances agree to
+  // rounding (the corners in another order), far inside this.
+  const double twin_tolerance = 1e-12 * (element_size * element_size + length_squared(point));
+  // The nearest element, ties to the lowest index (the same answer in any visiting order); among
+  // a two-sided surface's twins, the one facing `toward`.
   const auto consider = [&](uint32_t e) {
     if (elements[e].primitive != primitive) return;
     const auto& corners = elements[e].corners;
     const double distance =
         length_squared(point - closest_point_on_triangle(point, corners[0], corners[1], corners[2]));
-    if (distance < best_distance || (distance == best_distance && e < best)) {
+    const bool faces = elements[e].two_sided && dot(elements[e].normal, toward) > 0;
+    const bool twins = elements[e].two_sided && best != UINT32_MAX && elements[best].two_sided &&
+                       std::fabs(distance - best_distance) <= twin_tolerance;
+    const bool better = twins ? (faces != best_faces ? faces : e < best)
+                              : (distance < best_distance || (distance == best_distance && e < best));
+    if (better) {
       best_distance = distance;
       best = e;
+      best_faces = faces;
     }
   };
   // Near the point first: every element within one cell size of it overlaps the box of that
@@ -501,6 +514,15 @@ MeshStart start_mesh(const Scene& scene, const RadiosityMeshSettings& settings) 
       start.triangles[t][k] = {tessellated.corner_positions[3 * t + k],
                                tessellated.corner_object_positions[3 * t + k],
                                tessellated.corner_uvs[3 * t + k]};
+  // Issue 20: a two-sided object's triangles again, wound the other way (its back side).
+  const std::size_t one_sided = start.triangles.size();
+  for (std::size_t t = 0; t < one_sided; ++t) {
+    if (!scene.objects[tessellated.objects[t]].two_sided) continue;
+    CornerTriangle back = start.triangles[t];
+    std::swap(back[1], back[2]);
+    start.triangles.push_back(back);
+    start.primitives.push_back(start.primitives[t]);
+  }
   return start;
 }
 

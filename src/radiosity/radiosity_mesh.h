@@ -43,6 +43,9 @@ struct RadiositySurface {
   Vec3 centroid;
   Vec3 normal;  // unit
   uint32_t primitive = 0, object = 0, material = 0;
+  // Its object is two-sided (SceneObject::two_sided): the mesh holds a twin on the other side,
+  // wound the other way, and this one is not drawn where its back would be seen.
+  bool two_sided = false;
   Color reflectance;  // ρ = kd at the centroid, clamped to [0, 1]
   Color emission;     // E of the material
   // ρ times the direct light of the scene's lights (point, spot, directional, area) on the
@@ -82,7 +85,9 @@ struct RadiosityMesh {
   // when the primitive has no elements, or when the point lies farther than the grid's cell size
   // (the longest element edge) outside the box of all elements — off the mesh, like the part of
   // an unbounded plane beyond its clip box.
-  uint32_t element_at(uint32_t primitive, const Vec3& point) const;
+  // toward (a direction from the point to whoever looks: −ray direction; zero for none) chooses
+  // between a two-sided surface's twins, which are as near: the one it faces.
+  uint32_t element_at(uint32_t primitive, const Vec3& point, const Vec3& toward = Vec3()) const;
 
   // The neighbours of every element (000 §6.7.2): the elements of the same object that share a
   // piece of an edge with it (also across the T-junctions that splitting leaves) and whose

@@ -41,6 +41,9 @@ struct SceneObject {
   std::string type;
   uint32_t first_primitive = 0;
   uint32_t primitive_count = 0;
+  // Issue 20, the shape's "two_sided": classic radiosity meshes both sides (each gathers and
+  // shoots on its own side); the other methods are two-sided already.
+  bool two_sided = false;
 };
 
 // One entry of the scene file's "cameras" array: another view of the same scene, chosen with

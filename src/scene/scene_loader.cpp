@@ -259,6 +259,7 @@ class SceneReader {
       if (const auto transform_node = node.get("transform")) transform = read_transform(*transform_node);
       // Issue 20: any shape's normals turned the other way (geometry/flipped_shape.h).
       const bool flip_normals = node.boolean("flip_normals", false);
+      object.two_sided = node.boolean("two_sided", false);
       ShapeBuild build = entry->create(node, transform, context_);
       node.finish();
       object.first_primitive = static_cast<uint32_t>(scene_->primitives.size());
