@@ -30,11 +30,13 @@ std::string sphere_room(const std::string& method, const std::string& settings, 
 TEST(FlipNormals, RadiosityModelsTheInsideOfASphere) {
   for (const std::string form_factors : {"hemicube", "ray-cast"})
     for (const bool flipped : {false, true}) {
+      if (!flipped && form_factors == "ray-cast") continue;  // one unflipped case shows the difference
       const auto scene = load_scene_text(
-          sphere_room("radiosity",
-                      R"("radiosity": {"solver": "gauss-seidel", "threshold": 1e-7, "form_factors": ")" +
-                          form_factors + R"("},)",
-                      flipped, R"({"kd": [0.5, 0.7, 0.8], "emission": 1})"),
+          sphere_room(
+              "radiosity",
+              R"("radiosity": {"solver": "gauss-seidel", "threshold": 1e-6, "segments": 16, "patch_size": 1, "element_size": 1, "form_factors": ")" +
+                  form_factors + R"("},)",
+              flipped, R"({"kd": [0.5, 0.7, 0.8], "emission": 1})"),
           "sphere.json", ".");
       const Film film = testing::render_scene(*scene, "radiosity");
       const double expected = flipped ? 1 / 0.3 : 1.0;
@@ -125,7 +127,7 @@ std::string partitioned_box(bool two_sided, const std::string& wall, const std::
          std::to_string(target.x) + "," + std::to_string(target.y) + "," + std::to_string(target.z) +
          R"(], "fov": 40, "width": 16, "height": 16},
     "render": {"method": "radiosity"},
-    "radiosity": {"solver": "gauss-seidel", "threshold": 1e-7, "patch_size": 0.5, "display": ")" +
+    "radiosity": {"solver": "gauss-seidel", "threshold": 1e-7, "patch_size": 1, "display": ")" +
          display + R"("},
     "shapes": [)" +
          quad("[0, 0, 0]", "[0, 0, 2]", "[2, 0, 0]") + ", " + quad("[0, 2, 0]", "[2, 0, 0]", "[0, 0, 2]") +

@@ -102,9 +102,11 @@ FurnaceResult run_furnace(const std::string& method, double albedo, bool quick) 
   if (method == "radiosity-hemicube" || method == "radiosity-ray-cast") {
     name = "radiosity";
     // Gauss–Seidel to a tight tolerance: what is measured is the form factors, not the stopping.
+    // Quick: patches of the box's half side (the rows still sum to 1).
     settings = fmt::format(R"("radiosity": {{"solver": "gauss-seidel", "threshold": 1e-7, "max_steps": 100000,
-      "form_factors": "{}"}},)",
-                           method == "radiosity-hemicube" ? "hemicube" : "ray-cast");
+      "form_factors": "{}"{}}},)",
+                           method == "radiosity-hemicube" ? "hemicube" : "ray-cast",
+                           quick ? R"(, "patch_size": 1, "element_size": 1)" : "");
   } else if (method.starts_with("meshless-")) {
     name = "meshless";
     settings = fmt::format(
