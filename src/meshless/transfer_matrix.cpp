@@ -68,11 +68,6 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
   std::vector<double> far_scales(n, 0.0);  // per row, 0 where it has no far field
   std::atomic<std::size_t> kept{0};
   std::atomic<bool> too_many{false};
-  const auto near = [&](std::size_t j, std::size_t k) {
-    const double r = site_set.radius[k];
-    return k == j || !std::isfinite(r) ||
-           length(sites[j].position - sites[k].position) < settings.near_field * r;
-  };
   // Row j: what receiver j gathers from every site; returns the shadow rays it traced.
   const auto compute_row = [&](std::size_t j, Row& row) -> uint64_t {
     const Site& receiver = sites[j];
@@ -87,10 +82,19 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
     // No near element reaches a point farther than this from p_j (a support is a ball of radius
     // r_k in Euclidean terms too): beyond it a hit needs no basis evaluation — most of them, as a
     // site's near elements are mostly on its own plane, where no ray lands.
+    // The near elements: |ṗ_k − ṗ_j| < near_field · r_k, the receiver's own, and those of
+    // unbounded support; one flag per site, for this row.
+    thread_local std::vector<uint8_t> near;
+    near.assign(n, 0);
     double near_reach = 0;
-    for (std::size_t k = 0; k < n; ++k)
-      if (near(j, k))
-        near_reach = std::max(near_reach, length(sites[k].position - receiver.position) + site_set.radius[k]);
+    for (std::size_t k = 0; k < n; ++k) {
+      const double r = site_set.radius[k], d2 = length_squared(sites[k].position - receiver.position);
+      const double reach = settings.near_field * r;
+      if (k == j || !std::isfinite(r) || d2 < reach * reach) {
+        near[k] = 1;
+        near_reach = std::max(near_reach, std::sqrt(d2) + r);
+      }
+    }
     for (int s = 0; s < settings.gather_rays; ++s) {
       Vec2 u{random.next_double(), random.next_double()};
       if (s < strata * strata) u = Vec2{(s % strata + u.x) / strata, (s / strata + u.y) / strata};
@@ -113,7 +117,7 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
       }
       basis.evaluate(q, weights);
       for (const auto& [k, phi] : weights) {
-        if (near(j, k))
+        if (near[k])
           near_entries.emplace_back(static_cast<int32_t>(k), phi * ray_weight);
         else
           far_gathered += phi * ray_weight;
@@ -122,7 +126,7 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
     uint64_t row_rays = 0;
     double far_sum = 0;
     for (std::size_t k = 0; k < n; ++k) {
-      if (!(effective_area[k] > 0) || near(j, k)) continue;
+      if (!(effective_area[k] > 0) || near[k]) continue;
       const Site& sender = sites[k];
       const Vec3 between = receiver.position - sender.position;  // v_kj · d
       const double d2 = dot(between, between);
