@@ -1,8 +1,12 @@
 #include "output_paths.h"
 
+#include <fmt/format.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <cstdint>
 #include <filesystem>
+#include <map>
 
 #include "commands.h"
 
@@ -19,6 +23,39 @@ void check_writable(const std::string& path, const char* option) {
     throw BadArgument(std::string(option) + " " + path + ": the folder " + parent.string() +
                       " is not writable");
   if (fs::is_directory(path, error)) throw BadArgument(std::string(option) + " " + path + " is a folder");
+}
+
+namespace {
+
+// The file's identity when it exists (device, inode); the lexical absolute path otherwise.
+std::string file_identity(const std::string& path) {
+  struct stat status {};
+  if (::stat(path.c_str(), &status) == 0)
+    return fmt::format("inode {}:{}", static_cast<uint64_t>(status.st_dev),
+                       static_cast<uint64_t>(status.st_ino));
+  std::error_code error;
+  const std::filesystem::path absolute = std::filesystem::weakly_canonical(path, error);
+  return "path " + (error ? std::filesystem::path(path).lexically_normal().string() : absolute.string());
+}
+
+}  // namespace
+
+void refuse_outputs_over_inputs(const std::vector<OutputFile>& outputs,
+                                const std::vector<std::string>& inputs) {
+  std::map<std::string, std::string> input_of;  // identity → the input's path
+  for (const std::string& input : inputs)
+    if (!input.empty()) input_of.emplace(file_identity(input), input);
+  std::map<std::string, const OutputFile*> output_of;
+  for (const OutputFile& output : outputs) {
+    const std::string identity = file_identity(output.path);
+    if (const auto found = input_of.find(identity); found != input_of.end())
+      throw BadArgument(fmt::format("{} {}: that is {}, an input of this run (it would be overwritten)",
+                                    output.option, output.path, found->second));
+    const auto [place, added] = output_of.emplace(identity, &output);
+    if (!added && (place->second->option != output.option || place->second->path != output.path))
+      throw BadArgument(fmt::format("{} {}: the same file as {} {} (one would overwrite the other)",
+                                    output.option, output.path, place->second->option, place->second->path));
+  }
 }
 
 }  // namespace candela::cli

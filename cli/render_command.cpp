@@ -295,8 +295,10 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   if (options.seed && (*options.seed < 0 || *options.seed > (int64_t(1) << 53)))
     throw BadArgument("--seed must be in [0, 2^53]");
   // Fail before the work, not after it: every output must be writable.
+  std::vector<OutputFile> outputs;  // every file the run writes, checked against its inputs below
   const auto check_writable = [&](const std::string& path, const char* option) {
     if (writes_outputs) cli::check_writable(path, option);
+    outputs.push_back({path, option});
   };
   check_writable(options.output, "-o");
   if (!options.stats_path.empty()) check_writable(options.stats_path, "--stats");
@@ -423,6 +425,18 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
       check_writable(path_for_view(options.show_sites, view, views.size()), "--show-sites");
     if (!options.checkpoint.empty())
       check_writable(path_for_view(options.checkpoint, view, views.size()), "--checkpoint");
+  }
+  // Issue 21: no output may be an input of the run, nor two outputs one file.
+  if (writes_outputs) {
+    std::vector<std::string> inputs = scene->input_files;
+    inputs.push_back(options.scene.scene_path);
+    inputs.push_back(options.relight);
+    // Resuming from the checkpoint it goes on writing is how a run continues (read whole first).
+    std::error_code error;
+    if (!options.resume.empty() && !(options.resume == options.checkpoint ||
+                                     std::filesystem::equivalent(options.resume, options.checkpoint, error)))
+      inputs.push_back(options.resume);
+    refuse_outputs_over_inputs(outputs, inputs);
   }
   job.fingerprint = can.checkpoints ? scene_fingerprint(options.scene, *scene) : std::string();
 }

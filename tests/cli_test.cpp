@@ -1,5 +1,6 @@
 // The candela executable end to end: exit codes, messages, outputs (SPEC §15).
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -27,9 +28,14 @@ class Cli : public ::testing::Test {
 
   // Runs candela with arguments; returns the exit code and fills output (stdout + stderr).
   int run(const std::string& arguments, std::string& output) {
+    return run_with_timeout(arguments, output, 0);
+  }
+  // The command under timeout(1) when seconds > 0 (exit 124 when it took longer).
+  int run_with_timeout(const std::string& arguments, std::string& output, int seconds = 20) {
     const fs::path log = directory_ / "log.txt";
-    const std::string command = "cd '" + directory_.string() + "' && '" CANDELA_CLI "' " + arguments +
-                                " > '" + log.string() + "' 2>&1";
+    const std::string limit = seconds > 0 ? "timeout -k 5 " + std::to_string(seconds) + " " : "";
+    const std::string command = "cd '" + directory_.string() + "' && " + limit + "'" CANDELA_CLI "' " +
+                                arguments + " > '" + log.string() + "' 2>&1";
     const int status = std::system(command.c_str());
     std::ifstream in(log);
     std::stringstream text;
@@ -561,6 +567,78 @@ TEST_F(Cli, BenchRadiositySolvesASceneAndReportsItsFacts) {
   EXPECT_EQ(run("bench --radiosity --accel bvh -q", output), 2) << output;
   EXPECT_EQ(run("bench --radiosity --raster -q", output), 2) << output;
   EXPECT_EQ(run("bench --sphere 100 --set radiosity.patch_size=5 -q", output), 2) << output;
+}
+
+// Issue 21, "non-regular files": a FIFO given as an input blocked in open() forever, a device
+// (/dev/zero) was read until memory ran out, a directory read as "1:1 unexpected end of input".
+// Every whole-file reader now takes regular files only, says what the path is, and exits 2 at
+// once (each run under `timeout`: a hang fails the test instead of hanging it).
+// Issue 21, data loss: `--stats`, `-o`, `--checkpoint` naming the scene file or a texture it
+// reads overwrote that input and exited 0; two options naming one file overwrote each other.
+// Refused before any work, exit 2, the input untouched, nothing written.
+TEST_F(Cli, OutputsThatAreInputsOrEachOtherAreRefused) {
+  std::string output;
+  write("plain.json", R"({"format": "candela/1", "camera": {"width": 8, "height": 8},
+    "shapes": [{"type": "sphere", "material": {"kd": 0.5}}]})");
+  ASSERT_EQ(run("render plain.json -q -o tex.png", output), 0) << output;
+  const std::string scene = R"({"format": "candela/1", "camera": {"width": 8, "height": 8},
+    "render": {"method": "path"}, "path": {"spp": 1},
+    "shapes": [{"type": "sphere", "material": {"kd": {"type": "image", "file": "tex.png"}}}]})";
+  write("scene.json", scene);
+  std::ifstream texture_file(directory_ / "tex.png", std::ios::binary);
+  const std::string texture((std::istreambuf_iterator<char>(texture_file)), std::istreambuf_iterator<char>());
+  struct Case {
+    std::string arguments, expected;
+  };
+  const std::vector<Case> cases{
+      {"render scene.json -q --stats scene.json -o out.png",
+       "--stats scene.json: that is scene.json, an input"},
+      {"render scene.json -q -o tex.png", "tex.png, an input of this run"},
+      {"render scene.json -q -o out.png --checkpoint scene.json",
+       "--checkpoint scene.json: that is scene.json"},
+      {"render scene.json -q -o out.png --stats out.png", "--stats out.png: the same file as -o out.png"},
+  };
+  for (const Case& c : cases) {
+    EXPECT_EQ(run(c.arguments, output), 2) << c.arguments << "\n" << output;
+    EXPECT_NE(output.find(c.expected), std::string::npos) << c.arguments << "\n" << output;
+    EXPECT_FALSE(fs::exists(directory_ / "out.png")) << c.arguments;
+    std::ifstream scene_file(directory_ / "scene.json", std::ios::binary);
+    EXPECT_EQ(std::string((std::istreambuf_iterator<char>(scene_file)), std::istreambuf_iterator<char>()),
+              scene);
+    std::ifstream again(directory_ / "tex.png", std::ios::binary);
+    EXPECT_EQ(std::string((std::istreambuf_iterator<char>(again)), std::istreambuf_iterator<char>()),
+              texture);
+  }
+  EXPECT_EQ(run("render scene.json -q -o out.png --stats out.json", output), 0) << output;
+}
+
+TEST_F(Cli, NonRegularInputFilesAreRefusedNotReadForever) {
+  const fs::path fifo = directory_ / "pipe.json";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  fs::create_directory(directory_ / "folder");
+  write("scene.json", R"({"format": "candela/1", "shapes": [{"type": "sphere", "material": {"kd": 0.5}}]})");
+  write("pts.csv", "x,y,z,nx,ny,nz\n0,0,0,0,1,0\n");
+  struct Case {
+    std::string arguments, expected;
+  };
+  const std::vector<Case> cases{
+      {"render pipe.json -o out.png", "the scene file is a FIFO (named pipe), not a regular file"},
+      {"render folder -o out.png", "the scene file is a directory, not a file"},
+      {"info /dev/zero", "the scene file is a device, not a regular file"},
+      {"render scene.json --method meshless --relight /dev/zero -o out.png",
+       "the light set-ups file is a device, not a regular file"},
+      {"render scene.json --method meshless --relight pipe.json -o out.png",
+       "the light set-ups file is a FIFO (named pipe), not a regular file"},
+      {"probe scene.json --method path --points pipe.json -o out.csv",
+       "the points file is a FIFO (named pipe), not a regular file"},
+      {"compare /dev/zero scene.json", "it is a device, not a regular file"},
+  };
+  for (const Case& c : cases) {
+    std::string output;
+    EXPECT_EQ(run_with_timeout(c.arguments, output), 2) << c.arguments << "\n" << output;
+    EXPECT_NE(output.find(c.expected), std::string::npos) << c.arguments << "\n" << output;
+    EXPECT_FALSE(fs::exists(directory_ / "out.png")) << c.arguments;
+  }
 }
 
 TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {

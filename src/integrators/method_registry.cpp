@@ -87,7 +87,9 @@ const std::array kEntries = {
         }},
     MethodEntry{"meshless",
                 "meshless finite-element radiosity: sites, radial / normalized / Shepard bases (002)",
-                "every emitter lights η by shadow rays from the sites, the emissive surfaces also by the sites' MIS-weighted cosine rays (per pixel in hybrid: shadow rays)", meshless(),
+                "every emitter lights η by shadow rays from the sites, the emissive surfaces also by the "
+                "sites' MIS-weighted cosine rays (per pixel in hybrid: shadow rays)",
+                meshless(),
                 [](const JsonNode& settings) -> std::unique_ptr<Method> {
                   return std::make_unique<MeshlessMethod>(read_meshless_settings(settings));
                 }},

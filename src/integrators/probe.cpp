@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "sampling/warps.h"
 #include "shading/bsdf.h"
 #include "util/error.h"
+#include "util/input_file.h"
 #include "util/progress.h"
 
 namespace candela {
@@ -200,8 +202,8 @@ std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>
 }
 
 std::vector<ProbePoint> read_probe_points(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) fail(path, 0, 0, "cannot open the points file");
+  // Issue 21: a regular file of bounded size only.
+  std::istringstream in(read_input_file(path, "the points file"));
   std::vector<ProbePoint> points;
   std::string line;
   int line_number = 0;

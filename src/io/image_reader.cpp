@@ -19,6 +19,7 @@
 #include <string_view>
 
 #include "math/srgb.h"
+#include "util/input_file.h"
 
 // The one translation unit with stb_image's implementation (image_writer.cpp holds
 // stb_image_write's; the two share no symbols). Files are read here, so stb needs no stdio;
@@ -450,7 +451,9 @@ RgbImage checked_finite(const std::filesystem::path& path, RgbImage image) {
 RgbImage read_image(const std::filesystem::path& path, ColorEncoding encoding) {
   std::error_code error;
   if (!std::filesystem::exists(path, error)) fail(path, "no such file");
-  if (std::filesystem::is_directory(path, error)) fail(path, "it is a directory");
+  // Issue 21: a regular file only (a FIFO blocked, a device was read without end), at most 4 GiB.
+  const std::string problem = input_file_problem(path.string(), "it", uint64_t{1} << 32);
+  if (!problem.empty()) fail(path, problem);
   const std::string extension = lower_case_extension(path);
   if (extension == "exr") return checked_finite(path, load_exr(path, encoding));
   if (extension == "pfm") return checked_finite(path, load_pfm(path, encoding));

@@ -23,6 +23,7 @@
 #include "scene/material_registry.h"
 #include "scene/shape_registry.h"
 #include "shading/environment.h"
+#include "util/input_file.h"
 #include "util/registry.h"
 
 namespace candela {
@@ -336,21 +337,14 @@ std::unique_ptr<Scene> read_scene_text(const std::string& text, const std::strin
 
 std::unique_ptr<Scene> read_scene_file(const std::string& path, const std::vector<std::string>& overrides,
                                        std::span<const SettingsSection> plugin_sections) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0, 0, {}}, "cannot open the scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError({path, 0, 0, {}}, "cannot read the scene file");
+  // Issue 21: a regular file of bounded size only (a FIFO blocked, /dev/zero exhausted memory).
+  const std::string text = read_input_file(path, "the scene file");
   const std::string directory = std::filesystem::path(path).parent_path().string();
-  return read_scene_text(text.str(), path, directory.empty() ? "." : directory, overrides, plugin_sections);
+  return read_scene_text(text, path, directory.empty() ? "." : directory, overrides, plugin_sections);
 }
 
 std::vector<LightSetup> load_light_setups(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0, 0, {}}, "cannot open the light set-ups file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return load_light_setups_text(text.str(), path);
+  return load_light_setups_text(read_input_file(path, "the light set-ups file"), path);
 }
 
 std::vector<LightSetup> load_light_setups_text(const std::string& text, const std::string& name) {
