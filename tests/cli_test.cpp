@@ -615,6 +615,7 @@ TEST_F(Cli, OutputsThatAreInputsOrEachOtherAreRefused) {
 TEST_F(Cli, NonRegularInputFilesAreRefusedNotReadForever) {
   const fs::path fifo = directory_ / "pipe.json";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  ASSERT_EQ(::mkfifo((directory_ / "pipe.obj").c_str(), 0600), 0);
   fs::create_directory(directory_ / "folder");
   write("scene.json", R"({"format": "candela/1", "shapes": [{"type": "sphere", "material": {"kd": 0.5}}]})");
   write("pts.csv", "x,y,z,nx,ny,nz\n0,0,0,0,1,0\n");
@@ -632,6 +633,7 @@ TEST_F(Cli, NonRegularInputFilesAreRefusedNotReadForever) {
       {"probe scene.json --method path --points pipe.json -o out.csv",
        "the points file is a FIFO (named pipe), not a regular file"},
       {"compare /dev/zero scene.json", "it is a device, not a regular file"},
+      {"bench pipe.obj", "the mesh file is a FIFO (named pipe), not a regular file"},
   };
   for (const Case& c : cases) {
     std::string output;

@@ -10,6 +10,7 @@
 #include "bench/ray_sets.h"
 #include "math/constants.h"
 #include "util/error.h"
+#include "util/input_file.h"
 
 namespace candela {
 
@@ -120,12 +121,8 @@ BenchMesh parse_bench_obj(std::string_view text, const std::string& name) {
 }
 
 BenchMesh read_bench_obj(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0, 0, {}}, "cannot open the mesh file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError({path, 0, 0, {}}, "cannot read the mesh file");
-  return parse_bench_obj(text.str(), path);
+  // Issue 21: a regular file of at most 4 GiB (a FIFO blocked, a device was read without end).
+  return parse_bench_obj(read_input_file(path, "the mesh file", uint64_t{1} << 32), path);
 }
 
 BenchMesh bench_sphere(uint64_t n) {

@@ -1,6 +1,7 @@
 #include "io/gltf_import.h"
 
 #include <fmt/format.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <array>
@@ -28,6 +29,7 @@
 #include <Eigen/Dense>
 
 #include "math/transform.h"
+#include "util/input_file.h"
 
 namespace candela {
 
@@ -365,6 +367,27 @@ ObjImport import_gltf(const std::string& path, const SourceLocation& referenced_
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(ignore_image, nullptr);
+  // Issue 21: the file and its external buffers are read only when they are regular files of at
+  // most 4 GiB (a FIFO buffer blocked in open(), /dev/zero was read until memory ran out).
+  tinygltf::FsCallbacks callbacks{};
+  // tinygltf's own FileExists opens the file, which blocks on a FIFO: stat it instead.
+  callbacks.FileExists = [](const std::string& file, void*) {
+    struct stat status {};
+    return ::stat(file.c_str(), &status) == 0;
+  };
+  callbacks.ExpandFilePath = tinygltf::ExpandFilePath;
+  callbacks.WriteWholeFile = tinygltf::WriteWholeFile;
+  callbacks.ReadWholeFile = [](std::vector<unsigned char>* out, std::string* err, const std::string& file,
+                               void* user_data) {
+    const std::string problem = input_file_problem(file, "'" + file + "'", uint64_t{1} << 32);
+    if (!problem.empty()) {
+      if (err) *err += problem + "\n";
+      return false;
+    }
+    return tinygltf::ReadWholeFile(out, err, file, user_data);
+  };
+  callbacks.user_data = nullptr;
+  loader.SetFsCallbacks(callbacks);
   tinygltf::Model model;
   std::string error, warning;
   bool loaded = false;

@@ -1,6 +1,7 @@
 #include "io/gltf_import.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <cstdint>
@@ -65,6 +66,22 @@ TEST(GltfImport, ExternalBufferAndNodeTransform) {
   EXPECT_DOUBLE_EQ(bounds.upper.y, 2.0);
   EXPECT_DOUBLE_EQ(bounds.lower.z, 5.0);
   EXPECT_DOUBLE_EQ(bounds.upper.z, 5.0);
+}
+
+// Issue 21: an external buffer that is a FIFO blocked in open() forever, /dev/zero was read until
+// memory ran out; both are refused, naming the buffer and what it is. (A hang here would hang the
+// test: the check is made before any open.)
+TEST(GltfImport, ANonRegularExternalBufferIsRefused) {
+  testing::ScratchDirectory scratch("gltf");
+  const std::filesystem::path pipe = scratch.path() / "pipe.bin";
+  ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+  const std::string fifo_error = error_of(write_file(scratch.path() / "fifo.gltf", square_json("pipe.bin")));
+  EXPECT_NE(fifo_error.find("is a FIFO (named pipe), not a regular file"), std::string::npos) << fifo_error;
+  EXPECT_NE(fifo_error.find("pipe.bin"), std::string::npos) << fifo_error;
+  std::filesystem::create_symlink("/dev/zero", scratch.path() / "zero.bin");
+  const std::string device_error =
+      error_of(write_file(scratch.path() / "zero.gltf", square_json("zero.bin")));
+  EXPECT_NE(device_error.find("is a device, not a regular file"), std::string::npos) << device_error;
 }
 
 TEST(GltfImport, BinaryGlb) {
