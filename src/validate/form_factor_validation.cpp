@@ -163,8 +163,8 @@ nlohmann::json run_form_factor_validation(const std::string& out_dir, const Form
   const auto levels_of = [&](const HowellCase& howell) {
     return (howell.name.ends_with("squares") ? 3 : 2) - (run.quick ? 1 : 0);
   };
-  const std::map<RadiosityFormFactors, std::string> method_names{
-      {RadiosityFormFactors::hemicube, "hemicube"}, {RadiosityFormFactors::ray_cast, "ray-cast"}};
+  const RadiosityFormFactors methods[] = {RadiosityFormFactors::hemicube, RadiosityFormFactors::ray_cast};
+  const RadiositySettings defaults;
   nlohmann::json results;
   std::string csv =
       "case,catalogue,method,level,patch_size_fraction,segments,hemicube_resolution,computed,"
@@ -172,15 +172,17 @@ nlohmann::json run_form_factor_validation(const std::string& out_dir, const Form
   // Per case and method, (log10 of the patch size relative to the scene, log10 |error|).
   std::map<std::pair<std::size_t, RadiosityFormFactors>, PlotCurve> curves;
   for (std::size_t c = 0; c < cases.size(); ++c)
-    for (const auto& [method, method_name] : method_names)
+    for (const RadiosityFormFactors method : methods)
       for (int level = 0; level < levels_of(cases[c]); ++level) {
+        const std::string method_name(kRadiosityFormFactorNames.name(method));
         const HowellCase& howell = cases[c];
         const double computed = radiosity_form_factor(howell, method, level);
         const double error = computed / howell.expected - 1;
         const double refinement = std::ldexp(1.0, level);
-        csv += fmt::format("{},{},{},{},{:.6g},{},{},{:.9g},{:.9g},{:.6g}\n", howell.name, howell.catalogue,
-                           method_name, level, 1 / (8 * refinement), static_cast<int>(32 * refinement),
-                           static_cast<int>(100 * refinement), computed, howell.expected, error);
+        csv += fmt::format(
+            "{},{},{},{},{:.6g},{},{},{:.9g},{:.9g},{:.6g}\n", howell.name, howell.catalogue, method_name,
+            level, 1 / (8 * refinement), static_cast<int>(defaults.segments * refinement),
+            static_cast<int>(defaults.hemicube_resolution * refinement), computed, howell.expected, error);
         results["form_factors"][howell.name][method_name].push_back({{"level", level},
                                                                      {"computed", computed},
                                                                      {"expected", howell.expected},
@@ -194,7 +196,8 @@ nlohmann::json run_form_factor_validation(const std::string& out_dir, const Form
       }
   // The observed order between the last two levels: log2 of the ratio of the errors.
   for (std::size_t c = 0; c < cases.size(); ++c)
-    for (const auto& [method, method_name] : method_names) {
+    for (const RadiosityFormFactors method : methods) {
+      const std::string method_name(kRadiosityFormFactorNames.name(method));
       const auto& entries = results["form_factors"][cases[c].name][method_name];
       const std::size_t count = entries.size();
       if (count < 2) {

@@ -11,7 +11,7 @@ namespace candela {
 namespace {
 
 std::string method_name(RadiosityFormFactors method) {
-  return method == RadiosityFormFactors::hemicube ? "hemicube" : "ray-cast";
+  return std::string(kRadiosityFormFactorNames.name(method));
 }
 
 // At the default settings (32 segments, patches of the scene's size / 8, hemicube resolution 100)
