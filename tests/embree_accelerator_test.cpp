@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <memory>
 #include <random>
 
@@ -161,7 +162,9 @@ TEST(EmbreeAccelerator, NativeModeReportsPrimitiveIndicesNotTriangleIds) {
   ASSERT_TRUE(embree.intersect(Ray{{0.25, 0.25, 1}, {0, 0, -1}}, hit));
   EXPECT_EQ(hit.primitive, 0u);
   EXPECT_EQ(scene.triangle_id(hit.primitive), 1u);
-  EXPECT_EQ(hit.surface.t, 1.0);
+  // Native mode's t is Embree's float, computed by whichever kernel the CPU selects (on this AMD EPYC
+  // with AVX2 it is 1 - 2^-24, not 1): a float's rounding, not an exact 1.
+  EXPECT_NEAR(hit.surface.t, 1.0, 4 * std::numeric_limits<float>::epsilon());
 }
 
 TEST(EmbreeAccelerator, NativeModeNeedsOneMesh) {
