@@ -9,6 +9,7 @@
 #include <map>
 
 #include "commands.h"
+#include "util/atomic_file.h"
 
 namespace candela::cli {
 
@@ -23,6 +24,10 @@ void check_writable(const std::string& path, const char* option) {
     throw BadArgument(std::string(option) + " " + path + ": the folder " + parent.string() +
                       " is not writable");
   if (fs::is_directory(path, error)) throw BadArgument(std::string(option) + " " + path + " is a folder");
+  // Issue 21: the write itself is tried (its temporary file created and removed, the name's length
+  // checked), so a name the folder cannot hold fails now, not after the render.
+  if (const std::string problem = atomic_write_problem(path); !problem.empty())
+    throw BadArgument(std::string(option) + " " + path + ": " + problem);
 }
 
 namespace {

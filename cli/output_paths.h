@@ -7,8 +7,9 @@
 
 namespace candela::cli {
 
-// The file's folder must exist and accept new files (outputs are renamed into place there), and
-// the path must not be a folder. Throws BadArgument naming the option.
+// The file's folder must exist and accept new files (outputs are renamed into place there), the
+// path must not be a folder, and the file's name and its temporary's must fit the folder (tried:
+// util/atomic_file.h's atomic_write_problem). Throws BadArgument naming the option.
 void check_writable(const std::string& path, const char* option);
 
 // One file a run will write, and the option that names it.

@@ -27,6 +27,7 @@
 #include "util/cancellation.h"
 #include "util/error.h"
 #include "util/hash.h"
+#include "util/input_file.h"
 
 namespace candela::cli {
 
@@ -63,9 +64,9 @@ struct RenderOptions {
 // and its continuation) or how to find the hits (render.accelerator: every accelerator gives the
 // same hits).
 std::string scene_fingerprint(const SceneOptions& options, const Scene& scene) {
+  // The files were read (and checked) by the loader; read again here the same safe way.
   const auto file_text = [](const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    return read_input_file(path, "an input of the scene", kLargeInputLimit);
   };
   const std::string text = options.scene_path.empty() ? default_scene_text() : file_text(options.scene_path);
   std::string referenced;
@@ -236,6 +237,47 @@ int report_interrupted_before(std::size_t skipped, const char* what) {
                            skipped == 1 ? "" : "s");
   return kInterruptedExitCode;
 }
+
+// Issue 21: an image with pixels that are not finite (or beyond a float for .exr/.pfm) comes from
+// legal values whose product overflowed: bad input — the scene's — refused before anything of the
+// image is written.
+void refuse_unwritable_image(const Film& film, const std::string& output, const Scene& scene) {
+  ImageFormat format = ImageFormat::png;
+  image_format_for_path(output, format);
+  if (const std::string problem = non_finite_image_problem(film, format, scene.display.exposure);
+      !problem.empty())
+    throw InputError({scene.source, 0, 0, {}}, problem);
+}
+
+// Issue 21: the files a run of several images (views, relight frames) has written, so that a
+// failure in one image says which images are complete, what of the failing one was written and
+// what was not rendered — each file is whole (written atomically), but a set can be unfinished.
+struct WrittenImages {
+  std::vector<std::string> finished;  // "out-a.png (camera a)"; each with all of its files
+  std::vector<std::string> current;   // the files of the image in progress written so far
+
+  void wrote(const std::string& path) { current.push_back(path); }
+  void finish(const std::string& image) {
+    finished.push_back(image);
+    current.clear();
+  }
+  // Printed before the error itself (rethrown by the caller): only when there was more than one image.
+  void report_failure(const std::string& image, std::size_t not_rendered, std::size_t images) const {
+    if (images <= 1) return;
+    const auto join = [](const std::vector<std::string>& items) {
+      std::string text;
+      for (const std::string& item : items) text += (text.empty() ? "" : ", ") + item;
+      return text;
+    };
+    std::string message = "candela: " + image + " failed (the error follows)";
+    message +=
+        finished.empty() ? "; no image was finished before it" : "; finished before it: " + join(finished);
+    if (!current.empty()) message += "; of " + image + " only " + join(current) + " was written";
+    if (not_rendered > 0)
+      message += fmt::format("; {} more image{} not rendered", not_rendered, not_rendered == 1 ? "" : "s");
+    std::cerr << message << "\n";
+  }
+};
 
 // "--export-solution needs --method radiosity (the method is whitted)": the methods that can, from
 // their capabilities.
@@ -489,134 +531,163 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
   // With several ranks they stop together: Ctrl-C on any of them counts (a collective).
   const auto interrupted = [&] { return cancelled_anywhere(cluster); };
   const bool root = cluster.root();
+  WrittenImages written;
   for (std::size_t v = 0; v < views.size(); ++v) {
     const View& view = views[v];
-    if (interrupted())
-      return root ? report_interrupted_before(views.size() - v, "view") : kInterruptedExitCode;
-    const std::string output = path_for_view(options.output, view, views.size());
-    const std::string stats_path = path_for_view(options.stats_path, view, views.size());
-    const std::string aa_map_path = path_for_view(options.aa_map_path, view, views.size());
-    const CurrentCamera current(*scene, view);
-    const PixelRect region = regions[v];
-    RenderRequest request;
-    request.region = region;
-    request.quiet = options.quiet;
-    request.sites_image = !options.show_sites.empty();
-    // The method hands out its checkpoints; rank 0 writes them and alone reads the one resumed.
-    const std::string checkpoint_path =
-        options.checkpoint.empty() ? std::string() : path_for_view(options.checkpoint, view, views.size());
-    request.checkpoint = !checkpoint_path.empty();
-    if (request.checkpoint && root)
-      request.save_checkpoint = [&](const Bytes& sealed) { write_checkpoint_file(checkpoint_path, sealed); };
-    if (!options.resume.empty())
-      request.resume = root ? read_checkpoint_file(options.resume) : SealedCheckpoint{options.resume, {}};
-    // A view-independent solution (radiosity) is the same for every view; an image is not.
-    request.fingerprint = entry->capabilities.solution ? fingerprint : fingerprint + " camera " + view.name;
-    if (options.checkpoint_every) request.checkpoint_interval = *options.checkpoint_every;
-    request.cluster = &cluster;
-    Stopwatch render_timer;
-    RenderResult result = method->render(*scene, request);
-    const Film& film = result.film;
-    RunStatistics statistics;
-    statistics.threads = threads;
-    // Loading and building are done once, before the first view: they count in its statistics
-    // alone, so the views' total_seconds add up to the run's.
-    if (v == 0) {
-      statistics.add_phase("load", load_seconds);
-      statistics.add_phase("build", build_seconds);
-    }
-    statistics.absorb(std::move(result.statistics));
-    statistics.add_phase("render", render_timer.seconds());
-    // A method's warning about its result (the path tracer: nothing emits light).
-    const auto& method_facts = statistics.extra[std::string(method->name())];
-    if (root && method_facts.is_object() && method_facts.contains("warning"))
-      std::cerr << "candela: warning: " << method_facts["warning"].get<std::string>() << "\n";
-    if (!root) {  // rank 0 holds the image and writes everything
-      if (interrupted()) return kInterruptedExitCode;
-      continue;
-    }
+    try {
+      if (interrupted())
+        return root ? report_interrupted_before(views.size() - v, "view") : kInterruptedExitCode;
+      const std::string output = path_for_view(options.output, view, views.size());
+      const std::string stats_path = path_for_view(options.stats_path, view, views.size());
+      const std::string aa_map_path = path_for_view(options.aa_map_path, view, views.size());
+      const CurrentCamera current(*scene, view);
+      const PixelRect region = regions[v];
+      RenderRequest request;
+      request.region = region;
+      request.quiet = options.quiet;
+      request.sites_image = !options.show_sites.empty();
+      // The method hands out its checkpoints; rank 0 writes them and alone reads the one resumed.
+      const std::string checkpoint_path =
+          options.checkpoint.empty() ? std::string() : path_for_view(options.checkpoint, view, views.size());
+      request.checkpoint = !checkpoint_path.empty();
+      if (request.checkpoint && root)
+        request.save_checkpoint = [&](const Bytes& sealed) {
+          write_checkpoint_file(checkpoint_path, sealed);
+        };
+      if (!options.resume.empty())
+        request.resume = root ? read_checkpoint_file(options.resume) : SealedCheckpoint{options.resume, {}};
+      // A view-independent solution (radiosity) is the same for every view; an image is not.
+      request.fingerprint = entry->capabilities.solution ? fingerprint : fingerprint + " camera " + view.name;
+      if (options.checkpoint_every) request.checkpoint_interval = *options.checkpoint_every;
+      request.cluster = &cluster;
+      Stopwatch render_timer;
+      RenderResult result = method->render(*scene, request);
+      const Film& film = result.film;
+      RunStatistics statistics;
+      statistics.threads = threads;
+      // Loading and building are done once, before the first view: they count in its statistics
+      // alone, so the views' total_seconds add up to the run's.
+      if (v == 0) {
+        statistics.add_phase("load", load_seconds);
+        statistics.add_phase("build", build_seconds);
+      }
+      statistics.absorb(std::move(result.statistics));
+      statistics.add_phase("render", render_timer.seconds());
+      // A method's warning about its result (the path tracer: nothing emits light).
+      const auto& method_facts = statistics.extra[std::string(method->name())];
+      if (root && method_facts.is_object() && method_facts.contains("warning"))
+        std::cerr << "candela: warning: " << method_facts["warning"].get<std::string>() << "\n";
+      if (!root) {  // rank 0 holds the image and writes everything
+        if (interrupted()) return kInterruptedExitCode;
+        continue;
+      }
 
-    Stopwatch write_timer;
-    if (result.checkpoint) {
-      write_checkpoint_file(checkpoint_path, *result.checkpoint);
-      statistics.extra["checkpoint"] = checkpoint_path;
-    }
-    write_image(film, output, scene->display);
-    if (!aa_map_path.empty()) write_aa_map(statistics, film.width(), film.height(), aa_map_path);
-    nlohmann::json& method_facts_out = statistics.extra[std::string(method->name())];
-    if (result.sites_image) {
-      const std::string sites_path = path_for_view(options.show_sites, view, views.size());
-      write_image(*result.sites_image, sites_path, scene->display);
-      method_facts_out["sites_image"] = sites_path;
-    }
-    // The solution is the same for every view: written once, with the first.
-    if (v == 0 && !options.export_solution.empty() && result.solution) {
-      export_solution(*result.solution, options.export_solution, scene->display);
-      method_facts_out["exported_to"] = options.export_solution;
-    }
-    statistics.add_phase("write", write_timer.seconds());
+      refuse_unwritable_image(film, output, *scene);
+      Stopwatch write_timer;
+      if (result.checkpoint) {
+        write_checkpoint_file(checkpoint_path, *result.checkpoint);
+        written.wrote(checkpoint_path);
+        statistics.extra["checkpoint"] = checkpoint_path;
+      }
+      write_image(film, output, scene->display);
+      written.wrote(output);
+      if (!aa_map_path.empty()) {
+        write_aa_map(statistics, film.width(), film.height(), aa_map_path);
+        written.wrote(aa_map_path);
+      }
+      nlohmann::json& method_facts_out = statistics.extra[std::string(method->name())];
+      if (result.sites_image) {
+        const std::string sites_path = path_for_view(options.show_sites, view, views.size());
+        write_image(*result.sites_image, sites_path, scene->display);
+        written.wrote(sites_path);
+        method_facts_out["sites_image"] = sites_path;
+      }
+      // The solution is the same for every view: written once, with the first.
+      if (v == 0 && !options.export_solution.empty() && result.solution) {
+        export_solution(*result.solution, options.export_solution, scene->display);
+        written.wrote(options.export_solution);
+        method_facts_out["exported_to"] = options.export_solution;
+      }
+      statistics.add_phase("write", write_timer.seconds());
 
-    statistics.extra["scene"] = scene->source;
-    statistics.extra["camera"] = view.name;
-    statistics.extra["method"] = std::string(method->name());
-    statistics.extra["emitters"] = emitter_facts(*scene, *entry);
-    statistics.extra["output"] = output;
-    statistics.extra["image"] = {{"width", film.width()}, {"height", film.height()}};
-    statistics.extra["primitives"] = scene->primitives.size();
-    statistics.extra["accelerator"] = std::string(scene->accelerator().name());
-    statistics.extra["seed"] = scene->render.seed;
-    if (!options.quiet)
-      std::cerr << fmt::format("candela: wrote {} ({}x{}, {}{})\n", output, film.width(), film.height(),
-                               method->name(), views.size() > 1 ? ", camera " + view.name : std::string())
-                << statistics.summary();
-    statistics.extra["ranks"] = cluster.size();
-    if (!stats_path.empty()) write_statistics(statistics, stats_path);
-    if (interrupted())
-      return report_interrupted(statistics, output, views.size() - v - 1 + relight_frames.size());
+      statistics.extra["scene"] = scene->source;
+      statistics.extra["camera"] = view.name;
+      statistics.extra["method"] = std::string(method->name());
+      statistics.extra["emitters"] = emitter_facts(*scene, *entry);
+      statistics.extra["output"] = output;
+      statistics.extra["image"] = {{"width", film.width()}, {"height", film.height()}};
+      statistics.extra["primitives"] = scene->primitives.size();
+      statistics.extra["accelerator"] = std::string(scene->accelerator().name());
+      statistics.extra["seed"] = scene->render.seed;
+      if (!options.quiet)
+        std::cerr << fmt::format("candela: wrote {} ({}x{}, {}{})\n", output, film.width(), film.height(),
+                                 method->name(), views.size() > 1 ? ", camera " + view.name : std::string())
+                  << statistics.summary();
+      statistics.extra["ranks"] = cluster.size();
+      if (!stats_path.empty()) write_statistics(statistics, stats_path);
+      written.finish(output + " (camera " + view.name + ")");
+      if (interrupted())
+        return report_interrupted(statistics, output, views.size() - v - 1 + relight_frames.size());
+    } catch (...) {
+      if (root)
+        written.report_failure("camera " + view.name, views.size() - v - 1 + relight_frames.size(),
+                               views.size() + relight_frames.size());
+      throw;
+    }
   }
 
   // Relighting: each frame's lights in place of the scene's, the same method object, so the
   // meshless geometry (sites, areas, transfer matrix) is reused and only η and λ are redone.
   for (std::size_t f = 0; f < relight_frames.size(); ++f) {
     LightSetup& frame = relight_frames[f];
-    if (interrupted())
-      return root ? report_interrupted_before(relight_frames.size() - f, "frame") : kInterruptedExitCode;
-    std::swap(scene->lights, frame.lights);
-    std::swap(scene->ambient, frame.ambient);
-    const CurrentCamera current(*scene, views.front());
-    RenderRequest request;
-    request.region = regions.front();
-    request.quiet = options.quiet;
-    request.cluster = &cluster;
-    Stopwatch render_timer;
-    RenderResult result = method->render(*scene, request);
-    const Film& film = result.film;
-    RunStatistics statistics;
-    statistics.threads = threads;
-    statistics.absorb(std::move(result.statistics));
-    statistics.add_phase("render", render_timer.seconds());
-    std::swap(scene->lights, frame.lights);
-    std::swap(scene->ambient, frame.ambient);
-    if (!root) {
-      if (interrupted()) return kInterruptedExitCode;
-      continue;
+    try {
+      if (interrupted())
+        return root ? report_interrupted_before(relight_frames.size() - f, "frame") : kInterruptedExitCode;
+      std::swap(scene->lights, frame.lights);
+      std::swap(scene->ambient, frame.ambient);
+      const CurrentCamera current(*scene, views.front());
+      RenderRequest request;
+      request.region = regions.front();
+      request.quiet = options.quiet;
+      request.cluster = &cluster;
+      Stopwatch render_timer;
+      RenderResult result = method->render(*scene, request);
+      const Film& film = result.film;
+      RunStatistics statistics;
+      statistics.threads = threads;
+      statistics.absorb(std::move(result.statistics));
+      statistics.add_phase("render", render_timer.seconds());
+      std::swap(scene->lights, frame.lights);
+      std::swap(scene->ambient, frame.ambient);
+      if (!root) {
+        if (interrupted()) return kInterruptedExitCode;
+        continue;
+      }
+      const std::string output = path_with_suffix(options.output, frame.name);
+      refuse_unwritable_image(film, output, *scene);
+      Stopwatch write_timer;
+      write_image(film, output, scene->display);
+      written.wrote(output);
+      statistics.add_phase("write", write_timer.seconds());
+      statistics.extra["scene"] = scene->source;
+      statistics.extra["relight_frame"] = frame.name;
+      statistics.extra["method"] = std::string(method->name());
+      statistics.extra["output"] = output;
+      if (!options.quiet)
+        std::cerr << fmt::format("candela: relit frame {} in {:.3f} s (lighting {:.3f} s), wrote {}\n",
+                                 frame.name, render_timer.seconds(),
+                                 statistics.extra[std::string(method->name())].value("lighting_seconds", 0.0),
+                                 output);
+      if (!options.stats_path.empty())
+        write_statistics(statistics, path_with_suffix(options.stats_path, frame.name));
+      written.finish(output + " (frame " + frame.name + ")");
+      if (interrupted()) return report_interrupted(statistics, output, relight_frames.size() - f - 1);
+    } catch (...) {
+      if (root)
+        written.report_failure("frame " + frame.name, relight_frames.size() - f - 1,
+                               views.size() + relight_frames.size());
+      throw;
     }
-    const std::string output = path_with_suffix(options.output, frame.name);
-    Stopwatch write_timer;
-    write_image(film, output, scene->display);
-    statistics.add_phase("write", write_timer.seconds());
-    statistics.extra["scene"] = scene->source;
-    statistics.extra["relight_frame"] = frame.name;
-    statistics.extra["method"] = std::string(method->name());
-    statistics.extra["output"] = output;
-    if (!options.quiet)
-      std::cerr << fmt::format("candela: relit frame {} in {:.3f} s (lighting {:.3f} s), wrote {}\n",
-                               frame.name, render_timer.seconds(),
-                               statistics.extra[std::string(method->name())].value("lighting_seconds", 0.0),
-                               output);
-    if (!options.stats_path.empty())
-      write_statistics(statistics, path_with_suffix(options.stats_path, frame.name));
-    if (interrupted()) return report_interrupted(statistics, output, relight_frames.size() - f - 1);
   }
   return 0;
 }

@@ -19,8 +19,10 @@
 
 #include "commands.h"
 #include "integrators/method_registry.h"
+#include "output_paths.h"
 #include "scene/scene.h"
 #include "scene_options.h"
+#include "util/input_file.h"
 #include "validate/cross_method_report.h"
 #include "validate/image_comparison.h"
 
@@ -73,11 +75,6 @@ void prepare_directory(const std::string& path) {
   if (::access(path.c_str(), W_OK) != 0) throw BadArgument("-o " + path + ": the folder is not writable");
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
 int run_report(ReportOptions& options) {
   const std::vector<std::string> methods = parse_methods(options.methods);
   if (options.reference_spp < 1) throw BadArgument("--reference-spp must be >= 1");
@@ -128,12 +125,20 @@ int run_report(ReportOptions& options) {
   settings.equal_time = options.equal_time;
   settings.quiet = options.quiet;
   settings.scene_path = options.scene.scene_path;
-  settings.scene_text = read_text(options.scene.scene_path);
+  settings.scene_text = read_input_file(options.scene.scene_path, "the scene file");
   settings.overrides = options.scene.overrides;
   settings.threads = threads;
   if (!options.quiet)
     settings.log = [](const std::string& line) { std::cerr << "candela: report: " << line << "\n"; };
 
+  // Issue 21: no file the report writes may be an input of the run (a texture beside the scene in DIR).
+  std::vector<OutputFile> outputs;
+  for (const std::string& name : cross_method_report_files(settings))
+    outputs.push_back({(std::filesystem::path(options.output) / name).string(), "-o"});
+  std::vector<std::string> inputs = scene->input_files;
+  inputs.push_back(options.scene.scene_path);
+  inputs.push_back(options.reference);
+  refuse_outputs_over_inputs(outputs, inputs);
   prepare_directory(options.output);
   const CrossMethodReport report = run_cross_method_report(*scene, settings);
 

@@ -954,5 +954,103 @@ TEST_F(Cli, RadiosityResumeGivesTheUninterruptedImageByteForByte) {
   EXPECT_FALSE(fs::exists(directory_ / "g.pfm"));
 }
 
+// Issue 21: a legal long name (250 bytes) failed after the render, since ".tmp-PID-" + the name
+// passed the file system's 255-byte limit; a name that cannot be written (an output name made too
+// long by a camera's name) must fail before the render.
+TEST_F(Cli, LongOutputNamesAreWrittenOrRefusedBeforeTheRender) {
+  std::string output;
+  const std::string longest = std::string(250, 'a') + ".png";  // 254 bytes: legal
+  EXPECT_EQ(run("render -q --set camera.width=8 --set camera.height=6 -o " + longest, output), 0) << output;
+  EXPECT_TRUE(fs::exists(directory_ / longest));
+  EXPECT_EQ(file_count(), 1);  // no temporary left beside it
+  fs::remove(directory_ / longest);
+  const std::string camera(240, 'c');
+  write("views.json", R"({"format": "candela/1", "camera": {"width": 8, "height": 6},
+    "cameras": [{"name": "a"}, {"name": ")" +
+                          camera + R"("}],
+    "lights": [{"type": "point", "position": [3, 5, 4]}], "shapes": [{"type": "sphere"}]})");
+  // out-<240 c>.png is 248 bytes and fits; with a 12-byte stem it is 257 and does not.
+  EXPECT_EQ(run("render views.json -q --camera all -o 012345678901.png", output), 2) << output;
+  EXPECT_NE(output.find("its name is longer than the folder allows (257 bytes, at most 255)"),
+            std::string::npos)
+      << output;
+  EXPECT_EQ(output.find("wrote"), std::string::npos) << output;  // before the first view
+  EXPECT_EQ(file_count(), 1);                                    // views.json
+  EXPECT_EQ(run("render views.json -q --camera all -o out.png", output), 0) << output;
+  EXPECT_TRUE(fs::exists(directory_ / ("out-" + camera + ".png")));
+}
+
+// Issue 21: with several views, a failure in one says which images are complete and what of the
+// failing one was written. The failure here: a file size limit (ulimit -f, SIGXFSZ ignored so the
+// write fails with EFBIG) that the first, small view's files fit and the second view's image does not.
+TEST_F(Cli, AFailureInOneOfSeveralViewsSaysWhatWasWritten) {
+  write("views.json", R"({"format": "candela/1", "camera": {"width": 8, "height": 6},
+    "cameras": [{"name": "small", "width": 4, "height": 3}, {"name": "big", "width": 160, "height": 120},
+                {"name": "last", "width": 4, "height": 3}],
+    "lights": [{"type": "point", "position": [3, 5, 4]}], "shapes": [{"type": "sphere"}]})");
+  const fs::path log = directory_ / "log.txt";
+  const std::string command = "cd '" + directory_.string() +
+                              "' && trap '' XFSZ && ulimit -f 64 && '" CANDELA_CLI
+                              "' render views.json -q --camera all -o out.pfm --stats s.json > '" +
+                              log.string() + "' 2>&1";
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_NE(WEXITSTATUS(status), 0);
+  std::ifstream in(log);
+  const std::string output((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(
+      output.find("camera big failed (the error follows); finished before it: out-small.pfm (camera small)"
+                  "; 1 more image not rendered"),
+      std::string::npos)
+      << output;
+  EXPECT_NE(output.find("cannot write out-big.pfm"), std::string::npos) << output;
+  EXPECT_TRUE(fs::exists(directory_ / "out-small.pfm"));
+  EXPECT_TRUE(fs::exists(directory_ / "s-small.json"));
+  EXPECT_FALSE(fs::exists(directory_ / "out-big.pfm"));
+  EXPECT_FALSE(fs::exists(directory_ / "out-last.pfm"));
+  for (const auto& entry : fs::directory_iterator(directory_))  // no temporary left behind
+    EXPECT_NE(entry.path().filename().string().rfind(".tmp-", 0), 0u) << entry.path();
+}
+
+// Issue 21: legal values whose product overflows gave infinite pixels, written with exit 0: a light of
+// 1e16, a texture multiplier of 1e16 and film.exposure 64 (2^64 ≈ 1.8e19), each inside its range —
+// finite in double, beyond a float once exposed.
+TEST_F(Cli, AnImageWithPixelsThatAreNotFiniteIsRefusedAsBadInput) {
+  std::string output;
+  const float white[3] = {1, 1, 1};
+  write("white.pfm", "PF\n1 1\n-1.0\n" + std::string(reinterpret_cast<const char*>(white), sizeof(white)));
+  write("bright.json", R"({"format": "candela/1", "camera": {"width": 8, "height": 6},
+    "film": {"exposure": 64},
+    "lights": [{"type": "point", "position": [0, 0, 3], "intensity": 1e16}],
+    "shapes": [{"type": "sphere",
+                "material": {"kd": {"type": "image", "file": "white.pfm", "multiplier": 1e16}}}]})");
+  EXPECT_EQ(run("render bright.json -q -o out.pfm --stats s.json", output), 2) << output;
+  EXPECT_NE(output.find("bright.json: the image has "), std::string::npos) << output;
+  EXPECT_NE(output.find("beyond the largest single-precision float (3.4e38) once film.exposure (64 stops)"),
+            std::string::npos)
+      << output;
+  EXPECT_EQ(run("render bright.json -q -o out.exr", output), 2) << output;
+  EXPECT_EQ(file_count(), 2);  // nothing written: the scene and the texture only
+  EXPECT_EQ(run("render bright.json -q -o out.png", output), 0) << output;  // a PNG holds it (white)
+}
+
+// Issue 21: a setting that asks for more memory than there is is bad input like any other bad
+// value — exit 2 with the setting's location (it was exit 1, with no location).
+TEST_F(Cli, SettingsThatAskTooMuchMemoryAreBadInputWithTheirLocation) {
+  std::string output;
+  write("room.json", R"({"format": "candela/1", "camera": {"width": 8, "height": 6},
+    "lights": [{"type": "point", "position": [0, 3, 3]}],
+    "meshless": {"spacing": 1e-9},
+    "radiosity": {"solver": "gaussian", "patch_size": 0.01, "memory_limit_mib": 1},
+    "shapes": [{"type": "box", "min": [-2, -2, -2], "max": [2, 2, 2], "flip_normals": true}]})");
+  EXPECT_EQ(run("render room.json -q --method meshless -o out.png", output), 2) << output;
+  EXPECT_NE(output.find("room.json:3:29: meshless.spacing: site sampling"), std::string::npos) << output;
+  EXPECT_EQ(run("render room.json -q --method radiosity -o out.png", output), 2) << output;
+  EXPECT_NE(output.find("room.json:4:55: radiosity.patch_size: radiosity: a mesh of at least"),
+            std::string::npos)
+      << output;
+  EXPECT_EQ(file_count(), 1);
+}
+
 }  // namespace
 }  // namespace candela

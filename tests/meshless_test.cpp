@@ -260,8 +260,15 @@ TEST(MeshlessMethod, SettingsAreCheckedAndUnknownKeysRefused) {
   EXPECT_THROW(load(R"({"tolerance": 0})"), std::exception);
   EXPECT_THROW(load(R"({"spacng": 1})"), std::exception);
   // A spacing far too small for the scene is refused, not left to take hours and gigabytes.
+  // Issue 21: as bad input (exit 2) at the setting's place, not a failure without one (exit 1).
   const auto tiny = load(R"({"spacing": 1e-9})");
-  EXPECT_THROW(solve_meshless(*tiny, meshless_settings(*tiny)), std::invalid_argument);
+  try {
+    solve_meshless(*tiny, meshless_settings(*tiny));
+    ADD_FAILURE() << "spacing 1e-9 was not refused";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.location().json_path, "meshless.spacing") << e.what();
+    EXPECT_GT(e.location().line, 0) << e.what();
+  }
 }
 
 }  // namespace

@@ -210,6 +210,9 @@ TEST(RadiosityMethod, SolvesThatDoNotFitAreRefusedNamingTheSettings) {
       const std::string message = error.what();
       for (const std::string& name : names) EXPECT_NE(message.find(name), std::string::npos) << message;
       EXPECT_GT(error.required_bytes(), error.limit_bytes());
+      // Issue 21: bad input at the setting's place (the size the scene gives), exit 2.
+      EXPECT_EQ(error.location().json_path.rfind("radiosity.", 0), 0u) << message;
+      EXPECT_GT(error.location().line, 0) << message;
     }
   };
   // 768 patches: the full matrices take ≈ 14 MiB, more than 1 MiB.

@@ -215,6 +215,32 @@ TEST_F(ReportCli, RefusesBadArguments) {
   EXPECT_EQ(candela("report room.json --methods whitted --reference room.json -o out", output), 2);
 }
 
+// Issue 21: a report writes DIR/<method>.png and the rest; one of them may be a texture the scene
+// reads (or the scene, or the reference): refused before any work, the input untouched.
+TEST_F(ReportCli, RefusesToWriteOverItsInputs) {
+  std::string output;
+  ASSERT_EQ(candela("render room.json -q --set camera.width=4 --set camera.height=3 -o whitted.png", output),
+            0)
+      << output;
+  const std::string texture = read(directory_ / "whitted.png");
+  std::string scene = kRoom;
+  const std::string white = R"("white": {"kd": [0.7, 0.7, 0.7]})";
+  scene.replace(scene.find(white), white.size(),
+                R"("white": {"kd": {"type": "image", "file": "whitted.png"}})");
+  std::ofstream(directory_ / "textured.json") << scene;
+  EXPECT_EQ(candela("report textured.json --methods whitted --reference-spp 2 -q -o .", output), 2) << output;
+  EXPECT_NE(output.find("whitted.png, an input of this run"), std::string::npos) << output;
+  EXPECT_EQ(read(directory_ / "whitted.png"), texture);
+  EXPECT_FALSE(fs::exists(directory_ / "index.html"));
+  // The reference given is read; the report writes DIR/reference.exr.
+  ASSERT_EQ(candela("render room.json -q -o reference.exr", output), 0) << output;
+  const std::string reference = read(directory_ / "reference.exr");
+  EXPECT_EQ(candela("report room.json --methods whitted -q --reference reference.exr -o .", output), 2)
+      << output;
+  EXPECT_NE(output.find("reference.exr, an input of this run"), std::string::npos) << output;
+  EXPECT_EQ(read(directory_ / "reference.exr"), reference);
+}
+
 TEST_F(ReportCli, AFailingMethodWritesNoPage) {
   std::string output;
   // Meshless refuses more sites than meshless.max_sites when it renders.

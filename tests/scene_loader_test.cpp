@@ -488,5 +488,40 @@ TEST(JsonDocument, RecordsWhereEveryValueStarts) {
   EXPECT_EQ(at("a[2].missing"), std::make_pair(4, 6));
 }
 
+// Issue 21: every step legal, their product not — 25 × "scale 1e16" overflowed to a black image with
+// bounds (0,0,0)–(0,0,0) and exit 0 (scale 0 alone was refused); 25 × 1e-16 underflowed. The
+// composed transform is held to the bounds of a single scene number (1e16, 1e-16 for a scale).
+TEST(SceneLoader, AComposedTransformThatOverflowsUnderflowsOrIsIllConditionedIsRefused) {
+  const auto repeated = [](const std::string& step, int times) {
+    std::string steps;
+    for (int i = 0; i < times; ++i) steps += (i ? ", " : "") + step;
+    return "[" + steps + "]";
+  };
+  const auto scene = [](const std::string& transform) {
+    return std::string(kHeader) + R"(  "shapes": [{"type": "sphere", "transform": )" + transform + "}]\n}";
+  };
+  const struct {
+    std::string transform, message;
+  } cases[] = {
+      {repeated(R"({"scale": 1e16})", 25), "overflows: an entry reaches inf, above 1e+16"},
+      {repeated(R"({"scale": 1e16})", 2), "overflows: an entry reaches 1e+32"},
+      {repeated(R"({"translate": [1e16, 0, 0]})", 2), "overflows: an entry reaches 2e+16"},
+      {repeated(R"({"scale": 1e-16})", 25), "underflows: it shrinks a direction to 0 of its length"},
+      {repeated(R"({"scale": 1e-9})", 2), "underflows: it shrinks a direction to 1e-18"},
+      {R"([{"scale": [1e7, 1, 1]}, {"scale": [1, 1e-7, 1]}])", "stretches one direction 1e+14 times"},
+      {R"({"scale": [1e13, 1, 1]})", "at most 1e+12"},
+  };
+  for (const auto& c : cases) {
+    const InputError e = load_error(scene(c.transform));
+    EXPECT_EQ(e.location().json_path, "shapes[0].transform") << e.what();
+    EXPECT_EQ(e.location().line, 4) << e.what();
+    EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
+  }
+  // Large but sound products still load: 2 × 1e8 (1e16, uniform), 2 × 1e-8, a stretch of 1e11.
+  EXPECT_NO_THROW(load_scene_text(scene(repeated(R"({"scale": 1e8})", 2)), "test.json", "."));
+  EXPECT_NO_THROW(load_scene_text(scene(repeated(R"({"scale": 1e-8})", 2)), "test.json", "."));
+  EXPECT_NO_THROW(load_scene_text(scene(R"({"scale": [1e11, 1, 1]})"), "test.json", "."));
+}
+
 }  // namespace
 }  // namespace candela

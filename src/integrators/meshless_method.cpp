@@ -42,6 +42,7 @@ MeshlessSettings read_meshless_settings(const JsonNode& node) {
   settings.max_sites = node.integer("max_sites", settings.max_sites, {1, 1 << 22, false, false});
   settings.gather_rays = node.integer("gather_rays", settings.gather_rays, {1, 1 << 20, false, false});
   settings.near_field = node.number("near_field", settings.near_field, {0, 100, false, false});
+  settings.location = node.get("spacing") ? node.at("spacing").location() : node.location();
   node.finish();
   return settings;
 }
@@ -173,7 +174,11 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const Meshl
   {
     ProgressReporter progress("sites", 1 + static_cast<uint64_t>(settings.rounds), "rounds",
                               quiet || (cluster && !cluster->root()));
-    geometry->sites = sample_sites(scene, sampling, &progress);
+    try {
+      geometry->sites = sample_sites(scene, sampling, &progress);
+    } catch (const std::invalid_argument& e) {  // too many sites for the settings: bad input
+      throw InputError(settings.location, e.what());
+    }
     progress.finish();
   }
   geometry->sampling_seconds = seconds_since(start);
@@ -199,8 +204,12 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const Meshl
   transfer.near_field = settings.near_field;
   transfer.seed = scene.render.seed;
   transfer.max_entries = transfer_entry_limit();
-  geometry->matrix =
-      compute_transfer_matrix(scene, sites, *geometry->basis, geometry->areas, transfer, cluster, &progress);
+  try {
+    geometry->matrix = compute_transfer_matrix(scene, sites, *geometry->basis, geometry->areas, transfer,
+                                               cluster, &progress);
+  } catch (const std::invalid_argument& e) {  // more entries than memory holds: bad input
+    throw InputError(settings.location, e.what());
+  }
   progress.finish();
   return geometry;
 }

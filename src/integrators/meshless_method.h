@@ -29,6 +29,7 @@
 #include "meshless/meshless_basis.h"
 #include "meshless/site_sampling.h"
 #include "meshless/transfer_matrix.h"
+#include "util/error.h"
 
 namespace candela {
 
@@ -61,6 +62,9 @@ struct MeshlessSettings {
   int max_sites = 50000;  // refused beyond: the transfer matrix grows as n²
   int gather_rays = 256;  // per site, for the transfer matrix's near field (meshless/transfer_matrix.h)
   double near_field = 2;  // the near field: elements closer than this many of their radii
+  // Issue 21: where a refusal of the sites or the transfer matrix (too many, too much memory)
+  // points — the spacing when the scene gives it, else the "meshless" object.
+  SourceLocation location;
 };
 // Ranges checked, unknown keys refused.
 MeshlessSettings read_meshless_settings(const JsonNode& node);

@@ -1,5 +1,7 @@
 #include "integrators/path_checkpoint.h"
 
+#include <cmath>
+
 namespace candela {
 
 namespace {
@@ -43,6 +45,8 @@ PathCheckpoint unseal_path_checkpoint(const SealedCheckpoint& sealed) {
       checkpoint.sums.size() != uint64_t(r.width()) * uint64_t(r.height()) ||
       checkpoint.weights.size() != checkpoint.sums.size())
     in.fail("the checkpoint is corrupt (image size)");
+  if (!std::isfinite(checkpoint.seconds) || checkpoint.seconds < 0)
+    in.fail("the checkpoint is corrupt (its render time is not a finite number of seconds)");
   return checkpoint;
 }
 

@@ -150,6 +150,26 @@ TEST(CheckpointFile, RoundTripsAndRefusesEveryDamage) {
   extra.put<uint8_t>(1);
   write_fields(extra);
   EXPECT_EQ(checkpoint_error(path), "the checkpoint has bytes this version does not know");
+
+  // Issue 21: a valid checksum over sums that are NaN or infinite resumed into a NaN image.
+  for (const double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL}) {
+    CheckpointWriter not_finite("TEST-CHECKPOINT 1\n");
+    not_finite.put_string("fingerprint");
+    not_finite.put_colors({Color(1, 2, 3), Color(0.5, bad, 0)});
+    not_finite.put(0.5);
+    write_checkpoint_file(path, not_finite.seal());
+    EXPECT_EQ(checkpoint_error(path), "the checkpoint is corrupt (color 1 of 2 is not finite)") << bad;
+  }
+  CheckpointWriter bad_value("TEST-CHECKPOINT 1\n");
+  bad_value.put_array(std::vector<double>{1, std::nan("")});
+  write_checkpoint_file(path, bad_value.seal());
+  try {
+    CheckpointReader in(read_checkpoint_file(path), "TEST-CHECKPOINT 1\n");
+    (void)in.get_doubles();
+    ADD_FAILURE() << "a NaN value was read";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.message(), "the checkpoint is corrupt (value 1 of 2 is not finite)");
+  }
 }
 
 }  // namespace

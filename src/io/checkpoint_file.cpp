@@ -1,5 +1,6 @@
 #include "io/checkpoint_file.h"
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -10,6 +11,7 @@
 #include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/hash.h"
+#include "util/input_file.h"
 
 namespace candela {
 
@@ -47,10 +49,7 @@ void write_checkpoint_file(const std::string& path, const Bytes& sealed) {
 }
 
 SealedCheckpoint read_checkpoint_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0, 0, {}}, "cannot open the checkpoint");
-  const std::string file{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) throw InputError({path, 0, 0, {}}, "cannot read the checkpoint");
+  const std::string file = read_input_file(path, "the checkpoint", kLargeInputLimit);
   SealedCheckpoint sealed{path, Bytes(file.size())};
   if (!file.empty()) std::memcpy(sealed.bytes.data(), file.data(), file.size());
   return sealed;
@@ -92,12 +91,25 @@ std::vector<T> CheckpointReader::get_array(const char* counted) {
   }
 }
 
+// Issue 21: a checksum proves the bytes are the ones written, not that they are sound: a sum that is
+// NaN or infinite (a damaged run, or a file sealed by hand) would resume into a NaN image.
 std::vector<Color> CheckpointReader::get_colors() {
-  return get_array<Color>("color");
+  std::vector<Color> colors = get_array<Color>("color");
+  for (std::size_t i = 0; i < colors.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      if (!std::isfinite(colors[i][c]))
+        fail("the checkpoint is corrupt (color " + std::to_string(i) + " of " +
+             std::to_string(colors.size()) + " is not finite)");
+  return colors;
 }
 
 std::vector<double> CheckpointReader::get_doubles() {
-  return get_array<double>("value");
+  std::vector<double> values = get_array<double>("value");
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i]))
+      fail("the checkpoint is corrupt (value " + std::to_string(i) + " of " + std::to_string(values.size()) +
+           " is not finite)");
+  return values;
 }
 
 void CheckpointReader::finish() const {

@@ -4,11 +4,14 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfOutputFile.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 
 #include "util/atomic_file.h"
@@ -37,11 +40,12 @@ bool image_format_for_path(const std::string& path, ImageFormat& format) {
 }
 
 namespace {
-void write_bytes(const std::string& path, const void* data, std::size_t size) {
-  std::ofstream out(path, std::ios::binary);
+// Writes the bytes to `file` (the temporary); a failure names `target`, the file the user asked for.
+void write_bytes(const std::string& file, const std::string& target, const void* data, std::size_t size) {
+  std::ofstream out(file, std::ios::binary);
   out.write(static_cast<const char*>(data), static_cast<std::streamsize>(size));
   out.close();
-  if (!out) throw std::runtime_error("cannot write " + path);
+  if (!out) throw std::runtime_error("cannot write " + target);
 }
 }  // namespace
 
@@ -55,8 +59,9 @@ void write_png(const Film& film, const std::string& path, const DisplaySettings&
   if (!stbi_write_png_to_func(append, &encoded, film.width(), film.height(), 3, bytes.data(),
                               film.width() * 3))
     throw std::runtime_error("PNG encoding failed for " + path);
-  write_atomically(
-      path, [&](const std::string& temporary) { write_bytes(temporary, encoded.data(), encoded.size()); });
+  write_atomically(path, [&](const std::string& temporary) {
+    write_bytes(temporary, path, encoded.data(), encoded.size());
+  });
 }
 
 void write_exr(const Film& film, const std::string& path, double exposure) {
@@ -97,14 +102,58 @@ void write_pfm(const Film& film, const std::string& path, double exposure) {
         row[std::size_t(x) * 3 + c] = static_cast<float>(pixels[std::size_t(y) * width + x][c]);
     data.append(reinterpret_cast<const char*>(row.data()), row.size() * sizeof(float));
   }
-  write_atomically(path,
-                   [&](const std::string& temporary) { write_bytes(temporary, data.data(), data.size()); });
+  write_atomically(
+      path, [&](const std::string& temporary) { write_bytes(temporary, path, data.data(), data.size()); });
+}
+
+std::string non_finite_image_problem(const Film& film, ImageFormat format, double exposure) {
+  const double scale = std::exp2(exposure);  // as expose() applies it
+  const double largest = format == ImageFormat::png ? std::numeric_limits<double>::max()
+                                                    : static_cast<double>(std::numeric_limits<float>::max());
+  std::size_t not_finite = 0, too_large = 0, first = 0;
+  const std::vector<Color>& pixels = film.pixels();
+  for (std::size_t i = 0; i < pixels.size(); ++i) {
+    bool bad = false;
+    for (int c = 0; c < 3; ++c) {
+      const double value = pixels[i][c];
+      if (!std::isfinite(value)) {
+        bad = true;
+        ++not_finite;
+        break;
+      }
+      if (std::abs(value * scale) > largest) {
+        bad = true;
+        ++too_large;
+        break;
+      }
+    }
+    if (bad && not_finite + too_large == 1) first = i;
+  }
+  if (not_finite + too_large == 0) return {};
+  const int x = static_cast<int>(first % static_cast<std::size_t>(film.width()));
+  const int y = static_cast<int>(first / static_cast<std::size_t>(film.width()));
+  const Color& value = pixels[first];
+  const std::string where =
+      fmt::format("first at pixel ({}, {}): ({:g}, {:g}, {:g})", x, y, value[0], value[1], value[2]);
+  if (not_finite > 0)
+    return fmt::format(
+        "the image has {} pixel{} that {} not finite ({}): a light, emission or texture value of the scene "
+        "is "
+        "so large that the arithmetic overflowed; scale the scene's values down",
+        not_finite + too_large, not_finite + too_large == 1 ? "" : "s",
+        not_finite + too_large == 1 ? "is" : "are", where);
+  return fmt::format(
+      "the image has {} pixel{} beyond the largest single-precision float (3.4e38) once film.exposure ({:g} "
+      "stops) is applied ({}): lower the exposure or the scene's light values, or write a .png",
+      too_large, too_large == 1 ? "" : "s", exposure, where);
 }
 
 void write_image(const Film& film, const std::string& path, const DisplaySettings& display) {
   ImageFormat format;
   if (!image_format_for_path(path, format))
     throw std::runtime_error("unsupported image extension: " + path + " (expected .png, .exr or .pfm)");
+  if (const std::string problem = non_finite_image_problem(film, format, display.exposure); !problem.empty())
+    throw std::runtime_error("cannot write " + path + ": " + problem);
   switch (format) {
     case ImageFormat::png:
       write_png(film, path, display);

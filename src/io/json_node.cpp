@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "math/constants.h"
+
 namespace candela {
 
 bool Range::contains(double value) const {
@@ -46,8 +48,9 @@ double JsonNode::as_number(Range range) const {
   if (!value_->is_number()) fail("expected a number, found " + type_name(*value_));
   const double value = value_->get<double>();
   if (!std::isfinite(value)) fail("must be a finite number");
-  // Squares of larger values (distances, areas) leave double precision's range.
-  if (std::fabs(value) > 1e16) fail(fmt::format("magnitude above 1e16 is not supported (found {})", value));
+  static_assert(kMaxSceneMagnitude == 1e16, "the message below names it");
+  if (std::fabs(value) > kMaxSceneMagnitude)
+    fail(fmt::format("magnitude above 1e16 is not supported (found {})", value));
   if (!range.contains(value)) fail("must be " + range.describe() + fmt::format(" (found {})", value));
   return value;
 }

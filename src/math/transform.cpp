@@ -1,5 +1,8 @@
 #include "math/transform.h"
 
+#include <fmt/format.h>
+
+#include <Eigen/SVD>
 #include <cmath>
 #include <stdexcept>
 
@@ -95,6 +98,30 @@ Bounds3 Transform::bounds(const Bounds3& b) const {
     result.extend(point(p));
   }
   return result;
+}
+
+std::string transform_problem(const Transform& transform) {
+  const Eigen::Matrix4d& matrix = transform.matrix();
+  const double largest = matrix.allFinite() ? matrix.cwiseAbs().maxCoeff() : kInfinity;
+  if (!(largest <= kMaxSceneMagnitude))
+    return fmt::format(
+        "the composed transform overflows: an entry reaches {:.3g}, above {:g} (a product of "
+        "too many scales or offsets)",
+        largest, kMaxSceneMagnitude);
+  const Eigen::Matrix3d linear = matrix.topLeftCorner<3, 3>();
+  const Eigen::Vector3d singular =
+      Eigen::JacobiSVD<Eigen::Matrix3d>(linear).singularValues();  // largest first
+  if (!transform.inverse().matrix().allFinite() || !(singular(2) >= 1 / kMaxSceneMagnitude))
+    return fmt::format(
+        "the composed transform underflows: it shrinks a direction to {:.3g} of its length, below "
+        "{:g} (a product of too many small scales)",
+        singular(2), 1 / kMaxSceneMagnitude);
+  const double condition = singular(0) / singular(2);
+  if (!(condition <= kMaxTransformCondition))
+    return fmt::format(
+        "the composed transform stretches one direction {:.3g} times more than another (at most {:g})",
+        condition, kMaxTransformCondition);
+  return {};
 }
 
 }  // namespace candela

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <string>
 
 #include "math/bounds.h"
 #include "math/ray.h"
@@ -35,5 +36,16 @@ class Transform {
   Eigen::Matrix4d matrix_;
   Eigen::Matrix4d inverse_;
 };
+
+// Issue 21: the largest condition number (largest over smallest singular value of the linear part)
+// a transform may have: beyond it, an object is so much thinner in one direction than in another
+// that double precision no longer resolves it (10^12 leaves about four of its sixteen digits).
+inline constexpr double kMaxTransformCondition = 1e12;
+
+// What is wrong with a transform that was composed from legal steps, or "": an entry beyond
+// kMaxSceneMagnitude or not finite (a product of scales or offsets that overflowed), a smallest
+// singular value below 1 / kMaxSceneMagnitude (a product that underflowed towards singular), or a
+// condition number beyond kMaxTransformCondition.
+std::string transform_problem(const Transform& transform);
 
 }  // namespace candela

@@ -17,7 +17,8 @@ void check_form_factor_memory(uint64_t required, const RadiositySettings& settin
                               const std::string& remedy) {
   const uint64_t limit = form_factor_memory_limit(settings);
   if (required <= limit) return;
-  throw SolverMemoryError(fmt::format("radiosity: {} needs {:.1f} MiB, more than the {:.1f} MiB allowed; {} "
+  throw SolverMemoryError(settings.location,
+                          fmt::format("radiosity: {} needs {:.1f} MiB, more than the {:.1f} MiB allowed; {} "
                                       "(or raise radiosity.memory_limit_mib)",
                                       what, required / 1048576.0, limit / 1048576.0, remedy),
                           required, limit);

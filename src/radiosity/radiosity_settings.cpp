@@ -30,6 +30,12 @@ RadiositySettings read_radiosity_settings(const JsonNode& node) {
     node.at("min_element_size").fail("min_element_size must not exceed element_size");
   settings.memory_limit_mib = node.number("memory_limit_mib", 0.0, Range::non_negative());
   settings.split_at_contacts = node.boolean("split_at_contacts", false);
+  settings.location = node.location();
+  for (const char* size : {"min_element_size", "element_size", "patch_size"})
+    if (const auto given = node.get(size)) {
+      settings.location = given->location();
+      break;
+    }
   node.finish();
   return settings;
 }

@@ -4,6 +4,7 @@
 
 #include "io/json_node.h"
 #include "util/enum_names.h"
+#include "util/error.h"
 
 namespace candela {
 
@@ -43,6 +44,9 @@ struct RadiositySettings {
   bool split_at_contacts = false;
   // The memory the stored form factors may take (MiB); 0: half the machine's memory.
   double memory_limit_mib = 0;
+  // Issue 21: where a refusal for memory points — the size key that sets the mesh when the scene
+  // gives one (min_element_size, element_size, patch_size), else the "radiosity" object.
+  SourceLocation location;
 };
 
 inline constexpr auto kRadiositySolverNames =

@@ -155,11 +155,17 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
     } else {
       const RadiositySystem patches = mesh.patch_system();
       const FormFactorSource patch_source(std::move(patch_rows));
-      const RadiositySolution solution =
-          settings.solver == RadiositySolver::gaussian
-              ? solve_gaussian_elimination(patches, patch_source, form_factor_memory_limit(settings))
-              : solve_gauss_seidel(patches, patch_source, settings.threshold,
-                                   static_cast<std::size_t>(settings.max_steps));
+      const auto solve = [&] {
+        if (settings.solver != RadiositySolver::gaussian)
+          return solve_gauss_seidel(patches, patch_source, settings.threshold,
+                                    static_cast<std::size_t>(settings.max_steps));
+        try {
+          return solve_gaussian_elimination(patches, patch_source, form_factor_memory_limit(settings));
+        } catch (const SolverMemoryError& e) {  // the solver knows bytes, the settings their place
+          throw SolverMemoryError(settings.location, e.message(), e.required_bytes(), e.limit_bytes());
+        }
+      };
+      const RadiositySolution solution = solve();
       patch_radiosity = solution.radiosity;
       patch_steps = solution.iterations;
       patch_converged = solution.converged;

@@ -157,6 +157,7 @@ RadiositySolution solve_gaussian_elimination(const RadiositySystem& system,
   const uint64_t required = gaussian_elimination_memory_bytes(n);
   if (required > limit) {
     throw SolverMemoryError(
+        {},
         "radiosity: Gaussian elimination over " + std::to_string(n) + " patches needs about " +
             format_gibibytes(required) + " (the n×n form-factor matrix and its LU factors), more than the " +
             format_gibibytes(limit) +

@@ -31,6 +31,7 @@
 
 #include "math/vector.h"
 #include "radiosity/radiosity_system.h"
+#include "util/error.h"
 
 namespace candela {
 
@@ -52,11 +53,13 @@ double radiosity_residual(const RadiositySystem& system, const FormFactorSource&
 // ---- Gaussian elimination (000 eq. 6-9) ----------------------------------------------------
 
 // Thrown when the full-matrix solver would need more memory than allowed. The message names the
-// settings that fix it: radiosity.solver (use "progressive") and radiosity.patch_size.
-class SolverMemoryError : public std::invalid_argument {
+// settings that fix it: radiosity.solver (use "progressive") and radiosity.patch_size. Issue 21:
+// a setting that asks too much is bad input — an InputError (exit 2) at the setting's location.
+class SolverMemoryError : public InputError {
  public:
-  SolverMemoryError(const std::string& message, uint64_t required_bytes, uint64_t limit_bytes)
-      : std::invalid_argument(message), required_bytes_(required_bytes), limit_bytes_(limit_bytes) {}
+  SolverMemoryError(const SourceLocation& location, const std::string& message, uint64_t required_bytes,
+                    uint64_t limit_bytes)
+      : InputError(location, message), required_bytes_(required_bytes), limit_bytes_(limit_bytes) {}
   uint64_t required_bytes() const { return required_bytes_; }
   uint64_t limit_bytes() const { return limit_bytes_; }
 

@@ -46,10 +46,15 @@ Transform read_transform_step(const JsonNode& step) {
 }  // namespace
 
 Transform read_transform(const JsonNode& node) {
-  if (node.json().is_object()) return read_transform_step(node);
   Transform transform;
-  for (std::size_t i = 0; i < node.size(); ++i)
-    transform = read_transform_step(node.element(i)) * transform;  // listed order
+  if (node.json().is_object()) {
+    transform = read_transform_step(node);
+  } else {
+    for (std::size_t i = 0; i < node.size(); ++i)
+      transform = read_transform_step(node.element(i)) * transform;  // listed order
+  }
+  // Issue 21: each step is legal, but their product may not be (25 x "scale 1e16" overflows).
+  if (const std::string problem = transform_problem(transform); !problem.empty()) node.fail(problem);
   return transform;
 }
 

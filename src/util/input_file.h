@@ -11,6 +11,8 @@ namespace candela {
 
 // The largest input text read whole by default: 1 GiB (a scene, a light set-up, probe points).
 inline constexpr uint64_t kDefaultInputLimit = uint64_t{1} << 30;
+// The largest binary input read whole: 4 GiB (an image, a mesh, a glTF buffer, a checkpoint).
+inline constexpr uint64_t kLargeInputLimit = uint64_t{1} << 32;
 
 // What is wrong with `path` as an input file of the given kind ("the scene file"), or "" when it is
 // a readable regular file of at most `limit` bytes: it does not exist, is a directory, a FIFO, a

@@ -22,6 +22,11 @@ namespace candela {
 
 namespace {
 
+// The file stem of the path tracer's run at another method's time.
+std::string equal_time_key(const std::string& other_method) {
+  return "path-equal-time-" + other_method;
+}
+
 namespace fs = std::filesystem;
 
 std::string number(double value) {
@@ -338,7 +343,7 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
       const double seconds = std::max(other.seconds, 1e-6);
       CrossMethodEntry entry =
           render_entry(scene, options, "path", "path (equal time: " + other_method + ")",
-                       "path-equal-time-" + other_method, {"spp=0", fmt::format("time={:.17g}", seconds)});
+                       equal_time_key(other_method), {"spp=0", fmt::format("time={:.17g}", seconds)});
       entry.equal_time_to = other_method;
       entry.facts.emplace_back("time limit (s)", fmt::format("{:.3g}", seconds));
       report.entries.push_back(std::move(entry));
@@ -541,6 +546,18 @@ std::string cross_method_html(const CrossMethodReport& report) {
   html += ". Generated " + html_escape(report.date) + " by <code>candela report</code>.</p>\n";
   html += "<p id=\"image-status\" class=\"note\"></p>\n</body>\n</html>\n";
   return html;
+}
+
+std::vector<std::string> cross_method_report_files(const CrossMethodOptions& options) {
+  std::vector<std::string> keys{"reference"};
+  for (const std::string& method : options.methods) {
+    keys.push_back(method);
+    if (options.equal_time && method != "path") keys.push_back(equal_time_key(method));
+  }
+  std::vector<std::string> files{"index.html", "report.json"};
+  for (const std::string& key : keys)
+    for (const char* ending : {".png", ".exr", "-diff.png"}) files.push_back(key + ending);
+  return files;
 }
 
 }  // namespace candela

@@ -98,6 +98,11 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
 
 // The pieces, for tests.
 std::string html_escape(std::string_view text);
+
+// The names of every file a run with these options may write in its directory (index.html,
+// report.json, reference.*, each entry's .png, .exr and -diff.png): what must not be one of its
+// inputs (issue 21).
+std::vector<std::string> cross_method_report_files(const CrossMethodOptions& options);
 // A few facts from a method's statistics: spp for path, patches and elements for radiosity, sites
 // for meshless, rays for the ray tracers ...
 std::vector<std::pair<std::string, std::string>> key_facts(const std::string& method,
