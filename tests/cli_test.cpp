@@ -1,6 +1,7 @@
 // The candela executable end to end: exit codes, messages, outputs (SPEC §15).
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -20,7 +21,8 @@ class Cli : public ::testing::Test {
   void SetUp() override {
     directory_ =
         fs::temp_directory_path() /
-        ("candela-cli-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        ("candela-cli-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "-" +
+         std::to_string(::getpid()));
     fs::remove_all(directory_);
     fs::create_directories(directory_);
   }
