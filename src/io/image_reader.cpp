@@ -4,6 +4,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
@@ -171,11 +172,16 @@ std::vector<unsigned char> read_file_bytes(const std::filesystem::path& path) {
   return bytes;
 }
 
-// stb_image 2.27 (Debian 12) writes past its 257-entry Huffman size table when a JPEG DHT
-// table's 16 code counts add up to more than 256 (fixed in stb_image 2.28: "bad DHT header").
-// Walk the markers as stb does and refuse such a table before stb sees it (found by
-// fuzz/image_fuzzer).
-void check_jpeg_huffman_tables(const std::filesystem::path& path, const std::vector<unsigned char>& bytes) {
+// stb_image 2.27 (Debian 12) trusts a JPEG's tables and scans (all found by fuzz/image_fuzzer or
+// valgrind). It writes past its 257-entry Huffman size table when a DHT table's 16 code counts
+// add up to more than 256 (fixed in stb_image 2.28: "bad DHT header"). Its quantisation and
+// Huffman tables and its component planes live in memory it allocates without clearing, so a
+// scan that uses a table no DQT or DHT segment defined, a component no scan codes (or, in a
+// progressive JPEG, an AC or refinement scan before the component's first DC scan) make the
+// picture depend on leftover memory (valgrind: a conditional jump on an uninitialised value;
+// UBSan: signed overflow dequantising). Walk the markers as stb does and refuse such a file
+// before stb sees it. libjpeg refuses the same files ("Quantization table 0x02 was not defined").
+void check_jpeg_markers(const std::filesystem::path& path, const std::vector<unsigned char>& bytes) {
   // stb takes any run of 0xFF fill bytes before the start-of-image marker D8 as SOI.
   const std::size_t size = bytes.size();
   std::size_t i = 0;
@@ -186,6 +192,21 @@ void check_jpeg_huffman_tables(const std::filesystem::path& path, const std::vec
   const auto length_at = [&](std::size_t at) {
     return at + 1 < size ? (std::size_t(bytes[at]) << 8) | bytes[at + 1] : 0;
   };
+  // stb reads bytes past the end of the file as 0 and goes on: read them the same way.
+  const auto byte_at = [&](std::size_t at) -> unsigned { return at < size ? bytes[at] : 0; };
+  std::array<bool, 4> quantisation_defined{};
+  std::array<std::array<bool, 4>, 2> huffman_defined{};  // [0: DC, 1: AC][table]
+  struct Component {
+    unsigned id = 0, quantisation = 0;
+    bool coded = false;  // a scan has written its coefficients (the first DC scan if progressive)
+  };
+  std::vector<Component> frame;
+  bool progressive = false;
+  const auto missing = [&](std::string_view table, unsigned number, std::string_view segment,
+                           std::size_t component) {
+    fail(path, fmt::format("corrupt JPEG: component {} (id {}) uses {} {}, which no {} segment defines",
+                           component, frame[component].id, table, number, segment));
+  };
   while (i < size) {
     if (bytes[i] != 0xFF) {  // stb skips stray bytes looking for the next marker
       ++i;
@@ -194,23 +215,77 @@ void check_jpeg_huffman_tables(const std::filesystem::path& path, const std::vec
     while (i < size && bytes[i] == 0xFF) ++i;  // fill bytes
     if (i >= size) return;
     const unsigned char marker = bytes[i++];
-    if (marker == 0xD9) return;                                                            // end of image
+    if (marker == 0xD9) {  // end of image: every component coded, progressive ones dequantised now
+      for (std::size_t c = 0; c < frame.size(); ++c) {
+        if (!frame[c].coded)
+          fail(path, fmt::format("corrupt JPEG: no scan codes component {} (id {})", c, frame[c].id));
+        if (progressive && !quantisation_defined[frame[c].quantisation])
+          missing("quantisation table", frame[c].quantisation, "DQT", c);
+      }
+      return;
+    }
     if (marker == 0x00 || marker == 0x01 || (marker >= 0xD0 && marker <= 0xD8)) continue;  // no length
     const std::size_t length = length_at(i);
     if (length < 2) return;  // stb refuses it
-    if (marker == 0xC4) {    // DHT: as stb reads it, tables until the length is used up
+    if (marker == 0xDB) {    // DQT: 8- or 16-bit tables until the length is used up
+      long long left = static_cast<long long>(length) - 2;
+      std::size_t at = i + 2;
+      while (left > 0) {
+        const unsigned precision = byte_at(at) >> 4, table = byte_at(at) & 15;
+        if (precision > 1 || table > 3) return;  // stb refuses it
+        quantisation_defined[table] = true;
+        const std::size_t table_bytes = 1 + 64 * (precision + 1);
+        at += table_bytes;
+        left -= static_cast<long long>(table_bytes);
+      }
+    }
+    if (marker == 0xC4) {  // DHT: as stb reads it, tables until the length is used up
       long long left = static_cast<long long>(length) - 2;
       std::size_t at = i + 2;
       while (left > 0) {
         if (at >= size) return;
-        // stb reads bytes past the end of the file as 0 and goes on: count them the same way.
+        const unsigned table_class = bytes[at] >> 4, table = bytes[at] & 15;
+        if (table_class > 1 || table > 3) return;  // stb refuses it
         std::size_t symbols = 0;
-        for (std::size_t k = 1; k <= 16; ++k) symbols += at + k < size ? bytes[at + k] : 0;
+        for (std::size_t k = 1; k <= 16; ++k) symbols += byte_at(at + k);
         if (symbols > 256)
           fail(path, "corrupt JPEG: a Huffman table (DHT) declares " + std::to_string(symbols) +
                          " codes, more than the 256 possible");
+        huffman_defined[table_class][table] = true;
         at += 17 + symbols;
         left -= static_cast<long long>(17 + symbols);
+      }
+    }
+    if ((marker == 0xC0 || marker == 0xC1 || marker == 0xC2) && frame.empty()) {  // the frame stb decodes
+      progressive = marker == 0xC2;
+      const unsigned count = byte_at(i + 7);
+      for (unsigned c = 0; c < count && c < 4; ++c)
+        frame.push_back({byte_at(i + 8 + 3 * c), byte_at(i + 10 + 3 * c)});
+      for (const Component& component : frame)
+        if (component.quantisation > 3) return;  // stb refuses it
+    }
+    if (marker == 0xDA) {  // start of scan: the tables it uses must exist now
+      const unsigned count = byte_at(i + 2);
+      const std::size_t after = i + 3 + 2 * std::size_t(count);
+      const unsigned spectral_start = byte_at(after), approximation_high = byte_at(after + 2) >> 4;
+      for (unsigned k = 0; k < count; ++k) {
+        const unsigned id = byte_at(i + 3 + 2 * k), tables = byte_at(i + 4 + 2 * k);
+        const unsigned dc = tables >> 4, ac = tables & 15;
+        const auto found =
+            std::find_if(frame.begin(), frame.end(), [&](const Component& c) { return c.id == id; });
+        if (found == frame.end() || dc > 3 || ac > 3) return;  // stb refuses it
+        const std::size_t c = static_cast<std::size_t>(found - frame.begin());
+        if (!quantisation_defined[found->quantisation])
+          missing("quantisation table", found->quantisation, "DQT", c);
+        const bool first_dc = spectral_start == 0 && approximation_high == 0;
+        if ((!progressive || first_dc) && !huffman_defined[0][dc]) missing("DC Huffman table", dc, "DHT", c);
+        if ((!progressive || spectral_start > 0) && !huffman_defined[1][ac])
+          missing("AC Huffman table", ac, "DHT", c);
+        if (progressive && !first_dc && !found->coded)
+          fail(path, fmt::format("corrupt JPEG: a progressive scan refines component {} (id {}) before its "
+                                 "first DC scan",
+                                 c, id));
+        if (!progressive || first_dc) found->coded = true;
       }
     }
     i += length;
@@ -281,7 +356,7 @@ RgbImage load_with_stb(const std::filesystem::path& path, ColorEncoding encoding
   const std::vector<unsigned char> bytes = read_file_bytes(path);
   const int length = static_cast<int>(bytes.size());
   int width = 0, height = 0, channels_in_file = 0;
-  check_jpeg_huffman_tables(path, bytes);
+  check_jpeg_markers(path, bytes);
   check_pnm_header(path, bytes);
   if (!stbi_info_from_memory(bytes.data(), length, &width, &height, &channels_in_file))
     fail(path, stb_reason());

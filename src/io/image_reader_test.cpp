@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -53,10 +54,14 @@ class TextureImageFiles : public ::testing::Test {
     write_bytes(path(name), encoded.data(), encoded.size());
     return path(name);
   }
-  fs::path write_jpg(const std::string& name, int width, int height,
-                     const std::vector<unsigned char>& rgb) const {
+  static std::vector<unsigned char> encode_jpg(int width, int height, const std::vector<unsigned char>& rgb) {
     std::vector<unsigned char> encoded;
     EXPECT_TRUE(stbi_write_jpg_to_func(append, &encoded, width, height, 3, rgb.data(), 100));
+    return encoded;
+  }
+  fs::path write_jpg(const std::string& name, int width, int height,
+                     const std::vector<unsigned char>& rgb) const {
+    const std::vector<unsigned char> encoded = encode_jpg(width, height, rgb);
     write_bytes(path(name), encoded.data(), encoded.size());
     return path(name);
   }
@@ -396,6 +401,77 @@ TEST_F(TextureImageFiles, FuzzJpegHuffmanTableWithOver256CodesIsRefused) {
       std::string(9, '\xFF') + std::string("\xD8\xFF\xC4\x00\x13\x00\x20\x20\x20\x01\xFF\xD8", 12);
   write_bytes(path("filled-dht.jpg"), filled.data(), filled.size());
   EXPECT_NE(load_error(path("filled-dht.jpg")).find("Huffman table (DHT) declares"), std::string::npos);
+}
+
+// Where the first segment with this marker starts (its 0xFF) in a JPEG written by stb_image_write,
+// whose segments follow each other without fill bytes up to the scan.
+std::size_t jpeg_segment(const std::vector<unsigned char>& jpeg, unsigned char marker) {
+  std::size_t at = 2;
+  while (at + 3 < jpeg.size() && jpeg[at + 1] != marker)
+    at += 2 + ((std::size_t(jpeg[at + 2]) << 8) | jpeg[at + 3]);
+  EXPECT_LT(at + 3, jpeg.size()) << "no marker " << int(marker);
+  return at;
+}
+
+// 8×8 pixels of a gradient, as stb_image_write encodes them: quantisation tables 0 (luma) and 1
+// (chroma), Huffman tables 0 and 1 of each class, one interleaved baseline scan.
+std::vector<unsigned char> gradient_rgb_8x8() {
+  std::vector<unsigned char> rgb;
+  for (int i = 0; i < 64; ++i)
+    for (const int value : {4 * i, 200 - i, 128}) rgb.push_back(static_cast<unsigned char>(value));
+  return rgb;
+}
+
+// Issue 21 (valgrind: a conditional jump on an uninitialised value in stb_image; UBSan: signed
+// overflow at stb_image.h:2197): a JPEG whose frame gives a component quantisation table 2, which
+// no DQT segment defines, was decoded by stb_image 2.27 with whatever memory its table held. It
+// is refused before stb decodes it, naming the file, the component and the table.
+TEST_F(TextureImageFiles, JpegUsingAnUndefinedQuantisationTableIsRefused) {
+  std::vector<unsigned char> jpeg = encode_jpg(8, 8, gradient_rgb_8x8());
+  write_bytes(path("good.jpg"), jpeg.data(), jpeg.size());
+  EXPECT_EQ(read_image(path("good.jpg")).width(), 8);
+  jpeg[jpeg_segment(jpeg, 0xC0) + 12] =
+      2;  // FF C0, length, precision, height, width, count, id, sampling: Tq
+  write_bytes(path("undefined-dqt.jpg"), jpeg.data(), jpeg.size());
+  const std::string message = load_error(path("undefined-dqt.jpg"));
+  EXPECT_NE(message.find("undefined-dqt.jpg"), std::string::npos) << message;
+  EXPECT_NE(message.find("component 0 (id 1) uses quantisation table 2, which no DQT segment defines"),
+            std::string::npos)
+      << message;
+}
+
+// The same for Huffman tables: a scan naming DC and AC table 2, which no DHT segment defines,
+// made stb_image 2.27 decode with uninitialised code tables (valgrind: stbi__jpeg_huff_decode).
+TEST_F(TextureImageFiles, JpegUsingAnUndefinedHuffmanTableIsRefused) {
+  std::vector<unsigned char> jpeg = encode_jpg(8, 8, gradient_rgb_8x8());
+  jpeg[jpeg_segment(jpeg, 0xDA) + 6] = 0x22;  // FF DA, length, count, id: Td and Ta
+  write_bytes(path("undefined-dht.jpg"), jpeg.data(), jpeg.size());
+  const std::string message = load_error(path("undefined-dht.jpg"));
+  EXPECT_NE(message.find("undefined-dht.jpg"), std::string::npos) << message;
+  EXPECT_NE(message.find("component 0 (id 1) uses DC Huffman table 2, which no DHT segment defines"),
+            std::string::npos)
+      << message;
+}
+
+// stb_image 2.27 leaves the plane of a component that no scan codes as it was allocated: a JPEG
+// that ends after its tables, or whose one scan codes only the first of three components, gave
+// pixels made of leftover memory (valgrind: stbi__YCbCr_to_RGB_simd).
+TEST_F(TextureImageFiles, JpegWithAComponentNoScanCodesIsRefused) {
+  const std::vector<unsigned char> jpeg = encode_jpg(8, 8, gradient_rgb_8x8());
+  const std::size_t scan = jpeg_segment(jpeg, 0xDA);
+  std::vector<unsigned char> no_scan(jpeg.begin(), jpeg.begin() + static_cast<std::ptrdiff_t>(scan));
+  no_scan.insert(no_scan.end(), {0xFF, 0xD9});
+  write_bytes(path("no-scan.jpg"), no_scan.data(), no_scan.size());
+  std::string message = load_error(path("no-scan.jpg"));
+  EXPECT_NE(message.find("no-scan.jpg"), std::string::npos) << message;
+  EXPECT_NE(message.find("no scan codes component 0 (id 1)"), std::string::npos) << message;
+  // One scan of the luma only (a 10-byte scan header), then the rest of the file.
+  std::vector<unsigned char> luma_only(jpeg.begin(), jpeg.begin() + static_cast<std::ptrdiff_t>(scan));
+  luma_only.insert(luma_only.end(), {0xFF, 0xDA, 0x00, 0x08, 0x01, 0x01, 0x00, 0x00, 0x3F, 0x00});
+  luma_only.insert(luma_only.end(), jpeg.begin() + static_cast<std::ptrdiff_t>(scan + 14), jpeg.end());
+  write_bytes(path("luma-only.jpg"), luma_only.data(), luma_only.size());
+  message = load_error(path("luma-only.jpg"));
+  EXPECT_NE(message.find("no scan codes component 1 (id 2)"), std::string::npos) << message;
 }
 
 // fuzz/image_fuzzer: a 2 KB TGA announcing 4112 × 4112 pixels, which stb decodes as garbage; TGA
