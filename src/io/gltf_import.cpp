@@ -14,7 +14,9 @@
 #include <limits>
 #include <memory>
 #include <stdexcept>
+#include <string_view>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 // tinygltf's implementation lives here. Images are never decoded (the project's stb_image is
@@ -27,6 +29,7 @@
 #include <tiny_gltf.h>
 
 #include <Eigen/Dense>
+#include <nlohmann/json.hpp>
 
 #include "math/transform.h"
 #include "util/input_file.h"
@@ -62,12 +65,31 @@ struct AccessorData {
   int component_type = 0;
 };
 
+// The JSON of a .glb: its first chunk (tinygltf has checked the header and the chunk sizes).
+std::string_view glb_json_chunk(const std::string& bytes) {
+  const auto u32_at = [&](std::size_t at) {
+    std::uint32_t value = 0;
+    for (std::size_t k = 0; k < 4; ++k)
+      value |= std::uint32_t(static_cast<unsigned char>(bytes[at + k])) << (8 * k);
+    return value;
+  };
+  if (bytes.size() < 20) return {};
+  const std::size_t length = u32_at(12);
+  return length <= bytes.size() - 20 ? std::string_view(bytes).substr(20, length) : std::string_view();
+}
+
+// Every number of a scene file, an OBJ vertex and a glTF node's transform or position is limited
+// to this magnitude (io/json_node.cpp): beyond it squared distances lose all precision.
+constexpr double kMaxMagnitude = 1e16;
+
 class GltfReader {
  public:
-  GltfReader(const std::string& path, const SourceLocation& referenced_from, tinygltf::Model model)
-      : path_(path), referenced_from_(referenced_from), model_(std::move(model)) {}
+  GltfReader(const std::string& path, const SourceLocation& referenced_from, tinygltf::Model model,
+             const nlohmann::json& json)
+      : path_(path), referenced_from_(referenced_from), model_(std::move(model)), json_(json) {}
 
   ObjImport read() {
+    check_optional_sizes();
     place_scene();
     if (parts_.empty() || triangle_count_ == 0) fail("has no triangles (mode TRIANGLES)");
     return merge();
@@ -80,7 +102,50 @@ class GltfReader {
     throw InputError(referenced_from_, fmt::format("glTF file '{}' {}", path_, message));
   }
 
+  // tinygltf reads an optional size that is not a non-negative integer (-4, 1.5, 1e30, "8") as its
+  // default 0 without a word: an accessor at byteOffset -4 read its buffer from the start (issue
+  // 21). Such a value is refused by its JSON path. (Required sizes, byteLength and count, tinygltf
+  // refuses itself.)
+  void check_optional_sizes() const {
+    static constexpr std::array<std::pair<const char*, const char*>, 3> kSizes = {
+        {{"accessors", "byteOffset"}, {"bufferViews", "byteOffset"}, {"bufferViews", "byteStride"}}};
+    for (const auto& [array, key] : kSizes) {
+      const auto objects = json_.find(array);
+      if (objects == json_.end() || !objects->is_array()) continue;
+      for (std::size_t i = 0; i < objects->size(); ++i) {
+        const nlohmann::json& object = (*objects)[i];
+        if (!object.is_object()) continue;
+        const auto value = object.find(key);
+        if (value == object.end() || value->is_number_unsigned()) continue;
+        std::string found = value->dump();
+        if (found.size() > 40) found = found.substr(0, 40) + "...";
+        fail(fmt::format("{}[{}].{}: must be a non-negative integer (found {})", array, i, key, found));
+      }
+    }
+  }
+
   // --- node tree ----------------------------------------------------------------------------
+
+  // The numbers of a node's matrix, translation, rotation and scale must be finite and at most
+  // kMaxMagnitude: larger ones overflowed when composed and were then called a singular matrix.
+  void check_node_numbers(const tinygltf::Node& node, int index) const {
+    const std::array<std::pair<const char*, const std::vector<double>*>, 4> fields = {
+        {{"matrix", &node.matrix},
+         {"translation", &node.translation},
+         {"rotation", &node.rotation},
+         {"scale", &node.scale}}};
+    for (const auto& [name, values] : fields)
+      for (std::size_t k = 0; k < values->size(); ++k) {
+        const double value = (*values)[k];
+        if (!std::isfinite(value)) fail(fmt::format("nodes[{}].{}[{}]: must be finite", index, name, k));
+        if (std::fabs(value) > kMaxMagnitude)
+          fail(fmt::format("nodes[{}].{}[{}]: magnitude above 1e16 is not supported (found {})", index, name,
+                           k, value));
+      }
+    const auto& r = node.rotation;
+    if (r.size() == 4 && r[0] == 0 && r[1] == 0 && r[2] == 0 && r[3] == 0)
+      fail(fmt::format("nodes[{}].rotation: the zero quaternion [0, 0, 0, 0] is not a rotation", index));
+  }
 
   static Eigen::Matrix4d local_matrix(const tinygltf::Node& node) {
     Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
@@ -95,7 +160,11 @@ class GltfReader {
     Eigen::Matrix4d r = Eigen::Matrix4d::Identity();
     if (node.rotation.size() == 4) {
       Eigen::Quaterniond q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
-      if (q.norm() > 0) q.normalize();
+      // Components so small that their squares underflow (1e-200) still name a rotation: scale
+      // them up first (check_node_numbers refused the zero quaternion; 1e16 cannot overflow).
+      if (!(q.coeffs().squaredNorm() >= std::numeric_limits<double>::min()))
+        q.coeffs() /= q.coeffs().cwiseAbs().maxCoeff();
+      q.normalize();
       r.topLeftCorner<3, 3>() = q.toRotationMatrix();
     }
     Eigen::Matrix4d s = Eigen::Matrix4d::Identity();
@@ -128,7 +197,20 @@ class GltfReader {
         fail(fmt::format("reaches node {} twice (the nodes are not a tree)", index));
       visited[static_cast<std::size_t>(index)] = true;
       const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(index)];
+      check_node_numbers(node, index);
       const Eigen::Matrix4d world = parent * local_matrix(node);
+      // Each node's numbers are at most 1e16, but a chain of them multiplies: name the node
+      // where the composed transform leaves the supported range.
+      if (!world.allFinite())
+        fail(
+            fmt::format("nodes[{}]: the transform composed from the scene's root down to this node overflows "
+                        "(is not finite)",
+                        index));
+      if (const double largest = world.cwiseAbs().maxCoeff(); largest > kMaxMagnitude)
+        fail(fmt::format(
+            "nodes[{}]: the transform composed from the scene's root down to this node has an entry "
+            "of magnitude {}, above the supported 1e16",
+            index, largest));
       if (node.mesh >= 0) add_mesh(node.mesh, world, index);
       for (const int child : node.children) stack.emplace_back(child, world);
     }
@@ -157,13 +239,26 @@ class GltfReader {
       fail(fmt::format("{}: accessor {} is malformed", what, index));
     const std::size_t element =
         static_cast<std::size_t>(component_size) * static_cast<std::size_t>(components);
+    const std::string view_path = fmt::format("bufferViews[{}]", a.bufferView);
+    const std::string accessor_path = fmt::format("accessors[{}]", index);
+    // tinygltf has refused a byteStride that is not a multiple of 4 in [4, 252].
     const std::size_t stride = view.byteStride > 0 ? view.byteStride : element;
-    const auto outside = [&] { fail(fmt::format("{}: accessor {} lies outside its buffer", what, index)); };
-    if (stride < element || stride > 256) outside();
+    if (stride < element)
+      fail(fmt::format("{}: {}.byteStride: {} is less than the {} bytes of an element of accessor {}", what,
+                       view_path, stride, element, index));
     // All sizes are checked against the buffer before any product is formed, so none overflows.
-    if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset) outside();
-    if (a.byteOffset > view.byteLength || a.count > view.byteLength) outside();
-    if (a.count > 0 && stride * (a.count - 1) + element > view.byteLength - a.byteOffset) outside();
+    if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
+      fail(fmt::format("{}: {}: byteOffset {} + byteLength {} is past the end of buffer {} ({} bytes)", what,
+                       view_path, view.byteOffset, view.byteLength, view.buffer, buffer.size()));
+    if (a.byteOffset > view.byteLength)
+      fail(fmt::format("{}: {}.byteOffset: {} is past the end of bufferView {} ({} bytes)", what,
+                       accessor_path, a.byteOffset, a.bufferView, view.byteLength));
+    if (a.count > view.byteLength ||
+        (a.count > 0 && stride * (a.count - 1) + element > view.byteLength - a.byteOffset))
+      fail(fmt::format(
+          "{}: {}.count: {} elements of {} bytes, {} bytes apart from byteOffset {}, do not fit in "
+          "bufferView {} ({} bytes)",
+          what, accessor_path, a.count, element, stride, a.byteOffset, a.bufferView, view.byteLength));
     return {buffer.data() + view.byteOffset + a.byteOffset, stride, a.count, a.componentType};
   }
 
@@ -226,6 +321,10 @@ class GltfReader {
       const Vec3 p{float_at(positions, i, 0), float_at(positions, i, 1), float_at(positions, i, 2)};
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
         fail(fmt::format("{}: vertex {} has a non-finite position", name, i));
+      if (const double largest = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+          largest > kMaxMagnitude)
+        fail(
+            fmt::format("{}: vertex {}: magnitude above 1e16 is not supported (found {})", name, i, largest));
       part.mesh.positions.push_back(p);
     }
     if (primitive.indices >= 0) {
@@ -296,7 +395,7 @@ class GltfReader {
       try {
         part.mesh.transform(Transform::from_matrix(world));
       } catch (const std::invalid_argument& e) {
-        fail(fmt::format("node {}: transform: {}", node, e.what()));
+        fail(fmt::format("nodes[{}]: transform: {}", node, e.what()));
       }
     }
     triangle_count_ += part.mesh.triangles.size();
@@ -352,6 +451,7 @@ class GltfReader {
   const std::string& path_;
   const SourceLocation& referenced_from_;
   tinygltf::Model model_;
+  const nlohmann::json& json_;  // the file's JSON, for what tinygltf does not keep
   std::vector<Part> parts_;
   std::size_t triangle_count_ = 0;
   std::size_t replaced_normals_ = 0;
@@ -388,12 +488,24 @@ ObjImport import_gltf(const std::string& path, const SourceLocation& referenced_
   };
   callbacks.user_data = nullptr;
   loader.SetFsCallbacks(callbacks);
+  // The file is read here, once, so that its JSON can be checked where tinygltf is silent.
+  std::string bytes;
+  try {
+    bytes = read_input_file(path, "the glTF file", std::numeric_limits<unsigned int>::max());
+  } catch (const InputError& e) {
+    throw InputError(referenced_from, "cannot read glTF file '" + path + "': " + e.message());
+  }
+  const bool binary = extension == ".glb";
   tinygltf::Model model;
   std::string error, warning;
   bool loaded = false;
   try {
-    loaded = extension == ".glb" ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
-                                 : loader.LoadASCIIFromFile(&model, &error, &warning, path);
+    const std::string base_dir = tinygltf::GetBaseDir(path);
+    const auto size = static_cast<unsigned int>(bytes.size());
+    loaded = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning,
+                                                  reinterpret_cast<const unsigned char*>(bytes.data()), size,
+                                                  base_dir)
+                    : loader.LoadASCIIFromString(&model, &error, &warning, bytes.data(), size, base_dir);
   } catch (const std::exception& e) {  // the JSON library may throw on malformed input
     error = e.what();
     loaded = false;
@@ -405,7 +517,9 @@ ObjImport import_gltf(const std::string& path, const SourceLocation& referenced_
     throw InputError(referenced_from,
                      "cannot read glTF file '" + path + "': " + (text.empty() ? "unknown error" : text));
   }
-  GltfReader reader(path, referenced_from, std::move(model));
+  const std::string_view json_text = binary ? glb_json_chunk(bytes) : std::string_view(bytes);
+  const nlohmann::json json = nlohmann::json::parse(json_text.begin(), json_text.end(), nullptr, false);
+  GltfReader reader(path, referenced_from, std::move(model), json);
   for (const auto& line : lines_of(warning)) reader.warnings.push_back(path + ": " + line);
   return reader.read();
 }

@@ -129,5 +129,111 @@ TEST(GltfImport, BadInputsAreRefusedNamingTheFile) {
   EXPECT_NE(error_of((scratch.path() / "none.glb").string()).find("not found"), std::string::npos);
 }
 
+// square_json with `from` replaced by `to` (which must occur once).
+std::string edited_square(const std::string& from, const std::string& to,
+                          const std::string& node = R"({"mesh": 0})") {
+  std::string json = square_json(data_uri(square_buffer()), node);
+  const std::size_t at = json.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) json.replace(at, from.size(), to);
+  return json;
+}
+
+// Issue 21: tinygltf reads an optional byteOffset or byteStride that is not a non-negative
+// integer as 0 without a word (an accessor at byteOffset -4 read its buffer from the start), and
+// sizes past the end were refused only as "lies outside its buffer". Each is now refused by its
+// JSON path, with the numbers that do not fit.
+TEST(GltfImport, BadByteOffsetsLengthsAndStridesAreRefusedByTheirJsonPath) {
+  testing::ScratchDirectory scratch("gltf");
+  const auto expect_error = [&](const std::string& name, const std::string& json, const std::string& what) {
+    const std::string path = write_file(scratch.path() / name, json);
+    const std::string message = error_of(path);
+    EXPECT_NE(message.find(path), std::string::npos) << message;
+    EXPECT_NE(message.find(what), std::string::npos) << message;
+  };
+  const std::string accessor0 = R"("bufferView": 0, "componentType": 5126)";
+  expect_error("negative-accessor-offset.gltf",
+               edited_square(accessor0, R"("bufferView": 0, "byteOffset": -4, "componentType": 5126)"),
+               "accessors[0].byteOffset: must be a non-negative integer (found -4)");
+  expect_error("fraction.gltf",
+               edited_square(accessor0, R"("bufferView": 0, "byteOffset": 1.5, "componentType": 5126)"),
+               "accessors[0].byteOffset: must be a non-negative integer (found 1.5)");
+  expect_error("negative-view-offset.gltf", edited_square(R"("byteOffset": 48)", R"("byteOffset": -48)"),
+               "bufferViews[1].byteOffset: must be a non-negative integer (found -48)");
+  expect_error("huge-view-offset.gltf", edited_square(R"("byteOffset": 0,)", R"("byteOffset": 1e30,)"),
+               "bufferViews[0].byteOffset: must be a non-negative integer (found 1e+30)");
+  const std::string view0 = R"("byteOffset": 0, "byteLength": 48})";
+  expect_error("negative-stride.gltf",
+               edited_square(view0, R"("byteOffset": 0, "byteLength": 48, "byteStride": -12})"),
+               "bufferViews[0].byteStride: must be a non-negative integer (found -12)");
+  expect_error("short-stride.gltf",
+               edited_square(view0, R"("byteOffset": 0, "byteLength": 48, "byteStride": 4})"),
+               "bufferViews[0].byteStride: 4 is less than the 12 bytes of an element of accessor 0");
+  expect_error("overflowing-accessor-offset.gltf",
+               edited_square(accessor0,
+                             R"("bufferView": 0, "byteOffset": 18446744073709551615, "componentType": 5126)"),
+               "accessors[0].byteOffset: 18446744073709551615 is past the end of bufferView 0 (48 bytes)");
+  expect_error("overflowing-view-length.gltf",
+               edited_square(view0, R"("byteOffset": 0, "byteLength": 18446744073709551615})"),
+               "bufferViews[0]: byteOffset 0 + byteLength 18446744073709551615 is past the end of buffer 0 "
+               "(60 bytes)");
+  expect_error("count.gltf", edited_square(R"("count": 4)", R"("count": 5)"),
+               "accessors[0].count: 5 elements of 12 bytes, 12 bytes apart from byteOffset 0, do not fit in "
+               "bufferView 0 (48 bytes)");
+  // The same check reads the JSON chunk of a .glb.
+  const std::string glb_json = square_json("");
+  const std::size_t at = glb_json.find(accessor0);
+  ASSERT_NE(at, std::string::npos);
+  const std::string negative_glb =
+      glb(std::string(glb_json).replace(at, accessor0.size(),
+                                        R"("bufferView": 0, "byteOffset": -4, "componentType": 5126)"),
+          square_buffer());
+  expect_error("negative.glb", negative_glb,
+               "accessors[0].byteOffset: must be a non-negative integer (found -4)");
+}
+
+// Issue 21: a node matrix holding 1e300 was refused as "matrix is singular"; what is wrong is the
+// size of its numbers, or of the transform composed down the node tree. A quaternion of tiny
+// components (its norm underflows to 0) was left unnormalised, a near-zero matrix that rotated
+// nothing; the zero quaternion is refused.
+TEST(GltfImport, NodeTransformsNameTheNodeAndWhatIsWrong) {
+  testing::ScratchDirectory scratch("gltf");
+  const auto error_for_node = [&](const std::string& name, const std::string& nodes) {
+    return error_of(write_file(scratch.path() / name, square_json(data_uri(square_buffer()), nodes)));
+  };
+  std::string message = error_for_node(
+      "matrix.gltf", R"({"mesh": 0, "matrix": [1e300, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]})");
+  EXPECT_NE(message.find("nodes[0].matrix[0]: magnitude above 1e16 is not supported (found 1e+300)"),
+            std::string::npos)
+      << message;
+  EXPECT_EQ(message.find("singular"), std::string::npos) << message;
+  message = error_for_node("translation.gltf", R"({"mesh": 0, "translation": [0, -1e17, 0]})");
+  EXPECT_NE(message.find("nodes[0].translation[1]: magnitude above 1e16 is not supported (found -1e+17)"),
+            std::string::npos)
+      << message;
+  message = error_for_node(
+      "chain.gltf", R"({"children": [1], "scale": [1e10, 1e10, 1e10]}, {"mesh": 0, "scale": [1e10, 1, 1]})");
+  EXPECT_NE(
+      message.find("nodes[1]: the transform composed from the scene's root down to this node has an entry of "
+                   "magnitude 1e+20, above the supported 1e16"),
+      std::string::npos)
+      << message;
+  message = error_for_node("zero-rotation.gltf", R"({"mesh": 0, "rotation": [0, 0, 0, 0]})");
+  EXPECT_NE(message.find("nodes[0].rotation: the zero quaternion"), std::string::npos) << message;
+  message = error_for_node("zero-scale.gltf", R"({"mesh": 0, "scale": [1, 0, 1]})");
+  EXPECT_NE(message.find("nodes[0]: transform: matrix is singular"), std::string::npos) << message;
+
+  // 90° about z with components of 1e-200: the square [0, 1]² turns to x in [-1, 0].
+  const auto result = import_gltf(
+      write_file(
+          scratch.path() / "tiny-rotation.gltf",
+          square_json(data_uri(square_buffer()), R"({"mesh": 0, "rotation": [0, 0, 1e-200, 1e-200]})")),
+      kFrom);
+  const Bounds3 bounds = result.mesh->bounds();
+  EXPECT_NEAR(bounds.lower.x, -1, 1e-12);
+  EXPECT_NEAR(bounds.upper.x, 0, 1e-12);
+  EXPECT_NEAR(bounds.upper.y, 1, 1e-12);
+}
+
 }  // namespace
 }  // namespace candela

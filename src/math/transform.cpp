@@ -14,13 +14,19 @@ Transform Transform::from_matrix(const Eigen::Matrix4d& matrix) {
   if (!matrix.allFinite()) throw std::invalid_argument("matrix has non-finite entries");
   if (matrix(3, 0) != 0 || matrix(3, 1) != 0 || matrix(3, 2) != 0 || matrix(3, 3) != 1)
     throw std::invalid_argument("matrix must be affine (last row 0 0 0 1)");
-  // Singular relative to its own size: |det| against the product of the column lengths (1 for
+  // Singular relative to its own size: the determinant of the columns scaled to unit length (1 for
   // orthogonal columns, 0 for dependent ones), so any scale, however small, is accepted and
-  // columns that are (nearly) parallel are not.
-  const Eigen::Matrix3d linear = matrix.topLeftCorner<3, 3>();
-  const double column_product = linear.col(0).norm() * linear.col(1).norm() * linear.col(2).norm();
-  if (!(column_product > 0) || !(std::fabs(linear.determinant()) > 1e-12 * column_product))
-    throw std::invalid_argument("matrix is singular");
+  // columns that are (nearly) parallel are not. Scaling each column first keeps the product of
+  // three lengths from overflowing (entries of 1e300 were called singular) or underflowing
+  // (scales of 1e-150); stableNorm does the same for each length.
+  Eigen::Matrix3d unit_columns = matrix.topLeftCorner<3, 3>();
+  for (int c = 0; c < 3; ++c) {
+    const double column_length = unit_columns.col(c).stableNorm();
+    if (!(column_length > 0))
+      throw std::invalid_argument("matrix is singular (a column of its 3×3 part is zero)");
+    unit_columns.col(c) /= column_length;
+  }
+  if (!(std::fabs(unit_columns.determinant()) > 1e-12)) throw std::invalid_argument("matrix is singular");
   return Transform(matrix, matrix.inverse());
 }
 

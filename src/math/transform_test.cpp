@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 namespace candela {
 namespace {
 
@@ -36,6 +38,25 @@ TEST(Transform, RejectsSingularAndProjectiveMatrices) {
   m(3, 0) = 1;
   EXPECT_THROW(Transform::from_matrix(m), std::invalid_argument);
   EXPECT_THROW(Transform::rotate(10, {0, 0, 0}), std::invalid_argument);
+}
+
+// Issue 21: entries of 1e300 were called "matrix is singular" (the product of the column lengths
+// overflowed), and so were scales of 1e-150 (it underflowed). Neither is singular; columns that
+// are dependent, however large or small, still are.
+TEST(Transform, SingularityDoesNotDependOnTheMatrixScale) {
+  for (const double scale : {1e300, 1e-150, 1e-300}) {
+    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+    m.topLeftCorner<3, 3>() *= scale;
+    m(0, 1) = 0.5 * scale;
+    EXPECT_NO_THROW(Transform::from_matrix(m)) << scale;
+    m(1, 0) = m(0, 0), m(1, 1) = m(0, 1);  // the second row equals the first
+    try {
+      (void)Transform::from_matrix(m);
+      ADD_FAILURE() << "accepted a singular matrix at scale " << scale;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("singular"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(Transform, BoundsOfARotatedBox) {
