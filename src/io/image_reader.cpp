@@ -506,34 +506,40 @@ constexpr std::array<std::string_view, 13> kStbExtensions = {"png", "jpg", "jpeg
 namespace {
 
 // A NaN or infinite texel would spread through every pixel that sees it (and one infinity
-// turns a whole `out_of_range: scale` image black): float files must hold finite values.
-RgbImage checked_finite(const std::filesystem::path& path, RgbImage image) {
+// turns a whole `out_of_range: scale` image black): float files must hold finite values, and
+// values of at most max_magnitude. The first bad value is named by pixel and channel.
+RgbImage checked_values(const std::filesystem::path& path, RgbImage image, double max_magnitude) {
   const std::vector<float>& rgb = image.rgb();
   for (std::size_t i = 0; i < rgb.size(); ++i)
-    if (!std::isfinite(rgb[i])) {
+    if (!std::isfinite(rgb[i]) || std::fabs(rgb[i]) > max_magnitude) {
       const std::size_t pixel = i / 3;
       const std::size_t x = pixel % std::size_t(image.width());
       const std::size_t y = pixel / std::size_t(image.width());
-      fail(path, "texel (" + std::to_string(x) + ", " + std::to_string(y) +
-                     ") counted from the bottom-left is " + (std::isnan(rgb[i]) ? "NaN" : "infinite") +
-                     "; image values must be finite");
+      const std::string where = fmt::format("texel ({}, {}) counted from the bottom-left, channel {} ({}),",
+                                            x, y, i % 3, std::array{"red", "green", "blue"}[i % 3]);
+      if (!std::isfinite(rgb[i]))
+        fail(path, fmt::format("{} is {}; image values must be finite", where,
+                               std::isnan(rgb[i]) ? "NaN" : "infinite"));
+      fail(path, fmt::format("{} is {}, above the limit of {:g} for texture values (scale the image down and "
+                             "raise the texture's multiplier)",
+                             where, rgb[i], max_magnitude));
     }
   return image;
 }
 
 }  // namespace
 
-RgbImage read_image(const std::filesystem::path& path, ColorEncoding encoding) {
+RgbImage read_image(const std::filesystem::path& path, ColorEncoding encoding, double max_magnitude) {
   std::error_code error;
   if (!std::filesystem::exists(path, error)) fail(path, "no such file");
   // Issue 21: a regular file only (a FIFO blocked, a device was read without end), at most 4 GiB.
   const std::string problem = input_file_problem(path.string(), "it", uint64_t{1} << 32);
   if (!problem.empty()) fail(path, problem);
   const std::string extension = lower_case_extension(path);
-  if (extension == "exr") return checked_finite(path, load_exr(path, encoding));
-  if (extension == "pfm") return checked_finite(path, load_pfm(path, encoding));
+  if (extension == "exr") return checked_values(path, load_exr(path, encoding), max_magnitude);
+  if (extension == "pfm") return checked_values(path, load_pfm(path, encoding), max_magnitude);
   if (std::find(kStbExtensions.begin(), kStbExtensions.end(), extension) != kStbExtensions.end())
-    return checked_finite(path, load_with_stb(path, encoding));
+    return checked_values(path, load_with_stb(path, encoding), max_magnitude);
   std::string known = "exr, pfm";
   for (const std::string_view name : kStbExtensions) known += ", " + std::string(name);
   fail(path,

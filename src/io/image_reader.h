@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -62,8 +63,10 @@ class RgbImage {
 // Radiance HDR through stb_image, EXR (any channel type, R/G/B or Y) through OpenEXR, PFM
 // through read_pfm. Grey becomes RGB; alpha is dropped. Throws std::runtime_error naming the
 // file and the reason: missing file, unknown extension, corrupt data, no pixels, over
-// kMaxPixels pixels, a non-finite value.
-RgbImage read_image(const std::filesystem::path& path, ColorEncoding encoding = ColorEncoding::automatic);
+// kMaxPixels pixels, a non-finite value or one of magnitude above max_magnitude (the first
+// such texel named by x, y and channel).
+RgbImage read_image(const std::filesystem::path& path, ColorEncoding encoding = ColorEncoding::automatic,
+                    double max_magnitude = std::numeric_limits<double>::infinity());
 
 // Reads a PFM (color "PF" or grey "Pf", either byte order). Throws std::runtime_error.
 Film read_pfm(const std::string& path);

@@ -40,10 +40,19 @@ class TextureImage {
   TextureImage(int width, int height, std::vector<float> rgb) : pixels_(width, height, std::move(rgb)) {}
   explicit TextureImage(RgbImage pixels) : pixels_(std::move(pixels)) {}
 
-  // The file read by read_image (io/image_reader.h: the formats, and the errors it throws).
+  // The largest magnitude a texel read from a file may have. A texel is multiplied by the
+  // texture's or environment's multiplier and by a light's intensity, each at most 1e16 (the
+  // scene file's limit on every number, io/json_node.cpp): 1e6 · 1e16 · 1e16 = 1e38 stays below
+  // the largest float, 3.4e38, which EXR and PFM pixels are written as. (PFM texels of 3e38 made
+  // infinite pixels.) HDR skies reach about 1e5; brighter ones can be scaled down in the file
+  // and up by the multiplier.
+  static constexpr double kMaxValue = 1e6;
+
+  // The file read by read_image (io/image_reader.h: the formats, and the errors it throws), with
+  // texels of magnitude above kMaxValue refused.
   static TextureImage load(const std::filesystem::path& path,
                            ColorEncoding encoding = ColorEncoding::automatic) {
-    return TextureImage(read_image(path, encoding));
+    return TextureImage(read_image(path, encoding, kMaxValue));
   }
 
   int width() const { return pixels_.width(); }

@@ -5,10 +5,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "camera/film.h"
+#include "io/image_writer.h"
+#include "scratch_directory.h"
 #include "shading/image_texture.h"
 
 namespace candela {
@@ -125,6 +132,66 @@ TEST(ImageTexture, LookupIsTheMultiplierTimesTheBilinearValue) {
   EXPECT_THROW(ImageTexture(nullptr, WrapMode::repeat, Color(1), std::make_shared<ParametricMapping>()),
                std::invalid_argument);
   EXPECT_THROW(ImageTexture(image, WrapMode::repeat, Color(1), nullptr), std::invalid_argument);
+}
+
+// A little-endian colour PFM of one row (PFM rows run bottom first; one row has no order).
+std::string write_pfm_row(const std::filesystem::path& file, const std::vector<float>& rgb) {
+  std::ofstream out(file, std::ios::binary);
+  out << "PF\n" << rgb.size() / 3 << " 1\n-1.0\n";
+  for (const float value : rgb) {
+    char bytes[4];
+    std::memcpy(bytes, &value, 4);  // the test machines are little-endian, as the header says
+    out.write(bytes, 4);
+  }
+  return file.string();
+}
+
+std::string load_error(const std::string& file) {
+  try {
+    (void)TextureImage::load(file);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no error for " << file;
+  return "";
+}
+
+// Issue 21: a PFM texel of 3e38 (finite) made infinite pixels once multiplied by a light and
+// written as float. Texels above TextureImage::kMaxValue, and NaN or infinite ones, are refused
+// naming the file and the first bad texel; the limit itself loads, and read_image without a
+// limit (`candela compare` reads renders through it) still reads the large value.
+TEST(TextureImage, LoadRefusesTexelsAboveTheLimitNamingTheFileAndTexel) {
+  candela::testing::ScratchDirectory scratch("candela-texture-limit");
+  const std::string huge = write_pfm_row(scratch.path() / "huge.pfm", {1, 2, 3, 4, 5, 3e38f});
+  std::string message = load_error(huge);
+  EXPECT_NE(message.find(huge), std::string::npos) << message;
+  EXPECT_NE(
+      message.find("texel (1, 0) counted from the bottom-left, channel 2 (blue), is 3e+38, above the limit "
+                   "of 1e+06"),
+      std::string::npos)
+      << message;
+  EXPECT_EQ(read_image(huge).texel(1, 0).b, 3e38f);
+
+  const std::string negative = write_pfm_row(scratch.path() / "negative.pfm", {-2e6f, 0, 0});
+  EXPECT_NE(load_error(negative).find("channel 0 (red), is -2000000"), std::string::npos);
+
+  const std::string nan =
+      write_pfm_row(scratch.path() / "nan.pfm", {0, std::numeric_limits<float>::quiet_NaN(), 0, 1, 1, 1});
+  message = load_error(nan);
+  EXPECT_NE(message.find("texel (0, 0) counted from the bottom-left, channel 1 (green), is NaN"),
+            std::string::npos)
+      << message;
+
+  const std::string limit = write_pfm_row(scratch.path() / "limit.pfm", {1e6f, 0, -1e6f});
+  EXPECT_EQ(TextureImage::load(limit).texel(0, 0), Color(1e6, 0, -1e6));
+
+  // EXR (and Radiance HDR) values go through the same check: the largest float is refused.
+  Film film(1, 1);
+  film.at(0, 0) = Color(0, std::numeric_limits<float>::max(), 0);
+  const std::string exr = (scratch.path() / "huge.exr").string();
+  write_exr(film, exr, 0);
+  EXPECT_NE(load_error(exr).find("channel 1 (green), is 3.4028235e+38"), std::string::npos)
+      << load_error(exr);
 }
 
 }  // namespace
