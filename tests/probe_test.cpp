@@ -120,6 +120,24 @@ TEST(Probe, ReadsPointsAndNamesTheLineAndColumnOfBadOnes) {
   expect_error("# nothing\n", "pts.csv", "no points");
 }
 
+// Issue 21: a normal of (1e200, 1e200, 0) was refused as "must not be zero" (its length
+// overflows to infinity) and one of (1e-200, 0, 0) too (its squared length underflows to 0). Both
+// are directions: they are scaled by their largest component before normalising. Only (0, 0, 0)
+// is still refused.
+TEST(Probe, PointsFileNormalsOfHugeOrTinyComponentsAreNormalisedSafely) {
+  testing::ScratchDirectory directory("probe-normals");
+  const std::string path = (directory.path() / "pts.csv").string();
+  std::ofstream(path) << "0,0,0,1e200,1e200,0\n1,1,1,1e-200,0,-1e-200\n2,2,2,0,1e308,0\n";
+  const auto points = read_probe_points(path);
+  ASSERT_EQ(points.size(), 3u);
+  EXPECT_NEAR(points[0].normal.x, std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(points[0].normal.y, std::sqrt(0.5), 1e-15);
+  EXPECT_EQ(points[0].normal.z, 0);
+  EXPECT_NEAR(points[1].normal.x, std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(points[1].normal.z, -std::sqrt(0.5), 1e-15);
+  EXPECT_EQ(points[2].normal.y, 1);
+}
+
 TEST(Probe, GridPointsSitAtCellCentresFacingUCrossV) {
   const auto points = grid_probe_points({0, 1, 0}, {2, 0, 0}, {0, 0, -1}, 2, 4);
   ASSERT_EQ(points.size(), 8u);

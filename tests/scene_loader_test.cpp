@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -192,6 +194,27 @@ TEST(SceneLoader, BadValuesInMaterialsLightsAndTransforms) {
   expect_error(std::string(kHeader) + R"(  "film": {"out_of_range": "wrap"}
 })",
                "film.out_of_range", 4, 28, "expected one of: clamp, scale, normalize");
+}
+
+// Issue 21: directions read from the scene are normalised by direction_of (math/direction.h): a
+// light direction, rotation axis or plane normal of components of 1e-200 (a squared length that
+// underflows to 0) was refused as "must be non-zero". They are directions; zero still is refused.
+TEST(SceneLoader, DirectionsOfTinyComponentsAreDirections) {
+  const auto scene = load_scene_text(std::string(kHeader) + R"(
+  "lights": [{"type": "directional", "direction": [0, -1e-200, 0]}],
+  "shapes": [{"type": "plane", "normal": [0, 1e-200, 0]},
+             {"type": "sphere", "transform": [{"translate": [2, 0, 0]}, {"rotate": {"angle": 90, "axis": [0, 0, 1e-200]}}]}]
+})",
+                                     "test.json", ".");
+  EXPECT_EQ(scene->lights.size(), 1u);
+  ASSERT_EQ(scene->primitives.size(), 2u);
+  const Bounds3 sphere = scene->primitives[1].shape->bounds();
+  EXPECT_NEAR(
+      std::max(std::fabs(sphere.upper.x + sphere.lower.x), std::fabs(sphere.upper.y + sphere.lower.y)), 4,
+      1e-9);
+  expect_error(std::string(kHeader) + R"(  "lights": [{"type": "directional", "direction": [0, 0, 0]}]
+})",
+               "lights[0].direction", 4, 54, "must be non-zero");
 }
 
 TEST(SceneLoader, ConstructorValidationIsReportedAtTheShape) {

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "camera/view_matrix.h"
+#include "math/direction.h"
 
 namespace candela {
 
@@ -11,8 +12,9 @@ OrthographicCamera::OrthographicCamera(const Vec3& eye, const Vec3& target, cons
                                        double right, double bottom, double top, int width, int height)
     : Camera(width, height), eye_(eye), left_(left), right_(right), bottom_(bottom), top_(top) {
   const Vec3 gaze = target - eye;
-  if (!(length(gaze) > 0)) throw std::invalid_argument("target must differ from eye");
-  gaze_ = normalize(gaze);
+  const std::optional<Vec3> gaze_unit = direction_of(gaze);
+  if (!gaze_unit) throw std::invalid_argument("target must differ from eye");
+  gaze_ = *gaze_unit;
   const Vec3 x_axis = cross(gaze_, up);
   if (!(length(x_axis) > 1e-12 * length(up)))
     throw std::invalid_argument("up is parallel to the view direction");

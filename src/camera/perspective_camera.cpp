@@ -5,6 +5,7 @@
 
 #include "camera/view_matrix.h"
 #include "math/constants.h"
+#include "math/direction.h"
 
 namespace candela {
 
@@ -12,8 +13,9 @@ PerspectiveCamera::PerspectiveCamera(const Vec3& eye, const Vec3& target, const 
                                      double horizontal_fov_degrees, int width, int height)
     : Camera(width, height), eye_(eye) {
   const Vec3 gaze = target - eye;
-  if (!(length(gaze) > 0)) throw std::invalid_argument("target must differ from eye");
-  gaze_ = normalize(gaze);
+  const std::optional<Vec3> gaze_unit = direction_of(gaze);
+  if (!gaze_unit) throw std::invalid_argument("target must differ from eye");
+  gaze_ = *gaze_unit;
   const Vec3 x_axis = cross(gaze_, up);  // X = G × U
   if (!(length(x_axis) > 1e-12 * length(up)))
     throw std::invalid_argument("up is parallel to the view direction");

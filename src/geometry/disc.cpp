@@ -8,6 +8,7 @@
 #include "geometry/surface_sampling.h"
 #include "geometry/tessellation.h"
 #include "math/constants.h"
+#include "math/direction.h"
 #include "sampling/warps.h"
 
 namespace candela {
@@ -15,13 +16,12 @@ namespace candela {
 Disc::Disc(const Vec3& center, const Vec3& normal, double radius, double inner_radius)
     : center_(center), radius_(radius), inner_radius_(inner_radius) {
   if (!is_finite(center)) throw std::invalid_argument("center must be finite");
-  const double normal_length = length(normal);
-  if (!(normal_length > 0) || !std::isfinite(normal_length))
-    throw std::invalid_argument("normal must be non-zero");
+  const std::optional<Vec3> unit = direction_of(normal);
+  if (!unit) throw std::invalid_argument("normal must be non-zero");
   if (!(radius > 0) || !std::isfinite(radius)) throw std::invalid_argument("radius must be > 0");
   if (!(inner_radius >= 0) || !(inner_radius < radius))
     throw std::invalid_argument("inner_radius must be >= 0 and < radius");
-  normal_ = normal / normal_length;
+  normal_ = *unit;
   orthonormal_basis(normal_, u_axis_, v_axis_);
 }
 

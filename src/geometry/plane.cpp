@@ -9,15 +9,15 @@
 #include "geometry/flat_surface.h"
 #include "geometry/tessellation.h"
 #include "math/constants.h"
+#include "math/direction.h"
 
 namespace candela {
 
 Plane::Plane(const Vec3& point, const Vec3& normal) : point_(point) {
   if (!is_finite(point)) throw std::invalid_argument("point must be finite");
-  const double normal_length = length(normal);
-  if (!(normal_length > 0) || !std::isfinite(normal_length))
-    throw std::invalid_argument("normal must be non-zero");
-  normal_ = normal / normal_length;
+  const std::optional<Vec3> unit = direction_of(normal);
+  if (!unit) throw std::invalid_argument("normal must be non-zero");
+  normal_ = *unit;
   orthonormal_basis(normal_, u_axis_, v_axis_);
 }
 

@@ -5,6 +5,7 @@
 
 #include "geometry/tessellation.h"
 #include "math/constants.h"
+#include "math/direction.h"
 #include "math/polynomial.h"
 
 namespace candela {
@@ -12,13 +13,13 @@ namespace candela {
 Torus::Torus(const Vec3& center, const Vec3& axis, double major_radius, double minor_radius)
     : center_(center), major_radius_(major_radius), minor_radius_(minor_radius) {
   if (!is_finite(center)) throw std::invalid_argument("center must be finite");
-  const double axis_length = length(axis);
-  if (!(axis_length > 0) || !std::isfinite(axis_length)) throw std::invalid_argument("axis must be non-zero");
+  const std::optional<Vec3> unit = direction_of(axis);
+  if (!unit) throw std::invalid_argument("axis must be non-zero");
   if (!(major_radius > 0) || !std::isfinite(major_radius))
     throw std::invalid_argument("major radius must be > 0");
   if (!(minor_radius > 0) || !std::isfinite(minor_radius))
     throw std::invalid_argument("minor radius must be > 0");
-  axis_ = axis / axis_length;
+  axis_ = *unit;
   orthonormal_basis(axis_, x_axis_, y_axis_);
 }
 

@@ -16,6 +16,7 @@
 #include "integrators/path_tracer.h"
 #include "integrators/solution_field.h"
 #include "math/constants.h"
+#include "math/direction.h"
 #include "sampling/multiple_importance.h"
 #include "sampling/warps.h"
 #include "shading/bsdf.h"
@@ -240,11 +241,10 @@ std::vector<ProbePoint> read_probe_points(const std::string& path) {
       if (!std::isfinite(values[k])) fail(path, line_number, column, "the value must be finite");
       at = comma + 1;
     }
-    const Vec3 normal{values[3], values[4], values[5]};
-    const double norm = length(normal);
-    if (!(norm > 0) || !std::isfinite(norm))
-      fail(path, line_number, 1, "the normal (nx,ny,nz) must not be zero");
-    points.push_back({{values[0], values[1], values[2]}, normal / norm});
+    // Each value is finite: only (0, 0, 0) has no direction ((1e200, 1e200, 0) has one).
+    const std::optional<Vec3> normal = direction_of({values[3], values[4], values[5]});
+    if (!normal) fail(path, line_number, 1, "the normal (nx,ny,nz) must not be zero");
+    points.push_back({{values[0], values[1], values[2]}, *normal});
   }
   if (points.empty()) fail(path, line_number, 0, "no points (expected lines x,y,z,nx,ny,nz)");
   return points;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "math/constants.h"
+#include "math/direction.h"
 
 namespace candela {
 
@@ -51,9 +52,9 @@ Transform Transform::scale(const Vec3& factors) {
 }
 
 Transform Transform::rotate(double angle_degrees, const Vec3& axis) {
-  const double axis_length = length(axis);
-  if (!(axis_length > 0)) throw std::invalid_argument("rotation axis must be non-zero");
-  const Eigen::Vector3d a(axis.x / axis_length, axis.y / axis_length, axis.z / axis_length);
+  const std::optional<Vec3> unit = direction_of(axis);
+  if (!unit) throw std::invalid_argument("rotation axis must be non-zero and finite");
+  const Eigen::Vector3d a(unit->x, unit->y, unit->z);
   Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
   m.topLeftCorner<3, 3>() = Eigen::AngleAxisd(degrees_to_radians(angle_degrees), a).toRotationMatrix();
   Eigen::Matrix4d inverse = Eigen::Matrix4d::Identity();

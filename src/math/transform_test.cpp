@@ -57,6 +57,9 @@ TEST(Transform, SingularityDoesNotDependOnTheMatrixScale) {
       EXPECT_NE(std::string(e.what()).find("singular"), std::string::npos) << e.what();
     }
   }
+  // A rotation about an axis of tiny or huge components (its length under- or overflows).
+  expect_near(Transform::rotate(90, {0, 0, 1e-200}).vector({1, 0, 0}), {0, 1, 0});
+  expect_near(Transform::rotate(90, {0, 0, 1e300}).vector({1, 0, 0}), {0, 1, 0});
 }
 
 TEST(Transform, BoundsOfARotatedBox) {

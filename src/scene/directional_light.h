@@ -1,6 +1,7 @@
 #pragma once
 
 #include "math/constants.h"
+#include "math/direction.h"
 #include "scene/light.h"
 
 namespace candela {
@@ -10,7 +11,7 @@ class DirectionalLight final : public Light {
  public:
   // direction: the way the light travels; L is its opposite.
   DirectionalLight(const Vec3& direction, const Color& intensity)
-      : to_light_(-normalize(direction)), intensity_(intensity) {}
+      : to_light_(-direction_of(direction).value_or(Vec3{})), intensity_(intensity) {}
   bool illuminate(const Vec3&, LightSample& sample) const override {
     sample = {to_light_, kInfinity, intensity_};
     return true;

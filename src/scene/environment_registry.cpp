@@ -9,6 +9,7 @@
 #include <string>
 #include <tuple>
 
+#include "math/direction.h"
 #include "util/registry.h"
 
 namespace candela {
@@ -139,7 +140,7 @@ std::unique_ptr<Environment> make_equirectangular(const JsonNode& node, const Lo
   auto image = load_texture_image(node.at("file"), context, encoding);
   const Vec3 up = node.vec3("up", {0, 1, 0});
   const Vec3 forward = node.vec3("forward", {0, 0, -1});
-  if (!(length(up) > 0)) node.at("up").fail("must be non-zero");
+  if (!direction_of(up)) node.at("up").fail("must be non-zero");
   if (!(length(forward) > 0)) node.at("forward").fail("must be non-zero");
   try {
     return std::make_unique<EquirectangularEnvironment>(std::move(image), up, forward, multiplier);

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "math/direction.h"
+
 namespace candela {
 
 namespace {
@@ -26,7 +28,7 @@ Transform read_transform_step(const JsonNode& step) {
     const double angle = rotate->number("angle");
     const JsonNode axis = rotate->at("axis");
     const Vec3 a = axis.as_vec3();
-    if (!(length(a) > 0)) axis.fail("must be non-zero");
+    if (!direction_of(a)) axis.fail("must be non-zero");
     rotate->finish();
     result = Transform::rotate(angle, a);
   } else if (const auto matrix = step.get("matrix")) {

@@ -2,6 +2,7 @@
 
 #include <array>
 
+#include "math/direction.h"
 #include "scene/area_light.h"
 #include "scene/directional_light.h"
 #include "scene/point_light.h"
@@ -73,7 +74,7 @@ std::unique_ptr<Light> make_point(const JsonNode& node, Color&) {
 std::unique_ptr<Light> make_directional(const JsonNode& node, Color&) {
   const JsonNode direction = node.at("direction");
   const Vec3 d = direction.as_vec3();
-  if (!(length(d) > 0)) direction.fail("must be non-zero");
+  if (!direction_of(d)) direction.fail("must be non-zero");
   return std::make_unique<DirectionalLight>(d, intensity_of(node));
 }
 

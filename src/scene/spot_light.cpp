@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "math/constants.h"
+#include "math/direction.h"
 
 namespace candela {
 
@@ -17,8 +18,9 @@ SpotLight::SpotLight(const Vec3& position, const Vec3& target, const Color& inte
       exponent_(exponent),
       attenuation_(attenuation) {
   const Vec3 axis = target - position;
-  if (!(length(axis) > 0)) throw std::invalid_argument("target must differ from position");
-  axis_ = normalize(axis);
+  const std::optional<Vec3> unit = direction_of(axis);
+  if (!unit) throw std::invalid_argument("target must differ from position");
+  axis_ = *unit;
 }
 
 double SpotLight::cone_factor(double cos_alpha) const {

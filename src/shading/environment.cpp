@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "math/constants.h"
+#include "math/direction.h"
 
 namespace candela {
 
@@ -221,10 +222,11 @@ EquirectangularEnvironment::EquirectangularEnvironment(std::shared_ptr<const Tex
                                                        const Color& multiplier)
     : image_(std::move(image)), multiplier_(multiplier) {
   if (!image_) throw std::invalid_argument("equirectangular environment needs an image");
-  if (!(length(up) > 0) || !is_finite(up)) throw std::invalid_argument("up must be a non-zero vector");
+  const std::optional<Vec3> up_unit = direction_of(up);
+  if (!up_unit) throw std::invalid_argument("up must be a non-zero vector");
   if (!(length(forward) > 0) || !is_finite(forward))
     throw std::invalid_argument("forward must be a non-zero vector");
-  up_ = normalize(up);
+  up_ = *up_unit;
   // Gram-Schmidt: forward keeps only its part orthogonal to up.
   const Vec3 across = forward - dot(forward, up_) * up_;
   if (!(length(across) > 1e-9 * length(forward)))
