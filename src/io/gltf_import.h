@@ -13,9 +13,13 @@
 //
 // Warnings (each prefixed with the file): a primitive of another mode (points, lines, strips,
 // fans), named as "mesh M primitive P", is skipped; tinygltf's own warnings. Errors (InputError
-// located at referenced_from, naming the file): tinygltf's parse errors, a missing POSITION,
-// accessors of the wrong type or outside their buffer, sparse accessors, an index out of range,
-// a non-finite position, a singular node transform, no triangles.
+// located at referenced_from, naming the file and, where there is one, the JSON path):
+// tinygltf's parse errors, a missing POSITION, accessors of the wrong type, an accessor or
+// bufferView byteOffset or byteStride that is not a non-negative integer (tinygltf would read it
+// as 0), offsets, lengths and counts past the end of their bufferView or buffer, sparse
+// accessors, an index out of range, a non-finite position or one above 1e16, node numbers
+// (matrix, translation, rotation, scale) above 1e16 or a transform composed down the node tree
+// that leaves that range, the zero quaternion, a singular node transform, no triangles.
 #pragma once
 
 #include <string>
