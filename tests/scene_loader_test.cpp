@@ -214,7 +214,7 @@ TEST(SceneLoader, DirectionsOfTinyComponentsAreDirections) {
       1e-9);
   expect_error(std::string(kHeader) + R"(  "lights": [{"type": "directional", "direction": [0, 0, 0]}]
 })",
-               "lights[0].direction", 4, 54, "must be non-zero");
+               "lights[0].direction", 4, 51, "must be non-zero");
 }
 
 TEST(SceneLoader, ConstructorValidationIsReportedAtTheShape) {
