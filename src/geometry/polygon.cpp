@@ -1,9 +1,11 @@
 #include "geometry/polygon.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
 
+#include "geometry/ear_clipping.h"
 #include "geometry/flat_surface.h"
 #include "geometry/surface_sampling.h"
 #include "geometry/tessellation.h"
@@ -11,15 +13,6 @@
 #include "sampling/warps.h"
 
 namespace candela {
-
-namespace {
-
-// Twice the signed area of the triangle a b c in the plane: > 0 when counter-clockwise.
-double orientation(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-}
-
-}  // namespace
 
 void Polygon::refuse_crossing_edges() const {
   // Issue 20: a self-intersecting polygon (a pentagram drawn through its five points) has no one
@@ -170,74 +163,33 @@ Bounds3 Polygon::bounds() const {
   return bounds_;
 }
 
-namespace {
-
-// Whether p lies in the counter-clockwise triangle a b c: with its boundary when closed,
-// strictly inside otherwise.
-bool in_triangle(const Vec2& p, const Vec2& a, const Vec2& b, const Vec2& c, bool closed) {
-  const double ab = orientation(a, b, p), bc = orientation(b, c, p), ca = orientation(c, a, p);
-  return closed ? (ab >= 0 && bc >= 0 && ca >= 0) : (ab > 0 && bc > 0 && ca > 0);
-}
-
-}  // namespace
-
 void Polygon::tessellate(const TessellationSettings&, TriangleMesh& mesh) const {
   MeshAppender out(mesh);
   // The vertices in the uv frame's axes (counter-clockwise about the normal, since Newell's
   // normal follows the vertex order), dropping repeated consecutive vertices.
-  struct Corner {
-    uint32_t vertex;
-    Vec2 plane;  // coordinates along u_axis_, v_axis_ from the first vertex
-    Vec2 uv;
-  };
-  std::vector<Corner> remaining;
+  std::vector<uint32_t> vertex;
+  std::vector<Vec2> plane, uv;
+  std::vector<uint32_t> place;  // the first kept corner at the same point
   for (std::size_t i = 0; i < vertices_.size(); ++i) {
-    const Vec3& vertex = vertices_[i];
-    if (vertex == vertices_[(i + 1) % vertices_.size()]) continue;
-    const Vec3 offset = vertex - vertices_[0];
-    const Vec2 plane{dot(offset, u_axis_), dot(offset, v_axis_)};
+    const Vec3& position = vertices_[i];
+    if (position == vertices_[(i + 1) % vertices_.size()]) continue;
+    const Vec3 offset = position - vertices_[0];
+    const Vec2 in_plane{dot(offset, u_axis_), dot(offset, v_axis_)};
     // As intersect: the bounding rectangle of the vertices in this frame is [0, 1]².
-    const Vec2 uv{std::clamp((plane.x - uv_lower_.x) / uv_extent_.x, 0.0, 1.0),
-                  std::clamp((plane.y - uv_lower_.y) / uv_extent_.y, 0.0, 1.0)};
-    remaining.push_back({out.vertex(vertex), plane, uv});
-  }
-  // An ear: a strictly convex corner whose triangle with its neighbours holds no other corner
-  // (Meisters 1975: every simple polygon of more than three vertices has two). Corners at the
-  // same place as one of the ear's (a polygon touching itself) do not count. The first pass
-  // also refuses corners on the triangle's boundary, which keeps a collinear corner on the
-  // new diagonal from being left out as a T-junction; the second accepts them; the last takes
-  // any convex corner, so that rounding on a nearly degenerate polygon cannot stall the loop.
-  const auto find_ear = [&](int pass) -> std::size_t {
-    const std::size_t count = remaining.size();
-    for (std::size_t i = 0; i < count; ++i) {
-      const Corner& previous = remaining[(i + count - 1) % count];
-      const Corner& current = remaining[i];
-      const Corner& next = remaining[(i + 1) % count];
-      if (!(orientation(previous.plane, current.plane, next.plane) > 0)) continue;
-      bool holds_another = false;
-      for (std::size_t j = 0; j < count && pass < 2 && !holds_another; ++j) {
-        const Vec3& p = out.position(remaining[j].vertex);
-        if (p == out.position(previous.vertex) || p == out.position(current.vertex) ||
-            p == out.position(next.vertex))
-          continue;
-        holds_another = in_triangle(remaining[j].plane, previous.plane, current.plane, next.plane, pass == 0);
+    uv.push_back({std::clamp((in_plane.x - uv_lower_.x) / uv_extent_.x, 0.0, 1.0),
+                  std::clamp((in_plane.y - uv_lower_.y) / uv_extent_.y, 0.0, 1.0)});
+    plane.push_back(in_plane);
+    vertex.push_back(out.vertex(position));
+    auto same = static_cast<uint32_t>(place.size());
+    for (uint32_t k = 0; k < place.size(); ++k)
+      if (out.position(vertex[k]) == position) {
+        same = k;
+        break;
       }
-      if (!holds_another) return i;
-    }
-    return count;
-  };
-  while (remaining.size() >= 3) {
-    const std::size_t count = remaining.size();
-    std::size_t ear = count;
-    for (int pass = 0; pass < 3 && ear == count; ++pass) ear = find_ear(pass);
-    // No convex corner left: what remains spans no area (collinear corners).
-    if (ear == count) break;
-    const Corner& previous = remaining[(ear + count - 1) % count];
-    const Corner& current = remaining[ear];
-    const Corner& next = remaining[(ear + 1) % count];
-    out.triangle({previous.vertex, current.vertex, next.vertex}, {previous.uv, current.uv, next.uv});
-    remaining.erase(remaining.begin() + static_cast<std::ptrdiff_t>(ear));
+    place.push_back(same);
   }
+  for (const auto& [a, b, c] : ear_clip(plane, place))
+    out.triangle({vertex[a], vertex[b], vertex[c]}, {uv[a], uv[b], uv[c]});
 }
 
 }  // namespace candela
