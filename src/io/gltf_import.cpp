@@ -479,7 +479,7 @@ ObjImport import_gltf(const std::string& path, const SourceLocation& referenced_
   callbacks.WriteWholeFile = tinygltf::WriteWholeFile;
   callbacks.ReadWholeFile = [](std::vector<unsigned char>* out, std::string* err, const std::string& file,
                                void* user_data) {
-    const std::string problem = input_file_problem(file, "'" + file + "'", uint64_t{1} << 32);
+    const std::string problem = input_file_problem(file, "'" + file + "'", kMeshFileLimit);
     if (!problem.empty()) {
       if (err) *err += problem + "\n";
       return false;

@@ -6,13 +6,20 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
+#include <map>
 #include <sstream>
+#include <string_view>
 #include <system_error>
+
+#include "geometry/ear_clipping.h"
+#include "math/bounds.h"
+#include "math/constants.h"
+#include "util/input_file.h"
 
 namespace candela {
 
@@ -74,30 +81,242 @@ bool finite_color(const Color& c) {
   return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b);
 }
 
-// tinyobjloader reads "nan" and "inf" in a vertex as 0 without a word: the first vertex
-// coordinate that is not a finite number (nan, inf, 1e400), as "vertex N (line L): 'text'", or "".
-std::string first_non_finite_vertex(const std::string& path) {
-  std::ifstream in(path);
-  std::string line;
-  std::size_t line_number = 0, vertex = 0;
-  while (std::getline(in, line)) {
+// What the pre-scan of the OBJ text found: the line of each face tinyobjloader keeps (three
+// corners or more), in file order, or a problem it reads wrongly without a word.
+struct ObjScan {
+  std::vector<int> face_lines;
+  std::string problem;  // "line N: ..." or ""
+};
+
+bool obj_space(char c) {
+  return c == ' ' || c == '\t';
+}
+
+// One pass over the text with tinyobjloader's own line breaks ("\n", "\r\n", "\r") and
+// statement tests, for what it reads silently wrong:
+// - a vertex coordinate that is not a finite number (nan, inf, 1e400): read as 0;
+// - an index of an f, l or p statement beyond the 32-bit range (atoi saturates, and the
+//   saturated value read as -1 is "the last vertex"), or a negative (relative) one reaching
+//   before the first vertex, normal or texture coordinate.
+ObjScan scan_obj(std::string_view text) {
+  ObjScan scan;
+  std::size_t vertices = 0, normals = 0, texcoords = 0;
+  int line_number = 0;
+  std::size_t position = 0;
+  while (position < text.size()) {
+    std::size_t end = text.find_first_of("\r\n", position);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(position, end - position);
+    position = end + (end + 1 < text.size() && text[end] == '\r' && text[end + 1] == '\n' ? 2 : 1);
     ++line_number;
-    std::size_t at = line.find_first_not_of(" \t");
-    if (at == std::string::npos || line[at] != 'v' || at + 1 >= line.size() ||
-        (line[at + 1] != ' ' && line[at + 1] != '\t'))
-      continue;
-    ++vertex;
-    std::istringstream tokens(line.substr(at + 1));
-    std::string token;
-    for (int k = 0; k < 3 && tokens >> token; ++k) {
-      const double value = std::strtod(token.c_str(), nullptr);
-      if (!std::isfinite(value))
-        return "vertex " + std::to_string(vertex) + " (line " + std::to_string(line_number) + "): '" + token +
-               "'";
+    line = line.substr(0, line.find('\0'));  // tinyobjloader stops a statement there
+    std::size_t at = 0;
+    while (at < line.size() && obj_space(line[at])) ++at;
+    if (at + 1 >= line.size()) continue;
+    const char kind = line[at];
+    const std::string located = "line " + std::to_string(line_number) + ": ";
+    if (kind == 'v' && line[at + 1] == 't' && at + 2 < line.size() && obj_space(line[at + 2])) {
+      ++texcoords;
+    } else if (kind == 'v' && line[at + 1] == 'n' && at + 2 < line.size() && obj_space(line[at + 2])) {
+      ++normals;
+    } else if (kind == 'v' && obj_space(line[at + 1])) {
+      ++vertices;
+      std::istringstream tokens{std::string(line.substr(at + 1))};
+      std::string token;
+      for (int k = 0; k < 3 && tokens >> token; ++k) {
+        const double value = std::strtod(token.c_str(), nullptr);
+        if (!std::isfinite(value)) {
+          scan.problem =
+              located + "vertex " + std::to_string(vertices) + ": '" + token + "' is a non-finite coordinate";
+          return scan;
+        }
+      }
+    } else if ((kind == 'f' || kind == 'l' || kind == 'p') && obj_space(line[at + 1])) {
+      std::size_t corners = 0;
+      std::size_t i = at + 2;
+      while (i < line.size()) {
+        while (i < line.size() && (obj_space(line[i]) || line[i] == '\r')) ++i;
+        if (i >= line.size()) break;
+        const std::size_t token_end = line.find_first_of(" \t\r", i);
+        const std::string_view token =
+            line.substr(i, token_end == std::string_view::npos ? line.npos : token_end - i);
+        i += token.size();
+        ++corners;
+        // v, v/vt, v//vn, v/vt/vn: each part as tinyobjloader's atoi reads it.
+        std::size_t part_start = 0;
+        for (int part = 0; part < 3 && part_start <= token.size(); ++part) {
+          std::size_t slash = token.find('/', part_start);
+          if (slash == std::string_view::npos) slash = token.size();
+          std::string_view digits = token.substr(part_start, slash - part_start);
+          part_start = slash + 1;
+          const bool negative = !digits.empty() && digits.front() == '-';
+          if (!digits.empty() && (digits.front() == '-' || digits.front() == '+')) digits.remove_prefix(1);
+          std::size_t count = 0;
+          while (count < digits.size() && std::isdigit(static_cast<unsigned char>(digits[count]))) ++count;
+          if (count == 0) continue;
+          digits = digits.substr(0, count);
+          const char* what = part == 0 ? "vertex" : part == 1 ? "texture coordinate" : "normal";
+          const std::size_t before = part == 0 ? vertices : part == 1 ? texcoords : normals;
+          uint64_t value = 0;
+          const auto [last, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+          (void)last;
+          const uint64_t limit = negative ? uint64_t{2147483648u} : uint64_t{2147483647u};
+          if (error != std::errc() || value > limit) {
+            scan.problem = located + "index '" + std::string(token) + "': " + what +
+                           " index beyond the 32-bit integer range (face index out of range)";
+            return scan;
+          }
+          if (negative && value > before) {
+            scan.problem = located + "index '" + std::string(token) + "' refers back to " + what + " -" +
+                           std::to_string(value) + " but only " + std::to_string(before) +
+                           " precede it (face index out of range)";
+            return scan;
+          }
+        }
+      }
+      if (kind == 'f' && corners >= 3) scan.face_lines.push_back(line_number);
     }
   }
+  return scan;
+}
+
+// The triangles of one face as corner offsets into it (0 .. corners - 1), or a problem.
+// - three corners: the triangle;
+// - four: split along the shorter diagonal, in float, exactly as tinyobjloader's triangulation
+//   did (so quads keep their triangles);
+// - more: a polygon that is convex and planar becomes a fan from its first corner (linear
+//   time); any other one of at most kMaxNonConvexFaceCorners corners is ear-clipped in the
+//   plane of its Newell normal (geometry/ear_clipping.h, quadratic to cubic in the corners),
+//   and a larger one is refused. tinyobjloader's own ear clipping took 36 s for a convex face
+//   of 10⁵ corners (about an hour for 10⁶).
+std::string triangulate_face(const std::vector<Vec3>& p, std::vector<std::array<uint32_t, 3>>& triangles) {
+  triangles.clear();
+  const std::size_t n = p.size();
+  if (n == 3) {
+    triangles.push_back({0, 1, 2});
+    return "";
+  }
+  if (n == 4) {
+    const auto squared = [&](int a, int b) {
+      const float x = static_cast<float>(p[b].x) - static_cast<float>(p[a].x);
+      const float y = static_cast<float>(p[b].y) - static_cast<float>(p[a].y);
+      const float z = static_cast<float>(p[b].z) - static_cast<float>(p[a].z);
+      return x * x + y * y + z * z;
+    };
+    if (squared(0, 2) < squared(1, 3)) {
+      triangles.push_back({0, 1, 2});
+      triangles.push_back({0, 2, 3});
+    } else {
+      triangles.push_back({0, 1, 3});
+      triangles.push_back({1, 2, 3});
+    }
+    return "";
+  }
+  const auto fan = [&](const std::vector<uint32_t>& corners) {
+    for (std::size_t k = 1; k + 1 < corners.size(); ++k)
+      triangles.push_back({corners[0], corners[k], corners[k + 1]});
+  };
+  // Newell's vector, summed about the first corner (as geometry/polygon.cpp).
+  Vec3 area_vector;
+  Bounds3 box;
+  for (std::size_t i = 0; i < n; ++i) box.extend(p[i]);
+  for (std::size_t i = 1; i + 1 < n; ++i) area_vector += cross(p[i] - p[0], p[i + 1] - p[0]);
+  const double size = length(box.diagonal());
+  if (!(length(area_vector) > 0) || !(size > 0)) {
+    std::vector<uint32_t> all(n);
+    for (std::size_t i = 0; i < n; ++i) all[i] = static_cast<uint32_t>(i);
+    fan(all);  // no area: every triangle is degenerate, and the loader skips them
+    return "";
+  }
+  const Vec3 normal = normalize(area_vector);
+  Vec3 u_axis;
+  for (std::size_t i = 1; i < n && length_squared(u_axis) == 0; ++i) {
+    u_axis = p[i] - p[0];
+    u_axis -= normal * dot(u_axis, normal);
+  }
+  u_axis = normalize(u_axis);
+  const Vec3 v_axis = cross(normal, u_axis);
+  // The corners in the plane (counter-clockwise about the normal), repeated ones dropped.
+  std::vector<Vec2> plane;
+  std::vector<uint32_t> corner;
+  bool planar = true;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (p[i] == p[(i + 1) % n]) continue;
+    const Vec3 offset = p[i] - p[0];
+    planar = planar && std::fabs(dot(offset, normal)) <= 1e-5 * size;
+    plane.push_back({dot(offset, u_axis), dot(offset, v_axis)});
+    corner.push_back(static_cast<uint32_t>(i));
+  }
+  // Convex: no corner turns clockwise (beyond rounding) and the turns add up to one turn, not
+  // two or more (a pentagram turns the same way at every corner).
+  const std::size_t m = plane.size();
+  bool convex = m >= 3;
+  double turning = 0;
+  for (std::size_t i = 0; i < m && convex; ++i) {
+    const Vec2 &a = plane[(i + m - 1) % m], &b = plane[i], &c = plane[(i + 1) % m];
+    const Vec2 in{b.x - a.x, b.y - a.y}, out{c.x - b.x, c.y - b.y};
+    const double sine = in.x * out.y - in.y * out.x, cosine = in.x * out.x + in.y * out.y;
+    convex = sine >= -1e-9 * std::sqrt((in.x * in.x + in.y * in.y) * (out.x * out.x + out.y * out.y));
+    turning += std::atan2(sine, cosine);
+  }
+  convex = convex && turning < 3 * kPi;
+  if (convex && planar) {
+    fan(corner);
+    return "";
+  }
+  if (n > kMaxNonConvexFaceCorners)
+    return "a face of " + std::to_string(n) + " corners that is not " + (convex ? "planar" : "convex") +
+           ": such faces are triangulated (ear clipping) only up to " +
+           std::to_string(kMaxNonConvexFaceCorners) + " corners; split it into smaller faces";
+  std::vector<uint32_t> place(m);
+  for (std::size_t i = 0; i < m; ++i) {
+    place[i] = static_cast<uint32_t>(i);
+    for (std::size_t k = 0; k < i; ++k)
+      if (p[corner[k]] == p[corner[i]]) {
+        place[i] = static_cast<uint32_t>(k);
+        break;
+      }
+  }
+  for (const auto& [a, b, c] : ear_clip(plane, place)) triangles.push_back({corner[a], corner[b], corner[c]});
   return "";
 }
+
+// tinyobjloader opens the files of mtllib itself, and blocked in open() on a FIFO or read
+// /dev/zero until memory ran out (issue 21): each is read here, as a regular file of bounded
+// size, and handed over as text. A missing file stays a warning, as before; any other problem
+// is kept to be thrown once tinyobjloader returns.
+class BoundedMaterialReader final : public tinyobj::MaterialReader {
+ public:
+  explicit BoundedMaterialReader(std::string directory) : directory_(std::move(directory)) {}
+
+  bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                  std::map<std::string, int>* material_map, std::string* warning,
+                  std::string* error) override {
+    const std::string path = (std::filesystem::path(directory_) / name).string();
+    const std::string what = "material file " + quoted(path);
+    std::error_code ec;
+    if (!std::filesystem::exists(std::filesystem::status(path, ec))) {
+      if (warning) *warning += "material file " + quoted(name) + " not found in '" + directory_ + "'\n";
+      return false;
+    }
+    std::string text;
+    try {
+      text = read_input_file(path, what, kMeshFileLimit);
+    } catch (const InputError& e) {
+      if (problem_.empty()) problem_ = e.message();
+      return false;
+    }
+    std::istringstream in(text);
+    tinyobj::LoadMtl(material_map, materials, &in, warning, error);
+    return true;
+  }
+
+  const std::string& problem() const { return problem_; }
+
+ private:
+  std::string directory_;
+  std::string problem_;
+};
 
 }  // namespace
 
@@ -117,30 +336,46 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
   };
 
   require_mesh_file(path, "OBJ", referenced_from);
+  // Issue 21: read as a regular file of bounded size (the OBJ and each MTL file).
+  std::string text;
+  try {
+    text = read_input_file(path, "OBJ file " + quoted(path), kMeshFileLimit);
+  } catch (const InputError& e) {
+    throw fail(e.message());
+  }
+  const ObjScan scan = scan_obj(text);
+  if (!scan.problem.empty()) throw fail("OBJ file " + quoted(path) + " " + scan.problem);
 
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = true;
-  config.vertex_color = false;
   std::string directory = std::filesystem::path(path).parent_path().string();
-  config.mtl_search_path = directory.empty() ? std::string(".") : directory;
-
-  tinyobj::ObjReader reader;
-  const bool parsed = reader.ParseFromFile(path, config);
-  const std::vector<std::string> errors = split_lines(reader.Error());
+  if (directory.empty()) directory = ".";
+  BoundedMaterialReader material_reader(directory);
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> materials;
+  std::string warning_text, error_text;
+  std::istringstream stream(text);
+  text = {};
+  // Polygons are triangulated below (triangulate_face), not by tinyobjloader.
+  const bool parsed =
+      tinyobj::LoadObj(&attrib, &shapes, &materials, &warning_text, &error_text, &stream, &material_reader,
+                       /*triangulate=*/false, /*default_vcols_fallback=*/false);
+  if (!material_reader.problem().empty())
+    throw fail("OBJ file " + quoted(path) + ": " + material_reader.problem());
+  const std::vector<std::string> errors = split_lines(error_text);
   if (!parsed) {
-    const std::string text = errors.empty() ? "unknown error" : join(errors);
-    const int line = line_number_in(text);
+    const std::string message = errors.empty() ? "unknown error" : join(errors);
+    const int line = line_number_in(message);
     std::string where = "OBJ file " + quoted(path);
     if (line > 0) where += " line " + std::to_string(line);
-    throw fail("cannot read " + where + ": " + text);
+    throw fail("cannot read " + where + ": " + message);
   }
 
   ObjImport result;
   const std::string prefix = path + ": ";
-  // tinyobjloader only warns about out-of-range indices (and drops quads that have them); the
-  // faces it kept are checked one by one below, with better messages, so this is the fallback.
+  // tinyobjloader only warns about out-of-range indices; the faces are checked one by one
+  // below, with better messages, so this is the fallback.
   bool index_out_of_range = false;
-  std::vector<std::string> warnings = split_lines(reader.Warning());
+  std::vector<std::string> warnings = split_lines(warning_text);
   warnings.insert(warnings.end(), errors.begin(), errors.end());
   for (const std::string& line : warnings) {
     if (line.find("out of bounds") != std::string::npos ||
@@ -153,10 +388,6 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
       result.warnings.push_back(warning);
   }
 
-  if (const std::string bad = first_non_finite_vertex(path); !bad.empty())
-    throw fail("OBJ file " + quoted(path) + ": " + bad + " has a non-finite coordinate");
-
-  const tinyobj::attrib_t& attrib = reader.GetAttrib();
   auto mesh = std::make_shared<TriangleMesh>();
 
   const std::size_t vertex_count = attrib.vertices.size() / 3;
@@ -181,7 +412,13 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
   // Gather the triangles with their attribute indices; check every index.
   std::vector<std::array<tinyobj::index_t, 3>> corners;
   std::size_t face_number = 0;
-  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+  std::size_t face_total = 0;
+  for (const tinyobj::shape_t& shape : shapes) face_total += shape.mesh.num_face_vertices.size();
+  // The pre-scan saw the same faces in the same order, unless the file is stranger than it knows.
+  const bool lines_known = face_total == scan.face_lines.size();
+  std::vector<Vec3> face_positions;
+  std::vector<std::array<uint32_t, 3>> face_triangles;
+  for (const tinyobj::shape_t& shape : shapes) {
     const tinyobj::mesh_t& shape_mesh = shape.mesh;
     std::size_t offset = 0;
     for (std::size_t face = 0; face < shape_mesh.num_face_vertices.size(); ++face) {
@@ -190,7 +427,9 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
       if (offset + count > shape_mesh.indices.size())
         throw fail("OBJ file " + quoted(path) + ": inconsistent face data");
       const auto describe_face = [&] {
-        return "OBJ file " + quoted(path) + ": triangle " + std::to_string(face_number) +
+        return "OBJ file " + quoted(path) +
+               (lines_known ? " line " + std::to_string(scan.face_lines[face_number - 1]) : std::string()) +
+               ": face " + std::to_string(face_number) +
                (shape.name.empty() ? std::string() : " (object '" + shape.name + "')");
       };
       for (std::size_t k = 0; k < count; ++k) {
@@ -211,11 +450,16 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
                      std::to_string(texcoord_count) + " texture coordinates (face index out of range)");
       }
       int material = face < shape_mesh.material_ids.size() ? shape_mesh.material_ids[face] : -1;
-      if (material < 0 || static_cast<std::size_t>(material) >= reader.GetMaterials().size()) material = -1;
-      // tinyobjloader has triangulated already; a fan covers anything it left as a polygon.
-      for (std::size_t k = 1; k + 1 < count; ++k) {
+      if (material < 0 || static_cast<std::size_t>(material) >= materials.size()) material = -1;
+      face_positions.clear();
+      for (std::size_t k = 0; k < count; ++k)
+        face_positions.push_back(
+            mesh->positions[static_cast<std::size_t>(shape_mesh.indices[offset + k].vertex_index)]);
+      if (const std::string problem = triangulate_face(face_positions, face_triangles); !problem.empty())
+        throw fail(describe_face() + " is " + problem);
+      for (const auto& [a, b, c] : face_triangles) {
         corners.push_back(
-            {shape_mesh.indices[offset], shape_mesh.indices[offset + k], shape_mesh.indices[offset + k + 1]});
+            {shape_mesh.indices[offset + a], shape_mesh.indices[offset + b], shape_mesh.indices[offset + c]});
         result.triangle_material.push_back(material);
       }
       offset += count;
@@ -302,7 +546,7 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
     }
   }
 
-  for (const tinyobj::material_t& source : reader.GetMaterials()) {
+  for (const tinyobj::material_t& source : materials) {
     ImportedMaterial material;
     material.name = source.name;
     material.ka = to_color(source.ambient);
@@ -314,9 +558,8 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
     material.ior = static_cast<double>(source.ior);
     if (!source.diffuse_texname.empty()) {
       const std::filesystem::path texture(source.diffuse_texname);
-      material.diffuse_texture = texture.is_absolute()
-                                     ? texture.string()
-                                     : (std::filesystem::path(config.mtl_search_path) / texture).string();
+      material.diffuse_texture =
+          texture.is_absolute() ? texture.string() : (std::filesystem::path(directory) / texture).string();
     }
     if (!finite_color(material.ka) || !finite_color(material.kd) || !finite_color(material.ke) ||
         !std::isfinite(material.ks) || !std::isfinite(material.shininess) || !std::isfinite(material.ior) ||

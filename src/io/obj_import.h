@@ -2,6 +2,11 @@
 // (polygons triangulated, every object and group merged), the per-triangle material index and
 // the MTL materials in file order.
 //
+// Polygons: a quad is split along its shorter diagonal; a larger face that is convex and planar
+// (within 1e-5 of its size) becomes a fan from its first corner; any other face of at most
+// kMaxNonConvexFaceCorners corners is ear-clipped in its plane, and a larger one is refused
+// (ear clipping costs up to the cube of the corners: a face must be split before that).
+//
 // Mapping from MTL: Ka -> ka, Kd -> kd, Ke -> ke, Ks -> ks (mean of the three components),
 // Ns -> shininess, kt = 1 - d (tinyobjloader turns Tr into d = 1 - Tr; d wins when both are
 // given), clamped to [0, 1], Ni -> ior (1 when absent).
@@ -12,11 +17,16 @@
 // their triangle, with a warning).
 //
 // Errors (InputError located at referenced_from, the scene's "file" key): a missing or unreadable
-// file, a parse error (the message names the OBJ and gives tinyobjloader's text with its line
-// number), a face index out of range, a non-finite coordinate, no triangles at all. A missing
-// .mtl or an unknown usemtl name is only a warning (those triangles get material -1).
+// file, one that is not a regular file or is larger than kMeshFileLimit (the OBJ or an MTL file
+// that exists), a parse error (the message names the OBJ and gives tinyobjloader's text with its
+// line number), a face index out of range (with the OBJ's line: beyond the 32-bit range, or
+// relative and reaching before the first vertex, as well as past the last one), a non-finite
+// coordinate, a non-convex face of more than kMaxNonConvexFaceCorners corners, no triangles at
+// all. A missing .mtl or an unknown usemtl name is only a warning (those triangles get material
+// -1).
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,6 +36,9 @@
 #include "util/error.h"
 
 namespace candela {
+
+// The most corners of a face that is not convex and planar (see above).
+inline constexpr std::size_t kMaxNonConvexFaceCorners = 1000;
 
 struct ImportedMaterial {
   std::string name;

@@ -1,15 +1,22 @@
 #include "io/obj_import.h"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <random>
 #include <sstream>
 #include <string>
 
 #include "geometry/triangle_mesh.h"
 #include "math/constants.h"
+#include "util/input_file.h"
 
 namespace candela {
 namespace {
@@ -279,6 +286,130 @@ TEST(ObjImport, OutOfRangeIndexIsAnError) {
   EXPECT_NE(import_error(normal).find("out of range"), std::string::npos);
   const std::string relative = dir.write("relative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -5\n");
   EXPECT_NE(import_error(relative).find("out of range"), std::string::npos);
+}
+
+// Issue 21: tinyobjloader reads an index with atoi, which saturates: 99999999999999999999
+// became -1, "the last vertex", and the face loaded without a word.
+TEST(ObjImport, IndexBeyondTheIntegerRangeIsALocatedError) {
+  const TempDir dir;
+  const std::string head = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  for (const std::string face : {"f 1 2 99999999999999999999", "f 1 2 -99999999999999999999",
+                                 "f 1 2 2147483648", "f 1/99999999999 2 3", "l 1 99999999999999"}) {
+    const std::string message = import_error(dir.write("overflow.obj", head + "\n" + face + "\n"));
+    EXPECT_NE(message.find("line 5"), std::string::npos) << face << ": " << message;
+    EXPECT_NE(message.find("beyond the 32-bit integer range"), std::string::npos) << face << ": " << message;
+  }
+  // A relative index reaching before the first vertex, with the line.
+  const std::string message = import_error(dir.write("back.obj", head + "f 1 2 -4\n"));
+  EXPECT_NE(message.find("line 4"), std::string::npos) << message;
+  EXPECT_NE(message.find("out of range"), std::string::npos) << message;
+  // The largest index that fits is an ordinary out-of-range index, located too.
+  const std::string large = import_error(dir.write("large.obj", head + "f 1 2 2147483647\n"));
+  EXPECT_NE(large.find("line 4"), std::string::npos) << large;
+  EXPECT_NE(large.find("out of range"), std::string::npos) << large;
+}
+
+std::string regular_polygon_obj(int corners, double radius) {
+  std::string obj;
+  obj.reserve(static_cast<std::size_t>(corners) * 40);
+  char buffer[96];
+  for (int k = 0; k < corners; ++k) {
+    const double angle = 2 * kPi * k / corners;
+    std::snprintf(buffer, sizeof buffer, "v %.9g %.9g 0\n", radius * std::cos(angle),
+                  radius * std::sin(angle));
+    obj += buffer;
+  }
+  obj += "f";
+  for (int k = 1; k <= corners; ++k) obj += " " + std::to_string(k);
+  return obj + "\n";
+}
+
+double total_area(const TriangleMesh& mesh) {
+  double area = 0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) area += 0.5 * length(mesh.face_cross(t));
+  return area;
+}
+
+// Issue 21: tinyobjloader's ear clipping is quadratic: a convex face of 10⁵ corners took 36 s.
+TEST(ObjImport, AHugeConvexFaceIsAFanInLinearTime) {
+  const TempDir dir;
+  constexpr int kCorners = 100000;
+  const std::string path = dir.write("disc.obj", regular_polygon_obj(kCorners, 1.0));
+  const auto start = std::chrono::steady_clock::now();
+  const ObjImport result = import_obj(path, scene_location());
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(seconds, 5.0);  // 0.1 s here; sanitizers are slower
+  ASSERT_EQ(result.mesh->triangles.size(), static_cast<std::size_t>(kCorners - 2));
+  const double expected = 0.5 * kCorners * std::sin(2 * kPi / kCorners);  // the polygon's area
+  EXPECT_NEAR(total_area(*result.mesh), expected, 1e-6);
+  for (std::size_t t = 0; t < result.mesh->triangles.size(); ++t)
+    ASSERT_GE(result.mesh->face_cross(t).z, 0.0) << t;  // counter-clockwise, as the face
+}
+
+// A non-convex face: ear-clipped up to kMaxNonConvexFaceCorners corners, refused beyond with the
+// face's line and the limit.
+TEST(ObjImport, NonConvexFacesAreEarClippedUpToTheLimit) {
+  const TempDir dir;
+  // An L of area 3 (concave at its fourth corner).
+  const ObjImport l_shape =
+      import_obj(dir.write("l.obj", "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nf 1 2 3 4 5 6\n"),
+                 scene_location());
+  ASSERT_EQ(l_shape.mesh->triangles.size(), 4u);
+  EXPECT_NEAR(total_area(*l_shape.mesh), 3.0, 1e-12);
+  const auto star = [](int points) {
+    std::string obj;
+    char buffer[96];
+    for (int k = 0; k < 2 * points; ++k) {
+      const double angle = kPi * k / points, radius = k % 2 ? 0.5 : 1.0;
+      std::snprintf(buffer, sizeof buffer, "v %.9g %.9g 0\n", radius * std::cos(angle),
+                    radius * std::sin(angle));
+      obj += buffer;
+    }
+    obj += "f";
+    for (int k = 1; k <= 2 * points; ++k) obj += " " + std::to_string(k);
+    return obj + "\n";
+  };
+  const ObjImport small = import_obj(dir.write("star.obj", star(50)), scene_location());
+  EXPECT_EQ(small.mesh->triangles.size(), 98u);
+  const double star_area = 100 * 0.5 * 1.0 * 0.5 * std::sin(kPi / 50);
+  EXPECT_NEAR(total_area(*small.mesh), star_area, 1e-9);
+  const auto start = std::chrono::steady_clock::now();
+  const std::string message = import_error(dir.write("big-star.obj", star(2000)));
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+  EXPECT_NE(message.find("line 4001"), std::string::npos) << message;
+  EXPECT_NE(message.find("4000 corners"), std::string::npos) << message;
+  EXPECT_NE(message.find(std::to_string(kMaxNonConvexFaceCorners)), std::string::npos) << message;
+}
+
+// Issue 21: tinyobjloader opened the MTL files itself: a FIFO blocked in open() forever, and
+// /dev/zero was read until memory ran out. Each is refused, naming the file and the problem.
+TEST(ObjImport, MtlFilesMustBeRegularFilesOfBoundedSize) {
+  const TempDir dir;
+  const std::string fifo = (dir.path() / "pipe.mtl").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const std::string path = dir.write("pipe.obj", "mtllib pipe.mtl\n" + obj);
+  auto pending = std::async(std::launch::async, [&] { return import_error(path); });
+  if (pending.wait_for(std::chrono::seconds(20)) != std::future_status::ready) {
+    ADD_FAILURE() << "import_obj blocked on the FIFO";
+    // A writer lets the blocked open() return, so that the test can end.
+    const int writer = ::open(fifo.c_str(), O_WRONLY);
+    if (writer >= 0) ::close(writer);
+  }
+  const std::string message = pending.get();
+  EXPECT_NE(message.find("FIFO"), std::string::npos) << message;
+  EXPECT_NE(message.find(fifo), std::string::npos) << message;
+
+  std::filesystem::create_directory(dir.path() / "folder.mtl");
+  const std::string folder = import_error(dir.write("folder.obj", "mtllib folder.mtl\n" + obj));
+  EXPECT_NE(folder.find("is a directory"), std::string::npos) << folder;
+
+  // Larger than the limit (a sparse file: nothing is written, nothing may be read).
+  const std::filesystem::path huge = dir.path() / "huge.mtl";
+  std::ofstream(huge).put('\n');
+  std::filesystem::resize_file(huge, kMeshFileLimit + 1);
+  const std::string big = import_error(dir.write("huge.obj", "mtllib huge.mtl\n" + obj));
+  EXPECT_NE(big.find("more than the " + std::to_string(kMeshFileLimit) + " bytes"), std::string::npos) << big;
 }
 
 TEST(ObjImport, NonFiniteCoordinateIsAnError) {
