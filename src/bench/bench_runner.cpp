@@ -25,12 +25,13 @@
 namespace candela {
 
 BenchScene::BenchScene(std::shared_ptr<const TriangleMesh> mesh) {
-  shapes_ = make_triangles(std::move(mesh), &skipped_degenerate_);
+  shapes_ = make_triangles(std::move(mesh), &skipped_degenerate_, &merged_duplicates_);
   primitives_.reserve(shapes_.size());
   triangle_ids_.reserve(shapes_.size());
   for (const auto& shape : shapes_) {
     primitives_.push_back(Primitive{shape.get(), 0, 0});
-    // make_triangles leaves degenerate triangles out: the id is the triangle's, not the index.
+    // make_triangles leaves degenerate and repeated triangles out: the id is the triangle's, not
+    // the index.
     triangle_ids_.push_back(static_cast<const MeshTriangle&>(*shape).triangle_index());
   }
 }
@@ -172,6 +173,9 @@ BenchReport run_bench(const BenchMesh& mesh, const BenchOptions& options,
   if (scene.skipped_degenerate() > 0 && log)
     log(fmt::format("{} degenerate triangle(s) are never hit (they keep their ids)",
                     scene.skipped_degenerate()));
+  if (scene.merged_duplicates() > 0 && log)
+    log(fmt::format("{} duplicate triangle(s) merged into their first copy (they keep their ids)",
+                    scene.merged_duplicates()));
   return run_bench(BenchInput{mesh.name, mesh.bounds, mesh.mesh->triangles.size(), &scene}, options, log);
 }
 

@@ -36,12 +36,16 @@ class BenchScene {
   std::span<const Primitive> primitives() const { return primitives_; }
   uint32_t triangle_id(uint32_t primitive) const { return triangle_ids_[primitive]; }
   std::size_t skipped_degenerate() const { return skipped_degenerate_; }
+  // Copies of an earlier triangle (make_triangles' merged_duplicates), left out like the
+  // degenerate ones: the first copy wins every tie, so no hit changes.
+  std::size_t merged_duplicates() const { return merged_duplicates_; }
 
  private:
   std::vector<std::unique_ptr<Shape>> shapes_;
   std::vector<Primitive> primitives_;
   std::vector<uint32_t> triangle_ids_;
   std::size_t skipped_degenerate_ = 0;
+  std::size_t merged_duplicates_ = 0;
 };
 
 enum class RayQuery { nearest, any };

@@ -1,6 +1,7 @@
 #include "geometry/triangle_mesh.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -9,6 +10,7 @@
 
 #include "geometry/tessellation.h"
 #include "math/constants.h"
+#include "util/hash.h"
 
 // The watertight test relies on every edge function a*b - c*d being rounded term by term:
 // rounding is monotone, so the computed sign is then the exact sign or zero, and two triangles
@@ -370,21 +372,82 @@ double MeshTriangle::pdf_area(const SurfaceHit&) const {
   return triangle_area > 0 ? 1 / triangle_area : 0;
 }
 
+std::vector<bool> repeated_triangles(const TriangleMesh& mesh) {
+  const std::size_t count = mesh.triangles.size();
+  // Each triangle's corners from its least corner on (the same cyclic order), -0 read as +0.
+  using Key = std::array<double, 9>;
+  const auto key_of = [&](std::size_t t) {
+    std::array<Vec3, 3> corners;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3& p = mesh.positions[mesh.triangles[t][k]];
+      corners[k] = {p.x + 0.0, p.y + 0.0, p.z + 0.0};
+    }
+    const auto less = [](const Vec3& a, const Vec3& b) {
+      return a.x != b.x ? a.x < b.x : a.y != b.y ? a.y < b.y : a.z < b.z;
+    };
+    int first = 0;
+    for (int k = 1; k < 3; ++k)
+      if (less(corners[k], corners[first])) first = k;
+    Key key;
+    for (int k = 0; k < 3; ++k)
+      for (int axis = 0; axis < 3; ++axis) key[3 * k + axis] = corners[(first + k) % 3][axis];
+    return key;
+  };
+  const auto hash_of = [](const Key& key) {
+    uint64_t hash = 0;
+    for (double value : key) hash = mix64(hash ^ std::bit_cast<uint64_t>(value));
+    return hash;
+  };
+  // Sorted by hash, then index: in a run of equal hashes the lowest index of each key comes first.
+  std::vector<std::pair<uint64_t, uint32_t>> order;
+  order.reserve(count);
+  for (std::size_t t = 0; t < count; ++t)
+    if (!mesh.is_degenerate(t)) order.push_back({hash_of(key_of(t)), static_cast<uint32_t>(t)});
+  std::sort(order.begin(), order.end());
+  std::vector<bool> repeated(count, false);
+  std::vector<std::pair<Key, uint32_t>> kept;  // the distinct keys of the current run
+  for (std::size_t begin = 0; begin < order.size();) {
+    std::size_t end = begin + 1;
+    while (end < order.size() && order[end].first == order[begin].first) ++end;
+    if (end - begin > 1) {
+      kept.clear();
+      for (std::size_t i = begin; i < end; ++i) {
+        const Key key = key_of(order[i].second);
+        const bool seen =
+            std::any_of(kept.begin(), kept.end(), [&](const auto& k) { return k.first == key; });
+        if (seen)
+          repeated[order[i].second] = true;
+        else
+          kept.push_back({key, order[i].second});
+      }
+    }
+    begin = end;
+  }
+  return repeated;
+}
+
 std::vector<std::unique_ptr<Shape>> make_triangles(std::shared_ptr<const TriangleMesh> mesh,
-                                                   std::size_t* skipped_degenerate) {
+                                                   std::size_t* skipped_degenerate,
+                                                   std::size_t* merged_duplicates) {
   if (!mesh) throw std::invalid_argument("make_triangles needs a mesh");
   mesh->validate();
   std::vector<std::unique_ptr<Shape>> shapes;
   shapes.reserve(mesh->triangles.size());
-  std::size_t skipped = 0;
+  std::size_t skipped = 0, merged = 0;
+  const std::vector<bool> repeated = merged_duplicates ? repeated_triangles(*mesh) : std::vector<bool>();
   for (std::size_t t = 0; t < mesh->triangles.size(); ++t) {
     if (mesh->is_degenerate(t)) {
       ++skipped;
       continue;
     }
+    if (!repeated.empty() && repeated[t]) {
+      ++merged;
+      continue;
+    }
     shapes.push_back(std::make_unique<MeshTriangle>(mesh, static_cast<uint32_t>(t)));
   }
   if (skipped_degenerate) *skipped_degenerate = skipped;
+  if (merged_duplicates) *merged_duplicates = merged;
   return shapes;
 }
 

@@ -508,5 +508,24 @@ TEST(TriangleMesh, MirroringTransformKeepsNormalsOutward) {
   expect_vec_near(nearest.geometric_normal, {1, 0, 0}, 1e-15);
 }
 
+// Issue 21: copies of a triangle (the same corners in the same cyclic order, through the same
+// or other vertices) are left out by make_triangles when asked, and counted; the reversed
+// winding and degenerate triangles are not copies.
+TEST(TriangleMesh, RepeatedTrianglesAreMergedIntoTheFirst) {
+  auto mesh = std::make_shared<TriangleMesh>();
+  mesh->positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 0}, {-0.0, 0, 0}};
+  mesh->triangles = {{0, 1, 2}, {1, 2, 0}, {2, 1, 0}, {3, 1, 2}, {0, 1, 1}, {4, 1, 2}, {0, 0, 0}};
+  const std::vector<bool> repeated = repeated_triangles(*mesh);
+  EXPECT_EQ(repeated, (std::vector<bool>{false, true, false, true, false, true, false}));
+  std::size_t skipped = 0, merged = 0;
+  const auto shapes = make_triangles(mesh, &skipped, &merged);
+  ASSERT_EQ(shapes.size(), 2u);
+  EXPECT_EQ(static_cast<const MeshTriangle&>(*shapes[0]).triangle_index(), 0u);
+  EXPECT_EQ(static_cast<const MeshTriangle&>(*shapes[1]).triangle_index(), 2u);
+  EXPECT_EQ(skipped, 2u);
+  EXPECT_EQ(merged, 3u);
+  EXPECT_EQ(make_triangles(mesh).size(), 5u);  // not asked: every non-degenerate triangle
+}
+
 }  // namespace
 }  // namespace candela

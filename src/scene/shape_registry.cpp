@@ -87,10 +87,11 @@ ShapeBuild make_polygon(const JsonNode& node, const Transform&, LoadContext&) {
 // overflow under the transform) are reported at the entry.
 std::vector<std::unique_ptr<Shape>> placed_triangles(const JsonNode& node,
                                                      const std::shared_ptr<TriangleMesh>& mesh,
-                                                     const Transform& transform, std::size_t& skipped) {
+                                                     const Transform& transform, std::size_t& skipped,
+                                                     std::size_t* merged = nullptr) {
   try {
     mesh->transform(transform);
-    return make_triangles(mesh, &skipped);
+    return make_triangles(mesh, &skipped, merged);
   } catch (const std::invalid_argument& e) {
     node.fail(e.what());
   }
@@ -206,8 +207,8 @@ ShapeBuild make_mesh(const JsonNode& node, const Transform& transform, LoadConte
   // Degenerate triangles are dropped by make_triangles, so map materials by the surviving
   // triangles' indices.
   ShapeBuild build;
-  std::size_t skipped = 0;
-  build.shapes = placed_triangles(node, imported.mesh, transform, skipped);
+  std::size_t skipped = 0, merged = 0;
+  build.shapes = placed_triangles(node, imported.mesh, transform, skipped, &merged);
   build.transform_applied = true;
   for (const auto& shape : build.shapes) {
     const auto& triangle = static_cast<const MeshTriangle&>(*shape);
@@ -217,6 +218,12 @@ ShapeBuild make_mesh(const JsonNode& node, const Transform& transform, LoadConte
   if (skipped > 0)
     context.warnings->push_back(
         fmt::format("{}: {}: skipped {} degenerate triangle(s)", node.location().describe(), path, skipped));
+  // Issue 21: copies of one triangle are one surface; each copy cost every ray that met it a test.
+  if (merged > 0)
+    context.warnings->push_back(
+        fmt::format("{}: {}: merged {} duplicate triangle(s) (the same corners as an "
+                    "earlier triangle, in the same order)",
+                    node.location().describe(), path, merged));
   if (build.shapes.empty()) file.fail(path + ": every triangle is degenerate (zero area)");
   return build;
 }
