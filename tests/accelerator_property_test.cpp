@@ -211,5 +211,37 @@ TEST(AcceleratorProperty, EmptyScene) {
   expect_all_agree(scene, scene.rays(100, 4));
 }
 
+// Issue 21: primitives no ray can report stay out of every structure — zero-area triangles, and
+// copies of a triangle (the same corners, in other meshes or objects) that lose every tie to the
+// first. 2,000 coincident copies made every ray meeting them test them all.
+TEST(AcceleratorProperty, DegenerateAndRepeatedTrianglesAreLeftOut) {
+  RandomScene scene(6);
+  const std::vector<Vec3> corners{{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
+  for (int copy = 0; copy < 2000; ++copy) {
+    auto mesh = std::make_shared<TriangleMesh>();
+    mesh->positions = corners;
+    mesh->triangles = {{0, 1, 2}};
+    scene.add(std::make_unique<MeshTriangle>(mesh, 0));
+    scene.next_object();
+  }
+  auto flat = std::make_shared<TriangleMesh>();
+  flat->positions = {{-1, 0, 0}, {0, 0, 0}, {1, 0, 0}};
+  for (int i = 0; i < 50; ++i) flat->triangles.push_back({0, 1, 2});
+  for (uint32_t t = 0; t < 50; ++t) scene.add(std::make_unique<MeshTriangle>(flat, t));
+  EXPECT_EQ(reportable_primitives(scene.primitives()), std::vector<uint32_t>{0});
+  for (Candidate& candidate : every_accelerator()) {
+    candidate.accelerator->build(scene.primitives());
+    for (const auto& [name, value] : candidate.accelerator->report().figures) {
+      if (name == "primitives" || name == "references" || name == "primitives per leaf") {
+        EXPECT_EQ(value, 1) << candidate.label << ": " << name;
+      }
+    }
+    Intersection hit;
+    ASSERT_TRUE(candidate.accelerator->intersect(Ray{{0, 0, 2}, {0, 0, -1}}, hit)) << candidate.label;
+    EXPECT_EQ(hit.primitive, 0u) << candidate.label;
+  }
+  expect_all_agree(scene, scene.rays(500, 2));
+}
+
 }  // namespace
 }  // namespace candela

@@ -36,6 +36,16 @@ inline bool closer_hit(double t, uint32_t primitive, double best_t, uint32_t bes
   return t < best_t || (t == best_t && primitive < best_primitive);
 }
 
+// The primitives an accelerator is built over, ascending: every one except those no ray can
+// report (issue 21), which every accelerator leaves out of its structure —
+// - a zero-area mesh triangle: it is never hit;
+// - a mesh triangle whose three corners are, bit for bit and in the same order, those of a
+//   lower-indexed mesh triangle (a copy in another object, say): its hit distance is the same
+//   (it depends only on the ray and the corners), so the lower index wins every tie. Ten
+//   thousand copies of one triangle made every ray meeting them test them all.
+// O(n log n) in the primitives (the corners are hashed and sorted).
+std::vector<uint32_t> reportable_primitives(std::span<const Primitive> primitives);
+
 // What the list tests per scene object before its primitives (accel/bounding_volume.h).
 enum class BoundingVolumeKind { none, sphere, box, slabs };
 inline constexpr auto kBoundingVolumeNames =

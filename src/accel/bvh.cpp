@@ -319,22 +319,24 @@ void Bvh::build(std::span<const Primitive> primitives) {
   if (count >= kShapeSlot) throw std::invalid_argument("BVH: too many primitives (at most 2^31 - 1)");
 
   std::vector<Bounds3> bounds(count);
-  std::vector<Kind> kinds(count);
-  tbb::parallel_for(
-      tbb::blocked_range<std::size_t>(0, count, kGrain), [&](const tbb::blocked_range<std::size_t>& range) {
-        for (std::size_t i = range.begin(); i < range.end(); ++i) {
-          const Shape* shape = primitives[i].shape;
-          bounds[i] = shape->bounds();
-          if (!bounds[i].is_finite() || bounds[i].empty()) {
-            kinds[i] = Kind::unbounded;
-          } else if (const auto* triangle = dynamic_cast<const MeshTriangle*>(shape)) {
-            kinds[i] =
-                triangle->mesh().is_degenerate(triangle->triangle_index()) ? Kind::never_hit : Kind::triangle;
-          } else {
-            kinds[i] = Kind::shape;
-          }
-        }
-      });
+  std::vector<Kind> kinds(count, Kind::never_hit);
+  // Only the reportable primitives go in (degenerate triangles and repeated ones stay never_hit).
+  const std::vector<uint32_t> reportable = reportable_primitives(primitives);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, reportable.size(), kGrain),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t r = range.begin(); r < range.end(); ++r) {
+                        const uint32_t i = reportable[r];
+                        const Shape* shape = primitives[i].shape;
+                        bounds[i] = shape->bounds();
+                        if (!bounds[i].is_finite() || bounds[i].empty()) {
+                          kinds[i] = Kind::unbounded;
+                        } else if (dynamic_cast<const MeshTriangle*>(shape)) {
+                          kinds[i] = Kind::triangle;
+                        } else {
+                          kinds[i] = Kind::shape;
+                        }
+                      }
+                    });
 
   std::vector<uint32_t> tree_primitive;
   std::vector<Bounds3> tree_bounds;

@@ -18,8 +18,9 @@
 // its Shape. Only the nearest hit's SurfaceHit is filled: a triangle's by fill_triangle_hit, the
 // code MeshTriangle::intersect runs, from the slot's corners and the exact test's weights (its
 // mesh's normals are prefetched when the hit is found); a shape's by its Shape. Unbounded
-// primitives (planes) live in a separate list tested by every ray; degenerate mesh triangles,
-// which never hit, are left out. Rays outside the float test's proven range (huge or
+// primitives (planes) live in a separate list tested by every ray; what no ray can report
+// (degenerate mesh triangles, copies of a lower-indexed triangle: reportable_primitives) is left
+// out. Rays outside the float test's proven range (huge or
 // non-finite values, tiny direction components) test every primitive instead.
 //
 // Traversal: the children a ray enters are pushed farthest first with their (float, lower

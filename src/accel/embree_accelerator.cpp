@@ -191,7 +191,7 @@ void EmbreeAccelerator::State::build_exact() {
   bounded.clear();
   unbounded.clear();
   scene_bounds = Bounds3{};
-  for (uint32_t index = 0; index < primitives.size(); ++index) {
+  for (const uint32_t index : reportable_primitives(primitives)) {
     const Bounds3 b = primitives[index].shape->bounds();
     if (b.empty() || !b.is_finite()) {
       unbounded.push_back(index);
@@ -225,6 +225,8 @@ void EmbreeAccelerator::State::build_exact() {
 void EmbreeAccelerator::State::build_native() {
   triangle_to_primitive.clear();
   const TriangleMesh* mesh = nullptr;
+  std::vector<uint8_t> reportable(primitives.size(), 0);
+  for (const uint32_t index : reportable_primitives(primitives)) reportable[index] = 1;
   for (uint32_t index = 0; index < primitives.size(); ++index) {
     const auto* triangle = dynamic_cast<const MeshTriangle*>(primitives[index].shape);
     if (!triangle) throw std::invalid_argument("Embree native_triangles mode needs mesh triangles only");
@@ -234,6 +236,7 @@ void EmbreeAccelerator::State::build_native() {
     } else if (&triangle->mesh() != mesh) {
       throw std::invalid_argument("Embree native_triangles mode needs the triangles of one mesh");
     }
+    if (!reportable[index]) continue;  // left out like the others (reportable_primitives)
     uint32_t& slot = triangle_to_primitive[triangle->triangle_index()];
     if (slot == kNone) slot = index;  // a triangle listed twice: the lower index wins ties
   }

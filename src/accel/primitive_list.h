@@ -8,7 +8,8 @@
 namespace candela {
 
 // The brute-force baseline: every ray against every primitive (SPEC §5, 001 "O(n)"),
-// optionally testing each scene object's bounding volume first (000 §5.7.1).
+// optionally testing each scene object's bounding volume first (000 §5.7.1). Only the
+// reportable primitives (reportable_primitives) are tested, in index order.
 class PrimitiveList final : public Accelerator {
  public:
   explicit PrimitiveList(BoundingVolumeKind bounding_volume = BoundingVolumeKind::none)
@@ -20,14 +21,15 @@ class PrimitiveList final : public Accelerator {
   AcceleratorReport report() const override;
 
  private:
-  // A run of primitives of one object behind one bounding volume.
+  // A run of tested_ of one object behind one bounding volume.
   struct Group {
-    uint32_t first, count;
+    uint32_t first, count;  // positions in tested_
     ObjectBound bound;
   };
   BoundingVolumeKind bounding_volume_;
   std::span<const Primitive> primitives_;
-  std::vector<Group> groups_;  // empty without bounding volumes
+  std::vector<uint32_t> tested_;  // the reportable primitives, ascending
+  std::vector<Group> groups_;     // empty without bounding volumes
 };
 
 }  // namespace candela

@@ -34,12 +34,14 @@ struct PrimitiveSplit {
   double margin = 0;                // see the file comment
 };
 
+// Only the reportable primitives (reportable_primitives) are split; the others get empty bounds
+// and are in neither list.
 inline PrimitiveSplit split_primitives(std::span<const Primitive> primitives) {
   PrimitiveSplit split;
-  split.bounds.reserve(primitives.size());
-  for (uint32_t index = 0; index < primitives.size(); ++index) {
+  split.bounds.assign(primitives.size(), Bounds3{});
+  for (const uint32_t index : reportable_primitives(primitives)) {
     const Bounds3 bounds = primitives[index].shape->bounds();
-    split.bounds.push_back(bounds);
+    split.bounds[index] = bounds;
     if (bounds.is_finite() && !bounds.empty()) {
       split.bounded.push_back(index);
       split.scene.extend(bounds);
