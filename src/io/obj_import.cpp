@@ -85,6 +85,9 @@ bool finite_color(const Color& c) {
 // corners or more), in file order, or a problem it reads wrongly without a word.
 struct ObjScan {
   std::vector<int> face_lines;
+  // The corners of each of those faces: tinyobjloader keeps a face's count in 8 bits (a face of
+  // 100,000 corners reads as 160), its indices all.
+  std::vector<std::size_t> face_corners;
   std::string problem;  // "line N: ..." or ""
 };
 
@@ -174,7 +177,10 @@ ObjScan scan_obj(std::string_view text) {
           }
         }
       }
-      if (kind == 'f' && corners >= 3) scan.face_lines.push_back(line_number);
+      if (kind == 'f' && corners >= 3) {
+        scan.face_lines.push_back(line_number);
+        scan.face_corners.push_back(corners);
+      }
     }
   }
   return scan;
@@ -256,7 +262,11 @@ std::string triangulate_face(const std::vector<Vec3>& p, std::vector<std::array<
     const Vec2 &a = plane[(i + m - 1) % m], &b = plane[i], &c = plane[(i + 1) % m];
     const Vec2 in{b.x - a.x, b.y - a.y}, out{c.x - b.x, c.y - b.y};
     const double sine = in.x * out.y - in.y * out.x, cosine = in.x * out.x + in.y * out.y;
-    convex = sine >= -1e-9 * std::sqrt((in.x * in.x + in.y * in.y) * (out.x * out.x + out.y * out.y));
+    // A corner may lie inside the chord of its neighbours by the rounding of the file's
+    // coordinates (floats: a 10⁵-corner circle has bends of 6·10⁻⁵ rad, its vertices 6·10⁻⁸
+    // off): up to 10⁻⁶ of the face's size is not a bend.
+    const Vec2 chord{c.x - a.x, c.y - a.y};
+    convex = sine >= -1e-6 * size * std::sqrt(chord.x * chord.x + chord.y * chord.y);
     turning += std::atan2(sine, cosine);
   }
   convex = convex && turning < 3 * kPi;
@@ -412,18 +422,32 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
   // Gather the triangles with their attribute indices; check every index.
   std::vector<std::array<tinyobj::index_t, 3>> corners;
   std::size_t face_number = 0;
-  std::size_t face_total = 0;
-  for (const tinyobj::shape_t& shape : shapes) face_total += shape.mesh.num_face_vertices.size();
-  // The pre-scan saw the same faces in the same order, unless the file is stranger than it knows.
-  const bool lines_known = face_total == scan.face_lines.size();
+  // The pre-scan saw the same faces in the same order (their counts agree with tinyobjloader's
+  // 8-bit ones, and the corners add up): it gives each face's line and its true corner count.
+  std::size_t face_total = 0, index_total = 0, scan_total = 0;
+  for (const tinyobj::shape_t& shape : shapes) {
+    face_total += shape.mesh.num_face_vertices.size();
+    index_total += shape.mesh.indices.size();
+  }
+  bool lines_known = face_total == scan.face_lines.size();
+  for (std::size_t face = 0, shape = 0, in_shape = 0; lines_known && face < face_total; ++face, ++in_shape) {
+    while (in_shape >= shapes[shape].mesh.num_face_vertices.size()) {
+      ++shape;
+      in_shape = 0;
+    }
+    lines_known = scan.face_corners[face] % 256 == shapes[shape].mesh.num_face_vertices[in_shape];
+    scan_total += scan.face_corners[face];
+  }
+  lines_known = lines_known && scan_total == index_total;
   std::vector<Vec3> face_positions;
   std::vector<std::array<uint32_t, 3>> face_triangles;
   for (const tinyobj::shape_t& shape : shapes) {
     const tinyobj::mesh_t& shape_mesh = shape.mesh;
     std::size_t offset = 0;
     for (std::size_t face = 0; face < shape_mesh.num_face_vertices.size(); ++face) {
-      const std::size_t count = shape_mesh.num_face_vertices[face];
       ++face_number;
+      const std::size_t count =
+          lines_known ? scan.face_corners[face_number - 1] : shape_mesh.num_face_vertices[face];
       if (offset + count > shape_mesh.indices.size())
         throw fail("OBJ file " + quoted(path) + ": inconsistent face data");
       const auto describe_face = [&] {
