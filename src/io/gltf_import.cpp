@@ -31,6 +31,7 @@
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
 
+#include "math/constants.h"
 #include "math/transform.h"
 #include "util/input_file.h"
 
@@ -79,8 +80,9 @@ std::string_view glb_json_chunk(const std::string& bytes) {
 }
 
 // Every number of a scene file, an OBJ vertex and a glTF node's transform or position is limited
-// to this magnitude (io/json_node.cpp): beyond it squared distances lose all precision.
-constexpr double kMaxMagnitude = 1e16;
+// to kMaxSceneMagnitude (math/constants.h): beyond it squared distances lose all precision.
+constexpr double kMaxMagnitude = kMaxSceneMagnitude;
+static_assert(kMaxMagnitude == 1e16, "the messages below name it");
 
 class GltfReader {
  public:
@@ -479,7 +481,7 @@ ObjImport import_gltf(const std::string& path, const SourceLocation& referenced_
   callbacks.WriteWholeFile = tinygltf::WriteWholeFile;
   callbacks.ReadWholeFile = [](std::vector<unsigned char>* out, std::string* err, const std::string& file,
                                void* user_data) {
-    const std::string problem = input_file_problem(file, "'" + file + "'", kMeshFileLimit);
+    const std::string problem = input_file_problem(file, "'" + file + "'", kLargeInputLimit);
     if (!problem.empty()) {
       if (err) *err += problem + "\n";
       return false;

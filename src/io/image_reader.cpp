@@ -533,7 +533,7 @@ RgbImage read_image(const std::filesystem::path& path, ColorEncoding encoding, d
   std::error_code error;
   if (!std::filesystem::exists(path, error)) fail(path, "no such file");
   // Issue 21: a regular file only (a FIFO blocked, a device was read without end), at most 4 GiB.
-  const std::string problem = input_file_problem(path.string(), "it", uint64_t{1} << 32);
+  const std::string problem = input_file_problem(path.string(), "it", kLargeInputLimit);
   if (!problem.empty()) fail(path, problem);
   const std::string extension = lower_case_extension(path);
   if (extension == "exr") return checked_values(path, load_exr(path, encoding), max_magnitude);

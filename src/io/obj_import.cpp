@@ -311,7 +311,7 @@ class BoundedMaterialReader final : public tinyobj::MaterialReader {
     }
     std::string text;
     try {
-      text = read_input_file(path, what, kMeshFileLimit);
+      text = read_input_file(path, what, kLargeInputLimit);
     } catch (const InputError& e) {
       if (problem_.empty()) problem_ = e.message();
       return false;
@@ -349,7 +349,7 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
   // Issue 21: read as a regular file of bounded size (the OBJ and each MTL file).
   std::string text;
   try {
-    text = read_input_file(path, "OBJ file " + quoted(path), kMeshFileLimit);
+    text = read_input_file(path, "OBJ file " + quoted(path), kLargeInputLimit);
   } catch (const InputError& e) {
     throw fail(e.message());
   }
@@ -411,7 +411,8 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
     // The scene file's limit (io/json_node.cpp): beyond it squared distances lose all
     // precision and ray offsets stop working.
     const double magnitude = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
-    if (magnitude > 1e16)
+    static_assert(kMaxSceneMagnitude == 1e16, "the message below names it");
+    if (magnitude > kMaxSceneMagnitude)
       throw fail("OBJ file " + quoted(path) + ": vertex " + std::to_string(i + 1) +
                  ": magnitude above 1e16 is not supported (found " + fmt::format("{}", magnitude) + ")");
     mesh->positions.push_back(p);

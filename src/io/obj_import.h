@@ -17,7 +17,7 @@
 // their triangle, with a warning).
 //
 // Errors (InputError located at referenced_from, the scene's "file" key): a missing or unreadable
-// file, one that is not a regular file or is larger than kMeshFileLimit (the OBJ or an MTL file
+// file, one that is not a regular file or is larger than kLargeInputLimit (the OBJ or an MTL file
 // that exists), a parse error (the message names the OBJ and gives tinyobjloader's text with its
 // line number), a face index out of range (with the OBJ's line: beyond the 32-bit range, or
 // relative and reaching before the first vertex, as well as past the last one), a non-finite

@@ -414,9 +414,10 @@ TEST(ObjImport, MtlFilesMustBeRegularFilesOfBoundedSize) {
   // Larger than the limit (a sparse file: nothing is written, nothing may be read).
   const std::filesystem::path huge = dir.path() / "huge.mtl";
   std::ofstream(huge).put('\n');
-  std::filesystem::resize_file(huge, kMeshFileLimit + 1);
+  std::filesystem::resize_file(huge, kLargeInputLimit + 1);
   const std::string big = import_error(dir.write("huge.obj", "mtllib huge.mtl\n" + obj));
-  EXPECT_NE(big.find("more than the " + std::to_string(kMeshFileLimit) + " bytes"), std::string::npos) << big;
+  EXPECT_NE(big.find("more than the " + std::to_string(kLargeInputLimit) + " bytes"), std::string::npos)
+      << big;
 }
 
 TEST(ObjImport, NonFiniteCoordinateIsAnError) {

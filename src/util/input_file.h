@@ -13,8 +13,6 @@ namespace candela {
 inline constexpr uint64_t kDefaultInputLimit = uint64_t{1} << 30;
 // The largest binary input read whole: 4 GiB (an image, a mesh, a glTF buffer, a checkpoint).
 inline constexpr uint64_t kLargeInputLimit = uint64_t{1} << 32;
-// The largest mesh file (OBJ, its MTL files, glTF and its buffers, bench meshes): 4 GiB.
-inline constexpr uint64_t kMeshFileLimit = uint64_t{1} << 32;
 
 // What is wrong with `path` as an input file of the given kind ("the scene file"), or "" when it is
 // a readable regular file of at most `limit` bytes: it does not exist, is a directory, a FIFO, a
