@@ -426,5 +426,32 @@ TEST(PathCheckpoint, RoundTripsExactlyAndRefusesDamage) {
   expect_refused("P6\n", "another file");
 }
 
+// Issue 21 ("path tracing without end"): inside a closed sphere of albedo exactly 1 lit by a point,
+// with `max_depth` 0 (no limit), every path survives Russian roulette with q = min(0.95, beta),
+// so roulette alone ends it after 20 bounces on average; with roulette held off until bounce
+// 1024 none escapes or dies, and the hard cap of 1024 bounces ends every one: exactly 1024
+// reflected rays per primary ray, and the render finishes (a hang fails by the test's timeout).
+TEST(PathTracer, AClosedWhiteEnclosureWithoutADepthLimitEndsEveryPath) {
+  const auto enclosure = [](int roulette_depth) {
+    return scene_from(R"("camera": {"eye": [0, 0, 0], "target": [0, 0, -1], "up": [0, 1, 0], "width": 4,
+      "height": 3}, "render": {"method": "path"},
+      "path": {"spp": 2, "max_depth": 0, "roulette_depth": )" +
+                      std::to_string(roulette_depth) + R"(},
+      "materials": {"white": {"kd": [1, 1, 1]}},
+      "lights": [{"type": "point", "position": [0.2, 0.3, 0], "intensity": [1, 1, 1]}],
+      "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 2, "material": "white"}])");
+  };
+  RunStatistics capped;
+  const Film film = testing::render_scene(*enclosure(1024), "path", 2, capped);
+  EXPECT_EQ(capped.rays.primary, 2u * 4 * 3);
+  EXPECT_EQ(capped.rays.reflected, capped.rays.primary * 1024);
+  for (const Color& c : film.pixels()) EXPECT_TRUE(std::isfinite(c.r) && c.r > 0) << c.r;
+  RunStatistics roulette;
+  testing::render_scene(*enclosure(3), "path", 2, roulette);
+  const double bounces = double(roulette.rays.reflected) / double(roulette.rays.primary);
+  EXPECT_GT(bounces, 5);
+  EXPECT_LT(bounces, 60);  // 1 / (1 − 0.95) = 20 after the first three
+}
+
 }  // namespace
 }  // namespace candela

@@ -86,6 +86,13 @@ BenchMesh parse_bench_obj(std::string_view text, const std::string& name) {
         throw InputError({name, line_number, 0, {}}, "non-finite vertex coordinate");
       mesh.positions.push_back({xyz[0], xyz[1], xyz[2]});
     } else if (tokens[0] == "f") {
+      if (tokens.size() - 1 > kMaxBenchFaceCorners)
+        throw InputError({name, line_number, 0, {}},
+                         "a face of " + std::to_string(tokens.size() - 1) +
+                             " corners: the benchmark fans each face from its first corner "
+                             "(shared/BENCH-RAYS.md), and so many slivers overlapping at one corner "
+                             "make every ray test most of them; at most " +
+                             std::to_string(kMaxBenchFaceCorners) + " corners (split the face)");
       face_starts.push_back(corners.size());
       for (std::size_t k = 1; k < tokens.size(); ++k) {
         int64_t index = 0;

@@ -5,7 +5,9 @@
 //   `i/t/n`; negative indices count back from the vertices read so far, positive ones may
 //   refer to any vertex of the file). A polygon v0..v(n-1) becomes the fan (v0, vk, vk+1),
 //   k = 1..n-2, in file order; triangle ids are the positions in TriangleMesh::triangles.
-//   Faces with an out-of-range index, or fewer than three corners, are skipped and counted.
+//   Faces with an out-of-range index, or fewer than three corners, are skipped and counted; a
+//   face of more than kMaxBenchFaceCorners corners is refused (issue 21: the fan of a 10⁵-corner
+//   disc is 10⁵ slivers whose boxes all meet at its first corner, 0.007 Mrays/s in a BVH).
 //   Every other line is ignored.
 // - bench_sphere(N): the UV sphere of 4S(S-1) triangles, S = max(2, round(sqrt(N/4))).
 // - bench_terrain(N): the height field of 2G² triangles, G = max(1, round(sqrt(N/2))).
@@ -25,6 +27,9 @@
 #include "math/bounds.h"
 
 namespace candela {
+
+// The most corners of one face of a bench mesh (see read_bench_obj above).
+inline constexpr std::size_t kMaxBenchFaceCorners = 1000;
 
 struct BenchMesh {
   std::string name;  // the file as given, or "sphere N" / "terrain N"

@@ -2,10 +2,10 @@
 // (polygons triangulated, every object and group merged), the per-triangle material index and
 // the MTL materials in file order.
 //
-// Polygons: a quad is split along its shorter diagonal; a larger face that is convex and planar
-// (within 1e-5 of its size) becomes a fan from its first corner; any other face of at most
-// kMaxNonConvexFaceCorners corners is ear-clipped in its plane, and a larger one is refused
-// (ear clipping costs up to the cube of the corners: a face must be split before that).
+// Polygons: triangulate_face (geometry/face_triangulation.h): a quad is split along its shorter
+// diagonal; a larger face that is convex and planar is halved into triangles that shrink towards
+// its boundary; any other face of at most kMaxNonConvexFaceCorners corners is ear-clipped in its
+// plane, and a larger one is refused (ear clipping costs up to the cube of the corners).
 //
 // Mapping from MTL: Ka -> ka, Kd -> kd, Ke -> ke, Ks -> ks (mean of the three components),
 // Ns -> shininess, kt = 1 - d (tinyobjloader turns Tr into d = 1 - Tr; d wins when both are
@@ -31,14 +31,12 @@
 #include <string>
 #include <vector>
 
+#include "geometry/face_triangulation.h"
 #include "geometry/triangle_mesh.h"
 #include "math/vector.h"
 #include "util/error.h"
 
 namespace candela {
-
-// The most corners of a face that is not convex and planar (see above).
-inline constexpr std::size_t kMaxNonConvexFaceCorners = 1000;
 
 struct ImportedMaterial {
   std::string name;

@@ -21,6 +21,8 @@
 #include <system_error>
 #include <vector>
 
+#include "geometry/face_triangulation.h"
+
 namespace candela {
 
 namespace {
@@ -423,6 +425,8 @@ class PlyReader {
     if (indices < 0) fail_plain("face element has no list property vertex_indices (or vertex_index)");
     triangles_.reserve(static_cast<std::size_t>(element.count));
     std::vector<std::uint32_t> polygon;
+    std::vector<Vec3> face_positions;
+    std::vector<std::array<std::uint32_t, 3>> face_triangles;
     for (std::uint64_t f = 0; f < element.count; ++f) {
       for (std::size_t p = 0; p < element.properties.size(); ++p) {
         const Property& property = element.properties[p];
@@ -443,8 +447,19 @@ class PlyReader {
           ++short_faces_;
           continue;
         }
-        for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
-          triangles_.push_back({polygon[0], polygon[k], polygon[k + 1]});
+        if (polygon.size() <= 4) {
+          for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
+            triangles_.push_back({polygon[0], polygon[k], polygon[k + 1]});
+          continue;
+        }
+        // Issue 21: a large face is halved or ear-clipped as an OBJ face is, not fanned into
+        // slivers that all overlap at its first corner.
+        face_positions.clear();
+        for (const std::uint32_t index : polygon) face_positions.push_back(positions_[index]);
+        if (const std::string problem = triangulate_face(face_positions, face_triangles); !problem.empty())
+          fail_here(fmt::format("face {}: {}", f, problem));
+        for (const auto& [a, b, c] : face_triangles)
+          triangles_.push_back({polygon[a], polygon[b], polygon[c]});
       }
     }
   }

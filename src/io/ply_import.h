@@ -7,8 +7,10 @@
 // sized spellings int8 uint8 int16 uint16 int32 uint32 float32 float64. The "vertex" element
 // must have x y z; nx ny nz (all three) become corner normals, u v / s t / texture_u texture_v /
 // texture_s texture_t become corner uvs. The "face" element's list property vertex_indices (or
-// vertex_index) gives polygons, split into fans (n >= 3 corners; smaller faces are skipped with
-// a warning). Every other element and property (lists included) is read past and ignored.
+// vertex_index) gives polygons: triangles and quads fanned from their first corner, larger
+// faces by triangulate_face as OBJ faces (geometry/face_triangulation.h: halved when convex,
+// ear-clipped up to 1,000 corners, refused beyond); faces of fewer than 3 corners are skipped with
+// a warning. Every other element and property (lists included) is read past and ignored.
 //
 // Errors (InputError located at referenced_from; the message names the PLY file and, in ASCII,
 // the line, in binary, the byte offset): a bad header, an element count the rest of the file

@@ -1,8 +1,10 @@
 #include "io/ply_import.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -165,6 +167,36 @@ TEST(PlyImport, BadIndexGivesTheLine) {
   EXPECT_NE(message.find(path), std::string::npos) << message;
   EXPECT_NE(message.find("line 13"), std::string::npos) << message;
   EXPECT_NE(message.find("vertex 3"), std::string::npos) << message;
+}
+
+// Issue 21: a large face is triangulated as an OBJ face is (geometry/face_triangulation.h): a
+// convex one halved (not fanned: every triangle's box would reach corner 0), a non-convex one of
+// more than kMaxNonConvexFaceCorners corners refused with the face's number and line.
+TEST(PlyImport, LargeFacesAreTriangulatedAsObjFacesAndRefusedPastTheLimit) {
+  testing::ScratchDirectory scratch("ply");
+  const auto polygon = [&](const std::string& name, std::size_t corners, bool star) {
+    std::string text = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(corners) +
+                       "\nproperty float x\nproperty float y\nproperty float z\nelement face 1\n"
+                       "property list uint int vertex_indices\nend_header\n";
+    std::string face = std::to_string(corners);
+    for (std::size_t i = 0; i < corners; ++i) {
+      const double angle = 2 * 3.14159265358979 * static_cast<double>(i) / static_cast<double>(corners);
+      const double radius = star && i % 2 ? 0.5 : 1.0;
+      text +=
+          std::to_string(radius * std::cos(angle)) + " " + std::to_string(radius * std::sin(angle)) + " 0\n";
+      face += " " + std::to_string(i);
+    }
+    return write_file(scratch.path() / name, text + face + "\n");
+  };
+  const ObjImport disc = import_ply(polygon("disc.ply", 5000, false), kFrom);
+  ASSERT_EQ(disc.mesh->triangles.size(), 4998u);
+  std::size_t at_corner_zero = 0;
+  for (const auto& t : disc.mesh->triangles) at_corner_zero += std::count(t.begin(), t.end(), 0u);
+  EXPECT_LE(at_corner_zero, 40u);  // a fan: all 4998
+  EXPECT_EQ(import_ply(polygon("star.ply", 1000, true), kFrom).mesh->triangles.size(), 998u);
+  const std::string message = error_of(polygon("big-star.ply", 1002, true));
+  EXPECT_NE(message.find("line 1012"), std::string::npos) << message;
+  EXPECT_NE(message.find("face 0: a face of 1002 corners that is not convex"), std::string::npos) << message;
 }
 
 TEST(PlyImport, NonFiniteCoordinateNamesTheVertex) {
