@@ -313,6 +313,18 @@ int print_pixel_ray_trees(const RenderOptions& options, Scene& scene, const std:
   return 0;
 }
 
+// One image of `method`: its figures are added to `statistics` (after any phases already there),
+// with the thread count and the render's time.
+RenderResult timed_render(const Method& method, const Scene& scene, const RenderRequest& request, int threads,
+                          RunStatistics& statistics) {
+  Stopwatch render_timer;
+  RenderResult result = method.render(scene, request);
+  statistics.threads = threads;
+  statistics.absorb(std::move(result.statistics));
+  statistics.add_phase("render", render_timer.seconds());
+  return result;
+}
+
 // Everything a render needs, checked and loaded before the first image is begun.
 struct RenderJob {
   std::optional<tbb::global_control> thread_limit;
@@ -560,19 +572,15 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
       request.fingerprint = entry->capabilities.solution ? fingerprint : fingerprint + " camera " + view.name;
       if (options.checkpoint_every) request.checkpoint_interval = *options.checkpoint_every;
       request.cluster = &cluster;
-      Stopwatch render_timer;
-      RenderResult result = method->render(*scene, request);
-      const Film& film = result.film;
       RunStatistics statistics;
-      statistics.threads = threads;
       // Loading and building are done once, before the first view: they count in its statistics
       // alone, so the views' total_seconds add up to the run's.
       if (v == 0) {
         statistics.add_phase("load", load_seconds);
         statistics.add_phase("build", build_seconds);
       }
-      statistics.absorb(std::move(result.statistics));
-      statistics.add_phase("render", render_timer.seconds());
+      const RenderResult result = timed_render(*method, *scene, request, threads, statistics);
+      const Film& film = result.film;
       // A method's warning about its result (the path tracer: nothing emits light).
       const auto& method_facts = statistics.extra[std::string(method->name())];
       if (root && method_facts.is_object() && method_facts.contains("warning"))
@@ -650,13 +658,10 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
       request.region = regions.front();
       request.quiet = options.quiet;
       request.cluster = &cluster;
-      Stopwatch render_timer;
-      RenderResult result = method->render(*scene, request);
-      const Film& film = result.film;
+      Stopwatch frame_timer;
       RunStatistics statistics;
-      statistics.threads = threads;
-      statistics.absorb(std::move(result.statistics));
-      statistics.add_phase("render", render_timer.seconds());
+      const RenderResult result = timed_render(*method, *scene, request, threads, statistics);
+      const Film& film = result.film;
       std::swap(scene->lights, frame.lights);
       std::swap(scene->ambient, frame.ambient);
       if (!root) {
@@ -675,7 +680,7 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
       statistics.extra["output"] = output;
       if (!options.quiet)
         std::cerr << fmt::format("candela: relit frame {} in {:.3f} s (lighting {:.3f} s), wrote {}\n",
-                                 frame.name, render_timer.seconds(),
+                                 frame.name, frame_timer.seconds(),
                                  statistics.extra[std::string(method->name())].value("lighting_seconds", 0.0),
                                  output);
       if (!options.stats_path.empty())
