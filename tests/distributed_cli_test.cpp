@@ -107,6 +107,13 @@ TEST_F(Distributed, PathTracedImageIsByteIdentical) {
   EXPECT_GE(json("path-2.json")["distributed"]["rounds"].get<int>(), 1);
 }
 
+// Issue 22: each sampler's values depend on the pixel and the pass only, not on the rank.
+TEST_F(Distributed, PathTracedImagesOfEverySamplerAreByteIdentical) {
+  for (const char* sampler : {"stratified", "sobol"})
+    expect_identical(std::string("path-") + sampler,
+                     "render " + kCornell + " --method path --spp 4 --set path.sampler=" + sampler);
+}
+
 // Issue 19: the path tracer's samples splatted with a wide filter across the tiles' borders (each
 // tile samples the ring of pixels its filter reaches) join into the single process's image.
 TEST_F(Distributed, PathTracedImageWithAGaussianFilterIsByteIdentical) {

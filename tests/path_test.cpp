@@ -213,11 +213,11 @@ TEST(PathTracer, DirectLightOnADiffuseFloorEqualsTheLocalModel) {
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(path.pixels()[i][c], local.pixels()[i][c], 1e-9);
 }
 
-std::unique_ptr<Scene> small_box(int spp) {
+std::unique_ptr<Scene> small_box(int spp, const std::string& sampler = "independent") {
   return scene_from(
       R"("camera": {"eye": [0.5, 0.5, 2], "target": [0.5, 0.5, 0], "fov": 60, "width": 12, "height": 10},
     "path": {"spp": )" +
-      std::to_string(spp) + R"(},
+      std::to_string(spp) + R"(, "sampler": ")" + sampler + R"("},
     "lights": [{"type": "point", "position": [0.3, 0.8, 0.6], "intensity": 1}],
     "shapes": [
       {"type": "quad", "corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0], "material": {"kd": 0.7}},
@@ -227,11 +227,61 @@ std::unique_ptr<Scene> small_box(int spp) {
       {"type": "sphere", "center": [0.3, 0.25, 0.5], "radius": 0.15, "material": {"kd": 0, "kt": 1, "ior": 1.5}}])");
 }
 
+const char* const kSamplers[] = {"independent", "stratified", "sobol"};
+
 TEST(PathTracer, ImagesDoNotDependOnTheThreadCount) {
-  const auto scene = small_box(4);
-  const Film one = testing::render_scene(*scene, "path", 1);
-  const Film two = testing::render_scene(*scene, "path", 2);
-  for (std::size_t i = 0; i < one.pixels().size(); ++i) ASSERT_EQ(one.pixels()[i], two.pixels()[i]) << i;
+  for (const char* sampler : kSamplers) {
+    SCOPED_TRACE(sampler);
+    const auto scene = small_box(4, sampler);
+    const Film one = testing::render_scene(*scene, "path", 1);
+    const Film two = testing::render_scene(*scene, "path", 2);
+    for (std::size_t i = 0; i < one.pixels().size(); ++i) ASSERT_EQ(one.pixels()[i], two.pixels()[i]) << i;
+  }
+}
+
+// Issue 22: each sampler's image at 16 spp against a 1024-spp reference; the samplers that
+// stratify have less error, and all converge to the same image (no bias).
+TEST(PathTracer, StratifyingSamplersHaveLessErrorAndNoBias) {
+  const Film reference = testing::render_scene(*small_box(1024, "sobol"), "path");
+  const auto mse = [&](const Film& film) {
+    double sum = 0;
+    for (std::size_t i = 0; i < film.pixels().size(); ++i)
+      for (int c = 0; c < 3; ++c) sum += std::pow(film.pixels()[i][c] - reference.pixels()[i][c], 2);
+    return sum / double(3 * film.pixels().size());
+  };
+  const auto mean = [](const Film& film) {
+    double sum = 0;
+    for (const Color& c : film.pixels()) sum += c.r + c.g + c.b;
+    return sum / double(film.pixels().size());
+  };
+  const double independent = mse(testing::render_scene(*small_box(16, "independent"), "path"));
+  const double stratified = mse(testing::render_scene(*small_box(16, "stratified"), "path"));
+  const double sobol = mse(testing::render_scene(*small_box(16, "sobol"), "path"));
+  EXPECT_LT(stratified, 0.9 * independent) << stratified << " " << independent;
+  EXPECT_LT(sobol, 0.8 * independent) << sobol << " " << independent;
+  // The image means of 1024 independent passes and of the Sobol' reference agree within noise.
+  EXPECT_NEAR(mean(testing::render_scene(*small_box(1024, "independent"), "path")) / mean(reference), 1,
+              0.01);
+}
+
+TEST(PathTracer, TheSamplerIsCheckedByName) {
+  const auto error = [](const std::string& path) {
+    try {
+      (void)scene_from(R"("camera": {"eye": [0, 0, 3], "target": [0, 0, 0], "width": 4, "height": 4},
+        "render": {"method": "path"}, "path": )" +
+                       path);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error(R"({"sampler": "halton"})")
+                .find("path.sampler: unknown sampler \"halton\" (expected one of: "
+                      "independent, stratified, sobol)"),
+            std::string::npos)
+      << error(R"({"sampler": "halton"})");
+  EXPECT_NE(error(R"({"spp": 0, "time": 1, "sampler": "stratified"})").find("needs path.spp"),
+            std::string::npos);
 }
 
 TEST(PathTracer, ResumingACheckpointGivesTheUninterruptedImage) {
@@ -364,6 +414,41 @@ TEST(PathTracer, LatticePassesAreDeterministicCropAndResumeAndConverge) {
   const auto corner_rays = uint64_t(64) * (12 + 1) * (10 + 1);
   EXPECT_GT(adaptive_rays.rays.primary, corner_rays);
   EXPECT_EQ(jittered_rays.rays.primary, uint64_t(64) * 12 * 10);
+}
+
+// Issue 22: with every sampler, a run stopped after 3 of 7 passes (the checkpoint handed out then)
+// resumes into the uninterrupted image, byte for byte; a stratified checkpoint made for another
+// spp is refused (its strata are the passes).
+TEST(PathTracer, EverySamplerResumesIntoTheUninterruptedImage) {
+  for (const char* sampler : kSamplers) {
+    SCOPED_TRACE(sampler);
+    const auto scene = small_box(7, sampler);
+    const auto method = create_method(*find_method("path"), *scene, {"checkpoint_interval=1e-9"});
+    RenderRequest request{{0, 0, scene->camera->width(), scene->camera->height()}, true};
+    request.fingerprint = "box";
+    request.checkpoint = true;
+    std::optional<Bytes> after_three;
+    request.save_checkpoint = [&](const Bytes& sealed) {
+      if (unseal_path_checkpoint({"saved", sealed}).passes == 3) after_three = sealed;
+    };
+    const RenderResult uninterrupted = method->render(*scene, request);
+    ASSERT_TRUE(after_three);
+    RenderRequest again{{0, 0, scene->camera->width(), scene->camera->height()}, true};
+    again.fingerprint = "box";
+    again.resume = SealedCheckpoint{"box.checkpoint", *after_three};
+    const RenderResult resumed = create_method(*find_method("path"), *scene)->render(*scene, again);
+    for (std::size_t i = 0; i < resumed.film.pixels().size(); ++i)
+      ASSERT_EQ(resumed.film.pixels()[i], uninterrupted.film.pixels()[i]) << i;
+    const auto other_spp = small_box(9, sampler);
+    RenderRequest longer{{0, 0, other_spp->camera->width(), other_spp->camera->height()}, true};
+    longer.fingerprint = "box";
+    longer.resume = again.resume;
+    if (std::string(sampler) == "stratified") {
+      EXPECT_THROW(create_method(*find_method("path"), *other_spp)->render(*other_spp, longer), InputError);
+    } else {
+      EXPECT_NO_THROW(create_method(*find_method("path"), *other_spp)->render(*other_spp, longer));
+    }
+  }
 }
 
 // "--checkpoint FILE every N seconds": with an interval shorter than a pass, a checkpoint is handed

@@ -18,6 +18,7 @@
 #include "integrators/distributed_tiles.h"
 #include "integrators/path_checkpoint.h"
 #include "math/constants.h"
+#include "sampling/independent_sampler.h"
 #include "sampling/multiple_importance.h"
 #include "shading/bsdf.h"
 #include "shading/bump.h"
@@ -40,6 +41,17 @@ PathSettings read_path_settings(const JsonNode& node) {
   settings.roulette_depth = node.integer("roulette_depth", settings.roulette_depth, {0, 1024, false, false});
   settings.checkpoint_interval =
       node.number("checkpoint_interval", settings.checkpoint_interval, {0, 1e9, true, false});
+  if (const auto sampler = node.get("sampler")) {
+    settings.sampler = sampler->as_string();
+    const SamplerEntry* entry = find_sampler(settings.sampler);
+    if (!entry)
+      sampler->fail("unknown sampler \"" + settings.sampler + "\" (expected one of: " + sampler_names() +
+                    ")");
+    if (entry->needs_sample_count && settings.spp == 0)
+      sampler->fail(
+          "the \"" + settings.sampler +
+          "\" sampler needs path.spp (its strata are the passes of a pixel), not spp 0 with a time");
+  }
   node.finish();
   return settings;
 }
@@ -94,10 +106,10 @@ bool unoccluded_surface(const Scene& scene, const Vec3& position, const Vec3& ge
 // sampling (MIS) where a BSDF-sampled ray could have found it too (LightSample::pdf > 0).
 Color sample_light(const Scene& scene, const LightSampler& lights, const Vec3& position,
                    const Vec3& geometric_normal, const Vec3& shading_normal, const Bsdf& bsdf, const Vec3& wo,
-                   Pcg32& rng, RayCounts& rays) {
+                   Sampler& sampler, RayCounts& rays) {
   if (lights.empty()) return {};
-  const LightSampler::Choice choice = lights.choose(rng.next_double());
-  const Vec2 u{rng.next_double(), rng.next_double()};
+  const LightSampler::Choice choice = lights.choose(sampler.get_1d());
+  const Vec2 u = sampler.get_2d();
   LightSample sample;
   if (!scene.emitter(choice.emitter).illuminate_random(position, u, sample)) return {};
   const Vec3& L = sample.direction;
@@ -134,7 +146,7 @@ struct PathState {
 
 // Follows a path from its current ray to its end, adding what it gathers.
 Color continue_path(const Scene& scene, const PathSettings& settings, const LightSampler& lights,
-                    PathState state, Pcg32& rng, RayCounts& rays) {
+                    PathState state, Sampler& sampler, RayCounts& rays) {
   Color L;
   const int max_depth = settings.max_depth > 0 ? settings.max_depth : kDepthCap;
   for (;; ++state.depth) {
@@ -173,11 +185,11 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
     const Vec3 wo = -state.ray.direction;
     if (bsdf.has_non_delta())
       L += state.beta * sample_light(scene, lights, surface.position, surface.geometric_normal,
-                                     shading.shading_normal, bsdf, wo, rng, rays);
+                                     shading.shading_normal, bsdf, wo, sampler, rays);
 
     BsdfSample sample;
-    const double u_lobe = rng.next_double();
-    const Vec2 u{rng.next_double(), rng.next_double()};
+    const double u_lobe = sampler.get_1d();
+    const Vec2 u = sampler.get_2d();
     if (!bsdf.sample(wo, u_lobe, u, sample) || sample.weight.is_black() || !is_finite(sample.weight)) break;
     state.beta *= sample.weight;
     state.specular = sample.delta;
@@ -193,7 +205,7 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
     // Russian roulette: survive with q ≤ 0.95 proportional to the throughput, which is divided by q.
     if (state.depth + 1 >= settings.roulette_depth) {
       const double q = std::min(0.95, state.beta.max_component() * state.eta_scale);
-      if (!(rng.next_double() < q)) break;
+      if (!(sampler.get_1d() < q)) break;
       state.beta = state.beta / q;
     }
   }
@@ -212,7 +224,7 @@ uint64_t pass_state(uint64_t seed, uint64_t pass) {
 }  // namespace
 
 Pcg32 path_pixel_rng(uint64_t seed, uint64_t pass, uint32_t x, uint32_t y) {
-  return Pcg32(pass_state(seed, pass), (static_cast<uint64_t>(y) << 32) | x);
+  return independent_stream(seed, pass, x, y);
 }
 
 Pcg32 path_point_rng(uint64_t seed, uint64_t pass, double x, double y) {
@@ -220,25 +232,37 @@ Pcg32 path_point_rng(uint64_t seed, uint64_t pass, double x, double y) {
 }
 
 Color path_radiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights,
-                    const Ray& ray, Pcg32& rng, RayCounts& rays) {
+                    const Ray& ray, Sampler& sampler, RayCounts& rays) {
   PathState state;
   state.ray = ray;
-  return continue_path(scene, settings, lights, state, rng, rays);
+  return continue_path(scene, settings, lights, state, sampler, rays);
+}
+
+Color path_radiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights,
+                    const Ray& ray, Pcg32& rng, RayCounts& rays) {
+  IndependentSampler sampler(rng);
+  const Color L = path_radiance(scene, settings, lights, ray, sampler, rays);
+  rng = sampler.stream();
+  return L;
 }
 
 Color path_irradiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights,
                       const Vec3& point, const Vec3& normal, Pcg32& rng, RayCounts& rays) {
+  IndependentSampler sampler(rng);
   Bsdf bsdf(ShadingFrame::from_normal(normal), normal);
   BsdfLobe white;
   white.type = LobeType::lambert;
   white.weight = Color(1);
   bsdf.add(white);
   // The virtual surface faces the hemisphere of the normal: wo along it.
-  Color E = sample_light(scene, lights, point, normal, normal, bsdf, normal, rng, rays);
+  Color E = sample_light(scene, lights, point, normal, normal, bsdf, normal, sampler, rays);
   BsdfSample sample;
-  const double u_lobe = rng.next_double();
-  const Vec2 u{rng.next_double(), rng.next_double()};
-  if (!bsdf.sample(normal, u_lobe, u, sample) || sample.weight.is_black()) return E;
+  const double u_lobe = sampler.get_1d();
+  const Vec2 u = sampler.get_2d();
+  if (!bsdf.sample(normal, u_lobe, u, sample) || sample.weight.is_black()) {
+    rng = sampler.stream();
+    return E;
+  }
   PathState state;
   state.ray = Ray{offset_origin(scene, point, normal, sample.wi), sample.wi};
   state.beta = sample.weight;
@@ -247,7 +271,8 @@ Color path_irradiance(const Scene& scene, const PathSettings& settings, const Li
   state.previous = point;
   state.depth = 1;
   ++rays.reflected;
-  E += continue_path(scene, settings, lights, state, rng, rays);
+  E += continue_path(scene, settings, lights, state, sampler, rays);
+  rng = sampler.stream();
   return E;
 }
 
@@ -261,8 +286,10 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
   // Everything besides the scene file that changes a sample: a checkpoint made with other values
   // cannot be continued.
   const std::string fingerprint = fmt::format(
-      "{}|path max_depth={} roulette_depth={} seed={} image={}x{}", request.fingerprint, settings.max_depth,
-      settings.roulette_depth, scene.render.seed, scene.camera->width(), scene.camera->height());
+      "{}|path max_depth={} roulette_depth={} sampler={}{} seed={} image={}x{}", request.fingerprint,
+      settings.max_depth, settings.roulette_depth, settings.sampler,
+      find_sampler(settings.sampler)->needs_sample_count ? fmt::format("/{}", settings.spp) : std::string(),
+      scene.render.seed, scene.camera->width(), scene.camera->height());
 
   PathCheckpoint state;
   state.fingerprint = fingerprint;
@@ -338,12 +365,19 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
   // a random point in each — stratified across passes; "uniform" the cells' centres in turn.
   const AntialiasingSettings& aa = scene.antialiasing;
   const int cells = aa.mode == AntialiasingMode::none ? 1 : aa.n;
+  // path.sampler draws each pixel's samples: one sampler per thread, restarted for every pixel
+  // and pass (its values depend on neither the thread nor the tile).
+  const std::unique_ptr<Sampler> prototype = create_sampler(
+      settings.sampler, SamplerParameters{scene.render.seed, uint64_t(std::max(settings.spp, 0))});
+  tbb::enumerable_thread_specific<std::unique_ptr<Sampler>> samplers([&] { return prototype->clone(); });
   const auto sample_pixel = [&](uint64_t pass, int i, int j, RayCounts& rays, uint64_t& dropped) {
     const auto x = static_cast<uint32_t>(region.x0 + i), y = static_cast<uint32_t>(region.y0 + j);
-    Pcg32 rng = path_pixel_rng(scene.render.seed, pass, x, y);
+    Sampler& sampler = *samplers.local();
+    sampler.start_pixel_sample(x, y, pass);
     PassSample sample;
-    sample.dx = rng.next_double();
-    sample.dy = rng.next_double();
+    const Vec2 point = sampler.get_2d();
+    sample.dx = point.x;
+    sample.dy = point.y;
     if (cells > 1) {
       const auto cell = static_cast<int>(pass % uint64_t(cells * cells));
       const bool centred = aa.mode == AntialiasingMode::uniform;
@@ -352,7 +386,7 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
     }
     ++rays.primary;
     sample.value = path_radiance(scene, settings, lights,
-                                 scene.camera->generate_ray(x + sample.dx, y + sample.dy), rng, rays);
+                                 scene.camera->generate_ray(x + sample.dx, y + sample.dy), sampler, rays);
     if (!is_finite(sample.value)) {
       sample.value = Color();
       ++dropped;
@@ -625,6 +659,7 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
                           {"passes_this_run", state.passes - first_pass},
                           {"max_depth", settings.max_depth},
                           {"roulette_depth", settings.roulette_depth},
+                          {"sampler", settings.sampler},
                           {"emissive_primitives", lights.emissive_primitive_count()},
                           {"scene_lights", scene.lights.size()},
                           {"environment", lights.has_environment()},

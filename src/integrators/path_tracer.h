@@ -14,6 +14,7 @@
 #include "integrators/method.h"
 #include "io/json_node.h"
 #include "math/pcg32.h"
+#include "sampling/sampler.h"
 
 namespace candela {
 
@@ -24,6 +25,7 @@ struct PathSettings {
   int max_depth = 0;                // bounces at most; 0: unlimited (Russian roulette ends every path)
   int roulette_depth = 3;           // Russian roulette from this bounce on
   double checkpoint_interval = 60;  // seconds between checkpoints (candela render --checkpoint)
+  std::string sampler = "sobol";    // sampling/sampler.h: independent, stratified, sobol (issue 22)
 };
 // Ranges checked, unknown keys refused; spp 0 needs a time limit.
 PathSettings read_path_settings(const JsonNode& node);
@@ -32,8 +34,11 @@ struct PathCounts {
   RayCounts rays;
 };
 
-// The estimate of one camera ray (display units), with its random stream.
-// The depth limits are path.max_depth and path.roulette_depth.
+// The estimate of one camera ray (display units), drawing from the sampler's current sample (its
+// pixel point already drawn) or from a random stream. The depth limits are path.max_depth and
+// path.roulette_depth.
+Color path_radiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights,
+                    const Ray& ray, Sampler& sampler, RayCounts& rays);
 Color path_radiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights,
                     const Ray& ray, Pcg32& rng, RayCounts& rays);
 
@@ -43,7 +48,8 @@ Color path_radiance(const Scene& scene, const PathSettings& settings, const Ligh
 Color path_irradiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights,
                       const Vec3& point, const Vec3& normal, Pcg32& rng, RayCounts& rays);
 
-// The stream of pass `pass` at image pixel (x, y): independent of the thread and of the region.
+// The stream of pass `pass` at image pixel (x, y): independent of the thread and of the region
+// (the independent sampler's, sampling/independent_sampler.h).
 Pcg32 path_pixel_rng(uint64_t seed, uint64_t pass, uint32_t x, uint32_t y);
 // The stream of pass `pass` at image point (x, y) of aa.mode "corners" and "adaptive": a lattice
 // point's, independent of the thread, of the region and of which pixel asked first.

@@ -1,0 +1,73 @@
+#include "sampling/sobol_sampler.h"
+
+#include "util/hash.h"
+
+namespace candela {
+
+uint32_t reverse_bits(uint32_t x) {
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+  return (x >> 16) | (x << 16);
+}
+
+uint32_t sobol_dimension_0(uint32_t index) {
+  return reverse_bits(index);
+}
+
+uint32_t sobol_dimension_1(uint32_t index) {
+  // Direction numbers of x + 1: v₁ = 1/2, v_k = v_{k−1} ⊕ (v_{k−1} / 2).
+  uint32_t result = 0;
+  for (uint32_t direction = 0x80000000u; index != 0; index >>= 1, direction ^= direction >> 1)
+    if (index & 1u) result ^= direction;
+  return result;
+}
+
+uint32_t nested_uniform_scramble(uint32_t x, uint32_t seed) {
+  // Burley 2020, §3: on the reversed bits, adding the seed and xoring in products with even
+  // constants changes each bit by the bits below it only — in the fraction's order, each digit is
+  // permuted by a function of the digits before it, which is Owen's scrambling.
+  x = reverse_bits(x);
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return reverse_bits(x);
+}
+
+namespace {
+
+uint32_t hash32(uint32_t value, uint64_t salt) {
+  return static_cast<uint32_t>(mix64(value ^ (salt * 0xd1b54a32d192ed03ULL)));
+}
+
+}  // namespace
+
+void SobolSampler::start_pixel_sample(uint32_t x, uint32_t y, uint64_t index) {
+  pixel_key_ = mix64(seed_ ^ mix64((static_cast<uint64_t>(y) << 32) | x));
+  index_ = static_cast<uint32_t>(index);  // 2^32 passes of one pixel would repeat
+  dimension_ = 0;
+}
+
+uint32_t SobolSampler::dimension_seed() {
+  return static_cast<uint32_t>(mix64(pixel_key_ ^ (++dimension_ * 0x9e3779b97f4a7c15ULL)));
+}
+
+double SobolSampler::get_1d() {
+  const uint32_t seed = dimension_seed();
+  // The index shuffled by the same kind of scrambling keeps aligned blocks of 2^m indices
+  // together, so the first 2^m passes are still one net.
+  const uint32_t index = nested_uniform_scramble(index_, seed);
+  return nested_uniform_scramble(sobol_dimension_0(index), hash32(seed, 1)) * 0x1p-32;
+}
+
+Vec2 SobolSampler::get_2d() {
+  const uint32_t seed = dimension_seed();
+  const uint32_t index = nested_uniform_scramble(index_, seed);
+  return {nested_uniform_scramble(sobol_dimension_0(index), hash32(seed, 1)) * 0x1p-32,
+          nested_uniform_scramble(sobol_dimension_1(index), hash32(seed, 2)) * 0x1p-32};
+}
+
+}  // namespace candela
