@@ -67,7 +67,7 @@ for sampler in stratified sobol; do
     passes=$(python3 -c "print(max(1, round($spp * $budget / $seconds)))")
     run "$sampler-equal-time" --spp "$passes" --set "path.sampler=$sampler"
   else
-    run "$sampler-equal-time" --spp 0 --time "$budget" --set "path.sampler=$sampler"
+    run "$sampler-equal-time" --time "$budget" --set "path.sampler=$sampler"
   fi
 done
 
