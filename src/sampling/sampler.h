@@ -18,6 +18,7 @@
 #include <string_view>
 
 #include "math/vector.h"
+#include "util/hash.h"
 
 namespace candela {
 
@@ -34,6 +35,12 @@ class Sampler {
   // A sampler of the same kind and parameters, for another thread.
   virtual std::unique_ptr<Sampler> clone() const = 0;
 };
+
+// The key of pixel (x, y) under `seed` that the stratified and Sobol' samplers derive their
+// per-dimension seeds from.
+inline uint64_t pixel_sample_key(uint64_t seed, uint32_t x, uint32_t y) {
+  return mix64(seed ^ mix64((static_cast<uint64_t>(y) << 32) | x));
+}
 
 struct SamplerParameters {
   uint64_t seed = 0;     // render.seed

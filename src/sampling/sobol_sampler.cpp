@@ -65,7 +65,7 @@ uint32_t nested_uniform_scramble(uint32_t x, uint32_t seed) {
 }
 
 void SobolSampler::start_pixel_sample(uint32_t x, uint32_t y, uint64_t index) {
-  pixel_key_ = mix64(seed_ ^ mix64((static_cast<uint64_t>(y) << 32) | x));
+  pixel_key_ = pixel_sample_key(seed_, x, y);
   index_ = static_cast<uint32_t>(index);  // 2^32 passes of one pixel would repeat
   dimension_ = 0;
 }

@@ -55,7 +55,7 @@ StratifiedSampler::StratifiedSampler(uint64_t seed, uint64_t samples)
 }
 
 void StratifiedSampler::start_pixel_sample(uint32_t x, uint32_t y, uint64_t index) {
-  pixel_key_ = mix64(seed_ ^ mix64((static_cast<uint64_t>(y) << 32) | x));
+  pixel_key_ = pixel_sample_key(seed_, x, y);
   index_ = static_cast<uint32_t>(index % samples_);
   dimension_ = 0;
   jitter_ = Pcg32(pixel_key_, index);
