@@ -120,6 +120,8 @@ bool TransformedShape::intersect(const Ray& ray, SurfaceHit& hit) const {
   hit.object_dpdv_ = hit.dpdv;
   hit.dpdu = object_to_world_.vector(hit.dpdu);
   hit.dpdv = object_to_world_.vector(hit.dpdv);
+  hit.terminator_lift_outside = object_to_world_.vector(hit.terminator_lift_outside);
+  hit.terminator_lift_inside = object_to_world_.vector(hit.terminator_lift_inside);
   return true;
 }
 

@@ -288,7 +288,21 @@ void fill_triangle_hit(const TriangleMesh& mesh, std::size_t triangle, const Vec
     const auto& n = mesh.corner_normals[triangle];
     const Vec3 interpolated = n[0] * found.b0 + n[1] * found.b1 + n[2] * found.b2;
     const double len = length(interpolated);
-    if (len > 0 && std::isfinite(len)) hit.shading_normal = interpolated / len;
+    if (len > 0 && std::isfinite(len)) {
+      hit.shading_normal = interpolated / len;
+      hit.interpolated_normal = true;
+      // Hanika 2021: P' = P − Σ b_i min(0, (P − V_i)·n_i) n_i, P moved above each vertex's tangent
+      // plane it lies under (none where the surface is flat or hollow); the inside's with −n_i.
+      const double b[3] = {found.b0, found.b1, found.b2};
+      const Vec3 corners[3] = {p0, p1, p2};
+      for (int i = 0; i < 3; ++i) {
+        const double height = dot(hit.position - corners[i], n[i]);
+        hit.terminator_lift_outside -= n[i] * (b[i] * std::min(0.0, height));
+        hit.terminator_lift_inside -= n[i] * (b[i] * std::max(0.0, height));
+      }
+      // Vertex normals against the winding: their outside is the geometric normal's inside.
+      if (dot(interpolated, normal) < 0) std::swap(hit.terminator_lift_outside, hit.terminator_lift_inside);
+    }
   }
 
   const auto& uv = mesh.corner_uvs.empty() ? kDefaultCornerUvs : mesh.corner_uvs[triangle];

@@ -85,7 +85,8 @@ Color local_illumination(const Scene& scene, const Intersection& hit, const Surf
   // A pure mirror or clear glass has no local diffuse or specular part: no shadow rays.
   if (at.kd.is_black() && at.ks <= 0) return result;
   const double offset = scene.ray_offset(surface.position);
-  const Vec3 shadow_origin = surface.position + geometric * offset;
+  // A smooth mesh's shadow rays leave from Hanika's lifted point (SurfaceHit::lifted_toward).
+  const Vec3 shadow_origin = surface.lifted_toward(V) + geometric * offset;
   // Issue 19: every emitter — the lights and the emissive surfaces — each sample of an area light
   // or an emissive surface jittered within its cell per shading point (no stepped penumbrae).
   const StratumJitter jitter{true, scene.render.seed};
@@ -96,8 +97,11 @@ Color local_illumination(const Scene& scene, const Intersection& hit, const Surf
       LightSample sample;
       if (!light.illuminate_sample(surface.position, index, jitter.at(surface.position, e, index), sample))
         continue;
-      // 001's I_lum: only where N·L > 0; a light behind the surface itself casts no light on it.
-      if (dot(N, sample.direction) <= 0 || dot(geometric, sample.direction) <= 0) continue;
+      // 001's I_lum: only where N·L > 0; a light behind the surface itself casts no light on it —
+      // behind the facet, unless the facet stands for a smooth surface whose shading normal faces
+      // the light: then the shadow ray from the lifted point decides (no stepped terminator).
+      if (dot(N, sample.direction) <= 0) continue;
+      if (dot(geometric, sample.direction) <= 0 && !(surface.interpolated_normal && shadows)) continue;
       Color s(1);
       if (shadows) {
         const double reach = std::isfinite(sample.distance) ? sample.distance - 2 * offset : kInfinity;

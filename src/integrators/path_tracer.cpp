@@ -65,20 +65,21 @@ bool is_finite(const Color& c) {
   return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b);
 }
 
-// A secondary ray starts off the surface on the side it leaves by (SPEC §8's offset).
-Vec3 offset_origin(const Scene& scene, const Vec3& position, const Vec3& geometric_normal,
-                   const Vec3& direction) {
-  const Vec3 side = dot(direction, geometric_normal) >= 0 ? geometric_normal : -geometric_normal;
-  return position + side * scene.ray_offset(position);
+// A secondary ray starts off the surface on the side it leaves by (SPEC §8's offset): the side of
+// `side`, its direction for a refraction and wo for a reflection (which on a smooth mesh may dip
+// under the facet, from Hanika's lifted point: SurfaceHit::lifted_toward).
+Vec3 offset_origin(const Scene& scene, const Vec3& position, const Vec3& geometric_normal, const Vec3& side) {
+  const Vec3 outward = dot(side, geometric_normal) >= 0 ? geometric_normal : -geometric_normal;
+  return position + outward * scene.ray_offset(position);
 }
 
-// Whether nothing lies between the point (leaving along L) and distance further (infinity: the
-// environment). The segment stops short of its end by the offset there, so an emissive quad drawn
-// where an area light is does not shadow it.
-bool unoccluded(const Scene& scene, const Vec3& position, const Vec3& geometric_normal, const Vec3& L,
-                double distance, RayCounts& rays) {
+// Whether nothing lies between the point (leaving along L on side's side) and distance further
+// (infinity: the environment). The segment stops short of its end by the offset there, so an
+// emissive quad drawn where an area light is does not shadow it.
+bool unoccluded(const Scene& scene, const Vec3& position, const Vec3& geometric_normal, const Vec3& side,
+                const Vec3& L, double distance, RayCounts& rays) {
   ++rays.shadow;
-  Ray shadow{offset_origin(scene, position, geometric_normal, L), L};
+  Ray shadow{offset_origin(scene, position, geometric_normal, side), L};
   if (std::isfinite(distance)) {
     shadow.t_max = distance - 2 * scene.ray_offset(position + L * distance);
     if (!(shadow.t_max > 0)) return true;
@@ -90,11 +91,11 @@ bool unoccluded(const Scene& scene, const Vec3& position, const Vec3& geometric_
 // off their surfaces (the far one toward the near side), so that a segment reaching a sphere's
 // silhouette at a grazing angle does not clip the sphere just before its end.
 bool unoccluded_surface(const Scene& scene, const Vec3& position, const Vec3& geometric_normal,
-                        const Vec3& target, const Vec3& target_normal, RayCounts& rays) {
+                        const Vec3& side, const Vec3& target, const Vec3& target_normal, RayCounts& rays) {
   ++rays.shadow;
   const Vec3 toward = dot(target_normal, position - target) >= 0 ? target_normal : -target_normal;
   const Vec3 end = target + toward * scene.ray_offset(target);
-  const Vec3 origin = offset_origin(scene, position, geometric_normal, end - position);
+  const Vec3 origin = offset_origin(scene, position, geometric_normal, side);
   const Vec3 segment = end - origin;
   const double distance = length(segment);
   if (!(distance > 0)) return true;
@@ -103,8 +104,10 @@ bool unoccluded_surface(const Scene& scene, const Vec3& position, const Vec3& ge
 
 // One next-event estimate at a surface point: an emitter chosen by its power, a point or direction
 // of it drawn by the emitter's own sampling (Light::illuminate_random), weighted against BSDF
-// sampling (MIS) where a BSDF-sampled ray could have found it too (LightSample::pdf > 0).
-Color sample_light(const Scene& scene, const LightSampler& lights, const Vec3& position,
+// sampling (MIS) where a BSDF-sampled ray could have found it too (LightSample::pdf > 0). The
+// shadow ray leaves from `from` (the hit, or a smooth mesh's lifted point) on wo's side: every
+// non-delta lobe reflects.
+Color sample_light(const Scene& scene, const LightSampler& lights, const Vec3& position, const Vec3& from,
                    const Vec3& geometric_normal, const Vec3& shading_normal, const Bsdf& bsdf, const Vec3& wo,
                    Sampler& sampler, RayCounts& rays) {
   if (lights.empty()) return {};
@@ -116,9 +119,9 @@ Color sample_light(const Scene& scene, const LightSampler& lights, const Vec3& p
   const Color f = bsdf.evaluate(wo, L);
   if (f.is_black()) return {};
   const bool on_surface = sample.normal != Vec3{};
-  if (on_surface ? !unoccluded_surface(scene, position, geometric_normal, position + L * sample.distance,
+  if (on_surface ? !unoccluded_surface(scene, from, geometric_normal, wo, position + L * sample.distance,
                                        sample.normal, rays)
-                 : !unoccluded(scene, position, geometric_normal, L, sample.distance, rays))
+                 : !unoccluded(scene, from, geometric_normal, wo, L, sample.distance, rays))
     return {};
   // A point-like light (pdf 0): no BSDF-sampled ray can hit it, so no MIS.
   const double weight =
@@ -184,8 +187,9 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
     const Bsdf bsdf = make_bsdf(material, at, shading, shading.shading_normal);
     const Vec3 wo = -state.ray.direction;
     if (bsdf.has_non_delta())
-      L += state.beta * sample_light(scene, lights, surface.position, surface.geometric_normal,
-                                     shading.shading_normal, bsdf, wo, sampler, rays);
+      L += state.beta * sample_light(scene, lights, surface.position, surface.lifted_toward(wo),
+                                     surface.geometric_normal, shading.shading_normal, bsdf, wo, sampler,
+                                     rays);
 
     BsdfSample sample;
     const double u_lobe = sampler.get_1d();
@@ -201,7 +205,10 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
     } else {
       ++rays.reflected;
     }
-    state.ray = Ray{offset_origin(scene, surface.position, surface.geometric_normal, sample.wi), sample.wi};
+    const Vec3 leaving_side = sample.transmission ? sample.wi : wo;
+    state.ray =
+        Ray{offset_origin(scene, surface.lifted_toward(leaving_side), surface.geometric_normal, leaving_side),
+            sample.wi};
     // Russian roulette: survive with q ≤ 0.95 proportional to the throughput, which is divided by q.
     if (state.depth + 1 >= settings.roulette_depth) {
       const double q = std::min(0.95, state.beta.max_component() * state.eta_scale);
@@ -255,7 +262,7 @@ Color path_irradiance(const Scene& scene, const PathSettings& settings, const Li
   white.weight = Color(1);
   bsdf.add(white);
   // The virtual surface faces the hemisphere of the normal: wo along it.
-  Color E = sample_light(scene, lights, point, normal, normal, bsdf, normal, sampler, rays);
+  Color E = sample_light(scene, lights, point, point, normal, normal, bsdf, normal, sampler, rays);
   BsdfSample sample;
   const double u_lobe = sampler.get_1d();
   const Vec2 u = sampler.get_2d();

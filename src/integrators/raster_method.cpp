@@ -180,7 +180,7 @@ class RasterShader {
       Color specular;
       if (n_dot_l > 0 && at.ks > 0) {
         if (material.specular_model == SpecularModel::cook_torrance) {
-          specular = at.ks * n_dot_l * cook_torrance(N, V, L, at.roughness, material.fresnel_ior);
+          specular = at.ks * n_dot_l * cook_torrance(N, V, L, at.roughness, material.fresnel);
         } else {
           const double cosine = material.specular_model == SpecularModel::phong ? dot(reflect(L, N), V)
                                                                                 : dot(N, normalize(L + V));

@@ -100,16 +100,20 @@ Material read_classic(const JsonNode& node, const LoadContext& context, Specular
     // The Fresnel index defaults to the refraction index when that is a constant.
     const Color fallback_ior =
         material.ior->is_constant() && node.has("ior") ? Color(constant_value(material.ior)) : Color(1.5);
-    material.fresnel_ior = node.color("fresnel_ior", fallback_ior, Range::positive());
-    // Cook and Torrance's way to a metal: its measured normal-incidence reflectance F0 per
-    // channel gives n = (1 + √F0)/(1 − √F0).
+    const Color eta = node.color("fresnel_ior", fallback_ior, Range::positive());
     if (const auto f0 = node.get("fresnel_f0")) {
+      // A measured reflectance at normal incidence: Schlick's form, which whitens toward grazing
+      // incidence as a metal does (shading/fresnel.h: not Cook and Torrance's derived index,
+      // whose Brewster dip turns copper bluish near 87°).
       if (node.has("fresnel_ior")) f0->fail("give fresnel_ior or fresnel_f0, not both");
-      const Color reflectance = f0->as_color({0, 1, false, true});
-      for (int c = 0; c < 3; ++c) {
-        const double root = std::sqrt(reflectance[c]);
-        material.fresnel_ior[c] = (1 + root) / (1 - root);
-      }
+      if (node.has("fresnel_k"))
+        f0->fail("give fresnel_k with fresnel_ior (a metal's n + iκ), not with fresnel_f0");
+      material.fresnel = Fresnel::schlick(f0->as_color({0, 1, false, true}));
+    } else if (node.has("fresnel_k")) {
+      // A conductor's complex index n + iκ per channel (a metal's measured optical constants).
+      material.fresnel = Fresnel::conductor(eta, node.color("fresnel_k", Color(), Range::non_negative()));
+    } else {
+      material.fresnel = Fresnel::dielectric(eta);
     }
   }
   material.absorption = node.color("absorption", Color(), Range::non_negative());
@@ -272,7 +276,9 @@ const std::array kMaterials = {
     MaterialEntry{
         "cook-torrance",
         "specular term ks·(N·L)·DGF/(π(N·V)(N·L)) (000 §4.2.2): Beckmann roughness m, "
-        "Fresnel index per RGB channel (fresnel_ior, or fresnel_f0 the reflectance at normal incidence)",
+        "Fresnel per RGB channel (fresnel_ior a dielectric's index, with fresnel_k a metal's n + iκ, or "
+        "fresnel_f0 the "
+        "reflectance at normal incidence in Schlick's form)",
         R"({"type": "cook-torrance", "kd": [0.1, 0.05, 0.02], "ks": 1, "roughness": 0.3, "fresnel_f0": [0.9, 0.7, 0.3]})",
         make_cook_torrance},
 };

@@ -8,7 +8,7 @@
 //               D Beckmann or GGX with roughness α (normalised: ∫D cos θ_h dω = 1);
 //               G the height-correlated Smith masking-shadowing 1/(1 + Λ(wo) + Λ(wi)) (Heitz
 //               2014, eq. 99), Λ exact for GGX and Walter et al. 2007's rational fit for
-//               Beckmann; F the unpolarised dielectric Fresnel per channel (cook_torrance.h);
+//               Beckmann; F the lobe's Fresnel per channel (fresnel.h);
 //               h sampled ∝ D(h) cos θ_h, wi = reflect(wo, h), pdf = D cos θ_h / (4 wo·h).
 // The delta lobes (mirror, dielectric) are handled in Bsdf::sample only.
 #include "shading/bsdf.h"
@@ -18,7 +18,7 @@
 
 #include "math/constants.h"
 #include "sampling/warps.h"
-#include "shading/cook_torrance.h"
+#include "shading/fresnel.h"
 #include "shading/optics.h"
 
 namespace candela {
@@ -46,11 +46,11 @@ Vec3 mirror_local(const Vec3& w) {
 }
 
 // wo, wi in the canonical local frame of the reflection lobes; false where no reflection lobe
-// can connect them: on opposite sides of the geometric normal (light-leak guard), or wi under
-// the shading hemisphere of wo.
-bool reflection_pair(const ShadingFrame& frame, const Vec3& geometric, const Vec3& wo, const Vec3& wi,
-                     Vec3& local_wo, Vec3& local_wi) {
-  if (!(dot(wo, geometric) * dot(wi, geometric) > 0)) return false;
+// can connect them: on opposite sides of the geometric normal (light-leak guard, unless the
+// sides are the shading normal's), or wi under the shading hemisphere of wo.
+bool reflection_pair(const ShadingFrame& frame, const Vec3& geometric, bool sides_by_shading_normal,
+                     const Vec3& wo, const Vec3& wi, Vec3& local_wo, Vec3& local_wi) {
+  if (!sides_by_shading_normal && !(dot(wo, geometric) * dot(wi, geometric) > 0)) return false;
   local_wo = frame.to_local(wo);
   local_wi = frame.to_local(wi);
   if (local_wo.z < 0) {
@@ -100,7 +100,7 @@ Color lobe_f(const BsdfLobe& lobe, const Vec3& wo, const Vec3& wi) {
       if (!(cos_h > 0) || !(h.z > 0)) return {};
       const double D = microfacet_normal_pdf(lobe, h) / h.z;
       const double G = 1 / (1 + smith_lambda(lobe, wo) + smith_lambda(lobe, wi));
-      return lobe.weight * fresnel_unpolarized(cos_h, lobe.fresnel_ior) * (D * G / (4 * wo.z * wi.z));
+      return lobe.weight * lobe.fresnel.reflectance(cos_h) * (D * G / (4 * wo.z * wi.z));
     }
     case LobeType::mirror:
     case LobeType::dielectric:
@@ -182,7 +182,7 @@ bool Bsdf::has_non_delta() const {
 
 Color Bsdf::evaluate(const Vec3& wo, const Vec3& wi) const {
   Vec3 local_wo, local_wi;
-  if (!reflection_pair(frame_, geometric_, wo, wi, local_wo, local_wi)) return {};
+  if (!reflection_pair(frame_, geometric_, sides_by_shading_normal_, wo, wi, local_wo, local_wi)) return {};
   Color f;
   for (int i = 0; i < count_; ++i)
     if (!is_delta(lobes_[i].type)) f += lobe_f(lobes_[i], local_wo, local_wi);
@@ -194,7 +194,7 @@ double Bsdf::pdf(const Vec3& wo, const Vec3& wi) const {
   for (int i = 0; i < count_; ++i) total += selection_weight(lobes_[i]);
   if (!(total > 0)) return 0;
   Vec3 local_wo, local_wi;
-  if (!reflection_pair(frame_, geometric_, wo, wi, local_wo, local_wi)) return 0;
+  if (!reflection_pair(frame_, geometric_, sides_by_shading_normal_, wo, wi, local_wo, local_wi)) return 0;
   double density = 0;
   for (int i = 0; i < count_; ++i)
     if (!is_delta(lobes_[i].type))

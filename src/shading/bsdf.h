@@ -15,6 +15,7 @@
 #include <cstdint>
 
 #include "math/vector.h"
+#include "shading/fresnel.h"
 
 namespace candela {
 
@@ -37,8 +38,8 @@ struct BsdfLobe {
   double exponent = 1;  // phong: n of cos^n α, α the angle between wi and the mirror of wo
   double alpha = 0.3;   // microfacet roughness (Beckmann: rms slope m)
   MicrofacetDistribution distribution = MicrofacetDistribution::beckmann;
-  Color fresnel_ior{1.5, 1.5, 1.5};  // microfacet: unpolarised dielectric Fresnel per channel
-  double ior = 1.5;                  // dielectric: index inside relative to outside
+  Fresnel fresnel;   // microfacet: F per channel (dielectric, conductor or Schlick)
+  double ior = 1.5;  // dielectric: index inside relative to outside
 };
 
 struct BsdfSample {
@@ -56,9 +57,12 @@ inline constexpr int kMaxBsdfLobes = 4;
 class Bsdf {
  public:
   // shading: the frame of the (bumped, interpolated) shading normal, oriented to the geometric
-  // normal's side; geometric_normal: unit, the outside of the surface.
-  Bsdf(const ShadingFrame& shading, const Vec3& geometric_normal)
-      : frame_(shading), geometric_(geometric_normal) {}
+  // normal's side; geometric_normal: unit, the outside of the surface. sides_by_shading_normal:
+  // the reflection lobes connect any wo, wi above the shading normal's plane, also where wi dips
+  // under the flat facet — for a smooth mesh whose rays leave from Hanika's lifted point
+  // (SurfaceHit::lifted_toward), where the shadow ray, not the facet, decides what is lit.
+  Bsdf(const ShadingFrame& shading, const Vec3& geometric_normal, bool sides_by_shading_normal = false)
+      : frame_(shading), geometric_(geometric_normal), sides_by_shading_normal_(sides_by_shading_normal) {}
   // Adds a lobe; lobes beyond kMaxBsdfLobes or with a black weight are dropped.
   void add(const BsdfLobe& lobe);
   int lobe_count() const { return count_; }
@@ -70,7 +74,7 @@ class Bsdf {
   void conserve_energy();
 
   // Sum of the non-delta lobes' f(wo, wi); zero for wo, wi on opposite sides of the geometric
-  // normal unless a transmitting lobe allows it (no light leaks through bumped/interpolated normals).
+  // normal (no light leaks through bumped normals) unless sides_by_shading_normal.
   Color evaluate(const Vec3& wo, const Vec3& wi) const;
   // The density sample() draws wi with, restricted to its non-delta part (the probability of
   // choosing each non-delta lobe times its pdf).
@@ -84,6 +88,7 @@ class Bsdf {
  private:
   ShadingFrame frame_;
   Vec3 geometric_;
+  bool sides_by_shading_normal_ = false;
   std::array<BsdfLobe, kMaxBsdfLobes> lobes_{};
   int count_ = 0;
 };

@@ -55,7 +55,7 @@ BsdfLobe microfacet(double ks, double alpha, MicrofacetDistribution distribution
   lobe.weight = Color(ks);
   lobe.alpha = alpha;
   lobe.distribution = distribution;
-  lobe.fresnel_ior = ior;
+  lobe.fresnel = Fresnel::dielectric(ior);
   return lobe;
 }
 BsdfLobe mirror(double kr) {

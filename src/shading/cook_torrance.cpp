@@ -22,24 +22,7 @@ double geometric_attenuation(double n_dot_h, double n_dot_v, double n_dot_l, dou
   return std::min({1.0, 2 * n_dot_h * n_dot_v / v_dot_h, 2 * n_dot_h * n_dot_l / v_dot_h});
 }
 
-double fresnel_unpolarized(double cos_theta, double n) {
-  // Cook & Torrance's form of the seed's formula: with c = cos θ and g² = n² + c² − 1
-  // (g = n cos φ by Snell's law), F = ½ (g−c)²/(g+c)² · [1 + (c(g+c) − 1)² / (c(g−c) + 1)²].
-  const double c = std::clamp(cos_theta, 0.0, 1.0);
-  const double g2 = n * n + c * c - 1;
-  if (g2 <= 0) return 1;  // total internal reflection (n < 1 past the critical angle)
-  const double g = std::sqrt(g2);
-  const double a = (g - c) / (g + c);
-  const double b = (c * (g + c) - 1) / (c * (g - c) + 1);
-  return 0.5 * a * a * (1 + b * b);
-}
-
-Color fresnel_unpolarized(double cos_theta, const Color& n) {
-  return {fresnel_unpolarized(cos_theta, n.r), fresnel_unpolarized(cos_theta, n.g),
-          fresnel_unpolarized(cos_theta, n.b)};
-}
-
-Color cook_torrance(const Vec3& N, const Vec3& V, const Vec3& L, double m, const Color& ior) {
+Color cook_torrance(const Vec3& N, const Vec3& V, const Vec3& L, double m, const Fresnel& fresnel) {
   const double n_dot_v = dot(N, V);
   const double n_dot_l = dot(N, L);
   if (!(n_dot_v > 0) || !(n_dot_l > 0)) return {};
@@ -51,7 +34,7 @@ Color cook_torrance(const Vec3& N, const Vec3& V, const Vec3& L, double m, const
   const double v_dot_h = dot(V, H);
   const double D = beckmann_distribution(n_dot_h, m);
   const double G = geometric_attenuation(n_dot_h, n_dot_v, n_dot_l, v_dot_h);
-  return fresnel_unpolarized(v_dot_h, ior) * (D * G / (kPi * n_dot_v * n_dot_l));
+  return fresnel.reflectance(v_dot_h) * (D * G / (kPi * n_dot_v * n_dot_l));
 }
 
 }  // namespace candela

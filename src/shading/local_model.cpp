@@ -14,7 +14,7 @@ Color direct_term(const Material& material, const SurfaceProperties& at, const V
   Color specular;
   if (at.ks > 0) {
     if (material.specular_model == SpecularModel::cook_torrance) {
-      specular = at.ks * n_dot_l * cook_torrance(N, V, L, at.roughness, material.fresnel_ior);
+      specular = at.ks * n_dot_l * cook_torrance(N, V, L, at.roughness, material.fresnel);
     } else {
       double cosine;
       if (material.specular_model == SpecularModel::phong) {

@@ -62,7 +62,7 @@ struct Material {
   std::shared_ptr<const Texture> shininess;  // n of (R·V)^n or (N·H)^n
   SpecularModel specular_model = SpecularModel::phong;
   std::shared_ptr<const Texture> roughness;  // Cook-Torrance m: rms slope of the facets
-  Color fresnel_ior{1.5, 1.5, 1.5};          // Cook-Torrance: index of refraction per channel
+  Fresnel fresnel;                           // Cook-Torrance: F (dielectric 1.5 unless set)
   // Path tracing (shading/material_bsdf.h): the facet distribution of the cook_torrance
   // microfacet lobe, Beckmann (the local model's D) or GGX; the local model always uses Beckmann.
   MicrofacetDistribution microfacet = MicrofacetDistribution::beckmann;

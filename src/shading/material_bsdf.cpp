@@ -6,7 +6,9 @@ Bsdf make_bsdf(const Material& material, const SurfaceProperties& at, const Surf
                const Vec3& shading_normal) {
   const Vec3& geometric = hit.geometric_normal;
   const Vec3 normal = dot(shading_normal, geometric) < 0 ? -shading_normal : shading_normal;
-  Bsdf bsdf(ShadingFrame::from_normal(normal), geometric);
+  // A smooth mesh's facets are not the surface (Hanika 2021): its shading normal says which side a
+  // direction is on, and rays leave from SurfaceHit::lifted_toward.
+  Bsdf bsdf(ShadingFrame::from_normal(normal), geometric, hit.interpolated_normal);
 
   BsdfLobe diffuse;
   diffuse.type = LobeType::lambert;
@@ -20,7 +22,7 @@ Bsdf make_bsdf(const Material& material, const SurfaceProperties& at, const Surf
       specular.type = LobeType::microfacet;
       specular.alpha = at.roughness;
       specular.distribution = material.microfacet;
-      specular.fresnel_ior = material.fresnel_ior;
+      specular.fresnel = material.fresnel;
     } else {
       // Phong and Blinn-Phong both become the normalized Phong lobe about the mirror
       // direction, with the material's exponent as given.

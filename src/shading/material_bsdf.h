@@ -3,7 +3,7 @@
 //   kd                              → lambert, ρ = kd clamped to [0, 1] (SurfaceProperties::diffuse_albedo)
 //   ks > 0, phong or blinn-phong    → normalized Phong, weight ks, exponent n (shininess)
 //   ks > 0, cook-torrance           → microfacet, weight ks, α = roughness, Material::microfacet
-//                                     (Beckmann or GGX), Fresnel per channel from fresnel_ior
+//                                     (Beckmann or GGX), Fresnel per channel: Material::fresnel
 //   kr > 0                          → mirror, weight kr
 //   kt > 0                          → smooth dielectric, weight kt, index ior
 // and finally Bsdf::conserve_energy(): where kd + ks + kr + kt exceeds 1 in a channel, every

@@ -57,14 +57,14 @@ TEST(MaterialBsdf, CookTorranceBecomesMicrofacet) {
   material.kd = constant_texture(0.2);
   material.ks = constant_texture(0.6);
   material.roughness = constant_texture(0.25);
-  material.fresnel_ior = Color(1.2, 1.5, 2.0);
+  material.fresnel = Fresnel::dielectric(Color(1.2, 1.5, 2.0));
   Bsdf bsdf = bsdf_of(material);
   ASSERT_EQ(bsdf.lobe_count(), 2);
   EXPECT_EQ(bsdf.lobe(1).type, LobeType::microfacet);
   EXPECT_EQ(bsdf.lobe(1).weight, Color(0.6));
   EXPECT_EQ(bsdf.lobe(1).alpha, 0.25);
   EXPECT_EQ(bsdf.lobe(1).distribution, MicrofacetDistribution::beckmann);
-  EXPECT_EQ(bsdf.lobe(1).fresnel_ior, Color(1.2, 1.5, 2.0));
+  EXPECT_TRUE(bsdf.lobe(1).fresnel == Fresnel::dielectric(Color(1.2, 1.5, 2.0)));
   material.microfacet = MicrofacetDistribution::ggx;
   bsdf = bsdf_of(material);
   EXPECT_EQ(bsdf.lobe(1).distribution, MicrofacetDistribution::ggx);
