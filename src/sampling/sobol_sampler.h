@@ -35,9 +35,10 @@ class SobolSampler final : public Sampler {
 
  private:
   uint32_t dimension_seed();  // the next dimension's scrambling seed
+  uint32_t shuffled_index(uint32_t seed) const;
   uint64_t seed_;
   uint64_t pixel_key_ = 0;
-  uint32_t index_ = 0;
+  uint32_t reversed_index_ = 0;  // the pass's index, bits reversed
   uint32_t dimension_ = 0;
 };
 
