@@ -176,6 +176,38 @@ TEST(RasterRender, ShadowsMatchTheRayTracerWithoutSelfShadowing) {
   EXPECT_LT(c.mean, 0.02) << c.mean;  // self-shadowing made the lit half of the sphere ambient-only
 }
 
+// Issue 22: "dotproduct" shading cast every light's shadow from its centre, so an area light's
+// shadow had a hard edge where the ray tracer's has a penumbra. Now its samples, jittered per
+// point as the ray tracer's are, each test their own shadow ray.
+TEST(RasterRender, DotProductShadowsOfAnAreaLightHavePenumbrae) {
+  const std::string body = R"(
+    "camera": {"eye": [0, 1.2, 5], "target": [0, 0, 0], "fov": 40, "width": 64, "height": 64},
+    "background": [0, 0, 1], "ambient": 0,
+    "lights": [{"type": "area", "corner": [-1, 4, -1], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2], "exitance": 10, "samples": 8}],
+    "shapes": [{"type": "quad", "corner": [-0.6, 1.5, -0.6], "edge_u": [1.2, 0, 0], "edge_v": [0, 0, 1.2], "material": {"kd": 0}},
+               {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": {"kd": 0.7}}],
+    "raster": {"shading": "dotproduct", "shadows": true, "segments": 8})";
+  const auto scene = scene_from(body);
+  const Film raster = render(*scene, "raster");
+  const Film traced = render(*scene, "local");
+  // The floor's row through the middle (under the occluder, which the camera does not see), from
+  // the umbra out to the fully lit floor:
+  // the umbra's edge at |x| ≈ 0.24, the penumbra out to ≈ 1.2 (similar triangles of the light and
+  // the occluder's edge at heights 4 and 1.5).
+  int penumbra = 0;
+  double largest_step = 0, brightest = 0;
+  for (int x = 0; x < raster.width(); ++x) brightest = std::max(brightest, raster.at(x, 32).r);
+  for (int x = 0; x < raster.width(); ++x) {
+    const double value = raster.at(x, 32).r;
+    if (value > 0.15 * brightest && value < 0.85 * brightest) ++penumbra;
+    if (x > 0) largest_step = std::max(largest_step, std::fabs(value - raster.at(x - 1, 32).r));
+  }
+  EXPECT_GE(penumbra, 12);                    // a hard shadow has none (no anti-aliasing here)
+  EXPECT_LT(largest_step, 0.25 * brightest);  // no jump from umbra to light
+  const Comparison c = compare(raster, traced, Color(0, 0, 1));
+  EXPECT_LT(c.mean, 0.03 * brightest) << c.mean;  // and where the ray tracer puts it
+}
+
 TEST(RasterRender, TheTerminatorFollowsTheInterpolatedNormal) {
   // Lit from the side: the light-dark boundary of a coarse Phong sphere is where the
   // interpolated normal turns from the light, not a staircase along the facets.

@@ -246,15 +246,41 @@ class RasterShader {
       light_in += kPerLight;
       LightSample sample;
       if (n_dot_l <= 0 || !light.illuminate(p, sample)) continue;
-      Color s(1);
-      if (settings_.shadows) {
-        const double reach = std::isfinite(sample.distance) ? sample.distance - 2 * offset : kInfinity;
-        s = shadow_transmittance(scene_, p + hit.geometric_normal * offset, sample.direction, reach, context,
-                                 -1);
-      }
+      const Color s =
+          settings_.shadows ? visible_fraction(light, e, p, hit.geometric_normal, offset, context) : Color(1);
       result += sample.intensity * s * (at.kd * n_dot_l + specular);
     }
     return result;
+  }
+
+  // The share of a light's intensity that reaches p past the occluders: one shadow ray toward a
+  // point light, and for an area light or an emissive surface its samples, each jittered within
+  // its cell per shading point as the ray tracer does (StratumJitter), weighted by what each
+  // carries — so its shadows have penumbrae rather than the hard edge of its centre.
+  Color visible_fraction(const Light& light, std::size_t e, const Vec3& p, const Vec3& normal, double offset,
+                         TraceContext& context) const {
+    const Vec3 origin = p + normal * offset;
+    if (light.sample_count() == 1) {
+      LightSample sample;
+      if (!light.illuminate(p, sample)) return {};
+      const double reach = std::isfinite(sample.distance) ? sample.distance - 2 * offset : kInfinity;
+      return shadow_transmittance(scene_, origin, sample.direction, reach, context, -1);
+    }
+    const StratumJitter jitter{true, scene_.render.seed};
+    Color reached, total;
+    for (int index = 0; index < light.sample_count(); ++index) {
+      LightSample sample;
+      if (!light.illuminate_sample(p, index, jitter.at(p, e, index), sample)) continue;
+      total += sample.intensity;
+      if (dot(normal, sample.direction) <= 0)
+        continue;  // behind the face: this part of the light is not seen
+      const double reach = std::isfinite(sample.distance) ? sample.distance - 2 * offset : kInfinity;
+      reached +=
+          sample.intensity * shadow_transmittance(scene_, origin, sample.direction, reach, context, -1);
+    }
+    Color fraction;
+    for (int c = 0; c < 3; ++c) fraction[c] = total[c] > 0 ? reached[c] / total[c] : 0;
+    return fraction;
   }
 
   const Scene& scene_;
