@@ -5,7 +5,7 @@
 # sampler took for them, against a REFERENCE_SPP (8192) Sobol' reference. Prints seconds, passes,
 # RMSE and relMSE of the whole image and with the lamp masked (the lamp and the pixels beside it,
 # `candela compare --mask`), MSE relative to the independent sampler's, and efficiency
-# 1 / (seconds × MSE) relative to it.
+# 1 / (seconds × MSE) relative to it. Render seconds are the medians of REPEATS (3) runs.
 #
 #   scripts/path-efficiency.sh                 # about 20 minutes on 2 cores (the reference: most)
 #   REFERENCE_SPP=2048 SIZE=128 scripts/path-efficiency.sh
@@ -17,6 +17,7 @@ size="${SIZE:-256}"
 spp="${SPP:-64}"
 reference_spp="${REFERENCE_SPP:-8192}"
 threads="${THREADS:-2}"
+repeats="${REPEATS:-3}"
 mkdir -p "$work"
 common=(scenes/cornell-box.json --method path --set "camera.width=$size" --set "camera.height=$size"
         --set aa.mode=none --set aa.filter=box --set path.max_depth=64 --threads "$threads" -q)
@@ -49,37 +50,48 @@ with open(sys.argv[2], 'wb') as out:
     out.write(struct.pack('<' + 'f' * len(mask), *mask))
 PYTHON
 
-run() {  # name, then render arguments
+# Each render REPEATS (3) times, the samplers in turn (A B C A B C ...): the images are the same
+# bytes each time, and the medians of the render seconds stand for the times (on a shared 2-core
+# machine one render's time varies by ±10 %).
+render() {  # name, then render arguments; appends the render phase's seconds to name.seconds
   local name="$1"
   shift
   "$candela" render "${common[@]}" "$@" -o "$work/$name.pfm" --stats "$work/$name.json"
-  "$candela" compare "$work/$name.pfm" "$reference" --json "$work/$name-whole.json" > /dev/null
-  "$candela" compare "$work/$name.pfm" "$reference" --mask "$work/walls-mask.pfm" \
-    --json "$work/$name-walls.json" > /dev/null
+  python3 -c "import json; print(json.load(open('$work/$name.json'))['phases_seconds']['render'])" \
+    >> "$work/$name.seconds"
 }
-for sampler in independent stratified sobol; do
-  run "$sampler-$spp" --spp "$spp" --set "path.sampler=$sampler"
+compare() {  # name
+  "$candela" compare "$work/$1.pfm" "$reference" --json "$work/$1-whole.json" > /dev/null
+  "$candela" compare "$work/$1.pfm" "$reference" --mask "$work/walls-mask.pfm" --json "$work/$1-walls.json" > /dev/null
+}
+median() {  # name
+  python3 -c "import statistics; print(statistics.median(map(float, open('$work/$1.seconds'))))"
+}
+rm -f "$work"/*.seconds
+for ((i = 0; i < repeats; ++i)); do
+  for sampler in independent stratified sobol; do render "$sampler-$spp" --spp "$spp" --set "path.sampler=$sampler"; done
 done
-budget=$(python3 -c "import json; print(json.load(open('$work/independent-$spp.json'))['phases_seconds']['render'])")
-for sampler in stratified sobol; do
-  seconds=$(python3 -c "import json; print(json.load(open('$work/$sampler-$spp.json'))['phases_seconds']['render'])")
-  if [ "$sampler" = stratified ]; then  # its strata need the pass count: the passes that fit
-    passes=$(python3 -c "print(max(1, round($spp * $budget / $seconds)))")
-    run "$sampler-equal-time" --spp "$passes" --set "path.sampler=$sampler"
-  else
-    run "$sampler-equal-time" --time "$budget" --set "path.sampler=$sampler"
-  fi
+# Equal time: the passes that fit in the independent sampler's median time at each sampler's
+# median seconds per pass (a pass count, not --time, so that the images do not depend on timing).
+budget=$(median "independent-$spp")
+for ((i = 0; i < repeats; ++i)); do
+  for sampler in stratified sobol; do
+    passes=$(python3 -c "print(max(1, round($spp * $budget / $(median "$sampler-$spp"))))")
+    render "$sampler-equal-time" --spp "$passes" --set "path.sampler=$sampler"
+  done
 done
+for name in independent-$spp stratified-$spp sobol-$spp stratified-equal-time sobol-equal-time; do compare "$name"; done
 
 python3 - "$work" "$spp" "$(lscpu | sed -n 's/^Model name: *//p' | head -1)" "$(nproc)" \
   "$(git rev-parse --short HEAD)" <<'PYTHON'
-import json, sys
+import json, statistics, sys
 work, spp, cpu, cores, commit = sys.argv[1:]
 def load(name):
     stats = json.load(open(f'{work}/{name}.json'))
     whole = json.load(open(f'{work}/{name}-whole.json'))
     walls = json.load(open(f'{work}/{name}-walls.json'))
-    return stats['phases_seconds']['render'], stats['path']['spp'], whole, walls
+    seconds = statistics.median(map(float, open(f'{work}/{name}.seconds')))
+    return seconds, stats['path']['spp'], whole, walls
 base = load(f'independent-{spp}')
 print(f'machine: {cpu}, {cores} cores; commit {commit}')
 print(f'{"run":26s} {"seconds":>8s} {"spp":>5s} {"RMSE":>9s} {"relMSE":>9s} {"RMSE walls":>10s} '
