@@ -3,6 +3,7 @@
 // headless Chromium to check that every image loads. Chromium is a dependency of the tests
 // (scripts/install-deps.sh): without it the browser test fails, it is not skipped.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -58,7 +59,8 @@ class ReportCli : public ::testing::Test {
   void SetUp() override {
     directory_ =
         fs::temp_directory_path() /
-        ("candela-report-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        ("candela-report-" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+         "-" + std::to_string(::getpid()));  // two suites at once (two checkouts) must not share a folder
     fs::remove_all(directory_);
     fs::create_directories(directory_);
     std::ofstream(directory_ / "room.json") << kRoom;
