@@ -15,6 +15,7 @@ render() {  # scene output
   awk -v file="$2" -v start="$start" -v end="$EPOCHREALTIME" 'BEGIN { printf "wrote %s (%.1f s)\n", file, end - start }'
 }
 for scene in scenes/figures/*.json; do
+  [ "$(basename "$scene")" = raster-shading.json ] && continue  # scripts/raster-figures.sh draws it
   render "$scene" "$out/$(basename "$scene" .json).png"
 done
 render scenes/materials-gallery.json "$(dirname "$out")/materials-gallery.png"
