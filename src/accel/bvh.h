@@ -123,6 +123,7 @@ class Bvh final : public Accelerator {
   std::span<const Primitive> primitives_;
   std::vector<Node, BvhAllocator<Node>> nodes_;
   std::vector<Packet, BvhAllocator<Packet>> packets_;
+  std::vector<uint8_t> packet_triangles_;             // per packet: the lanes holding triangles (bits)
   std::vector<Slot, BvhAllocator<Slot>> lane_slots_;  // four per packet (unused lanes zero)
   std::size_t slot_count_ = 0;                        // slots in leaves
   std::vector<uint32_t> unbounded_;                   // primitives with infinite bounds

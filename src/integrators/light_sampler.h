@@ -30,6 +30,8 @@ class LightSampler {
   bool empty() const { return cumulative_.empty(); }
   // A choice with u uniform in [0, 1).
   Choice choose(double u) const;
+  // Whether there is only one emitter to choose (choose needs no random value).
+  bool single() const { return cumulative_.size() == 1; }
   double probability(std::size_t emitter) const {
     return emitter < probability_.size() ? probability_[emitter] : 0.0;
   }

@@ -111,7 +111,8 @@ Color sample_light(const Scene& scene, const LightSampler& lights, const Vec3& p
                    const Vec3& geometric_normal, const Vec3& shading_normal, const Bsdf& bsdf, const Vec3& wo,
                    Sampler& sampler, RayCounts& rays) {
   if (lights.empty()) return {};
-  const LightSampler::Choice choice = lights.choose(sampler.get_1d());
+  // A value is drawn only where there is a choice (the samplers' dimensions go to what varies).
+  const LightSampler::Choice choice = lights.choose(lights.single() ? 0.0 : sampler.get_1d());
   const Vec2 u = sampler.get_2d();
   LightSample sample;
   if (!scene.emitter(choice.emitter).illuminate_random(position, u, sample)) return {};
@@ -192,7 +193,7 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
                                      rays);
 
     BsdfSample sample;
-    const double u_lobe = sampler.get_1d();
+    const double u_lobe = bsdf.lobe_count() > 1 ? sampler.get_1d() : 0.0;
     const Vec2 u = sampler.get_2d();
     if (!bsdf.sample(wo, u_lobe, u, sample) || sample.weight.is_black() || !is_finite(sample.weight)) break;
     state.beta *= sample.weight;
@@ -264,7 +265,7 @@ Color path_irradiance(const Scene& scene, const PathSettings& settings, const Li
   // The virtual surface faces the hemisphere of the normal: wo along it.
   Color E = sample_light(scene, lights, point, point, normal, normal, bsdf, normal, sampler, rays);
   BsdfSample sample;
-  const double u_lobe = sampler.get_1d();
+  const double u_lobe = 0;  // one lobe
   const Vec2 u = sampler.get_2d();
   if (!bsdf.sample(normal, u_lobe, u, sample) || sample.weight.is_black()) {
     rng = sampler.stream();

@@ -8,7 +8,8 @@
 // has drawn — never of the thread, the tile, the rank or a resume from a checkpoint. Values are
 // drawn in the order the path asks for them: the point in the pixel, then per bounce the light
 // choice (1D), the point on the light (2D), the BSDF lobe (1D), the BSDF direction (2D) and
-// Russian roulette (1D); a value not needed (no light to sample) is not drawn.
+// Russian roulette (1D); a value not needed is not drawn (no light to sample, one emitter
+// to choose from, a BSDF of one lobe).
 #pragma once
 
 #include <cstdint>

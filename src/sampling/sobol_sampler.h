@@ -37,7 +37,7 @@ class SobolSampler final : public Sampler {
   uint32_t dimension_seed();  // the next dimension's scrambling seed
   uint32_t shuffled_index(uint32_t seed) const;
   uint64_t seed_;
-  uint64_t pixel_key_ = 0;
+  uint32_t pixel_seed_ = 0;      // the pixel's key, folded to 32 bits
   uint32_t reversed_index_ = 0;  // the pass's index, bits reversed
   uint32_t dimension_ = 0;
 };
