@@ -5,6 +5,7 @@
 
 #include "geometry/flat_surface.h"
 #include "geometry/tessellation.h"
+#include "sampling/warps.h"
 
 namespace candela {
 
@@ -76,6 +77,47 @@ bool Quad::sample_area(const Vec2& u, SurfaceSample& sample) const {
 
 double Quad::pdf_area(const SurfaceHit&) const {
   return 1 / area_;
+}
+
+bool Quad::corner_weights(const Vec3& reference, double (&w)[4]) const {
+  // n·(corner − reference) is the same at every corner: the reference's height over the plane.
+  const double height = std::fabs(dot(normal_, corner_ - reference));
+  if (!(height > 0)) return false;
+  const Vec3 corners[4] = {corner_, corner_ + edge_u_, corner_ + edge_v_, corner_ + edge_u_ + edge_v_};
+  double sum = 0;
+  for (int i = 0; i < 4; ++i) {
+    const double d2 = length_squared(corners[i] - reference);
+    w[i] = height / (d2 * std::sqrt(d2));  // cos θ / d²
+    sum += w[i];
+  }
+  if (!std::isfinite(sum) || !(sum > 0))  // a corner at (or all corners too near) the reference
+    for (double& weight : w) weight = 1;
+  return true;
+}
+
+double Quad::solid_angle_pdf(const Vec3& reference, const Vec2& uv, const Vec3& position,
+                             const double (&w)[4]) const {
+  const Vec3 to_point = position - reference;
+  const double d2 = length_squared(to_point);
+  const double cos_light = std::fabs(dot(normal_, to_point)) / std::sqrt(d2);
+  const double pdf = bilinear_pdf(uv, w) / area_ * d2 / cos_light;
+  return std::isfinite(pdf) && pdf > 0 ? pdf : 0;
+}
+
+bool Quad::sample_from(const Vec3& reference, const Vec2& u, SurfaceSample& sample) const {
+  double w[4];
+  if (!corner_weights(reference, w)) return false;
+  const Vec2 uv = square_to_bilinear(u, w);
+  sample.position = corner_ + edge_u_ * uv.x + edge_v_ * uv.y;
+  sample.normal = normal_;
+  sample.pdf = solid_angle_pdf(reference, uv, sample.position, w);
+  return sample.pdf > 0;
+}
+
+double Quad::pdf_from(const Vec3& reference, const SurfaceHit& hit) const {
+  double w[4];
+  if (!corner_weights(reference, w)) return 0;
+  return solid_angle_pdf(reference, hit.uv, hit.position, w);
 }
 
 }  // namespace candela

@@ -208,7 +208,7 @@ TEST(ShapeSampling, QuadAndMeshTriangle) {
                1e-12,
                true,
                2,
-               {{2, 0.5, 2}, {2, 0.5, -1}, {8, 1, 0.3}}},
+               {{2, 0.5, 2}, {2, 0.5, -1}, {8, 1, 0.3}, {1.05, 0.02, 0.1}, {2.5, 0.5, 0.3}}},
               2);
 
   auto mesh = std::make_shared<TriangleMesh>();
@@ -225,6 +225,37 @@ TEST(ShapeSampling, QuadAndMeshTriangle) {
   SurfaceSample sample;
   EXPECT_EQ(flat.area(), 0);
   EXPECT_FALSE(flat.sample_area({0.5, 0.5}, sample));
+}
+
+// Quad::sample_from weights (u, v) by the solid-angle density at the corners: from a point
+// close to a corner the estimate of the solid angle (the mean of 1/pdf) is far less noisy than
+// with uniform area sampling (Shape::sample_from); beside the middle of an edge, where the
+// density peaks between two corners, the bilinear fit is no better than uniform and not much
+// worse; from far away the two are the same.
+TEST(ShapeSampling, QuadSeenFromNearbyIsSampledCloseToItsSolidAngle) {
+  const Quad quad({0, 0, 0}, {2, 0, 0}, {0, 0, 2});  // normal -y; both sides are sampled alike
+  const auto spread = [&](const Vec3& reference, bool by_area) {
+    Pcg32 rng(5, 9);
+    Mean inverse_pdf;
+    for (int i = 0; i < 20000; ++i) {
+      const Vec2 u{rng.next_double(), rng.next_double()};
+      SurfaceSample sample;
+      const bool ok =
+          by_area ? quad.Shape::sample_from(reference, u, sample) : quad.sample_from(reference, u, sample);
+      inverse_pdf.add(ok ? 1 / sample.pdf : 0.0);
+    }
+    return inverse_pdf;
+  };
+  const auto ratio = [&](const Vec3& reference) {
+    SCOPED_TRACE(::testing::Message() << "from " << reference);
+    const Mean warped = spread(reference, false), uniform = spread(reference, true);
+    EXPECT_NEAR(warped.mean(), uniform.mean(), 4 * std::hypot(warped.error(), uniform.error()));
+    return warped.error() / uniform.error();
+  };
+  EXPECT_LT(ratio({0.3, 0.4, 0.2}), 0.6);
+  EXPECT_LT(ratio({2.1, -0.3, 1.9}), 0.6);
+  EXPECT_LT(ratio({-0.2, 0.5, 1}), 1.1);
+  EXPECT_NEAR(ratio({1, 40, 1}), 1, 0.02);
 }
 
 TEST(ShapeSampling, DiscAndAnnulus) {

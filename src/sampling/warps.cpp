@@ -211,4 +211,36 @@ double ggx_pdf(const Vec3& m, double alpha) {
   return a2 * m.z / (kPi * denominator * denominator);
 }
 
+// The inverse of the CDF x ↦ (a x + (b − a) x²/2) / ((a + b)/2) in the form that stays exact
+// when a ≈ b: x = u (a + b) / (a + √((1 − u) a² + u b²)).
+double sample_linear(double u, double a, double b) {
+  if (u == 0 && a == 0) return 0;
+  const double x = u * (a + b) / (a + std::sqrt((1 - u) * a * a + u * b * b));
+  return std::min(x, 0x1.fffffffffffffp-1);
+}
+
+double linear_to_square(double x, double a, double b) {
+  return x * (a * (2 - x) + b * x) / (a + b);
+}
+
+Vec2 square_to_bilinear(const Vec2& u, const double (&w)[4]) {
+  // The second coordinate by its marginal (the first's weights summed), then the first given it.
+  const double y = sample_linear(u.y, w[0] + w[1], w[2] + w[3]);
+  const double x = sample_linear(u.x, (1 - y) * w[0] + y * w[2], (1 - y) * w[1] + y * w[3]);
+  return {x, y};
+}
+
+Vec2 bilinear_to_square(const Vec2& p, const double (&w)[4]) {
+  return {linear_to_square(p.x, (1 - p.y) * w[0] + p.y * w[2], (1 - p.y) * w[1] + p.y * w[3]),
+          linear_to_square(p.y, w[0] + w[1], w[2] + w[3])};
+}
+
+double bilinear_pdf(const Vec2& p, const double (&w)[4]) {
+  const double sum = w[0] + w[1] + w[2] + w[3];
+  if (!(sum > 0) || p.x < 0 || p.x > 1 || p.y < 0 || p.y > 1) return 0;
+  return 4 *
+         ((1 - p.x) * (1 - p.y) * w[0] + p.x * (1 - p.y) * w[1] + (1 - p.x) * p.y * w[2] + p.x * p.y * w[3]) /
+         sum;
+}
+
 }  // namespace candela

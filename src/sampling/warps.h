@@ -43,6 +43,17 @@ double power_cosine_pdf(const Vec3& direction, double exponent);  // 0 below the
 Vec2 square_to_uniform_triangle(const Vec2& u);
 Vec2 uniform_triangle_to_square(const Vec2& barycentric);
 
+// Bilinear densities on [0, 1]² (pbrt-v4's SampleBilinear; Hart et al. 2020, "Practical product
+// sampling by fitting and composing warps"): density proportional to the bilinear interpolation
+// of the corner weights w = {w(0,0), w(1,0), w(0,1), w(1,1)} (non-negative, not all zero), the
+// second coordinate drawn from its marginal, the first from the conditional; the inverse maps a
+// point back. sample_linear is the 1D case on [0, 1] with weights a at 0 and b at 1.
+double sample_linear(double u, double a, double b);
+double linear_to_square(double x, double a, double b);
+Vec2 square_to_bilinear(const Vec2& u, const double (&w)[4]);
+Vec2 bilinear_to_square(const Vec2& p, const double (&w)[4]);
+double bilinear_pdf(const Vec2& p, const double (&w)[4]);
+
 // Microfacet normals m about +z distributed as D(m)·cos θ_m (the density of m in solid angle),
 // for the Beckmann and GGX (Trowbridge–Reitz) distributions of roughness α.
 Vec3 square_to_beckmann(const Vec2& u, double alpha);

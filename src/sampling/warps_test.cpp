@@ -16,7 +16,7 @@ namespace candela {
 namespace {
 
 // χ² tests in this file (Šidák correction of the 1% level).
-constexpr int kChiSquareTests = 13;
+constexpr int kChiSquareTests = 14;
 const double kSignificance = test::sidak_significance(0.01, kChiSquareTests);
 constexpr int kSamples = 100000;
 
@@ -253,6 +253,43 @@ TEST(Warps, TriangleChiSquare) {
       [](const Vec2&) { return 1.0; }, kSamples, 40);
   EXPECT_GT(result.p_value, kSignificance) << result.message;
   testing::Test::RecordProperty("p_value_seed_40", std::to_string(result.p_value));
+}
+
+TEST(Warps, LinearAndBilinearRoundTripAndIntegrateToOne) {
+  for (const auto& [a, b] :
+       {std::pair{1.0, 1.0}, std::pair{0.0, 3.0}, std::pair{5.0, 0.1}, std::pair{2.0, 2.0 + 1e-12}})
+    for (int i = 0; i <= 20; ++i) {
+      const double u = i / 20.0;
+      const double x = sample_linear(u, a, b);
+      EXPECT_GE(x, 0);
+      EXPECT_LT(x, 1);
+      EXPECT_NEAR(linear_to_square(x, a, b), u, 1e-12) << a << " " << b << " " << u;
+    }
+  const double weights[][4] = {{1, 1, 1, 1}, {1, 4, 0.5, 9}, {0, 1, 0, 0}, {1e-3, 2, 3, 0.2}};
+  for (const auto& w : weights) {
+    double integral = 0;
+    for (const Vec2& p : square_grid(200)) integral += bilinear_pdf(p, w) / (200.0 * 200.0);
+    EXPECT_NEAR(integral, 1, 1e-9);
+    for (const Vec2& u : square_grid()) {
+      const Vec2 p = square_to_bilinear(u, w);
+      const Vec2 back = bilinear_to_square(p, w);
+      EXPECT_NEAR(back.x, u.x, 1e-9);
+      EXPECT_NEAR(back.y, u.y, 1e-9);
+    }
+  }
+}
+
+TEST(Warps, BilinearChiSquare) {
+  const double w[4] = {0.2, 3, 1, 6};
+  const auto result = test::rectangle_chi_square(
+      [&](Pcg32& rng, Vec2& q) {
+        const double u0 = rng.next_double();
+        q = square_to_bilinear({u0, rng.next_double()}, w);
+        return true;
+      },
+      [&](const Vec2& p) { return bilinear_pdf(p, w); }, kSamples, 41);
+  EXPECT_GT(result.p_value, kSignificance) << result.message;
+  testing::Test::RecordProperty("p_value_seed_41", std::to_string(result.p_value));
 }
 
 // The harness itself: the incomplete gamma against known values, and a biased sampler fails.
