@@ -7,8 +7,13 @@
 # `candela compare --mask`), MSE relative to the independent sampler's, and efficiency
 # 1 / (seconds × MSE) relative to it. Render seconds are the medians of REPEATS (3) runs.
 #
+# BASELINE=path/to/candela (a build of an earlier commit, e.g. 28e7633, the path tracer when
+# issue 22 was filed) adds its path tracer, in the same rotation, as "baseline-SPP", and Sobol' at
+# the baseline's time as "sobol-baseline-time": the issue's targets are against that one.
+#
 #   scripts/path-efficiency.sh                 # about 20 minutes on 2 cores (the reference: most)
 #   REFERENCE_SPP=2048 SIZE=128 scripts/path-efficiency.sh
+#   BASELINE=/tmp/issue-time/build/cli/candela scripts/path-efficiency.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 candela="${CANDELA:-build/cli/candela}"
@@ -18,6 +23,7 @@ spp="${SPP:-64}"
 reference_spp="${REFERENCE_SPP:-8192}"
 threads="${THREADS:-2}"
 repeats="${REPEATS:-3}"
+baseline="${BASELINE:-}"
 mkdir -p "$work"
 common=(scenes/cornell-box.json --method path --set "camera.width=$size" --set "camera.height=$size"
         --set aa.mode=none --set aa.filter=box --set path.max_depth=64 --threads "$threads" -q)
@@ -54,9 +60,10 @@ PYTHON
 # bytes each time, and the medians of the render seconds stand for the times (on a shared 2-core
 # machine one render's time varies by ±10 %).
 render() {  # name, then render arguments; appends the render phase's seconds to name.seconds
-  local name="$1"
+  local name="$1" binary="$candela"
   shift
-  "$candela" render "${common[@]}" "$@" -o "$work/$name.pfm" --stats "$work/$name.json"
+  if [[ "$name" == baseline-* ]]; then binary="$baseline"; fi
+  "$binary" render "${common[@]}" "$@" -o "$work/$name.pfm" --stats "$work/$name.json"
   python3 -c "import json; print(json.load(open('$work/$name.json'))['phases_seconds']['render'])" \
     >> "$work/$name.seconds"
 }
@@ -70,6 +77,7 @@ median() {  # name
 rm -f "$work"/*.seconds
 for ((i = 0; i < repeats; ++i)); do
   for sampler in independent stratified sobol; do render "$sampler-$spp" --spp "$spp" --set "path.sampler=$sampler"; done
+  if [ -n "$baseline" ]; then render "baseline-$spp" --spp "$spp"; fi
 done
 # Equal time: the passes that fit in the independent sampler's median time at each sampler's
 # median seconds per pass (a pass count, not --time, so that the images do not depend on timing).
@@ -80,12 +88,22 @@ for ((i = 0; i < repeats; ++i)); do
     render "$sampler-equal-time" --spp "$passes" --set "path.sampler=$sampler"
   done
 done
-for name in independent-$spp stratified-$spp sobol-$spp stratified-equal-time sobol-equal-time; do compare "$name"; done
+names=(independent-$spp stratified-$spp sobol-$spp stratified-equal-time sobol-equal-time)
+if [ -n "$baseline" ]; then
+  budget=$(median "baseline-$spp")
+  for ((i = 0; i < repeats; ++i)); do
+    passes=$(python3 -c "print(max(1, round($spp * $budget / $(median "sobol-$spp"))))")
+    render sobol-baseline-time --spp "$passes" --set path.sampler=sobol
+  done
+  names+=(baseline-$spp sobol-baseline-time)
+fi
+for name in "${names[@]}"; do compare "$name"; done
 
 python3 - "$work" "$spp" "$(lscpu | sed -n 's/^Model name: *//p' | head -1)" "$(nproc)" \
-  "$(git rev-parse --short HEAD)" <<'PYTHON'
+  "$(git rev-parse --short HEAD)" "${names[@]}" <<'PYTHON'
 import json, statistics, sys
-work, spp, cpu, cores, commit = sys.argv[1:]
+work, spp, cpu, cores, commit = sys.argv[1:6]
+names = sys.argv[6:]
 def load(name):
     stats = json.load(open(f'{work}/{name}.json'))
     whole = json.load(open(f'{work}/{name}-whole.json'))
@@ -96,8 +114,11 @@ base = load(f'independent-{spp}')
 print(f'machine: {cpu}, {cores} cores; commit {commit}')
 print(f'{"run":26s} {"seconds":>8s} {"spp":>5s} {"RMSE":>9s} {"relMSE":>9s} {"RMSE walls":>10s} '
       f'{"MSE/ind":>8s} {"walls/ind":>9s} {"eff/ind":>8s} {"walls eff":>9s}')
-for name in [f'independent-{spp}', f'stratified-{spp}', f'sobol-{spp}', 'stratified-equal-time', 'sobol-equal-time']:
+for name in names:
     seconds, passes, whole, walls = load(name)
+    if name.startswith('baseline'):
+        base = load(name)  # the rows after it are relative to the baseline
+        print('relative to the baseline:')
     mse, mse_walls = whole['rmse'] ** 2, walls['rmse'] ** 2
     base_mse, base_walls = base[2]['rmse'] ** 2, base[3]['rmse'] ** 2
     efficiency = (base[0] * base_mse) / (seconds * mse)

@@ -1,5 +1,5 @@
 // The independent sampler: every value a fresh PCG32 number, the stream of the sample's pixel and
-// pass (what the path tracer drew before it had samplers; its images are unchanged).
+// pass (what the path tracer drew before it had samplers).
 #pragma once
 
 #include "math/pcg32.h"
