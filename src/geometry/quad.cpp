@@ -1,5 +1,8 @@
 #include "geometry/quad.h"
 
+#include <immintrin.h>
+
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -79,45 +82,62 @@ double Quad::pdf_area(const SurfaceHit&) const {
   return 1 / area_;
 }
 
-bool Quad::corner_weights(const Vec3& reference, double (&w)[4]) const {
-  // n·(corner − reference) is the same at every corner: the reference's height over the plane.
-  const double height = std::fabs(dot(normal_, corner_ - reference));
-  if (!(height > 0)) return false;
-  const Vec3 corners[4] = {corner_, corner_ + edge_u_, corner_ + edge_v_, corner_ + edge_u_ + edge_v_};
+// Within twice its diagonal of the quad's centre the solid-angle density varies over the quad and
+// the warp pays; farther out the corners' weights differ less and uniform points cost less (the
+// Cornell box, 128², variance × time of the walls: 0.94× uniform sampling's with this distance,
+// 0.96× at three diagonals, 0.98× with the warp everywhere).
+constexpr double kWarpDiagonals = 2;
+
+// The weights are relative (the warp normalises them), so they are (d_min² / d²)^(3/2): the
+// height, common to every corner, drops out, and no scene scale overflows a float. Four lanes in
+// one SSE division and square root (exact IEEE operations: the same bits on every x86-64).
+bool Quad::seen_from(const Vec3& reference, CornerWeights& weights) const {
+  // n·(corner − reference) is the same at every point of the plane: the reference's height.
+  const Vec3 to_corner = corner_ - reference;
+  weights.height = std::fabs(dot(normal_, to_corner));
+  if (!(weights.height > 0)) return false;
+  const double diagonal_squared = length_squared(edge_u_) + length_squared(edge_v_);
+  weights.warped = length_squared(to_corner + (edge_u_ + edge_v_) * 0.5) <
+                   kWarpDiagonals * kWarpDiagonals * diagonal_squared;
+  if (!weights.warped) return true;
+  const double d2[4] = {length_squared(to_corner), length_squared(to_corner + edge_u_),
+                        length_squared(to_corner + edge_v_), length_squared(to_corner + edge_u_ + edge_v_)};
+  const double nearest = std::min(std::min(d2[0], d2[1]), std::min(d2[2], d2[3]));
+  const __m128 ratio = _mm_div_ps(_mm_set1_ps(static_cast<float>(nearest)),
+                                  _mm_setr_ps(static_cast<float>(d2[0]), static_cast<float>(d2[1]),
+                                              static_cast<float>(d2[2]), static_cast<float>(d2[3])));
+  alignas(16) float w[4];
+  _mm_store_ps(w, _mm_mul_ps(ratio, _mm_sqrt_ps(ratio)));
   double sum = 0;
-  for (int i = 0; i < 4; ++i) {
-    const double d2 = length_squared(corners[i] - reference);
-    w[i] = height / (d2 * std::sqrt(d2));  // cos θ / d²
-    sum += w[i];
-  }
-  if (!std::isfinite(sum) || !(sum > 0))  // a corner at (or all corners too near) the reference
-    for (double& weight : w) weight = 1;
+  for (int i = 0; i < 4; ++i) sum += weights.w[i] = w[i];
+  // A distance that a float cannot hold: uniform.
+  if (!(sum > 0) || !std::isfinite(sum)) weights.warped = false;
   return true;
 }
 
+// |cos θ| / d² = height / d³ at every point of the plane.
 double Quad::solid_angle_pdf(const Vec3& reference, const Vec2& uv, const Vec3& position,
-                             const double (&w)[4]) const {
-  const Vec3 to_point = position - reference;
-  const double d2 = length_squared(to_point);
-  const double cos_light = std::fabs(dot(normal_, to_point)) / std::sqrt(d2);
-  const double pdf = bilinear_pdf(uv, w) / area_ * d2 / cos_light;
+                             const CornerWeights& weights) const {
+  const double d2 = length_squared(position - reference);
+  const double area_density = (weights.warped ? bilinear_pdf(uv, weights.w) : 1.0) / area_;
+  const double pdf = area_density * d2 * std::sqrt(d2) / weights.height;
   return std::isfinite(pdf) && pdf > 0 ? pdf : 0;
 }
 
 bool Quad::sample_from(const Vec3& reference, const Vec2& u, SurfaceSample& sample) const {
-  double w[4];
-  if (!corner_weights(reference, w)) return false;
-  const Vec2 uv = square_to_bilinear(u, w);
+  CornerWeights weights;
+  if (!seen_from(reference, weights)) return false;
+  const Vec2 uv = weights.warped ? square_to_bilinear(u, weights.w) : u;
   sample.position = corner_ + edge_u_ * uv.x + edge_v_ * uv.y;
   sample.normal = normal_;
-  sample.pdf = solid_angle_pdf(reference, uv, sample.position, w);
+  sample.pdf = solid_angle_pdf(reference, uv, sample.position, weights);
   return sample.pdf > 0;
 }
 
 double Quad::pdf_from(const Vec3& reference, const SurfaceHit& hit) const {
-  double w[4];
-  if (!corner_weights(reference, w)) return 0;
-  return solid_angle_pdf(reference, hit.uv, hit.position, w);
+  CornerWeights weights;
+  if (!seen_from(reference, weights)) return 0;
+  return solid_angle_pdf(reference, hit.uv, hit.position, weights);
 }
 
 }  // namespace candela

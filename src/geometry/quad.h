@@ -28,10 +28,10 @@ class Quad final : public Shape {
   double area() const override { return area_; }
   bool sample_area(const Vec2& u, SurfaceSample& sample) const override;
   double pdf_area(const SurfaceHit& hit) const override;
-  // Seen from a point: (u, v) drawn from the bilinear density through the solid-angle density
-  // |cos θ|/d² at the four corners (Hart et al. 2020's warp): close to the quad, where uniform
-  // area sampling puts as many points on the far half as on the near one, most points go where
-  // the quad subtends most; far away the weights are equal and it is uniform. No trigonometry
+  // Seen from a point within two diagonals of its centre: (u, v) drawn from the bilinear density
+  // through the solid-angle density |cos θ|/d² at the four corners (Hart et al. 2020's warp):
+  // where uniform area sampling puts as many points on the far half as on the near one, most
+  // points go where the quad subtends most. Farther away, uniform in area. No trigonometry
   // (exact spherical-rectangle sampling, Ureña et al. 2013, has four acos per point and cost the
   // Cornell box 15 % of its render time).
   bool sample_from(const Vec3& reference, const Vec2& u, SurfaceSample& sample) const override;
@@ -40,11 +40,17 @@ class Quad final : public Shape {
  private:
   // The hit distance and (u, v), or infinity for none.
   double nearest_t(const Ray& ray, double& u, double& v) const;
-  // The corner weights of sample_from about reference (false: reference in the quad's plane).
-  bool corner_weights(const Vec3& reference, double (&w)[4]) const;
-  // The solid-angle density of the point (u, v) under those weights.
+  // How sample_from draws from a reference point: its height over the plane, and whether it is
+  // near enough for the warp, with the corners' weights.
+  struct CornerWeights {
+    double height = 0;
+    bool warped = false;
+    double w[4] = {};
+  };
+  bool seen_from(const Vec3& reference, CornerWeights& weights) const;  // false: in the plane
+  // The solid-angle density of the point (u, v).
   double solid_angle_pdf(const Vec3& reference, const Vec2& uv, const Vec3& position,
-                         const double (&w)[4]) const;
+                         const CornerWeights& weights) const;
   Vec3 corner_, edge_u_, edge_v_, normal_;
   // Rows of the inverse of [edge_u edge_v] restricted to the plane: u = dual_u·(p − corner).
   Vec3 dual_u_, dual_v_;
