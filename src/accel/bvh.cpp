@@ -555,15 +555,12 @@ bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
   bool found = false, best_is_triangle = false;
   const Slot* best_slot = nullptr;
   TriangleIntersection best_triangle;  // its weights
-  // Shapes' hits (SurfaceHit is large: made only when a shape is tested).
-  struct ShapeHits {
-    SurfaceHit best, hit;
-  };
-  Lazy<ShapeHits> shape_hits;
-  const auto hits = [&]() -> ShapeHits& {
-    if (!shape_hits) shape_hits.emplace();
-    return *shape_hits;
-  };
+  // A shape's hit goes to whichever of two buffers does not hold the best hit so far, so an
+  // accepted hit is never copied (SurfaceHit is some 300 bytes: the copies and the zero fill of two
+  // were a sixth of this function on a scene of quads): a scratch one, made when a shape is first
+  // tested, and the result itself, written only once something has been found.
+  Lazy<SurfaceHit> scratch;
+  SurfaceHit* best_hit = nullptr;
   // Hits at exactly best_t must still be seen (a lower index wins the tie), so once something
   // is found the shape tests run with t_max just above best_t.
   Ray test = ray;
@@ -577,16 +574,21 @@ bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
     test.t_max = std::nextafter(t, kInfinity);
     if (sheared) sheared->t_max = test.t_max;
   };
-
-  for (uint32_t primitive : unbounded_) {
-    ShapeHits& h = hits();
-    if (primitives_[primitive].shape->intersect(test, h.hit) &&
-        closer_hit(h.hit.t, primitive, best_t, best)) {
-      accept(h.hit.t, primitive);
-      h.best = h.hit;
+  const auto test_shape = [&](uint32_t primitive) {
+    SurfaceHit* candidate = &intersection.surface;
+    if (best_hit == nullptr || best_hit == &intersection.surface) {
+      if (!scratch) scratch.emplace();
+      candidate = &*scratch;
+    }
+    if (primitives_[primitive].shape->intersect(test, *candidate) &&
+        closer_hit(candidate->t, primitive, best_t, best)) {
+      accept(candidate->t, primitive);
+      best_hit = candidate;
       best_is_triangle = false;
     }
-  }
+  };
+
+  for (uint32_t primitive : unbounded_) test_shape(primitive);
 
   if (!nodes_.empty()) {
     const __m128 t0v = _mm_set1_ps(slabs.t0);
@@ -664,14 +666,7 @@ bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
                                  _MM_HINT_T0);
                 }
               } else {
-                const uint32_t primitive = slot.primitive & ~kShapeSlot;
-                ShapeHits& h = hits();
-                if (primitives_[primitive].shape->intersect(test, h.hit) &&
-                    closer_hit(h.hit.t, primitive, best_t, best)) {
-                  accept(h.hit.t, primitive);
-                  h.best = h.hit;
-                  best_is_triangle = false;
-                }
+                test_shape(slot.primitive & ~kShapeSlot);
               }
               return false;
             });
@@ -696,8 +691,8 @@ bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
     // Every field is written, so filling the result directly equals filling a shape's hit.
     fill_triangle_hit(mesh, best_slot->triangle, best_slot->p0, best_slot->p1, best_slot->p2, best_triangle,
                       intersection.surface);
-  } else {
-    intersection.surface = shape_hits->best;
+  } else if (best_hit != &intersection.surface) {
+    intersection.surface = *best_hit;
   }
   intersection.primitive = best;
   return true;
