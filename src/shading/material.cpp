@@ -58,6 +58,7 @@ Material::Material()
       ior(constant_texture(1.0)) {}
 
 SurfaceProperties Material::at(const SurfaceHit& hit) const {
+  if (constant_) return constant_properties_;
   SurfaceProperties p;
   p.kd = at_least_zero(kd->evaluate(hit));
   p.ka = ka ? at_least_zero(ka->evaluate(hit)) : p.kd;
@@ -89,6 +90,15 @@ double Material::transmission_at(const SurfaceHit& hit) const {
 void Material::prepare() {
   reflects_ = !is_constant_zero(kr);
   refracts_ = !is_constant_zero(kt);
+  constant_ = false;
+  bool constant = true;
+  for (const auto* texture : {&kd, &ks, &shininess, &roughness, &kr, &kt, &ior})
+    constant = constant && *texture && (*texture)->is_constant();
+  constant = constant && (!ka || ka->is_constant());
+  if (constant) {
+    constant_properties_ = at(SurfaceHit{});
+    constant_ = true;
+  }
 }
 
 }  // namespace candela

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "shading/checkerboard_texture.h"
+
 namespace candela {
 namespace {
 
@@ -24,6 +26,27 @@ TEST(MaterialBsdf, DefaultMaterialIsLambert) {
   ASSERT_EQ(bsdf.lobe_count(), 1);
   EXPECT_EQ(bsdf.lobe(0).type, LobeType::lambert);
   EXPECT_EQ(bsdf.lobe(0).weight, Color(0.8));
+}
+
+// prepare() keeps at()'s result for a material with nothing textured; a textured one (and one
+// prepared again after a texture is replaced) is still evaluated at each point.
+TEST(MaterialBsdf, PreparedMaterialsGiveThePropertiesOfEveryPoint) {
+  Material material;
+  material.kd = constant_texture(Color(0.3, 0.2, 0.1));
+  material.ks = constant_texture(0.4);
+  material.kr = constant_texture(0.25);
+  material.prepare();
+  SurfaceHit hit = flat_hit();
+  EXPECT_EQ(material.at(hit).kd, Color(0.3, 0.2, 0.1));
+  EXPECT_DOUBLE_EQ(material.at(hit).ks, 0.4);
+  EXPECT_DOUBLE_EQ(material.at(hit).kr, 0.25);
+  material.kd = std::make_shared<CheckerboardTexture>(Color(1, 0, 0), Color(0, 0, 1), 1.0, Vec3{});
+  material.prepare();
+  hit.object_position = {0.5, 0.5, 0.5};
+  const Color here = material.at(hit).kd;
+  hit.object_position = {1.5, 0.5, 0.5};
+  EXPECT_NE(material.at(hit).kd, here);
+  EXPECT_DOUBLE_EQ(material.at(hit).ks, 0.4);
 }
 
 TEST(MaterialBsdf, DiffuseAlbedoIsClampedKd) {
