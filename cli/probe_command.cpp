@@ -2,7 +2,9 @@
 //   Irradiance and radiance at sensor points (integrators/probe.h; like Radiance's rtrace -I).
 //   --grid cx,cy,cz,ux,uy,uz,vx,vy,vz  a work plane: the parallelogram corner + s·u + t·v, with
 //   --grid-size NU,NV points at its cells' centres facing u × v, and --image FILE.png a
-//   false-color picture of the illuminance with its scale.
+//   false-color picture of the illuminance with its scale (--scale LO,HI, --log, --contours N as
+//   Radiance's falsecolor -s, -log, -cl). The summary and --json FILE give Emin, Eavg, Emax and
+//   the uniformities Emin/Eavg and Emin/Emax (issue 23, item 4).
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
@@ -35,6 +37,10 @@ struct ProbeOptions {
   std::vector<double> grid;
   std::vector<int> grid_size{20, 20};
   std::string image;
+  std::vector<double> image_scale;  // --scale lo,hi
+  bool image_log = false;
+  int contours = 0;
+  std::string json;
   std::string output;
   int samples = 256;
   std::optional<int64_t> seed;
@@ -66,6 +72,22 @@ int run_probe(ProbeOptions& options) {
     if (!image_format_for_path(options.image, image_format) || image_format != ImageFormat::png)
       throw BadArgument("--image " + options.image + ": expected a .png file");
     check_writable(options.image, "--image");
+  }
+  if (!options.image_scale.empty()) {
+    if (options.image.empty()) throw BadArgument("--scale needs --image");
+    if (options.image_scale.size() != 2 || !std::isfinite(options.image_scale[0]) ||
+        !std::isfinite(options.image_scale[1]) || !(options.image_scale[0] < options.image_scale[1]))
+      throw BadArgument("--scale expects LO,HI with LO < HI (lux)");
+    if (options.image_log && !(options.image_scale[0] > 0))
+      throw BadArgument("--scale with --log needs LO > 0");
+  }
+  if ((options.image_log || options.contours != 0) && options.image.empty())
+    throw BadArgument(options.image_log ? "--log needs --image" : "--contours needs --image");
+  if (options.contours < 0 || options.contours > 256) throw BadArgument("--contours expects 0 to 256 steps");
+  if (!options.json.empty()) {
+    if (options.json == options.output || options.json == options.image)
+      throw BadArgument("--json must name a file of its own");
+    check_writable(options.json, "--json");
   }
   std::vector<ProbePoint> points;
   int nu = 0, nv = 0;
@@ -133,27 +155,59 @@ int run_probe(ProbeOptions& options) {
         if (std::isfinite(value)) high = std::max(high, value);
       }
     if (!(high > 0)) high = 1;
-    const Film picture = false_color_image(values, nu, nv, 0, high, ColorMap::viridis);
+    // The scale: --scale, else 0 to the maximum (a logarithmic one: three decades below it, as
+    // Radiance's falsecolor -log 3).
+    FalseColorScale scale;
+    scale.high = high;
+    scale.low = options.image_log ? high / 1000 : 0;
+    if (!options.image_scale.empty()) {
+      scale.low = options.image_scale[0];
+      scale.high = options.image_scale[1];
+    }
+    scale.logarithmic = options.image_log;
+    scale.contours = options.contours;
+    const Film picture = false_color_image(values, nu, nv, scale, ColorMap::viridis);
     write_image(picture, options.image, DisplaySettings{});
     if (!options.quiet)
-      std::cout << fmt::format("illuminance scale: 0 to {} lux\n", format_scale_value(high));
+      std::cout << fmt::format("illuminance scale: {} to {} lux{}{}\n", format_scale_value(scale.low),
+                               format_scale_value(scale.high), scale.logarithmic ? ", logarithmic" : "",
+                               scale.contours > 1 ? fmt::format(", {} contour steps", scale.contours) : "");
+  }
+  const IlluminanceStatistics statistics = illuminance_statistics(illuminance);
+  double error_sum = 0;
+  for (const ProbeResult& result : results) error_sum += options.efficacy * result.irradiance_error;
+  const double mean_error = error_sum / double(results.size());
+  if (!options.json.empty()) {
+    nlohmann::json summary = {{"points", statistics.points},
+                              {"method", settings.method},
+                              {"samples", settings.samples},
+                              {"efficacy_lm_per_w", options.efficacy},
+                              {"illuminance_lux",
+                               {{"min", statistics.minimum},
+                                {"max", statistics.maximum},
+                                {"average", statistics.average},
+                                {"uniformity_min_average", statistics.uniformity_min_average},
+                                {"uniformity_min_max", statistics.uniformity_min_max},
+                                {"mean_standard_error", mean_error}}},
+                              {"seconds", timer.seconds()}};
+    if (!options.grid.empty()) summary["grid"] = {{"size", {nu, nv}}, {"corner_and_edges", options.grid}};
+    write_atomically(options.json, [&](const std::string& temporary) {
+      std::ofstream out(temporary);
+      out << summary.dump(2) << "\n";
+      out.close();
+      if (!out) throw std::runtime_error("cannot write " + options.json);
+    });
   }
   if (!options.quiet) {
-    double low = std::numeric_limits<double>::infinity(), high = 0, sum = 0, error_sum = 0;
-    for (std::size_t i = 0; i < illuminance.size(); ++i) {
-      low = std::min(low, illuminance[i]);
-      high = std::max(high, illuminance[i]);
-      sum += illuminance[i];
-      error_sum += options.efficacy * results[i].irradiance_error;
-    }
     // The standard error falls as 1/√samples: 4× the samples halve it.
     std::cout << fmt::format(
-        "probed {} points with {} ({} samples each) in {:.2f} s: illuminance min {:.4g}, mean {:.4g}, "
-        "max {:.4g} lux (efficacy {} lm/W), standard error {:.3g} lux on average ({:.2g} % of the mean); "
-        "wrote {}\n",
-        points.size(), settings.method, settings.samples, timer.seconds(), low,
-        sum / double(illuminance.size()), high, options.efficacy, error_sum / double(illuminance.size()),
-        sum > 0 ? 100 * error_sum / sum : 0.0, options.output);
+        "probed {} points with {} ({} samples each) in {:.2f} s: illuminance Emin {:.4g}, Eavg {:.4g}, "
+        "Emax {:.4g} lux (efficacy {} lm/W), uniformity Emin/Eavg {:.3f}, Emin/Emax {:.3f}; standard "
+        "error {:.3g} lux on average ({:.2g} % of the mean); wrote {}\n",
+        points.size(), settings.method, settings.samples, timer.seconds(), statistics.minimum,
+        statistics.average, statistics.maximum, options.efficacy, statistics.uniformity_min_average,
+        statistics.uniformity_min_max, mean_error,
+        statistics.average > 0 ? 100 * mean_error / statistics.average : 0.0, options.output);
     if (facts.contains("rays_without_solution") && facts["rays_without_solution"].get<uint64_t>() > 0)
       std::cerr << fmt::format(
           "candela: warning: {} probe rays hit surfaces the {} solution does not cover (counted as 0)\n",
@@ -179,6 +233,15 @@ void add_probe_command(CLI::App& app, std::function<int()>& run) {
       ->delimiter(',');
   command->add_option("--image", options->image,
                       "With --grid: a false-color PNG of the illuminance with its scale");
+  command->add_option("--scale", options->image_scale, "With --image: the color scale's range LO,HI in lux")
+      ->delimiter(',');
+  command->add_flag(
+      "--log", options->image_log,
+      "With --image: a logarithmic color scale (default range: three decades below the maximum)");
+  command->add_option("--contours", options->contours,
+                      "With --image: N equal steps of the scale with iso-lines between them");
+  command->add_option("--json", options->json,
+                      "Summary as JSON: Emin, Emax, Eavg, uniformities Emin/Eavg and Emin/Emax");
   command->add_option("-o,--output", options->output, "Output CSV")->required();
   command->add_option("--samples", options->samples,
                       "Estimates (path) or hemisphere rays per point (default 256)");

@@ -899,6 +899,58 @@ TEST_F(Cli, ProbeGridWritesAFalseColorImageOfTheIlluminance) {
   EXPECT_NE(output.find("illuminance scale: 0 to"), std::string::npos) << output;
 }
 
+// Issue 23, item 4: the work plane's Emin, Eavg, Emax and uniformities in the summary and the
+// JSON (the CSV's own values), and the false-color scale options.
+TEST_F(Cli, ProbeGridReportsTheUniformitiesAndTheirJson) {
+  write("lamp.json", kLampScene);
+  std::string output;
+  ASSERT_EQ(run("probe lamp.json --grid -2,0,2,4,0,0,0,0,-4 --grid-size 8,6 --samples 64 -o grid.csv --image "
+                "grid.png --log --contours 5 --json grid.json",
+                output),
+            0)
+      << output;
+  std::string header;
+  const auto rows = read_csv_rows(directory_ / "grid.csv", header);
+  ASSERT_EQ(rows.size(), 48u);
+  double low = 1e300, high = 0, sum = 0;
+  for (const auto& row : rows) {
+    low = std::min(low, row[12]);
+    high = std::max(high, row[12]);
+    sum += row[12];
+  }
+  std::ifstream json_file(directory_ / "grid.json");
+  const nlohmann::json json = nlohmann::json::parse(json_file);
+  const nlohmann::json& lux = json["illuminance_lux"];
+  EXPECT_EQ(json["points"], 48);
+  // The CSV holds 9 significant digits.
+  EXPECT_NEAR(lux["min"].get<double>(), low, 1e-8 * high);
+  EXPECT_NEAR(lux["max"].get<double>(), high, 1e-8 * high);
+  EXPECT_NEAR(lux["average"].get<double>(), sum / 48, 1e-8 * high);
+  EXPECT_GT(low, 0);
+  EXPECT_NEAR(lux["uniformity_min_average"].get<double>(), low / (sum / 48), 1e-7);
+  EXPECT_NEAR(lux["uniformity_min_max"].get<double>(), low / high, 1e-7);
+  EXPECT_NE(output.find("uniformity Emin/Eavg"), std::string::npos) << output;
+  EXPECT_NE(output.find("logarithmic, 5 contour steps"), std::string::npos) << output;
+  EXPECT_TRUE(fs::exists(directory_ / "grid.png"));
+
+  const char* const bad[][2] = {
+      {"--scale 0,10", "--scale needs --image"},
+      {"--image g.png --scale 10,1", "--scale expects LO,HI with LO < HI"},
+      {"--image g.png --log --scale 0,10", "--scale with --log needs LO > 0"},
+      {"--image g.png --contours 300", "--contours expects 0 to 256"},
+      {"--contours 4", "--contours needs --image"},
+      {"--json grid2.csv -o grid2.csv", "--json must name a file of its own"},
+  };
+  for (const auto& [arguments, expected] : bad) {
+    const std::string command =
+        std::string("probe lamp.json --grid -2,0,2,4,0,0,0,0,-4 --grid-size 2,2 ") + arguments +
+        (std::string(arguments).find(" -o ") == std::string::npos ? " -o bad.csv" : "");
+    EXPECT_EQ(run(command, output), 2) << command;
+    EXPECT_NE(output.find(expected), std::string::npos) << command << "\n" << output;
+    EXPECT_FALSE(fs::exists(directory_ / "bad.csv")) << command;
+  }
+}
+
 TEST_F(Cli, ProbeRefusesBadPointsWithTheirLocationAndWritesNothing) {
   write("lamp.json", kLampScene);
   write("pts.csv", "0,0,0,0,1,0\n1,2,three,0,1,0\n");

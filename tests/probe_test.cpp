@@ -35,6 +35,21 @@ std::unique_ptr<Scene> lamp_scene() {
                          "lamp.json", ".");
 }
 
+TEST(Probe, IlluminanceStatisticsAreTheWorkPlanesMinAverageMaxAndUniformities) {
+  const IlluminanceStatistics s = illuminance_statistics({200, 500, 300, 1000});
+  EXPECT_EQ(s.points, 4u);
+  EXPECT_EQ(s.minimum, 200);
+  EXPECT_EQ(s.maximum, 1000);
+  EXPECT_EQ(s.average, 500);
+  EXPECT_DOUBLE_EQ(s.uniformity_min_average, 0.4);  // EN 12464-1's U0
+  EXPECT_DOUBLE_EQ(s.uniformity_min_max, 0.2);
+  const IlluminanceStatistics dark = illuminance_statistics({0, 0});
+  EXPECT_EQ(dark.uniformity_min_average, 0);
+  EXPECT_EQ(dark.uniformity_min_max, 0);
+  EXPECT_THROW(illuminance_statistics({}), std::invalid_argument);
+  EXPECT_THROW(illuminance_statistics({1, std::nan("")}), std::invalid_argument);
+}
+
 TEST(Probe, EveryMethodFindsTheIrradianceUnderAnEmittingSquare) {
   const auto scene = lamp_scene();
   const double expected = 3 * 4 * point_to_parallel_rectangle_corner(1, 1, 1);  // E × F, F = 0.5541

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -25,6 +26,25 @@
 #include "util/progress.h"
 
 namespace candela {
+
+IlluminanceStatistics illuminance_statistics(const std::vector<double>& illuminance) {
+  if (illuminance.empty()) throw std::invalid_argument("illuminance statistics of no points");
+  IlluminanceStatistics statistics;
+  statistics.points = illuminance.size();
+  statistics.minimum = std::numeric_limits<double>::infinity();
+  statistics.maximum = -std::numeric_limits<double>::infinity();
+  double sum = 0;
+  for (const double value : illuminance) {
+    if (!std::isfinite(value)) throw std::invalid_argument("illuminance statistics of a non-finite value");
+    statistics.minimum = std::min(statistics.minimum, value);
+    statistics.maximum = std::max(statistics.maximum, value);
+    sum += value;
+  }
+  statistics.average = sum / double(illuminance.size());
+  if (statistics.average > 0) statistics.uniformity_min_average = statistics.minimum / statistics.average;
+  if (statistics.maximum > 0) statistics.uniformity_min_max = statistics.minimum / statistics.maximum;
+  return statistics;
+}
 
 namespace {
 

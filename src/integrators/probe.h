@@ -30,6 +30,17 @@ struct ProbePoint {
   Vec3 normal;  // unit
 };
 
+// What a lighting designer reads off a work plane (EN 12464-1, CIE 171's tables, DIALux's and
+// Relux's results): the minimum, maximum and average illuminance over its points and the
+// uniformities U0 = Emin/Eavg and Ud = Emin/Emax (0 where the average or the maximum is 0).
+struct IlluminanceStatistics {
+  std::size_t points = 0;
+  double minimum = 0, maximum = 0, average = 0;
+  double uniformity_min_average = 0, uniformity_min_max = 0;
+};
+// Throws std::invalid_argument for no values or a non-finite one.
+IlluminanceStatistics illuminance_statistics(const std::vector<double>& illuminance);
+
 struct ProbeResult {
   Color irradiance;  // W/m²
   Color radiance;    // W/(m²·sr)

@@ -91,7 +91,21 @@ std::string format_scale_value(double value) {
   return general.size() <= exponent.size() ? general : exponent;
 }
 
+double FalseColorScale::position(double value) const {
+  if (std::isnan(value)) return value;
+  if (logarithmic) return value <= low ? 0.0 : clamp_unit(std::log(value / low) / std::log(high / low));
+  return clamp_unit((value - low) / (high - low));
+}
+
 Film false_color_image(const std::vector<double>& values, int width, int height, double low, double high,
+                       ColorMap map) {
+  FalseColorScale scale;
+  scale.low = low;
+  scale.high = high;
+  return false_color_image(values, width, height, scale, map);
+}
+
+Film false_color_image(const std::vector<double>& values, int width, int height, const FalseColorScale& range,
                        ColorMap map) {
   if (width <= 0 || height <= 0)
     throw std::invalid_argument(
@@ -99,18 +113,33 @@ Film false_color_image(const std::vector<double>& values, int width, int height,
   if (values.size() != std::size_t(width) * std::size_t(height))
     throw std::invalid_argument(
         fmt::format("false-color image of {}x{} pixels given {} values", width, height, values.size()));
+  const double low = range.low, high = range.high;
   if (!std::isfinite(low) || !std::isfinite(high) || !(low < high))
     throw std::invalid_argument(
         fmt::format("false-color scale {} .. {} must be finite with low < high", low, high));
+  if (range.logarithmic && !(low > 0))
+    throw std::invalid_argument(fmt::format("a logarithmic false-color scale needs low > 0, got {}", low));
+  if (range.contours < 0 || range.contours > 256)
+    throw std::invalid_argument(fmt::format("false-color contours must be 0 to 256, got {}", range.contours));
   const int band = color_bar_height(width);
   Film film(width, height + band);
-  const double range = high - low;
   const Color no_data = display_to_linear(Color(kNoDataGrey));
+  const int steps = range.contours > 1 ? range.contours : 0;
+  // The step of t a pixel is in (-1: no data), for the iso-lines.
+  const auto step_of = [&](int x, int y) {
+    const double t = range.position(values[std::size_t(y) * std::size_t(width) + std::size_t(x)]);
+    return std::isnan(t) ? -1 : std::min(steps - 1, static_cast<int>(t * steps));
+  };
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
-      const double value = values[std::size_t(y) * std::size_t(width) + std::size_t(x)];
-      film.at(x, y) =
-          std::isfinite(value) ? display_to_linear(color_map(map, (value - low) / range)) : no_data;
+      const double t = range.position(values[std::size_t(y) * std::size_t(width) + std::size_t(x)]);
+      film.at(x, y) = std::isnan(t) ? no_data : display_to_linear(color_map(map, t));
+      if (steps > 0 && !std::isnan(t)) {
+        const int here = step_of(x, y);
+        const bool edge = (x + 1 < width && step_of(x + 1, y) >= 0 && step_of(x + 1, y) != here) ||
+                          (y + 1 < height && step_of(x, y + 1) >= 0 && step_of(x, y + 1) != here);
+        if (edge) film.at(x, y) = Color(0.0);
+      }
     }
   // The band: black, then the bar.
   const int bar_top = height + kBarGap;
@@ -124,7 +153,8 @@ Film false_color_image(const std::vector<double>& values, int width, int height,
   const int scale = label_scale(width);
   const int tick_top = bar_top + kBarRows, label_top = tick_top + kTickRows + kLabelGap;
   const std::string low_label = format_scale_value(low), high_label = format_scale_value(high);
-  const std::string middle_label = format_scale_value(low + range / 2);
+  const std::string middle_label =
+      format_scale_value(range.logarithmic ? std::sqrt(low * high) : low + (high - low) / 2);
   const int low_width = pixel_text_width(low_label, scale), high_width = pixel_text_width(high_label, scale);
   const int middle_width = pixel_text_width(middle_label, scale);
   const int space = kPixelFontAdvance * scale;  // at least one character's advance between labels
@@ -134,6 +164,7 @@ Film false_color_image(const std::vector<double>& values, int width, int height,
         if (x + dx >= 0 && x + dx < width) film.at(x + dx, y) = white;
   };
   tick(0);
+  for (int k = 1; k < steps; ++k) tick(static_cast<int>(std::lround(double(k) / steps * (width - 1))));
   draw_pixel_text(film, 0, label_top, low_label, white, scale);
   const bool high_fits = low_width + space + high_width <= width;
   if (high_fits) {

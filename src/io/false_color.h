@@ -50,9 +50,26 @@ int color_bar_height(int width);
 // and exponent notation ("0.0123", "12.5", "1.23e-05", "-4.5e+06").
 std::string format_scale_value(double value);
 
+// How values become colors (Radiance's falsecolor -s, -log and -cl): the range [low, high],
+// linear or logarithmic (t = log(v / low) / log(high / low); needs low > 0), and `contours`
+// bands: with contours = n > 1 the scale is cut into n equal steps of t and a black line is drawn
+// where two neighbouring pixels fall in different steps (iso-lines of the quantity), with a tick
+// at each step on the color bar.
+struct FalseColorScale {
+  double low = 0, high = 1;
+  bool logarithmic = false;
+  int contours = 0;  // 0 or 1: none
+  // Where value falls on the scale, t in [0, 1] (values outside take the ends; NaN stays NaN).
+  double position(double value) const;
+};
+
 // values: width·height numbers, row by row, top row first. The scale runs from low (t = 0) to
 // high (t = 1); values outside it take the end colors. Throws std::invalid_argument when the
-// sizes disagree, width or height is not positive, or !(low < high) (both must be finite).
+// sizes disagree, width or height is not positive, or !(low < high) (both must be finite; low > 0
+// for a logarithmic scale), or contours is negative or above 256.
+Film false_color_image(const std::vector<double>& values, int width, int height, const FalseColorScale& scale,
+                       ColorMap map);
+// The linear scale [low, high] without contours.
 Film false_color_image(const std::vector<double>& values, int width, int height, double low, double high,
                        ColorMap map);
 

@@ -82,6 +82,49 @@ TEST(FalseColor, ImageHasTheBarBelowWithTheMapsEndColors) {
   EXPECT_GT(white, 30);
 }
 
+// Radiance falsecolor's -log and -cl: a logarithmic scale puts each decade at the same step of
+// the map, and n contour steps draw black iso-lines where neighbouring pixels change step.
+TEST(FalseColor, LogarithmicScaleAndContours) {
+  FalseColorScale log_scale;
+  log_scale.low = 1;
+  log_scale.high = 1000;
+  log_scale.logarithmic = true;
+  EXPECT_NEAR(log_scale.position(10), 1.0 / 3, 1e-12);
+  EXPECT_NEAR(log_scale.position(100), 2.0 / 3, 1e-12);
+  EXPECT_EQ(log_scale.position(0.5), 0);
+  EXPECT_EQ(log_scale.position(-3), 0);
+  EXPECT_EQ(log_scale.position(5000), 1);
+  EXPECT_TRUE(std::isnan(log_scale.position(std::nan(""))));
+  FalseColorScale linear;
+  linear.low = 2;
+  linear.high = 6;
+  EXPECT_NEAR(linear.position(3), 0.25, 1e-15);
+
+  // A ramp 0 .. 1 along x in 4 contour steps: lines at the three step boundaries only.
+  constexpr int width = 100, height = 6;
+  std::vector<double> values(std::size_t(width) * height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) values[std::size_t(y) * width + x] = (x + 0.5) / width;
+  FalseColorScale banded;
+  banded.contours = 4;
+  const Film film = false_color_image(values, width, height, banded, ColorMap::viridis);
+  std::vector<int> line_columns;
+  for (int x = 0; x < width; ++x)
+    if (film.at(x, 2) == Color(0)) line_columns.push_back(x);
+  EXPECT_EQ(line_columns, (std::vector<int>{24, 49, 74}));
+  expect_color_near(display(film.at(10, 2)), color_map_viridis(0.105), 1e-9);
+  // Without contours the same ramp has no black pixel.
+  const Film plain = false_color_image(values, width, height, 0.0, 1.0, ColorMap::viridis);
+  for (int x = 0; x < width; ++x) EXPECT_NE(plain.at(x, 2), Color(0)) << x;
+
+  FalseColorScale bad = log_scale;
+  bad.low = 0;
+  EXPECT_THROW(false_color_image({1}, 1, 1, bad, ColorMap::viridis), std::invalid_argument);
+  FalseColorScale too_many;
+  too_many.contours = 1000;
+  EXPECT_THROW(false_color_image({1}, 1, 1, too_many, ColorMap::viridis), std::invalid_argument);
+}
+
 TEST(FalseColor, PngKeepsTheMapsColors) {
   const testing::ScratchDirectory directory("candela-false-color");
   const std::vector<double> values = {-1, 0, 1, 0.5};
