@@ -35,6 +35,111 @@ std::unique_ptr<Scene> lamp_scene() {
                          "lamp.json", ".");
 }
 
+// Issue 23, item 1: lights given in candela, lumens, lux and cd/m² give the illuminance
+// photometry says, through the one efficacy (179 lm/W) that probe's lux also use.
+double lux_under(const std::string& light, const Vec3& normal = {0, 1, 0}, const char* method = "path") {
+  const auto scene = load_scene_text(R"({"format": "candela/1",
+    "camera": {"eye": [0, -1, 0], "target": [0, 1, 0], "up": [0, 0, -1], "width": 8, "height": 8},
+    "lights": [)" + light + R"(],
+    "shapes": [{"type": "quad", "corner": [-50, -1, -50], "edge_u": [0, 0, 100], "edge_v": [100, 0, 0],
+                "material": {"kd": 0}}]})",
+                                     "light.json", ".");
+  ProbeSettings settings;
+  settings.method = method;
+  settings.samples = 4096;
+  const std::vector<ProbeResult> results = probe(*scene, {{{0, 0, 0}, normal}}, settings);
+  return kDefaultLuminousEfficacy * luminance(results[0].irradiance);
+}
+
+TEST(Probe, PhotometricLightsGiveTheIlluminancePhotometrySays) {
+  // 100 cd two metres above: E = I cos θ / d² = 25 lx, 15 lx on a sensor tilted to cos θ = 0.6.
+  const std::string point = R"({"type": "point", "position": [0, 2, 0], "luminous_intensity": 100})";
+  EXPECT_NEAR(lux_under(point), 25, 1e-9);
+  EXPECT_NEAR(lux_under(point, {0, 0.6, 0.8}), 15, 1e-9);
+  EXPECT_NEAR(lux_under(point, {0, 1, 0}, "radiosity"), 25, 1e-9);
+  // 4π × 100 lm from a point: the same 100 cd; coloured or at 2,700 K: the same lux.
+  EXPECT_NEAR(lux_under(R"({"type": "point", "position": [0, 2, 0], "luminous_flux": 1256.6370614359172})"),
+              25, 1e-9);
+  EXPECT_NEAR(lux_under(R"({"type": "point", "position": [0, 2, 0], "luminous_intensity": 100,
+                            "color": [1, 0.5, 0.1]})"),
+              25, 1e-9);
+  EXPECT_NEAR(lux_under(R"({"type": "point", "position": [0, 2, 0], "luminous_intensity": 100,
+                            "temperature": 2700})"),
+              25, 1e-9);
+  // A spot of 500 lm in a hard 30° cone: I = 500 / (2π (1 − cos 30°)) on its axis.
+  const double spot_candela = 500 / (2 * kPi * (1 - std::cos(30 * kPi / 180)));
+  EXPECT_NEAR(lux_under(R"({"type": "spot", "position": [0, 2, 0], "target": [0, 0, 0], "cutoff": 30,
+                            "luminous_flux": 500})"),
+              spot_candela / 4, 1e-3 * spot_candela / 4);
+  EXPECT_NEAR(lux_under(R"({"type": "spot", "position": [0, 2, 0], "target": [0, 0, 0], "cutoff": 30,
+                            "luminous_intensity": 80})"),
+              20, 1e-9);
+  // The sun's 100,000 lx straight down.
+  EXPECT_NEAR(lux_under(R"({"type": "directional", "direction": [0, -1, 0], "illuminance": 100000})"), 100000,
+              1e-6);
+  // A 2 × 2 area light of 1,000 cd/m² one metre above: E = π L × Howell's factor 0.55411.
+  const double area_lux = kPi * 1000 * 4 * point_to_parallel_rectangle_corner(1, 1, 1);
+  EXPECT_NEAR(lux_under(R"({"type": "area", "corner": [-1, 1, -1], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2],
+                            "luminance": 1000, "samples": 16})"),
+              area_lux, 0.01 * area_lux);
+  // The same light given as its flux: π L × area = 1000π × 4 lm.
+  EXPECT_NEAR(lux_under(R"({"type": "area", "corner": [-1, 1, -1], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2],
+                            "luminous_flux": 12566.370614359172, "samples": 16})"),
+              area_lux, 0.01 * area_lux);
+}
+
+TEST(Probe, EmissiveSurfacesGivenInCandelaPerSquareMetreGiveTheirLux) {
+  // The lamp scene's square at 1,000 cd/m² (of a 3,000 K colour): E = π L × Howell's 0.55411.
+  const auto scene = load_scene_text(R"({"format": "candela/1",
+    "camera": {"eye": [0, -1, 0], "target": [0, 1, 0], "up": [0, 0, -1], "fov": 120, "width": 8, "height": 8},
+    "shapes": [{"type": "quad", "corner": [-1, 1, -1], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2],
+                "material": {"kd": 0, "emission_luminance": 1000, "emission_temperature": 3000}}]})",
+                                     "lamp.json", ".");
+  ProbeSettings settings;
+  settings.samples = 16384;
+  const std::vector<ProbeResult> results = probe(*scene, {{{0, 0, 0}, {0, 1, 0}}}, settings);
+  const double expected = kPi * 1000 * 4 * point_to_parallel_rectangle_corner(1, 1, 1);
+  EXPECT_NEAR(kDefaultLuminousEfficacy * luminance(results[0].irradiance), expected, 0.01 * expected);
+  // Looking up at it: the luminance itself.
+  EXPECT_NEAR(kDefaultLuminousEfficacy * luminance(results[0].radiance), 1000, 1e-9);
+  EXPECT_GT(results[0].irradiance.r, results[0].irradiance.b);  // warm
+}
+
+TEST(Probe, PhotometricLightsRefuseContradictions) {
+  const auto error_of = [](const std::string& light) -> std::string {
+    try {
+      load_scene_text(
+          R"({"format": "candela/1", "camera": {"eye": [0, 0, 5], "target": [0, 0, 0]}, "lights": [)" +
+              light + "]}",
+          "light.json", ".");
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  EXPECT_NE(error_of(R"({"type": "point", "position": [0, 2, 0], "intensity": 1, "luminous_intensity": 100})")
+                .find("lights[0].luminous_intensity: give one of intensity and luminous_intensity, not both"),
+            std::string::npos)
+      << error_of(R"({"type": "point", "position": [0, 2, 0], "intensity": 1, "luminous_intensity": 100})");
+  EXPECT_NE(
+      error_of(
+          R"({"type": "point", "position": [0, 2, 0], "luminous_intensity": 100, "attenuation": "none"})")
+          .find("inverse square"),
+      std::string::npos);
+  EXPECT_NE(error_of(R"({"type": "point", "position": [0, 2, 0], "luminous_flux": 100, "color": [0, 0, 0]})")
+                .find("luminance > 0"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"type": "point", "position": [0, 2, 0], "luminous_flux": 100, "color": [1, 1, 1],
+                         "temperature": 3000})")
+                .find("give color or temperature, not both"),
+            std::string::npos);
+  // A radiometric light takes no colour (its intensity is the colour).
+  EXPECT_NE(error_of(R"({"type": "point", "position": [0, 2, 0], "intensity": 1, "color": [1, 0, 0]})")
+                .find("unknown key \"color\""),
+            std::string::npos)
+      << error_of(R"({"type": "point", "position": [0, 2, 0], "intensity": 1, "color": [1, 0, 0]})");
+}
+
 TEST(Probe, IlluminanceStatisticsAreTheWorkPlanesMinAverageMaxAndUniformities) {
   const IlluminanceStatistics s = illuminance_statistics({200, 500, 300, 1000});
   EXPECT_EQ(s.points, 4u);

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "shading/photometric_units.h"
 
 namespace candela {
 
@@ -77,8 +78,8 @@ std::vector<ProbePoint> read_probe_points(const std::string& path);
 // (s, t ∈ [0, 1]), row by row (t outer), all facing normalize(u × v).
 std::vector<ProbePoint> grid_probe_points(const Vec3& corner, const Vec3& u, const Vec3& v, int nu, int nv);
 
-// Illuminance in lux from irradiance in W/m² of white light: efficacy × luminance (Radiance's
-// convention: 179 lm/W, "white" light of its RGB primaries).
-inline constexpr double kDefaultLuminousEfficacy = 179.0;
+// Illuminance in lux from irradiance in W/m²: efficacy × luminance, the one conversion of
+// shading/photometric_units.h (Radiance's 179 lm/W), which photometric lights use too.
+inline constexpr double kDefaultLuminousEfficacy = kLuminousEfficacy;
 
 }  // namespace candela

@@ -2,11 +2,14 @@
 
 #include <array>
 
+#include "math/constants.h"
 #include "math/direction.h"
 #include "scene/area_light.h"
 #include "scene/directional_light.h"
+#include "scene/photometric_settings.h"
 #include "scene/point_light.h"
 #include "scene/spot_light.h"
+#include "shading/photometric_units.h"
 #include "util/registry.h"
 
 namespace candela {
@@ -61,21 +64,47 @@ Color intensity_of(const JsonNode& node) {
   return node.color("intensity", Color(1), Range::non_negative());
 }
 
+// A point or spot light given in candela or lumens shines as a physical source: inverse-square
+// attenuation (the default then; any other is refused). Its f = 1/(4π d²) (000 §2.6) makes the
+// light's "intensity" a power: I candela become an intensity of 4π I / K.
+Attenuation photometric_attenuation(const JsonNode& node) {
+  const Attenuation attenuation = read_attenuation(node);
+  if (node.json().contains("attenuation") && attenuation.mode != Attenuation::Mode::inverse_square)
+    node.at("attenuation")
+        .fail(
+            "a light given in candela or lumens falls off as the inverse square: "
+            "\"inverse-square\" or no attenuation key");
+  Attenuation physical = attenuation;
+  physical.mode = Attenuation::Mode::inverse_square;
+  return physical;
+}
+
 std::unique_ptr<Light> make_ambient(const JsonNode& node, Color& ambient) {
   ambient += intensity_of(node);
   return nullptr;
 }
 
+// "intensity" (RGB, W/sr), "luminous_intensity" (cd) or "luminous_flux" (lm, over the 4π sr).
 std::unique_ptr<Light> make_point(const JsonNode& node, Color&) {
   const Vec3 position = node.vec3("position");
-  return std::make_unique<PointLight>(position, intensity_of(node), read_attenuation(node));
+  const std::string key = amount_key(node, {"intensity", "luminous_intensity", "luminous_flux"});
+  if (key == "intensity")
+    return std::make_unique<PointLight>(position, intensity_of(node), read_attenuation(node));
+  const double amount = node.number(key, 0, Range::non_negative());
+  const double candela = key == "luminous_flux" ? amount / (4 * kPi) : amount;
+  return std::make_unique<PointLight>(position, radiometric(4 * kPi * candela, read_photometric_color(node)),
+                                      photometric_attenuation(node));
 }
 
+// "intensity" (RGB, W/m² on a surface facing it) or "illuminance" (lux on such a surface).
 std::unique_ptr<Light> make_directional(const JsonNode& node, Color&) {
   const JsonNode direction = node.at("direction");
   const Vec3 d = direction.as_vec3();
   if (!direction_of(d)) direction.fail("must be non-zero");
-  return std::make_unique<DirectionalLight>(d, intensity_of(node));
+  if (amount_key(node, {"intensity", "illuminance"}) == "intensity")
+    return std::make_unique<DirectionalLight>(d, intensity_of(node));
+  return std::make_unique<DirectionalLight>(
+      d, radiometric(node.number("illuminance", 0, Range::non_negative()), read_photometric_color(node)));
 }
 
 std::unique_ptr<Light> make_spot(const JsonNode& node, Color&) {
@@ -87,8 +116,19 @@ std::unique_ptr<Light> make_spot(const JsonNode& node, Color&) {
   const double falloff_start = node.number("falloff_start", cutoff, {0, 90, false, false});
   if (falloff_start > cutoff) node.at("falloff_start").fail("must be <= cutoff");
   const double exponent = node.number("exponent", 0.0, Range::non_negative());
-  return std::make_unique<SpotLight>(position, aim, intensity_of(node), cutoff, falloff_start, exponent,
-                                     read_attenuation(node));
+  // "intensity" (RGB, W/sr on the axis), "luminous_intensity" (cd on the axis) or "luminous_flux"
+  // (lm: all the cone emits, its falloff and exponent counted).
+  const std::string key = amount_key(node, {"intensity", "luminous_intensity", "luminous_flux"});
+  if (key == "intensity")
+    return std::make_unique<SpotLight>(position, aim, intensity_of(node), cutoff, falloff_start, exponent,
+                                       read_attenuation(node));
+  const double amount = node.number(key, 0, Range::non_negative());
+  const Attenuation attenuation = photometric_attenuation(node);
+  const SpotLight unit(position, aim, Color(1), cutoff, falloff_start, exponent, attenuation);
+  const double candela = key == "luminous_flux" ? amount / unit.solid_angle() : amount;
+  return std::make_unique<SpotLight>(position, aim,
+                                     radiometric(4 * kPi * candela, read_photometric_color(node)), cutoff,
+                                     falloff_start, exponent, attenuation);
 }
 
 std::unique_ptr<Light> make_area(const JsonNode& node, Color&) {
@@ -96,9 +136,21 @@ std::unique_ptr<Light> make_area(const JsonNode& node, Color&) {
   const Vec3 edge_u = node.vec3("edge_u"), edge_v = node.vec3("edge_v");
   if (!(length(cross(edge_u, edge_v)) > 0))
     node.at("edge_v").fail("must not be parallel to edge_u (the light needs an area)");
-  const Color exitance = node.color("exitance", Color(1), Range::non_negative());
   const int samples = node.integer("samples", 4, {1, 64, false, false});
   const bool two_sided = node.boolean("two_sided", false);
+  // "exitance" (RGB, W/m² per side), "luminance" (cd/m²: a Lambertian exitance of π × it) or
+  // "luminous_flux" (lm, from every side it lights).
+  const std::string key = amount_key(node, {"exitance", "luminance", "luminous_flux"});
+  Color exitance;
+  if (key == "exitance") {
+    exitance = node.color("exitance", Color(1), Range::non_negative());
+  } else {
+    const double amount = node.number(key, 0, Range::non_negative());
+    const double area = length(cross(edge_u, edge_v));
+    const double luminous_exitance =
+        key == "luminance" ? kPi * amount : amount / (area * (two_sided ? 2 : 1));
+    exitance = radiometric(luminous_exitance, read_photometric_color(node));
+  }
   return std::make_unique<AreaLight>(corner, edge_u, edge_v, exitance, samples, two_sided);
 }
 

@@ -7,10 +7,13 @@
 #include <optional>
 #include <stdexcept>
 
+#include "math/constants.h"
 #include "scene/environment_registry.h"
 #include "scene/json_transform.h"
+#include "scene/photometric_settings.h"
 #include "shading/checkerboard_texture.h"
 #include "shading/image_texture.h"
+#include "shading/photometric_units.h"
 #include "shading/procedural_textures.h"
 #include "util/registry.h"
 
@@ -117,7 +120,13 @@ Material read_classic(const JsonNode& node, const LoadContext& context, Specular
     }
   }
   material.absorption = node.color("absorption", Color(), Range::non_negative());
-  material.emission = node.color("emission", Color(), Range::non_negative());  // 000 eq. 6-7's E
+  // 000 eq. 6-7's E (W/m², radiance E/π), or "emission_luminance" (cd/m²: E = π L / 179 lm/W)
+  // of "emission_color" or "emission_temperature".
+  if (amount_key(node, {"emission", "emission_luminance"}) == "emission")
+    material.emission = node.color("emission", Color(), Range::non_negative());
+  else
+    material.emission = radiometric(kPi * node.number("emission_luminance", 0, Range::non_negative()),
+                                    read_photometric_color(node, "emission_color", "emission_temperature"));
   if (const auto transparency = node.get("transparency"))
     material.transparency = read_transparency(*transparency);
   if (const auto bump = node.get("bump")) material.bump = read_bump(*bump, context);

@@ -33,6 +33,15 @@ double SpotLight::cone_factor(double cos_alpha) const {
   return factor;
 }
 
+double SpotLight::solid_angle() const {
+  // dω = 2π d(cos α): the cone is cos α in (cos_cutoff, 1].
+  constexpr int kSteps = 4096;
+  const double width = (1 - cos_cutoff_) / kSteps;
+  double sum = 0;
+  for (int i = 0; i < kSteps; ++i) sum += cone_factor(cos_cutoff_ + (i + 0.5) * width);
+  return 2 * kPi * sum * width;
+}
+
 Color SpotLight::power(double scene_radius) const {
   const double cone = 0.5 * (1 - 0.5 * (cos_cutoff_ + cos_falloff_start_));
   return intensity_ * (cone * attenuation_.factor(scene_radius) * 4 * kPi * scene_radius * scene_radius);
