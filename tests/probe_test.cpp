@@ -9,6 +9,7 @@
 #include <string>
 
 #include "integrators/scene_loading.h"
+#include "io/ies_reader.h"
 #include "math/constants.h"
 #include "scratch_directory.h"
 
@@ -103,6 +104,51 @@ TEST(Probe, EmissiveSurfacesGivenInCandelaPerSquareMetreGiveTheirLux) {
   // Looking up at it: the luminance itself.
   EXPECT_NEAR(kDefaultLuminousEfficacy * luminance(results[0].radiance), 1000, 1e-9);
   EXPECT_GT(results[0].irradiance.r, results[0].irradiance.b);  // warm
+}
+
+// Issue 23, item 2: a luminaire of an IES file, its nadir down and C0 along +x (so C90 is −z,
+// LM-63's counter-clockwise seen from above): a quadrant-symmetric table of 100 cd in C0 and 50 cd
+// in C90 at γ = 45°; the sensors at γ = 45° in each plane receive I cos 45° / 8.
+TEST(Probe, LuminairesShineTheirFilesIntensityInEachPlane) {
+  const testing::ScratchDirectory directory("candela-luminaire");
+  std::ofstream(directory.path() / "quad.ies") << "IESNA:LM-63-2002\n[TEST] quadrant\nTILT=NONE\n"
+                                                  "1 -1 1 3 2 1 2 0 0 0\n1 1 10\n0 45 90\n0 90\n"
+                                                  "100 100 0\n100 50 0\n";
+  const auto lux_at = [&](const std::string& extra, const Vec3& point) {
+    const auto scene = load_scene_text(R"({"format": "candela/1",
+      "camera": {"eye": [0, -1, 0], "target": [0, 1, 0], "up": [0, 0, -1], "width": 8, "height": 8},
+      "lights": [{"type": "luminaire", "file": "quad.ies", "position": [0, 2, 0], "target": [0, 0, 0],
+                  "c0": [1, 0, 0])" + extra +
+                                           R"(}]})",
+                                       "luminaire.json", directory.path().string());
+    ProbeSettings settings;
+    settings.samples = 64;
+    return kDefaultLuminousEfficacy * luminance(probe(*scene, {{point, {0, 1, 0}}}, settings)[0].irradiance);
+  };
+  const double c = std::cos(kPi / 4);
+  EXPECT_NEAR(lux_at("", {0, 0, 0}), 100 / 4.0, 1e-9);
+  EXPECT_NEAR(lux_at("", {2, 0, 0}), 100 * c / 8, 1e-6);   // C0
+  EXPECT_NEAR(lux_at("", {0, 0, -2}), 50 * c / 8, 1e-6);   // C90
+  EXPECT_NEAR(lux_at("", {-2, 0, 0}), 100 * c / 8, 1e-6);  // C180 mirrors C0
+  EXPECT_NEAR(lux_at("", {0, 0, 2}), 50 * c / 8, 1e-6);    // C270 mirrors C90
+  EXPECT_NEAR(lux_at(R"(, "multiplier": 2)", {0, 0, 0}), 50, 1e-9);
+  // Scaled to a flux: twice the table's flux, twice the lux.
+  const Photometry table = read_ies((directory.path() / "quad.ies").string());
+  EXPECT_NEAR(lux_at(", \"luminous_flux\": " + std::to_string(2 * table.flux()), {0, 0, 0}), 50, 1e-4);
+  // Bad files and keys name the light's JSON path and the file's line.
+  std::ofstream(directory.path() / "bad.ies") << "IESNA:LM-63-2002\nTILT=NONE\n1 -1 x\n";
+  try {
+    load_scene_text(R"({"format": "candela/1", "camera": {"eye": [0, 0, 5], "target": [0, 0, 0]},
+      "lights": [{"type": "luminaire", "file": "bad.ies", "position": [0, 2, 0], "target": [0, 0, 0]}]})",
+                    "luminaire.json", directory.path().string());
+    ADD_FAILURE() << "bad.ies accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("lights[0].file"), std::string::npos) << e.what();
+    EXPECT_NE(
+        std::string(e.what()).find("bad.ies:3:6: \"x\" is not a number (expected the candela multiplier)"),
+        std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(Probe, PhotometricLightsRefuseContradictions) {

@@ -24,6 +24,9 @@ class RegistryTest : public ::testing::Test {
   void SetUp() override {
     std::filesystem::create_directories(directory_ / "meshes");
     std::filesystem::create_directories(directory_ / "textures");
+    std::filesystem::create_directories(directory_ / "luminaires");
+    std::ofstream(directory_ / "luminaires" / "downlight.ies")
+        << "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 3 1 1 2 0 0 0\n1 1 10\n0 45 90\n0\n100 70 0\n";
     Film checker(4, 4);
     for (int y = 0; y < 4; ++y)
       for (int x = 0; x < 4; ++x) checker.at(x, y) = Color((x + y) % 2 ? 0.9 : 0.1);

@@ -1,11 +1,16 @@
 #include "scene/light_registry.h"
 
 #include <array>
+#include <cmath>
+#include <filesystem>
 
+#include "io/eulumdat_reader.h"
+#include "io/ies_reader.h"
 #include "math/constants.h"
 #include "math/direction.h"
 #include "scene/area_light.h"
 #include "scene/directional_light.h"
+#include "scene/luminaire_light.h"
 #include "scene/photometric_settings.h"
 #include "scene/point_light.h"
 #include "scene/spot_light.h"
@@ -79,13 +84,13 @@ Attenuation photometric_attenuation(const JsonNode& node) {
   return physical;
 }
 
-std::unique_ptr<Light> make_ambient(const JsonNode& node, Color& ambient) {
+std::unique_ptr<Light> make_ambient(const JsonNode& node, Color& ambient, const LoadContext&) {
   ambient += intensity_of(node);
   return nullptr;
 }
 
 // "intensity" (RGB, W/sr), "luminous_intensity" (cd) or "luminous_flux" (lm, over the 4π sr).
-std::unique_ptr<Light> make_point(const JsonNode& node, Color&) {
+std::unique_ptr<Light> make_point(const JsonNode& node, Color&, const LoadContext&) {
   const Vec3 position = node.vec3("position");
   const std::string key = amount_key(node, {"intensity", "luminous_intensity", "luminous_flux"});
   if (key == "intensity")
@@ -97,7 +102,7 @@ std::unique_ptr<Light> make_point(const JsonNode& node, Color&) {
 }
 
 // "intensity" (RGB, W/m² on a surface facing it) or "illuminance" (lux on such a surface).
-std::unique_ptr<Light> make_directional(const JsonNode& node, Color&) {
+std::unique_ptr<Light> make_directional(const JsonNode& node, Color&, const LoadContext&) {
   const JsonNode direction = node.at("direction");
   const Vec3 d = direction.as_vec3();
   if (!direction_of(d)) direction.fail("must be non-zero");
@@ -107,7 +112,7 @@ std::unique_ptr<Light> make_directional(const JsonNode& node, Color&) {
       d, radiometric(node.number("illuminance", 0, Range::non_negative()), read_photometric_color(node)));
 }
 
-std::unique_ptr<Light> make_spot(const JsonNode& node, Color&) {
+std::unique_ptr<Light> make_spot(const JsonNode& node, Color&, const LoadContext&) {
   const Vec3 position = node.vec3("position");
   const JsonNode target = node.at("target");
   const Vec3 aim = target.as_vec3();
@@ -131,7 +136,7 @@ std::unique_ptr<Light> make_spot(const JsonNode& node, Color&) {
                                      falloff_start, exponent, attenuation);
 }
 
-std::unique_ptr<Light> make_area(const JsonNode& node, Color&) {
+std::unique_ptr<Light> make_area(const JsonNode& node, Color&, const LoadContext&) {
   const Vec3 corner = node.vec3("corner");
   const Vec3 edge_u = node.vec3("edge_u"), edge_v = node.vec3("edge_v");
   if (!(length(cross(edge_u, edge_v)) > 0))
@@ -154,6 +159,51 @@ std::unique_ptr<Light> make_area(const JsonNode& node, Color&) {
   return std::make_unique<AreaLight>(corner, edge_u, edge_v, exitance, samples, two_sided);
 }
 
+// A measured luminaire: "file" (.ies or .ldt), "position", "target" (where its nadir points),
+// "c0" (the direction of its C0 plane, default: the world axis least along the nadir), and
+// "multiplier" (every candela × it) or "luminous_flux" (lm: the table scaled to emit that),
+// with "color" or "temperature".
+std::unique_ptr<Light> make_luminaire(const JsonNode& node, Color&, const LoadContext& context) {
+  const JsonNode file = node.at("file");
+  const std::string name = file.as_string();
+  const std::string path = context.resolve(name).string();
+  const std::string extension = std::filesystem::path(name).extension().string();
+  std::shared_ptr<const Photometry> photometry;
+  try {
+    if (extension == ".ies" || extension == ".IES")
+      photometry = std::make_shared<Photometry>(read_ies(path));
+    else if (extension == ".ldt" || extension == ".LDT")
+      photometry = std::make_shared<Photometry>(read_eulumdat(path));
+    else
+      file.fail("\"" + name + "\": expected an IES (.ies) or EULUMDAT (.ldt) file");
+  } catch (const InputError& e) {
+    file.fail(e.what());
+  }
+  if (photometry->type != PhotometricType::c)
+    file.fail("\"" + name + "\" has type A or B photometry (floodlights, automotive): only type C is placed");
+  const Vec3 position = node.vec3("position");
+  const JsonNode target = node.at("target");
+  const Vec3 nadir = target.as_vec3() - position;
+  if (!(length(nadir) > 0)) target.fail("must differ from position");
+  Vec3 fallback{1, 0, 0};
+  const Vec3 unit_nadir = normalize(nadir);
+  for (const Vec3 axis : {Vec3{1, 0, 0}, Vec3{0, 0, 1}, Vec3{0, 1, 0}})
+    if (std::fabs(dot(axis, unit_nadir)) < std::fabs(dot(fallback, unit_nadir))) fallback = axis;
+  const Vec3 c0 = node.vec3("c0", fallback);
+  if (!(length(c0 - unit_nadir * dot(c0, unit_nadir)) > 1e-9 * length(c0)))
+    node.at("c0").fail("must not be parallel to the nadir (position to target)");
+  double scale = 1;
+  if (amount_key(node, {"multiplier", "luminous_flux"}) == "multiplier") {
+    scale = node.number("multiplier", 1, Range::non_negative());
+  } else {
+    const double flux = photometry->flux();
+    if (!(flux > 0)) file.fail("\"" + name + "\" emits nothing: it cannot be scaled to a luminous_flux");
+    scale = node.number("luminous_flux", 0, Range::non_negative()) / flux;
+  }
+  return std::make_unique<LuminaireLight>(photometry, position, nadir, c0, scale,
+                                          read_photometric_color(node));
+}
+
 const std::array kEntries = {
     LightEntry{"ambient", "uniform ambient light Ia (000 §2.4)", R"({"type": "ambient", "intensity": 0.3})",
                make_ambient},
@@ -174,6 +224,12 @@ const std::array kEntries = {
         "samples² shadow rays",
         R"({"type": "area", "corner": [-0.5, 4, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "exitance": 10, "samples": 4})",
         make_area},
+    LightEntry{
+        "luminaire",
+        "a measured luminaire: an IES LM-63 or EULUMDAT file's intensities, its nadir toward target, C0 "
+        "along c0",
+        R"({"type": "luminaire", "file": "luminaires/downlight.ies", "position": [0, 3, 0], "target": [0, 0, 0], "c0": [1, 0, 0]})",
+        make_luminaire},
 };
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include "io/json_node.h"
 #include "scene/light.h"
+#include "scene/load_context.h"
 
 namespace candela {
 
@@ -13,8 +14,9 @@ struct LightEntry {
   std::string_view name;
   std::string_view description;
   std::string_view example;
-  // Returns nullptr for "ambient", whose intensity is added to ambient instead.
-  std::unique_ptr<Light> (*create)(const JsonNode& node, Color& ambient);
+  // Returns nullptr for "ambient", whose intensity is added to ambient instead. Files (a
+  // luminaire's photometry) resolve through the context.
+  std::unique_ptr<Light> (*create)(const JsonNode& node, Color& ambient, const LoadContext& context);
 };
 
 std::span<const LightEntry> light_entries();

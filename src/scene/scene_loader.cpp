@@ -33,7 +33,8 @@ namespace {
 constexpr const char* kFormat = "candela/1";
 
 // A "lights" array: each entry by the light registry; ambient entries add to ambient.
-void read_light_list(const JsonNode& lights, Color& ambient, std::vector<std::unique_ptr<Light>>& out) {
+void read_light_list(const JsonNode& lights, Color& ambient, std::vector<std::unique_ptr<Light>>& out,
+                     const LoadContext& context) {
   for (std::size_t i = 0; i < lights.size(); ++i) {
     const JsonNode node = lights.element(i);
     node.expect_object();
@@ -42,7 +43,7 @@ void read_light_list(const JsonNode& lights, Color& ambient, std::vector<std::un
     if (!entry)
       type.fail("unknown light \"" + type.as_string() +
                 "\" (expected one of: " + entry_names(light_entries()) + ")");
-    auto light = entry->create(node, ambient);
+    auto light = entry->create(node, ambient, context);
     node.allow({"name"});
     node.finish();
     if (light) out.push_back(std::move(light));
@@ -218,7 +219,8 @@ class SceneReader {
   }
 
   void read_lights() {
-    if (const auto lights = root_.get("lights")) read_light_list(*lights, scene_->ambient, scene_->lights);
+    if (const auto lights = root_.get("lights"))
+      read_light_list(*lights, scene_->ambient, scene_->lights, context_);
   }
 
   uint32_t material_for(const JsonNode& shape) {
@@ -354,6 +356,10 @@ std::vector<LightSetup> load_light_setups_text(const std::string& text, const st
   const JsonNode frames = root.at("frames");
   if (frames.size() == 0) frames.fail("needs at least one frame");
   std::vector<LightSetup> setups;
+  // A luminaire's file resolves against the set-ups file's folder.
+  LoadContext context;
+  context.base_directory = std::filesystem::path(name).parent_path();
+  if (context.base_directory.empty()) context.base_directory = ".";
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const JsonNode frame = frames.element(i);
     frame.expect_object();
@@ -367,7 +373,7 @@ std::vector<LightSetup> load_light_setups_text(const std::string& text, const st
       if (earlier.name == setup.name)
         frame.at("name").fail("\"" + setup.name + "\" names an earlier frame too");
     setup.ambient = frame.color("ambient", Color(0), Range::non_negative());
-    read_light_list(frame.at("lights"), setup.ambient, setup.lights);
+    read_light_list(frame.at("lights"), setup.ambient, setup.lights, context);
     frame.finish();
     setups.push_back(std::move(setup));
   }
