@@ -151,6 +151,36 @@ TEST(Probe, LuminairesShineTheirFilesIntensityInEachPlane) {
   }
 }
 
+// Issue 23, item 3: the sun of NREL SPA's worked example (Golden, Colorado, 17 October 2003,
+// 12:30:30 UT−7: elevation 39.888°, azimuth 194.340°) at 100,000 lx normal, north −z and east
+// +x: the lux on sensors facing up, south, west, north and east.
+TEST(Probe, TheSunShinesFromWhereTheAlmanacPutsIt) {
+  const auto lux_facing = [](const Vec3& normal, const std::string& time) {
+    const auto scene = load_scene_text(R"({"format": "candela/1",
+      "camera": {"eye": [0, 5, 5], "target": [0, 0, 0], "width": 8, "height": 8},
+      "lights": [{"type": "sun", "latitude": 39.742476, "longitude": -105.1786, "date": "2003-10-17",
+                  "time": ")" + time + R"(", "timezone": -7, "illuminance": 100000, "color": [1, 1, 1]}]})",
+                                       "sun.json", ".");
+    ProbeSettings settings;
+    settings.samples = 16;
+    return std::pair{
+        kDefaultLuminousEfficacy * luminance(probe(*scene, {{{0, 0, 0}, normal}}, settings)[0].irradiance),
+        scene->warnings};
+  };
+  const double elevation = 39.88838 * kPi / 180, azimuth = 194.34024 * kPi / 180;
+  const Vec3 toward_sun{std::cos(elevation) * std::sin(azimuth), std::sin(elevation),
+                        -std::cos(elevation) * std::cos(azimuth)};
+  for (const Vec3& normal : {Vec3{0, 1, 0}, Vec3{0, 0, 1}, Vec3{-1, 0, 0}, Vec3{0, 0, -1}, Vec3{1, 0, 0}}) {
+    const double expected = 100000 * std::max(0.0, dot(normal, toward_sun));
+    // Michalsky's 0.01° is 0.02 % of these lux.
+    EXPECT_NEAR(lux_facing(normal, "12:30:30").first, expected, 30) << normal;
+  }
+  const auto [night, warnings] = lux_facing({0, 1, 0}, "23:30");
+  EXPECT_EQ(night, 0);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("the sun is below the horizon"), std::string::npos) << warnings[0];
+}
+
 TEST(Probe, PhotometricLightsRefuseContradictions) {
   const auto error_of = [](const std::string& light) -> std::string {
     try {
@@ -178,6 +208,12 @@ TEST(Probe, PhotometricLightsRefuseContradictions) {
   EXPECT_NE(error_of(R"({"type": "point", "position": [0, 2, 0], "luminous_flux": 100, "color": [1, 1, 1],
                          "temperature": 3000})")
                 .find("give color or temperature, not both"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"type": "sun", "date": "2026-02-30", "time": "12:00"})")
+                .find("lights[0].date: expected a date"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"type": "sun", "date": "2026-02-03", "time": "12h"})")
+                .find("lights[0].time: expected a local time"),
             std::string::npos);
   // A radiometric light takes no colour (its intensity is the colour).
   EXPECT_NE(error_of(R"({"type": "point", "position": [0, 2, 0], "intensity": 1, "color": [1, 0, 0]})")
