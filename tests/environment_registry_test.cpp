@@ -78,7 +78,7 @@ class EnvironmentRegistry : public ::testing::Test {
 };
 
 TEST_F(EnvironmentRegistry, EveryEntryFromItsExample) {
-  ASSERT_EQ(environment_entries().size(), 3u);
+  ASSERT_EQ(environment_entries().size(), 4u);
   for (const EnvironmentEntry& entry : environment_entries()) {
     const auto environment = read(std::string(entry.example));
     ASSERT_NE(environment, nullptr) << entry.name;

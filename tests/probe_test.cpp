@@ -12,6 +12,7 @@
 #include "io/ies_reader.h"
 #include "math/constants.h"
 #include "scratch_directory.h"
+#include "shading/cie_sky.h"
 
 namespace candela {
 namespace {
@@ -179,6 +180,41 @@ TEST(Probe, TheSunShinesFromWhereTheAlmanacPutsIt) {
   EXPECT_EQ(night, 0);
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("the sun is below the horizon"), std::string::npos) << warnings[0];
+}
+
+// Issue 23, item 3: the CIE standard general sky lights an unobstructed horizontal sensor with
+// its diffuse_illuminance, and its luminances relative to the zenith are the standard's.
+TEST(Probe, CieSkiesGiveTheirHorizontalIlluminanceAndGradation) {
+  EXPECT_NEAR(cie_sky_relative_luminance(1, 0, 0.3, 0.5), 1, 1e-12);
+  const double horizon = cie_sky_relative_luminance(1, kPi / 2 - 1e-9, 1.0, 0.5);
+  EXPECT_NEAR(horizon, 1 / (1 + 4 * std::exp(-0.7)), 1e-6);  // ≈ 1/3, Moon and Spencer's overcast
+  EXPECT_NEAR(cie_sky_relative_luminance(5, 1.2, 2.0, 0.4), 1, 1e-12);  // type 5: uniform
+  EXPECT_GT(cie_sky_relative_luminance(12, 0.8, 0.1, 0.8), 3 * cie_sky_relative_luminance(12, 0.8, 2.5, 0.8));
+  EXPECT_THROW(cie_sky_relative_luminance(16, 0, 0, 0), std::invalid_argument);
+  for (const std::string sky :
+       {R"("sky_type": 1)", R"("sky_type": 12, "sun_elevation": 35, "sun_azimuth": 160)",
+        R"("sky_type": 7, "latitude": 52.5, "longitude": 13.4, "date": "2026-04-01",
+                                   "time": "10:00", "timezone": 2)"}) {
+    SCOPED_TRACE(sky);
+    const auto scene = load_scene_text(R"({"format": "candela/1",
+      "camera": {"eye": [0, 1, 5], "target": [0, 1, 0], "width": 8, "height": 8},
+      "environment": {"type": "cie_sky", "diffuse_illuminance": 12000, "resolution": 256, )" +
+                                           sky + R"(}})",
+                                       "sky.json", ".");
+    ProbeSettings settings;
+    settings.samples = 8192;
+    const double low = 3 * kPi / 180;  // 3° above the horizon
+    const std::vector<ProbeResult> up =
+        probe(*scene, {{{0, 0, 0}, {0, 1, 0}}, {{0, 0, 0}, {std::cos(low), std::sin(low), 0}}}, settings);
+    const double lux = kDefaultLuminousEfficacy * luminance(up[0].irradiance);
+    EXPECT_NEAR(lux, 12000, 4 * kDefaultLuminousEfficacy * up[0].irradiance_error + 0.005 * 12000);
+    if (sky == R"("sky_type": 1)") {
+      // Looking at the zenith and 3° above the horizon: 1 to about 1/3.
+      const double zenith = luminance(up[0].radiance), side = luminance(up[1].radiance);
+      EXPECT_NEAR(side / zenith, cie_sky_relative_luminance(1, kPi / 2 - low, 1.0, 0.5), 0.01);
+      EXPECT_NEAR(side / zenith, horizon, 0.01);
+    }
+  }
 }
 
 TEST(Probe, PhotometricLightsRefuseContradictions) {

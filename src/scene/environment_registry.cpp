@@ -1,6 +1,8 @@
 #include "scene/environment_registry.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -9,7 +11,12 @@
 #include <string>
 #include <tuple>
 
+#include "math/constants.h"
 #include "math/direction.h"
+#include "scene/photometric_settings.h"
+#include "scene/solar_settings.h"
+#include "shading/cie_sky.h"
+#include "shading/photometric_units.h"
 #include "util/registry.h"
 
 namespace candela {
@@ -150,6 +157,53 @@ std::unique_ptr<Environment> make_equirectangular(const JsonNode& node, const Lo
   }
 }
 
+// Issue 23, item 3: the CIE standard general sky (shading/cie_sky.h) of "sky_type" (1–15, default
+// 1, the overcast sky), its sun placed as the sun light places it (scene/solar_settings.h, or
+// "sun_elevation" and "sun_azimuth"), scaled so that an unobstructed horizontal surface receives
+// "diffuse_illuminance" lux from it (default 10,000), of "color" or "temperature" (default white);
+// nothing from below the horizon (no ground). Baked into a latitude-longitude panorama of
+// "resolution" × resolution/2 texels (default 512), its forward the scene's north: the
+// equirectangular environment then lights, samples and shows it for every method. The sun itself is
+// not in it (add a sun light).
+std::unique_ptr<Environment> make_cie_sky(const JsonNode& node, const LoadContext&) {
+  const int type = node.integer("sky_type", 1, {1, 15, false, false});
+  const SunPlacement sun = read_sun_placement(node, true);
+  const double diffuse = node.number("diffuse_illuminance", 10000, Range::non_negative());
+  const int width = node.integer("resolution", 512, {16, 8192, false, false}), height = width / 2;
+  const double sun_zenith = std::acos(std::clamp(sun.toward_sun.y, -1.0, 1.0));
+  std::vector<double> relative(std::size_t(width) * height, 0.0);
+  double horizontal = 0;              // ∫ relative cos Z dω over the texels' solid angles
+  for (int j = 0; j < height; ++j) {  // from the top row (the zenith) down
+    const double zenith = kPi * (j + 0.5) / height;
+    if (zenith >= kPi / 2) continue;
+    const double solid_angle =
+        (2 * kPi / width) * (std::cos(kPi * j / height) - std::cos(kPi * (j + 1) / height));
+    for (int i = 0; i < width; ++i) {
+      // u = 0.5 + azimuth / 2π from north clockwise (the panorama's forward is north, right east).
+      const double azimuth = 2 * kPi * ((i + 0.5) / width - 0.5);
+      const Vec3 direction = sun.north * (std::sin(zenith) * std::cos(azimuth)) +
+                             sun.east * (std::sin(zenith) * std::sin(azimuth)) + Vec3{0, std::cos(zenith), 0};
+      const double to_sun = std::acos(std::clamp(dot(direction, sun.toward_sun), -1.0, 1.0));
+      const double value = cie_sky_relative_luminance(type, zenith, to_sun, sun_zenith);
+      relative[std::size_t(j) * width + i] = value;
+      horizontal += value * std::cos(zenith) * solid_angle;
+    }
+  }
+  const Color colour = read_photometric_color(node);
+  // An environment's values are in the units of an emitter's exitance (a constant one of value C
+  // gives irradiance C): π × the radiance.
+  const Color scale = radiometric(diffuse, colour) * (kPi / horizontal);
+  std::vector<float> rgb(std::size_t(width) * height * 3);
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i)
+      for (int c = 0; c < 3; ++c)  // TextureImage rows start at the bottom
+        rgb[(std::size_t(height - 1 - j) * width + i) * 3 + c] =
+            static_cast<float>(relative[std::size_t(j) * width + i] * scale[c]);
+  auto image = std::make_shared<const TextureImage>(width, height, std::move(rgb));
+  return std::make_unique<EquirectangularEnvironment>(std::move(image), Vec3{0, 1, 0}, sun.north, Color(1),
+                                                      "cie_sky");
+}
+
 const std::array kEntries = {
     EnvironmentEntry{"constant", "the same radiance from every direction",
                      R"({"type": "constant", "color": [0.2, 0.3, 0.5]})", make_constant},
@@ -165,6 +219,12 @@ const std::array kEntries = {
         "bilinear, repeating in longitude",
         R"({"type": "equirectangular", "file": "sky.exr", "up": [0, 1, 0], "forward": [0, 0, -1], "multiplier": [1, 1, 1], "encoding": "linear"})",
         make_equirectangular},
+    EnvironmentEntry{
+        "cie_sky",
+        "the CIE standard general sky (ISO 15469) of sky_type 1-15, its sun by place and time or "
+        "sun_elevation/sun_azimuth, diffuse_illuminance lx on the horizontal",
+        R"({"type": "cie_sky", "sky_type": 12, "sun_elevation": 40, "sun_azimuth": 200, "diffuse_illuminance": 15000})",
+        make_cie_sky},
 };
 
 }  // namespace

@@ -4,7 +4,6 @@
 
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 
 #include "io/eulumdat_reader.h"
@@ -16,9 +15,9 @@
 #include "scene/luminaire_light.h"
 #include "scene/photometric_settings.h"
 #include "scene/point_light.h"
+#include "scene/solar_settings.h"
 #include "scene/spot_light.h"
 #include "shading/photometric_units.h"
-#include "shading/solar_position.h"
 #include "util/registry.h"
 
 namespace candela {
@@ -163,20 +162,6 @@ std::unique_ptr<Light> make_area(const JsonNode& node, Color&, const LoadContext
   return std::make_unique<AreaLight>(corner, edge_u, edge_v, exitance, samples, two_sided);
 }
 
-// "2026-06-21" and "13:30" (or "13:30:15") as numbers; false when malformed.
-bool read_date(const std::string& text, int& year, int& month, int& day) {
-  return std::sscanf(text.c_str(), "%d-%d-%d", &year, &month, &day) == 3 &&
-         day_of_year(year, month, day) > 0 && text.size() == 10;
-}
-bool read_time(const std::string& text, double& hours) {
-  int h = 0, m = 0;
-  double seconds = 0;
-  const int parts = std::sscanf(text.c_str(), "%d:%d:%lf", &h, &m, &seconds);
-  if (parts < 2 || h < 0 || h > 24 || m < 0 || m > 59 || seconds < 0 || seconds >= 60) return false;
-  hours = h + m / 60.0 + seconds / 3600;
-  return hours <= 24;
-}
-
 // Issue 23, item 3: the sun as a directional light from a place, a date and a time (Michalsky's
 // algorithm, shading/solar_position.h): "latitude" (° north), "longitude" (° east), "date"
 // ("YYYY-MM-DD"), "time" (local "HH:MM[:SS]"), "timezone" (hours ahead of UT), "north" (the
@@ -185,37 +170,19 @@ bool read_time(const std::string& text, double& hours) {
 // illuminance) of "color" or "temperature" (default 5,800 K). Below the horizon it gives nothing
 // (with a warning). Its 0.53° disc is not modelled: shadows are sharp.
 std::unique_ptr<Light> make_sun(const JsonNode& node, Color&, const LoadContext& context) {
-  const double latitude = node.number("latitude", 0, {-90, 90, false, false});
-  const double longitude = node.number("longitude", 0, {-180, 180, false, false});
-  int year = 0, month = 0, day = 0;
-  const JsonNode date = node.at("date");
-  if (!read_date(date.as_string(), year, month, day)) date.fail("expected a date YYYY-MM-DD");
-  double hours = 12;
-  const JsonNode time = node.at("time");
-  if (!read_time(time.as_string(), hours)) time.fail("expected a local time HH:MM or HH:MM:SS");
-  const double timezone = node.number("timezone", 0, {-14, 14, false, false});
-  Vec3 north = node.vec3("north", Vec3{0, 0, -1});
-  north.y = 0;
-  if (!(length(north) > 0)) node.at("north").fail("must have a horizontal part (y is up)");
-  north = normalize(north);
-  const Vec3 up{0, 1, 0};
-  const Vec3 east = cross(north, up);
-  const SolarPosition sun = solar_position(year, month, day, hours, timezone, latitude, longitude);
-  const double elevation = sun.elevation_degrees * kPi / 180, azimuth = sun.azimuth_degrees * kPi / 180;
-  const Vec3 toward_sun = north * (std::cos(elevation) * std::cos(azimuth)) +
-                          east * (std::cos(elevation) * std::sin(azimuth)) + up * std::sin(elevation);
+  const SunPlacement sun = read_sun_placement(node, false);
   const double illuminance = node.number("illuminance", 100000, Range::non_negative());
   const bool coloured = node.json().contains("color") || node.json().contains("temperature");
   const Color colour = coloured ? read_photometric_color(node) : blackbody_color(5800);
   Color intensity = radiometric(illuminance, colour);
-  if (sun.elevation_degrees <= 0) {
+  if (sun.position.elevation_degrees <= 0) {
     intensity = Color();
     if (context.warnings)
-      context.warnings->push_back(
-          fmt::format("{}: the sun is below the horizon ({:.2f}°) on {} at {}: it gives no light",
-                      node.path(), sun.elevation_degrees, date.as_string(), time.as_string()));
+      context.warnings->push_back(fmt::format(
+          "{}: the sun is below the horizon ({:.2f}°) on {} at {}: it gives no light", node.path(),
+          sun.position.elevation_degrees, node.at("date").as_string(), node.at("time").as_string()));
   }
-  return std::make_unique<DirectionalLight>(-toward_sun, intensity, "sun");
+  return std::make_unique<DirectionalLight>(-sun.toward_sun, intensity, "sun");
 }
 
 // A measured luminaire: "file" (.ies or .ldt), "position", "target" (where its nadir points),

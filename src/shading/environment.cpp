@@ -219,8 +219,8 @@ double CubeMapEnvironment::pdf(const Vec3& direction) const {
 
 EquirectangularEnvironment::EquirectangularEnvironment(std::shared_ptr<const TextureImage> image,
                                                        const Vec3& up, const Vec3& forward,
-                                                       const Color& multiplier)
-    : image_(std::move(image)), multiplier_(multiplier) {
+                                                       const Color& multiplier, std::string_view type_name)
+    : image_(std::move(image)), multiplier_(multiplier), type_name_(type_name) {
   if (!image_) throw std::invalid_argument("equirectangular environment needs an image");
   const std::optional<Vec3> up_unit = direction_of(up);
   if (!up_unit) throw std::invalid_argument("up must be a non-zero vector");

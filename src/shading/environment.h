@@ -127,11 +127,12 @@ class CubeMapEnvironment final : public Environment {
 class EquirectangularEnvironment final : public Environment {
  public:
   // Throws std::invalid_argument for a null image, a zero up or forward, or parallel ones.
+  // type_name: "equirectangular", or the name of what was baked into the panorama ("cie_sky").
   EquirectangularEnvironment(std::shared_ptr<const TextureImage> image, const Vec3& up, const Vec3& forward,
-                             const Color& multiplier);
+                             const Color& multiplier, std::string_view type_name = "equirectangular");
 
   Color radiance(const Vec3& unit_direction) const override;
-  std::string_view type_name() const override { return "equirectangular"; }
+  std::string_view type_name() const override { return type_name_; }
 
   // (u, v) as in the comment above (v from the top row); for a unit direction.
   Vec2 panorama_coordinates(const Vec3& unit_direction) const;
@@ -148,6 +149,7 @@ class EquirectangularEnvironment final : public Environment {
   std::shared_ptr<const TextureImage> image_;
   Vec3 up_, forward_, right_;
   Color multiplier_;
+  std::string_view type_name_;  // a literal
   // Columns along u, rows along v (from the top row); empty until prepared.
   Distribution2D distribution_;
 };
