@@ -41,6 +41,7 @@ struct ProbeOptions {
   bool image_log = false;
   int contours = 0;
   std::string json;
+  bool daylight_factor = false;
   std::string output;
   int samples = 256;
   std::optional<int64_t> seed;
@@ -125,21 +126,38 @@ int run_probe(ProbeOptions& options) {
   std::vector<double> illuminance(results.size());
   for (std::size_t i = 0; i < results.size(); ++i)
     illuminance[i] = options.efficacy * luminance(results[i].irradiance);
+  // Issue 23: the daylight factor, the illuminance over what an unobstructed horizontal surface
+  // receives from the sky (the environment), in per cent.
+  std::vector<double> daylight_factor;
+  double sky_lux = 0;
+  if (options.daylight_factor) {
+    if (!scene->environment)
+      throw InputError({options.scene.scene_path, 0, 0, "environment"},
+                       "--daylight-factor needs a sky: the scene has no environment");
+    sky_lux = options.efficacy * luminance(unobstructed_sky_irradiance(*scene));
+    if (!(sky_lux > 0))
+      throw InputError(
+          {options.scene.scene_path, 0, 0, "environment"},
+          "--daylight-factor: the environment gives an unobstructed horizontal surface no light");
+    for (const double lux : illuminance) daylight_factor.push_back(100 * lux / sky_lux);
+  }
   // Streamed row by row (a 4,000,000-point grid is 600 MB of text), into a temporary file renamed
   // into place.
   write_atomically(options.output, [&](const std::string& temporary) {
     std::ofstream out(temporary);
     out << "x,y,z,nx,ny,nz,irradiance_r,irradiance_g,irradiance_b,radiance_r,radiance_g,radiance_b,"
-           "illuminance_lux,illuminance_error_lux\n";
+           "illuminance_lux,illuminance_error_lux"
+        << (options.daylight_factor ? ",daylight_factor_percent\n" : "\n");
     for (std::size_t i = 0; i < results.size(); ++i) {
       const ProbePoint& p = points[i];
       const ProbeResult& r = results[i];
-      out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_number(p.position.x),
+      out << fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}", csv_number(p.position.x),
                          csv_number(p.position.y), csv_number(p.position.z), csv_number(p.normal.x),
                          csv_number(p.normal.y), csv_number(p.normal.z), csv_number(r.irradiance.r),
                          csv_number(r.irradiance.g), csv_number(r.irradiance.b), csv_number(r.radiance.r),
                          csv_number(r.radiance.g), csv_number(r.radiance.b), csv_number(illuminance[i]),
-                         csv_number(options.efficacy * r.irradiance_error));
+                         csv_number(options.efficacy * r.irradiance_error))
+          << (options.daylight_factor ? "," + csv_number(daylight_factor[i]) + "\n" : "\n");
     }
     out.close();
     if (!out) throw std::runtime_error("cannot write " + options.output);
@@ -191,6 +209,12 @@ int run_probe(ProbeOptions& options) {
                                 {"mean_standard_error", mean_error}}},
                               {"seconds", timer.seconds()}};
     if (!options.grid.empty()) summary["grid"] = {{"size", {nu, nv}}, {"corner_and_edges", options.grid}};
+    if (options.daylight_factor) {
+      const IlluminanceStatistics df = illuminance_statistics(daylight_factor);
+      summary["unobstructed_sky_illuminance_lux"] = sky_lux;
+      summary["daylight_factor_percent"] = {
+          {"min", df.minimum}, {"max", df.maximum}, {"average", df.average}};
+    }
     write_atomically(options.json, [&](const std::string& temporary) {
       std::ofstream out(temporary);
       out << summary.dump(2) << "\n";
@@ -208,6 +232,13 @@ int run_probe(ProbeOptions& options) {
         statistics.average, statistics.maximum, options.efficacy, statistics.uniformity_min_average,
         statistics.uniformity_min_max, mean_error,
         statistics.average > 0 ? 100 * mean_error / statistics.average : 0.0, options.output);
+    if (options.daylight_factor) {
+      const IlluminanceStatistics df = illuminance_statistics(daylight_factor);
+      std::cout << fmt::format(
+          "daylight factor (of {:.4g} lux on an unobstructed horizontal surface): min {:.3g} %, average "
+          "{:.3g} %, max {:.3g} %\n",
+          sky_lux, df.minimum, df.average, df.maximum);
+    }
     if (facts.contains("rays_without_solution") && facts["rays_without_solution"].get<uint64_t>() > 0)
       std::cerr << fmt::format(
           "candela: warning: {} probe rays hit surfaces the {} solution does not cover (counted as 0)\n",
@@ -242,6 +273,9 @@ void add_probe_command(CLI::App& app, std::function<int()>& run) {
                       "With --image: N equal steps of the scale with iso-lines between them");
   command->add_option("--json", options->json,
                       "Summary as JSON: Emin, Emax, Eavg, uniformities Emin/Eavg and Emin/Emax");
+  command->add_flag(
+      "--daylight-factor", options->daylight_factor,
+      "Also the daylight factor: illuminance / the sky's on an unobstructed horizontal surface (%)");
   command->add_option("-o,--output", options->output, "Output CSV")->required();
   command->add_option("--samples", options->samples,
                       "Estimates (path) or hemisphere rays per point (default 256)");

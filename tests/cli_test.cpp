@@ -951,6 +951,40 @@ TEST_F(Cli, ProbeGridReportsTheUniformitiesAndTheirJson) {
   }
 }
 
+// Issue 23, item 3: the daylight factor under a CIE overcast sky — 100 % in the open, little
+// under a wide roof (only the sky near the horizon reaches under it).
+TEST_F(Cli, ProbeGivesTheDaylightFactorUnderTheSky) {
+  write("sky.json", R"({"format": "candela/1",
+    "camera": {"eye": [0, 1, 5], "target": [0, 1, 0], "width": 8, "height": 8},
+    "environment": {"type": "cie_sky", "sky_type": 1, "diffuse_illuminance": 10000, "resolution": 128},
+    "shapes": [{"type": "quad", "corner": [10, 3, -5], "edge_u": [10, 0, 0], "edge_v": [0, 0, 10],
+                "material": {"kd": 0}}]})");
+  write("pts.csv", "0,0,0,0,1,0\n15,0,0,0,1,0\n");
+  std::string output;
+  ASSERT_EQ(run("probe sky.json --points pts.csv --samples 4096 --daylight-factor -o df.csv --json df.json",
+                output),
+            0)
+      << output;
+  std::string header;
+  const auto rows = read_csv_rows(directory_ / "df.csv", header);
+  EXPECT_NE(header.find(",daylight_factor_percent"), std::string::npos) << header;
+  ASSERT_EQ(rows.size(), 2u);
+  ASSERT_EQ(rows[0].size(), 15u);
+  EXPECT_NEAR(rows[0][14], 100, 2);  // in the open
+  EXPECT_LT(rows[1][14], 25);        // under the 10 × 10 m roof, 3 m up, at its middle
+  EXPECT_GT(rows[1][14], 1);
+  std::ifstream json_file(directory_ / "df.json");
+  const nlohmann::json json = nlohmann::json::parse(json_file);
+  EXPECT_NEAR(json["unobstructed_sky_illuminance_lux"].get<double>(), 10000, 10);
+  EXPECT_NEAR(json["daylight_factor_percent"]["max"].get<double>(), rows[0][14], 1e-6);
+  EXPECT_NE(output.find("daylight factor"), std::string::npos) << output;
+  // No sky, no daylight factor: exit 2 and nothing written.
+  write("dark.json", R"({"format": "candela/1", "camera": {"eye": [0, 1, 5], "target": [0, 1, 0]}})");
+  EXPECT_EQ(run("probe dark.json --points pts.csv --daylight-factor -o dark.csv", output), 2);
+  EXPECT_NE(output.find("--daylight-factor needs a sky"), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(directory_ / "dark.csv"));
+}
+
 TEST_F(Cli, ProbeRefusesBadPointsWithTheirLocationAndWritesNothing) {
   write("lamp.json", kLampScene);
   write("pts.csv", "0,0,0,0,1,0\n1,2,three,0,1,0\n");

@@ -27,6 +27,20 @@
 
 namespace candela {
 
+Color unobstructed_sky_irradiance(const Scene& scene) {
+  if (!scene.environment) return {};
+  // An environment value C is π × its radiance (a constant C gives irradiance C): the irradiance
+  // ∫ (C/π) cos θ dω is the mean of C over cosine-distributed directions.
+  constexpr int kCells = 512;
+  Color sum;
+  for (int i = 0; i < kCells; ++i)
+    for (int j = 0; j < kCells; ++j) {
+      const Vec3 local = square_to_cosine_hemisphere({(i + 0.5) / kCells, (j + 0.5) / kCells});
+      sum += scene.environment->radiance(Vec3{local.x, local.z, local.y});  // z up → y up
+    }
+  return sum / (double(kCells) * kCells);
+}
+
 IlluminanceStatistics illuminance_statistics(const std::vector<double>& illuminance) {
   if (illuminance.empty()) throw std::invalid_argument("illuminance statistics of no points");
   IlluminanceStatistics statistics;

@@ -42,6 +42,12 @@ struct IlluminanceStatistics {
 // Throws std::invalid_argument for no values or a non-finite one.
 IlluminanceStatistics illuminance_statistics(const std::vector<double>& illuminance);
 
+// The irradiance (W/m²) an unobstructed horizontal surface facing up (+y) receives from the
+// scene's environment — a daylight factor's denominator (issue 23, item 3: interior illuminance /
+// unobstructed horizontal sky illuminance) — by 512 × 512 stratified cosine-distributed
+// directions; black without an environment.
+Color unobstructed_sky_irradiance(const Scene& scene);
+
 struct ProbeResult {
   Color irradiance;  // W/m²
   Color radiance;    // W/(m²·sr)
