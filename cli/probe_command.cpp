@@ -120,15 +120,9 @@ int run_probe(ProbeOptions& options) {
   settings.samples = options.samples;
   settings.seed = options.seed ? uint64_t(*options.seed) : scene->render.seed;
   settings.quiet = options.quiet;
-  nlohmann::json facts;
-  const std::vector<ProbeResult> results = probe(*scene, points, settings, &facts);
-
-  std::vector<double> illuminance(results.size());
-  for (std::size_t i = 0; i < results.size(); ++i)
-    illuminance[i] = options.efficacy * luminance(results[i].irradiance);
   // Issue 23: the daylight factor, the illuminance over what an unobstructed horizontal surface
-  // receives from the sky (the environment), in per cent.
-  std::vector<double> daylight_factor;
+  // receives from the sky (the environment), in per cent; a scene without a sky is refused before
+  // anything is probed.
   double sky_lux = 0;
   if (options.daylight_factor) {
     if (!scene->environment)
@@ -139,8 +133,16 @@ int run_probe(ProbeOptions& options) {
       throw InputError(
           {options.scene.scene_path, 0, 0, "environment"},
           "--daylight-factor: the environment gives an unobstructed horizontal surface no light");
-    for (const double lux : illuminance) daylight_factor.push_back(100 * lux / sky_lux);
   }
+  nlohmann::json facts;
+  const std::vector<ProbeResult> results = probe(*scene, points, settings, &facts);
+
+  std::vector<double> illuminance(results.size());
+  for (std::size_t i = 0; i < results.size(); ++i)
+    illuminance[i] = options.efficacy * luminance(results[i].irradiance);
+  std::vector<double> daylight_factor;
+  if (options.daylight_factor)
+    for (const double lux : illuminance) daylight_factor.push_back(100 * lux / sky_lux);
   // Streamed row by row (a 4,000,000-point grid is 600 MB of text), into a temporary file renamed
   // into place.
   write_atomically(options.output, [&](const std::string& temporary) {
@@ -192,6 +194,8 @@ int run_probe(ProbeOptions& options) {
                                scale.contours > 1 ? fmt::format(", {} contour steps", scale.contours) : "");
   }
   const IlluminanceStatistics statistics = illuminance_statistics(illuminance);
+  const IlluminanceStatistics daylight =
+      options.daylight_factor ? illuminance_statistics(daylight_factor) : IlluminanceStatistics{};
   double error_sum = 0;
   for (const ProbeResult& result : results) error_sum += options.efficacy * result.irradiance_error;
   const double mean_error = error_sum / double(results.size());
@@ -210,7 +214,7 @@ int run_probe(ProbeOptions& options) {
                               {"seconds", timer.seconds()}};
     if (!options.grid.empty()) summary["grid"] = {{"size", {nu, nv}}, {"corner_and_edges", options.grid}};
     if (options.daylight_factor) {
-      const IlluminanceStatistics df = illuminance_statistics(daylight_factor);
+      const IlluminanceStatistics& df = daylight;
       summary["unobstructed_sky_illuminance_lux"] = sky_lux;
       summary["daylight_factor_percent"] = {
           {"min", df.minimum}, {"max", df.maximum}, {"average", df.average}};
@@ -233,7 +237,7 @@ int run_probe(ProbeOptions& options) {
         statistics.uniformity_min_max, mean_error,
         statistics.average > 0 ? 100 * mean_error / statistics.average : 0.0, options.output);
     if (options.daylight_factor) {
-      const IlluminanceStatistics df = illuminance_statistics(daylight_factor);
+      const IlluminanceStatistics& df = daylight;
       std::cout << fmt::format(
           "daylight factor (of {:.4g} lux on an unobstructed horizontal surface): min {:.3g} %, average "
           "{:.3g} %, max {:.3g} %\n",

@@ -55,6 +55,8 @@ class Quad final : public Shape {
   // Rows of the inverse of [edge_u edge_v] restricted to the plane: u = dual_u·(p − corner).
   Vec3 dual_u_, dual_v_;
   double area_;
+  // Squared distance from the centre within which sample_from warps (two mean diagonals).
+  double warp_distance_squared_;
 };
 
 }  // namespace candela

@@ -172,9 +172,8 @@ std::unique_ptr<Light> make_area(const JsonNode& node, Color&, const LoadContext
 std::unique_ptr<Light> make_sun(const JsonNode& node, Color&, const LoadContext& context) {
   const SunPlacement sun = read_sun_placement(node, false);
   const double illuminance = node.number("illuminance", 100000, Range::non_negative());
-  const bool coloured = node.json().contains("color") || node.json().contains("temperature");
-  const Color colour = coloured ? read_photometric_color(node) : blackbody_color(5800);
-  Color intensity = radiometric(illuminance, colour);
+  Color intensity =
+      radiometric(illuminance, read_photometric_color(node, "color", "temperature", blackbody_color(5800)));
   if (sun.position.elevation_degrees <= 0) {
     intensity = Color();
     if (context.warnings)

@@ -17,8 +17,10 @@ namespace candela {
 std::string amount_key(const JsonNode& node, std::initializer_list<const char*> keys);
 
 // The colour of a photometric amount: color_key (RGB; only its chromaticity counts: it is scaled
-// to luminance 1) or temperature_key (a blackbody, kelvin, 1,000 to 40,000); white by default.
+// to luminance 1) or temperature_key (a blackbody, kelvin, 1,000 to 40,000); `fallback` (white)
+// when neither is given.
 Color read_photometric_color(const JsonNode& node, std::string_view color_key = "color",
-                             std::string_view temperature_key = "temperature");
+                             std::string_view temperature_key = "temperature",
+                             const Color& fallback = Color(1));
 
 }  // namespace candela
