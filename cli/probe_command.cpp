@@ -186,6 +186,7 @@ int run_probe(ProbeOptions& options) {
     }
     scale.logarithmic = options.image_log;
     scale.contours = options.contours;
+    scale.unit = "lx";
     const Film picture = false_color_image(values, nu, nv, scale, ColorMap::viridis);
     write_image(picture, options.image, DisplaySettings{});
     if (!options.quiet)

@@ -5,6 +5,11 @@
 //   form-factors  Howell's closed forms through the radiosity method at three refinements, and the
 //                 furnace for every method (validate/form_factor_validation.h); CSV, PNG plots and
 //                 results.json in DIR (see docs/validation/form-factors.md).
+//   cie171        the analytical test cases of CIE 171:2006 section 5 that candela/1 expresses,
+//                 probed by every method that answers them against references derived from their
+//                 geometry (validate/cie171_validation.h); cie171.csv, summary.csv, results.json
+//                 and a plot per case in DIR (see docs/validation/cie171.md). Exit status 1 when
+//                 a method misses its tolerance somewhere (--methods a,b: only those methods).
 #include <fmt/format.h>
 
 #include <filesystem>
@@ -12,9 +17,11 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "commands.h"
 #include "thread_limit.h"
+#include "validate/cie171_validation.h"
 #include "validate/form_factor_validation.h"
 #include "validate/sphere_disc.h"
 
@@ -28,12 +35,17 @@ struct ValidateOptions {
   bool quick = false;
   bool quiet = false;
   int threads = 0;
+  std::vector<std::string> methods;
 };
 
 int run_validate(const ValidateOptions& options) {
-  if (options.name != "sphere-disc" && options.name != "form-factors")
+  if (options.name != "sphere-disc" && options.name != "form-factors" && options.name != "cie171")
     throw BadArgument(
-        fmt::format("unknown validation case '{}' (known: sphere-disc, form-factors)", options.name));
+        fmt::format("unknown validation case '{}' (known: sphere-disc, form-factors, cie171)", options.name));
+  for (const std::string& method : options.methods)
+    if (method != "local" && method != "path" && method != "radiosity" && method != "meshless")
+      throw BadArgument(fmt::format(
+          "--methods: unknown method '{}' (expected local, path, radiosity or meshless)", method));
   std::optional<tbb::global_control> thread_limit;
   limit_threads(options.threads, thread_limit);
   namespace fs = std::filesystem;
@@ -42,6 +54,20 @@ int run_validate(const ValidateOptions& options) {
   if (error || !fs::is_directory(options.out))
     throw BadArgument(fmt::format("--out: cannot create the directory '{}'{}", options.out,
                                   error ? ": " + error.message() : ""));
+  if (options.name == "cie171") {
+    Cie171Run run;
+    run.quick = options.quick;
+    run.only_methods = options.methods;
+    const nlohmann::json results =
+        run_cie171_validation(options.out, run, options.quiet ? nullptr : &std::cout);
+    const int failures = results["failures"].get<int>();
+    if (!options.quiet)
+      std::cout << fmt::format("{}; written to {}\n",
+                               failures == 0 ? std::string("every method within its tolerance")
+                                             : fmt::format("{} case-method pairs out of tolerance", failures),
+                               options.out);
+    return failures == 0 ? 0 : 1;
+  }
   if (options.name == "form-factors") {
     FormFactorRun run;
     run.quick = options.quick;
@@ -65,12 +91,16 @@ int run_validate(const ValidateOptions& options) {
 void add_validate_command(CLI::App& app, std::function<int()>& run) {
   auto options = std::make_shared<ValidateOptions>();
   CLI::App* command =
-      app.add_subcommand("validate", "Run a built-in validation case (sphere-disc, form-factors)");
-  command->add_option("name", options->name, "The case: sphere-disc or form-factors")->required();
+      app.add_subcommand("validate", "Run a built-in validation case (sphere-disc, form-factors, cie171)");
+  command->add_option("name", options->name, "The case: sphere-disc, form-factors or cie171")->required();
   command->add_option("--out", options->out, "Directory for the CSV files, plots and errors.json")
       ->required();
   command->add_flag("--quick", options->quick, "Coarser reference and sampling (for tests)");
   command->add_flag("-q,--quiet", options->quiet, "No progress lines");
+  command
+      ->add_option("--methods", options->methods,
+                   "cie171: only these methods (local, path, radiosity, meshless)")
+      ->delimiter(',');
   command->add_option("--threads", options->threads, "Worker threads (default: all cores)");
   command->callback([options, &run]() {
     run = [options]() { return run_reporting_bad_input([&] { return run_validate(*options); }); };

@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev libfmt-dev libgtest-dev libbenchmark-dev libembree-dev libnanoflann-dev
   libopenmpi-dev openmpi-bin  # MPI: distributed rendering and radiosity (src/distributed, docs/distributed.md)
   libtinygltf-dev  # glTF 2.0 mesh import (src/io/gltf_import.cpp)
+  fonts-dejavu-core  # the plots' and false-colour legends' text (src/io/text.h, through stb_truetype)
   clang-format  # .ci/run checks every C++ file against .clang-format (scripts/check-format.sh)
   chromium  # needed by the report test (tests/report_cli_test.cpp opens the HTML report headless); Debian 12 package
 )

@@ -713,6 +713,21 @@ TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
   EXPECT_EQ(one_thread, two_threads);
   EXPECT_EQ(run("validate sphere-disc --quick -q --threads -1 --out sd2", output), 2) << output;
   EXPECT_NE(output.find("--threads must be >= 0"), std::string::npos) << output;
+  // Issue 23: cie171's --methods knows the methods that probe; a bad one writes nothing.
+  EXPECT_EQ(run("validate cie171 --quick --methods path,teleport --out c171", output), 2) << output;
+  EXPECT_NE(output.find("--methods: unknown method 'teleport'"), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(directory_ / "c171"));
+  // The path tracer alone, quick: every case within its tolerance (exit 0), a summary line each.
+  ASSERT_EQ(run("validate cie171 --quick -q --methods path --out c171", output), 0) << output;
+  std::ifstream summary(directory_ / "c171" / "summary.csv");
+  std::string line;
+  int lines = 0;
+  while (std::getline(summary, line)) {
+    if (lines++ == 0) continue;  // the header
+    EXPECT_NE(line.find(",path,"), std::string::npos) << line;
+    EXPECT_NE(line.find(",pass,"), std::string::npos) << line;
+  }
+  EXPECT_EQ(lines, 1 + 10);  // 5.2, 5.3, 5.4, 5.6, 5.7, 5.8 (one ρ when quick), 5.9 and 5.10 (two skies each)
 }
 
 }  // namespace

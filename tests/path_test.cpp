@@ -14,6 +14,7 @@
 #include "integrators/path_checkpoint.h"
 #include "integrators/path_tracer.h"
 #include "integrators/scene_loading.h"
+#include "radiosity/configuration_factors.h"
 #include "render_support.h"
 #include "scratch_directory.h"
 #include "shading/bsdf.h"
@@ -62,14 +63,6 @@ void expect_estimate(const Estimate& e, double expected, const std::string& labe
     EXPECT_NEAR(e.mean[c], expected, 4 * e.error[c] + 1e-12) << label;
     EXPECT_NEAR(e.mean[c], expected, 0.01 * expected) << label;
   }
-}
-
-// Howell's "plane element to parallel rectangle, normal through a corner" (A = a/c, B = b/c).
-double point_to_parallel_rectangle_corner(double a, double b, double c) {
-  const double A = a / c, B = b / c;
-  return (A / std::sqrt(1 + A * A) * std::atan(B / std::sqrt(1 + A * A)) +
-          B / std::sqrt(1 + B * B) * std::atan(A / std::sqrt(1 + B * B))) /
-         (2 * kPi);
 }
 
 // A point one unit below the centre of an emitting unit square (E = 3, facing down): the

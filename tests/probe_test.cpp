@@ -11,25 +11,20 @@
 #include "integrators/scene_loading.h"
 #include "io/ies_reader.h"
 #include "math/constants.h"
+#include "radiosity/configuration_factors.h"
 #include "scratch_directory.h"
 #include "shading/cie_sky.h"
 
 namespace candela {
 namespace {
 
-// Howell: plane element to a parallel rectangle, the normal through a corner (A = a/c, B = b/c).
-double point_to_parallel_rectangle_corner(double a, double b, double c) {
-  const double A = a / c, B = b / c;
-  return (A / std::sqrt(1 + A * A) * std::atan(B / std::sqrt(1 + A * A)) +
-          B / std::sqrt(1 + B * B) * std::atan(A / std::sqrt(1 + B * B))) /
-         (2 * kPi);
-}
-
 // An emitting 2 × 2 square (E = 3, facing down) one unit above the origin, and nothing else; the
 // camera below it looking up, so the meshless method puts its sites on it.
-std::unique_ptr<Scene> lamp_scene() {
+std::unique_ptr<Scene> lamp_scene(const std::string& sampler = "sobol") {
   return load_scene_text(R"({"format": "candela/1",
     "camera": {"eye": [0, -1, 0], "target": [0, 1, 0], "up": [0, 0, -1], "fov": 120, "width": 32, "height": 32},
+    "path": {"sampler": ")" + sampler +
+                             R"("},
     "radiosity": {"patch_size": 0.5},
     "meshless": {"spacing": 0.1, "grid": 32, "rounds": 0},
     "shapes": [{"type": "quad", "corner": [-1, 1, -1], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2],
@@ -389,26 +384,35 @@ TEST(Probe, GridPointsSitAtCellCentresFacingUCrossV) {
 // Issue 20: the standard error falls as 1/√samples (16× the samples, a quarter of it), and the
 // errors of 64 independent estimates spread as the standard error says (their RMS deviation from
 // the exact value within 30 % of the mean standard error).
+// The estimated standard error is the spread of independent samples: with path.sampler
+// "independent" it matches the spread of 64 runs' answers and falls as 1/√samples. With the default
+// Sobol' points (issue 23: the probe's path samples are the sampler's, as the pixels') the answers
+// spread far less than that estimate — it is an upper bound there (at 64 samples a seventh of it).
 TEST(Probe, TheStandardErrorFallsAsOneOverRootSamplesAndMatchesTheSpread) {
-  const auto scene = lamp_scene();
   const double expected = 3 * 4 * point_to_parallel_rectangle_corner(1, 1, 1);
   const std::vector<ProbePoint> point = {{{0, 0, 0}, {0, 1, 0}}};
   ProbeSettings settings;
   settings.method = "path";
-  double squared_deviation = 0, error = 0;
-  constexpr int kRuns = 64;
-  for (int run = 0; run < kRuns; ++run) {
-    settings.seed = uint64_t(run);
-    settings.samples = 64;
-    const ProbeResult r = probe(*scene, point, settings, nullptr)[0];
-    squared_deviation += (luminance(r.irradiance) - expected) * (luminance(r.irradiance) - expected);
-    error += r.irradiance_error;
-  }
-  EXPECT_NEAR(std::sqrt(squared_deviation / kRuns) / (error / kRuns), 1, 0.3);
+  const auto spread_over_estimate = [&](const Scene& scene) {
+    double squared_deviation = 0, error = 0;
+    constexpr int kRuns = 64;
+    for (int run = 0; run < kRuns; ++run) {
+      settings.seed = uint64_t(run);
+      settings.samples = 64;
+      const ProbeResult r = probe(scene, point, settings, nullptr)[0];
+      squared_deviation += (luminance(r.irradiance) - expected) * (luminance(r.irradiance) - expected);
+      error += r.irradiance_error;
+    }
+    return std::sqrt(squared_deviation / kRuns) / (error / kRuns);
+  };
+  const auto independent = lamp_scene("independent");
+  EXPECT_NEAR(spread_over_estimate(*independent), 1, 0.3);
+  EXPECT_LT(spread_over_estimate(*lamp_scene()), 0.4);
   settings.seed = 1;
-  const double small = probe(*scene, point, settings, nullptr)[0].irradiance_error;
+  settings.samples = 64;
+  const double small = probe(*independent, point, settings, nullptr)[0].irradiance_error;
   settings.samples = 1024;
-  const double large = probe(*scene, point, settings, nullptr)[0].irradiance_error;
+  const double large = probe(*independent, point, settings, nullptr)[0].irradiance_error;
   EXPECT_NEAR(small / large, 4, 0.8);
 }
 

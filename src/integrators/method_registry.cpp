@@ -26,6 +26,13 @@ MethodCapabilities ray_tracer() {
   return capabilities;
 }
 
+// The local model answers probe with its direct light (integrators/probe.h); whitted does not.
+MethodCapabilities local() {
+  MethodCapabilities capabilities = ray_tracer();
+  capabilities.probe = true;
+  return capabilities;
+}
+
 MethodCapabilities raster() {
   MethodCapabilities capabilities;
   capabilities.samples_emissive_surfaces = true;
@@ -61,7 +68,7 @@ constexpr std::string_view kShadowRays =
     "shadow rays to every light, to jittered points of each emissive surface and to the environment";
 
 const std::array kEntries = {
-    MethodEntry{"local", "ray casting with the local model only (001, 000 §2)", kShadowRays, ray_tracer(),
+    MethodEntry{"local", "ray casting with the local model only (001, 000 §2)", kShadowRays, local(),
                 [](const JsonNode& settings) -> std::unique_ptr<Method> {
                   return std::make_unique<LocalMethod>(read_local_settings(settings));
                 }},

@@ -265,8 +265,7 @@ Color path_radiance(const Scene& scene, const PathSettings& settings, const Ligh
 }
 
 Color path_irradiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights,
-                      const Vec3& point, const Vec3& normal, Pcg32& rng, RayCounts& rays) {
-  IndependentSampler sampler(rng);
+                      const Vec3& point, const Vec3& normal, Sampler& sampler, RayCounts& rays) {
   Bsdf bsdf(ShadingFrame::from_normal(normal), normal);
   BsdfLobe white;
   white.type = LobeType::lambert;
@@ -277,10 +276,7 @@ Color path_irradiance(const Scene& scene, const PathSettings& settings, const Li
   BsdfSample sample;
   const double u_lobe = 0;  // one lobe
   const Vec2 u = sampler.get_2d();
-  if (!bsdf.sample(normal, u_lobe, u, sample) || sample.weight.is_black()) {
-    rng = sampler.stream();
-    return E;
-  }
+  if (!bsdf.sample(normal, u_lobe, u, sample) || sample.weight.is_black()) return E;
   PathState state;
   state.ray = Ray{offset_origin(scene, point, normal, sample.wi), sample.wi};
   state.beta = sample.weight;
@@ -290,6 +286,14 @@ Color path_irradiance(const Scene& scene, const PathSettings& settings, const Li
   state.depth = 1;
   ++rays.reflected;
   E += continue_path(scene, settings, lights, state, sampler, rays);
+  return E;
+}
+
+Color path_irradiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights,
+                      const Vec3& point, const Vec3& normal, Pcg32& rng, RayCounts& rays) {
+  IndependentSampler sampler(rng);
+  const Color E =
+      path_irradiance(scene, settings, lights, point, normal, static_cast<Sampler&>(sampler), rays);
   rng = sampler.stream();
   return E;
 }

@@ -45,6 +45,10 @@ Color path_radiance(const Scene& scene, const PathSettings& settings, const Ligh
 // The radiance a surface point with a white Lambert surface (ρ = 1) facing `normal` would
 // reflect, times π: the irradiance at (point, normal) in display units (candela probe). Every
 // light arriving over the hemisphere counts, by next-event estimation and BSDF sampling with MIS.
+// From the sampler's current sample after its first pair (the pixel point, not used here), or
+// from a random stream.
+Color path_irradiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights,
+                      const Vec3& point, const Vec3& normal, Sampler& sampler, RayCounts& rays);
 Color path_irradiance(const Scene& scene, const PathSettings& settings, const LightSampler& lights,
                       const Vec3& point, const Vec3& normal, Pcg32& rng, RayCounts& rays);
 

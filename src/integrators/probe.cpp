@@ -19,7 +19,9 @@
 #include "math/constants.h"
 #include "math/direction.h"
 #include "sampling/multiple_importance.h"
+#include "sampling/sampler.h"
 #include "sampling/warps.h"
+#include "scene/direct_irradiance.h"
 #include "shading/bsdf.h"
 #include "util/error.h"
 #include "util/input_file.h"
@@ -69,10 +71,12 @@ double standard_error(double sum, double sum_of_squares, int n) {
   return std::sqrt(std::max(0.0, (sum_of_squares - n * mean * mean) / (double(n - 1) * n)));
 }
 
-// The stream of sample `sample` at probe point `index`: apart from the image pixels' streams (a
-// seed of its own; PCG32 drops the sequence's top bit, so a flag there would not do).
+// The probe's samples apart from the image pixels' (a seed of its own; PCG32 drops the sequence's
+// top bit, so a flag there would not do).
+constexpr uint64_t kProbeSeed = 0x50524f4245ULL;  // "PROBE"
+
+// The stream of the gathering rays at probe point `index` (radiosity, meshless).
 Pcg32 probe_rng(uint64_t seed, uint64_t sample, std::size_t index) {
-  constexpr uint64_t kProbeSeed = 0x50524f4245ULL;  // "PROBE"
   return path_pixel_rng(seed ^ kProbeSeed, sample, static_cast<uint32_t>(index & 0xffffffffu),
                         static_cast<uint32_t>(uint64_t(index) >> 32));
 }
@@ -81,19 +85,25 @@ Vec3 sensor_origin(const Scene& scene, const ProbePoint& point) {
   return point.position + point.normal * scene.ray_offset(point.position);
 }
 
+// Sample s of point `index` from the scene's path.sampler (Sobol' by default: the first light
+// sample and the first bounce stratified over the point's samples, issue 23's daylight openings
+// converge as the image's pixels do), the point's number standing for the pixel, and seeded apart
+// from the image's pixels (kProbeSeed).
 ProbeResult probe_path(const Scene& scene, const PathSettings& path, const LightSampler& lights,
                        const ProbePoint& point, std::size_t index, const ProbeSettings& settings,
-                       RayCounts& rays) {
+                       Sampler& sampler, RayCounts& rays) {
   Color irradiance, radiance;
   double sum = 0, sum_of_squares = 0;
   const Ray look{sensor_origin(scene, point), point.normal};
   for (int s = 0; s < settings.samples; ++s) {
-    Pcg32 rng = probe_rng(settings.seed, uint64_t(s), index);
-    const Color sample = path_irradiance(scene, path, lights, point.position, point.normal, rng, rays);
+    sampler.start_pixel_sample(static_cast<uint32_t>(index & 0xffffffffu),
+                               static_cast<uint32_t>(uint64_t(index) >> 32), uint64_t(s));
+    sampler.get_2d();  // the pixel point: no pixel here
+    const Color sample = path_irradiance(scene, path, lights, point.position, point.normal, sampler, rays);
     irradiance += sample;
     sum += luminance(sample);
     sum_of_squares += luminance(sample) * luminance(sample);
-    radiance += path_radiance(scene, path, lights, look, rng, rays);
+    radiance += path_radiance(scene, path, lights, look, sampler, rays);
   }
   // path_irradiance is in display units already irradiance; path_radiance is π × radiance.
   return {irradiance / settings.samples, radiance / (settings.samples * kPi),
@@ -183,6 +193,22 @@ ProbeResult probe_field(const Scene& scene, const SolutionField& field, const Li
   return {irradiance, radiance, standard_error(luminance_sum, luminance_squares, n)};
 }
 
+// The local model's answer (issue 23, item 5: CIE 171's direct cases): the irradiance straight from
+// every emitter — lights, emissive surfaces (their jittered samples) and the environment — with
+// opaque shadows, scene/direct_irradiance.h's sum; no interreflection. Deterministic: no samples.
+ProbeResult probe_local(const Scene& scene, const ProbePoint& point, const ProbeSettings& settings,
+                        RayCounts& rays) {
+  const StratumJitter jitter{true, settings.seed};
+  ProbeResult result;
+  result.irradiance = direct_irradiance(scene, point.position, point.normal, EmitterSet::everything, jitter);
+  ++rays.primary;
+  Intersection hit;
+  const Ray look{sensor_origin(scene, point), point.normal};
+  result.radiance =
+      (scene.intersect(look, hit) ? scene.material_of(hit).emission : scene.sky_along(look.direction)) / kPi;
+  return result;
+}
+
 [[noreturn]] void fail(const std::string& path, int line, int column, const std::string& message) {
   throw InputError({path, line, column, {}}, message);
 }
@@ -207,18 +233,25 @@ std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>
     field = make_radiosity_field(scene, settings.quiet);
   } else if (settings.method == "meshless") {
     field = make_meshless_field(scene);
-  } else if (settings.method != "path") {
+  } else if (settings.method != "path" && settings.method != "local") {
     throw std::invalid_argument("probe: method \"" + settings.method +
                                 "\" cannot be probed (expected one of: " + probe_method_names() + ")");
   }
   std::vector<ProbeResult> results(points.size());
   tbb::enumerable_thread_specific<RayCounts> counts;
+  const std::unique_ptr<Sampler> prototype =
+      create_sampler(path.sampler, SamplerParameters{settings.seed ^ kProbeSeed, uint64_t(settings.samples)});
+  tbb::enumerable_thread_specific<std::unique_ptr<Sampler>> samplers([&] { return prototype->clone(); });
   tbb::enumerable_thread_specific<uint64_t> uncovered;
   ProgressReporter progress("probe", points.size(), "points", settings.quiet);
   tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t i) {
-    results[i] =
-        field ? probe_field(scene, *field, lights, points[i], i, settings, uncovered.local(), counts.local())
-              : probe_path(scene, path, lights, points[i], i, settings, counts.local());
+    if (field)
+      results[i] =
+          probe_field(scene, *field, lights, points[i], i, settings, uncovered.local(), counts.local());
+    else if (settings.method == "local")
+      results[i] = probe_local(scene, points[i], settings, counts.local());
+    else
+      results[i] = probe_path(scene, path, lights, points[i], i, settings, *samplers.local(), counts.local());
     progress.advance();
   });
   progress.finish();

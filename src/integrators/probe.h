@@ -1,6 +1,6 @@
 // `candela probe` (SPEC "Product surface", issue 9 item 4): irradiance and radiance at given points
-// and normals, by the path tracer, classic radiosity or the meshless method — Radiance's rtrace -I
-// for lighting designers' sensor points and work planes.
+// and normals, by the path tracer, classic radiosity, the meshless method or the local model —
+// Radiance's rtrace -I for lighting designers' sensor points and work planes.
 //
 // At a sensor point x facing n:
 //   irradiance E = ∫ L(x, ω) cos θ dω over n's hemisphere (W/m² in the scene's units), found
@@ -11,6 +11,9 @@
 //                rays and as many points on the emissive surfaces, combined by MIS; plus, for the
 //                meshless method, the direct light of the scene's point/spot/directional/area
 //                lights at x with shadows (rays never hit them);
+//     local      the direct light alone: every emitter's samples (lights, the jittered samples
+//                of the emissive surfaces, the environment) with opaque shadows, as the local
+//                model lights a white diffuse point (scene/direct_irradiance.h); deterministic;
 //   radiance L = the radiance arriving at x from direction n (looking along n, what a luminance
 //     meter at x aimed along n reads): B/π at the hit of the ray from x along n.
 // The sensor is not part of the scene: it shadows nothing, and rays leave x offset along n.
@@ -59,14 +62,14 @@ struct ProbeResult {
 };
 
 struct ProbeSettings {
-  std::string method = "path";  // path, radiosity or meshless
+  std::string method = "path";  // path, radiosity, meshless or local
   int samples = 256;            // estimates per point (path) or hemisphere rays (the others)
   uint64_t seed = 0;
   bool quiet = true;
 };
 
 // The methods probe() answers for.
-// "path, radiosity, meshless": the methods whose capabilities say probe.
+// "local, radiosity, meshless, path": the methods whose capabilities say probe.
 std::string probe_method_names();
 
 // Throws std::invalid_argument for another method. Fills facts (when not null) with what the

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "io/pixel_font.h"
+#include "io/text.h"
 #include "math/srgb.h"
 
 namespace candela {
@@ -152,11 +153,24 @@ Film false_color_image(const std::vector<double>& values, int width, int height,
   const Color white(1.0);
   const int scale = label_scale(width);
   const int tick_top = bar_top + kBarRows, label_top = tick_top + kTickRows + kLabelGap;
-  const std::string low_label = format_scale_value(low), high_label = format_scale_value(high);
+  const std::string suffix = range.unit.empty() ? "" : " " + range.unit;
+  const std::string low_label = format_scale_value(low) + suffix,
+                    high_label = format_scale_value(high) + suffix;
   const std::string middle_label =
-      format_scale_value(range.logarithmic ? std::sqrt(low * high) : low + (high - low) / 2);
-  const int low_width = pixel_text_width(low_label, scale), high_width = pixel_text_width(high_label, scale);
-  const int middle_width = pixel_text_width(middle_label, scale);
+      format_scale_value(range.logarithmic ? std::sqrt(low * high) : low + (high - low) / 2) + suffix;
+  // With a unit, TrueType text of the band's label rows and margin (its descenders there).
+  const double text_height = (kPixelFontHeight * scale + kBottomMargin) * 1.3;
+  const auto width_of = [&](const std::string& label) {
+    return range.unit.empty() ? pixel_text_width(label, scale) : text_width(label, text_height);
+  };
+  const auto draw_label = [&](int x, const std::string& label) {
+    if (range.unit.empty())
+      draw_pixel_text(film, x, label_top, label, white, scale);
+    else
+      draw_text(film, x, label_top - static_cast<int>(0.2 * text_height), label, white, text_height);
+  };
+  const int low_width = width_of(low_label), high_width = width_of(high_label);
+  const int middle_width = width_of(middle_label);
   const int space = kPixelFontAdvance * scale;  // at least one character's advance between labels
   const auto tick = [&](int x) {
     for (int y = tick_top; y < tick_top + kTickRows; ++y)
@@ -165,16 +179,16 @@ Film false_color_image(const std::vector<double>& values, int width, int height,
   };
   tick(0);
   for (int k = 1; k < steps; ++k) tick(static_cast<int>(std::lround(double(k) / steps * (width - 1))));
-  draw_pixel_text(film, 0, label_top, low_label, white, scale);
+  draw_label(0, low_label);
   const bool high_fits = low_width + space + high_width <= width;
   if (high_fits) {
     tick(width - scale);
-    draw_pixel_text(film, width - high_width, label_top, high_label, white, scale);
+    draw_label(width - high_width, high_label);
   }
   const int middle_x = (width - middle_width) / 2;
   if (high_fits && middle_x >= low_width + space && middle_x + middle_width + space <= width - high_width) {
     tick(width / 2 - scale / 2);
-    draw_pixel_text(film, middle_x, label_top, middle_label, white, scale);
+    draw_label(middle_x, middle_label);
   }
   return film;
 }

@@ -59,6 +59,9 @@ struct FalseColorScale {
   double low = 0, high = 1;
   bool logarithmic = false;
   int contours = 0;  // 0 or 1: none
+  // The quantity's unit ("lx", "cd/m²"): when given, the bar's labels carry it ("0 lx", "600 lx")
+  // in DejaVu Sans (io/text.h) instead of the 3×5 pixel font, in the same band.
+  std::string unit;
   // Where value falls on the scale, t in [0, 1] (values outside take the ends; NaN stays NaN).
   double position(double value) const;
 };

@@ -49,6 +49,16 @@ inline double point_to_coaxial_disc(double r, double h) {
   return r * r / (h * h + r * r);
 }
 
+// "Plane element to a parallel rectangle" a × b at distance c, the element's normal through a
+// corner of it, A = a/c, B = b/c:
+// F = 1/(2π) [A/√(1+A²) atan(B/√(1+A²)) + B/√(1+B²) atan(A/√(1+B²))].
+inline double point_to_parallel_rectangle_corner(double a, double b, double c) {
+  const double A = a / c, B = b / c;
+  return (A / std::sqrt(1 + A * A) * std::atan(B / std::sqrt(1 + A * A)) +
+          B / std::sqrt(1 + B * B) * std::atan(A / std::sqrt(1 + B * B))) /
+         (2 * kPi);
+}
+
 // "Differential planar element to a sphere", the element facing the sphere's centre at distance h
 // from it: F = (r/h)².
 inline double point_to_sphere(double r, double h) {

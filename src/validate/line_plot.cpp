@@ -8,6 +8,7 @@
 #include "camera/tone_map.h"
 #include "io/image_writer.h"
 #include "io/pixel_font.h"
+#include "io/text.h"
 
 namespace candela {
 
@@ -15,6 +16,7 @@ namespace {
 
 constexpr int kScale = 2;  // font pixels per glyph pixel
 constexpr int kGlyphAdvance = kPixelFontAdvance * kScale;
+constexpr double kTextHeight = 15;  // pixels of a title, an axis label or a curve's name
 
 class Canvas {
  public:
@@ -84,9 +86,12 @@ Film draw_line_plot(const std::vector<PlotPanel>& panels, int panel_width, int p
   canvas.clip_x1 = film.width();
   canvas.clip_y1 = film.height();
   canvas.fill(0, 0, film.width(), film.height(), white);
-  constexpr int left = 64, right = 12, top = 12, bottom = 28;
+  constexpr int right = 12;
   for (int p = 0; p < static_cast<int>(panels.size()); ++p) {
     const PlotPanel& panel = panels[p];
+    // Room for the labels only where there are some (the unlabelled plots keep their layout).
+    const int left = 64 + (panel.y_label.empty() ? 0 : 20), top = 12 + (panel.title.empty() ? 0 : 20),
+              bottom = 28 + (panel.x_label.empty() ? 0 : 20);
     double y_min = panel.y_min, y_max = panel.y_max;
     if (!(y_max > y_min)) {
       y_min = 0;
@@ -140,18 +145,47 @@ Film draw_line_plot(const std::vector<PlotPanel>& panels, int panel_width, int p
         if (std::isfinite(c.y[i]) && std::isfinite(c.y[i + 1]))
           canvas.line(px(c.x[i]), py(c.y[i]), px(c.x[i + 1]), py(c.y[i + 1]), c.color, c.width, c.dashed,
                       run);
+      if (c.markers)
+        for (std::size_t i = 0; i < n; ++i)
+          if (std::isfinite(c.y[i])) {
+            const int mx = static_cast<int>(std::lround(px(c.x[i]))),
+                      my = static_cast<int>(std::lround(py(c.y[i])));
+            canvas.fill(mx - 2, my - 2, mx + 3, my + 3, c.color);
+          }
     }
+    canvas.clip_x0 = 0;
+    canvas.clip_x1 = film.width();
+    canvas.clip_y0 = 0;
+    canvas.clip_y1 = film.height();
+    if (!panel.title.empty())
+      draw_text(film, (x0 + x1 - text_width(panel.title, kTextHeight)) / 2, 6, panel.title, black,
+                kTextHeight);
+    if (!panel.x_label.empty())
+      draw_text(film, (x0 + x1 - text_width(panel.x_label, kTextHeight)) / 2, y1 + 26, panel.x_label, black,
+                kTextHeight);
+    if (!panel.y_label.empty())
+      draw_text(film, p * panel_width + 4, (y0 + y1 + text_width(panel.y_label, kTextHeight)) / 2,
+                panel.y_label, black, kTextHeight, TextDirection::upward);
     // Legend: a box per curve, top right.
     if (p == 0) {
       canvas.clip_x0 = 0;
       canvas.clip_x1 = film.width();
       canvas.clip_y0 = 0;
       canvas.clip_y1 = film.height();
+      // Named curves: the names left of their boxes on a white ground.
+      int names = 0;
+      for (const PlotCurve& c : panel.curves)
+        names = std::max(names, c.label.empty() ? 0 : text_width(c.label, kTextHeight));
+      if (names > 0)
+        canvas.fill(x1 - 34 - names, y0 + 2, x1 - 2, y0 + 4 + 18 * static_cast<int>(panel.curves.size()),
+                    white);
       int by = y0 + 6;
       for (const PlotCurve& c : panel.curves) {
         canvas.fill(x1 - 26, by - 1, x1 - 6, by + 11, black);
         canvas.fill(x1 - 25, by, x1 - 7, by + 10, c.color);
-        by += 16;
+        if (!c.label.empty())
+          draw_text(film, x1 - 30 - text_width(c.label, kTextHeight), by - 3, c.label, black, kTextHeight);
+        by += names > 0 ? 18 : 16;
       }
     }
   }

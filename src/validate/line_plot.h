@@ -1,8 +1,9 @@
 // A small line-plot rasterizer for the validation cases (SPEC §13): one or more panels side by side,
 // each with axes, tick marks labelled with numbers (the 3×5 pixel font of io/pixel_font.h),
-// one colored polyline per curve and a legend of colored boxes. It draws into a Film (linear RGB
-// in [0, 1]) that io/image_writer.h writes as PNG; there is no text other than the tick numbers, so
-// the legend's meaning is told where the plot is shown (docs/validation/).
+// one colored polyline per curve and a legend of colored boxes; a panel's title, axis labels and
+// the curves' names, when given, in DejaVu Sans (io/text.h) — otherwise the legend's meaning is
+// told where the plot is shown (docs/validation/). It draws into a Film (linear RGB in [0, 1])
+// that io/image_writer.h writes as PNG.
 #pragma once
 
 #include <string>
@@ -18,13 +19,16 @@ struct PlotCurve {
   Color color;
   int width = 1;  // line width in pixels
   bool dashed = false;
+  bool markers = false;  // a small square at each point
+  std::string label;     // the legend's name for it ("" : a box alone)
 };
 
 struct PlotPanel {
   std::vector<PlotCurve> curves;
-  double x_min = 0, x_max = 1;    // the x range shown
-  double y_min = 0, y_max = 0;    // the y range shown; y_max <= y_min: from the curves (with 0)
-  double x_tick = 0, y_tick = 0;  // tick spacing; 0: about five ticks
+  double x_min = 0, x_max = 1;          // the x range shown
+  double y_min = 0, y_max = 0;          // the y range shown; y_max <= y_min: from the curves (with 0)
+  double x_tick = 0, y_tick = 0;        // tick spacing; 0: about five ticks
+  std::string title, x_label, y_label;  // "" : none (and no room kept for it)
 };
 
 // Panels side by side, each panel_width × panel_height pixels; the legend (one box per curve of

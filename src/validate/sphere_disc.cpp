@@ -427,14 +427,14 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
   write_text_atomically(
       out / "reference_sphere.csv",
       csv("alpha_deg,direct,total", alpha_degrees, {&reference.sphere_direct, &reference.sphere_total}));
-  const PlotPanel disc_axes{{}, 0, scene.disc_radius, 0, 0, 5, 0};
-  const PlotPanel sphere_axes{{}, -90, 90, 0, 0, 30, 0};
+  const PlotPanel disc_axes{{}, 0, scene.disc_radius, 0, 0, 5, 0, {}, {}, {}};
+  const PlotPanel sphere_axes{{}, -90, 90, 0, 0, 30, 0, {}, {}, {}};
   {
     PlotPanel disc = disc_axes, sphere = sphere_axes;
-    disc.curves = {{reference.u, reference.disc_direct, kReferenceDirect, 2, false},
-                   {reference.u, reference.disc_total, kReferenceTotal, 2, false}};
-    sphere.curves = {{alpha_degrees, reference.sphere_direct, kReferenceDirect, 2, false},
-                     {alpha_degrees, reference.sphere_total, kReferenceTotal, 2, false}};
+    disc.curves = {{reference.u, reference.disc_direct, kReferenceDirect, 2, false, false, {}},
+                   {reference.u, reference.disc_total, kReferenceTotal, 2, false, false, {}}};
+    sphere.curves = {{alpha_degrees, reference.sphere_direct, kReferenceDirect, 2, false, false, {}},
+                     {alpha_degrees, reference.sphere_total, kReferenceTotal, 2, false, false, {}}};
     write_plot(out / "reference.png", {disc, sphere});
   }
 
@@ -498,16 +498,16 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
 
       const Color color = basis_color(kind);
       PlotPanel disc = disc_axes, sphere = sphere_axes;
-      disc.curves = {{reference.u, reference.disc_direct, kReferenceDirect, 2, false},
-                     {reference.u, reference.disc_total, kReferenceTotal, 2, false},
-                     {reference.u, curves.disc_direct_mean, lighter(color), 2, true},
-                     {reference.u, curves.disc_mean, color, 3, false},
-                     {reference.u, curves.disc_meridian, color, 1, false}};
-      sphere.curves = {{alpha_degrees, reference.sphere_direct, kReferenceDirect, 2, false},
-                       {alpha_degrees, reference.sphere_total, kReferenceTotal, 2, false},
-                       {alpha_degrees, curves.sphere_direct_mean, lighter(color), 2, true},
-                       {alpha_degrees, curves.sphere_mean, color, 3, false},
-                       {alpha_degrees, curves.sphere_meridian, color, 1, false}};
+      disc.curves = {{reference.u, reference.disc_direct, kReferenceDirect, 2, false, false, {}},
+                     {reference.u, reference.disc_total, kReferenceTotal, 2, false, false, {}},
+                     {reference.u, curves.disc_direct_mean, lighter(color), 2, true, false, {}},
+                     {reference.u, curves.disc_mean, color, 3, false, false, {}},
+                     {reference.u, curves.disc_meridian, color, 1, false, false, {}}};
+      sphere.curves = {{alpha_degrees, reference.sphere_direct, kReferenceDirect, 2, false, false, {}},
+                       {alpha_degrees, reference.sphere_total, kReferenceTotal, 2, false, false, {}},
+                       {alpha_degrees, curves.sphere_direct_mean, lighter(color), 2, true, false, {}},
+                       {alpha_degrees, curves.sphere_mean, color, 3, false, false, {}},
+                       {alpha_degrees, curves.sphere_meridian, color, 1, false, false, {}}};
       write_plot(out / (name + ".png"), {disc, sphere});
       by_spacing[spacing].emplace_back(kind, curves);
     }
@@ -527,11 +527,11 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
     best[key] = winner;
     // All three bases against the reference's total.
     PlotPanel disc = disc_axes, sphere = sphere_axes;
-    disc.curves = {{reference.u, reference.disc_total, kReferenceTotal, 2, false}};
-    sphere.curves = {{alpha_degrees, reference.sphere_total, kReferenceTotal, 2, false}};
+    disc.curves = {{reference.u, reference.disc_total, kReferenceTotal, 2, false, false, {}}};
+    sphere.curves = {{alpha_degrees, reference.sphere_total, kReferenceTotal, 2, false, false, {}}};
     for (const auto& [kind, curves] : by_spacing[spacing]) {
-      disc.curves.push_back({reference.u, curves.disc_mean, basis_color(kind), 2, false});
-      sphere.curves.push_back({alpha_degrees, curves.sphere_mean, basis_color(kind), 2, false});
+      disc.curves.push_back({reference.u, curves.disc_mean, basis_color(kind), 2, false, false, {}});
+      sphere.curves.push_back({alpha_degrees, curves.sphere_mean, basis_color(kind), 2, false, false, {}});
     }
     write_plot(out / fmt::format("compare_{}.png", key), {disc, sphere});
   }
