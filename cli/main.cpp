@@ -51,6 +51,7 @@ int main(int argc, char** argv) {
   candela::cli::add_compare_command(app, run);
   candela::cli::add_probe_command(app, run);
   candela::cli::add_report_command(app, run);
+  candela::cli::add_falsecolor_command(app, run);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

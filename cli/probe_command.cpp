@@ -133,6 +133,13 @@ int run_probe(ProbeOptions& options) {
       throw InputError(
           {options.scene.scene_path, 0, 0, "environment"},
           "--daylight-factor: the environment gives an unobstructed horizontal surface no light");
+    // A daylight factor is of the daylight alone: electric light in the scene is counted too.
+    if (!scene->lights.empty() || !scene->surface_lights.empty())
+      std::cerr << fmt::format(
+          "candela: warning: --daylight-factor: the scene has {} light(s) and {} emissive surface(s) besides "
+          "the "
+          "sky, whose light the factor counts too (--set 'lights=[]' leaves the daylight alone)\n",
+          scene->lights.size(), scene->surface_lights.size());
   }
   nlohmann::json facts;
   const std::vector<ProbeResult> results = probe(*scene, points, settings, &facts);
@@ -174,19 +181,8 @@ int run_probe(ProbeOptions& options) {
         values[std::size_t(nv - 1 - j) * nu + i] = value;
         if (std::isfinite(value)) high = std::max(high, value);
       }
-    if (!(high > 0)) high = 1;
-    // The scale: --scale, else 0 to the maximum (a logarithmic one: three decades below it, as
-    // Radiance's falsecolor -log 3).
-    FalseColorScale scale;
-    scale.high = high;
-    scale.low = options.image_log ? high / 1000 : 0;
-    if (!options.image_scale.empty()) {
-      scale.low = options.image_scale[0];
-      scale.high = options.image_scale[1];
-    }
-    scale.logarithmic = options.image_log;
-    scale.contours = options.contours;
-    scale.unit = "lx";
+    const FalseColorScale scale =
+        false_color_scale(high, options.image_scale, options.image_log, options.contours, "lx");
     const Film picture = false_color_image(values, nu, nv, scale, ColorMap::viridis);
     write_image(picture, options.image, DisplaySettings{});
     if (!options.quiet)

@@ -914,6 +914,39 @@ TEST_F(Cli, ProbeGridWritesAFalseColorImageOfTheIlluminance) {
   EXPECT_NE(output.find("illuminance scale: 0 to"), std::string::npos) << output;
 }
 
+// Issue 23, item 4: falsecolor turns a rendered linear image into luminance (cd/m²: 179 × Y / π
+// of a value that is π × the radiance), the film's exposure undone; an 8-bit image, a non-PNG
+// output and an output over the input are refused before anything is written.
+TEST_F(Cli, FalsecolorShowsTheLuminanceOfARenderedImage) {
+  write("glow.json", R"({"format": "candela/1",
+    "camera": {"eye": [0, 0, 3], "target": [0, 0, 0], "fov": 40, "width": 16, "height": 12},
+    "render": {"method": "local"}, "film": {"exposure": 1.5},
+    "shapes": [{"type": "quad", "corner": [-5, -5, 0], "edge_u": [10, 0, 0], "edge_v": [0, 10, 0],
+                "material": {"kd": 0, "emission_luminance": 250, "emission_temperature": 4000}}]})");
+  std::string output;
+  ASSERT_EQ(run("render glow.json -q -o glow.pfm", output), 0) << output;
+  ASSERT_EQ(run("falsecolor glow.pfm -o glow-fc.png --exposure 1.5 --log --contours 4 --json glow.json.out",
+                output),
+            0)
+      << output;
+  std::ifstream json_file(directory_ / "glow.json.out");
+  const nlohmann::json json = nlohmann::json::parse(json_file);
+  EXPECT_NEAR(json["luminance"]["average"].get<double>(), 250, 250 * 1e-6);
+  EXPECT_NEAR(json["luminance"]["maximum"].get<double>(), 250, 250 * 1e-6);
+  EXPECT_EQ(json["unit"], "cd/m2");
+  EXPECT_TRUE(fs::exists(directory_ / "glow-fc.png"));
+  ASSERT_EQ(run("render glow.json -q -o glow.png", output), 0) << output;
+  EXPECT_EQ(run("falsecolor glow.png -o glow-fc2.png", output), 2);
+  EXPECT_NE(output.find("holds no luminances"), std::string::npos) << output;
+  EXPECT_EQ(run("falsecolor glow.pfm -o glow.exr", output), 2);
+  EXPECT_NE(output.find("expected a .png"), std::string::npos) << output;
+  EXPECT_EQ(run("falsecolor glow.pfm -o glow-fc3.png --json glow.pfm", output), 2);
+  EXPECT_NE(output.find("an input of this run"), std::string::npos) << output;
+  EXPECT_EQ(run("falsecolor glow.pfm -o glow-fc3.png --scale 5,1", output), 2);
+  EXPECT_FALSE(fs::exists(directory_ / "glow-fc2.png"));
+  EXPECT_FALSE(fs::exists(directory_ / "glow-fc3.png"));
+}
+
 // Issue 23, item 4: the work plane's Emin, Eavg, Emax and uniformities in the summary and the
 // JSON (the CSV's own values), and the false-color scale options.
 TEST_F(Cli, ProbeGridReportsTheUniformitiesAndTheirJson) {

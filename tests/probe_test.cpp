@@ -2,6 +2,7 @@
 // classic radiosity and the meshless method, against Howell's point-to-rectangle form factor.
 #include "integrators/probe.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -102,6 +103,68 @@ TEST(Probe, EmissiveSurfacesGivenInCandelaPerSquareMetreGiveTheirLux) {
   EXPECT_GT(results[0].irradiance.r, results[0].irradiance.b);  // warm
 }
 
+// Issue 23, item 1: an emissive surface given in lumens sends them from each side, spread over
+// its area: 1,000 lm over the 2 × 2 m square is 250 lm/m², a luminance of 250/π cd/m² — and each
+// object of the material has its own area (a 1 × 1 m square of the same material: 1,000 lm/m²).
+// An object of the material with no bounded area is warned about.
+TEST(Probe, EmissiveSurfacesGivenInLumensSpreadThemOverTheirArea) {
+  const auto scene = load_scene_text(R"({"format": "candela/1",
+    "camera": {"eye": [0, -1, 0], "target": [0, 1, 0], "up": [0, 0, -1], "fov": 120, "width": 8, "height": 8},
+    "render": {"surface_light_samples": 64},
+    "materials": {"lamp": {"kd": 0, "emission_luminous_flux": 1000}},
+    "shapes": [{"type": "quad", "corner": [-1, 1, -1], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2], "material": "lamp"},
+               {"type": "quad", "corner": [9.5, 1, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1], "material": "lamp"},
+               {"type": "plane", "point": [0, 30, 0], "normal": [0, -1, 0], "material": "lamp"}]})",
+                                     "lamp.json", ".");
+  ProbeSettings settings;
+  settings.method = "local";
+  const std::vector<ProbeResult> results =
+      probe(*scene, {{{0, 0, 0}, {0, 1, 0}}, {{10, 0, 0}, {0, 1, 0}}}, settings);
+  EXPECT_NEAR(kDefaultLuminousEfficacy * luminance(results[0].radiance), 250 / kPi, 1e-9);
+  EXPECT_NEAR(kDefaultLuminousEfficacy * luminance(results[1].radiance), 1000 / kPi, 1e-9);
+  // E = M F: 250 lm/m² × Howell's 0.55411 under the big square's centre.
+  const double expected = 250 * 4 * point_to_parallel_rectangle_corner(1, 1, 1);
+  EXPECT_NEAR(kDefaultLuminousEfficacy * luminance(results[0].irradiance), expected, 0.01 * expected);
+  ASSERT_EQ(scene->warnings.size(), 1u);
+  EXPECT_NE(scene->warnings[0].find("lights nothing"), std::string::npos) << scene->warnings[0];
+}
+
+// Issue 23, item 2: an area luminaire — a Lambertian file (I = 1000 cd cos γ) over a 1 m square —
+// is a Lambertian emitter of luminance I0/a² = 1000 cd/m²: 0.5 m below its centre E = π L F with F
+// four corner rectangles of 0.5 × 0.5 at 0.5 (the point luminaire would give I0/h² = 4000 lx, 2.1
+// times that), for the local model's strata, the path tracer's random points and radiosity's.
+TEST(Probe, AreaLuminairesSpreadTheFilesDistributionOverTheirSize) {
+  const testing::ScratchDirectory directory("candela-area-luminaire");
+  {
+    std::ofstream ies(directory.path() / "lambert.ies");
+    ies << "IESNA:LM-63-2002\n[TEST] Lambertian\nTILT=NONE\n1 -1 1 91 1 1 2 0 0 0\n1 1 0\n";
+    for (int g = 0; g <= 90; ++g) ies << g << (g == 90 ? "\n" : " ");
+    ies << "0\n";
+    for (int g = 0; g <= 90; ++g)
+      ies << fmt::format("{:.9f}", 1000 * std::cos(g * kPi / 180)) << (g == 90 ? "\n" : " ");
+  }
+  const auto lux_below = [&](const std::string& method, const std::string& size) {
+    const auto scene = load_scene_text(R"({"format": "candela/1",
+      "camera": {"eye": [0, -1, 0], "target": [0, 1, 0], "up": [0, 0, -1], "width": 8, "height": 8},
+      "shapes": [{"type": "quad", "corner": [-3, -0.01, -3], "edge_u": [0, 0, 6], "edge_v": [6, 0, 0], "material": {"kd": 0}}],
+      "lights": [{"type": "luminaire", "file": "lambert.ies", "position": [0, 0.5, 0], "target": [0, 0, 0])" +
+                                           size + R"(}]})",
+                                       "luminaire.json", directory.path().string());
+    ProbeSettings settings;
+    settings.method = method;
+    settings.samples = 4096;
+    return kDefaultLuminousEfficacy *
+           luminance(probe(*scene, {{{0, 0, 0}, {0, 1, 0}}}, settings)[0].irradiance);
+  };
+  const double expected = kPi * 1000 * 4 * point_to_parallel_rectangle_corner(0.5, 0.5, 0.5);
+  EXPECT_NEAR(lux_below("local", R"(, "size": [1, 1], "samples": 64)"), expected, 0.002 * expected);
+  EXPECT_NEAR(lux_below("path", R"(, "size": [1, 1])"), expected, 0.005 * expected);
+  EXPECT_NEAR(lux_below("radiosity", R"(, "size": [1, 1], "samples": 64)"), expected, 0.002 * expected);
+  EXPECT_NEAR(lux_below("local", ""), 4000, 1e-6);  // the point luminaire
+  EXPECT_THROW(lux_below("local", R"(, "size": [0, 0])"), InputError);
+  EXPECT_THROW(lux_below("local", R"(, "size": [1])"), InputError);
+}
+
 // Issue 23, item 2: a luminaire of an IES file, its nadir down and C0 along +x (so C90 is −z,
 // LM-63's counter-clockwise seen from above): a quadrant-symmetric table of 100 cd in C0 and 50 cd
 // in C90 at γ = 45°; the sensors at γ = 45° in each plane receive I cos 45° / 8.
@@ -175,6 +238,39 @@ TEST(Probe, TheSunShinesFromWhereTheAlmanacPutsIt) {
   EXPECT_EQ(night, 0);
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_NE(warnings[0].find("the sun is below the horizon"), std::string::npos) << warnings[0];
+}
+
+// Issue 23, item 3: the sun as a disc. Under the straight edge of a black roof, in line with the
+// disc's centre, half the disc is hidden: half the light, for every method that probes (the local
+// model's and radiosity's 16 strata, the path tracer's random directions); a disc's radius of
+// angle beyond the edge either way, all or nothing. An angular diameter of 0 is the sharp shadow
+// (before, every directional light was: the sun's disc was not modelled).
+TEST(Probe, TheSunsDiscCastsAPenumbraHalfLitUnderTheEdge) {
+  const auto lux_at = [](double x, const std::string& method, double diameter) {
+    const auto scene = load_scene_text(fmt::format(R"({{"format": "candela/1",
+      "camera": {{"eye": [0, 0.5, 3], "target": [0, 0, 0], "width": 8, "height": 8}},
+      "lights": [{{"type": "directional", "direction": [0, -1, 0], "illuminance": 1000, "angular_diameter": {}}}],
+      "shapes": [{{"type": "quad", "corner": [-10, 1, -10], "edge_u": [0, 0, 20], "edge_v": [10, 0, 0],
+                   "material": {{"kd": 0}}}}]}})",
+                                                   diameter),
+                                       "edge.json", ".");
+    ProbeSettings settings;
+    settings.method = method;
+    settings.samples = 4096;
+    return kDefaultLuminousEfficacy *
+           luminance(probe(*scene, {{{x, 0, 0}, {0, 1, 0}}}, settings)[0].irradiance);
+  };
+  const double reach = std::tan(2.5 * kPi / 180) * 1.05;  // a little more than the 5° disc's radius, 1 m down
+  // Facing the disc's centre, a surface gets the mean cosine of the disc's directions,
+  // ∫ cos dω / Ω = (1 + cos 2.5°) / 2, of the 1000 lx.
+  const double full = 1000 * (1 + std::cos(2.5 * kPi / 180)) / 2;
+  for (const std::string method : {"local", "path", "radiosity"}) {
+    EXPECT_NEAR(lux_at(0, method, 5), full / 2, 15) << method;
+    EXPECT_NEAR(lux_at(reach, method, 5), full, 0.05) << method;
+    EXPECT_NEAR(lux_at(-reach, method, 5), 0, 1e-6) << method;
+    EXPECT_NEAR(lux_at(1e-3, method, 0), 1000, 1e-6) << method;
+    EXPECT_NEAR(lux_at(-1e-3, method, 0), 0, 1e-6) << method;
+  }
 }
 
 // Issue 23, item 3: the CIE standard general sky lights an unobstructed horizontal sensor with

@@ -98,6 +98,21 @@ double FalseColorScale::position(double value) const {
   return clamp_unit((value - low) / (high - low));
 }
 
+FalseColorScale false_color_scale(double maximum, const std::vector<double>& range, bool logarithmic,
+                                  int contours, const std::string& unit) {
+  FalseColorScale scale;
+  scale.high = maximum > 0 ? maximum : 1;
+  scale.low = logarithmic ? scale.high / 1000 : 0;
+  if (range.size() == 2) {
+    scale.low = range[0];
+    scale.high = range[1];
+  }
+  scale.logarithmic = logarithmic;
+  scale.contours = contours;
+  scale.unit = unit;
+  return scale;
+}
+
 Film false_color_image(const std::vector<double>& values, int width, int height, double low, double high,
                        ColorMap map) {
   FalseColorScale scale;

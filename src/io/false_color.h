@@ -66,6 +66,12 @@ struct FalseColorScale {
   double position(double value) const;
 };
 
+// The scale of a false-colour picture (Radiance's falsecolor): `range` {LO, HI} when given (two
+// values), else 0 to `maximum` (1 when it is not positive) — logarithmic: three decades below it,
+// as falsecolor -log 3 — with `contours` steps and the unit's name on the bar.
+FalseColorScale false_color_scale(double maximum, const std::vector<double>& range, bool logarithmic,
+                                  int contours, const std::string& unit);
+
 // values: width·height numbers, row by row, top row first. The scale runs from low (t = 0) to
 // high (t = 1); values outside it take the end colors. Throws std::invalid_argument when the
 // sizes disagree, width or height is not positive, or !(low < high) (both must be finite; low > 0

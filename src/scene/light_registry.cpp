@@ -104,15 +104,31 @@ std::unique_ptr<Light> make_point(const JsonNode& node, Color&, const LoadContex
                                       photometric_attenuation(node));
 }
 
-// "intensity" (RGB, W/m² on a surface facing it) or "illuminance" (lux on such a surface).
+// A directional light's disc: "angular_diameter" (degrees, 0 to 10; 0: one direction) and, for a
+// disc, "samples" (per side of its strata, 1 to 64, default 4).
+struct DirectionalDisc {
+  double radians = 0;
+  int samples = 1;
+};
+DirectionalDisc read_directional_disc(const JsonNode& node, double default_degrees) {
+  DirectionalDisc disc;
+  disc.radians = node.number("angular_diameter", default_degrees, {0, 10, false, false}) * kPi / 180;
+  disc.samples = node.integer("samples", 4, {1, 64, false, false});
+  return disc;
+}
+
+// "intensity" (RGB, W/m² on a surface facing it) or "illuminance" (lux on such a surface); a disc
+// of directions by "angular_diameter" (default 0).
 std::unique_ptr<Light> make_directional(const JsonNode& node, Color&, const LoadContext&) {
   const JsonNode direction = node.at("direction");
   const Vec3 d = direction.as_vec3();
   if (!direction_of(d)) direction.fail("must be non-zero");
-  if (amount_key(node, {"intensity", "illuminance"}) == "intensity")
-    return std::make_unique<DirectionalLight>(d, intensity_of(node));
-  return std::make_unique<DirectionalLight>(
-      d, radiometric(node.number("illuminance", 0, Range::non_negative()), read_photometric_color(node)));
+  const DirectionalDisc disc = read_directional_disc(node, 0);
+  const Color intensity =
+      amount_key(node, {"intensity", "illuminance"}) == "intensity"
+          ? intensity_of(node)
+          : radiometric(node.number("illuminance", 0, Range::non_negative()), read_photometric_color(node));
+  return std::make_unique<DirectionalLight>(d, intensity, "directional", disc.radians, disc.samples);
 }
 
 std::unique_ptr<Light> make_spot(const JsonNode& node, Color&, const LoadContext&) {
@@ -168,7 +184,8 @@ std::unique_ptr<Light> make_area(const JsonNode& node, Color&, const LoadContext
 // scene's north, default −z; y is up and east is north × up: +x for the default), and its
 // "illuminance" on a surface facing it (lx, default 100,000: a clear day's direct normal
 // illuminance) of "color" or "temperature" (default 5,800 K). Below the horizon it gives nothing
-// (with a warning). Its 0.53° disc is not modelled: shadows are sharp.
+// (with a warning). Its disc: "angular_diameter" (default 0.53°, the sun's mean; 0: sharp shadows)
+// and "samples" (per side, default 4).
 std::unique_ptr<Light> make_sun(const JsonNode& node, Color&, const LoadContext& context) {
   const SunPlacement sun = read_sun_placement(node, false);
   const double illuminance = node.number("illuminance", 100000, Range::non_negative());
@@ -181,13 +198,14 @@ std::unique_ptr<Light> make_sun(const JsonNode& node, Color&, const LoadContext&
           "{}: the sun is below the horizon ({:.2f}°) on {} at {}: it gives no light", node.path(),
           sun.position.elevation_degrees, node.at("date").as_string(), node.at("time").as_string()));
   }
-  return std::make_unique<DirectionalLight>(-sun.toward_sun, intensity, "sun");
+  const DirectionalDisc disc = read_directional_disc(node, 0.53);
+  return std::make_unique<DirectionalLight>(-sun.toward_sun, intensity, "sun", disc.radians, disc.samples);
 }
 
 // A measured luminaire: "file" (.ies or .ldt), "position", "target" (where its nadir points),
 // "c0" (the direction of its C0 plane, default: the world axis least along the nadir), and
 // "multiplier" (every candela × it) or "luminous_flux" (lm: the table scaled to emit that),
-// with "color" or "temperature".
+// with "color" or "temperature"; "size" makes it an area luminaire (scene/luminaire_light.h).
 std::unique_ptr<Light> make_luminaire(const JsonNode& node, Color&, const LoadContext& context) {
   const JsonNode file = node.at("file");
   const std::string name = file.as_string();
@@ -225,8 +243,19 @@ std::unique_ptr<Light> make_luminaire(const JsonNode& node, Color&, const LoadCo
     if (!(flux > 0)) file.fail("\"" + name + "\" emits nothing: it cannot be scaled to a luminous_flux");
     scale = node.number("luminous_flux", 0, Range::non_negative()) / flux;
   }
+  // An area luminaire: "size" [width along C0, length along C90] in metres, "samples" per side.
+  double width = 0, length = 0;
+  int samples = 1;
+  if (node.has("size")) {
+    const JsonNode size = node.at("size");
+    if (size.size() != 2) size.fail("expected [width, length] in metres");
+    width = size.element(0).as_number(Range::non_negative());
+    length = size.element(1).as_number(Range::non_negative());
+    if (!(width > 0 || length > 0)) size.fail("a width or a length must be above 0");
+    samples = node.integer("samples", 4, {1, 64, false, false});
+  }
   return std::make_unique<LuminaireLight>(photometry, position, nadir, c0, scale,
-                                          read_photometric_color(node));
+                                          read_photometric_color(node), width, length, samples);
 }
 
 const std::array kEntries = {

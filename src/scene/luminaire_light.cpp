@@ -10,7 +10,8 @@
 namespace candela {
 
 LuminaireLight::LuminaireLight(std::shared_ptr<const Photometry> photometry, const Vec3& position,
-                               const Vec3& nadir, const Vec3& c0, double scale, const Color& colour)
+                               const Vec3& nadir, const Vec3& c0, double scale, const Color& colour,
+                               double width, double depth, int samples)
     : photometry_(std::move(photometry)), position_(position), scale_(scale) {
   if (!(length(nadir) > 0)) throw std::invalid_argument("the nadir direction must be non-zero");
   nadir_ = normalize(nadir);
@@ -23,6 +24,10 @@ LuminaireLight::LuminaireLight(std::shared_ptr<const Photometry> photometry, con
   c90_ = cross(c0_, nadir_);
   per_candela_ = radiometric(1, colour);
   flux_ = photometry_->flux() * scale_;
+  if (!(width >= 0 && depth >= 0)) throw std::invalid_argument("a luminaire's size must not be negative");
+  across_c0_ = c0_ * width;
+  across_c90_ = c90_ * depth;
+  samples_ = width > 0 || depth > 0 ? std::max(1, samples) : 1;
 }
 
 double LuminaireLight::candela_toward(const Vec3& direction) const {
@@ -34,15 +39,30 @@ double LuminaireLight::candela_toward(const Vec3& direction) const {
 }
 
 bool LuminaireLight::illuminate(const Vec3& point, LightSample& sample) const {
+  return illuminate_from({0.5, 0.5}, point, 1, sample);
+}
+
+bool LuminaireLight::illuminate_sample(const Vec3& point, int index, const Vec2& within,
+                                       LightSample& sample) const {
+  if (samples_ == 1) return index == 0 && illuminate(point, sample);
+  return illuminate_from(stratum_point(index, samples_, within), point, 1.0 / (samples_ * samples_), sample);
+}
+
+bool LuminaireLight::illuminate_random(const Vec3& point, const Vec2& u, LightSample& sample) const {
+  return illuminate_from(samples_ == 1 ? Vec2{0.5, 0.5} : u, point, 1, sample);
+}
+
+bool LuminaireLight::illuminate_from(const Vec2& u, const Vec3& point, double share,
+                                     LightSample& sample) const {
   sample = {};
-  const Vec3 from_light = point - position_;
+  const Vec3 from_light = point - (position_ + across_c0_ * (u.x - 0.5) + across_c90_ * (u.y - 0.5));
   const double distance = length(from_light);
   if (!(distance > 0)) return false;
   const double candela = candela_toward(from_light / distance);
   if (!(candela > 0)) return false;
   sample.distance = distance;
   sample.direction = -from_light / distance;
-  sample.intensity = per_candela_ * (candela / (distance * distance));
+  sample.intensity = per_candela_ * (share * candela / (distance * distance));
   return true;
 }
 

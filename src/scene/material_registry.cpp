@@ -121,12 +121,18 @@ Material read_classic(const JsonNode& node, const LoadContext& context, Specular
   }
   material.absorption = node.color("absorption", Color(), Range::non_negative());
   // 000 eq. 6-7's E (W/m², radiance E/π), or "emission_luminance" (cd/m²: E = π L / 179 lm/W)
+  // or "emission_luminous_flux" (lm from each side of each object: the loader divides by its area)
   // of "emission_color" or "emission_temperature".
-  if (amount_key(node, {"emission", "emission_luminance"}) == "emission")
+  const std::string amount = amount_key(node, {"emission", "emission_luminance", "emission_luminous_flux"});
+  if (amount == "emission") {
     material.emission = node.color("emission", Color(), Range::non_negative());
-  else
+  } else if (amount == "emission_luminance") {
     material.emission = radiometric(kPi * node.number("emission_luminance", 0, Range::non_negative()),
                                     read_photometric_color(node, "emission_color", "emission_temperature"));
+  } else {
+    material.emission_flux = node.number("emission_luminous_flux", 0, Range::non_negative());
+    material.emission_flux_color = read_photometric_color(node, "emission_color", "emission_temperature");
+  }
   if (const auto transparency = node.get("transparency"))
     material.transparency = read_transparency(*transparency);
   if (const auto bump = node.get("bump")) material.bump = read_bump(*bump, context);

@@ -23,6 +23,7 @@
 #include "scene/material_registry.h"
 #include "scene/shape_registry.h"
 #include "shading/environment.h"
+#include "shading/photometric_units.h"
 #include "util/input_file.h"
 #include "util/registry.h"
 
@@ -84,6 +85,7 @@ class SceneReader {
     read_materials();
     read_lights();
     read_shapes();
+    spread_luminous_flux();
     make_surface_lights();
     root_.finish();
     scene->prepare();
@@ -279,6 +281,35 @@ class SceneReader {
       }
       scene_->objects.push_back(std::move(object));
       object_locations_.push_back(node.location());
+    }
+  }
+
+  // Issue 23: a material given in lumens ("emission_luminous_flux") becomes, for each object that
+  // uses it, a copy emitting Φ / A (A the object's area of that material) from each side; an
+  // object of no area there (an unbounded plane) emits nothing, with a warning.
+  void spread_luminous_flux() {
+    for (std::size_t index = 0; index < scene_->objects.size(); ++index) {
+      const SceneObject& object = scene_->objects[index];
+      std::map<uint32_t, double> area_of;  // material → the object's area of it
+      for (uint32_t p = object.first_primitive; p < object.first_primitive + object.primitive_count; ++p) {
+        const Primitive& primitive = scene_->primitives[p];
+        if (scene_->materials[primitive.material].emission_flux > 0)
+          area_of[primitive.material] += primitive.shape->area();
+      }
+      for (const auto& [material, area] : area_of) {
+        Material copy = scene_->materials[material];
+        if (area > 0 && std::isfinite(area)) {
+          copy.emission = radiometric(copy.emission_flux / area, copy.emission_flux_color);
+        } else if (context_.warnings) {
+          context_.warnings->push_back(fmt::format(
+              "{}: \"{}\" has no bounded area of material \"{}\": its emission_luminous_flux lights nothing",
+              object_locations_[index].describe(), object.name, copy.name));
+        }
+        copy.emission_flux = 0;
+        const uint32_t own = context_.add_material(std::move(copy));
+        for (uint32_t p = object.first_primitive; p < object.first_primitive + object.primitive_count; ++p)
+          if (scene_->primitives[p].material == material) scene_->primitives[p].material = own;
+      }
     }
   }
 
