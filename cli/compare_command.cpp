@@ -4,7 +4,8 @@
 // MSE, PSNR, mean and max absolute error, mean luminances and their ratio, printed as a table;
 // --json writes them as JSON; --diff writes a false-color picture of the per-pixel luminance
 // difference with its color bar beneath (io/false_color.h). PNG and other 8-bit files are
-// decoded from sRGB to linear first; EXR and PFM are compared as stored. See docs/compare.md.
+// decoded from sRGB to linear first; EXR and PFM are compared as stored; --luminance compares
+// their luminances in cd/m² (efficacy × Y / π, issue 23). See docs/compare.md.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -19,7 +20,9 @@
 #include "commands.h"
 #include "io/false_color.h"
 #include "io/image_writer.h"
+#include "math/constants.h"
 #include "output_paths.h"
+#include "shading/photometric_units.h"
 #include "util/atomic_file.h"
 #include "validate/image_comparison.h"
 
@@ -30,6 +33,8 @@ namespace {
 struct CompareOptions {
   std::string image, reference, mask, diff, diff_metric = "abs", json;
   std::optional<double> diff_scale;
+  bool luminance = false;  // compare the luminances in cd/m² (efficacy × Y / π)
+  double efficacy = kLuminousEfficacy;
 };
 
 LinearImage read(const std::string& path, const char* role) {
@@ -96,8 +101,24 @@ int run_compare(const CompareOptions& options) {
   }
   if (!options.json.empty()) check_writable(options.json, "--json");
 
-  const LinearImage image = read(options.image, "A");
-  const LinearImage reference = read(options.reference, "B (reference)");
+  LinearImage image = read(options.image, "A");
+  LinearImage reference = read(options.reference, "B (reference)");
+  // Issue 23: in luminance, cd/m² — efficacy × Y / π of a rendered value (π × the radiance), the one
+  // conversion of shading/photometric_units.h — of linear images only.
+  if (options.luminance) {
+    if (!(std::isfinite(options.efficacy) && options.efficacy > 0))
+      throw BadArgument("--efficacy must be a positive number (lm/W)");
+    for (LinearImage* linear : {&image, &reference}) {
+      if (linear->srgb_decoded)
+        throw BadArgument(
+            fmt::format("--luminance: {} is an 8-bit display image; compare .exr or .pfm renders",
+                        linear == &image ? options.image : options.reference));
+      Film& film = linear->film;
+      for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x)
+          film.at(x, y) = Color(options.efficacy / kPi * luminance(film.at(x, y)));
+    }
+  }
   const Film& a = image.film;
   const Film& b = reference.film;
   if (a.width() != b.width() || a.height() != b.height())
@@ -124,6 +145,8 @@ int run_compare(const CompareOptions& options) {
   // The table.
   const char* channels[3] = {"R", "G", "B"};
   std::string table;
+  if (options.luminance)
+    table += fmt::format("units        luminance, cd/m² (efficacy {} lm/W × Y / π)\n", options.efficacy);
   table += fmt::format("A            {}\n", describe(options.image, image));
   table += fmt::format("B reference  {}\n", describe(options.reference, reference));
   if (mask_image)
@@ -155,6 +178,7 @@ int run_compare(const CompareOptions& options) {
   if (diff) write_image(diff->film, options.diff, DisplaySettings{});
   if (!options.json.empty()) {
     nlohmann::json json = result.to_json();
+    json["units"] = options.luminance ? "cd/m2" : "linear";
     json["image"] = {{"path", options.image}, {"srgb_decoded", image.srgb_decoded}};
     json["reference"] = {{"path", options.reference}, {"srgb_decoded", reference.srgb_decoded}};
     json["mask"] = options.mask.empty() ? nlohmann::json(nullptr) : nlohmann::json(options.mask);
@@ -189,6 +213,9 @@ void add_compare_command(CLI::App& app, std::function<int()>& run) {
   command->add_option("--diff-scale", options->diff_scale,
                       "Fixed top of the --diff scale (signed: -X .. X); default: the largest difference");
   command->add_option("--json", options->json, "Write the metrics as JSON");
+  command->add_flag("--luminance", options->luminance,
+                    "Compare luminances in cd/m² (efficacy × Y / π; linear .exr/.pfm images only)");
+  command->add_option("--efficacy", options->efficacy, "With --luminance: lm/W (default 179)");
   command->callback([options, &run]() {
     run = [options]() { return run_reporting_bad_input([&] { return run_compare(*options); }); };
   });

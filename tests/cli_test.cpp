@@ -916,7 +916,8 @@ TEST_F(Cli, ProbeGridWritesAFalseColorImageOfTheIlluminance) {
 
 // Issue 23, item 4: falsecolor turns a rendered linear image into luminance (cd/m²: 179 × Y / π
 // of a value that is π × the radiance), the film's exposure undone; an 8-bit image, a non-PNG
-// output and an output over the input are refused before anything is written.
+// output and an output over the input are refused before anything is written; compare --luminance
+// speaks cd/m² as well.
 TEST_F(Cli, FalsecolorShowsTheLuminanceOfARenderedImage) {
   write("glow.json", R"({"format": "candela/1",
     "camera": {"eye": [0, 0, 3], "target": [0, 0, 0], "fov": 40, "width": 16, "height": 12},
@@ -945,6 +946,14 @@ TEST_F(Cli, FalsecolorShowsTheLuminanceOfARenderedImage) {
   EXPECT_EQ(run("falsecolor glow.pfm -o glow-fc3.png --scale 5,1", output), 2);
   EXPECT_FALSE(fs::exists(directory_ / "glow-fc2.png"));
   EXPECT_FALSE(fs::exists(directory_ / "glow-fc3.png"));
+  // compare --luminance measures in cd/m² too (the image as stored: 250 × 2^1.5), linear images only.
+  ASSERT_EQ(run("compare glow.pfm glow.pfm --luminance --json compare.json", output), 0) << output;
+  std::ifstream compare_file(directory_ / "compare.json");
+  const nlohmann::json compared = nlohmann::json::parse(compare_file);
+  EXPECT_EQ(compared["units"], "cd/m2");
+  EXPECT_NEAR(compared["mean_luminance"].get<double>(), 250 * std::exp2(1.5), 1e-3) << compared.dump();
+  EXPECT_EQ(run("compare glow.png glow.pfm --luminance", output), 2);
+  EXPECT_NE(output.find("8-bit display image"), std::string::npos) << output;
 }
 
 // Issue 23, item 4: the work plane's Emin, Eavg, Emax and uniformities in the summary and the
