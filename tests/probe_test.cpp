@@ -342,6 +342,27 @@ TEST(Probe, PhotometricLightsRefuseContradictions) {
   EXPECT_NE(error_of(R"({"type": "sun", "date": "2026-02-03", "time": "12h"})")
                 .find("lights[0].time: expected a local time"),
             std::string::npos);
+  // Issue 23's bad input: a date or time out of range, a place off the globe — located.
+  for (const auto& [light, expected] : std::vector<std::pair<std::string, std::string>>{
+           {R"({"type": "sun", "date": "2026-13-01", "time": "12:00"})", "lights[0].date: expected a date"},
+           {R"({"type": "sun", "date": "2200-06-21", "time": "12:00"})", "lights[0].date: expected a date"},
+           {R"({"type": "sun", "date": "2026-06-21", "time": "25:00"})",
+            "lights[0].time: expected a local time"},
+           {R"({"type": "sun", "date": "2026-06-21", "time": "12:61"})",
+            "lights[0].time: expected a local time"},
+           {R"({"type": "sun", "date": "2026-06-21", "time": "12:00", "latitude": 91})",
+            "lights[0].latitude"},
+           {R"({"type": "sun", "date": "2026-06-21", "time": "12:00", "latitude": -90.5})",
+            "lights[0].latitude"},
+           {R"({"type": "sun", "date": "2026-06-21", "time": "12:00", "longitude": 181})",
+            "lights[0].longitude"},
+           {R"({"type": "sun", "date": "2026-06-21", "time": "12:00", "timezone": 15})",
+            "lights[0].timezone"},
+           {R"({"type": "sun", "date": "2026-06-21", "time": "12:00", "angular_diameter": 11})",
+            "lights[0].angular_diameter"},
+           {R"({"type": "point", "position": [0, 2, 0], "luminous_intensity": 100, "units": "foot-candles"})",
+            "unknown key \"units\""}})
+    EXPECT_NE(error_of(light).find(expected), std::string::npos) << light << ": " << error_of(light);
   // A radiometric light takes no colour (its intensity is the colour).
   EXPECT_NE(error_of(R"({"type": "point", "position": [0, 2, 0], "intensity": 1, "color": [1, 0, 0]})")
                 .find("unknown key \"color\""),

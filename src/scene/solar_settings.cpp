@@ -1,5 +1,7 @@
 #include "scene/solar_settings.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -10,9 +12,13 @@ namespace candela {
 
 namespace {
 
+// The years Michalsky's almanac is used for here: its ±0.01° holds 1950–2050 and degrades slowly
+// outside; beyond 1900–2100 a date is refused rather than placed wrongly.
+constexpr int kFirstYear = 1900, kLastYear = 2100;
+
 bool read_date(const std::string& text, int& year, int& month, int& day) {
   return text.size() == 10 && std::sscanf(text.c_str(), "%d-%d-%d", &year, &month, &day) == 3 &&
-         day_of_year(year, month, day) > 0;
+         year >= kFirstYear && year <= kLastYear && day_of_year(year, month, day) > 0;
 }
 
 bool read_time(const std::string& text, double& hours) {
@@ -41,7 +47,8 @@ SunPlacement read_sun_placement(const JsonNode& node, bool allow_angles) {
     const double longitude = node.number("longitude", 0, {-180, 180, false, false});
     int year = 0, month = 0, day = 0;
     const JsonNode date = node.at("date");
-    if (!read_date(date.as_string(), year, month, day)) date.fail("expected a date YYYY-MM-DD");
+    if (!read_date(date.as_string(), year, month, day))
+      date.fail(fmt::format("expected a date YYYY-MM-DD of the years {}–{}", kFirstYear, kLastYear));
     double hours = 12;
     const JsonNode time = node.at("time");
     if (!read_time(time.as_string(), hours)) time.fail("expected a local time HH:MM or HH:MM:SS");
