@@ -20,7 +20,6 @@
 #include "commands.h"
 #include "io/false_color.h"
 #include "io/image_writer.h"
-#include "math/constants.h"
 #include "output_paths.h"
 #include "shading/photometric_units.h"
 #include "util/atomic_file.h"
@@ -113,10 +112,7 @@ int run_compare(const CompareOptions& options) {
         throw BadArgument(
             fmt::format("--luminance: {} is an 8-bit display image; compare .exr or .pfm renders",
                         linear == &image ? options.image : options.reference));
-      Film& film = linear->film;
-      for (int y = 0; y < film.height(); ++y)
-        for (int x = 0; x < film.width(); ++x)
-          film.at(x, y) = Color(options.efficacy / kPi * luminance(film.at(x, y)));
+      linear->film = luminance_film(linear->film, options.efficacy);
     }
   }
   const Film& a = image.film;

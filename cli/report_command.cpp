@@ -22,6 +22,7 @@
 #include "output_paths.h"
 #include "scene/scene.h"
 #include "scene_options.h"
+#include "shading/photometric_units.h"
 #include "util/input_file.h"
 #include "validate/cross_method_report.h"
 #include "validate/image_comparison.h"
@@ -38,6 +39,7 @@ struct ReportOptions {
   std::string reference;
   std::optional<int> spp;
   bool equal_time = false;
+  bool luminance = false;  // errors in cd/m² (issue 23)
   int threads = 0;
   bool quiet = false;
 };
@@ -123,6 +125,7 @@ int run_report(ReportOptions& options) {
   }
   settings.path_spp = options.spp;
   settings.equal_time = options.equal_time;
+  settings.luminance_efficacy = options.luminance ? kLuminousEfficacy : 0;
   settings.quiet = options.quiet;
   settings.scene_path = options.scene.scene_path;
   settings.scene_text = read_input_file(options.scene.scene_path, "the scene file");
@@ -182,6 +185,8 @@ void add_report_command(CLI::App& app, std::function<int()>& run) {
       ->excludes(reference_spp);
   command->add_option("--spp", options->spp,
                       "Samples per pixel of the \"path\" entry (default: the scene's path.spp)");
+  command->add_flag("--luminance", options->luminance,
+                    "Measure the errors in luminance, cd/m² (179 lm/W × Y / π) instead of linear RGB");
   command->add_flag("--equal-time", options->equal_time,
                     "Also render path limited to each other method's render time, and report its errors");
   command

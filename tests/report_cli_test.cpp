@@ -192,6 +192,19 @@ TEST_F(ReportCli, ReusesAReferenceImage) {
   const double a = first["methods"][0]["errors"]["rmse"], b = second["methods"][0]["errors"]["rmse"];
   EXPECT_NEAR(a, b, 1e-5 * a);
   EXPECT_TRUE(fs::is_regular_file(directory_ / "second" / "reference.png"));
+  // Issue 23: --luminance measures in cd/m², 179/π × each image's Rec. 709 luminance.
+  ASSERT_EQ(
+      candela("report room.json --methods whitted --reference first/reference.exr --luminance -q -o lum",
+              output),
+      0)
+      << output;
+  std::ifstream lum_file(directory_ / "lum" / "report.json");
+  const nlohmann::json lum = nlohmann::json::parse(lum_file);
+  EXPECT_EQ(second["units"], "linear");
+  EXPECT_EQ(lum["units"], "cd/m2");
+  const double linear_mean = second["methods"][0]["errors"]["mean_luminance"];
+  EXPECT_NEAR(lum["methods"][0]["errors"]["mean_luminance"].get<double>(),
+              179 / 3.14159265358979 * linear_mean, 1e-6 * linear_mean * 179);
   // The wrong size is refused.
   EXPECT_EQ(
       candela(

@@ -354,9 +354,15 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
   if (options.log) options.log("comparing with the reference");
   std::vector<std::vector<double>> differences;
   std::vector<double> all;
+  report.luminance_efficacy = options.luminance_efficacy;
+  const bool photometric = options.luminance_efficacy > 0;
+  const Film reference_measured = photometric
+                                      ? luminance_film(report.reference.image, options.luminance_efficacy)
+                                      : report.reference.image;
   for (CrossMethodEntry& entry : report.entries) {
-    entry.errors = compare_images(entry.image, report.reference.image);
-    differences.push_back(difference_values(entry.image, report.reference.image, DifferenceMetric::absolute));
+    const Film measured = photometric ? luminance_film(entry.image, options.luminance_efficacy) : entry.image;
+    entry.errors = compare_images(measured, reference_measured);
+    differences.push_back(difference_values(measured, reference_measured, DifferenceMetric::absolute));
     for (const double value : differences.back())
       if (std::isfinite(value)) all.push_back(value);
   }
@@ -371,7 +377,10 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
   report.difference_scale = scale > 0 ? scale : 1.0;  // identical images: 0 .. 1
   for (std::size_t i = 0; i < report.entries.size(); ++i) {
     const Film picture =
-        false_color_image(differences[i], width, height, 0.0, report.difference_scale, ColorMap::viridis);
+        false_color_image(differences[i], width, height,
+                          false_color_scale(report.difference_scale, {0.0, report.difference_scale}, false, 0,
+                                            photometric ? "cd/m²" : ""),
+                          ColorMap::viridis);
     write_image(picture, (directory / (report.entries[i].key + "-diff.png")).string(), DisplaySettings{});
   }
 
@@ -422,6 +431,9 @@ nlohmann::json cross_method_json(const CrossMethodReport& report) {
           {"height", report.height},
           {"reference", reference},
           {"methods", methods},
+          {"units", report.luminance_efficacy > 0 ? "cd/m2" : "linear"},
+          {"luminous_efficacy",
+           report.luminance_efficacy > 0 ? nlohmann::json(report.luminance_efficacy) : nlohmann::json()},
           {"difference",
            {{"metric", "absolute luminance difference |Y - Y_ref| (Rec. 709)"},
             {"color_map", "viridis"},
@@ -499,9 +511,15 @@ std::string cross_method_html(const CrossMethodReport& report) {
   html += fmt::format(
       "<p class=\"note\">Difference pictures show |Y &minus; Y<sub>ref</sub>| (Rec. 709 luminance) in the "
       "viridis "
-      "color map, all on one scale: <b>0 to {}</b> (dark violet 0, yellow {}), drawn as a bar beneath "
+      "color map, all on one scale: <b>0 to {}{}</b> (dark violet 0, yellow {}), drawn as a bar beneath "
       "each.</p>\n",
-      format_scale_value(report.difference_scale), format_scale_value(report.difference_scale));
+      format_scale_value(report.difference_scale), report.luminance_efficacy > 0 ? " cd/m²" : "",
+      format_scale_value(report.difference_scale));
+  if (report.luminance_efficacy > 0)
+    html += fmt::format(
+        "<p class=\"note\">Errors in <b>luminance, cd/m²</b>: {} lm/W × Y / &pi; of each image and of the "
+        "reference.</p>\n",
+        report.luminance_efficacy);
   html += "<div class=\"gallery\">\n<div class=\"row\">\n<figure>" + image("reference.png", "reference") +
           "<figcaption>reference" +
           (report.reference_rendered ? fmt::format(": path, {} spp, {} s", report.reference_spp,

@@ -54,6 +54,9 @@ struct CrossMethodOptions {
   std::string scene_text;              // the scene file's text (its method objects are shown)
   std::vector<std::string> overrides;  // --set key=value, shown on the page
   int threads = 0;                     // worker threads the run may use
+  // Issue 23: > 0 measures the errors in luminance, cd/m² (validate/image_comparison.h's
+  // luminance_film at this efficacy, lm/W); 0: on the linear RGB the methods render.
+  double luminance_efficacy = 0;
   // Told one line per step ("rendering radiosity"); may be empty.
   std::function<void(const std::string&)> log;
 };
@@ -82,6 +85,7 @@ struct CrossMethodReport {
   uint64_t reference_seed = 0;
   std::vector<CrossMethodEntry> entries;  // the methods in the order asked, then the equal-time runs
   double difference_scale = 1;            // the top of every difference picture's scale
+  double luminance_efficacy = 0;          // > 0: errors and differences in cd/m² (the options')
   // Each method's object of the scene file ("whitted", "radiosity", ...) or null (defaults).
   nlohmann::json settings = nlohmann::json::object();
   std::vector<std::string> overrides;

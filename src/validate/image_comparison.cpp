@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "io/image_reader.h"
+#include "math/constants.h"
 
 namespace candela {
 
@@ -155,6 +156,14 @@ LinearImage read_linear_image(const std::string& path) {
   // RgbImage rows run bottom first; Film rows top first.
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) result.film.at(x, y) = texture.texel(x, height - 1 - y);
+  return result;
+}
+
+Film luminance_film(const Film& image, double efficacy) {
+  Film result(image.width(), image.height());
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x)
+      result.at(x, y) = Color(efficacy / kPi * luminance(image.at(x, y)));
   return result;
 }
 

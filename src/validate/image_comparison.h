@@ -68,6 +68,11 @@ enum class DifferenceMetric {
 std::vector<double> difference_values(const Film& image, const Film& reference, DifferenceMetric metric,
                                       const std::vector<uint8_t>* mask = nullptr);
 
+// Issue 23: a rendered image as its luminance in cd/m², grey: efficacy × Y / π per pixel (a
+// rendered value is π × the radiance; Y Rec. 709; the efficacy of shading/photometric_units.h by
+// default) — what compare --luminance and report --luminance measure.
+Film luminance_film(const Film& image, double efficacy);
+
 // An image file as linear RGB: 8- and 16-bit formats (PNG, JPG, ...) decoded from sRGB, EXR, PFM
 // and HDR taken as stored (shading/texture_image.h reads them). Throws std::runtime_error naming
 // the file.
