@@ -90,6 +90,8 @@ DiffPicture make_diff(const CompareOptions& options, const Film& image, const Fi
 }
 
 int run_compare(const CompareOptions& options) {
+  if (!options.luminance && options.efficacy != kLuminousEfficacy)
+    throw BadArgument("--efficacy needs --luminance (it converts to cd/m²)");
   if (options.diff_scale && !(std::isfinite(*options.diff_scale) && *options.diff_scale > 0))
     throw BadArgument(fmt::format("--diff-scale {}: must be a positive number", *options.diff_scale));
   if (!options.diff.empty()) {

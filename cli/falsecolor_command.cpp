@@ -73,6 +73,7 @@ int run_falsecolor(const FalseColorOptions& options) {
   std::vector<double> values;
   values.reserve(film.pixels().size());
   double low = std::numeric_limits<double>::infinity(), high = 0, sum = 0;
+  std::size_t finite = 0;
   for (const Color& pixel : film.pixels()) {
     const double value = to_luminance * luminance(pixel);
     values.push_back(value);
@@ -80,12 +81,14 @@ int run_falsecolor(const FalseColorOptions& options) {
     low = std::min(low, value);
     high = std::max(high, value);
     sum += value;
+    ++finite;
   }
+  if (finite == 0) throw BadArgument(options.image + ": no pixel has a finite value");
   const FalseColorScale scale =
       false_color_scale(high, options.scale, options.log, options.contours, "cd/m²");
   write_image(false_color_image(values, film.width(), film.height(), scale, ColorMap::viridis),
               options.output, DisplaySettings{});
-  const double average = sum / double(values.size());
+  const double average = sum / double(finite);  // over the finite pixels (a NaN is drawn grey)
   if (!options.json.empty()) {
     const nlohmann::json json = {{"image", options.image},
                                  {"unit", "cd/m2"},

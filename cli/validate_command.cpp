@@ -42,6 +42,8 @@ int run_validate(const ValidateOptions& options) {
   if (options.name != "sphere-disc" && options.name != "form-factors" && options.name != "cie171")
     throw BadArgument(
         fmt::format("unknown validation case '{}' (known: sphere-disc, form-factors, cie171)", options.name));
+  if (!options.methods.empty() && options.name != "cie171")
+    throw BadArgument("--methods is for cie171 (sphere-disc and form-factors run their own methods)");
   for (const std::string& method : options.methods)
     if (method != "local" && method != "path" && method != "radiosity" && method != "meshless")
       throw BadArgument(fmt::format(

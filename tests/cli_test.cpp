@@ -727,7 +727,11 @@ TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
     EXPECT_NE(line.find(",path,"), std::string::npos) << line;
     EXPECT_NE(line.find(",pass,"), std::string::npos) << line;
   }
-  EXPECT_EQ(lines, 1 + 10);  // 5.2, 5.3, 5.4, 5.6, 5.7, 5.8 (one ρ when quick), 5.9 and 5.10 (two skies each)
+  EXPECT_EQ(lines,
+            1 + 12);  // 5.2, 5.3, 5.4, 5.6, 5.7, 5.8 (one ρ when quick), 5.9, 5.10, 5.11 (two skies each)
+  // --methods is cie171's: the other cases refuse it.
+  EXPECT_EQ(run("validate sphere-disc --quick --methods path --out sd3", output), 2) << output;
+  EXPECT_NE(output.find("--methods is for cie171"), std::string::npos) << output;
 }
 
 }  // namespace
@@ -952,6 +956,8 @@ TEST_F(Cli, FalsecolorShowsTheLuminanceOfARenderedImage) {
   const nlohmann::json compared = nlohmann::json::parse(compare_file);
   EXPECT_EQ(compared["units"], "cd/m2");
   EXPECT_NEAR(compared["mean_luminance"].get<double>(), 250 * std::exp2(1.5), 1e-3) << compared.dump();
+  EXPECT_EQ(run("compare glow.pfm glow.pfm --efficacy 100", output), 2);
+  EXPECT_NE(output.find("--efficacy needs --luminance"), std::string::npos) << output;
   EXPECT_EQ(run("compare glow.png glow.pfm --luminance", output), 2);
   EXPECT_NE(output.find("8-bit display image"), std::string::npos) << output;
 }

@@ -159,6 +159,8 @@ TEST(Probe, AreaLuminairesSpreadTheFilesDistributionOverTheirSize) {
   const double expected = kPi * 1000 * 4 * point_to_parallel_rectangle_corner(0.5, 0.5, 0.5);
   EXPECT_NEAR(lux_below("local", R"(, "size": [1, 1], "samples": 64)"), expected, 0.002 * expected);
   EXPECT_NEAR(lux_below("path", R"(, "size": [1, 1])"), expected, 0.005 * expected);
+  // One stratum is still the whole rectangle for the path tracer's random points.
+  EXPECT_NEAR(lux_below("path", R"(, "size": [1, 1], "samples": 1)"), expected, 0.005 * expected);
   EXPECT_NEAR(lux_below("radiosity", R"(, "size": [1, 1], "samples": 64)"), expected, 0.002 * expected);
   EXPECT_NEAR(lux_below("local", ""), 4000, 1e-6);  // the point luminaire
   EXPECT_THROW(lux_below("local", R"(, "size": [0, 0])"), InputError);
@@ -246,13 +248,13 @@ TEST(Probe, TheSunShinesFromWhereTheAlmanacPutsIt) {
 // angle beyond the edge either way, all or nothing. An angular diameter of 0 is the sharp shadow
 // (before, every directional light was: the sun's disc was not modelled).
 TEST(Probe, TheSunsDiscCastsAPenumbraHalfLitUnderTheEdge) {
-  const auto lux_at = [](double x, const std::string& method, double diameter) {
+  const auto lux_at = [](double x, const std::string& method, double diameter, int samples = 4) {
     const auto scene = load_scene_text(fmt::format(R"({{"format": "candela/1",
       "camera": {{"eye": [0, 0.5, 3], "target": [0, 0, 0], "width": 8, "height": 8}},
-      "lights": [{{"type": "directional", "direction": [0, -1, 0], "illuminance": 1000, "angular_diameter": {}}}],
+      "lights": [{{"type": "directional", "direction": [0, -1, 0], "illuminance": 1000, "angular_diameter": {}, "samples": {}}}],
       "shapes": [{{"type": "quad", "corner": [-10, 1, -10], "edge_u": [0, 0, 20], "edge_v": [10, 0, 0],
                    "material": {{"kd": 0}}}}]}})",
-                                                   diameter),
+                                                   diameter, samples),
                                        "edge.json", ".");
     ProbeSettings settings;
     settings.method = method;
@@ -269,6 +271,11 @@ TEST(Probe, TheSunsDiscCastsAPenumbraHalfLitUnderTheEdge) {
     EXPECT_NEAR(lux_at(reach, method, 5), full, 0.05) << method;
     EXPECT_NEAR(lux_at(-reach, method, 5), 0, 1e-6) << method;
     EXPECT_NEAR(lux_at(1e-3, method, 0), 1000, 1e-6) << method;
+    // One stratum is still the whole disc (a random direction of it per shading point or path
+    // vertex), not its centre: in the shadow's half of the penumbra some light arrives.
+    double penumbra = 0;
+    for (int k = 1; k <= 16; ++k) penumbra += lux_at(-0.9 * reach * k / 16, method, 5, 1);
+    EXPECT_GT(penumbra, 0) << method;
     EXPECT_NEAR(lux_at(-1e-3, method, 0), 0, 1e-6) << method;
   }
 }

@@ -58,7 +58,9 @@ std::vector<int> code_points(std::string_view utf8) {
       valid = valid && (next >> 6) == 2;
       point = point << 6 | (next & 0x3f);
     }
-    if (!valid) {
+    // Overlong forms, surrogates and points past U+10FFFF are not UTF-8 either.
+    constexpr int kLeast[5] = {0, 0, 0x80, 0x800, 0x10000};
+    if (!valid || point < kLeast[length] || (point >= 0xd800 && point <= 0xdfff) || point > 0x10ffff) {
       points.push_back(byte);
       ++i;
       continue;

@@ -23,7 +23,8 @@ class DirectionalLight final : public Light {
         intensity_(intensity),
         type_name_(type_name),
         cos_max_(std::cos(angular_diameter / 2)),
-        samples_(angular_diameter > 0 ? samples : 1) {
+        disc_(angular_diameter > 0),
+        samples_(angular_diameter > 0 ? std::max(1, samples) : 1) {
     orthonormal_basis(to_light_, across_u_, across_v_);
   }
   bool illuminate(const Vec3&, LightSample& sample) const override {
@@ -32,13 +33,13 @@ class DirectionalLight final : public Light {
   }
   int sample_count() const override { return samples_ * samples_; }
   bool illuminate_sample(const Vec3&, int index, const Vec2& within, LightSample& sample) const override {
-    if (samples_ == 1) return index == 0 && illuminate({}, sample);
+    if (!disc_) return index == 0 && illuminate({}, sample);
     sample = {toward(stratum_point(index, samples_, within)), kInfinity,
               intensity_ / double(samples_ * samples_)};
     return true;
   }
   bool illuminate_random(const Vec3&, const Vec2& u, LightSample& sample) const override {
-    sample = {samples_ == 1 ? to_light_ : toward(u), kInfinity, intensity_};
+    sample = {disc_ ? toward(u) : to_light_, kInfinity, intensity_};
     return true;
   }
   std::string_view type_name() const override { return type_name_; }
@@ -55,6 +56,7 @@ class DirectionalLight final : public Light {
   Color intensity_;
   std::string_view type_name_;  // a literal
   double cos_max_;              // of the disc's half-angle
+  bool disc_;                   // a disc of directions (else the one direction)
   int samples_;
   Vec3 across_u_, across_v_;
 };

@@ -27,7 +27,8 @@ LuminaireLight::LuminaireLight(std::shared_ptr<const Photometry> photometry, con
   if (!(width >= 0 && depth >= 0)) throw std::invalid_argument("a luminaire's size must not be negative");
   across_c0_ = c0_ * width;
   across_c90_ = c90_ * depth;
-  samples_ = width > 0 || depth > 0 ? std::max(1, samples) : 1;
+  area_ = width > 0 || depth > 0;
+  samples_ = area_ ? std::max(1, samples) : 1;
 }
 
 double LuminaireLight::candela_toward(const Vec3& direction) const {
@@ -44,12 +45,12 @@ bool LuminaireLight::illuminate(const Vec3& point, LightSample& sample) const {
 
 bool LuminaireLight::illuminate_sample(const Vec3& point, int index, const Vec2& within,
                                        LightSample& sample) const {
-  if (samples_ == 1) return index == 0 && illuminate(point, sample);
+  if (!area_) return index == 0 && illuminate(point, sample);
   return illuminate_from(stratum_point(index, samples_, within), point, 1.0 / (samples_ * samples_), sample);
 }
 
 bool LuminaireLight::illuminate_random(const Vec3& point, const Vec2& u, LightSample& sample) const {
-  return illuminate_from(samples_ == 1 ? Vec2{0.5, 0.5} : u, point, 1, sample);
+  return illuminate_from(area_ ? u : Vec2{0.5, 0.5}, point, 1, sample);
 }
 
 bool LuminaireLight::illuminate_from(const Vec2& u, const Vec3& point, double share,

@@ -49,6 +49,7 @@ class LuminaireLight final : public Light {
   Color per_candela_;            // the radiometric intensity of 1 cd of this colour
   double flux_;                  // lumens, the table's × scale
   Vec3 across_c0_, across_c90_;  // the area's full edges (zero for a point)
+  bool area_ = false;            // an area luminaire (else a point)
   int samples_ = 1;
 
   // The light from the point of the area at u ∈ [0, 1)² (the centre for a point), × share.

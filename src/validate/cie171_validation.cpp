@@ -234,6 +234,7 @@ Cie171Case reflection_case(bool obstructed, const Cie171Run& run) {
     double factor = point_to_rectangle(p.position, p.normal, wall);
     if (obstructed) {
       // The screen seen from p, projected onto the wall's plane z = 0 and clipped to the wall.
+      // Every sensor is farther from the wall than the screen (z = 2.5 or 1.5 to 3 > 1).
       const double k = p.position.z / (p.position.z - screen_z);
       const auto project = [&](double coordinate, double on_screen) {
         return coordinate + (on_screen - coordinate) * k;
@@ -252,7 +253,9 @@ Cie171Case reflection_case(bool obstructed, const Cie171Run& run) {
 }
 
 // 5.8: an isotropic source of 10,000 lm at the centre of a 4 m cube of reflectance rho; the
-// floor's 8 × 8 points, whose mean indirect illuminance is Φ ρ / (A (1 − ρ)).
+// floor's 8 × 8 points. The floor's mean indirect illuminance is exactly Φ ρ / (A (1 − ρ)); what
+// is compared is its midpoint-rule estimate over the points (the indirect light is smooth: the
+// rule's own error is far below the tolerances).
 Cie171Case cube_case(double rho, const Cie171Run& run) {
   constexpr double flux = 10000, a = 4;
   std::vector<std::string> names;
@@ -308,9 +311,26 @@ Sky make_sky(int type, double elevation_degrees, double azimuth_degrees) {
           normalize((north * std::cos(a) + east * std::sin(a)) * std::cos(e) + Vec3{0, std::sin(e), 0})};
 }
 
+// True when the ray from `from` through `through` (beyond it) crosses the rectangle, which lies in
+// a plane z = constant (5.11's obstruction, parallel to the facade).
+bool crosses(const Vec3& from, const Vec3& through, const Rectangle& rectangle) {
+  const double z = rectangle.corner.z, dz = through.z - from.z;
+  if (dz == 0) return false;
+  const double t = (z - from.z) / dz;
+  if (!(t > 1)) return false;
+  const Vec3 at = from + (through - from) * t;
+  const double x0 = std::min(rectangle.corner.x, rectangle.corner.x + rectangle.u.x + rectangle.v.x),
+               x1 = std::max(rectangle.corner.x, rectangle.corner.x + rectangle.u.x + rectangle.v.x),
+               y0 = std::min(rectangle.corner.y, rectangle.corner.y + rectangle.u.y + rectangle.v.y),
+               y1 = std::max(rectangle.corner.y, rectangle.corner.y + rectangle.u.y + rectangle.v.y);
+  return at.x > x0 && at.x < x1 && at.y > y0 && at.y < y1;
+}
+
 // ∫ L cos θ dω over an opening from a point (relative luminance), by the midpoint rule on n × n
-// cells of the opening: cos θ_point cos θ_opening dA / r².
-double through_opening(const Sky& sky, const ProbePoint& p, const Rectangle& opening, int n) {
+// cells of the opening: cos θ_point cos θ_opening dA / r²; a cell whose ray meets the external
+// obstruction (when given) sees it, black, instead of the sky.
+double through_opening(const Sky& sky, const ProbePoint& p, const Rectangle& opening, int n,
+                       const Rectangle* obstruction = nullptr) {
   const Vec3 m = cross(opening.u, opening.v);
   const double cell_area = length(m) / (double(n) * n);
   const Vec3 opening_normal = normalize(m);
@@ -323,16 +343,19 @@ double through_opening(const Sky& sky, const ProbePoint& p, const Rectangle& ope
       const Vec3 w = to / std::sqrt(r2);
       const double cos_point = dot(w, p.normal);
       if (!(cos_point > 0) || !(w.y > 0)) continue;
+      if (obstruction && crosses(p.position, q, *obstruction)) continue;
       sum += sky.relative(w) * cos_point * std::fabs(dot(w, opening_normal)) / r2;
     }
   return sum * cell_area;
 }
 
-// 5.9 and 5.10: the sky component on the floor of the black room (4 × 3 × 4 m) under a 1 m square
-// roof opening (roof) or a 2 × 1 m window in the wall z = 0 with its sill 1 m up (facade), CIE
-// sky type 1 (overcast) or 12 (clear, the sun at 45° elevation in the south-south-west, azimuth
-// 200°), 10,000 lx unobstructed horizontal illuminance.
-Cie171Case daylight_case(bool roof, int sky_type, const Cie171Run& run) {
+// 5.9, 5.10 and 5.11: the sky component on the floor of the black room (4 × 3 × 4 m) under a 1 m
+// square roof opening (roof) or a 2 × 1 m window in the wall z = 0 with its sill 1 m up (facade),
+// CIE sky type 1 (overcast) or 12 (clear, the sun at 45° elevation in the south-south-west,
+// azimuth 200°), 10,000 lx unobstructed horizontal illuminance. 5.11 adds an external obstruction
+// to the facade case: a black wall 14 m long and 2.5 m high, 3 m outside the window and parallel to
+// it (a building across the street), hiding the low sky from the room.
+Cie171Case daylight_case(bool roof, int sky_type, const Cie171Run& run, bool obstructed = false) {
   constexpr double E_h = 10000, elevation = 45, azimuth = 200;
   std::vector<std::string> names;
   const Opening opening = roof ? Opening{"ceiling", 0.375, 0.625, 0.375, 0.625}
@@ -341,12 +364,15 @@ Cie171Case daylight_case(bool roof, int sky_type, const Cie171Run& run) {
   const Rectangle hole =
       roof ? Rectangle{{1.5, 3, 1.5}, {1, 0, 0}, {0, 0, 1}} : Rectangle{{1, 1, 0}, {2, 0, 0}, {0, 1, 0}};
   Cie171Case test;
-  test.id = fmt::format("{} sky {}", roof ? "5.9" : "5.10", sky_type);
-  test.title =
-      fmt::format("sky component under a {} opening, CIE sky type {}", roof ? "roof" : "facade", sky_type);
+  const Rectangle obstruction{{-5, 0, -3}, {14, 0, 0}, {0, 2.5, 0}};  // faces +z, the window
+  test.id = fmt::format("{} sky {}", roof ? "5.9" : obstructed ? "5.11" : "5.10", sky_type);
+  test.title = fmt::format("sky component under a {} opening{}, CIE sky type {}", roof ? "roof" : "facade",
+                           obstructed ? " with an external obstruction" : "", sky_type);
+  std::string shapes = shapes_json(room, "black");
+  if (obstructed) shapes += ",\n      " + quad_json(obstruction, "black");
   test.scene = scene_json(roof ? R"("eye": [3.9, 2.9, 3.9], "target": [1, 0.3, 1])"
                                : R"("eye": [2, 2.9, 3.9], "target": [2, 0.3, 1])",
-                          "", "", shapes_json(room, "black"),
+                          "", "", shapes,
                           fmt::format(R"(
   "environment": {{"type": "cie_sky", "sky_type": {}, "sun_elevation": {}, "sun_azimuth": {}, "diffuse_illuminance": {}}},)",
                                       sky_type, elevation, azimuth, E_h),
@@ -355,9 +381,14 @@ Cie171Case daylight_case(bool roof, int sky_type, const Cie171Run& run) {
   const Sky sky = make_sky(sky_type, elevation, azimuth);
   const double horizontal = sky.horizontal();
   for (const ProbePoint& p : test.points)
-    test.reference.push_back(E_h * through_opening(sky, p, hole, run.quick ? 100 : 200) / horizontal);
+    test.reference.push_back(
+        E_h * through_opening(sky, p, hole, run.quick ? 100 : 200, obstructed ? &obstruction : nullptr) /
+        horizontal);
   test.unobstructed_illuminance = E_h;
-  test.methods = {"local", "path", "radiosity", "meshless"};
+  // Not the local model: it lights a point from the environment by 64² directions drawn over the
+  // whole sky, a few per cent of them through the opening — 11–21 % off here (measured,
+  // docs/validation/cie171.md); a window that is a light of its own (a portal) is not built.
+  test.methods = {"path", "radiosity", "meshless"};
   return test;
 }
 
@@ -381,6 +412,7 @@ std::vector<Cie171Case> cie171_cases(const std::string& out_dir, const Cie171Run
     cases.push_back(cube_case(rho, run));
   for (const bool roof : {true, false})
     for (const int type : {1, 12}) cases.push_back(daylight_case(roof, type, run));
+  for (const int type : {1, 12}) cases.push_back(daylight_case(false, type, run, true));
   return cases;
 }
 

@@ -21,7 +21,9 @@
 //   5.9   the sky component under a roof opening, CIE overcast (type 1) and clear (type 12) skies;
 //   5.10  the sky component under a facade opening, both skies: SC = ∫ L cos θ dω over the
 //         opening / the unobstructed horizontal illuminance, both by quadrature of the CIE
-//         standard general sky's luminance (shading/cie_sky.h).
+//         standard general sky's luminance (shading/cie_sky.h);
+//   5.11  5.10 with a black external obstruction outside the window: the quadrature leaves out
+//         the directions that meet it.
 //
 // What is expressed is Candela's reading of each case (dimensions, points, sources are chosen here
 // and listed on the docs page); the report's own tables were not at hand, so no printed value is
