@@ -422,8 +422,9 @@ ProbeSettings cie171_probe_settings(const Cie171Case& test, const std::string& m
   ProbeSettings settings;
   settings.method = method;
   settings.samples = run.quick ? 1024 : 65536;
-  // Under an opening that shows a few per cent of the sky, 65,536 paths leave 1 % at some points.
-  if (!run.quick && method == "path" && test.unobstructed_illuminance > 0) settings.samples = 262144;
+  // Under an opening that shows a few per cent of the sky, 65,536 paths leave 1 % at some points
+  // and 65,536 gathering rays 2.3 % (5.11, radiosity and meshless): 262,144 there.
+  if (!run.quick && test.unobstructed_illuminance > 0) settings.samples = 262144;
   return settings;
 }
 

@@ -66,8 +66,8 @@ struct Cie171Run {
 // The cases, with the files they need (the Lambertian IES file) written into out_dir.
 std::vector<Cie171Case> cie171_cases(const std::string& out_dir, const Cie171Run& run);
 
-// The probe settings of a method for a case (samples per point: 65,536, the path tracer's under the
-// sky openings 262,144; quick 1,024).
+// The probe settings of a method for a case (samples per point: 65,536, under the sky openings
+// 262,144; quick 1,024).
 ProbeSettings cie171_probe_settings(const Cie171Case& test, const std::string& method, const Cie171Run& run);
 
 // The largest error a method may show at a point: 0.01 for path, 0.02 for the others.
