@@ -18,6 +18,7 @@
 #include <string>
 
 #include "commands.h"
+#include "false_color_options.h"
 #include "io/false_color.h"
 #include "io/image_writer.h"
 #include "output_paths.h"
@@ -107,8 +108,7 @@ int run_compare(const CompareOptions& options) {
   // Issue 23: in luminance, cd/m² — efficacy × Y / π of a rendered value (π × the radiance), the one
   // conversion of shading/photometric_units.h — of linear images only.
   if (options.luminance) {
-    if (!(std::isfinite(options.efficacy) && options.efficacy > 0))
-      throw BadArgument("--efficacy must be a positive number (lm/W)");
+    check_efficacy(options.efficacy);
     for (LinearImage* linear : {&image, &reference}) {
       if (linear->srgb_decoded)
         throw BadArgument(

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "false_color_options.h"
 #include "io/false_color.h"
 #include "io/image_writer.h"
 #include "math/constants.h"
@@ -47,14 +48,8 @@ int run_falsecolor(const FalseColorOptions& options) {
   std::vector<OutputFile> outputs = {{options.output, "-o"}};
   if (!options.json.empty()) outputs.push_back({options.json, "--json"});
   refuse_outputs_over_inputs(outputs, {options.image});
-  if (!options.scale.empty() && (options.scale.size() != 2 || !std::isfinite(options.scale[0]) ||
-                                 !std::isfinite(options.scale[1]) || !(options.scale[0] < options.scale[1])))
-    throw BadArgument("--scale expects LO,HI with LO < HI (cd/m²)");
-  if (options.log && !options.scale.empty() && !(options.scale[0] > 0))
-    throw BadArgument("--scale with --log needs LO > 0");
-  if (options.contours < 0 || options.contours > 256) throw BadArgument("--contours expects 0 to 256 steps");
-  if (!(std::isfinite(options.efficacy) && options.efficacy > 0))
-    throw BadArgument("--efficacy must be a positive number (lm/W)");
+  check_false_color_options(options.scale, options.log, options.contours, "cd/m²");
+  check_efficacy(options.efficacy);
   if (!std::isfinite(options.exposure) || std::fabs(options.exposure) > 64)
     throw BadArgument("--exposure must be a number of stops within ±64");
   LinearImage image;

@@ -15,6 +15,7 @@
 #include <optional>
 
 #include "commands.h"
+#include "false_color_options.h"
 #include "integrators/method_registry.h"
 #include "integrators/probe.h"
 #include "io/false_color.h"
@@ -58,8 +59,7 @@ int run_probe(ProbeOptions& options) {
   if (options.points_path.empty() == options.grid.empty())
     throw BadArgument("give either --points FILE or --grid cx,cy,cz,ux,uy,uz,vx,vy,vz");
   if (options.samples < 1) throw BadArgument("--samples must be >= 1");
-  if (!(options.efficacy > 0) || !std::isfinite(options.efficacy))
-    throw BadArgument("--efficacy must be > 0");
+  check_efficacy(options.efficacy);
   const MethodEntry* entry = find_method(options.method);
   if (!entry || !entry->capabilities.probe)
     throw BadArgument("--method " + options.method +
@@ -74,17 +74,10 @@ int run_probe(ProbeOptions& options) {
       throw BadArgument("--image " + options.image + ": expected a .png file");
     check_writable(options.image, "--image");
   }
-  if (!options.image_scale.empty()) {
-    if (options.image.empty()) throw BadArgument("--scale needs --image");
-    if (options.image_scale.size() != 2 || !std::isfinite(options.image_scale[0]) ||
-        !std::isfinite(options.image_scale[1]) || !(options.image_scale[0] < options.image_scale[1]))
-      throw BadArgument("--scale expects LO,HI with LO < HI (lux)");
-    if (options.image_log && !(options.image_scale[0] > 0))
-      throw BadArgument("--scale with --log needs LO > 0");
-  }
+  if (!options.image_scale.empty() && options.image.empty()) throw BadArgument("--scale needs --image");
   if ((options.image_log || options.contours != 0) && options.image.empty())
     throw BadArgument(options.image_log ? "--log needs --image" : "--contours needs --image");
-  if (options.contours < 0 || options.contours > 256) throw BadArgument("--contours expects 0 to 256 steps");
+  check_false_color_options(options.image_scale, options.image_log, options.contours, "lux");
   if (!options.json.empty()) {
     if (options.json == options.output || options.json == options.image)
       throw BadArgument("--json must name a file of its own");

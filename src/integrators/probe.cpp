@@ -75,10 +75,17 @@ double standard_error(double sum, double sum_of_squares, int n) {
 // top bit, so a flag there would not do).
 constexpr uint64_t kProbeSeed = 0x50524f4245ULL;  // "PROBE"
 
+// Probe point `index` as the pixel (x, y) its samples are keyed by: its low and high 32 bits.
+uint32_t point_x(std::size_t index) {
+  return static_cast<uint32_t>(index & 0xffffffffu);
+}
+uint32_t point_y(std::size_t index) {
+  return static_cast<uint32_t>(uint64_t(index) >> 32);
+}
+
 // The stream of the gathering rays at probe point `index` (radiosity, meshless).
 Pcg32 probe_rng(uint64_t seed, uint64_t sample, std::size_t index) {
-  return path_pixel_rng(seed ^ kProbeSeed, sample, static_cast<uint32_t>(index & 0xffffffffu),
-                        static_cast<uint32_t>(uint64_t(index) >> 32));
+  return path_pixel_rng(seed ^ kProbeSeed, sample, point_x(index), point_y(index));
 }
 
 Vec3 sensor_origin(const Scene& scene, const ProbePoint& point) {
@@ -96,8 +103,7 @@ ProbeResult probe_path(const Scene& scene, const PathSettings& path, const Light
   double sum = 0, sum_of_squares = 0;
   const Ray look{sensor_origin(scene, point), point.normal};
   for (int s = 0; s < settings.samples; ++s) {
-    sampler.start_pixel_sample(static_cast<uint32_t>(index & 0xffffffffu),
-                               static_cast<uint32_t>(uint64_t(index) >> 32), uint64_t(s));
+    sampler.start_pixel_sample(point_x(index), point_y(index), uint64_t(s));
     sampler.get_2d();  // the pixel point: no pixel here
     const Color sample = path_irradiance(scene, path, lights, point.position, point.normal, sampler, rays);
     irradiance += sample;
@@ -239,8 +245,11 @@ std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>
   }
   std::vector<ProbeResult> results(points.size());
   tbb::enumerable_thread_specific<RayCounts> counts;
+  // The path tracer's samples: path.sampler, one per thread.
   const std::unique_ptr<Sampler> prototype =
-      create_sampler(path.sampler, SamplerParameters{settings.seed ^ kProbeSeed, uint64_t(settings.samples)});
+      settings.method == "path" ? create_sampler(path.sampler, SamplerParameters{settings.seed ^ kProbeSeed,
+                                                                                 uint64_t(settings.samples)})
+                                : nullptr;
   tbb::enumerable_thread_specific<std::unique_ptr<Sampler>> samplers([&] { return prototype->clone(); });
   tbb::enumerable_thread_specific<uint64_t> uncovered;
   ProgressReporter progress("probe", points.size(), "points", settings.quiet);

@@ -243,19 +243,19 @@ std::unique_ptr<Light> make_luminaire(const JsonNode& node, Color&, const LoadCo
     if (!(flux > 0)) file.fail("\"" + name + "\" emits nothing: it cannot be scaled to a luminous_flux");
     scale = node.number("luminous_flux", 0, Range::non_negative()) / flux;
   }
-  // An area luminaire: "size" [width along C0, length along C90] in metres, "samples" per side.
-  double width = 0, length = 0;
+  // An area luminaire: "size" [width along C0, depth along C90] in metres, "samples" per side.
+  double width = 0, depth = 0;
   int samples = 1;
   if (node.has("size")) {
     const JsonNode size = node.at("size");
-    if (size.size() != 2) size.fail("expected [width, length] in metres");
+    if (size.size() != 2) size.fail("expected [width, depth] in metres");
     width = size.element(0).as_number(Range::non_negative());
-    length = size.element(1).as_number(Range::non_negative());
-    if (!(width > 0 || length > 0)) size.fail("a width or a length must be above 0");
+    depth = size.element(1).as_number(Range::non_negative());
+    if (!(width > 0 || depth > 0)) size.fail("a width or a depth must be above 0");
     samples = node.integer("samples", 4, {1, 64, false, false});
   }
   return std::make_unique<LuminaireLight>(photometry, position, nadir, c0, scale,
-                                          read_photometric_color(node), width, length, samples);
+                                          read_photometric_color(node), width, depth, samples);
 }
 
 const std::array kEntries = {
