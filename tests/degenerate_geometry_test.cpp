@@ -117,7 +117,7 @@ std::vector<Film> render_every_method(const Scene& scene, const std::string& lab
   return films;
 }
 
-double mean_luminance(const Film& film) {
+double mean_channel_average(const Film& film) {
   double sum = 0;
   for (const Color& c : film.pixels()) sum += c.average();
   return sum / static_cast<double>(film.pixels().size());
@@ -128,7 +128,7 @@ double relative_difference(const Film& a, const Film& b) {
   double sum = 0;
   for (std::size_t i = 0; i < a.pixels().size(); ++i)
     for (int k = 0; k < 3; ++k) sum += std::fabs(a.pixels()[i][k] - b.pixels()[i][k]) / 3;
-  return sum / static_cast<double>(a.pixels().size()) / std::max(1e-12, mean_luminance(a));
+  return sum / static_cast<double>(a.pixels().size()) / std::max(1e-12, mean_channel_average(a));
 }
 
 std::string write_file(const std::filesystem::path& path, const std::string& text) {
@@ -327,7 +327,8 @@ TEST_P(DegenerateScale, RoomRendersAsAtUnitScale) {
     // are scaled too, so they are close as well.
     const double bound = kMethods[m] == "meshless" ? 0.1 : 0.02;
     EXPECT_LT(difference, bound) << kMethods[m] << " at scale " << scale << ": mean "
-                                 << mean_luminance(films[m]) << " vs " << mean_luminance(reference[m]);
+                                 << mean_channel_average(films[m]) << " vs "
+                                 << mean_channel_average(reference[m]);
   }
 }
 

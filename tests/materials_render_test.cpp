@@ -14,6 +14,7 @@
 #include "integrators/whitted.h"
 #include "io/image_writer.h"
 #include "render_support.h"
+#include "scene_text.h"
 #include "scratch_directory.h"
 
 namespace candela {
@@ -21,14 +22,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::unique_ptr<Scene> scene_from(const std::string& body, const std::string& camera,
-                                  const std::string& directory = ".") {
-  return load_scene_text(R"({"format": "candela/1", "camera": )" + camera + ", " + body + "}", "test.json",
-                         directory);
-}
-
-// One pixel looking down −z through the image centre.
-const char* kCentreCamera = R"({"eye": [0, 0, 10], "target": [0, 0, 0], "fov": 1, "width": 1, "height": 1})";
+using testing::kCentreCamera;
+using testing::scene_from;
 
 Color pixel(const Scene& scene) {
   Color radiance;
@@ -36,7 +31,7 @@ Color pixel(const Scene& scene) {
   return radiance;
 }
 
-Film render(const Scene& scene) {
+Film whitted_image(const Scene& scene) {
   return testing::render_scene(scene, "whitted");
 }
 
@@ -62,8 +57,8 @@ TEST(MaterialsRender, BumpLeavesTheSilhouetteSmooth) {
           R"("shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1.5, "material": {"kd": [1, 1, 0], "ks": 0.3,
       "bump": {"height": {"type": "waves", "waves": [{"amplitude": 1, "frequency": [24, 0]}, {"amplitude": 0.5, "frequency": [0, 12]}]}, "scale": 0.004}}}])",
       camera);
-  const Film a = render(*plain);
-  const Film b = render(*bumped);
+  const Film a = whitted_image(*plain);
+  const Film b = whitted_image(*bumped);
   int background = 0, different = 0;
   for (int y = 0; y < a.height(); ++y)
     for (int x = 0; x < a.width(); ++x) {
@@ -176,7 +171,7 @@ TEST(MaterialsRender, NegativeTextureValuesNeverMakeNegativePixels) {
       R"("ambient": 0.5, "lights": [{"type": "point", "position": [2, 3, 5]}], "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1.5,
       "material": {"kd": {"type": "waves", "waves": [{"amplitude": 1, "frequency": [8, 0]}]}, "ks": {"type": "noise", "amplitude": 4, "offset": -2}}}])",
       camera);
-  const Film film = render(*scene);
+  const Film film = whitted_image(*scene);
   int dark = 0;
   for (const Color& c : film.pixels()) {
     EXPECT_TRUE(c.r >= 0 && c.g >= 0 && c.b >= 0) << c.r << " " << c.g << " " << c.b;
@@ -342,12 +337,12 @@ TEST_F(EnvironmentRender, SixRendersFromTheCentreAreACubeMapOfTheScene) {
     const auto scene =
         scene_from(room, std::string(R"({"eye": [0, 0, 0], "target": )") + face.forward + R"(, "up": )" +
                              face.up + R"(, "fov": 90, "width": 96, "height": 96})");
-    write_pfm(render(*scene), (directory_ / (std::string("room-") + face.name + ".pfm")).string(), 0);
+    write_pfm(whitted_image(*scene), (directory_ / (std::string("room-") + face.name + ".pfm")).string(), 0);
   }
   const std::string view =
       R"({"eye": [0, 0, 0], "target": [0.5, 0.35, -1], "up": [0.1, 1, 0], "fov": 100, "width": 48, "height": 40})";
-  const Film direct = render(*scene_from(room, view));
-  const Film through_cube = render(*scene_from(
+  const Film direct = whitted_image(*scene_from(room, view));
+  const Film through_cube = whitted_image(*scene_from(
       R"("environment": {"type": "cube", "faces": {"+x": "room-px.pfm", "-x": "room-nx.pfm", "+y": "room-py.pfm", "-y": "room-ny.pfm", "+z": "room-pz.pfm", "-z": "room-nz.pfm"}}, "shapes": [])",
       view, directory_.string()));
   int mismatched = 0;

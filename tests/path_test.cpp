@@ -22,7 +22,7 @@
 namespace candela {
 namespace {
 
-std::unique_ptr<Scene> scene_from(const std::string& body) {
+std::unique_ptr<Scene> path_scene(const std::string& body) {
   return load_scene_text(R"({"format": "candela/1", )" + body + "}", "path-test.json", ".");
 }
 
@@ -68,7 +68,7 @@ void expect_estimate(const Estimate& e, double expected, const std::string& labe
 // A point one unit below the centre of an emitting unit square (E = 3, facing down): the
 // irradiance is E × the point-to-area form factor, 4 corner rectangles of 0.5 × 0.5.
 TEST(PathTracer, IrradianceUnderAnEmittingSquareIsEmissionTimesTheFormFactor) {
-  const auto scene = scene_from(
+  const auto scene = path_scene(
       R"("camera": {"eye": [0, -3, 0], "target": [0, 0, 0], "up": [0, 0, 1], "width": 4, "height": 4},
     "shapes": [{"type": "quad", "corner": [-0.5, 1, -0.5], "edge_u": [1, 0, 0], "edge_v": [0, 0, 1],
                 "material": {"kd": 0, "emission": 3}}])");
@@ -80,13 +80,13 @@ TEST(PathTracer, IrradianceUnderAnEmittingSquareIsEmissionTimesTheFormFactor) {
 // scaled): the emitter sampling of mesh triangles and transformed shapes gives the same irradiance.
 TEST(PathTracer, TrianglesAndTransformedQuadsEmitLikeTheSquare) {
   const double expected = 3 * 4 * point_to_parallel_rectangle_corner(0.5, 0.5, 1);
-  const auto triangles = scene_from(
+  const auto triangles = path_scene(
       R"("camera": {"eye": [0, -3, 0], "target": [0, 0, 0], "up": [0, 0, 1], "width": 4, "height": 4},
     "materials": {"lamp": {"kd": 0, "emission": 3}},
     "shapes": [{"type": "triangle", "vertices": [[-0.5, 1, -0.5], [0.5, 1, -0.5], [0.5, 1, 0.5]], "material": "lamp"},
                {"type": "triangle", "vertices": [[-0.5, 1, -0.5], [0.5, 1, 0.5], [-0.5, 1, 0.5]], "material": "lamp"}])");
   expect_estimate(irradiance(*triangles, {0, 0, 0}, {0, 1, 0}, 4000), expected, "triangles");
-  const auto transformed = scene_from(
+  const auto transformed = path_scene(
       R"("camera": {"eye": [0, -3, 0], "target": [0, 0, 0], "up": [0, 0, 1], "width": 4, "height": 4},
     "shapes": [{"type": "quad", "corner": [0, 0, 0], "edge_u": [1, 0, 0], "edge_v": [0, 1, 0],
                 "transform": [{"scale": [2, 0.5, 1]}, {"translate": [-1, -0.25, 0]}, {"rotate": {"angle": 90, "axis": [1, 0, 0]}},
@@ -100,12 +100,12 @@ TEST(PathTracer, TrianglesAndTransformedQuadsEmitLikeTheSquare) {
 // Coaxial disc of radius r at height h: F = r²/(h² + r²); a sphere of radius r whose centre lies
 // at distance d on the normal: F = (r/d)².
 TEST(PathTracer, IrradianceFromADiscAndASphereMatchesTheirFormFactors) {
-  const auto disc = scene_from(
+  const auto disc = path_scene(
       R"("camera": {"eye": [0, -3, 0], "target": [0, 0, 0], "up": [0, 0, 1], "width": 4, "height": 4},
     "shapes": [{"type": "disc", "center": [0, 2, 0], "normal": [0, -1, 0], "radius": 1.5,
                 "material": {"kd": 0, "emission": 2}}])");
   expect_estimate(irradiance(*disc, {0, 0, 0}, {0, 1, 0}, 4000), 2 * 2.25 / (4 + 2.25), "disc");
-  const auto sphere = scene_from(
+  const auto sphere = path_scene(
       R"("camera": {"eye": [0, -3, 0], "target": [0, 0, 0], "up": [0, 0, 1], "width": 4, "height": 4},
     "shapes": [{"type": "sphere", "center": [0, 3, 0], "radius": 1, "material": {"kd": 0, "emission": 2}}])");
   expect_estimate(irradiance(*sphere, {0, 0, 0}, {0, 1, 0}, 4000), 2.0 / 9.0, "sphere");
@@ -115,7 +115,7 @@ TEST(PathTracer, IrradianceFromADiscAndASphereMatchesTheirFormFactors) {
 // the sky's value), and a floor of ρ = 0.5 shows 0.5.
 TEST(PathTracer, UniformSkyGivesUnitIrradianceAndTheFloorItsAlbedo) {
   const auto scene =
-      scene_from(R"("camera": {"eye": [0, 3, 0], "target": [0, 0, 0], "up": [0, 0, -1], "fov": 40,
+      path_scene(R"("camera": {"eye": [0, 3, 0], "target": [0, 0, 0], "up": [0, 0, -1], "fov": 40,
       "width": 16, "height": 16},
     "environment": {"type": "constant", "color": [1, 1, 1]}, "path": {"spp": 16},
     "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": {"kd": 0.5}}])");
@@ -137,7 +137,7 @@ TEST(PathTracer, ChoosingEmittersByPowerRemovesTheNoiseOfOneBrightAndManyDimLigh
               std::to_string(std::cos(angle)) + ", 1, " + std::to_string(std::sin(angle)) +
               "], \"intensity\": " + (i == 0 ? "100" : "1") + "}";
   }
-  const auto scene = scene_from(R"("camera": {"eye": [0, 3, 3], "target": [0, 0, 0], "width": 4, "height": 4},
+  const auto scene = path_scene(R"("camera": {"eye": [0, 3, 3], "target": [0, 0, 0], "width": 4, "height": 4},
     "lights": [)" + lights + "]");
   const LightSampler sampler(*scene);
   EXPECT_NEAR(sampler.probability(0), 100.0 / 110.0, 1e-12);
@@ -157,14 +157,14 @@ TEST(PathTracer, ChoosingEmittersByPowerRemovesTheNoiseOfOneBrightAndManyDimLigh
 // same floor is black, while a mirror shows the background.
 TEST(PathTracer, TheBackgroundLightsNothingButIsSeenInMirrors) {
   const auto floor_only =
-      scene_from(R"("camera": {"eye": [0, 3, 0], "target": [0, 0, 0], "up": [0, 0, -1], "fov": 40,
+      path_scene(R"("camera": {"eye": [0, 3, 0], "target": [0, 0, 0], "up": [0, 0, -1], "fov": 40,
       "width": 8, "height": 8},
     "background": [1, 1, 1], "path": {"spp": 4},
     "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": {"kd": 0.5}}])");
   const Film dark = testing::render_scene(*floor_only, "path");
   for (const Color& pixel : dark.pixels()) ASSERT_EQ(pixel, Color(0));
   const auto mirror =
-      scene_from(R"("camera": {"eye": [0, 3, 0], "target": [0, 0, 0], "up": [0, 0, -1], "fov": 40,
+      path_scene(R"("camera": {"eye": [0, 3, 0], "target": [0, 0, 0], "up": [0, 0, -1], "fov": 40,
       "width": 8, "height": 8},
     "background": [0.25, 0.5, 1], "path": {"spp": 4},
     "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": {"kd": 0, "kr": 1}}])");
@@ -209,7 +209,7 @@ TEST(PathTracer, IrradianceUnderAnEnvironmentMapMatchesQuadrature) {
 // (which is unbiased but not exact) every path's weight is exactly 1.
 TEST(PathTracer, MirrorAndGlassSpheresVanishInAUniformEnvironment) {
   for (const std::string material : {R"({"kd": 0, "kr": 1})", R"({"kd": 0, "kt": 1, "ior": 1.5})"}) {
-    const auto scene = scene_from(R"("camera": {"eye": [0, 0, 4], "target": [0, 0, 0], "fov": 35, "width": 12,
+    const auto scene = path_scene(R"("camera": {"eye": [0, 0, 4], "target": [0, 0, 0], "fov": 35, "width": 12,
         "height": 12}, "background": [0.7, 0.7, 0.7], "path": {"spp": 8, "roulette_depth": 64},
       "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": )" +
                                   material + "}]");
@@ -222,7 +222,7 @@ TEST(PathTracer, MirrorAndGlassSpheresVanishInAUniformEnvironment) {
 // Direct light from a directional light on a diffuse floor seen straight down by an orthographic
 // camera: next-event estimation gives kd·I·cos θ exactly, the local model's value.
 TEST(PathTracer, DirectLightOnADiffuseFloorEqualsTheLocalModel) {
-  const auto scene = scene_from(R"("camera": {"type": "orthographic", "eye": [0, 5, 0], "target": [0, 0, 0],
+  const auto scene = path_scene(R"("camera": {"type": "orthographic", "eye": [0, 5, 0], "target": [0, 0, 0],
       "up": [0, 0, -1], "width": 8, "height": 8, "window_height": 2},
     "path": {"spp": 4}, "ambient": 0,
     "lights": [{"type": "directional", "direction": [1, -2, 0.5], "intensity": [1.5, 1, 0.5]}],
@@ -234,7 +234,7 @@ TEST(PathTracer, DirectLightOnADiffuseFloorEqualsTheLocalModel) {
 }
 
 std::unique_ptr<Scene> small_box(int spp, const std::string& sampler = "independent") {
-  return scene_from(
+  return path_scene(
       R"("camera": {"eye": [0.5, 0.5, 2], "target": [0.5, 0.5, 0], "fov": 60, "width": 12, "height": 10},
     "path": {"spp": )" +
       std::to_string(spp) + R"(, "sampler": ")" + sampler + R"("},
@@ -287,7 +287,7 @@ TEST(PathTracer, StratifyingSamplersHaveLessErrorAndNoBias) {
 TEST(PathTracer, TheSamplerIsCheckedByName) {
   const auto error = [](const std::string& path) {
     try {
-      (void)scene_from(R"("camera": {"eye": [0, 0, 3], "target": [0, 0, 0], "width": 4, "height": 4},
+      (void)path_scene(R"("camera": {"eye": [0, 0, 3], "target": [0, 0, 0], "width": 4, "height": 4},
         "render": {"method": "path"}, "path": )" +
                        path);
     } catch (const InputError& e) {
@@ -538,7 +538,7 @@ TEST(PathCheckpoint, RoundTripsExactlyAndRefusesDamage) {
 // reflected rays per primary ray, and the render finishes (a hang fails by the test's timeout).
 TEST(PathTracer, AClosedWhiteEnclosureWithoutADepthLimitEndsEveryPath) {
   const auto enclosure = [](int roulette_depth) {
-    return scene_from(R"("camera": {"eye": [0, 0, 0], "target": [0, 0, -1], "up": [0, 1, 0], "width": 4,
+    return path_scene(R"("camera": {"eye": [0, 0, 0], "target": [0, 0, -1], "up": [0, 1, 0], "width": 4,
       "height": 3}, "render": {"method": "path"},
       "path": {"spp": 2, "max_depth": 0, "roulette_depth": )" +
                       std::to_string(roulette_depth) + R"(},

@@ -18,6 +18,7 @@
 #include "radiosity/radiosity_checkpoint.h"
 #include "radiosity/solvers.h"
 #include "render_support.h"
+#include "scene_text.h"
 
 namespace candela {
 namespace {
@@ -27,13 +28,8 @@ RadiositySettings radiosity_settings(const Scene& scene) {
   return read_radiosity_settings(scene.plugin_settings.node("radiosity"));
 }
 
-std::unique_ptr<Scene> scene_from(const std::string& body, const std::string& camera) {
-  return load_scene_text(R"({"format": "candela/1", "camera": )" + camera + ", " + body + "}", "test.json",
-                         ".");
-}
-
-// One pixel looking down −z through the image centre.
-const char* kCentreCamera = R"({"eye": [0, 0, 10], "target": [0, 0, 0], "fov": 1, "width": 1, "height": 1})";
+using testing::kCentreCamera;
+using testing::scene_from;
 
 Color centre_pixel(const Scene& scene) {
   Color radiance;

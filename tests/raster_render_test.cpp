@@ -15,12 +15,8 @@
 namespace candela {
 namespace {
 
-std::unique_ptr<Scene> scene_from(const std::string& body, const std::vector<std::string>& overrides = {}) {
+std::unique_ptr<Scene> raster_scene(const std::string& body, const std::vector<std::string>& overrides = {}) {
   return load_scene_text(R"({"format": "candela/1", )" + body + "}", "raster.json", ".", overrides);
-}
-
-Film render(const Scene& scene, const std::string& method_name, std::size_t threads = 2) {
-  return testing::render_scene(scene, method_name, threads);
 }
 
 double difference(const Color& a, const Color& b) {
@@ -36,9 +32,9 @@ const char* kSphereScene = R"(
   "local": {"shadows": false})";
 
 TEST(RasterRender, PhongOnAFineSphereMatchesTheRayTracedLocalModel) {
-  const auto scene = scene_from(kSphereScene, {"raster.segments=256", "raster.shading=\"phong\""});
-  const Film raster = render(*scene, "raster");
-  const Film traced = render(*scene, "local");
+  const auto scene = raster_scene(kSphereScene, {"raster.segments=256", "raster.shading=\"phong\""});
+  const Film raster = testing::render_scene(*scene, "raster");
+  const Film traced = testing::render_scene(*scene, "local");
   int covered = 0, far_off = 0;
   double total = 0;
   for (int y = 0; y < raster.height(); ++y)
@@ -62,16 +58,16 @@ TEST(RasterRender, PhongOnAFineSphereMatchesTheRayTracedLocalModel) {
 
 TEST(RasterRender, FlatShadingIsConstantPerTriangle) {
   // A coarse sphere: flat shading shows at most one color per triangle, Gouraud many more.
-  const auto flat = scene_from(kSphereScene, {"raster.segments=8", "raster.shading=\"flat\""});
-  const auto gouraud = scene_from(kSphereScene, {"raster.segments=8", "raster.shading=\"gouraud\""});
+  const auto flat = raster_scene(kSphereScene, {"raster.segments=8", "raster.shading=\"flat\""});
+  const auto gouraud = raster_scene(kSphereScene, {"raster.segments=8", "raster.shading=\"gouraud\""});
   const auto colors = [](const Film& film) {
     std::set<std::tuple<double, double, double>> distinct;
     for (const Color& c : film.pixels()) distinct.insert({c.r, c.g, c.b});
     return distinct.size();
   };
   // 8 longitudes × 4 latitudes: at most 8·4·2 triangles (fewer at the poles), plus background.
-  EXPECT_LE(colors(render(*flat, "raster")), 8u * 4u * 2u + 1u);
-  EXPECT_GT(colors(render(*gouraud, "raster")), 500u);
+  EXPECT_LE(colors(testing::render_scene(*flat, "raster")), 8u * 4u * 2u + 1u);
+  EXPECT_GT(colors(testing::render_scene(*gouraud, "raster")), 500u);
 }
 
 TEST(RasterRender, GouraudLosesAHighlightInsideAPolygonPhongKeepsIt) {
@@ -83,16 +79,16 @@ TEST(RasterRender, GouraudLosesAHighlightInsideAPolygonPhongKeepsIt) {
     "lights": [{"type": "point", "position": [0, 0, 1]}],
     "materials": {"m": {"kd": 0.2, "ks": 1, "n": 50}},
     "shapes": [{"type": "quad", "corner": [-1, -1, 0], "edge_u": [2, 0, 0], "edge_v": [0, 2, 0], "material": "m"}])";
-  const auto gouraud = scene_from(body, {"raster.shading=\"gouraud\""});
-  const auto phong = scene_from(body, {"raster.shading=\"phong\""});
+  const auto gouraud = raster_scene(body, {"raster.shading=\"gouraud\""});
+  const auto phong = raster_scene(body, {"raster.shading=\"phong\""});
   const auto brightest = [](const Film& film) {
     double best = 0;
     for (const Color& c : film.pixels()) best = std::max(best, c.r);
     return best;
   };
   // At a corner: N·L = 1/√3 and R·V = 2/√54 ≈ 0.27, so I ≈ 0.2/√3 + 0.27^50 ≈ 0.115.
-  const double gouraud_peak = brightest(render(*gouraud, "raster"));
-  const double phong_peak = brightest(render(*phong, "raster"));
+  const double gouraud_peak = brightest(testing::render_scene(*gouraud, "raster"));
+  const double phong_peak = brightest(testing::render_scene(*phong, "raster"));
   EXPECT_NEAR(gouraud_peak, 0.2 / std::sqrt(3.0), 0.01);  // nothing brighter than the corners
   EXPECT_GT(phong_peak, 1.0);                             // kd + ks at the centre: 1.2
 }
@@ -107,11 +103,11 @@ TEST(RasterRender, EveryModeEqualsTheRayTracerOnALitPlane) {
     "materials": {"m": {"kd": {"type": "checker2d", "even": [0.8, 0.6, 0.2], "odd": [0.2, 0.3, 0.6], "mapping": {"type": "uv", "scale": 4}}}},
     "shapes": [{"type": "quad", "corner": [-1, -1, 0], "edge_u": [2, 0, 0], "edge_v": [0, 2, 0], "material": "m"}],
     "local": {"shadows": false})";
-  const auto scene = scene_from(body);
-  const Film traced = render(*scene, "local");
+  const auto scene = raster_scene(body);
+  const Film traced = testing::render_scene(*scene, "local");
   for (const char* shading : {"flat", "gouraud", "phong", "dotproduct"}) {
-    const auto raster_scene = scene_from(body, {std::string("raster.shading=\"") + shading + "\""});
-    const Film raster = render(*raster_scene, "raster");
+    const auto raster_view = raster_scene(body, {std::string("raster.shading=\"") + shading + "\""});
+    const Film raster = testing::render_scene(*raster_view, "raster");
     int mismatched = 0;
     for (int y = 0; y < traced.height(); ++y)
       for (int x = 0; x < traced.width(); ++x)
@@ -130,8 +126,8 @@ TEST(RasterRender, SameBytesWhateverTheThreadCount) {
     // rasterizer draws the whole corner lattice.
     const auto scene = load_default_scene({"camera.width=64", "camera.height=48", "aa.jitter=false",
                                            std::string("raster.shading=\"") + shading + "\""});
-    const Film one = render(*scene, "raster", 1);
-    const Film two = render(*scene, "raster", 2);
+    const Film one = testing::render_scene(*scene, "raster", 1);
+    const Film two = testing::render_scene(*scene, "raster", 2);
     ASSERT_EQ(one.pixels().size(), two.pixels().size());
     for (std::size_t i = 0; i < one.pixels().size(); ++i)
       ASSERT_TRUE(one.pixels()[i] == two.pixels()[i]) << shading << " " << i;
@@ -170,8 +166,9 @@ TEST(RasterRender, ShadowsMatchTheRayTracerWithoutSelfShadowing) {
     "shapes": [{"type": "sphere", "center": [0, 1, 0], "radius": 1, "material": {"kd": [0.8, 0.5, 0.3]}},
                {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": {"kd": 0.7}}],
     "raster": {"segments": 24, "shadows": true})";
-  const auto scene = scene_from(body);
-  const Comparison c = compare(render(*scene, "raster"), render(*scene, "local"), Color(0, 0, 1));
+  const auto scene = raster_scene(body);
+  const Comparison c = compare(testing::render_scene(*scene, "raster"),
+                               testing::render_scene(*scene, "local"), Color(0, 0, 1));
   EXPECT_GT(c.covered, 2000);
   EXPECT_LT(c.mean, 0.02) << c.mean;  // self-shadowing made the lit half of the sphere ambient-only
 }
@@ -187,9 +184,9 @@ TEST(RasterRender, DotProductShadowsOfAnAreaLightHavePenumbrae) {
     "shapes": [{"type": "quad", "corner": [-0.6, 1.5, -0.6], "edge_u": [1.2, 0, 0], "edge_v": [0, 0, 1.2], "material": {"kd": 0}},
                {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": {"kd": 0.7}}],
     "raster": {"shading": "dotproduct", "shadows": true, "segments": 8})";
-  const auto scene = scene_from(body);
-  const Film raster = render(*scene, "raster");
-  const Film traced = render(*scene, "local");
+  const auto scene = raster_scene(body);
+  const Film raster = testing::render_scene(*scene, "raster");
+  const Film traced = testing::render_scene(*scene, "local");
   // The floor's row through the middle (under the occluder, which the camera does not see), from
   // the umbra out to the fully lit floor:
   // the umbra's edge at |x| ≈ 0.24, the penumbra out to ≈ 1.2 (similar triangles of the light and
@@ -217,8 +214,9 @@ TEST(RasterRender, TheTerminatorFollowsTheInterpolatedNormal) {
     "lights": [{"type": "point", "position": [10, 2, 0]}],
     "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1.2, "material": {"kd": 0.7}}],
     "raster": {"segments": 24}, "local": {"shadows": false})";
-  const auto scene = scene_from(body);
-  const Film raster = render(*scene, "raster"), traced = render(*scene, "local");
+  const auto scene = raster_scene(body);
+  const Film raster = testing::render_scene(*scene, "raster"),
+             traced = testing::render_scene(*scene, "local");
   int disagree = 0;
   for (int y = 0; y < raster.height(); ++y)
     for (int x = 0; x < raster.width(); ++x) {
@@ -237,17 +235,19 @@ TEST(RasterRender, PlanesAreRefinedSoGouraudLightsTheFloor) {
     "lights": [{"type": "point", "position": [0, 3, 0]}],
     "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": {"kd": 0.8}}])";
   for (const char* shading : {"flat", "gouraud", "dotproduct"}) {
-    const auto scene = scene_from(body, {std::string("raster.shading=\"") + shading + "\""});
-    const Comparison c = compare(render(*scene, "raster"), render(*scene, "local"), Color(0, 0, 1));
+    const auto scene = raster_scene(body, {std::string("raster.shading=\"") + shading + "\""});
+    const Comparison c = compare(testing::render_scene(*scene, "raster"),
+                                 testing::render_scene(*scene, "local"), Color(0, 0, 1));
     EXPECT_GT(c.covered, 1000) << shading;
     // Flat shading keeps its steps (one value per triangle); the others follow the light.
     EXPECT_LT(c.mean, std::string(shading) == "flat" ? 0.1 : 0.03) << shading << " " << c.mean;
   }
   // A scene of planes only, the eye near them: the floor is drawn, not left to the background.
   const auto only_plane =
-      scene_from(R"("camera": {"eye": [0, 0, 0], "target": [0, -0.5, -1], "width": 32, "height": 24},
+      raster_scene(R"("camera": {"eye": [0, 0, 0], "target": [0, -0.5, -1], "width": 32, "height": 24},
       "background": [0, 0, 1], "ambient": 1, "shapes": [{"type": "plane", "point": [0, -1, 0], "normal": [0, 1, 0]}])");
-  const Comparison c = compare(render(*only_plane, "raster"), render(*only_plane, "local"), Color(0, 0, 1));
+  const Comparison c = compare(testing::render_scene(*only_plane, "raster"),
+                               testing::render_scene(*only_plane, "local"), Color(0, 0, 1));
   EXPECT_EQ(c.coverage_differs, 0);
   EXPECT_GT(c.covered, 300);
 }
@@ -261,8 +261,9 @@ TEST(RasterRender, MeshesKeepTheirOwnNormals) {
     "shapes": [{"type": "mesh", "file": ")" +
                            source + R"(/scenes/meshes/cube.obj", "material": {"kd": 0.7}}],
     "local": {"shadows": false})";
-  const auto scene = scene_from(body);
-  const Comparison c = compare(render(*scene, "raster"), render(*scene, "local"), Color(0, 0, 1));
+  const auto scene = raster_scene(body);
+  const Comparison c = compare(testing::render_scene(*scene, "raster"),
+                               testing::render_scene(*scene, "local"), Color(0, 0, 1));
   EXPECT_GT(c.covered, 200);
   EXPECT_LT(c.mean, 1e-6) << c.mean;
 }
@@ -270,35 +271,36 @@ TEST(RasterRender, MeshesKeepTheirOwnNormals) {
 TEST(RasterRender, CameraInsideASphereAndOrthographicViews) {
   // Most triangles behind the eye: clipped, not smeared over every tile; the inside is drawn.
   const auto inside =
-      scene_from(R"("camera": {"eye": [0, 0, 0], "target": [0, 0, -1], "width": 32, "height": 24},
+      raster_scene(R"("camera": {"eye": [0, 0, 0], "target": [0, 0, -1], "width": 32, "height": 24},
       "background": [0, 0, 1], "ambient": 1, "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 3}])");
-  const Comparison c = compare(render(*inside, "raster"), render(*inside, "local"), Color(0, 0, 1));
+  const Comparison c = compare(testing::render_scene(*inside, "raster"),
+                               testing::render_scene(*inside, "local"), Color(0, 0, 1));
   EXPECT_EQ(c.coverage_differs, 0);
   EXPECT_EQ(c.covered, 32 * 24);
-  const auto orthographic = scene_from(
+  const auto orthographic = raster_scene(
       R"("camera": {"type": "orthographic", "eye": [0, 0, 5], "target": [0, 0, 0], "window": [-2, 2, -1.5, 1.5], "width": 32, "height": 24},
       "background": [0, 0, 1], "ambient": 0.2, "lights": [{"type": "directional", "direction": [0, 0, -1]}],
       "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1}], "raster": {"segments": 128}, "local": {"shadows": false})");
-  const Comparison o =
-      compare(render(*orthographic, "raster"), render(*orthographic, "local"), Color(0, 0, 1));
+  const Comparison o = compare(testing::render_scene(*orthographic, "raster"),
+                               testing::render_scene(*orthographic, "local"), Color(0, 0, 1));
   EXPECT_GT(o.covered, 150);
   EXPECT_LT(o.coverage_differs, 12);
   EXPECT_LT(o.mean, 0.01);
 }
 
 TEST(RasterRender, SettingsAreChecked) {
-  EXPECT_THROW(scene_from(kSphereScene, {"raster.shading=\"toon\""}), InputError);
-  EXPECT_THROW(scene_from(kSphereScene, {"raster.segments=2"}), InputError);
-  EXPECT_THROW(scene_from(kSphereScene, {"raster.crease_angle=200"}), InputError);
+  EXPECT_THROW(raster_scene(kSphereScene, {"raster.shading=\"toon\""}), InputError);
+  EXPECT_THROW(raster_scene(kSphereScene, {"raster.segments=2"}), InputError);
+  EXPECT_THROW(raster_scene(kSphereScene, {"raster.crease_angle=200"}), InputError);
   // Dot-product shading carries four values per light: too many lights is a clear error.
   std::string lights = R"("lights": [)";
   for (int i = 0; i < 20; ++i)
     lights += std::string(i ? ", " : "") + R"({"type": "point", "position": [0, 5, 5]})";
   const auto crowded =
-      scene_from(R"("camera": {"width": 8, "height": 8}, )" + lights +
-                 R"(], "shapes": [{"type": "sphere"}], "raster": {"shading": "dotproduct"})");
+      raster_scene(R"("camera": {"width": 8, "height": 8}, )" + lights +
+                   R"(], "shapes": [{"type": "sphere"}], "raster": {"shading": "dotproduct"})");
   try {
-    render(*crowded, "raster");
+    testing::render_scene(*crowded, "raster");
     FAIL() << "expected an error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("at most"), std::string::npos) << e.what();

@@ -15,16 +15,12 @@
 namespace candela {
 namespace {
 
-Film render(const Scene& scene, const std::string& method_name, std::size_t threads) {
-  return testing::render_scene(scene, method_name, threads);
-}
-
 TEST(Render, SameImageBytesWhateverTheThreadCount) {
   const auto scene = load_default_scene({"camera.width=64", "camera.height=48", "render.tile_size=8"});
   for (const char* method : {"local", "whitted"}) {
-    const Film one = render(*scene, method, 1);
-    const Film two = render(*scene, method, 2);
-    const Film four = render(*scene, method, 4);
+    const Film one = testing::render_scene(*scene, method, 1);
+    const Film two = testing::render_scene(*scene, method, 2);
+    const Film four = testing::render_scene(*scene, method, 4);
     EXPECT_EQ(std::memcmp(one.pixels().data(), two.pixels().data(), one.pixels().size() * sizeof(Color)), 0)
         << method;
     EXPECT_EQ(std::memcmp(one.pixels().data(), four.pixels().data(), one.pixels().size() * sizeof(Color)), 0)
@@ -38,8 +34,8 @@ TEST(Render, EveryAntialiasingModeIsThreadIndependent) {
     const auto scene = load_default_scene({"camera.width=40", "camera.height=30", "render.tile_size=7",
                                            std::string("aa.mode=") + mode, "aa.n=3", "aa.max_level=2",
                                            "aa.jitter=true", "aa.filter=gaussian"});
-    const Film one = render(*scene, "whitted", 1);
-    const Film two = render(*scene, "whitted", 2);
+    const Film one = testing::render_scene(*scene, "whitted", 1);
+    const Film two = testing::render_scene(*scene, "whitted", 2);
     EXPECT_EQ(std::memcmp(one.pixels().data(), two.pixels().data(), one.pixels().size() * sizeof(Color)), 0)
         << mode;
   }
@@ -52,7 +48,7 @@ TEST(Render, SameImageBytesOnEveryAccelerator) {
     const auto scene = load_scene_file(
         std::string(CANDELA_SOURCE_DIR) + "/scenes/glass-globe.json",
         {"camera.width=48", "camera.height=32", "render.accelerator=" + std::string(entry.name)});
-    const Film film = render(*scene, "whitted", 2);
+    const Film film = testing::render_scene(*scene, "whitted", 2);
     const std::vector<uint8_t> bytes = to_display(film, scene->display);
     if (reference.empty()) reference = bytes;
     EXPECT_EQ(bytes, reference) << entry.name;
@@ -61,8 +57,8 @@ TEST(Render, SameImageBytesOnEveryAccelerator) {
     const auto scene = load_default_scene(
         {"camera.width=48", "camera.height=48", std::string("render.bounding_volume=") + volume});
     const auto plain = load_default_scene({"camera.width=48", "camera.height=48"});
-    EXPECT_EQ(to_display(render(*scene, "whitted", 2), scene->display),
-              to_display(render(*plain, "whitted", 2), plain->display))
+    EXPECT_EQ(to_display(testing::render_scene(*scene, "whitted", 2), scene->display),
+              to_display(testing::render_scene(*plain, "whitted", 2), plain->display))
         << volume;
   }
 }
@@ -73,7 +69,7 @@ void expect_matches_golden(const std::string& name) {
   const std::string source = CANDELA_SOURCE_DIR;
   const auto scene =
       load_scene_file(source + "/scenes/" + name + ".json", {"camera.width=64", "camera.height=64"});
-  const Film film = render(*scene, "whitted", 2);
+  const Film film = testing::render_scene(*scene, "whitted", 2);
   const Film golden = read_pfm(source + "/tests/golden/" + name + "-64x64.pfm");
   ASSERT_EQ(golden.width(), film.width());
   ASSERT_EQ(golden.height(), film.height());

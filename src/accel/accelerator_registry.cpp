@@ -22,7 +22,7 @@ std::unique_ptr<Accelerator> finished(const JsonNode& settings, std::unique_ptr<
   return accelerator;
 }
 
-const std::array kEntries = {
+const std::array kAcceleratorEntries = {
     AcceleratorEntry{
         "list", "brute force: every ray against every primitive",
         [](const JsonNode& settings, BoundingVolumeKind object_volume) -> std::unique_ptr<Accelerator> {
@@ -66,11 +66,11 @@ const std::array kEntries = {
 }  // namespace
 
 std::span<const AcceleratorEntry> accelerator_entries() {
-  return kEntries;
+  return kAcceleratorEntries;
 }
 
 const AcceleratorEntry* find_accelerator(std::string_view name) {
-  return find_entry<AcceleratorEntry>(kEntries, name);
+  return find_entry<AcceleratorEntry>(kAcceleratorEntries, name);
 }
 
 std::unique_ptr<Accelerator> create_default_accelerator(const AcceleratorEntry& entry,

@@ -247,7 +247,7 @@ TEST(Bvh, OtherSettingsMatchList) {
   const std::vector<Ray> rays = random_rays(rng, scene.bounds(), 1500);
   for (const auto& [max_leaf, bins] :
        {std::pair{1, 2}, std::pair{2, 64}, std::pair{8, 7}, std::pair{32, 16}}) {
-    SCOPED_TRACE(testing::Message() << "max leaf " << max_leaf << ", bins " << bins);
+    SCOPED_TRACE(::testing::Message() << "max leaf " << max_leaf << ", bins " << bins);
     BvhSettings settings;
     settings.max_leaf_primitives = max_leaf;
     settings.bins = bins;

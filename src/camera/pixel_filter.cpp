@@ -117,7 +117,7 @@ double checked_radius(const PixelFilterParameters& parameters, double fallback) 
   return radius;
 }
 
-const std::array kEntries{
+const std::array kFilterEntries{
     PixelFilterEntry{"box", 0.5,
                      [](const PixelFilterParameters& p) -> std::unique_ptr<PixelFilter> {
                        return std::make_unique<BoxFilter>(checked_radius(p, 0.5));
@@ -151,7 +151,7 @@ const std::array kEntries{
 }  // namespace
 
 std::span<const PixelFilterEntry> pixel_filter_entries() {
-  return kEntries;
+  return kFilterEntries;
 }
 
 const PixelFilterEntry* find_pixel_filter(std::string_view name) {

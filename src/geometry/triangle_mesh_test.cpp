@@ -15,13 +15,8 @@
 namespace candela {
 namespace {
 
+using candela::testing::expect_vec_near;
 using candela::testing::make_ray;
-
-void expect_vec_near(const Vec3& actual, const Vec3& expected, double tolerance) {
-  EXPECT_NEAR(actual.x, expected.x, tolerance) << actual << " vs " << expected;
-  EXPECT_NEAR(actual.y, expected.y, tolerance) << actual << " vs " << expected;
-  EXPECT_NEAR(actual.z, expected.z, tolerance) << actual << " vs " << expected;
-}
 
 // The unit right triangle in the z = 0 plane, counter-clockwise seen from +z.
 std::shared_ptr<TriangleMesh> unit_triangle() {

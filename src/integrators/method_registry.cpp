@@ -67,7 +67,7 @@ MethodCapabilities path() {
 constexpr std::string_view kShadowRays =
     "shadow rays to every light, to jittered points of each emissive surface and to the environment";
 
-const std::array kEntries = {
+const std::array kMethodEntries = {
     MethodEntry{"local", "ray casting with the local model only (001, 000 §2)", kShadowRays, local(),
                 [](const JsonNode& settings) -> std::unique_ptr<Method> {
                   return std::make_unique<LocalMethod>(read_local_settings(settings));
@@ -109,11 +109,11 @@ const std::array kEntries = {
         }},
 };
 
-// kEntries as loader sections: each method's object checked by making the method from it.
-std::array<SettingsSection, kEntries.size()> make_sections() {
-  std::array<SettingsSection, kEntries.size()> sections;
-  for (std::size_t i = 0; i < kEntries.size(); ++i) {
-    const MethodEntry* entry = &kEntries[i];
+// kMethodEntries as loader sections: each method's object checked by making the method from it.
+std::array<SettingsSection, kMethodEntries.size()> make_sections() {
+  std::array<SettingsSection, kMethodEntries.size()> sections;
+  for (std::size_t i = 0; i < kMethodEntries.size(); ++i) {
+    const MethodEntry* entry = &kMethodEntries[i];
     sections[i] = {entry->name, [entry](const JsonNode& node) { entry->create(node); }};
   }
   return sections;
@@ -137,7 +137,7 @@ std::unique_ptr<Method> made_from_settings(const MethodEntry& entry, const Scene
 void refuse_unsampled_emitters(const MethodEntry& entry, const Scene& scene) {
   if (!entry.capabilities.samples_emissive_surfaces || scene.unsampled_emitters.empty()) return;
   std::string able;  // the methods that take such a surface
-  for (const MethodEntry& other : kEntries)
+  for (const MethodEntry& other : kMethodEntries)
     if (!other.capabilities.samples_emissive_surfaces)
       able += (able.empty() ? "" : " or ") + std::string(other.name);
   const UnsampledEmitter& emitter = scene.unsampled_emitters.front();
@@ -151,20 +151,20 @@ void refuse_unsampled_emitters(const MethodEntry& entry, const Scene& scene) {
 }  // namespace
 
 std::span<const MethodEntry> method_entries() {
-  return kEntries;
+  return kMethodEntries;
 }
 
 const MethodEntry* find_method(std::string_view name) {
-  return find_entry<MethodEntry>(kEntries, name);
+  return find_entry<MethodEntry>(kMethodEntries, name);
 }
 
 std::string method_names() {
-  return entry_names<MethodEntry>(kEntries);
+  return entry_names<MethodEntry>(kMethodEntries);
 }
 
 std::vector<std::string_view> method_names_with(bool MethodCapabilities::*capability) {
   std::vector<std::string_view> names;
-  for (const MethodEntry& entry : kEntries)
+  for (const MethodEntry& entry : kMethodEntries)
     if (entry.capabilities.*capability) names.push_back(entry.name);
   return names;
 }
@@ -196,7 +196,7 @@ nlohmann::json emitter_facts(const Scene& scene, const MethodEntry& entry) {
 }
 
 std::span<const SettingsSection> method_settings_sections() {
-  static const std::array<SettingsSection, kEntries.size()> sections = make_sections();
+  static const std::array<SettingsSection, kMethodEntries.size()> sections = make_sections();
   return sections;
 }
 

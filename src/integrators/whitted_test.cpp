@@ -7,17 +7,13 @@
 
 #include "integrators/local.h"
 #include "integrators/scene_loading.h"
+#include "scene_text.h"
 
 namespace candela {
 namespace {
 
-std::unique_ptr<Scene> scene_from(const std::string& body, const std::string& camera) {
-  return load_scene_text(R"({"format": "candela/1", "camera": )" + camera + ", " + body + "}", "test.json",
-                         ".");
-}
-
-// One pixel looking straight down -z through the image centre.
-const char* kCentreCamera = R"({"eye": [0, 0, 10], "target": [0, 0, 0], "fov": 1, "width": 1, "height": 1})";
+using testing::kCentreCamera;
+using testing::scene_from;
 
 // The method as the scene's "whitted" object makes it.
 WhittedMethod whitted_of(const Scene& scene) {

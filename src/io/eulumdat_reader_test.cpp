@@ -31,7 +31,7 @@ std::string ldt_file(int symmetry, int planes, const std::vector<double>& gammas
   return text;
 }
 
-std::string error_of(const std::string& text) {
+std::string eulumdat_error(const std::string& text) {
   try {
     parse_eulumdat(text, "lamp.ldt");
   } catch (const InputError& e) {
@@ -90,30 +90,35 @@ TEST(Eulumdat, FluxOfALambertianDownlight) {
 }
 
 TEST(Eulumdat, BadFilesNameTheLineAndWhatWasExpected) {
-  EXPECT_NE(error_of("Company\n1\n").find("lamp.ldt:3: the file ends where the symmetry indicator"),
+  EXPECT_NE(eulumdat_error("Company\n1\n").find("lamp.ldt:3: the file ends where the symmetry indicator"),
             std::string::npos)
-      << error_of("Company\n1\n");
+      << eulumdat_error("Company\n1\n");
+  EXPECT_NE(eulumdat_error("Company\n1\n7\n")
+                .find("lamp.ldt:3: the symmetry indicator Isym (line 3) must be an integer"),
+            std::string::npos);
+  EXPECT_EQ(eulumdat_error(ldt_file(1, 24, {0, 90}, {1, 2})), "no error");
   EXPECT_NE(
-      error_of("Company\n1\n7\n").find("lamp.ldt:3: the symmetry indicator Isym (line 3) must be an integer"),
-      std::string::npos);
-  EXPECT_EQ(error_of(ldt_file(1, 24, {0, 90}, {1, 2})), "no error");
-  EXPECT_NE(error_of(ldt_file(1, 24, {0, 90}, {1})).find("the file ends where the intensity at C0°, γ 90°"),
-            std::string::npos)
-      << error_of(ldt_file(1, 24, {0, 90}, {1}));
+      eulumdat_error(ldt_file(1, 24, {0, 90}, {1})).find("the file ends where the intensity at C0°, γ 90°"),
+      std::string::npos)
+      << eulumdat_error(ldt_file(1, 24, {0, 90}, {1}));
   // Counts the file cannot hold are refused before anything is allocated: 24 planes × 18,001.
   std::string huge = ldt_file(0, 24, {0, 90}, {1, 2});
   huge.replace(huge.find("\n2\n5\nREPORT") + 1, 1, "18001");
-  EXPECT_NE(error_of(huge).find("do not fit in the rest of the file"), std::string::npos) << error_of(huge);
-  EXPECT_NE(error_of(ldt_file(1, 24, {90, 0}, {1, 2})).find("γ-angles must increase"), std::string::npos);
-  EXPECT_NE(error_of(ldt_file(1, 24, {0, 90}, {1, -2})).find("cannot be negative"), std::string::npos);
-  EXPECT_NE(error_of(ldt_file(4, 6, {0, 90}, {1, 2, 3, 4})).find("divisible by 4"), std::string::npos);
-  EXPECT_NE(error_of(ldt_file(1, 24, {0, 90}, {1, 2}, 0)).find("luminous flux of lamp set 1 must be > 0"),
+  EXPECT_NE(eulumdat_error(huge).find("do not fit in the rest of the file"), std::string::npos)
+      << eulumdat_error(huge);
+  EXPECT_NE(eulumdat_error(ldt_file(1, 24, {90, 0}, {1, 2})).find("γ-angles must increase"),
             std::string::npos);
+  EXPECT_NE(eulumdat_error(ldt_file(1, 24, {0, 90}, {1, -2})).find("cannot be negative"), std::string::npos);
+  EXPECT_NE(eulumdat_error(ldt_file(4, 6, {0, 90}, {1, 2, 3, 4})).find("divisible by 4"), std::string::npos);
+  EXPECT_NE(
+      eulumdat_error(ldt_file(1, 24, {0, 90}, {1, 2}, 0)).find("luminous flux of lamp set 1 must be > 0"),
+      std::string::npos);
   // A number that is not one, with its line: line 6 is Ng.
   std::string bad = ldt_file(1, 24, {0, 90}, {1, 2});
   const std::size_t ng = bad.find("\n2\n5\n");
   bad.replace(ng + 1, 1, "two");
-  EXPECT_NE(error_of(bad).find("lamp.ldt:6: \"two\" is not a number"), std::string::npos) << error_of(bad);
+  EXPECT_NE(eulumdat_error(bad).find("lamp.ldt:6: \"two\" is not a number"), std::string::npos)
+      << eulumdat_error(bad);
 }
 
 }  // namespace

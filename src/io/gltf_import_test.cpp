@@ -27,7 +27,7 @@ using testing::square_buffer;
 using testing::square_json;
 using testing::write_file;
 
-std::string error_of(const std::string& path) {
+std::string gltf_error(const std::string& path) {
   try {
     (void)import_gltf(path, kFrom);
   } catch (const InputError& e) {
@@ -75,12 +75,13 @@ TEST(GltfImport, ANonRegularExternalBufferIsRefused) {
   testing::ScratchDirectory scratch("gltf");
   const std::filesystem::path pipe = scratch.path() / "pipe.bin";
   ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
-  const std::string fifo_error = error_of(write_file(scratch.path() / "fifo.gltf", square_json("pipe.bin")));
+  const std::string fifo_error =
+      gltf_error(write_file(scratch.path() / "fifo.gltf", square_json("pipe.bin")));
   EXPECT_NE(fifo_error.find("is a FIFO (named pipe), not a regular file"), std::string::npos) << fifo_error;
   EXPECT_NE(fifo_error.find("pipe.bin"), std::string::npos) << fifo_error;
   std::filesystem::create_symlink("/dev/zero", scratch.path() / "zero.bin");
   const std::string device_error =
-      error_of(write_file(scratch.path() / "zero.gltf", square_json("zero.bin")));
+      gltf_error(write_file(scratch.path() / "zero.gltf", square_json("zero.bin")));
   EXPECT_NE(device_error.find("is a device, not a regular file"), std::string::npos) << device_error;
 }
 
@@ -108,25 +109,25 @@ TEST(GltfImport, BadInputsAreRefusedNamingTheFile) {
   const std::string nan =
       write_file(scratch.path() / "nan.gltf",
                  square_json(data_uri(square_buffer(std::numeric_limits<float>::quiet_NaN()))));
-  std::string message = error_of(nan);
+  std::string message = gltf_error(nan);
   EXPECT_NE(message.find(nan), std::string::npos) << message;
   EXPECT_NE(message.find("vertex 1 has a non-finite position"), std::string::npos) << message;
 
   const std::string index =
       write_file(scratch.path() / "index.gltf", square_json(data_uri(square_buffer(0, 9))));
-  message = error_of(index);
+  message = gltf_error(index);
   EXPECT_NE(message.find("refers to vertex 9"), std::string::npos) << message;
 
   const std::string broken = write_file(scratch.path() / "broken.gltf", "{\"asset\": ");
-  message = error_of(broken);
+  message = gltf_error(broken);
   EXPECT_NE(message.find(broken), std::string::npos) << message;
 
   const std::string short_glb = glb(square_json(""), square_buffer());
   const std::string cut = write_file(scratch.path() / "cut.glb", short_glb.substr(0, short_glb.size() - 20));
-  message = error_of(cut);
+  message = gltf_error(cut);
   EXPECT_NE(message.find(cut), std::string::npos) << message;
 
-  EXPECT_NE(error_of((scratch.path() / "none.glb").string()).find("not found"), std::string::npos);
+  EXPECT_NE(gltf_error((scratch.path() / "none.glb").string()).find("not found"), std::string::npos);
 }
 
 // square_json with `from` replaced by `to` (which must occur once).
@@ -147,7 +148,7 @@ TEST(GltfImport, BadByteOffsetsLengthsAndStridesAreRefusedByTheirJsonPath) {
   testing::ScratchDirectory scratch("gltf");
   const auto expect_error = [&](const std::string& name, const std::string& json, const std::string& what) {
     const std::string path = write_file(scratch.path() / name, json);
-    const std::string message = error_of(path);
+    const std::string message = gltf_error(path);
     EXPECT_NE(message.find(path), std::string::npos) << message;
     EXPECT_NE(message.find(what), std::string::npos) << message;
   };
@@ -199,7 +200,7 @@ TEST(GltfImport, BadByteOffsetsLengthsAndStridesAreRefusedByTheirJsonPath) {
 TEST(GltfImport, NodeTransformsNameTheNodeAndWhatIsWrong) {
   testing::ScratchDirectory scratch("gltf");
   const auto error_for_node = [&](const std::string& name, const std::string& nodes) {
-    return error_of(write_file(scratch.path() / name, square_json(data_uri(square_buffer()), nodes)));
+    return gltf_error(write_file(scratch.path() / name, square_json(data_uri(square_buffer()), nodes)));
   };
   std::string message = error_for_node(
       "matrix.gltf", R"({"mesh": 0, "matrix": [1e300, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]})");

@@ -21,7 +21,7 @@ std::string type_c_file(const std::string& vertical, int vertical_count, const s
          " 1 2 0 0 0\n1 1 0\n" + vertical + "\n" + horizontal + "\n" + values + "\n";
 }
 
-std::string error_of(const std::string& text) {
+std::string ies_error(const std::string& text) {
   try {
     parse_ies(text, "lamp.ies");
   } catch (const InputError& e) {
@@ -112,27 +112,27 @@ TEST(Ies, FluxOfIsotropicAndLambertianDistributions) {
 }
 
 TEST(Ies, BadFilesNameTheLineColumnAndWhatWasExpected) {
-  EXPECT_NE(error_of("IESNA:LM-63-2002\n[TEST] x\n1 2 3\n").find("lamp.ies:3: no TILT= line"),
+  EXPECT_NE(ies_error("IESNA:LM-63-2002\n[TEST] x\n1 2 3\n").find("lamp.ies:3: no TILT= line"),
             std::string::npos);
-  EXPECT_NE(error_of(type_c_file("0 9O", 2, "0", 1, "1 2")).find("lamp.ies:6:3: \"9O\" is not a number"),
+  EXPECT_NE(ies_error(type_c_file("0 9O", 2, "0", 1, "1 2")).find("lamp.ies:6:3: \"9O\" is not a number"),
             std::string::npos)
-      << error_of(type_c_file("0 9O", 2, "0", 1, "1 2"));
-  EXPECT_NE(error_of(type_c_file("0 90", 2, "0", 1, "1")).find("the file ends where the candela value"),
+      << ies_error(type_c_file("0 9O", 2, "0", 1, "1 2"));
+  EXPECT_NE(ies_error(type_c_file("0 90", 2, "0", 1, "1")).find("the file ends where the candela value"),
             std::string::npos);
-  EXPECT_NE(error_of(type_c_file("90 0", 2, "0", 1, "1 2")).find("vertical angles must increase"),
+  EXPECT_NE(ies_error(type_c_file("90 0", 2, "0", 1, "1 2")).find("vertical angles must increase"),
             std::string::npos);
-  EXPECT_NE(error_of(type_c_file("0 190", 2, "0", 1, "1 2")).find("outside 0° to 180°"), std::string::npos);
-  EXPECT_NE(error_of(type_c_file("0 90", 2, "0 45", 2, "1 2 3 4")).find("none of LM-63's symmetries"),
+  EXPECT_NE(ies_error(type_c_file("0 190", 2, "0", 1, "1 2")).find("outside 0° to 180°"), std::string::npos);
+  EXPECT_NE(ies_error(type_c_file("0 90", 2, "0 45", 2, "1 2 3 4")).find("none of LM-63's symmetries"),
             std::string::npos);
-  EXPECT_NE(error_of(type_c_file("0 90", 2, "0", 1, "1 -2")).find("cannot be negative"), std::string::npos);
+  EXPECT_NE(ies_error(type_c_file("0 90", 2, "0", 1, "1 -2")).find("cannot be negative"), std::string::npos);
   // Counts that the file cannot hold are refused before anything is allocated.
   const std::string huge = "TILT=NONE\n1 -1 1 100000 100000 1 2 0 0 0\n1 1 0\n0 90\n";
-  EXPECT_NE(error_of(huge).find("do not fit in the rest of the file"), std::string::npos) << error_of(huge);
+  EXPECT_NE(ies_error(huge).find("do not fit in the rest of the file"), std::string::npos) << ies_error(huge);
   EXPECT_NE(
-      error_of("TILT=NONE\n1 -1 0 2 1 1 2 0 0 0\n").find("lamp.ies:2:6: the candela multiplier must be > 0"),
+      ies_error("TILT=NONE\n1 -1 0 2 1 1 2 0 0 0\n").find("lamp.ies:2:6: the candela multiplier must be > 0"),
       std::string::npos)
-      << error_of("TILT=NONE\n1 -1 0 2 1 1 2 0 0 0\n");
-  EXPECT_NE(error_of("TILT=NONE\n1 -1 1 2 1 4 2 0 0 0\n").find("photometric type"), std::string::npos);
+      << ies_error("TILT=NONE\n1 -1 0 2 1 1 2 0 0 0\n");
+  EXPECT_NE(ies_error("TILT=NONE\n1 -1 1 2 1 4 2 0 0 0\n").find("photometric type"), std::string::npos);
 }
 
 }  // namespace

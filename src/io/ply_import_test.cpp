@@ -24,7 +24,7 @@ const SourceLocation kFrom{"scene.json", 3, 7, "shapes[0].file"};
 using testing::kAsciiCube;
 using testing::write_file;
 
-std::string error_of(const std::string& path) {
+std::string ply_error(const std::string& path) {
   try {
     (void)import_ply(path, kFrom);
   } catch (const InputError& e) {
@@ -129,7 +129,7 @@ TEST(PlyImport, TruncatedBinaryGivesTheFileAndByteOffset) {
   testing::ScratchDirectory scratch("ply");
   const std::string whole = binary_quad(false);
   const std::string path = write_file(scratch.path() / "cut.ply", whole.substr(0, whole.size() - 3));
-  const std::string message = error_of(path);
+  const std::string message = ply_error(path);
   EXPECT_NE(message.find(path), std::string::npos) << message;
   EXPECT_NE(message.find("byte"), std::string::npos) << message;
 }
@@ -140,20 +140,20 @@ TEST(PlyImport, HugeCountsAreRefusedBeforeAllocating) {
       write_file(scratch.path() / "huge.ply",
                  "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\n"
                  "property float x\nproperty float y\nproperty float z\nend_header\n0000");
-  const std::string message = error_of(path);
+  const std::string message = ply_error(path);
   EXPECT_NE(message.find("1000000000"), std::string::npos) << message;
   const std::string ascii =
       write_file(scratch.path() / "huge-ascii.ply",
                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                  "property float z\nelement face 18446744073709551615\n"
                  "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n");
-  EXPECT_NE(error_of(ascii).find("face"), std::string::npos);
+  EXPECT_NE(ply_error(ascii).find("face"), std::string::npos);
   const std::string list =
       write_file(scratch.path() / "huge-list.ply",
                  "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\n"
                  "property float y\nproperty float z\nelement face 1\n"
                  "property list uint int vertex_indices\nend_header\n\xff\xff\xff\x7f");
-  EXPECT_NE(error_of(list).find("runs past the end"), std::string::npos);
+  EXPECT_NE(ply_error(list).find("runs past the end"), std::string::npos);
 }
 
 TEST(PlyImport, BadIndexGivesTheLine) {
@@ -163,7 +163,7 @@ TEST(PlyImport, BadIndexGivesTheLine) {
                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                  "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
                  "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n");
-  const std::string message = error_of(path);
+  const std::string message = ply_error(path);
   EXPECT_NE(message.find(path), std::string::npos) << message;
   EXPECT_NE(message.find("line 13"), std::string::npos) << message;
   EXPECT_NE(message.find("vertex 3"), std::string::npos) << message;
@@ -194,7 +194,7 @@ TEST(PlyImport, LargeFacesAreTriangulatedAsObjFacesAndRefusedPastTheLimit) {
   for (const auto& t : disc.mesh->triangles) at_corner_zero += std::count(t.begin(), t.end(), 0u);
   EXPECT_LE(at_corner_zero, 40u);  // a fan: all 4998
   EXPECT_EQ(import_ply(polygon("star.ply", 1000, true), kFrom).mesh->triangles.size(), 998u);
-  const std::string message = error_of(polygon("big-star.ply", 1002, true));
+  const std::string message = ply_error(polygon("big-star.ply", 1002, true));
   EXPECT_NE(message.find("line 1012"), std::string::npos) << message;
   EXPECT_NE(message.find("face 0: a face of 1002 corners that is not convex"), std::string::npos) << message;
 }
@@ -206,26 +206,26 @@ TEST(PlyImport, NonFiniteCoordinateNamesTheVertex) {
                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                  "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
                  "end_header\n0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n");
-  const std::string message = error_of(path);
+  const std::string message = ply_error(path);
   EXPECT_NE(message.find("vertex 1 has a non-finite coordinate"), std::string::npos) << message;
   EXPECT_NE(message.find("line 11"), std::string::npos) << message;
 }
 
 TEST(PlyImport, MalformedHeadersAndMissingFiles) {
   testing::ScratchDirectory scratch("ply");
-  EXPECT_NE(error_of((scratch.path() / "none.ply").string()).find("not found"), std::string::npos);
-  EXPECT_NE(error_of(write_file(scratch.path() / "a.ply", "plx\n")).find("'ply'"), std::string::npos);
-  EXPECT_NE(error_of(write_file(scratch.path() / "b.ply", "ply\nformat ascii 1.0\nelement vertex 1\n"))
+  EXPECT_NE(ply_error((scratch.path() / "none.ply").string()).find("not found"), std::string::npos);
+  EXPECT_NE(ply_error(write_file(scratch.path() / "a.ply", "plx\n")).find("'ply'"), std::string::npos);
+  EXPECT_NE(ply_error(write_file(scratch.path() / "b.ply", "ply\nformat ascii 1.0\nelement vertex 1\n"))
                 .find("end_header"),
             std::string::npos);
   EXPECT_NE(
-      error_of(write_file(scratch.path() / "c.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n"))
+      ply_error(write_file(scratch.path() / "c.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n"))
           .find("line 3"),
       std::string::npos);
   EXPECT_NE(
-      error_of(write_file(scratch.path() / "d.ply",
-                          "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
-                          "property float z\nend_header\n0 0 0\n"))
+      ply_error(write_file(scratch.path() / "d.ply",
+                           "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+                           "property float z\nend_header\n0 0 0\n"))
           .find("no triangles"),
       std::string::npos);
 }

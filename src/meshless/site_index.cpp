@@ -7,28 +7,23 @@
 
 namespace candela {
 
-namespace {
-
-// nanoflann's dataset interface over the sites' positions.
-struct SitePositions {
-  std::span<const Site> sites;
-  std::size_t kdtree_get_point_count() const { return sites.size(); }
-  double kdtree_get_pt(std::size_t index, std::size_t axis) const {
-    return sites[index].position[static_cast<int>(axis)];
-  }
-  template <typename Box>
-  bool kdtree_get_bbox(Box&) const {
-    return false;  // let nanoflann compute it
-  }
-};
-
-using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, SitePositions>,
-                                                   SitePositions, 3, uint32_t>;
-
-}  // namespace
-
 struct SiteIndex::Tree {
-  SitePositions positions;
+  // nanoflann's dataset interface over the sites' positions.
+  struct Positions {
+    std::span<const Site> sites;
+    std::size_t kdtree_get_point_count() const { return sites.size(); }
+    double kdtree_get_pt(std::size_t index, std::size_t axis) const {
+      return sites[index].position[static_cast<int>(axis)];
+    }
+    template <typename Box>
+    bool kdtree_get_bbox(Box&) const {
+      return false;  // let nanoflann compute it
+    }
+  };
+  using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Positions>,
+                                                     Positions, 3, uint32_t>;
+
+  Positions positions;
   KdTree tree;
   explicit Tree(std::span<const Site> sites)
       : positions{sites}, tree(3, positions, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {

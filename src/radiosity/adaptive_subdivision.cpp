@@ -24,10 +24,7 @@ std::vector<bool> elements_to_split(const RadiosityMesh& mesh, const std::vector
   std::vector<bool> split(count, false);
   if (!(largest > 0)) return split;
   const double limit = threshold * largest;
-  const auto splittable = [&](std::size_t q) {
-    const auto& c = mesh.elements[q].corners;
-    return std::max({length(c[1] - c[0]), length(c[2] - c[1]), length(c[0] - c[2])}) > min_size;
-  };
+  const auto splittable = [&](std::size_t q) { return longest_edge(mesh.elements[q]) > min_size; };
   const std::vector<std::vector<uint32_t>> neighbours = mesh.element_neighbours();
   for (std::size_t q = 0; q < count; ++q) {
     if (!counted(q)) continue;

@@ -31,11 +31,6 @@ Square square() {
   return result;
 }
 
-double longest_edge(const RadiositySurface& surface) {
-  const auto& c = surface.corners;
-  return std::max({length(c[1] - c[0]), length(c[2] - c[1]), length(c[0] - c[2])});
-}
-
 TEST(RadiosityAdaptiveSubdivision, SplitsBothNeighboursOfASteepStepAndNothingElse) {
   const Square s = square();
   const std::size_t count = s.mesh.elements.size();

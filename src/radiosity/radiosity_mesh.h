@@ -10,6 +10,7 @@
 // E of its material at its centroid (000 eq. 6-7's ρ_i and E_i).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -53,6 +54,12 @@ struct RadiositySurface {
   // emission + first_shot.
   Color first_shot;
 };
+
+// The length of the surface's longest edge (the adaptive subdivision's size).
+inline double longest_edge(const RadiositySurface& surface) {
+  const auto& c = surface.corners;
+  return std::max({length(c[1] - c[0]), length(c[2] - c[1]), length(c[0] - c[2])});
+}
 
 struct RadiosityMesh {
   std::vector<RadiositySurface> patches;

@@ -20,13 +20,6 @@ std::unique_ptr<Scene> scene_with(const std::string& shapes) {
       "test.json", ".", {}, {});
 }
 
-double longest_edge(const RadiositySurface& surface) {
-  double longest = 0;
-  for (int k = 0; k < 3; ++k)
-    longest = std::max(longest, length(surface.corners[(k + 1) % 3] - surface.corners[k]));
-  return longest;
-}
-
 // Sizes, areas and the element → patch mapping of any mesh.
 void expect_consistent(const RadiosityMesh& mesh) {
   ASSERT_EQ(mesh.first_element.size(), mesh.patches.size() + 1);

@@ -10,7 +10,7 @@ namespace candela {
 
 namespace {
 
-constexpr std::array<SamplerEntry, 3> kEntries{{
+constexpr std::array<SamplerEntry, 3> kSamplerEntries{{
     {"independent", "independent PCG32 numbers per pixel and pass", false,
      [](const SamplerParameters& p) -> std::unique_ptr<Sampler> {
        return std::make_unique<IndependentSampler>(p.seed);
@@ -30,18 +30,19 @@ constexpr std::array<SamplerEntry, 3> kEntries{{
 }  // namespace
 
 std::span<const SamplerEntry> sampler_entries() {
-  return kEntries;
+  return kSamplerEntries;
 }
 
 const SamplerEntry* find_sampler(std::string_view name) {
-  for (const SamplerEntry& entry : kEntries)
+  for (const SamplerEntry& entry : kSamplerEntries)
     if (name == entry.name) return &entry;
   return nullptr;
 }
 
 std::string sampler_names() {
   std::string names;
-  for (const SamplerEntry& entry : kEntries) names += (names.empty() ? "" : ", ") + std::string(entry.name);
+  for (const SamplerEntry& entry : kSamplerEntries)
+    names += (names.empty() ? "" : ", ") + std::string(entry.name);
   return names;
 }
 

@@ -16,9 +16,9 @@ namespace candela {
 namespace {
 
 // χ² tests in this file (Šidák correction of the 1% level).
-constexpr int kChiSquareTests = 14;
-const double kSignificance = test::sidak_significance(0.01, kChiSquareTests);
-constexpr int kSamples = 100000;
+constexpr int kWarpChiSquareTests = 14;
+const double kWarpSignificance = test::sidak_significance(0.01, kWarpChiSquareTests);
+constexpr int kWarpSamples = 100000;
 
 // A grid of points strictly inside the unit square (never on the seams u = 0.5 or the edges).
 std::vector<Vec2> square_grid(int n = 33) {
@@ -71,8 +71,8 @@ void expect_direction_chi_square(const DirectionWarp& warp, const test::Directio
         w = warp({u0, rng.next_double()});
         return true;
       },
-      pdf, kSamples, seed, grid);
-  EXPECT_GT(result.p_value, kSignificance) << result.message;
+      pdf, kWarpSamples, seed, grid);
+  EXPECT_GT(result.p_value, kWarpSignificance) << result.message;
   // The p-values land in the XML report (--gtest_output=xml), one per seed.
   testing::Test::RecordProperty("p_value_seed_" + std::to_string(seed), std::to_string(result.p_value));
 }
@@ -120,8 +120,8 @@ TEST(Warps, ConcentricDiscChiSquare) {
         q = {p.x * p.x + p.y * p.y, phi};
         return true;
       },
-      [](const Vec2&) { return uniform_disc_pdf() * kPi; }, kSamples, 1);
-  EXPECT_GT(result.p_value, kSignificance) << result.message;
+      [](const Vec2&) { return uniform_disc_pdf() * kPi; }, kWarpSamples, 1);
+  EXPECT_GT(result.p_value, kWarpSignificance) << result.message;
   testing::Test::RecordProperty("p_value_seed_1", std::to_string(result.p_value));
   // ∫∫ pdf r dr dφ over the disc.
   test::RectangleGrid polar{0, 1, 0, 2 * kPi, 8, 8, 4};
@@ -250,8 +250,8 @@ TEST(Warps, TriangleChiSquare) {
         q = {rest * rest, rest > 0 ? b.y / rest : 0.0};
         return true;
       },
-      [](const Vec2&) { return 1.0; }, kSamples, 40);
-  EXPECT_GT(result.p_value, kSignificance) << result.message;
+      [](const Vec2&) { return 1.0; }, kWarpSamples, 40);
+  EXPECT_GT(result.p_value, kWarpSignificance) << result.message;
   testing::Test::RecordProperty("p_value_seed_40", std::to_string(result.p_value));
 }
 
@@ -287,8 +287,8 @@ TEST(Warps, BilinearChiSquare) {
         q = square_to_bilinear({u0, rng.next_double()}, w);
         return true;
       },
-      [&](const Vec2& p) { return bilinear_pdf(p, w); }, kSamples, 41);
-  EXPECT_GT(result.p_value, kSignificance) << result.message;
+      [&](const Vec2& p) { return bilinear_pdf(p, w); }, kWarpSamples, 41);
+  EXPECT_GT(result.p_value, kWarpSignificance) << result.message;
   testing::Test::RecordProperty("p_value_seed_41", std::to_string(result.p_value));
 }
 

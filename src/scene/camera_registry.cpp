@@ -55,7 +55,7 @@ std::unique_ptr<Camera> make_orthographic(const JsonNode& node, int width, int h
   });
 }
 
-const std::array kEntries = {
+const std::array kCameraEntries = {
     CameraEntry{
         "perspective", "eye, target, up, horizontal field of view fov in degrees (000 §5.2)",
         R"({"type": "perspective", "eye": [0, 1, 5], "target": [0, 1, 0], "up": [0, 1, 0], "fov": 60, "width": 320, "height": 240})",
@@ -70,11 +70,11 @@ const std::array kEntries = {
 }  // namespace
 
 std::span<const CameraEntry> camera_entries() {
-  return kEntries;
+  return kCameraEntries;
 }
 
 const CameraEntry* find_camera(std::string_view name) {
-  return find_entry<CameraEntry>(kEntries, name);
+  return find_entry<CameraEntry>(kCameraEntries, name);
 }
 
 std::unique_ptr<Camera> read_camera(const JsonNode& node, int default_width, int default_height) {
@@ -93,7 +93,7 @@ std::unique_ptr<Camera> read_camera(const JsonNode& node, int default_width, int
   const CameraEntry* entry = find_camera(type);
   if (!entry)
     node.at("type").fail("unknown camera \"" + type +
-                         "\" (expected one of: " + entry_names<CameraEntry>(kEntries) + ")");
+                         "\" (expected one of: " + entry_names<CameraEntry>(kCameraEntries) + ")");
   auto camera = entry->create(node, width, height);
   node.finish();
   return camera;

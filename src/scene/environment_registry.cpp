@@ -204,7 +204,7 @@ std::unique_ptr<Environment> make_cie_sky(const JsonNode& node, const LoadContex
                                                       "cie_sky");
 }
 
-const std::array kEntries = {
+const std::array kEnvironmentEntries = {
     EnvironmentEntry{"constant", "the same radiance from every direction",
                      R"({"type": "constant", "color": [0.2, 0.3, 0.5]})", make_constant},
     EnvironmentEntry{
@@ -230,11 +230,11 @@ const std::array kEntries = {
 }  // namespace
 
 std::span<const EnvironmentEntry> environment_entries() {
-  return kEntries;
+  return kEnvironmentEntries;
 }
 
 const EnvironmentEntry* find_environment(std::string_view name) {
-  return find_entry<EnvironmentEntry>(kEntries, name);
+  return find_entry<EnvironmentEntry>(kEnvironmentEntries, name);
 }
 
 std::unique_ptr<Environment> read_environment(const JsonNode& node, const LoadContext& context) {
@@ -244,7 +244,7 @@ std::unique_ptr<Environment> read_environment(const JsonNode& node, const LoadCo
   const EnvironmentEntry* entry = find_environment(type);
   if (!entry)
     type_node.fail("unknown environment type \"" + type +
-                   "\" (expected one of: " + entry_names<EnvironmentEntry>(kEntries) + ")");
+                   "\" (expected one of: " + entry_names<EnvironmentEntry>(kEnvironmentEntries) + ")");
   auto environment = entry->create(node, context);
   node.finish();
   return environment;

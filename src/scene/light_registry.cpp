@@ -258,7 +258,7 @@ std::unique_ptr<Light> make_luminaire(const JsonNode& node, Color&, const LoadCo
                                           read_photometric_color(node), width, depth, samples);
 }
 
-const std::array kEntries = {
+const std::array kLightEntries = {
     LightEntry{"ambient", "uniform ambient light Ia (000 §2.4)", R"({"type": "ambient", "intensity": 0.3})",
                make_ambient},
     LightEntry{
@@ -295,11 +295,11 @@ const std::array kEntries = {
 }  // namespace
 
 std::span<const LightEntry> light_entries() {
-  return kEntries;
+  return kLightEntries;
 }
 
 const LightEntry* find_light(std::string_view name) {
-  return find_entry<LightEntry>(kEntries, name);
+  return find_entry<LightEntry>(kLightEntries, name);
 }
 
 }  // namespace candela

@@ -228,7 +228,7 @@ ShapeBuild make_mesh(const JsonNode& node, const Transform& transform, LoadConte
   return build;
 }
 
-const std::array kEntries = {
+const std::array kShapeEntries = {
     ShapeEntry{"sphere", "centre and radius (000 §5.6.1)",
                R"({"type": "sphere", "center": [0, 1, 0], "radius": 1})", make_sphere},
     ShapeEntry{"plane", "infinite plane through a point with a normal",
@@ -268,11 +268,11 @@ const std::array kEntries = {
 }  // namespace
 
 std::span<const ShapeEntry> shape_entries() {
-  return kEntries;
+  return kShapeEntries;
 }
 
 const ShapeEntry* find_shape(std::string_view name) {
-  return find_entry<ShapeEntry>(kEntries, name);
+  return find_entry<ShapeEntry>(kShapeEntries, name);
 }
 
 }  // namespace candela

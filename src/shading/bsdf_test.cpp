@@ -18,9 +18,9 @@
 namespace candela {
 namespace {
 
-constexpr int kChiSquareTests = 17;  // every sphere_chi_square call below
-const double kSignificance = test::sidak_significance(0.01, kChiSquareTests);
-constexpr int kSamples = 100000;
+constexpr int kBsdfChiSquareTests = 17;  // every sphere_chi_square call below
+const double kBsdfSignificance = test::sidak_significance(0.01, kBsdfChiSquareTests);
+constexpr int kBsdfSamples = 100000;
 const Vec3 kUp{0, 0, 1};
 
 // A direction at polar angle θ (radians) from +z, azimuth φ.
@@ -84,8 +84,8 @@ void expect_sampling_matches_pdf(const Bsdf& bsdf, const Vec3& wo, uint64_t seed
         wi = s.wi;
         return true;
       },
-      [&](const Vec3& wi) { return bsdf.pdf(wo, wi); }, kSamples, seed);
-  EXPECT_GT(result.p_value, kSignificance) << result.message;
+      [&](const Vec3& wi) { return bsdf.pdf(wo, wi); }, kBsdfSamples, seed);
+  EXPECT_GT(result.p_value, kBsdfSignificance) << result.message;
   // The p-values land in the XML report (--gtest_output=xml), one per seed.
   testing::Test::RecordProperty("p_value_seed_" + std::to_string(seed), std::to_string(result.p_value));
 }

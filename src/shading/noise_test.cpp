@@ -6,14 +6,10 @@
 #include <limits>
 
 #include "math/pcg32.h"
+#include "shape_test_support.h"
 
 namespace candela {
 namespace {
-
-Vec3 random_point(Pcg32& rng, double extent) {
-  return {(2 * rng.next_double() - 1) * extent, (2 * rng.next_double() - 1) * extent,
-          (2 * rng.next_double() - 1) * extent};
-}
 
 TEST(Noise, IsZeroAtEveryLatticePoint) {
   // Each corner's ramp g · (p − corner) vanishes at its corner, and the fade weights pick that
@@ -28,7 +24,7 @@ TEST(Noise, StaysWithinAboutPlusMinusOne) {
   Pcg32 rng(7, 1);
   double lowest = 0, highest = 0;
   for (int i = 0; i < 100000; ++i) {
-    const double n = gradient_noise(random_point(rng, 300));
+    const double n = gradient_noise(testing::random_point(rng, 300));
     lowest = std::min(lowest, n);
     highest = std::max(highest, n);
   }
@@ -43,7 +39,7 @@ TEST(Noise, AnalyticGradientMatchesCentralDifferences) {
   Pcg32 rng(11, 2);
   const double h = 1e-5;
   for (int i = 0; i < 2000; ++i) {
-    const Vec3 p = random_point(rng, 40);
+    const Vec3 p = testing::random_point(rng, 40);
     const Vec3 gradient = gradient_noise_gradient(p);
     for (int axis = 0; axis < 3; ++axis) {
       Vec3 forward = p, backward = p;
@@ -60,7 +56,7 @@ TEST(Noise, AnalyticGradientMatchesCentralDifferences) {
 TEST(Noise, SampleCarriesTheSameValueAsGradientNoise) {
   Pcg32 rng(5, 3);
   for (int i = 0; i < 1000; ++i) {
-    const Vec3 p = random_point(rng, 100);
+    const Vec3 p = testing::random_point(rng, 100);
     const NoiseSample sample = gradient_noise_sample(p);
     EXPECT_EQ(sample.value, gradient_noise(p));
     EXPECT_EQ(sample.gradient, gradient_noise_gradient(p));
@@ -119,7 +115,7 @@ TEST(Noise, RepeatsWithPeriod256) {
 TEST(Noise, FractalNoiseWithOneOctaveIsTheNoise) {
   Pcg32 rng(3, 4);
   for (int i = 0; i < 100; ++i) {
-    const Vec3 p = random_point(rng, 20);
+    const Vec3 p = testing::random_point(rng, 20);
     EXPECT_EQ(fractal_noise(p, 1), gradient_noise(p));
     EXPECT_EQ(turbulence(p, 1), std::fabs(gradient_noise(p)));
   }
@@ -139,7 +135,7 @@ TEST(Noise, FractalGradientMatchesCentralDifferences) {
   Pcg32 rng(13, 5);
   const double h = 1e-6;
   for (int i = 0; i < 200; ++i) {
-    const Vec3 p = random_point(rng, 10);
+    const Vec3 p = testing::random_point(rng, 10);
     const Vec3 gradient = fractal_noise_gradient(p, 4);
     for (int axis = 0; axis < 3; ++axis) {
       Vec3 forward = p, backward = p;
@@ -153,7 +149,7 @@ TEST(Noise, FractalGradientMatchesCentralDifferences) {
 
 TEST(Noise, TurbulenceIsNonNegative) {
   Pcg32 rng(17, 6);
-  for (int i = 0; i < 10000; ++i) EXPECT_GE(turbulence(random_point(rng, 50), 5), 0.0);
+  for (int i = 0; i < 10000; ++i) EXPECT_GE(turbulence(testing::random_point(rng, 50), 5), 0.0);
 }
 
 TEST(Noise, HugeCoordinatesStayFiniteAndBounded) {

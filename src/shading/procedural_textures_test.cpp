@@ -11,6 +11,7 @@
 #include "math/pcg32.h"
 #include "shading/checkerboard_texture.h"
 #include "shading/noise.h"
+#include "shape_test_support.h"
 
 namespace candela {
 namespace {
@@ -33,11 +34,6 @@ SurfaceHit hit_at_object(const Vec3& p) {
 
 std::shared_ptr<const TextureMapping> uv_mapping(const UvTransform& uv = {}) {
   return std::make_shared<ParametricMapping>(uv);
-}
-
-Vec3 random_point(Pcg32& rng, double extent) {
-  return {(2 * rng.next_double() - 1) * extent, (2 * rng.next_double() - 1) * extent,
-          (2 * rng.next_double() - 1) * extent};
 }
 
 // Each channel of c lies between the same channels of a and b.
@@ -125,7 +121,7 @@ TEST(Checkerboard3D, KeepsItsFormerResults) {
   EXPECT_EQ(checker.type_name(), "checkerboard");
   Pcg32 rng(23, 1);
   for (int i = 0; i < 20000; ++i) {
-    const Vec3 p = random_point(rng, 25);
+    const Vec3 p = testing::random_point(rng, 25);
     EXPECT_EQ(checker.evaluate(hit_at_object(p)), old_checkerboard(kWhite, kBlack, 0.7, offset, p));
   }
   // Cell faces: the bias puts a floor at y = 0 (and points a hair below it) in the upper cell.
@@ -149,7 +145,7 @@ TEST(Checkerboard3D, PlacedByATransform) {
   const CheckerboardTexture shifted(kWhite, kBlack, 1, Transform::translate({1, 0, 0}));
   Pcg32 rng(29, 2);
   for (int i = 0; i < 2000; ++i) {
-    const Vec3 p = random_point(rng, 10);
+    const Vec3 p = testing::random_point(rng, 10);
     EXPECT_EQ(scaled.evaluate(hit_at_object(p)), half.evaluate(hit_at_object(p)));
     EXPECT_EQ(shifted.evaluate(hit_at_object(p)), old_checkerboard(kWhite, kBlack, 1, {1, 0, 0}, p));
   }
@@ -173,7 +169,7 @@ TEST(ProceduralWood, ColorIsAConvexCombinationOfLightAndDark) {
   Pcg32 rng(31, 1);
   double lightest = 1, darkest = 0;
   for (int i = 0; i < 20000; ++i) {
-    const Vec3 p = random_point(rng, 3);
+    const Vec3 p = testing::random_point(rng, 3);
     const double d = wood.darkness(p);
     lightest = std::min(lightest, d);
     darkest = std::max(darkest, d);
@@ -240,7 +236,7 @@ TEST(ProceduralMarble, ColorIsAConvexCombinationOfBaseAndVein) {
   EXPECT_EQ(marble.type_name(), "marble");
   Pcg32 rng(37, 1);
   for (int i = 0; i < 20000; ++i) {
-    const Vec3 p = random_point(rng, 3);
+    const Vec3 p = testing::random_point(rng, 3);
     const double weight = marble.vein_weight(p);
     EXPECT_GE(weight, 0.0);
     EXPECT_LE(weight, 1.0);
@@ -300,7 +296,8 @@ TEST(ProceduralNoise, FbmIsCentredOnOffsetPlusHalfTheAmplitude) {
   Pcg32 rng(41, 1);
   const int count = 40000;
   double sum = 0;
-  for (int i = 0; i < count; ++i) sum += texture.evaluate_scalar(hit_at_object(random_point(rng, 60)));
+  for (int i = 0; i < count; ++i)
+    sum += texture.evaluate_scalar(hit_at_object(testing::random_point(rng, 60)));
   EXPECT_NEAR(sum / count, parameters.offset + parameters.amplitude * 0.5, 0.01);
 }
 
@@ -329,7 +326,7 @@ TEST(ProceduralNoise, TurbulenceModeIsNonNegative) {
   Pcg32 rng(43, 1);
   double highest = 0;
   for (int i = 0; i < 20000; ++i) {
-    const double value = texture.value(random_point(rng, 20));
+    const double value = texture.value(testing::random_point(rng, 20));
     EXPECT_GE(value, 0.0);
     highest = std::max(highest, value);
   }
