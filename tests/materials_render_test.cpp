@@ -16,6 +16,7 @@
 #include "render_support.h"
 #include "scene_text.h"
 #include "scratch_directory.h"
+#include "shading/fresnel.h"
 
 namespace candela {
 namespace {
@@ -95,6 +96,39 @@ TEST(MaterialsRender, ConstantTransparencyBlendsFrontAndBehind) {
   Color local;
   LocalMethod().pixel_ray_tree(*both, 0, 0, local);
   expect_color_near(local, front * 0.7 + behind * 0.3, 1e-12);
+}
+
+TEST(MaterialsRender, ThinSheetsPassTheirTransmittanceAtEachCrossingWithoutBending) {
+  // Issue 23: a thin sheet (a pane, kt its transmissivity) lets its transmittance T(θ)
+  // (shading/fresnel.h) through each time a ray crosses it, and does not bend it. The floor is
+  // seen through a thin box (two crossings at normal incidence) in the camera ray and in the
+  // shadow ray: T(0°)⁴ of its unglazed value; a tilted pane, not bent, the floor's point ahead.
+  const std::string back =
+      R"({"type": "plane", "point": [0, 0, -2], "normal": [0, 0, 1], "material": {"kd": [1, 0, 0]}})";
+  const std::string light = R"("lights": [{"type": "directional", "direction": [0, 0, -1]}], )";
+  const std::string thin = R"("material": {"kd": 0, "kt": 0.5, "ior": 1.5, "thin": true})";
+  const Color behind = pixel(*scene_from(light + R"("shapes": [)" + back + "]", kCentreCamera));
+  ASSERT_GT(behind.r, 0.1);
+  const auto boxed =
+      scene_from(light + R"("shapes": [{"type": "box", "min": [-1, -1, -0.5], "max": [1, 1, 0.5], )" + thin +
+                     "}, " + back + "]",
+                 kCentreCamera);
+  const double normal = thin_sheet(1, 1.5, 0.5).transmittance;
+  EXPECT_NEAR(normal, 0.96 * 0.96 * 0.5 / (1 - 0.04 * 0.04 * 0.25), 1e-15);
+  expect_color_near(pixel(*boxed), behind * std::pow(normal, 4), 1e-12);
+  // A pane tilted by 60°, crossed once by the camera ray and once by the light's: under a narrow
+  // spot (a lit disc of radius 0.35 on the floor) a bent camera ray, 25° off, would land in the dark.
+  const std::string spot =
+      R"("lights": [{"type": "spot", "position": [0, 0, 8], "target": [0, 0, -2], "cutoff": 2, "falloff_start": 1}], )";
+  const auto tilted = scene_from(
+      spot + R"("shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0.8660254037844386, 0, 0.5], )" +
+          thin + "}, " + back + "]",
+      kCentreCamera);
+  const Color spot_behind = pixel(*scene_from(spot + R"("shapes": [)" + back + "]", kCentreCamera));
+  ASSERT_GT(spot_behind.r, 0.01);
+  const double slanted = thin_sheet(0.5, 1.5, 0.5).transmittance;  // both rays 60° off the pane's normal
+  EXPECT_LT(slanted, 0.8 * normal);
+  expect_color_near(pixel(*tilted), spot_behind * slanted * slanted, 1e-9);
 }
 
 TEST(MaterialsRender, LinearAndNonlinearTransparencyFollowTheNormal) {

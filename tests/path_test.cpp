@@ -18,6 +18,7 @@
 #include "render_support.h"
 #include "scratch_directory.h"
 #include "shading/bsdf.h"
+#include "shading/fresnel.h"
 
 namespace candela {
 namespace {
@@ -47,12 +48,13 @@ Estimate estimate(int n, Sample sample) {
 }
 
 // Irradiance at (point, normal) by path_irradiance, n independent streams.
-Estimate irradiance(const Scene& scene, const Vec3& point, const Vec3& normal, int n) {
+Estimate irradiance(const Scene& scene, const Vec3& point, const Vec3& normal, int n,
+                    const PathSettings& settings = {}) {
   const LightSampler lights(scene);
   RayCounts rays;
   return estimate(n, [&](int i) {
     Pcg32 rng = path_pixel_rng(7, static_cast<uint64_t>(i), 0, 0);
-    return path_irradiance(scene, PathSettings{}, lights, point, normal, rng, rays);
+    return path_irradiance(scene, settings, lights, point, normal, rng, rays);
   });
 }
 
@@ -123,6 +125,46 @@ TEST(PathTracer, UniformSkyGivesUnitIrradianceAndTheFloorItsAlbedo) {
   const Film film = testing::render_scene(*scene, "path");
   const Estimate floor = estimate(film.width() * film.height(), [&](int i) { return film.pixels()[i]; });
   expect_estimate(floor, 0.5, "floor");
+}
+
+// Issue 23 (CIE 171 5.12/5.13's glazing): a thin pane (`"thin": true`, kt its transmissivity)
+// reflects R(θ) and lets T(θ) through without bending it (shading/fresnel.h). Under a uniform sky
+// of 1 over a black ground a point below a pane receives 2 ∫ T(c) c dc; below two panes, whose
+// light also bounces between them, 2 ∫ T² / (1 − R²) c dc — here two of CIE 171's 6 mm clear glass
+// (n = 1.52, transmissivity 0.95712), which absorbs. The pane is crossed at any depth: with
+// max_depth 1 the light through it is all still there. Without the ground (the sky all round) a
+// lossless pane vanishes: what it reflects of the sky below makes up for what it keeps from above.
+TEST(PathTracer, ThinPanesPassTheirFresnelTransmittanceOfTheSky) {
+  double single = 0, two = 0;
+  constexpr int kSteps = 20000;
+  for (int k = 0; k < kSteps; ++k) {
+    const double c = (k + 0.5) / kSteps;
+    single += 2 * thin_sheet(c, 1.5).transmittance * c / kSteps;
+    const SheetSplit glass = thin_sheet(c, 1.52, 0.95712);
+    const double R = glass.reflectance, T = glass.transmittance;
+    two += 2 * T * T / (1 - R * R) * c / kSteps;
+  }
+  // A clear pane's diffuse (hemispherical) transmittance: 0.85 at n = 1.5, 0.92 at normal incidence.
+  EXPECT_NEAR(single, 0.851, 0.001);
+  EXPECT_LT(two, 0.8 * single);
+  const std::string pane = R"({"type": "plane", "point": [0, 1, 0], "normal": [0, 1, 0],
+      "material": {"kd": 0, "kt": 1, "ior": 1.5, "thin": true}})";
+  const std::string glass = R"("material": {"kd": 0, "kt": 0.95712, "ior": 1.52, "thin": true}})";
+  const std::string sky = R"("camera": {"eye": [0, 3, 0], "target": [0, 0, 0], "up": [0, 0, -1]},
+    "environment": {"type": "constant", "color": [1, 1, 1]}, )";
+  const std::string ground =
+      R"({"type": "plane", "point": [0, -0.5, 0], "normal": [0, 1, 0], "material": {"kd": 0}}, )";
+  expect_estimate(irradiance(*path_scene(sky + R"("shapes": [)" + pane + "]"), {0, 0, 0}, {0, 1, 0}, 4000),
+                  1.0, "no ground");
+  const auto one_pane = path_scene(sky + R"("shapes": [)" + ground + pane + "]");
+  expect_estimate(irradiance(*one_pane, {0, 0, 0}, {0, 1, 0}, 16000), single, "one pane");
+  PathSettings one_bounce;
+  one_bounce.max_depth = 1;
+  expect_estimate(irradiance(*one_pane, {0, 0, 0}, {0, 1, 0}, 16000, one_bounce), single, "max_depth 1");
+  const auto two_panes = path_scene(
+      sky + R"("shapes": [)" + ground + R"({"type": "plane", "point": [0, 1, 0], "normal": [0, 1, 0], )" +
+      glass + R"(, {"type": "plane", "point": [0, 1.2, 0], "normal": [0, -1, 0], )" + glass + "]");
+  expect_estimate(irradiance(*two_panes, {0, 0, 0}, {0, 1, 0}, 16000), two, "two panes");
 }
 
 // Issue 22 item 2: emitters are chosen in proportion to their power. Eleven point lights at the

@@ -464,6 +464,14 @@ TEST(SceneLoader, ReviewedHostileInputsAreLocatedErrors) {
   expect_error(std::string(kHeader) + R"(  "materials": {"m": {"kr": 0.6, "kt": 0.6}}
 })",
                "materials.m.kt", 4, 40, "kr + kt must be <= 1");
+  // A thin sheet is kt's: without it nothing passes; and it has no inside to absorb in.
+  expect_error(std::string(kHeader) + R"(  "materials": {"m": {"thin": true}}
+})",
+               "materials.m.thin", 4, 31, "a thin sheet needs kt");
+  expect_error(
+      std::string(kHeader) + R"(  "materials": {"m": {"kt": 1, "thin": true, "absorption": [1, 1, 1]}}
+})",
+      "materials.m.absorption", 4, 60, "a thin sheet has no inside");
 }
 
 TEST(SceneLoader, OverridesWithOutOfRangeNumbersAndIndices) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "shading/fresnel.h"
 #include "shading/local_model.h"
 
 namespace candela {
@@ -29,16 +30,26 @@ Color shadow_transmittance(const Scene& scene, const Vec3& origin, const Vec3& L
     double passes = material.lets_light_through() && crossing < kMaxCrossings ? 1.0 : 0.0;
     if (passes > 0 && material.transparency.active())
       passes *= material.transparency.at(std::fabs(dot(hit.surface.shading_normal, L)));
-    if (passes > 0 && material.has_refraction() && !counted[object]) {
-      counted[object] = true;
-      passes *= material.transmission_at(hit.surface);
+    Color through(passes);
+    if (passes > 0 && material.has_refraction()) {
+      if (material.thin) {
+        // A thin sheet at each crossing: its transmittance at the angle it is crossed
+        // (shading/fresnel.h), as the path tracer's shadow rays.
+        const SurfaceProperties at = material.at(hit.surface);
+        through *=
+            thin_sheet(std::fabs(dot(hit.surface.shading_normal, L)), at.ior, Color(at.kt)).transmittance;
+      } else if (!counted[object]) {
+        // A solid's kt once for the two faces a ray crosses.
+        counted[object] = true;
+        through *= material.transmission_at(hit.surface);
+      }
     }
-    if (!(passes > 0)) {
+    if (through.is_black()) {
       transmittance = Color(0);
       if (context.tree) note = "blocked by " + scene.objects[object].name;
       break;
     }
-    transmittance *= passes;
+    transmittance *= through;
     if (!material.absorption.is_black()) {
       const bool entering = dot(L, hit.surface.geometric_normal) < 0;
       if (entering) {

@@ -23,6 +23,7 @@
 #include "sampling/sobol_sampler.h"
 #include "shading/bsdf.h"
 #include "shading/bump.h"
+#include "shading/fresnel.h"
 #include "shading/material_bsdf.h"
 #include "util/cancellation.h"
 #include "util/error.h"
@@ -74,33 +75,69 @@ Vec3 offset_origin(const Scene& scene, const Vec3& position, const Vec3& geometr
   return position + outward * scene.ray_offset(position);
 }
 
-// Whether nothing lies between the point (leaving along L on side's side) and distance further
-// (infinity: the environment). The segment stops short of its end by the offset there, so an
-// emissive quad drawn where an area light is does not shadow it.
-bool unoccluded(const Scene& scene, const Vec3& position, const Vec3& geometric_normal, const Vec3& side,
-                const Vec3& L, double distance, RayCounts& rays) {
+// The fraction of light that crosses a shadow ray: 1 when nothing blocks it, 0 when something
+// opaque does, and in a scene with thin sheets (Material::thin: window panes) the product of what
+// each sheet on the way lets through (its transmittance T(θ), shading/fresnel.h) — what its BSDF's
+// passthrough samples carry on average, so that next-event estimation and the path continued
+// through the sheet estimate the same light.
+Color shadow_transmittance(const Scene& scene, Ray ray, RayCounts& rays) {
   ++rays.shadow;
+  if (!scene.has_thin_sheets()) return Color(scene.occluded(ray) ? 0.0 : 1.0);
+  Color transmittance(1);
+  constexpr int kMaxSheets = 256;  // never loop forever on pathological input
+  for (int sheet = 0; sheet < kMaxSheets; ++sheet) {
+    Intersection hit;
+    if (!scene.intersect(ray, hit)) return transmittance;
+    const Material& material = scene.material_of(hit);
+    if (!(material.thin && material.has_refraction())) return {};
+    SurfaceHit shading = hit.surface;
+    shading.shading_normal = bumped_normal(material.bump, hit.surface);
+    const Bsdf bsdf = make_bsdf(material, material.at(shading), shading, shading.shading_normal);
+    const double cos_theta = std::fabs(dot(bsdf.frame().n, ray.direction));
+    Color through;
+    for (int i = 0; i < bsdf.lobe_count(); ++i)
+      if (bsdf.lobe(i).type == LobeType::thin_dielectric)
+        through += thin_sheet(cos_theta, bsdf.lobe(i).ior, bsdf.lobe(i).weight).transmittance;
+    transmittance *= through;
+    if (transmittance.is_black()) return {};
+    ray.t_min = hit.surface.t + scene.ray_offset(hit.surface.position);
+    if (!(ray.t_min < ray.t_max)) return transmittance;
+  }
+  return {};
+}
+
+// What crosses from the point (leaving along L on side's side) to distance further (infinity: the
+// environment). The segment stops short of its end by the offset there, so an emissive quad drawn
+// where an area light is does not shadow it.
+Color transmittance_toward(const Scene& scene, const Vec3& position, const Vec3& geometric_normal,
+                           const Vec3& side, const Vec3& L, double distance, RayCounts& rays) {
   Ray shadow{offset_origin(scene, position, geometric_normal, side), L};
   if (std::isfinite(distance)) {
     shadow.t_max = distance - 2 * scene.ray_offset(position + L * distance);
-    if (!(shadow.t_max > 0)) return true;
+    if (!(shadow.t_max > 0)) {
+      ++rays.shadow;
+      return Color(1);
+    }
   }
-  return !scene.occluded(shadow);
+  return shadow_transmittance(scene, shadow, rays);
 }
 
-// Whether nothing lies between the point and a point sampled on a surface: both ends are lifted
-// off their surfaces (the far one toward the near side), so that a segment reaching a sphere's
-// silhouette at a grazing angle does not clip the sphere just before its end.
-bool unoccluded_surface(const Scene& scene, const Vec3& position, const Vec3& geometric_normal,
-                        const Vec3& side, const Vec3& target, const Vec3& target_normal, RayCounts& rays) {
-  ++rays.shadow;
+// What crosses from the point to a point sampled on a surface: both ends are lifted off their
+// surfaces (the far one toward the near side), so that a segment reaching a sphere's silhouette at
+// a grazing angle does not clip the sphere just before its end.
+Color transmittance_to_surface(const Scene& scene, const Vec3& position, const Vec3& geometric_normal,
+                               const Vec3& side, const Vec3& target, const Vec3& target_normal,
+                               RayCounts& rays) {
   const Vec3 toward = dot(target_normal, position - target) >= 0 ? target_normal : -target_normal;
   const Vec3 end = target + toward * scene.ray_offset(target);
   const Vec3 origin = offset_origin(scene, position, geometric_normal, side);
   const Vec3 segment = end - origin;
   const double distance = length(segment);
-  if (!(distance > 0)) return true;
-  return !scene.occluded(Ray{origin, segment / distance, 0, distance});
+  if (!(distance > 0)) {
+    ++rays.shadow;
+    return Color(1);
+  }
+  return shadow_transmittance(scene, Ray{origin, segment / distance, 0, distance}, rays);
 }
 
 // One next-event estimate at a surface point: an emitter chosen by its power, a point or direction
@@ -122,15 +159,17 @@ Color sample_light(const Scene& scene, const LightSampler& lights, const Vec3& p
   const Color f = bsdf.evaluate(wo, L);
   if (f.is_black()) return {};
   const bool on_surface = sample.normal != Vec3{};
-  if (on_surface ? !unoccluded_surface(scene, from, geometric_normal, wo, position + L * sample.distance,
-                                       sample.normal, rays)
-                 : !unoccluded(scene, from, geometric_normal, wo, L, sample.distance, rays))
-    return {};
+  const Color transmittance =
+      on_surface ? transmittance_to_surface(scene, from, geometric_normal, wo, position + L * sample.distance,
+                                            sample.normal, rays)
+                 : transmittance_toward(scene, from, geometric_normal, wo, L, sample.distance, rays);
+  if (transmittance.is_black()) return {};
   // A point-like light (pdf 0): no BSDF-sampled ray can hit it, so no MIS.
   const double weight =
       sample.pdf > 0 ? power_heuristic(choice.probability * sample.pdf, bsdf.pdf(wo, L)) : 1.0;
   // The intensity is (light/π) / pdf already: π · f · intensity · cos θ / P(choice).
-  return f * sample.intensity * (kPi * std::fabs(dot(shading_normal, L)) * weight / choice.probability);
+  return f * sample.intensity * transmittance *
+         (kPi * std::fabs(dot(shading_normal, L)) * weight / choice.probability);
 }
 
 // One pass's sample of a pixel: where in the pixel (dx, dy ∈ [0, 1)) and what the path brought.
@@ -148,6 +187,7 @@ struct PathState {
   Vec3 previous;         // where the last bounce happened
   double eta_scale = 1;  // Russian roulette looks at beta without the 1/η² of refractions
   int depth = 0;
+  int sheets_crossed = 0;  // thin sheets the path went straight through (no vertex, no depth)
 };
 
 // Follows a path from its current ray to its end, adding what it gathers. A template on the
@@ -185,7 +225,10 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
       }
       L += state.beta * material.emission * weight;
     }
-    if (state.depth >= max_depth) break;
+    // A thin sheet is crossed at any depth: the vertex before it estimated what lies beyond it.
+    const bool sheet = material.thin && material.has_refraction();
+    const bool last = state.depth >= max_depth;
+    if (last && !sheet) break;
 
     SurfaceHit shading = surface;
     // 000 §4.2.1: the bump tilts the shading normal only.
@@ -193,7 +236,7 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
     const SurfaceProperties at = material.at(shading);
     const Bsdf bsdf = make_bsdf(material, at, shading, shading.shading_normal);
     const Vec3 wo = -state.ray.direction;
-    if (bsdf.has_non_delta())
+    if (!last && bsdf.has_non_delta())
       L += state.beta * sample_light(scene, lights, surface.position, surface.lifted_toward(wo),
                                      surface.geometric_normal, shading.shading_normal, bsdf, wo, sampler,
                                      rays);
@@ -202,6 +245,19 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
     const double u_lobe = bsdf.lobe_count() > 1 ? sampler.get_1d() : 0.0;
     const Vec2 u = sampler.get_2d();
     if (!bsdf.sample(wo, u_lobe, u, sample) || sample.weight.is_black() || !is_finite(sample.weight)) break;
+    if (sample.passthrough) {
+      // Straight on through the sheet, as the shadow rays go (shadow_transmittance): the bounce
+      // before it stays the one MIS and the emitters' densities are measured from, and the depth
+      // is not spent.
+      constexpr int kMaxSheets = 256;
+      if (++state.sheets_crossed > kMaxSheets) break;
+      state.beta *= sample.weight;
+      ++rays.refracted;
+      state.ray = Ray{offset_origin(scene, surface.position, surface.geometric_normal, sample.wi), sample.wi};
+      --state.depth;  // the loop's ++ gives it back
+      continue;
+    }
+    if (last) break;
     state.beta *= sample.weight;
     state.specular = sample.delta;
     state.bsdf_pdf = sample.pdf;

@@ -5,6 +5,7 @@
 
 #include "integrators/direct_lighting.h"
 #include "shading/bump.h"
+#include "shading/fresnel.h"
 #include "shading/optics.h"
 
 namespace candela {
@@ -105,20 +106,25 @@ Color trace(const Scene& scene, const Ray& ray, const TreeLimits& limits, RayKin
         reflection_pruned = true;
       }
     }
-    if (at.kt > 0) {
-      if (surface_weight * at.kt >= min_weight) {
+    // A thin sheet (a window pane) passes its transmittance at the angle it is crossed
+    // (shading/fresnel.h; kt its transmissivity), as in the path tracer and the shadow rays.
+    const double kt =
+        material.thin && at.kt > 0 ? thin_sheet(std::fabs(dot(N, V)), at.ior, at.kt).transmittance : at.kt;
+    if (kt > 0) {
+      if (surface_weight * kt >= min_weight) {
         // η1/η2: from outside (air) into the material, or back out.
         const double eta = entering ? 1.0 / at.ior : at.ior;
         Vec3 T;
-        if (refract(V, N, eta, T)) {
+        // A thin sheet (a window pane) does not bend the ray: it goes on as it came.
+        if (material.thin ? (T = -V, true) : refract(V, N, eta, T)) {
           ++context.counts.refracted;
           // Folded below the surface when a bumped normal would turn it back out.
           Vec3 inward = normalize(T);
           const double outward = dot(inward, geometric);
           if (outward > 0) inward = normalize(inward - geometric * (2 * outward));
           const Ray refracted{inside_origin, inward};
-          radiance += at.kt * trace(scene, refracted, limits, RayKind::refracted, depth + 1,
-                                    surface_weight * at.kt, context, node_index);
+          radiance += kt * trace(scene, refracted, limits, RayKind::refracted, depth + 1, surface_weight * kt,
+                                 context, node_index);
         } else {
           // 000 §5.3: no transmitted ray; reflect with the flipped normal instead.
           ++context.counts.reflected;

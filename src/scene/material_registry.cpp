@@ -99,6 +99,9 @@ Material read_classic(const JsonNode& node, const LoadContext& context, Specular
       node.at(node.has("kt") ? "kt" : "kr").fail(fmt::format("kr + kt must be <= 1 (found {})", sum));
   }
   if (const auto ior = node.get("ior")) material.ior = read_scalar_texture(*ior, context, Range::positive());
+  material.thin = node.boolean("thin", false);
+  if (material.thin && !node.has("kt"))
+    node.at("thin").fail("a thin sheet needs kt, the part of the light it lets through");
   if (material.specular_model == SpecularModel::cook_torrance) {
     // The Fresnel index defaults to the refraction index when that is a constant.
     const Color fallback_ior =
@@ -120,6 +123,11 @@ Material read_classic(const JsonNode& node, const LoadContext& context, Specular
     }
   }
   material.absorption = node.color("absorption", Color(), Range::non_negative());
+  if (material.thin && node.has("absorption"))
+    node.at("absorption")
+        .fail(
+            "absorption is per unit length inside a solid; a thin sheet has no inside (kt is its "
+            "transmittance)");
   // 000 eq. 6-7's E (W/m², radiance E/π), or "emission_luminance" (cd/m²: E = π L / 179 lm/W)
   // or "emission_luminous_flux" (lm from each side of each object: the loader divides by its area)
   // of "emission_color" or "emission_temperature".

@@ -31,7 +31,11 @@ Color Scene::sky_along(const Vec3& direction) const {
 }
 
 void Scene::prepare() {
-  for (Material& material : materials) material.prepare();
+  thin_sheets_ = false;
+  for (Material& material : materials) {
+    material.prepare();
+    thin_sheets_ = thin_sheets_ || (material.thin && material.has_refraction());
+  }
   if (environment) {
     environment->prepare_sampling();
     environment_light = std::make_unique<EnvironmentLight>(*environment, render.environment_light_samples);

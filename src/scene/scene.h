@@ -119,6 +119,9 @@ class Scene {
     return accelerator_->intersect(ray, intersection);
   }
   bool occluded(const Ray& ray) const { return accelerator_->occluded(ray); }
+  // Whether a material is a thin sheet that lets light through (Material::thin with kt): the path
+  // tracer's shadow rays then look for what they cross instead of asking occluded().
+  bool has_thin_sheets() const { return thin_sheets_; }
   // What a ray leaving the scene along the unit direction sees: the environment map, or the
   // background color.
   Color background_along(const Vec3& direction) const;
@@ -148,6 +151,7 @@ class Scene {
   Bounds3 bounds_;
   double ray_offset_ = 1e-6;
   double build_seconds_ = 0;
+  bool thin_sheets_ = false;
 };
 
 }  // namespace candela

@@ -33,7 +33,7 @@ ShadingFrame ShadingFrame::from_normal(const Vec3& n) {
 namespace {
 
 bool is_delta(LobeType type) {
-  return type == LobeType::mirror || type == LobeType::dielectric;
+  return type == LobeType::mirror || type == LobeType::dielectric || type == LobeType::thin_dielectric;
 }
 
 double selection_weight(const BsdfLobe& lobe) {
@@ -104,6 +104,7 @@ Color lobe_f(const BsdfLobe& lobe, const Vec3& wo, const Vec3& wi) {
     }
     case LobeType::mirror:
     case LobeType::dielectric:
+    case LobeType::thin_dielectric:
       return {};
   }
   return {};
@@ -129,6 +130,7 @@ double lobe_pdf(const BsdfLobe& lobe, const Vec3& wo, const Vec3& wi) {
     }
     case LobeType::mirror:
     case LobeType::dielectric:
+    case LobeType::thin_dielectric:
       return 0;
   }
   return 0;
@@ -153,6 +155,7 @@ bool lobe_sample(const BsdfLobe& lobe, const Vec3& wo, const Vec2& u, Vec3& wi) 
     }
     case LobeType::mirror:
     case LobeType::dielectric:
+    case LobeType::thin_dielectric:
       return false;
   }
   return wi.z > 0;
@@ -262,6 +265,30 @@ bool Bsdf::sample(const Vec3& wo, double u_lobe, const Vec2& u, BsdfSample& samp
     sample.weight = lobe.weight / (probability * eta * eta);
     sample.transmission = true;
     sample.eta = eta;
+    return true;
+  }
+
+  if (lobe.type == LobeType::thin_dielectric) {
+    // A thin sheet (shading/fresnel.h): reflect R, pass straight through T, per channel, of
+    // transmissivity kt; the rest is absorbed. Reflection is chosen with probability R/(R + T)
+    // (channel means), so the weights are R + T either way for a grey sheet, 1 when lossless. Both
+    // faces are alike, and no index changes across it: no 1/η², no η for Russian roulette.
+    const SheetColors sheet = thin_sheet(std::fabs(local_wo.z), lobe.ior, lobe.weight);
+    const double reflected = sheet.reflectance.average(), passed = sheet.transmittance.average();
+    if (!(reflected + passed > 0)) return false;
+    const double p_reflect = reflected / (reflected + passed);
+    sample.delta = true;
+    if (u.x < p_reflect) {
+      const Vec3 wi = frame_.to_world(mirror_local(local_wo));
+      if (!(dot(wi, geometric_) * cos_geometric_o > 0)) return false;
+      sample.wi = wi;
+      sample.weight = sheet.reflectance / (probability * p_reflect);
+      return true;
+    }
+    sample.wi = -wo;
+    sample.weight = sheet.transmittance / (probability * (1 - p_reflect));
+    sample.transmission = true;
+    sample.passthrough = true;
     return true;
   }
 

@@ -27,19 +27,23 @@ struct ShadingFrame {
   Vec3 to_world(const Vec3& v) const { return s * v.x + t * v.y + n * v.z; }
 };
 
-enum class LobeType : uint8_t { lambert, phong, microfacet, mirror, dielectric };
+// thin_dielectric: a thin sheet of the dielectric (a window pane, `"thin": true`): of what arrives
+// it reflects thin_sheet(cos θ, ior, kt).reflectance and lets its transmittance through without
+// bending it (shading/fresnel.h; kt is the sheet's transmissivity, one pass at normal incidence).
+enum class LobeType : uint8_t { lambert, phong, microfacet, mirror, dielectric, thin_dielectric };
 enum class MicrofacetDistribution : uint8_t { beckmann, ggx };
 
 // One lobe's parameters (a plain value: Bsdf keeps them in a fixed array).
 struct BsdfLobe {
   LobeType type = LobeType::lambert;
   Color weight;         // lambert: ρ; phong: ks; microfacet: ks (scales D·G·F/(4 cos cos));
-                        // mirror: kr; dielectric: kt (scales both Fresnel parts)
+                        // mirror: kr; dielectric: kt (scales both Fresnel parts);
+                        // thin_dielectric: kt, the transmissivity of one pass
   double exponent = 1;  // phong: n of cos^n α, α the angle between wi and the mirror of wo
   double alpha = 0.3;   // microfacet roughness (Beckmann: rms slope m)
   MicrofacetDistribution distribution = MicrofacetDistribution::beckmann;
   Fresnel fresnel;   // microfacet: F per channel (dielectric, conductor or Schlick)
-  double ior = 1.5;  // dielectric: index inside relative to outside
+  double ior = 1.5;  // dielectric, thin_dielectric: index inside relative to outside
 };
 
 struct BsdfSample {
@@ -49,6 +53,10 @@ struct BsdfSample {
   double pdf = 0;      // solid-angle density of wi under sample() (all non-delta lobes mixed); 0 when delta
   bool delta = false;  // from a mirror or dielectric lobe: no MIS, evaluate() does not see it
   bool transmission = false;
+  // Through a thin sheet: wi = −wo, the ray goes on as if the sheet were not there, save `weight`.
+  // A path tracer takes it as no vertex (its shadow rays cross such sheets too, integrators/
+  // path_tracer.cpp), so what lies beyond is weighed against the vertex before the sheet.
+  bool passthrough = false;
   double eta = 1;  // n_t/n_i when the sample crossed the surface, else 1 (Russian roulette's η²)
 };
 

@@ -1,6 +1,7 @@
 // The BSDF lobes: χ² of sample() against pdf(), weights consistent with evaluate()/pdf(),
 // reciprocity, albedos (white furnace), the dielectric's Fresnel split, Snell's law and total
-// internal reflection, energy conservation and the geometric-normal light-leak guard.
+// internal reflection, the thin sheet's split, energy conservation and the geometric-normal light-leak
+// guard.
 #include "shading/bsdf.h"
 
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 #include "math/pcg32.h"
 #include "sampling/warps.h"
 #include "shading/cook_torrance.h"
+#include "shading/fresnel.h"
 
 namespace candela {
 namespace {
@@ -64,9 +66,9 @@ BsdfLobe mirror(double kr) {
   lobe.weight = Color(kr);
   return lobe;
 }
-BsdfLobe dielectric(double kt, double ior) {
+BsdfLobe dielectric(double kt, double ior, LobeType type = LobeType::dielectric) {
   BsdfLobe lobe;
-  lobe.type = LobeType::dielectric;
+  lobe.type = type;
   lobe.weight = Color(kt);
   lobe.ior = ior;
   return lobe;
@@ -410,6 +412,50 @@ TEST(Bsdf, DielectricTotalInternalReflection) {
   }
   // Just inside the critical angle light still leaves.
   EXPECT_LT(sweep(bsdf, direction(kPi - (critical - 0.01))).reflected_fraction, 1.0);
+}
+
+TEST(Bsdf, ThinSheetReflectsItsFresnelPartAndPassesTheRestStraightThrough) {
+  // kt the sheet's transmissivity: it reflects R and passes T (shading/fresnel.h), reflection
+  // chosen with probability R/(R + T) and each sample weighted R + T (the absorbed part lost).
+  const double ior = 1.52, kt = 0.8;
+  Bsdf bsdf = flat_bsdf();
+  bsdf.add(dielectric(kt, ior, LobeType::thin_dielectric));
+  EXPECT_TRUE(bsdf.evaluate(direction(0.3), direction(2.5)).is_black());  // delta only
+  for (const double theta_deg : {0.0, 30.0, 60.0, 85.0}) {
+    SCOPED_TRACE(theta_deg);
+    const double theta = degrees_to_radians(theta_deg);
+    const SheetSplit sheet = thin_sheet(std::cos(theta), ior, kt);
+    const double kept = sheet.reflectance + sheet.transmittance;
+    EXPECT_LT(kept, 1);
+    // Both faces alike: from above and from below the same split, and no bending either way.
+    for (const double side : {1.0, -1.0}) {
+      Vec3 wo = direction(theta, 0.7);
+      wo.z *= side;
+      const DielectricSplit split = sweep(bsdf, wo);
+      EXPECT_NEAR(split.reflected_fraction, sheet.reflectance / kept, 2e-4);
+      ASSERT_TRUE(split.has_transmission);
+      EXPECT_TRUE(split.transmission.passthrough);
+      EXPECT_EQ(split.transmission.wi, -wo);
+      EXPECT_NEAR(split.transmission.weight.r, kept, 1e-12);  // no 1/η²: the index is the same beyond
+      EXPECT_EQ(split.transmission.eta, 1.0);
+      ASSERT_TRUE(split.has_reflection);
+      EXPECT_FALSE(split.reflection.passthrough);
+      EXPECT_NEAR(split.reflection.wi.z, wo.z, 1e-12);
+      EXPECT_NEAR(split.reflection.wi.x, -wo.x, 1e-12);
+      EXPECT_NEAR(split.reflection.weight.r, kept, 1e-12);
+    }
+  }
+  // A tinted sheet: each channel its own transmittance, reflection chosen by the means.
+  Bsdf tinted = flat_bsdf();
+  BsdfLobe lobe = dielectric(1, ior, LobeType::thin_dielectric);
+  lobe.weight = Color(0.9, 0.5, 0.2);
+  tinted.add(lobe);
+  const SheetColors sheet = thin_sheet(std::cos(0.5), ior, lobe.weight);
+  const double p_reflect = sheet.reflectance.average() / (sheet.reflectance + sheet.transmittance).average();
+  const DielectricSplit split = sweep(tinted, direction(0.5));
+  EXPECT_NEAR(split.reflected_fraction, p_reflect, 2e-4);
+  EXPECT_NEAR(split.transmission.weight.b, sheet.transmittance.b / (1 - p_reflect), 1e-12);
+  EXPECT_NEAR(split.reflection.weight.g, sheet.reflectance.g / p_reflect, 1e-12);
 }
 
 // --- energy and leaks --------------------------------------------------------------------

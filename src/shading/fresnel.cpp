@@ -22,6 +22,33 @@ Color fresnel_unpolarized(double cos_theta, const Color& n) {
           fresnel_unpolarized(cos_theta, n.b)};
 }
 
+SheetSplit thin_sheet(double cos_theta, double n, double transmissivity) {
+  // With g = n cos θ_t (Snell's law, as above): r_s = ((c − g)/(c + g))², r_p = ((n² c − g)/(n² c + g))².
+  const double c = std::clamp(cos_theta, 0.0, 1.0);
+  const double g2 = n * n + c * c - 1;
+  if (g2 <= 0 || c == 0) return {1, 0};
+  const double g = std::sqrt(g2);
+  const double t =
+      transmissivity >= 1 ? 1.0 : std::pow(std::max(transmissivity, 0.0), n / g);  // 1/cos θ_t = n/g
+  SheetSplit split;
+  for (const double amplitude : {(c - g) / (c + g), (n * n * c - g) / (n * n * c + g)}) {
+    const double r = amplitude * amplitude, rt = r * t, denominator = 1 - rt * rt;
+    split.reflectance += 0.5 * (r + (1 - r) * (1 - r) * r * t * t / denominator);
+    split.transmittance += 0.5 * (1 - r) * (1 - r) * t / denominator;
+  }
+  return split;
+}
+
+SheetColors thin_sheet(double cos_theta, double n, const Color& transmissivity) {
+  SheetColors colors;
+  for (int c = 0; c < 3; ++c) {
+    const SheetSplit split = thin_sheet(cos_theta, n, transmissivity[c]);
+    colors.reflectance[c] = split.reflectance;
+    colors.transmittance[c] = split.transmittance;
+  }
+  return colors;
+}
+
 double fresnel_conductor(double cos_theta, double n, double k) {
   // With a² − b² = n² − κ² − sin²θ and a² + b² = √((n² − κ² − sin²θ)² + 4n²κ²):
   //   R_s = (a² + b² − 2a cos θ + cos²θ) / (a² + b² + 2a cos θ + cos²θ),

@@ -25,6 +25,23 @@ Color fresnel_unpolarized(double cos_theta, const Color& n);
 // and n ≥ 1, and ((n − 1)² + κ²)/((n + 1)² + κ²) at normal incidence.
 double fresnel_conductor(double cos_theta, double n, double k);
 double fresnel_schlick(double cos_theta, double f0);
+// A thin sheet of relative index n (a window pane) seen at incidence cos_theta, whose one pass at
+// normal incidence lets `transmissivity` through (the internal transmittance: Radiance's glass
+// "transmissivity"; 1 lossless). Each polarisation's interface reflectance r bounces between the
+// two faces, and a pass at refraction angle θ_t lets t = transmissivity^(1/cos θ_t) through:
+//   R = r + (1 − r)² r t² / (1 − r² t²),   T = (1 − r)² t / (1 − r² t²)
+// (the incoherent sum of the internal reflections, Born & Wolf §1.6; lossless: R = 2r/(1 + r),
+// T = (1 − r)/(1 + r), pbrt-v4's ThinDielectricBxDF), the unpolarised mean of the two. n = 1.5,
+// lossless: 0.0769 reflected at normal incidence; n = 1.52 and 0.95712 give CIE 171's 6 mm clear
+// glass, 0.87881 through at normal incidence.
+struct SheetSplit {
+  double reflectance = 0, transmittance = 0;
+};
+SheetSplit thin_sheet(double cos_theta, double n, double transmissivity = 1);
+struct SheetColors {
+  Color reflectance, transmittance;
+};
+SheetColors thin_sheet(double cos_theta, double n, const Color& transmissivity);
 
 enum class FresnelModel : uint8_t { dielectric, conductor, schlick };
 

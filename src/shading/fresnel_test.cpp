@@ -48,6 +48,56 @@ TEST(Fresnel, MatchesTheSeedsFormulaAtEveryAngle) {
   }
 }
 
+// A thin lossless sheet (a window pane): each polarisation's r bounces between the faces, 2r/(1 + r)
+// comes back. At normal incidence both are ((n − 1)/(n + 1))²: 0.08/1.04 for n = 1.5; at Brewster's
+// angle (tan θ = n) r_p = 0, so r_s = 2F (F the unpolarised single-face value) and R = ½ · 2r_s/(1 + r_s).
+TEST(Fresnel, ThinSheetSumsTheReflectionsBetweenItsFaces) {
+  EXPECT_NEAR(thin_sheet(1.0, 1.5).reflectance, 0.08 / 1.04, 1e-15);
+  for (const double n : {1.33, 1.5, 1.52, 2.4}) {
+    const double r = fresnel_unpolarized(1.0, n);
+    EXPECT_NEAR(thin_sheet(1.0, n).reflectance, 2 * r / (1 + r), 1e-14) << n;
+    const double brewster = std::atan(n);
+    const double r_s = 2 * fresnel_unpolarized(std::cos(brewster), n);
+    EXPECT_NEAR(thin_sheet(std::cos(brewster), n).reflectance, r_s / (1 + r_s), 1e-12) << n;
+    // More than one face reflects, less than two faces' worth, and everything at grazing incidence;
+    // lossless, what is not reflected goes through.
+    for (int degrees = 0; degrees < 90; degrees += 5) {
+      const double c = std::cos(degrees * kPi / 180), F = fresnel_unpolarized(c, n);
+      const SheetSplit sheet = thin_sheet(c, n);
+      EXPECT_GT(sheet.reflectance, F) << n << " at " << degrees << "°";
+      EXPECT_LE(sheet.reflectance, 2 * F + 1e-15) << n << " at " << degrees << "°";
+      EXPECT_NEAR(sheet.reflectance + sheet.transmittance, 1, 1e-14) << n << " at " << degrees << "°";
+    }
+    EXPECT_EQ(thin_sheet(0.0, n).reflectance, 1.0);
+    EXPECT_EQ(thin_sheet(0.0, n).transmittance, 0.0);
+  }
+}
+
+// An absorbing sheet: one pass at normal incidence lets the transmissivity t through, and a pass at
+// θ_t inside t^(1/cos θ_t). Opaque inside (t = 0), only the first face reflects. CIE 171's 6 mm
+// clear glass, 0.87881 through at normal incidence, is n = 1.52 and t = 0.95712.
+TEST(Fresnel, AnAbsorbingSheetLosesItsTransmissivityAlongTheSlantedPass) {
+  for (int degrees = 0; degrees < 90; degrees += 10) {
+    const double c = std::cos(degrees * kPi / 180);
+    EXPECT_NEAR(thin_sheet(c, 1.5, 0).reflectance, fresnel_unpolarized(c, 1.5), 1e-15) << degrees;
+    EXPECT_EQ(thin_sheet(c, 1.5, 0).transmittance, 0) << degrees;
+    const SheetSplit lossless = thin_sheet(c, 1.5), absorbing = thin_sheet(c, 1.5, 0.8);
+    EXPECT_LT(absorbing.transmittance, 0.8 * lossless.transmittance + 1e-15) << degrees;  // longer path
+    EXPECT_LT(absorbing.reflectance, lossless.reflectance) << degrees;
+    EXPECT_GT(absorbing.reflectance, fresnel_unpolarized(c, 1.5)) << degrees;
+  }
+  // Normal incidence, by hand: r = (0.5/2.5)², T = (1 − r)² t / (1 − r² t²).
+  const double r = 0.04, t = 0.8;
+  EXPECT_NEAR(thin_sheet(1, 1.5, t).transmittance, (1 - r) * (1 - r) * t / (1 - r * r * t * t), 1e-15);
+  EXPECT_NEAR(thin_sheet(1, 1.5, t).reflectance, r + (1 - r) * (1 - r) * r * t * t / (1 - r * r * t * t),
+              1e-15);
+  // CIE 171's 6 mm clear glass (its curve against the report's: Cie171.ReferencesAgree...).
+  EXPECT_NEAR(thin_sheet(1, 1.52, 0.95712).transmittance, 0.87881, 2e-5);
+  const SheetColors tinted = thin_sheet(0.5, 1.52, Color(0.9, 0.5, 0.1));
+  EXPECT_EQ(tinted.transmittance.g, thin_sheet(0.5, 1.52, 0.5).transmittance);
+  EXPECT_EQ(tinted.reflectance.b, thin_sheet(0.5, 1.52, 0.1).reflectance);
+}
+
 TEST(Fresnel, PerChannelIndexColorsTheReflectance) {
   const Color F = fresnel_unpolarized(1.0, Color(3.0, 1.6, 1.3));
   EXPECT_NEAR(F.r, 0.25, 1e-15);

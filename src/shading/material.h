@@ -69,7 +69,13 @@ struct Material {
   std::shared_ptr<const Texture> kr;   // global specular reflection (000 eq. 5-2)
   std::shared_ptr<const Texture> kt;   // global specular transmission (refraction)
   std::shared_ptr<const Texture> ior;  // index of refraction for kt (000 eq. 5-6)
-  Color absorption;                    // per unit length inside: exp(-a·d) on shadow rays
+  // `"thin": true`: kt's dielectric is a thin sheet (a window pane) which light crosses without
+  // bending, kt its transmissivity (one pass at normal incidence, Radiance's glass): it reflects and
+  // transmits thin_sheet(cos θ, ior, kt) (shading/fresnel.h) in the path tracer, and transmits that
+  // in Whitted ray tracing and the shadow rays. The radiosity methods take every surface as opaque
+  // (docs/materials.md).
+  bool thin = false;
+  Color absorption;  // per unit length inside: exp(-a·d) on shadow rays
   // Emitted exitance E per channel (≥ 0): the self-luminous surfaces of classic radiosity
   // (000 eq. 6-7's E_i); the local model adds it as seen, independent of the lights.
   Color emission;

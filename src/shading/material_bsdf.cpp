@@ -39,7 +39,7 @@ Bsdf make_bsdf(const Material& material, const SurfaceProperties& at, const Surf
   }
   if (at.kt > 0) {
     BsdfLobe glass;
-    glass.type = LobeType::dielectric;
+    glass.type = material.thin ? LobeType::thin_dielectric : LobeType::dielectric;
     glass.weight = Color(at.kt);
     glass.ior = at.ior;
     bsdf.add(glass);

@@ -5,7 +5,8 @@
 //   ks > 0, cook-torrance           → microfacet, weight ks, α = roughness, Material::microfacet
 //                                     (Beckmann or GGX), Fresnel per channel: Material::fresnel
 //   kr > 0                          → mirror, weight kr
-//   kt > 0                          → smooth dielectric, weight kt, index ior
+//   kt > 0                          → smooth dielectric, weight kt, index ior (a thin sheet's
+//                                     lobe when the material is thin)
 // and finally Bsdf::conserve_energy(): where kd + ks + kr + kt exceeds 1 in a channel, every
 // lobe's weight in that channel shrinks in proportion.
 #pragma once

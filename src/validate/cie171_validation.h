@@ -23,7 +23,14 @@
 //         opening / the unobstructed horizontal illuminance, both by quadrature of the CIE
 //         standard general sky's luminance (shading/cie_sky.h);
 //   5.11  5.10 with a black external obstruction outside the window: the quadrature leaves out
-//         the directions that meet it.
+//         the directions that meet it;
+//   5.12  5.9 and 5.13 5.10 with the opening glazed with the report's 6 mm clear glass (a thin
+//         sheet, n = 1.52, transmissivity 0.95712: 0.87881 through at normal incidence): the
+//         quadrature weighs each direction by the glass's transmittance τ(θ) (shading/fresnel.h)
+//         — the daylight factor, the black room reflecting nothing. The report's fifth-degree
+//         polynomial fit of τ (cie171_clear_glass_curve) gives a second reference, within 1 % of
+//         the first (its fit is poorest at grazing incidence). Path only: radiosity and the
+//         meshless method see a pane as opaque.
 //
 // What is expressed is Candela's reading of each case (dimensions, points, sources are chosen here
 // and listed on the docs page); the report's own tables were not at hand, so no printed value is
@@ -56,7 +63,16 @@ struct Cie171Case {
   // The daylight cases: the unobstructed horizontal illuminance the sky component is over (0: an
   // illuminance case).
   double unobstructed_illuminance = 0;
+  // 5.12, 5.13: the opening is glazed (a thin pane; the path tracer's sample either reflects off
+  // it or passes, a coin that costs it 4× the samples for the same noise), and the reference with
+  // the report's polynomial for the glass's transmittance instead of the exact one.
+  bool glazed = false;
+  std::vector<double> reference_report_curve;
 };
+
+// CIE 171's transmittance of 6 mm clear glass at incidence cos θ: the report's fifth-degree
+// polynomial (Tregenza and Sharples, Daylighting Algorithms, 2.34), 0.87881 at normal incidence.
+double cie171_clear_glass_curve(double cos_theta);
 
 struct Cie171Run {
   bool quick = false;  // fewer points' samples and a coarser radiosity mesh (CI: under a minute)
@@ -67,7 +83,7 @@ struct Cie171Run {
 std::vector<Cie171Case> cie171_cases(const std::string& out_dir, const Cie171Run& run);
 
 // The probe settings of a method for a case (samples per point: 65,536, under the sky openings
-// 262,144; quick 1,024).
+// 262,144, under the glazed ones 1,048,576; quick 1,024).
 ProbeSettings cie171_probe_settings(const Cie171Case& test, const std::string& method, const Cie171Run& run);
 
 // The largest error a method may show at a point: 0.01 for path, 0.02 for the others.

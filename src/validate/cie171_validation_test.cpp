@@ -10,9 +10,11 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "math/constants.h"
 #include "radiosity/configuration_factors.h"
+#include "shading/fresnel.h"
 
 namespace candela {
 namespace {
@@ -92,6 +94,32 @@ TEST_F(Cie171, ReferencesAgreeWithClosedFormsWorkedByHand) {
   EXPECT_GT(darker, 8);
   EXPECT_LT(largest / 10000, 9.0 / 7 * F);
   EXPECT_GT(largest / 10000, 0.95 * 9.0 / 7 * F);
+  // 5.12 is 5.9 through the report's 6 mm clear glass: every point gets the unglazed value times
+  // the glass's transmittance between that at normal incidence (0.87881) and that at the steepest
+  // angle a floor point sees the opening at (47°, the far corners); 5.13's window is seen at up to
+  // 86° from its normal (the points 0.25 m from it).
+  const double normal_transmittance = cie171_clear_glass_curve(1);
+  EXPECT_NEAR(normal_transmittance, 0.87881, 1e-12);
+  const auto glass = [](double degrees) {
+    return thin_sheet(std::cos(degrees * kPi / 180), 1.52, 0.95712).transmittance;
+  };
+  EXPECT_NEAR(glass(0), normal_transmittance, 2e-5);
+  // The glass is the report's curve within 0.5 % to 80° (the polynomial is a fit of it).
+  for (int degrees = 0; degrees <= 80; degrees += 5)
+    EXPECT_NEAR(glass(degrees) / cie171_clear_glass_curve(std::cos(degrees * kPi / 180)), 1, 0.005)
+        << degrees;
+  const Cie171Case &glazed_roof = by_id.at("5.12 sky 1"), &glazed_window = by_id.at("5.13 sky 1");
+  for (std::size_t i = 0; i < roof.reference.size(); ++i) {
+    const double ratio = glazed_roof.reference[i] / roof.reference[i];
+    EXPECT_LE(ratio, glass(0) + 1e-12) << i;
+    EXPECT_GE(ratio, glass(47)) << i;
+    EXPECT_LT(glazed_window.reference[i], glass(0) * window.reference[i] + 1e-12) << i;
+    EXPECT_GT(glazed_window.reference[i], glass(86) * window.reference[i]) << i;
+    // With the report's polynomial instead: within 0.4 % under the roof, 1 % by the window.
+    EXPECT_NEAR(glazed_roof.reference_report_curve[i] / glazed_roof.reference[i], 1, 0.004) << i;
+    EXPECT_NEAR(glazed_window.reference_report_curve[i] / glazed_window.reference[i], 1, 0.01) << i;
+  }
+  EXPECT_EQ(glazed_roof.methods, std::vector<std::string>{"path"});
 }
 
 // The quick run into a directory: every file, and the methods exact on the direct cases within
@@ -101,8 +129,9 @@ TEST_F(Cie171, QuickRunWritesEveryFileAndTheExactMethodsMatch) {
   Cie171Run run;
   run.quick = true;
   const nlohmann::json results = run_cie171_validation(directory_.string(), run, nullptr);
-  for (const char* file : {"cie171.csv", "summary.csv", "results.json", "cie171-5.2.png",
-                           "cie171-5.8-rho-0.5.png", "cie171-5.11-sky-1.png", "cie171-lambertian.ies"})
+  for (const char* file :
+       {"cie171.csv", "summary.csv", "results.json", "cie171-5.2.png", "cie171-5.8-rho-0.5.png",
+        "cie171-5.11-sky-1.png", "cie171-5.13-sky-1.png", "cie171-lambertian.ies"})
     EXPECT_TRUE(std::filesystem::exists(directory_ / file)) << file;
   for (const char* method : {"local", "radiosity", "meshless", "path"})
     EXPECT_LT(results["cases"]["5.2"]["methods"][method]["largest_relative_error"].get<double>(), 1e-3)
