@@ -15,6 +15,7 @@
 #include "radiosity/configuration_factors.h"
 #include "scratch_directory.h"
 #include "shading/cie_sky.h"
+#include "shading/fresnel.h"
 
 namespace candela {
 namespace {
@@ -444,6 +445,49 @@ TEST(Probe, PointLightsCountForEveryMethodThatCanBeProbed) {
   }
   settings.method = "whitted";
   EXPECT_THROW(probe(*scene, points, settings), std::invalid_argument);
+}
+
+// Issue 23 (CIE 171 5.12/5.13): every method lights what lies behind a window pane by what the pane
+// lets through (Scene::transmittance). The sun, 30° off the vertical, through a large horizontal
+// pane of CIE 171's clear glass (a thin sheet, shading/fresnel.h) above a 4 × 4 m floor: a sensor
+// under the pane facing up receives T(30°) cos 30° I from the local model, the path tracer, and
+// radiosity's and the meshless method's direct part, the floor black. With a floor of ρ 0.5, the
+// radiosity and meshless solutions light the floor so too (radiosity's first shot, the sites'
+// direct light) and a sensor 0.25 m above it facing down receives ρ T cos 30° I times its view
+// factor of the floor (the path tracer would add what the pane reflects back of the floor's light:
+// the solutions take a pane as a black patch). Before, the pane was opaque to all but the path tracer.
+TEST(Probe, EveryMethodLightsWhatLiesBehindAWindowPane) {
+  const auto window_scene = [](double floor_reflectance) {
+    return load_scene_text(fmt::format(R"({{"format": "candela/1",
+    "camera": {{"eye": [0, 1.5, 2.5], "target": [0, 0, 0], "fov": 90, "width": 32, "height": 32}},
+    "radiosity": {{"patch_size": 0.5}},
+    "meshless": {{"spacing": 0.25, "grid": 32, "rounds": 0}},
+    "lights": [{{"type": "directional", "direction": [0.5, -0.8660254037844386, 0], "intensity": 2}}],
+    "shapes": [{{"type": "quad", "corner": [-5, 2, -5], "edge_u": [0, 0, 10], "edge_v": [10, 0, 0],
+                 "material": {{"kd": 0, "kt": 0.95712, "ior": 1.52, "thin": true}}}},
+               {{"type": "quad", "corner": [-2, 0, -2], "edge_u": [0, 0, 4], "edge_v": [4, 0, 0],
+                 "material": {{"kd": {}}}}}]}})",
+                                       floor_reflectance),
+                           "window.json", ".");
+  };
+  const double cos_sun = std::cos(kPi / 6), through = thin_sheet(cos_sun, 1.52, 0.95712).transmittance;
+  ASSERT_NEAR(through, 0.874, 0.001);  // docs/materials.md's table
+  const double direct = 2 * through * cos_sun;
+  ProbeSettings settings;
+  settings.samples = 4096;
+  const auto black = window_scene(0);
+  for (const std::string method : {"local", "path", "radiosity", "meshless"}) {
+    settings.method = method;
+    const auto results = probe(*black, {{{0, 1, 0}, {0, 1, 0}}}, settings);
+    EXPECT_NEAR(results[0].irradiance.g, direct, 1e-9 * direct) << method;
+  }
+  const auto grey = window_scene(0.5);
+  const double seen = 0.5 * direct * 4 * point_to_parallel_rectangle_corner(2, 2, 0.25);
+  for (const std::string method : {"radiosity", "meshless"}) {
+    settings.method = method;
+    const auto results = probe(*grey, {{{0, 0.25, 0}, {0, -1, 0}}}, settings);
+    EXPECT_NEAR(results[0].irradiance.g, seen, 0.01 * seen) << method;
+  }
 }
 
 TEST(Probe, ReadsPointsAndNamesTheLineAndColumnOfBadOnes) {

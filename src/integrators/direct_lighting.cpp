@@ -3,8 +3,8 @@
 #include <cmath>
 #include <unordered_map>
 
-#include "shading/fresnel.h"
 #include "shading/local_model.h"
+#include "shading/material_bsdf.h"
 
 namespace candela {
 
@@ -33,11 +33,9 @@ Color shadow_transmittance(const Scene& scene, const Vec3& origin, const Vec3& L
     Color through(passes);
     if (passes > 0 && material.has_refraction()) {
       if (material.thin) {
-        // A thin sheet at each crossing: its transmittance at the angle it is crossed
-        // (shading/fresnel.h), as the path tracer's shadow rays.
-        const SurfaceProperties at = material.at(hit.surface);
-        through *=
-            thin_sheet(std::fabs(dot(hit.surface.shading_normal, L)), at.ior, Color(at.kt)).transmittance;
+        // A thin sheet at each crossing: its transmittance at the angle it is crossed, as every
+        // method's shadow rays (Scene::transmittance).
+        through *= thin_sheet_transmittance(material, hit.surface, L);
       } else if (!counted[object]) {
         // A solid's kt once for the two faces a ray crosses.
         counted[object] = true;

@@ -23,7 +23,6 @@
 #include "sampling/sobol_sampler.h"
 #include "shading/bsdf.h"
 #include "shading/bump.h"
-#include "shading/fresnel.h"
 #include "shading/material_bsdf.h"
 #include "util/cancellation.h"
 #include "util/error.h"
@@ -75,35 +74,13 @@ Vec3 offset_origin(const Scene& scene, const Vec3& position, const Vec3& geometr
   return position + outward * scene.ray_offset(position);
 }
 
-// The fraction of light that crosses a shadow ray: 1 when nothing blocks it, 0 when something
-// opaque does, and in a scene with thin sheets (Material::thin: window panes) the product of what
-// each sheet on the way lets through (its transmittance T(θ), shading/fresnel.h) — what its BSDF's
-// passthrough samples carry on average, so that next-event estimation and the path continued
-// through the sheet estimate the same light.
-Color shadow_transmittance(const Scene& scene, Ray ray, RayCounts& rays) {
+// The fraction of light that crosses a shadow ray (Scene::transmittance: in a scene with thin
+// sheets the product of what each on the way lets through, what the BSDF's passthrough samples carry
+// on average, so that next-event estimation and the path continued through a sheet estimate the
+// same light).
+Color shadow_transmittance(const Scene& scene, const Ray& ray, RayCounts& rays) {
   ++rays.shadow;
-  if (!scene.has_thin_sheets()) return Color(scene.occluded(ray) ? 0.0 : 1.0);
-  Color transmittance(1);
-  constexpr int kMaxSheets = 256;  // never loop forever on pathological input
-  for (int sheet = 0; sheet < kMaxSheets; ++sheet) {
-    Intersection hit;
-    if (!scene.intersect(ray, hit)) return transmittance;
-    const Material& material = scene.material_of(hit);
-    if (!(material.thin && material.has_refraction())) return {};
-    SurfaceHit shading = hit.surface;
-    shading.shading_normal = bumped_normal(material.bump, hit.surface);
-    const Bsdf bsdf = make_bsdf(material, material.at(shading), shading, shading.shading_normal);
-    const double cos_theta = std::fabs(dot(bsdf.frame().n, ray.direction));
-    Color through;
-    for (int i = 0; i < bsdf.lobe_count(); ++i)
-      if (bsdf.lobe(i).type == LobeType::thin_dielectric)
-        through += thin_sheet(cos_theta, bsdf.lobe(i).ior, bsdf.lobe(i).weight).transmittance;
-    transmittance *= through;
-    if (transmittance.is_black()) return {};
-    ray.t_min = hit.surface.t + scene.ray_offset(hit.surface.position);
-    if (!(ray.t_min < ray.t_max)) return transmittance;
-  }
-  return {};
+  return scene.transmittance(ray);
 }
 
 // What crosses from the point (leaving along L on side's side) to distance further (infinity: the

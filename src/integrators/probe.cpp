@@ -126,12 +126,15 @@ ProbeResult probe_field(const Scene& scene, const SolutionField& field, const Li
   const ShadingFrame frame = ShadingFrame::from_normal(point.normal);
   const Vec3 origin = sensor_origin(scene, point);
   // The exitance the ray sees (the environment's where it leaves: the background lights nothing)
-  // and the hit's primitive.
+  // and the hit's primitive — through window panes, times what they let through (the solutions
+  // take a pane as a black patch: what it reflects is not counted).
   const auto seen = [&](const Ray& ray, Intersection& hit, bool& found) {
-    found = scene.intersect(ray, hit);
-    if (!found) return scene.sky_along(ray.direction);
+    Color through;
+    found = scene.intersect_past_sheets(ray, hit, through);
+    if (!found) return scene.sky_along(ray.direction) * through;
+    if (through.is_black()) return Color();
     Color b;
-    if (field.exitance(ray, hit, b)) return b;
+    if (field.exitance(ray, hit, b)) return b * through;
     ++uncovered;
     return Color();
   };

@@ -59,10 +59,12 @@ struct FoundSite {
   Color albedo, emission;
 };
 
-// The site where a ray first hits the scene, its normal turned toward the ray's origin.
+// The site where a ray first hits the scene, its normal turned toward the ray's origin. Window panes
+// are looked through: they reflect nothing diffusely, and the room behind one needs the sites.
 std::optional<FoundSite> site_along(const Scene& scene, const Ray& ray) {
   Intersection hit;
-  if (!scene.intersect(ray, hit)) return std::nullopt;
+  Color through;
+  if (!scene.intersect_past_sheets(ray, hit, through)) return std::nullopt;
   FoundSite found;
   found.site = {hit.surface.position, face_forward(hit.surface.geometric_normal, -ray.direction)};
   found.primitive = hit.primitive;

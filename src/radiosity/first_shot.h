@@ -7,7 +7,8 @@
 // approach of Lightscape and of Radiance's direct component). B = E + ρ(D + Σ F B) is then solved
 // exactly as before; a patch's first shot is the area-weighted mean of its elements'. Emissive
 // surfaces stay emitters of the mesh (form factors carry their light), so only the "lights" array
-// and the environment shoot here. Opaque shadows (radiosity scenes are diffuse). Each element is computed on
+// and the environment shoot here. Opaque shadows but for thin sheets, window panes, which let their
+// transmittance through (Scene::transmittance: daylight through glazing). Each element is computed on
 // its own (in parallel, each into its own slot), the jitter a function of the point: the result does not
 // depend on the thread count.
 #pragma once

@@ -37,10 +37,11 @@ Color direct_irradiance(const Scene& scene, const Vec3& point, const Vec3& norma
       // where an area light is must not shadow it, nor an emissive surface itself.
       shadow.t_max = std::isinf(sample.distance) ? kInfinity : sample.distance - 2 * offset;
       if (!(shadow.t_max > 0)) continue;
-      if (scene.occluded(shadow)) continue;
+      const Color through = scene.transmittance(shadow);  // window panes let some through
+      if (through.is_black()) continue;
       const double weight =
           weighed && surface ? power_heuristic(sample_count * sample.pdf, ray_count * cosine * kInvPi) : 1.0;
-      sum += sample.intensity * (cosine * weight);
+      sum += sample.intensity * through * (cosine * weight);
     }
   }
   if (!weighed) return sum;
@@ -53,7 +54,8 @@ Color direct_irradiance(const Scene& scene, const Vec3& point, const Vec3& norma
     ray.origin = origin;
     ray.direction = normalize(b1 * local.x + b2 * local.y + normal * local.z);
     Intersection hit;
-    if (!scene.intersect(ray, hit)) continue;
+    Color through;
+    if (!scene.intersect_past_sheets(ray, hit, through) || through.is_black()) continue;
     const uint32_t light = hemisphere->emitters.light_of(hit.primitive);
     if (light == SurfaceEmitterIndex::kNone) continue;
     const Light& emitter = *scene.surface_lights[light];
@@ -61,7 +63,7 @@ Color direct_irradiance(const Scene& scene, const Vec3& point, const Vec3& norma
     const double cosine = local.z;
     // L cos θ / (N cos θ/π) with L = E/π: E/N, weighed against the light's samples.
     const double weight = power_heuristic(ray_count * cosine * kInvPi, emitter.sample_count() * light_pdf);
-    sum += emitter.emitted_radiance(ray.direction) * (weight / ray_count);
+    sum += emitter.emitted_radiance(ray.direction) * through * (weight / ray_count);
   }
   return sum;
 }

@@ -1,5 +1,6 @@
-// What a surface point receives straight from the emitters, with opaque shadows: the sum over every
-// sample of the chosen emitters of I · max(0, n·L) · V (V = 0 when something lies between) — the
+// What a surface point receives straight from the emitters, with opaque shadows but for window panes:
+// the sum over every sample of the chosen emitters of I · max(0, n·L) · V (V = 0 when something
+// opaque lies between, the thin sheets' transmittance otherwise: Scene::transmittance) — the
 // irradiance, in the units in which a diffuse surface of reflectance ρ reflects ρ times it. One
 // implementation for the methods that light diffuse points from the lights: meshless η (seed 002
 // §4.3, the hybrid method's direct part) and radiosity's first shot (issue 19: point, spot,

@@ -9,6 +9,7 @@
 #include "accel/accelerator_registry.h"
 #include "scene/environment_light.h"
 #include "shading/environment.h"
+#include "shading/material_bsdf.h"
 
 namespace candela {
 
@@ -28,6 +29,30 @@ Color Scene::background_along(const Vec3& direction) const {
 
 Color Scene::sky_along(const Vec3& direction) const {
   return environment ? background_along(direction) : Color();
+}
+
+bool Scene::intersect_past_sheets(Ray ray, Intersection& hit, Color& through) const {
+  through = Color(1);
+  if (!thin_sheets_) return intersect(ray, hit);
+  constexpr int kMaxSheets = 256;  // never loop forever on pathological input
+  for (int sheet = 0; sheet <= kMaxSheets; ++sheet) {
+    if (!intersect(ray, hit)) return false;
+    const Material& material = material_of(hit);
+    if (!(material.thin && material.has_refraction())) return true;
+    through *= thin_sheet_transmittance(material, hit.surface, ray.direction);
+    ray.t_min = hit.surface.t + ray_offset(hit.surface.position);
+    if (through.is_black()) return true;
+    if (!(ray.t_min < ray.t_max)) return false;
+  }
+  through = Color(0);
+  return true;
+}
+
+Color Scene::transmittance(const Ray& ray) const {
+  if (!thin_sheets_) return Color(occluded(ray) ? 0.0 : 1.0);
+  Intersection hit;
+  Color through;
+  return intersect_past_sheets(ray, hit, through) ? Color(0) : through;
 }
 
 void Scene::prepare() {

@@ -119,9 +119,19 @@ class Scene {
     return accelerator_->intersect(ray, intersection);
   }
   bool occluded(const Ray& ray) const { return accelerator_->occluded(ray); }
-  // Whether a material is a thin sheet that lets light through (Material::thin with kt): the path
-  // tracer's shadow rays then look for what they cross instead of asking occluded().
+  // Whether a material is a thin sheet that lets light through (Material::thin with kt: a window
+  // pane): shadow rays then look for what they cross instead of asking occluded().
   bool has_thin_sheets() const { return thin_sheets_; }
+  // The first hit along the ray that is not a thin sheet, the sheets before it crossed: `through` is
+  // the product of what each lets through at the angle it is crossed (thin_sheet_transmittance,
+  // shading/material_bsdf.h); 1 when none is crossed. False, with what crosses in `through`, when
+  // the ray leaves the scene (or reaches t_max). More than 256 sheets in a row block the ray.
+  bool intersect_past_sheets(Ray ray, Intersection& hit, Color& through) const;
+  // What crosses the ray's segment: 1 when nothing lies on it, 0 when something opaque does, else
+  // the product of the sheets' transmittances — one visibility for every method's shadow rays
+  // (the path tracer's, the direct light of radiosity's first shot, of meshless sites and of the
+  // local probe).
+  Color transmittance(const Ray& ray) const;
   // What a ray leaving the scene along the unit direction sees: the environment map, or the
   // background color.
   Color background_along(const Vec3& direction) const;

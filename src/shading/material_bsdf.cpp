@@ -1,5 +1,10 @@
 #include "shading/material_bsdf.h"
 
+#include <cmath>
+
+#include "shading/bump.h"
+#include "shading/fresnel.h"
+
 namespace candela {
 
 Bsdf make_bsdf(const Material& material, const SurfaceProperties& at, const SurfaceHit& hit,
@@ -46,6 +51,19 @@ Bsdf make_bsdf(const Material& material, const SurfaceProperties& at, const Surf
   }
   bsdf.conserve_energy();
   return bsdf;
+}
+
+Color thin_sheet_transmittance(const Material& material, const SurfaceHit& hit, const Vec3& direction) {
+  if (!(material.thin && material.has_refraction())) return {};
+  SurfaceHit shading = hit;
+  shading.shading_normal = bumped_normal(material.bump, hit);  // 000 §4.2.1: the bump tilts it
+  const Bsdf bsdf = make_bsdf(material, material.at(shading), shading, shading.shading_normal);
+  const double cos_theta = std::fabs(dot(bsdf.frame().n, direction));
+  Color through;
+  for (int i = 0; i < bsdf.lobe_count(); ++i)
+    if (bsdf.lobe(i).type == LobeType::thin_dielectric)
+      through += thin_sheet(cos_theta, bsdf.lobe(i).ior, bsdf.lobe(i).weight).transmittance;
+  return through;
 }
 
 }  // namespace candela

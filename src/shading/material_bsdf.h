@@ -23,4 +23,11 @@ namespace candela {
 Bsdf make_bsdf(const Material& material, const SurfaceProperties& at, const SurfaceHit& hit,
                const Vec3& shading_normal);
 
+// What a thin sheet (Material::thin with kt: a window pane) lets through where a ray crosses it along
+// `direction`: its transmittance T(θ) (shading/fresnel.h) at the angle to its bumped shading
+// normal, with the weight its BSDF's thin_dielectric lobe has — what that lobe's passthrough samples
+// carry on average, so that a shadow ray through the pane and a path continued through it estimate
+// the same light. Black for any other material.
+Color thin_sheet_transmittance(const Material& material, const SurfaceHit& hit, const Vec3& direction);
+
 }  // namespace candela

@@ -29,8 +29,7 @@
 //         quadrature weighs each direction by the glass's transmittance τ(θ) (shading/fresnel.h)
 //         — the daylight factor, the black room reflecting nothing. The report's fifth-degree
 //         polynomial fit of τ (cie171_clear_glass_curve) gives a second reference, within 1 % of
-//         the first (its fit is poorest at grazing incidence). Path only: radiosity and the
-//         meshless method see a pane as opaque.
+//         the first (its fit is poorest at grazing incidence).
 //
 // What is expressed is Candela's reading of each case (dimensions, points, sources are chosen here
 // and listed on the docs page); the report's own tables were not at hand, so no printed value is
@@ -83,7 +82,7 @@ struct Cie171Run {
 std::vector<Cie171Case> cie171_cases(const std::string& out_dir, const Cie171Run& run);
 
 // The probe settings of a method for a case (samples per point: 65,536, under the sky openings
-// 262,144, under the glazed ones 1,048,576; quick 1,024).
+// 262,144, under the glazed ones 1,048,576 for the path tracer; quick 1,024).
 ProbeSettings cie171_probe_settings(const Cie171Case& test, const std::string& method, const Cie171Run& run);
 
 // The largest error a method may show at a point: 0.01 for path, 0.02 for the others.
