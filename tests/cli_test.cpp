@@ -727,8 +727,9 @@ TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
     EXPECT_NE(line.find(",path,"), std::string::npos) << line;
     EXPECT_NE(line.find(",pass,"), std::string::npos) << line;
   }
-  // 5.2, 5.3, 5.4, 5.6, 5.7, 5.8, 5.9, 5.10, 5.11, 5.12, 5.13 (quick: one rho, one sky).
-  EXPECT_EQ(lines, 1 + 11);
+  // 5.2, 5.3, 5.4, 5.5 (quick: two incidences), 5.6, 5.7, 5.8, 5.9, 5.10, 5.11, 5.12, 5.13 (quick:
+  // one rho, one sky).
+  EXPECT_EQ(lines, 1 + 13);
   // --methods is cie171's: the other cases refuse it.
   EXPECT_EQ(run("validate sphere-disc --quick --methods path --out sd3", output), 2) << output;
   EXPECT_NE(output.find("--methods is for cie171"), std::string::npos) << output;

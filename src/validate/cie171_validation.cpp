@@ -428,6 +428,42 @@ Cie171Case daylight_case(bool roof, int sky_type, const Cie171Run& run, Obstacle
   return test;
 }
 
+// 5.5: the directional transmittance of clear glass — the sun, 10,000 lx on a surface facing it,
+// through a horizontal pane of the report's 6 mm clear glass 3 m up (the 1 × 1 m of 5.4's roof
+// opening, [1.5, 2.5]² at y = 3), at an incidence θ on the pane (elevation 90° − θ, travelling
+// toward −x as in 5.4). Sensors on the sun's ray through the pane's centre, 0.4–1.6 m beyond it,
+// facing the sun and facing up: E = E_n τ(θ) cos(the sensor's angle to the sun). Nothing else is
+// in the scene but a black floor for the camera (no room: every sensor's view of the sun crosses
+// the pane's centre, and nothing reflects).
+Cie171Case glass_transmittance_case(int incidence_degrees, const Cie171Run& run) {
+  constexpr double En = 10000;
+  const double theta = incidence_degrees * kPi / 180;
+  const Vec3 travel{-std::sin(theta), -std::cos(theta), 0}, to_sun = -travel;
+  const Rectangle pane{{1.5, 3, 1.5}, {1, 0, 0}, {0, 0, 1}};
+  Cie171Case test;
+  test.id = fmt::format("5.5 incidence {}", incidence_degrees);
+  test.title =
+      fmt::format("directional transmittance of clear glass, incidence {} degrees", incidence_degrees);
+  test.scene = scene_json(
+      R"("eye": [3.9, 2.5, 3.9], "target": [1, 0, 1])",
+      fmt::format(R"(, "glass": {{"kd": 0, "kt": {}, "ior": {}, "thin": true}})", kClearGlassTransmissivity,
+                  kClearGlassIor),
+      fmt::format(R"({{"type": "directional", "direction": [{}, {}, {}], "illuminance": {}}})", travel.x,
+                  travel.y, travel.z, En),
+      quad_json(pane, "glass") + ",\n      " + quad_json({{0, 0, 0}, {0, 0, 4}, {4, 0, 0}}, "black"), "",
+      run);
+  const Vec3 centre{2, 3, 2};
+  for (const double beyond : {0.4, 0.8, 1.2, 1.6})
+    for (const Vec3& normal : {to_sun, Vec3{0, 1, 0}}) {
+      test.points.push_back({centre + travel * beyond, normal});
+      test.reference.push_back(En * clear_glass(std::cos(theta)) * dot(normal, to_sun));
+      test.reference_report_curve.push_back(En * cie171_clear_glass_curve(std::cos(theta)) *
+                                            dot(normal, to_sun));
+    }
+  test.methods = {"local", "path", "radiosity", "meshless"};
+  return test;
+}
+
 // "cie171-5.8-rho-0.5": the case's files in the output directory.
 std::string case_file_stem(const Cie171Case& test) {
   std::string stem = "cie171-" + test.id;
@@ -446,6 +482,9 @@ std::vector<Cie171Case> cie171_cases(const std::string& out_dir, const Cie171Run
   cases.push_back(point_source_case(out_dir, run));
   cases.push_back(area_source_case(run));
   cases.push_back(directional_case(run));
+  for (const int incidence :
+       run.quick ? std::vector<int>{0, 60} : std::vector<int>{0, 15, 30, 45, 60, 75, 85})
+    cases.push_back(glass_transmittance_case(incidence, run));
   cases.push_back(reflection_case(false, run));
   cases.push_back(reflection_case(true, run));
   for (const double rho : run.quick ? std::vector<double>{0.5} : std::vector<double>{0.2, 0.5, 0.8})

@@ -10,6 +10,9 @@
 //         wall: E = π L F, F Lambert's point-to-polygon factor;
 //   5.4   a directional source (the sun, normal illuminance E_n) through a roof opening of a black
 //         room: E = E_n sin α in the sunlit patch, 0 outside it;
+//   5.5   the directional transmittance of clear glass: the sun through a horizontal pane of the
+//         report's 6 mm clear glass at incidences 0–85° (quick: 0° and 60°), sensors beyond it
+//         facing the sun and facing up: E = E_n τ(θ) cos(the sensor's angle to the sun);
 //   5.6   a sunlit diffuse wall (reflectance ρ, uniform illuminance E_w), seen from sensors not
 //         lit by the sun: E = ρ E_w F(sensor → the part of the wall above its horizon);
 //   5.7   the same with a black internal obstruction between sensors and wall: F of the wall less

@@ -120,6 +120,13 @@ TEST_F(Cie171, ReferencesAgreeWithClosedFormsWorkedByHand) {
     EXPECT_NEAR(glazed_window.reference_report_curve[i] / glazed_window.reference[i], 1, 0.01) << i;
   }
   EXPECT_EQ(glazed_roof.methods, (std::vector<std::string>{"path", "radiosity", "meshless"}));
+  // 5.5: at normal incidence the pane passes 0.87881 of the sun's 10,000 lx to a sensor facing it;
+  // at 60° its τ(60°), the report's polynomial within 0.5 % of it, and a sensor facing up half that.
+  const Cie171Case &normal_sun = by_id.at("5.5 incidence 0"), &slanted_sun = by_id.at("5.5 incidence 60");
+  EXPECT_NEAR(normal_sun.reference[0], 8788.1, 0.2);
+  EXPECT_NEAR(slanted_sun.reference[0], 10000 * glass(60), 1e-9);
+  EXPECT_NEAR(slanted_sun.reference[1], 0.5 * slanted_sun.reference[0], 1e-9);
+  EXPECT_NEAR(slanted_sun.reference_report_curve[0] / slanted_sun.reference[0], 1, 0.005);
 }
 
 // The quick run into a directory: every file, and the methods exact on the direct cases within
@@ -139,6 +146,12 @@ TEST_F(Cie171, QuickRunWritesEveryFileAndTheExactMethodsMatch) {
   for (const char* method : {"local", "radiosity", "meshless", "path"})
     EXPECT_LT(results["cases"]["5.4"]["methods"][method]["largest_relative_error"].get<double>(), 1e-3)
         << method;
+  // 5.5: the sun through a pane — every method's direct light crosses it with τ(θ) (Scene::
+  // transmittance), exactly.
+  for (const char* id : {"5.5 incidence 0", "5.5 incidence 60"})
+    for (const char* method : {"local", "radiosity", "meshless", "path"})
+      EXPECT_LT(results["cases"][id]["methods"][method]["largest_relative_error"].get<double>(), 1e-6)
+          << id << " " << method;
   // Quick, every case passes for every method that answers it (the tolerance and 4 estimated
   // standard errors): the run's exit status is 0.
   for (const auto& [id, entry] : results["cases"].items())
