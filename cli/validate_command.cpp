@@ -11,7 +11,9 @@
 //                 and a plot per case in DIR (see docs/validation/cie171.md). Exit status 1 when
 //                 a method misses its tolerance somewhere (--methods a,b: only those methods).
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -36,6 +38,7 @@ struct ValidateOptions {
   bool quiet = false;
   int threads = 0;
   std::vector<std::string> methods;
+  std::vector<std::string> cases;
 };
 
 int run_validate(const ValidateOptions& options) {
@@ -48,6 +51,12 @@ int run_validate(const ValidateOptions& options) {
     if (method != "local" && method != "path" && method != "radiosity" && method != "meshless")
       throw BadArgument(fmt::format(
           "--methods: unknown method '{}' (expected local, path, radiosity or meshless)", method));
+  if (!options.cases.empty() && options.name != "cie171") throw BadArgument("--cases is for cie171");
+  const std::vector<std::string> numbers = cie171_case_numbers();
+  for (const std::string& number : options.cases)
+    if (std::find(numbers.begin(), numbers.end(), number) == numbers.end())
+      throw BadArgument(
+          fmt::format("--cases: unknown case '{}' (expected one of {})", number, fmt::join(numbers, ", ")));
   std::optional<tbb::global_control> thread_limit;
   limit_threads(options.threads, thread_limit);
   namespace fs = std::filesystem;
@@ -60,6 +69,7 @@ int run_validate(const ValidateOptions& options) {
     Cie171Run run;
     run.quick = options.quick;
     run.only_methods = options.methods;
+    run.only_cases = options.cases;
     const nlohmann::json results =
         run_cie171_validation(options.out, run, options.quiet ? nullptr : &std::cout);
     const int failures = results["failures"].get<int>();
@@ -102,6 +112,11 @@ void add_validate_command(CLI::App& app, std::function<int()>& run) {
   command
       ->add_option("--methods", options->methods,
                    "cie171: only these methods (local, path, radiosity, meshless)")
+      ->delimiter(',');
+  command
+      ->add_option("--cases", options->cases,
+                   "cie171: only these cases, by number (5.2, 5.3, 5.4, 5.5, 5.6, 5.7, 5.8, 5.9, 5.10, 5.11, "
+                   "5.12, 5.13; 5.11: each of its variants)")
       ->delimiter(',');
   command->add_option("--threads", options->threads, "Worker threads (default: all cores)");
   command->callback([options, &run]() {

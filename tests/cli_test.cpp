@@ -727,12 +727,24 @@ TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
     EXPECT_NE(line.find(",path,"), std::string::npos) << line;
     EXPECT_NE(line.find(",pass,"), std::string::npos) << line;
   }
-  // 5.2, 5.3, 5.4, 5.5 (quick: two incidences), 5.6, 5.7, 5.8, 5.9, 5.10, 5.11, 5.12, 5.13 (quick:
-  // one rho, one sky).
-  EXPECT_EQ(lines, 1 + 13);
+  // 5.2, 5.3, 5.4, 5.5 (quick: two incidences), 5.6, 5.7, 5.8, 5.9, 5.10, 5.11 (black and
+  // reflecting obstruction), 5.12, 5.13 (quick: one rho, one sky).
+  EXPECT_EQ(lines, 1 + 14);
   // --methods is cie171's: the other cases refuse it.
   EXPECT_EQ(run("validate sphere-disc --quick --methods path --out sd3", output), 2) << output;
   EXPECT_NE(output.find("--methods is for cie171"), std::string::npos) << output;
+  // --cases picks cases by number, each with its variants; an unknown number writes nothing.
+  ASSERT_EQ(run("validate cie171 --quick -q --methods path --cases 5.11,5.2 --out c171b", output), 0)
+      << output;
+  std::ifstream picked(directory_ / "c171b" / "summary.csv");
+  std::vector<std::string> ids;
+  while (std::getline(picked, line)) ids.push_back(line.substr(0, line.find(',')));
+  EXPECT_EQ(ids, (std::vector<std::string>{"case", "5.2", "5.11 sky 1", "5.11 reflected sky 1"}));
+  EXPECT_EQ(run("validate cie171 --quick --cases 5.1 --out c171c", output), 2) << output;
+  EXPECT_NE(output.find("--cases: unknown case '5.1'"), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(directory_ / "c171c"));
+  EXPECT_EQ(run("validate form-factors --quick --cases 5.2 --out ff3", output), 2) << output;
+  EXPECT_NE(output.find("--cases is for cie171"), std::string::npos) << output;
 }
 
 }  // namespace

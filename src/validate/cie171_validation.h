@@ -69,6 +69,9 @@ struct Cie171Case {
   // it or passes, a coin that costs it 4× the samples for the same noise), and the reference with
   // the report's polynomial for the glass's transmittance instead of the exact one.
   bool glazed = false;
+  // 5.11 reflected: the obstruction reflects the sky into the window (the path tracer's light
+  // comes by a bounce outside: 4× the samples too).
+  bool reflecting_obstruction = false;
   std::vector<double> reference_report_curve;
 };
 
@@ -79,13 +82,19 @@ double cie171_clear_glass_curve(double cos_theta);
 struct Cie171Run {
   bool quick = false;  // fewer points' samples and a coarser radiosity mesh (CI: under a minute)
   std::vector<std::string> only_methods;  // empty: every method of each case
+  // Empty: every case; else the case numbers to run ("5.11": each of its variants).
+  std::vector<std::string> only_cases;
 };
 
 // The cases, with the files they need (the Lambertian IES file) written into out_dir.
 std::vector<Cie171Case> cie171_cases(const std::string& out_dir, const Cie171Run& run);
 
+// The numbers of the cases built ("5.2", …, "5.13"), in order.
+std::vector<std::string> cie171_case_numbers();
+
 // The probe settings of a method for a case (samples per point: 65,536, under the sky openings
-// 262,144, under the glazed ones 1,048,576 for the path tracer; quick 1,024).
+// 262,144, under the glazed ones and 5.11's reflecting obstruction 1,048,576 for the path tracer;
+// quick 1,024).
 ProbeSettings cie171_probe_settings(const Cie171Case& test, const std::string& method, const Cie171Run& run);
 
 // The largest error a method may show at a point: 0.01 for path, 0.02 for the others.

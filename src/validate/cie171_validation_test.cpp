@@ -92,6 +92,18 @@ TEST_F(Cie171, ReferencesAgreeWithClosedFormsWorkedByHand) {
     if (street.reference[i] < 0.99 * window.reference[i]) ++darker;
   }
   EXPECT_GT(darker, 8);
+  // 5.11 with the obstruction reflecting (ρ 0.5): it adds light where it is seen, never takes any —
+  // and under the overcast sky less than the low sky it hides (its luminance is about
+  // 0.5 × 0.396 E_h/π ≈ 0.15 L_z, the vertical illuminance of the overcast sky being 0.396 E_h; the
+  // horizon's luminance is L_z/3).
+  const Cie171Case& reflected = by_id.at("5.11 reflected sky 1");
+  int brighter = 0;
+  for (std::size_t i = 0; i < window.reference.size(); ++i) {
+    EXPECT_GE(reflected.reference[i], street.reference[i]) << i;
+    EXPECT_LE(reflected.reference[i], window.reference[i]) << i;
+    if (reflected.reference[i] > 1.01 * street.reference[i]) ++brighter;
+  }
+  EXPECT_EQ(brighter, darker);
   EXPECT_LT(largest / 10000, 9.0 / 7 * F);
   EXPECT_GT(largest / 10000, 0.95 * 9.0 / 7 * F);
   // 5.12 is 5.9 through the report's 6 mm clear glass: every point gets the unglazed value times
