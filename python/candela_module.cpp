@@ -1,0 +1,364 @@
+// The Python module `candela` (issue 24): scenes loaded with the command line's overrides, rendered
+// by any method into NumPy arrays, written, compared and probed — what a researcher's notebook
+// needs (Mitsuba 3's load_file / render). The arrays are what `candela render -o x.pfm` writes:
+// linear RGB after the scene's film.exposure, float32, H × W × 3, row 0 at the top.
+//
+// Bad input raises candela.InputError (a ValueError) with the command line's message
+// ("file:line:column: json.path: what was expected") and its parts as attributes. A render runs
+// on a worker thread with the GIL released; the calling thread looks at Python's signals every
+// 50 ms, so Ctrl-C stops the method at its next coarse point (util/cancellation.h) and raises
+// KeyboardInterrupt once it has stopped.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <tbb/global_control.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "camera/tone_map.h"
+#include "integrators/method_registry.h"
+#include "integrators/probe.h"
+#include "integrators/scene_loading.h"
+#include "io/image_reader.h"
+#include "io/image_writer.h"
+#include "radiosity/solution_export.h"
+#include "util/cancellation.h"
+#include "util/error.h"
+#include "validate/image_comparison.h"
+
+namespace py = pybind11;
+
+namespace candela {
+namespace {
+
+// Arrays as the functions take them: any sequence of numbers NumPy can convert (lists too).
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using BoolArray = py::array_t<bool, py::array::c_style | py::array::forcecast>;
+
+// candela.InputError, made when the module is imported.
+PyObject* input_error_type = nullptr;
+
+// Keyword arguments as the command line's --set assignments: each value as JSON (Python's json
+// module), so 64 is a number, "bvh" a string and [1, 2, 3] an array.
+std::vector<std::string> overrides_from(const py::kwargs& overrides) {
+  std::vector<std::string> assignments;
+  const py::object dumps = py::module_::import("json").attr("dumps");
+  for (const auto& [key, value] : overrides)
+    assignments.push_back(py::str(key).cast<std::string>() + "=" + dumps(value).cast<std::string>());
+  return assignments;
+}
+
+// Runs work() on a worker thread while this (Python's) thread, without the GIL, looks at its
+// signals every 50 ms: on Ctrl-C the run is asked to stop (request_cancellation) and, once it has,
+// KeyboardInterrupt is raised instead of its result.
+template <class Result, class Work>
+Result run_interruptibly(Work&& work) {
+  reset_cancellation();
+  std::optional<Result> result;
+  std::exception_ptr error;
+  std::mutex mutex;
+  std::condition_variable finished;
+  bool done = false;
+  std::thread worker([&] {
+    try {
+      result.emplace(work());
+    } catch (...) {
+      error = std::current_exception();
+    }
+    const std::lock_guard lock(mutex);
+    done = true;
+    finished.notify_all();
+  });
+  bool interrupted = false;
+  for (;;) {
+    bool stopped = false;
+    {
+      const py::gil_scoped_release release;
+      std::unique_lock lock(mutex);
+      stopped = finished.wait_for(lock, std::chrono::milliseconds(50), [&] { return done; });
+    }
+    if (stopped) break;
+    if (!interrupted && PyErr_CheckSignals() != 0) {  // the KeyboardInterrupt is now pending
+      interrupted = true;
+      request_cancellation();
+    }
+  }
+  worker.join();
+  reset_cancellation();
+  if (interrupted) throw py::error_already_set();
+  if (error) std::rethrow_exception(error);
+  return std::move(*result);
+}
+
+// float32 H × W × 3 of the film's pixels after 2^exposure, as the PFM and EXR writers store them.
+py::array_t<float> array_of(const Film& film, double exposure) {
+  const std::vector<Color> pixels = expose(film, exposure);
+  py::array_t<float> array({py::ssize_t(film.height()), py::ssize_t(film.width()), py::ssize_t(3)});
+  auto view = array.mutable_unchecked<3>();
+  for (int y = 0; y < film.height(); ++y)
+    for (int x = 0; x < film.width(); ++x)
+      for (int c = 0; c < 3; ++c)
+        view(y, x, c) = static_cast<float>(pixels[std::size_t(y) * film.width() + x][c]);
+  return array;
+}
+
+// An H × W × 3 (or H × W, grey) array of numbers as a film.
+Film film_of(const DoubleArray& values, const char* name) {
+  if ((values.ndim() != 3 && values.ndim() != 2) || (values.ndim() == 3 && values.shape(2) != 3))
+    throw py::value_error(std::string(name) +
+                          ": expected an array of shape (height, width, 3) or (height, width)");
+  const int height = int(values.shape(0)), width = int(values.shape(1));
+  if (width < 1 || height < 1) throw py::value_error(std::string(name) + ": the image is empty");
+  Film film(width, height);
+  const double* data = values.data();
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const std::size_t i = std::size_t(y) * width + x;
+      film.at(x, y) =
+          values.ndim() == 3 ? Color(data[3 * i], data[3 * i + 1], data[3 * i + 2]) : Color(data[i]);
+    }
+  return film;
+}
+
+py::array_t<double> rows_of(const std::vector<Color>& colors) {
+  py::array_t<double> array({py::ssize_t(colors.size()), py::ssize_t(3)});
+  auto view = array.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < colors.size(); ++i)
+    for (int c = 0; c < 3; ++c) view(py::ssize_t(i), c) = colors[i][c];
+  return array;
+}
+
+std::vector<Vec3> vectors_of(const DoubleArray& values, const char* name) {
+  if (values.ndim() != 2 || values.shape(1) != 3)
+    throw py::value_error(std::string(name) + ": expected an array of shape (n, 3)");
+  std::vector<Vec3> vectors;
+  for (py::ssize_t i = 0; i < values.shape(0); ++i)
+    vectors.push_back({values.at(i, 0), values.at(i, 1), values.at(i, 2)});
+  return vectors;
+}
+
+std::shared_ptr<Scene> load_file(const std::string& path, const py::kwargs& overrides) {
+  return load_scene_file(path, overrides_from(overrides));
+}
+
+py::array_t<float> render(Scene& scene, std::optional<std::string> method_name, std::optional<int> spp,
+                          int threads, std::optional<uint64_t> seed) {
+  const std::string name = method_name.value_or(scene.render.method);
+  const MethodEntry* entry = find_method(name);
+  if (!entry)
+    throw py::value_error("unknown method '" + name + "' (expected one of: " + method_names() + ")");
+  std::vector<std::string> settings;
+  if (spp) {
+    if (!entry->capabilities.progressive_passes)
+      throw py::value_error("spp is for the methods that sample in passes (path), not " + name);
+    if (*spp < 1) throw py::value_error("spp must be >= 1");
+    settings.push_back("spp=" + std::to_string(*spp));
+  }
+  if (threads < 0) throw py::value_error("threads must be >= 0 (0: all cores)");
+  const std::unique_ptr<Method> method = create_method(*entry, scene, settings);
+  // The seed is this render's: the scene keeps its own for the next.
+  const uint64_t scene_seed = scene.render.seed;
+  if (seed) scene.render.seed = *seed;
+  RenderRequest request;
+  request.region = {0, 0, scene.camera->width(), scene.camera->height()};
+  request.quiet = true;
+  std::optional<tbb::global_control> thread_limit;
+  if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  try {
+    Film film = run_interruptibly<Film>([&] { return std::move(method->render(scene, request).film); });
+    scene.render.seed = scene_seed;
+    return array_of(film, scene.display.exposure);
+  } catch (...) {
+    scene.render.seed = scene_seed;
+    throw;
+  }
+}
+
+void write_image_file(const std::string& path, const DoubleArray& image) {
+  ImageFormat format;
+  if (!image_format_for_path(path, format))
+    throw py::value_error("cannot write '" + path + "': the extension is not .png, .exr or .pfm");
+  const Film film = film_of(image, "image");
+  const DisplaySettings display;
+  if (const std::string problem = non_finite_image_problem(film, format, display.exposure); !problem.empty())
+    throw py::value_error(problem);
+  write_image(film, path, display);
+}
+
+// The metrics of `candela compare` (validate/image_comparison.h), with its JSON's names; infinite
+// values (psnr_db of identical images, luminance_ratio against black) as float infinities.
+py::dict compare(const DoubleArray& image, const DoubleArray& reference,
+                 const std::optional<BoolArray>& mask) {
+  const Film a = film_of(image, "image"), b = film_of(reference, "reference");
+  std::optional<std::vector<uint8_t>> included;
+  if (mask) {
+    if (mask->ndim() != 2 || mask->shape(0) != b.height() || mask->shape(1) != b.width())
+      throw py::value_error("mask: expected a boolean array of the images' (height, width)");
+    included.emplace(mask->data(), mask->data() + mask->size());
+  }
+  const ImageComparison result = compare_images(a, b, included ? &*included : nullptr);
+  py::dict metrics;
+  metrics["width"] = result.width;
+  metrics["height"] = result.height;
+  metrics["pixels_compared"] = result.pixels_compared;
+  metrics["rmse"] = result.rmse;
+  metrics["relative_mse"] = result.relative_mse;
+  metrics["relative_mse_epsilon"] = kRelativeMseEpsilon;
+  metrics["psnr_db"] = result.psnr;
+  metrics["psnr_peak"] = result.peak;
+  metrics["mean_absolute_error"] = result.mean_absolute_error;
+  metrics["max_absolute_error"] = result.max_absolute_error;
+  py::dict at;
+  at["x"] = result.max_error_x;
+  at["y"] = result.max_error_y;
+  at["channel"] = result.max_error_channel;
+  metrics["max_absolute_error_at"] = at;
+  metrics["mean_luminance"] = result.mean_luminance;
+  metrics["mean_luminance_reference"] = result.mean_luminance_reference;
+  metrics["luminance_ratio"] = result.luminance_ratio;
+  return metrics;
+}
+
+py::dict probe_points(const Scene& scene, const DoubleArray& points, const DoubleArray& normals,
+                      const std::string& method, int samples, uint64_t seed, int threads) {
+  const std::vector<Vec3> positions = vectors_of(points, "points"),
+                          directions = vectors_of(normals, "normals");
+  if (positions.size() != directions.size())
+    throw py::value_error("points and normals: " + std::to_string(positions.size()) + " points but " +
+                          std::to_string(directions.size()) + " normals");
+  std::vector<ProbePoint> sensors;
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    const double norm = length(directions[i]);
+    if (!(norm > 0) || !std::isfinite(norm))
+      throw py::value_error("normals[" + std::to_string(i) + "]: expected a non-zero finite vector");
+    sensors.push_back({positions[i], directions[i] / norm});
+  }
+  ProbeSettings settings;
+  settings.method = method;
+  settings.samples = samples;
+  settings.seed = seed;
+  if (threads < 0) throw py::value_error("threads must be >= 0 (0: all cores)");
+  std::optional<tbb::global_control> thread_limit;
+  if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  const std::vector<ProbeResult> results =
+      run_interruptibly<std::vector<ProbeResult>>([&] { return probe(scene, sensors, settings); });
+  std::vector<Color> irradiance, radiance;
+  py::array_t<double> error(py::ssize_t(results.size()));
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    irradiance.push_back(results[i].irradiance);
+    radiance.push_back(results[i].radiance);
+    error.mutable_at(py::ssize_t(i)) = results[i].irradiance_error;
+  }
+  py::dict out;
+  out["irradiance"] = rows_of(irradiance);
+  out["radiance"] = rows_of(radiance);
+  out["irradiance_standard_error"] = error;
+  return out;
+}
+
+// Classic radiosity's solution of the scene (its "radiosity" settings): the element mesh's vertices
+// (n, 3), triangles (m, 3) and each vertex's radiosity B (n, 3), as --export-solution's PLY holds
+// them. The image is not rendered (one pixel is).
+py::dict radiosity_solution(Scene& scene, int threads) {
+  if (threads < 0) throw py::value_error("threads must be >= 0 (0: all cores)");
+  const std::unique_ptr<Method> method = create_method(*find_method("radiosity"), scene);
+  RenderRequest request;
+  request.region = {0, 0, 1, 1};
+  request.quiet = true;
+  std::optional<tbb::global_control> thread_limit;
+  if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  const auto solution = run_interruptibly<std::shared_ptr<const RadiositySolveResult>>(
+      [&] { return method->render(scene, request).solution; });
+  if (!solution) throw std::runtime_error("the radiosity method gave no solution");
+  const SolutionMesh mesh = solution_mesh(*solution);
+  py::array_t<double> vertices({py::ssize_t(mesh.positions.size()), py::ssize_t(3)});
+  auto v = vertices.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+    for (int c = 0; c < 3; ++c) v(py::ssize_t(i), c) = mesh.positions[i][c];
+  py::array_t<uint32_t> faces({py::ssize_t(mesh.triangles.size()), py::ssize_t(3)});
+  auto f = faces.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+    for (int c = 0; c < 3; ++c) f(py::ssize_t(i), c) = mesh.triangles[i][std::size_t(c)];
+  py::dict out;
+  out["vertices"] = vertices;
+  out["faces"] = faces;
+  out["radiosity"] = rows_of(mesh.radiosity);
+  return out;
+}
+
+}  // namespace
+}  // namespace candela
+
+PYBIND11_MODULE(candela, module) {
+  using namespace candela;
+  module.doc() =
+      "Candela's renderer from Python: load_file, render (NumPy arrays, linear RGB), write_image, "
+      "read_image, compare, probe, radiosity_solution.";
+  static py::exception<InputError> input_error(module, "InputError", PyExc_ValueError);
+  input_error_type = input_error.ptr();
+  py::register_exception_translator([](std::exception_ptr error) {
+    try {
+      if (error) std::rethrow_exception(error);
+    } catch (const InputError& e) {
+      py::object exception = py::reinterpret_borrow<py::object>(input_error_type)(e.what());
+      exception.attr("file") = e.location().file;
+      exception.attr("line") = e.location().line;
+      exception.attr("column") = e.location().column;
+      exception.attr("json_path") = e.location().json_path;
+      exception.attr("message") = e.message();
+      PyErr_SetObject(input_error_type, exception.ptr());
+    }
+  });
+
+  py::class_<Scene, std::shared_ptr<Scene>>(module, "Scene", "A loaded scene (candela/1 JSON).")
+      .def_property_readonly("width", [](const Scene& scene) { return scene.camera->width(); })
+      .def_property_readonly("height", [](const Scene& scene) { return scene.camera->height(); })
+      .def_property_readonly(
+          "method", [](const Scene& scene) { return scene.render.method; },
+          "The scene's own method (render.method).")
+      .def_property_readonly("source", [](const Scene& scene) { return scene.source; })
+      .def("__repr__", [](const Scene& scene) {
+        return "<candela.Scene " + scene.source + " " + std::to_string(scene.camera->width()) + "x" +
+               std::to_string(scene.camera->height()) + ">";
+      });
+
+  module.def("load_file", &load_file, py::arg("path"),
+             "Loads a scene file; keyword arguments are --set overrides with dots spelled out: "
+             "load_file(path, **{'camera.width': 64}).");
+  module.def(
+      "render", &render, py::arg("scene"), py::kw_only(), py::arg("method") = py::none(),
+      py::arg("spp") = py::none(), py::arg("threads") = 0, py::arg("seed") = py::none(),
+      "Renders the scene by a method (default: the scene's) into a float32 array (height, width, 3) of "
+      "linear RGB, what `candela render -o image.pfm` writes. spp: passes of the path tracer; threads: 0 for "
+      "all cores; seed: this render's (default render.seed).");
+  module.def("write_image", &write_image_file, py::arg("path"), py::arg("image"),
+             "Writes an array (height, width, 3) to .exr or .pfm (linear) or .png (tone-mapped sRGB).");
+  module.def(
+      "read_image",
+      [](const std::string& path) {
+        const LinearImage image = read_linear_image(path);
+        return array_of(image.film, 0);
+      },
+      py::arg("path"), "Reads an .exr, .pfm or .hdr file (or an 8-bit image, decoded to linear) as float32.");
+  module.def("compare", &compare, py::arg("image"), py::arg("reference"), py::arg("mask") = py::none(),
+             "The metrics of `candela compare` (rmse, relative_mse, psnr, ...) as a dict; mask: a boolean "
+             "(height, width) array of the pixels that count.");
+  module.def(
+      "radiosity_solution", &radiosity_solution, py::arg("scene"), py::kw_only(), py::arg("threads") = 0,
+      "Classic radiosity's solution: {'vertices': (n, 3), 'faces': (m, 3) uint32, 'radiosity': (n, 3)}, "
+      "the element mesh with each vertex's radiosity B, as --export-solution writes it.");
+  module.def("probe", &probe_points, py::arg("scene"), py::arg("points"), py::arg("normals"), py::kw_only(),
+             py::arg("method") = "path", py::arg("samples") = 256, py::arg("seed") = 0,
+             py::arg("threads") = 0,
+             "Irradiance (n, 3), radiance (n, 3) and the irradiance's standard error (n) at sensor points "
+             "(n, 3) facing normals (n, 3), as `candela probe`.");
+}

@@ -1,0 +1,167 @@
+"""The Python module candela (issue 24): its arrays are the command line's PFM byte for byte, its
+errors carry the command line's file:line:column messages, Ctrl-C cancels a render, and compare,
+probe, write_image/read_image and the radiosity solution give what their commands give.
+
+Run by ctest (Python.Pytest) with PYTHONPATH=build/python, CANDELA_CLI=the built command line and
+CANDELA_SOURCE_DIR=the checkout; Debian's /usr/bin/python3 with python3-numpy and python3-pytest.
+"""
+import json
+import os
+import pathlib
+import signal
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import candela
+
+SOURCE = pathlib.Path(os.environ.get("CANDELA_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
+CLI = os.environ.get("CANDELA_CLI", str(SOURCE / "build" / "cli" / "candela"))
+CORNELL = str(SOURCE / "scenes" / "cornell-box.json")
+SMALL = {"camera.width": 32, "camera.height": 24}
+
+
+def read_pfm(path):
+    """A colour PFM (little-endian, scale -1) as float32 (height, width, 3), row 0 at the top."""
+    data = pathlib.Path(path).read_bytes()
+    header, _, rest = data.partition(b"\n")
+    assert header == b"PF"
+    size, _, rest = rest.partition(b"\n")
+    scale, _, pixels = rest.partition(b"\n")
+    width, height = map(int, size.split())
+    assert float(scale) < 0  # little-endian
+    rows = np.frombuffer(pixels, dtype="<f4").reshape(height, width, 3)
+    return rows[::-1]
+
+
+def cli_render(tmp_path, method, extra=()):
+    out = tmp_path / f"{method}.pfm"
+    subprocess.run([CLI, "render", CORNELL, "--method", method, "-o", str(out), "-q",
+                    "--set", "camera.width=32", "--set", "camera.height=24", *extra], check=True)
+    return read_pfm(out)
+
+
+@pytest.mark.parametrize("method, spp", [("radiosity", None), ("path", 4), ("whitted", None), ("raster", None)])
+def test_render_is_the_command_lines_pfm_byte_for_byte(tmp_path, method, spp):
+    scene = candela.load_file(CORNELL, **SMALL)
+    assert (scene.width, scene.height, scene.method) == (32, 24, "radiosity")
+    image = candela.render(scene, method=method, spp=spp, threads=2)
+    assert image.shape == (24, 32, 3) and image.dtype == np.float32
+    reference = cli_render(tmp_path, method, ["--spp", str(spp)] if spp else [])
+    assert image.tobytes() == np.ascontiguousarray(reference).tobytes()
+    assert image.max() > 0
+
+
+def test_images_do_not_depend_on_the_thread_count_and_the_seed_is_the_renders():
+    scene = candela.load_file(CORNELL, **SMALL)
+    one = candela.render(scene, method="path", spp=2, threads=1)
+    two = candela.render(scene, method="path", spp=2, threads=2)
+    assert one.tobytes() == two.tobytes()
+    other_seed = candela.render(scene, method="path", spp=2, seed=7)
+    assert other_seed.tobytes() != one.tobytes()
+    # The seed was this render's alone: the scene's own is back.
+    assert candela.render(scene, method="path", spp=2).tobytes() == one.tobytes()
+
+
+def test_bad_input_raises_input_error_with_the_location(tmp_path):
+    bad = tmp_path / "bad.json"
+    bad.write_text('{"format": "candela/1",\n  "camera": {"eye": [0, 0, 5], "target": [0, 0, 0]},\n'
+                   '  "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": -1}]}\n')
+    with pytest.raises(candela.InputError) as caught:
+        candela.load_file(str(bad))
+    error = caught.value
+    assert isinstance(error, ValueError)
+    assert error.file == str(bad) and error.line == 3 and error.json_path == "shapes[0].radius"
+    assert str(error).startswith(f"{bad}:3:")
+    # An override is located at its --set, as on the command line.
+    with pytest.raises(candela.InputError, match="camera.width"):
+        candela.load_file(CORNELL, **{"camera.width": -4})
+    with pytest.raises(candela.InputError):
+        candela.load_file(str(tmp_path / "missing.json"))
+    scene = candela.load_file(CORNELL, **SMALL)
+    with pytest.raises(ValueError, match="unknown method 'teleport'"):
+        candela.render(scene, method="teleport")
+    with pytest.raises(ValueError, match="spp is for"):
+        candela.render(scene, method="whitted", spp=4)
+
+
+def test_ctrl_c_cancels_a_render_and_the_next_one_runs():
+    scene = candela.load_file(CORNELL, **{"camera.width": 256, "camera.height": 256})
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        candela.render(scene, method="path", spp=100000)
+    assert time.monotonic() - start < 30
+    small = candela.load_file(CORNELL, **SMALL)
+    assert candela.render(small, method="path", spp=1).max() > 0
+
+
+def test_write_and_read_image_round_trip(tmp_path):
+    scene = candela.load_file(CORNELL, **SMALL)
+    image = candela.render(scene, method="whitted")
+    for name in ["a.pfm", "a.exr"]:
+        candela.write_image(str(tmp_path / name), image)
+        assert candela.read_image(str(tmp_path / name)).tobytes() == image.tobytes()
+    candela.write_image(str(tmp_path / "a.png"), image)
+    assert (tmp_path / "a.png").stat().st_size > 0
+    with pytest.raises(ValueError, match="extension"):
+        candela.write_image(str(tmp_path / "a.txt"), image)
+    with pytest.raises(ValueError, match="shape"):
+        candela.write_image(str(tmp_path / "b.pfm"), np.zeros((4, 4, 2)))
+
+
+def test_compare_gives_the_command_lines_metrics(tmp_path):
+    scene = candela.load_file(CORNELL, **SMALL)
+    a = candela.render(scene, method="path", spp=2)
+    b = candela.render(scene, method="path", spp=8)
+    metrics = candela.compare(a, b)
+    candela.write_image(str(tmp_path / "a.pfm"), a)
+    candela.write_image(str(tmp_path / "b.pfm"), b)
+    subprocess.run([CLI, "compare", str(tmp_path / "a.pfm"), str(tmp_path / "b.pfm"), "--json",
+                    str(tmp_path / "m.json")], check=True, stdout=subprocess.DEVNULL)
+    expected = json.loads((tmp_path / "m.json").read_text())
+    for key in ["rmse", "relative_mse", "psnr_db", "mean_absolute_error", "max_absolute_error",
+                "mean_luminance", "mean_luminance_reference", "luminance_ratio", "pixels_compared"]:
+        assert metrics[key] == pytest.approx(expected[key], rel=1e-12), key
+    assert metrics["max_absolute_error_at"] == expected["max_absolute_error_at"]
+    difference = (a.astype(np.float64) - b) ** 2
+    assert metrics["rmse"] == pytest.approx(np.sqrt(difference.mean()), rel=1e-9)
+    # A mask: only its pixels count.
+    mask = np.zeros(a.shape[:2], dtype=bool)
+    mask[:, :16] = True
+    masked = candela.compare(a, b, mask=mask)
+    assert masked["pixels_compared"] == 24 * 16
+    assert masked["rmse"] == pytest.approx(np.sqrt(difference[:, :16].mean()), rel=1e-9)
+    identical = candela.compare(a, a)
+    assert identical["rmse"] == 0 and identical["psnr_db"] == float("inf")
+
+
+def test_probe_matches_an_emitting_square_and_the_radiosity_solution_has_its_mesh(tmp_path):
+    square = tmp_path / "lamp.json"
+    square.write_text(json.dumps({
+        "format": "candela/1",
+        "camera": {"eye": [0, -1, 0], "target": [0, 1, 0], "up": [0, 0, -1], "width": 8, "height": 8},
+        "radiosity": {"patch_size": 0.5},
+        "shapes": [{"type": "quad", "corner": [-1, 1, -1], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2],
+                    "material": {"kd": 0.5, "emission": 3}}]}))
+    scene = candela.load_file(str(square))
+    # Under the centre of a 2 × 2 emitter of exitance 3, one unit away: E = 3 × 4 F(1, 1, 1),
+    # F = 0.13853 the factor to each unit square's corner.
+    corner = 0.138528
+    for method in ["path", "radiosity"]:
+        result = candela.probe(scene, [[0, 0, 0]], [[0, 1, 0]], method=method, samples=4096)
+        assert result["irradiance"].shape == (1, 3)
+        assert result["irradiance"][0] == pytest.approx([12 * corner] * 3, rel=0.01), method
+        assert result["irradiance_standard_error"].shape == (1,)
+    with pytest.raises(ValueError, match="normals"):
+        candela.probe(scene, [[0, 0, 0]], [[0, 0, 0]])
+    solution = candela.radiosity_solution(scene)
+    vertices, faces, radiosity = solution["vertices"], solution["faces"], solution["radiosity"]
+    assert vertices.shape[1] == 3 and faces.shape[1] == 3 and radiosity.shape == vertices.shape
+    assert faces.max() < len(vertices)
+    # Alone in the scene the square emits and receives nothing: B = E = 3 at every vertex, on y = 1.
+    assert np.allclose(radiosity, 3) and np.allclose(vertices[:, 1], 1)
