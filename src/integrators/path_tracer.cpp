@@ -23,7 +23,9 @@
 #include "sampling/sobol_sampler.h"
 #include "shading/bsdf.h"
 #include "shading/bump.h"
+#include "shading/fresnel.h"
 #include "shading/material_bsdf.h"
+#include "shading/optics.h"
 #include "util/cancellation.h"
 #include "util/error.h"
 #include "util/hash.h"
@@ -217,6 +219,42 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
       L += state.beta * sample_light(scene, lights, surface.position, surface.lifted_toward(wo),
                                      surface.geometric_normal, shading.shading_normal, bsdf, wo, sampler,
                                      rays);
+
+    // A pane and nothing else (one thin_dielectric lobe): the path is split rather than sent one
+    // way by a coin — the reflection followed as a path of its own, weighted R, and this path on
+    // straight through, weighted T. The coin's extra random number broke the stratification of the
+    // bounce before the pane (Sobol'): under CIE 171 5.13's clear sky a point 0.25 m from the
+    // window, which sees it at 76–86°, was 1.4 % off at 4,194,304 coin-tossing paths. Only before
+    // Russian roulette begins (the early bounces, where stratification counts): the branches stay
+    // few, and deeper panes toss the coin (below).
+    if (bsdf.lobe_count() == 1 && bsdf.lobe(0).type == LobeType::thin_dielectric &&
+        state.depth < settings.roulette_depth) {
+      constexpr int kMaxSheets = 256;
+      if (++state.sheets_crossed > kMaxSheets) break;
+      const SheetColors split =
+          thin_sheet(std::fabs(dot(bsdf.frame().n, wo)), bsdf.lobe(0).ior, bsdf.lobe(0).weight);
+      if (!last && !split.reflectance.is_black()) {
+        PathState reflected = state;
+        const Vec3 mirrored = reflect(wo, bsdf.frame().n);
+        if (dot(mirrored, surface.geometric_normal) * dot(wo, surface.geometric_normal) > 0) {
+          reflected.beta *= split.reflectance;
+          reflected.specular = true;
+          reflected.bsdf_pdf = 0;
+          reflected.previous = surface.position;
+          reflected.ray =
+              Ray{offset_origin(scene, surface.lifted_toward(wo), surface.geometric_normal, wo), mirrored};
+          ++reflected.depth;
+          ++rays.reflected;
+          L += continue_path(scene, settings, lights, reflected, sampler, rays);
+        }
+      }
+      if (split.transmittance.is_black()) break;
+      state.beta *= split.transmittance;
+      ++rays.refracted;
+      state.ray = Ray{offset_origin(scene, surface.position, surface.geometric_normal, -wo), -wo};
+      --state.depth;  // the loop's ++ gives it back
+      continue;
+    }
 
     BsdfSample sample;
     const double u_lobe = bsdf.lobe_count() > 1 ? sampler.get_1d() : 0.0;

@@ -65,12 +65,11 @@ struct Cie171Case {
   // The daylight cases: the unobstructed horizontal illuminance the sky component is over (0: an
   // illuminance case).
   double unobstructed_illuminance = 0;
-  // 5.12, 5.13: the opening is glazed (a thin pane; the path tracer's sample either reflects off
-  // it or passes, a coin that costs it 4× the samples for the same noise), and the reference with
+  // 5.12, 5.13: the opening is glazed (a thin pane), and the reference with
   // the report's polynomial for the glass's transmittance instead of the exact one.
   bool glazed = false;
   // 5.11 reflected: the obstruction reflects the sky into the window (the path tracer's light
-  // comes by a bounce outside: 4× the samples too).
+  // comes by a bounce outside: more samples too).
   bool reflecting_obstruction = false;
   std::vector<double> reference_report_curve;
 };
@@ -93,8 +92,7 @@ std::vector<Cie171Case> cie171_cases(const std::string& out_dir, const Cie171Run
 std::vector<std::string> cie171_case_numbers();
 
 // The probe settings of a method for a case (samples per point: 65,536, under the sky openings
-// 262,144, under the glazed ones and 5.11's reflecting obstruction 1,048,576 for the path tracer;
-// quick 1,024).
+// 262,144; for the path tracer 1,048,576 behind 5.11's reflecting obstruction; quick 1,024).
 ProbeSettings cie171_probe_settings(const Cie171Case& test, const std::string& method, const Cie171Run& run);
 
 // The largest error a method may show at a point: 0.01 for path, 0.02 for the others.

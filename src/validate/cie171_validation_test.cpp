@@ -12,9 +12,12 @@
 #include <string>
 #include <vector>
 
+#include "integrators/probe.h"
+#include "integrators/scene_loading.h"
 #include "math/constants.h"
 #include "radiosity/configuration_factors.h"
 #include "shading/fresnel.h"
+#include "shading/photometric_units.h"
 
 namespace candela {
 namespace {
@@ -139,6 +142,23 @@ TEST_F(Cie171, ReferencesAgreeWithClosedFormsWorkedByHand) {
   EXPECT_NEAR(slanted_sun.reference[0], 10000 * glass(60), 1e-9);
   EXPECT_NEAR(slanted_sun.reference[1], 0.5 * slanted_sun.reference[0], 1e-9);
   EXPECT_NEAR(slanted_sun.reference_report_curve[0] / slanted_sun.reference[0], 1, 0.005);
+}
+
+// The path tracer splits its path at a pane (integrators/path_tracer.cpp): a point 0.25 m from
+// 5.13's glazed window, which sees the pane at 76–86°, converges as under an open window — within
+// 0.5 % at 65,536 Sobol' samples, where a coin between reflecting and passing left it 3–7 % off at
+// 262,144.
+TEST_F(Cie171, ThePathTracerConvergesThroughAPaneSeenAtGrazingIncidence) {
+  const auto by_id = cases(true);
+  const Cie171Case& glazed = by_id.at("5.13 sky 1");
+  ASSERT_NEAR(glazed.points[0].position.x, 0.25, 1e-12);
+  ASSERT_NEAR(glazed.points[0].position.z, 0.25, 1e-12);
+  const auto scene = load_scene_text(glazed.scene, "cie171 5.13.json", glazed.directory);
+  ProbeSettings settings;
+  settings.method = "path";
+  settings.samples = 65536;
+  const std::vector<ProbeResult> results = probe(*scene, {glazed.points[0]}, settings);
+  EXPECT_NEAR(kLuminousEfficacy * luminance(results[0].irradiance) / glazed.reference[0], 1, 0.005);
 }
 
 // The quick run into a directory: every file, and the methods exact on the direct cases within
