@@ -1,12 +1,18 @@
 // candela: one executable, thin sub-commands over the core library (SPEC "Product surface").
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <exception>
 #include <iostream>
 #include <optional>
+#include <string>
+#include <vector>
 
+#include "build_version.h"
 #include "commands.h"
 #include "distributed/cluster.h"
+#include "util/closest_word.h"
 #include "util/error.h"
 
 namespace candela::cli {
@@ -26,6 +32,37 @@ int run_reporting_bad_input(const std::function<int()>& command) {
     print_error(e.what());
     return 2;
   }
+}
+
+// "candela 0.1.0 (commit 1a2b3c4d5e6f; Embree, MPI)": the version, the checkout's commit at build
+// time (+changes when it had uncommitted ones) and the optional parts built in.
+std::string version_text() {
+  std::vector<std::string> parts;
+#ifdef CANDELA_HAVE_EMBREE
+  parts.push_back("Embree");
+#endif
+#ifdef CANDELA_HAVE_MPI
+  parts.push_back("MPI");
+#endif
+  std::string built =
+      parts.empty() ? std::string("no Embree, no MPI") : fmt::format("{}", fmt::join(parts, ", "));
+  return fmt::format("candela {} (commit {}; {})", CANDELA_VERSION, CANDELA_COMMIT, built);
+}
+
+// A first argument that is neither an option nor a sub-command: refused with the nearest
+// sub-command when it looks like a slip of the fingers, and the list of them.
+bool refuse_unknown_command(CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return false;
+  std::vector<std::string> names;
+  for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; }))
+    names.push_back(command->get_name());
+  const std::string word = argv[1];
+  if (std::find(names.begin(), names.end(), word) != names.end()) return false;
+  const std::optional<std::string> nearest = closest_word(word, names);
+  print_error(fmt::format("unknown command '{}'{} (commands: {})", word,
+                          nearest ? " (did you mean " + *nearest + "?)" : std::string(),
+                          fmt::join(names, ", ")));
+  return true;
 }
 
 }  // namespace candela::cli
@@ -52,6 +89,9 @@ int main(int argc, char** argv) {
   candela::cli::add_probe_command(app, run);
   candela::cli::add_report_command(app, run);
   candela::cli::add_falsecolor_command(app, run);
+  app.set_version_flag("--version", candela::cli::version_text(),
+                       "The version, commit and optional parts, then exit");
+  if (candela::cli::refuse_unknown_command(app, argc, argv)) return 2;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

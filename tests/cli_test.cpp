@@ -59,6 +59,23 @@ class Cli : public ::testing::Test {
   fs::path directory_;
 };
 
+// Issue 24, item 4: `candela --version` names the version, the commit and the optional parts; a
+// misspelled sub-command is refused with the nearest one and the list (exit 2).
+TEST_F(Cli, VersionAndUnknownCommands) {
+  std::string output;
+  ASSERT_EQ(run("--version", output), 0) << output;
+  EXPECT_EQ(output.rfind("candela 0.1.0 (commit ", 0), 0u) << output;
+  EXPECT_EQ(output.find("commit unknown"), std::string::npos) << output;  // built from a git checkout
+  EXPECT_EQ(run("rendr scene.json", output), 2) << output;
+  EXPECT_NE(
+      output.find("candela: error: unknown command 'rendr' (did you mean render?) (commands: render, info,"),
+      std::string::npos)
+      << output;
+  EXPECT_EQ(run("teleport", output), 2) << output;
+  EXPECT_NE(output.find("unknown command 'teleport' (commands: "), std::string::npos) << output;
+  EXPECT_EQ(output.find("did you mean"), std::string::npos) << output;
+}
+
 TEST_F(Cli, RendersTheDefaultSceneToPng) {
   std::string output;
   ASSERT_EQ(run("render --set camera.width=40 --set camera.height=30 -o out.png --stats stats.json", output),
