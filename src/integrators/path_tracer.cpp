@@ -220,6 +220,15 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
                                      surface.geometric_normal, shading.shading_normal, bsdf, wo, sampler,
                                      rays);
 
+    // Straight on through a sheet, as the shadow rays go (Scene::transmittance): the bounce before
+    // it stays the one MIS and the emitters' densities are measured from, and the depth is not
+    // spent (the loop's ++ gives it back).
+    const auto pass_through = [&](const Color& weight) {
+      state.beta *= weight;
+      ++rays.refracted;
+      state.ray = Ray{offset_origin(scene, surface.position, surface.geometric_normal, -wo), -wo};
+      --state.depth;
+    };
     // A pane and nothing else (one thin_dielectric lobe): the path is split rather than sent one
     // way by a coin — the reflection followed as a path of its own, weighted R, and this path on
     // straight through, weighted T. The coin's extra random number broke the stratification of the
@@ -229,8 +238,7 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
     // few, and deeper panes toss the coin (below).
     if (bsdf.lobe_count() == 1 && bsdf.lobe(0).type == LobeType::thin_dielectric &&
         state.depth < settings.roulette_depth) {
-      constexpr int kMaxSheets = 256;
-      if (++state.sheets_crossed > kMaxSheets) break;
+      if (++state.sheets_crossed > kMaxSheetsCrossed) break;
       const SheetColors split =
           thin_sheet(std::fabs(dot(bsdf.frame().n, wo)), bsdf.lobe(0).ior, bsdf.lobe(0).weight);
       if (!last && !split.reflectance.is_black()) {
@@ -249,10 +257,7 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
         }
       }
       if (split.transmittance.is_black()) break;
-      state.beta *= split.transmittance;
-      ++rays.refracted;
-      state.ray = Ray{offset_origin(scene, surface.position, surface.geometric_normal, -wo), -wo};
-      --state.depth;  // the loop's ++ gives it back
+      pass_through(split.transmittance);
       continue;
     }
 
@@ -260,16 +265,9 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
     const double u_lobe = bsdf.lobe_count() > 1 ? sampler.get_1d() : 0.0;
     const Vec2 u = sampler.get_2d();
     if (!bsdf.sample(wo, u_lobe, u, sample) || sample.weight.is_black() || !is_finite(sample.weight)) break;
-    if (sample.passthrough) {
-      // Straight on through the sheet, as the shadow rays go (shadow_transmittance): the bounce
-      // before it stays the one MIS and the emitters' densities are measured from, and the depth
-      // is not spent.
-      constexpr int kMaxSheets = 256;
-      if (++state.sheets_crossed > kMaxSheets) break;
-      state.beta *= sample.weight;
-      ++rays.refracted;
-      state.ray = Ray{offset_origin(scene, surface.position, surface.geometric_normal, sample.wi), sample.wi};
-      --state.depth;  // the loop's ++ gives it back
+    if (sample.passthrough) {  // wi = −wo
+      if (++state.sheets_crossed > kMaxSheetsCrossed) break;
+      pass_through(sample.weight);
       continue;
     }
     if (last) break;

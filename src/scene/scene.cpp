@@ -34,8 +34,7 @@ Color Scene::sky_along(const Vec3& direction) const {
 bool Scene::intersect_past_sheets(Ray ray, Intersection& hit, Color& through) const {
   through = Color(1);
   if (!thin_sheets_) return intersect(ray, hit);
-  constexpr int kMaxSheets = 256;  // never loop forever on pathological input
-  for (int sheet = 0; sheet <= kMaxSheets; ++sheet) {
+  for (int sheet = 0; sheet <= kMaxSheetsCrossed; ++sheet) {
     if (!intersect(ray, hit)) return false;
     const Material& material = material_of(hit);
     if (!(material.thin && material.has_refraction())) return true;

@@ -22,6 +22,10 @@
 
 namespace candela {
 
+// The most thin sheets (window panes) a ray or a path goes straight through: never loop forever
+// on pathological input.
+inline constexpr int kMaxSheetsCrossed = 256;
+
 struct RenderSettings {
   std::string method = "whitted";
   SourceLocation method_location;
@@ -125,7 +129,8 @@ class Scene {
   // The first hit along the ray that is not a thin sheet, the sheets before it crossed: `through` is
   // the product of what each lets through at the angle it is crossed (thin_sheet_transmittance,
   // shading/material_bsdf.h); 1 when none is crossed. False, with what crosses in `through`, when
-  // the ray leaves the scene (or reaches t_max). More than 256 sheets in a row block the ray.
+  // the ray leaves the scene (or reaches t_max). More than kMaxSheetsCrossed sheets in a row block
+  // the ray.
   bool intersect_past_sheets(Ray ray, Intersection& hit, Color& through) const;
   // What crosses the ray's segment: 1 when nothing lies on it, 0 when something opaque does, else
   // the product of the sheets' transmittances — one visibility for every method's shadow rays
