@@ -32,6 +32,7 @@
 #include "integrators/meshless_method.h"
 #include "integrators/radiosity_method.h"
 #include "integrators/scene_loading.h"
+#include "list_option.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/statistics.h"
@@ -405,23 +406,19 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
       ->take_all();
   command->add_option("--sphere", options->sphere, "Generated UV sphere of about N triangles");
   command->add_option("--terrain", options->terrain, "Generated height field of about N triangles");
-  command
-      ->add_option("--accel", options->accelerators,
-                   "Accelerators (default: every registered one); embree = Embree's own triangle test, "
-                   "embree-exact = Embree with Candela's tests")
-      ->expected(1, -1);
-  command
-      ->add_option("--threads", options->threads,
-                   "Thread counts to run (default: 1 2; --radiosity: every core)")
-      ->expected(1, -1);
+  add_list_option(command, "--accel", options->accelerators,
+                  "Accelerators (default: every registered one); embree = Embree's own triangle test, "
+                  "embree-exact = Embree with Candela's tests");
+  add_list_option(command, "--threads,--nthreads", options->threads,
+                  "Thread counts to run (default: 1 2; --radiosity: every core)");
   command->add_option("--json", options->json_path, "Write the results as JSON");
   command->add_option("--seed", options->seed, "Seed of the incoherent rays (default 1)");
-  command->add_option("--eye", options->eye, "Camera position (default: from the bounds)")->expected(3);
-  command->add_option("--lookat", options->lookat, "Camera target (default: the bounds' centre)")
-      ->expected(3);
+  add_list_option(command, "--eye", options->eye, "Camera position X,Y,Z (default: from the bounds)", 3);
+  add_list_option(command, "--lookat", options->lookat, "Camera target X,Y,Z (default: the bounds' centre)",
+                  3);
   command->add_option("--fov", options->fov, "Vertical field of view in degrees (default 45)");
-  command->add_option("--light", options->light, "Point light of the shadow rays (default: from the bounds)")
-      ->expected(3);
+  add_list_option(command, "--light", options->light,
+                  "Point light X,Y,Z of the shadow rays (default: from the bounds)", 3);
   command->add_option("--width", options->width,
                       "Primary rays per row (default 1024; --raster: image width, 1024)");
   command->add_option("--height", options->height,

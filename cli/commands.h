@@ -18,6 +18,7 @@ void add_compare_command(CLI::App& app, std::function<int()>& run);
 void add_probe_command(CLI::App& app, std::function<int()>& run);
 void add_report_command(CLI::App& app, std::function<int()>& run);
 void add_falsecolor_command(CLI::App& app, std::function<int()>& run);
+void add_convert_command(CLI::App& app, std::function<int()>& run);
 
 // Prints "candela: error: ..." to stderr.
 void print_error(const std::string& message);

@@ -98,7 +98,8 @@ int run_compare(const CompareOptions& options) {
   if (!options.diff.empty()) {
     ImageFormat format;
     if (!image_format_for_path(options.diff, format))
-      throw BadArgument("--diff " + options.diff + ": unsupported extension (expected .png, .exr or .pfm)");
+      throw BadArgument("--diff " + options.diff + ": unsupported extension (expected " + kImageExtensions +
+                        ")");
     check_writable(options.diff, "--diff");
   }
   if (!options.json.empty()) check_writable(options.json, "--json");

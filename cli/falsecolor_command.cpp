@@ -20,6 +20,7 @@
 #include "false_color_options.h"
 #include "io/false_color.h"
 #include "io/image_writer.h"
+#include "list_option.h"
 #include "math/constants.h"
 #include "output_paths.h"
 #include "shading/photometric_units.h"
@@ -115,11 +116,10 @@ void add_falsecolor_command(CLI::App& app, std::function<int()>& run) {
       "falsecolor", "Luminance (cd/m²) of a rendered linear image in false colour, with its legend");
   command->add_option("image", options->image, "A linear image as render writes it (.exr or .pfm)")
       ->required();
-  command->add_option("-o,--output", options->output, "The false-colour picture (.png)")->required();
-  command
-      ->add_option("--scale", options->scale,
-                   "The color scale's range LO,HI in cd/m² (default 0 to the maximum)")
-      ->delimiter(',');
+  command->add_option("-o,--output,--outfile", options->output, "The false-colour picture (.png)")
+      ->required();
+  add_list_option(command, "--scale", options->scale,
+                  "The color scale's range LO,HI in cd/m² (default 0 to the maximum)", 2);
   command->add_flag("--log", options->log,
                     "Logarithmic scale (default range: three decades below the maximum)");
   command->add_option("--contours", options->contours,

@@ -65,6 +65,37 @@ bool refuse_unknown_command(CLI::App& app, int argc, char** argv) {
   return true;
 }
 
+// CLI11's parse errors in Candela's form, naming the sub-command and the option: "candela: error:
+// render: unknown option --thread (did you mean --threads?)", then where the options are listed.
+std::string parse_failure_message(const CLI::App* app, const CLI::Error& error) {
+  const std::vector<CLI::App*> parsed = app->get_subcommands();
+  const CLI::App* command = parsed.empty() ? app : parsed.front();
+  const std::string name = command == app ? std::string() : command->get_name();
+  std::string message = error.what();
+  if (dynamic_cast<const CLI::ExtrasError*>(&error)) {  // (its get_name() is the command's)
+    std::vector<std::string> known;                     // every spelling of the command's options
+    for (const CLI::Option* option : command->get_options()) {
+      for (const std::string& long_name : option->get_lnames()) known.push_back("--" + long_name);
+      for (const std::string& short_name : option->get_snames()) known.push_back("-" + short_name);
+    }
+    // What the sub-command did not take falls through to the top level.
+    std::vector<std::string> extras = command->remaining();
+    if (command != app && extras.empty()) extras = app->remaining();
+    std::vector<std::string> problems;
+    for (const std::string& extra : extras) {
+      if (extra.empty() || extra[0] != '-') {
+        problems.push_back("unexpected argument '" + extra + "'");
+        continue;
+      }
+      const std::optional<std::string> nearest = closest_word(extra.substr(0, extra.find('=')), known);
+      problems.push_back("unknown option " + extra + (nearest ? " (did you mean " + *nearest + "?)" : ""));
+    }
+    if (!problems.empty()) message = fmt::format("{}", fmt::join(problems, "; "));
+  }
+  return fmt::format("candela: error: {}{}\nRun 'candela {}--help' for the options.\n",
+                     name.empty() ? "" : name + ": ", message, name.empty() ? "" : name + " ");
+}
+
 }  // namespace candela::cli
 
 int main(int argc, char** argv) {
@@ -89,6 +120,8 @@ int main(int argc, char** argv) {
   candela::cli::add_probe_command(app, run);
   candela::cli::add_report_command(app, run);
   candela::cli::add_falsecolor_command(app, run);
+  candela::cli::add_convert_command(app, run);
+  app.failure_message(candela::cli::parse_failure_message);
   app.set_version_flag("--version", candela::cli::version_text(),
                        "The version, commit and optional parts, then exit");
   if (candela::cli::refuse_unknown_command(app, argc, argv)) return 2;

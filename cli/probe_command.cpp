@@ -20,6 +20,7 @@
 #include "integrators/probe.h"
 #include "io/false_color.h"
 #include "io/image_writer.h"
+#include "list_option.h"
 #include "output_paths.h"
 #include "scene_options.h"
 #include "thread_limit.h"
@@ -250,16 +251,14 @@ void add_probe_command(CLI::App& app, std::function<int()>& run) {
   command->add_option("scene", options->scene.scene_path, "Scene file (candela/1 JSON)")->required();
   command->add_option("--method", options->method, "Method: " + probe_method_names() + " (default path)");
   command->add_option("--points", options->points_path, "CSV of sensor points: x,y,z,nx,ny,nz per line");
-  command
-      ->add_option("--grid", options->grid,
-                   "Work plane: corner and edges cx,cy,cz,ux,uy,uz,vx,vy,vz (normal u × v)")
-      ->delimiter(',');
-  command->add_option("--grid-size", options->grid_size, "Points along u and v: NU,NV (default 20,20)")
-      ->delimiter(',');
+  add_list_option(command, "--grid", options->grid,
+                  "Work plane: corner and edges cx,cy,cz,ux,uy,uz,vx,vy,vz (normal u × v)", 9);
+  add_list_option(command, "--grid-size", options->grid_size, "Points along u and v: NU,NV (default 20,20)",
+                  2);
   command->add_option("--image", options->image,
                       "With --grid: a false-color PNG of the illuminance with its scale");
-  command->add_option("--scale", options->image_scale, "With --image: the color scale's range LO,HI in lux")
-      ->delimiter(',');
+  add_list_option(command, "--scale", options->image_scale,
+                  "With --image: the color scale's range LO,HI in lux", 2);
   command->add_flag(
       "--log", options->image_log,
       "With --image: a logarithmic color scale (default range: three decades below the maximum)");
@@ -270,13 +269,13 @@ void add_probe_command(CLI::App& app, std::function<int()>& run) {
   command->add_flag(
       "--daylight-factor", options->daylight_factor,
       "Also the daylight factor: illuminance / the sky's on an unobstructed horizontal surface (%)");
-  command->add_option("-o,--output", options->output, "Output CSV")->required();
-  command->add_option("--samples", options->samples,
+  command->add_option("-o,--output,--outfile", options->output, "Output CSV")->required();
+  command->add_option("--samples,--spp", options->samples,
                       "Estimates (path) or hemisphere rays per point (default 256)");
   command->add_option("--seed", options->seed, "Random seed (default: render.seed)");
   command->add_option("--efficacy", options->efficacy,
                       "Luminous efficacy in lm/W for the lux column (default 179, Radiance's)");
-  command->add_option("--threads", options->threads, "Worker threads (default: all cores)");
+  command->add_option("--threads,--nthreads", options->threads, "Worker threads (default: all cores)");
   command->add_option("--set", options->scene.overrides, "Override a scene setting: key=value")
       ->expected(1)
       ->allow_extra_args(false)

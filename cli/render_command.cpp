@@ -1,5 +1,6 @@
 // candela render [SCENE] [-o FILE] [--method M] [--threads N] [--seed S] [--set k=v]...
-//                [--stats FILE.json] [--quiet] [--crop x0,y0,x1,y1] [--pixel X,Y]
+//                [--stats FILE.json] [--quiet] [--crop x0,y0,x1,y1 | --pixelbounds x0,x1,y0,y1 |
+//                --cropwindow x0,x1,y0,y1] [--spp N] [--pixel X,Y]
 //                [--aa-map FILE.png] [--camera NAME[,NAME...]]... [--export-solution FILE]
 //                [--show-sites FILE.png] [--relight LIGHTS.json]
 #include <fmt/format.h>
@@ -15,9 +16,11 @@
 
 #include "commands.h"
 #include "distributed/cluster.h"
+#include "integrators/antialiasing_support.h"
 #include "integrators/method_registry.h"
 #include "io/checkpoint_file.h"
 #include "io/image_writer.h"
+#include "list_option.h"
 #include "output_paths.h"
 #include "radiosity/solution_export.h"
 #include "scene/scene_loader.h"
@@ -43,7 +46,9 @@ struct RenderOptions {
   std::string stats_path;
   std::string aa_map_path;
   bool quiet = false;
-  std::vector<int> crop;
+  std::vector<int> crop;            // x0,y0,x1,y1
+  std::vector<int> pixel_bounds;    // pbrt's --pixelbounds x0,x1,y0,y1
+  std::vector<double> crop_window;  // pbrt's --cropwindow x0,x1,y0,y1, fractions of the image
   std::vector<int> pixel;
   std::vector<std::string> cameras;  // --camera values in the order given, each NAME or NAME,NAME...
   std::string export_solution;
@@ -85,16 +90,41 @@ std::string scene_fingerprint(const SceneOptions& options, const Scene& scene) {
                      fnv1a_64(overrides));
 }
 
+// The pixels to render, y = 0 the top row: --crop x0,y0,x1,y1, pbrt's --pixelbounds x0,x1,y0,y1
+// (the same pixels, pbrt's order) or --cropwindow x0,x1,y0,y1 in fractions of the image, which
+// pbrt-v4 turns into pixels by rounding each edge up (⌈width·x0⌉ … ⌈width·x1⌉).
 PixelRect region_of(const RenderOptions& options, const Camera& camera) {
-  PixelRect region{0, 0, camera.width(), camera.height()};
-  if (options.crop.empty()) return region;
-  if (options.crop.size() != 4) throw BadArgument("--crop expects x0,y0,x1,y1");
-  region = {options.crop[0], options.crop[1], options.crop[2], options.crop[3]};
-  if (region.x0 < 0 || region.y0 < 0 || region.x1 > camera.width() || region.y1 > camera.height() ||
-      region.x0 >= region.x1 || region.y0 >= region.y1)
-    throw BadArgument(fmt::format("--crop {},{},{},{} must satisfy 0 <= x0 < x1 <= {} and 0 <= y0 < y1 <= {}",
-                                  region.x0, region.y0, region.x1, region.y1, camera.width(),
-                                  camera.height()));
+  const int width = camera.width(), height = camera.height();
+  PixelRect region{0, 0, width, height};
+  std::string option, order;
+  if (!options.crop.empty()) {
+    const std::vector<int>& c = options.crop;
+    region = {c[0], c[1], c[2], c[3]};
+    option = fmt::format("--crop {},{},{},{}", c[0], c[1], c[2], c[3]);
+    order = "x0,y0,x1,y1";
+  } else if (!options.pixel_bounds.empty()) {
+    const std::vector<int>& b = options.pixel_bounds;
+    region = {b[0], b[2], b[1], b[3]};
+    option = fmt::format("--pixelbounds {},{},{},{}", b[0], b[1], b[2], b[3]);
+    order = "x0,x1,y0,y1";
+  } else if (!options.crop_window.empty()) {
+    const std::vector<double>& w = options.crop_window;
+    option = fmt::format("--cropwindow {:g},{:g},{:g},{:g}", w[0], w[1], w[2], w[3]);
+    if (!(0 <= w[0] && w[0] < w[1] && w[1] <= 1 && 0 <= w[2] && w[2] < w[3] && w[3] <= 1))
+      throw BadArgument(option +
+                        " must satisfy 0 <= x0 < x1 <= 1 and 0 <= y0 < y1 <= 1 (fractions of the image)");
+    const auto edge = [](double fraction, int size) { return static_cast<int>(std::ceil(fraction * size)); };
+    region = {edge(w[0], width), edge(w[2], height), edge(w[1], width), edge(w[3], height)};
+    if (region.x0 >= region.x1 || region.y0 >= region.y1)
+      throw BadArgument(fmt::format("{} holds no pixel of the {}x{} image", option, width, height));
+    return region;
+  } else {
+    return region;
+  }
+  if (region.x0 < 0 || region.y0 < 0 || region.x1 > width || region.y1 > height || region.x0 >= region.x1 ||
+      region.y0 >= region.y1)
+    throw BadArgument(fmt::format("{} must satisfy 0 <= x0 < x1 <= {} and 0 <= y0 < y1 <= {} ({})", option,
+                                  width, height, order));
   return region;
 }
 
@@ -160,6 +190,7 @@ std::vector<View> select_views(const std::vector<std::string>& requested, Scene&
     if (!seen) views.push_back(std::move(view));
   };
   for (const std::string& name : requested) {
+    if (name.empty()) throw BadArgument("--camera: empty camera name");
     if (name == "default") {
       add({"default", nullptr});
     } else if (name == "all") {
@@ -177,24 +208,6 @@ std::vector<View> select_views(const std::vector<std::string>& requested, Scene&
   }
   if (views.empty()) views.push_back({"default", nullptr});
   return views;
-}
-
-// "--camera a,b --camera c" → a, b, c.
-std::vector<std::string> split_camera_names(const std::vector<std::string>& values) {
-  std::vector<std::string> names;
-  for (const std::string& value : values) {
-    std::size_t start = 0;
-    while (true) {
-      const std::size_t comma = value.find(',', start);
-      const std::string name =
-          value.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-      if (name.empty()) throw BadArgument("--camera " + value + ": empty camera name");
-      names.push_back(name);
-      if (comma == std::string::npos) break;
-      start = comma + 1;
-    }
-  }
-  return names;
 }
 
 // With several views each output gets the camera's name: out.png → out-front.png.
@@ -345,7 +358,7 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   if (options.output.empty()) options.output = default_output(options);
   ImageFormat format;
   if (!image_format_for_path(options.output, format))
-    throw BadArgument("-o " + options.output + ": unsupported extension (expected .png, .exr or .pfm)");
+    throw BadArgument("-o " + options.output + ": unsupported extension (expected " + kImageExtensions + ")");
   if (options.seed && (*options.seed < 0 || *options.seed > (int64_t(1) << 53)))
     throw BadArgument("--seed must be in [0, 2^53]");
   // Fail before the work, not after it: every output must be writable.
@@ -365,8 +378,8 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   if (!options.show_sites.empty()) {
     ImageFormat sites_format;
     if (!image_format_for_path(options.show_sites, sites_format))
-      throw BadArgument("--show-sites " + options.show_sites +
-                        ": unsupported extension (expected .png, .exr or .pfm)");
+      throw BadArgument("--show-sites " + options.show_sites + ": unsupported extension (expected " +
+                        kImageExtensions + ")");
     check_writable(options.show_sites, "--show-sites");
   }
   if (!options.export_solution.empty()) {
@@ -379,7 +392,6 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   // 002 §5.3: light set-ups rendered from one geometry; read (and refused) before anything else.
   std::vector<LightSetup>& relight_frames = job.relight_frames;
   if (!options.relight.empty()) relight_frames = load_light_setups(options.relight);
-  const std::vector<std::string> camera_requests = split_camera_names(options.cameras);
   limit_threads(options.threads, job.thread_limit);  // lives as long as the job
   job.threads =
       static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
@@ -431,8 +443,15 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
     refuse_option("--export-solution needs", &MethodCapabilities::solution, *entry);
   if (!options.show_sites.empty() && !can.sites_image)
     refuse_option("--show-sites needs", &MethodCapabilities::sites_image, *entry);
-  if ((options.spp || options.time) && !can.progressive_passes)
-    refuse_option("--spp and --time need", &MethodCapabilities::progressive_passes, *entry);
+  if (options.time && !can.progressive_passes)
+    refuse_option("--time needs", &MethodCapabilities::progressive_passes, *entry);
+  // --spp for the other methods: their anti-aliasing samples (pbrt's --spp).
+  bool choose_mode = false;
+  if (options.spp && !can.progressive_passes) try {
+      choose_mode = set_samples_per_pixel(*scene, entry->name, *options.spp);
+    } catch (const std::invalid_argument& e) {
+      throw BadArgument(std::string("--spp ") + e.what());
+    }
   const bool checkpoint_options =
       !options.checkpoint.empty() || options.checkpoint_every || !options.resume.empty();
   if (checkpoint_options && !can.checkpoints)
@@ -440,7 +459,7 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
                   *entry);
   if (!relight_frames.empty() && !can.relighting)
     refuse_option("--relight needs", &MethodCapabilities::relighting, *entry);
-  job.views = select_views(camera_requests, *scene);
+  job.views = select_views(options.cameras, *scene);
   const std::vector<View>& views = job.views;
   if (!options.resume.empty() && views.size() != 1)
     throw BadArgument("--resume continues one camera's image, not " + std::to_string(views.size()));
@@ -454,6 +473,7 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   // One method object renders every view, so what it keeps between renders (a radiosity
   // solution) is computed once.
   job.method = create_method(*entry, *scene);
+  if (choose_mode) choose_jittered_where_possible(*scene, *job.method);
   if (!options.aa_map_path.empty() && !can.samples_per_pixel)
     refuse_option("--aa-map needs", &MethodCapabilities::samples_per_pixel, *entry);
   if (!options.pixel.empty()) {  // printed instead of rendering: checked here, printed by the caller
@@ -731,12 +751,12 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
   CLI::App* command =
       app.add_subcommand("render", "Render a scene (the built-in default scene without SCENE)");
   command->add_option("scene", options->scene.scene_path, "Scene file (candela/1 JSON)");
-  command->add_option("-o,--output", options->output,
-                      "Output image: .png (sRGB 8-bit), .exr or .pfm (linear float)");
+  command->add_option("-o,--output,--outfile", options->output,
+                      "Output image: .png (sRGB 8-bit), .exr or .pfm (linear float), .hdr (Radiance RGBE)");
   command->add_option("--method", options->method, "Rendering method: " + method_names());
   command->add_option("--accel", options->accelerator,
                       "Acceleration structure (default: render.accelerator)");
-  command->add_option("--threads", options->threads, "Worker threads (default: all cores)");
+  command->add_option("--threads,--nthreads", options->threads, "Worker threads (default: all cores)");
   command->add_option("--seed", options->seed, "Random seed (default: render.seed)");
   // One key=value per --set, repeated as often as needed, so SCENE may follow.
   command
@@ -749,17 +769,25 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
   command->add_option("--aa-map", options->aa_map_path,
                       "Write a PNG whose grey levels show the samples each pixel used (white: the most)");
   command->add_flag("-q,--quiet", options->quiet, "No progress and no summary");
-  command->add_option("--crop", options->crop, "Render only pixels x0,y0 (inclusive) to x1,y1 (exclusive)")
-      ->delimiter(',')
-      ->expected(4);
-  command->add_option("--pixel", options->pixel, "Print the ray tree of pixel X,Y instead of rendering")
-      ->delimiter(',')
-      ->expected(2);
+  CLI::Option* crop =
+      add_list_option(command, "--crop", options->crop,
+                      "Render only pixels x0,y0 (inclusive) to x1,y1 (exclusive); y = 0 is the top row", 4);
+  CLI::Option* pixel_bounds = add_list_option(command, "--pixelbounds", options->pixel_bounds,
+                                              "pbrt's form of --crop: x0,x1,y0,y1", 4);
+  add_list_option(
+      command, "--cropwindow", options->crop_window,
+      "Render only the part x0,x1,y0,y1 of the image, in fractions in [0, 1] (pbrt's --cropwindow)", 4)
+      ->excludes(crop)
+      ->excludes(pixel_bounds);
+  crop->excludes(pixel_bounds);
+  add_list_option(command, "--pixel", options->pixel, "Print the ray tree of pixel X,Y instead of rendering",
+                  2);
   command
       ->add_option(
           "--camera", options->cameras,
           "Render the named camera(s) of the scene's \"cameras\": NAME, a comma-separated list, or "
           "all; default is the \"camera\" object. Several: one image each, -o out.png -> out-NAME.png")
+      ->delimiter(',')
       ->expected(1)
       ->allow_extra_args(false)
       ->take_all();
@@ -771,7 +799,11 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
       "same sites and transfer matrix, -o out.png -> out-NAME.png");
   command->add_option("--show-sites", options->show_sites,
                       "meshless: also write the image with the element centres (sites) drawn over it");
-  command->add_option("--spp", options->spp, "path: samples per pixel (passes; setting path.spp)");
+  command->add_option(
+      "--spp", options->spp,
+      "Samples per pixel: path's passes (setting path.spp); every other method n×n anti-aliasing "
+      "samples (aa.n; aa.mode \"jittered\", or \"uniform\" where the method rasterizes, unless the "
+      "scene's is one of them)");
   command->add_option(
       "--time", options->time,
       "path: render passes for this many seconds (setting path.time; with --spp, whichever comes first)");

@@ -19,6 +19,7 @@
 
 #include "commands.h"
 #include "integrators/method_registry.h"
+#include "list_option.h"
 #include "output_paths.h"
 #include "scene/scene.h"
 #include "scene_options.h"
@@ -33,7 +34,7 @@ namespace {
 
 struct ReportOptions {
   SceneOptions scene;
-  std::string methods = "whitted,radiosity,meshless,path";
+  std::vector<std::string> methods{"whitted", "radiosity", "meshless", "path"};
   std::string output;
   int reference_spp = 1024;
   std::string reference;
@@ -44,24 +45,15 @@ struct ReportOptions {
   bool quiet = false;
 };
 
-std::vector<std::string> parse_methods(const std::string& list) {
-  std::vector<std::string> methods;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = list.find(',', start);
-    const std::string name =
-        list.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    if (name.empty()) throw BadArgument("--methods " + list + ": empty method name");
-    if (!find_method(name))
-      throw BadArgument("--methods: unknown method \"" + name + "\" (expected one of: " + method_names() +
+void check_methods(const std::vector<std::string>& methods) {
+  for (auto name = methods.begin(); name != methods.end(); ++name) {
+    if (name->empty()) throw BadArgument("--methods: empty method name");
+    if (!find_method(*name))
+      throw BadArgument("--methods: unknown method \"" + *name + "\" (expected one of: " + method_names() +
                         ")");
-    if (std::find(methods.begin(), methods.end(), name) != methods.end())
-      throw BadArgument("--methods: " + name + " is named twice");
-    methods.push_back(name);
-    if (comma == std::string::npos) break;
-    start = comma + 1;
+    if (std::find(methods.begin(), name, *name) != name)
+      throw BadArgument("--methods: " + *name + " is named twice");
   }
-  return methods;
 }
 
 // DIR is created when missing; it must be a folder that accepts new files.
@@ -78,7 +70,8 @@ void prepare_directory(const std::string& path) {
 }
 
 int run_report(ReportOptions& options) {
-  const std::vector<std::string> methods = parse_methods(options.methods);
+  check_methods(options.methods);
+  const std::vector<std::string>& methods = options.methods;
   if (options.reference_spp < 1) throw BadArgument("--reference-spp must be >= 1");
   if (options.spp && *options.spp < 1) throw BadArgument("--spp must be >= 1");
   if (options.output.empty()) throw BadArgument("-o DIR is required");
@@ -168,12 +161,11 @@ void add_report_command(CLI::App& app, std::function<int()>& run) {
       "Render a scene with several methods and write an HTML report of their errors against a path-traced "
       "reference");
   command->add_option("scene", options->scene.scene_path, "Scene file (candela/1 JSON)")->required();
-  command->add_option(
-      "--methods", options->methods,
-      "Comma-separated methods to compare (default whitted,radiosity,meshless,path; any of: " +
-          method_names() + ")");
+  add_list_option(
+      command, "--methods", options->methods,
+      "Methods to compare (default whitted,radiosity,meshless,path; any of: " + method_names() + ")");
   command
-      ->add_option("-o,--output", options->output,
+      ->add_option("-o,--output,--outfile", options->output,
                    "Folder for index.html, report.json and the images (created)")
       ->required();
   auto* reference_spp = command->add_option("--reference-spp", options->reference_spp,
@@ -195,7 +187,7 @@ void add_report_command(CLI::App& app, std::function<int()>& run) {
       ->expected(1)
       ->allow_extra_args(false)
       ->take_all();
-  command->add_option("--threads", options->threads, "Worker threads (default: all cores)");
+  command->add_option("--threads,--nthreads", options->threads, "Worker threads (default: all cores)");
   command->add_flag("-q,--quiet", options->quiet, "No progress and no summary");
   command->callback([options, &run]() {
     run = [options]() { return run_reporting_bad_input([&] { return run_report(*options); }); };

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "list_option.h"
 #include "thread_limit.h"
 #include "validate/cie171_validation.h"
 #include "validate/form_factor_validation.h"
@@ -109,16 +110,12 @@ void add_validate_command(CLI::App& app, std::function<int()>& run) {
       ->required();
   command->add_flag("--quick", options->quick, "Coarser reference and sampling (for tests)");
   command->add_flag("-q,--quiet", options->quiet, "No progress lines");
-  command
-      ->add_option("--methods", options->methods,
-                   "cie171: only these methods (local, path, radiosity, meshless)")
-      ->delimiter(',');
-  command
-      ->add_option("--cases", options->cases,
-                   "cie171: only these cases, by number (5.2, 5.3, 5.4, 5.5, 5.6, 5.7, 5.8, 5.9, 5.10, 5.11, "
-                   "5.12, 5.13; 5.11: each of its variants)")
-      ->delimiter(',');
-  command->add_option("--threads", options->threads, "Worker threads (default: all cores)");
+  add_list_option(command, "--methods", options->methods,
+                  "cie171: only these methods (local, path, radiosity, meshless)");
+  add_list_option(command, "--cases", options->cases,
+                  "cie171: only these cases, by number (5.2, 5.3, 5.4, 5.5, 5.6, 5.7, 5.8, 5.9, 5.10, 5.11, "
+                  "5.12, 5.13; 5.11: each of its variants)");
+  command->add_option("--threads,--nthreads", options->threads, "Worker threads (default: all cores)");
   command->callback([options, &run]() {
     run = [options]() { return run_reporting_bad_input([&] { return run_validate(*options); }); };
   });

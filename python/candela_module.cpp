@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "camera/tone_map.h"
+#include "integrators/antialiasing_support.h"
 #include "integrators/method_registry.h"
 #include "integrators/probe.h"
 #include "integrators/scene_loading.h"
@@ -156,37 +157,46 @@ py::array_t<float> render(Scene& scene, std::optional<std::string> method_name, 
   const MethodEntry* entry = find_method(name);
   if (!entry)
     throw py::value_error("unknown method '" + name + "' (expected one of: " + method_names() + ")");
+  if (threads < 0) throw py::value_error("threads must be >= 0 (0: all cores)");
+  // The seed and the anti-aliasing spp sets are this render's: the scene keeps its own for the next.
+  struct RestoreScene {
+    Scene& scene;
+    const uint64_t seed;
+    const AntialiasingSettings antialiasing;
+    ~RestoreScene() {
+      scene.render.seed = seed;
+      scene.antialiasing = antialiasing;
+    }
+  } restore{scene, scene.render.seed, scene.antialiasing};
+  // spp: the path tracer's passes; every other method's n×n anti-aliasing samples, as --spp.
   std::vector<std::string> settings;
-  if (spp) {
-    if (!entry->capabilities.progressive_passes)
-      throw py::value_error("spp is for the methods that sample in passes (path), not " + name);
+  bool choose_mode = false;
+  if (spp && entry->capabilities.progressive_passes) {
     if (*spp < 1) throw py::value_error("spp must be >= 1");
     settings.push_back("spp=" + std::to_string(*spp));
+  } else if (spp) {
+    try {
+      choose_mode = set_samples_per_pixel(scene, entry->name, *spp);
+    } catch (const std::invalid_argument& e) {
+      throw py::value_error(std::string("spp ") + e.what());
+    }
   }
-  if (threads < 0) throw py::value_error("threads must be >= 0 (0: all cores)");
   const std::unique_ptr<Method> method = create_method(*entry, scene, settings);
-  // The seed is this render's: the scene keeps its own for the next.
-  const uint64_t scene_seed = scene.render.seed;
+  if (choose_mode) choose_jittered_where_possible(scene, *method);
   if (seed) scene.render.seed = *seed;
   RenderRequest request;
   request.region = {0, 0, scene.camera->width(), scene.camera->height()};
   request.quiet = true;
   std::optional<tbb::global_control> thread_limit;
   if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-  try {
-    Film film = run_interruptibly<Film>([&] { return std::move(method->render(scene, request).film); });
-    scene.render.seed = scene_seed;
-    return array_of(film, scene.display.exposure);
-  } catch (...) {
-    scene.render.seed = scene_seed;
-    throw;
-  }
+  Film film = run_interruptibly<Film>([&] { return std::move(method->render(scene, request).film); });
+  return array_of(film, scene.display.exposure);
 }
 
 void write_image_file(const std::string& path, const DoubleArray& image) {
   ImageFormat format;
   if (!image_format_for_path(path, format))
-    throw py::value_error("cannot write '" + path + "': the extension is not .png, .exr or .pfm");
+    throw py::value_error("cannot write '" + path + "': the extension is not " + kImageExtensions);
   const Film film = film_of(image, "image");
   const DisplaySettings display;
   if (const std::string problem = non_finite_image_problem(film, format, display.exposure); !problem.empty())
@@ -323,7 +333,8 @@ PYBIND11_MODULE(candela, module) {
       "render", &render, py::arg("scene"), py::kw_only(), py::arg("method") = py::none(),
       py::arg("spp") = py::none(), py::arg("threads") = 0, py::arg("seed") = py::none(),
       "Renders the scene by a method (default: the scene's) into a float32 array (height, width, 3) of "
-      "linear RGB, what `candela render -o image.pfm` writes. spp: passes of the path tracer; threads: 0 for "
+      "linear RGB, what `candela render -o image.pfm` writes. spp: passes of the path tracer, n×n "
+      "anti-aliasing samples of the others (as --spp); threads: 0 for "
       "all cores; seed: this render's (default render.seed).");
   module.def("write_image", &write_image_file, py::arg("path"), py::arg("image"),
              "Writes an array (height, width, 3) to .exr or .pfm (linear) or .png (tone-mapped sRGB).");

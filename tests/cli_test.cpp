@@ -9,7 +9,10 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
+
+#include "io/image_reader.h"
 
 namespace candela {
 namespace {
@@ -330,7 +333,7 @@ TEST_F(Cli, BadCameraSelectionsAreRefusedAndNothingIsWritten) {
   EXPECT_NE(output.find("--camera nope: unknown camera (expected one of: default, front, side or all)"),
             std::string::npos)
       << output;
-  EXPECT_EQ(run("render views.json -q --camera front, -o out.png", output), 2);
+  EXPECT_EQ(run("render views.json -q --camera '' -o out.png", output), 2);
   EXPECT_NE(output.find("empty camera name"), std::string::npos) << output;
   // --crop must fit every view: side is 8x6.
   EXPECT_EQ(run("render views.json -q --camera front,side --crop 0,0,10,10 -o out.png", output), 2);
@@ -804,9 +807,10 @@ TEST_F(Cli, PathResumeGivesTheUninterruptedImageByteForByte) {
 
 TEST_F(Cli, PathOptionsNeedThePathMethod) {
   std::string output;
-  EXPECT_EQ(run("render -q --set camera.width=8 --set camera.height=6 --spp 4 -o out.png", output), 2)
+  // --spp is every method's (SamplesPerPixelForEveryMethod); --time the path tracer's alone.
+  EXPECT_EQ(run("render -q --set camera.width=8 --set camera.height=6 --time 4 -o out.png", output), 2)
       << output;
-  EXPECT_NE(output.find("need --method path"), std::string::npos) << output;
+  EXPECT_NE(output.find("--time needs --method path"), std::string::npos) << output;
   EXPECT_FALSE(fs::exists(directory_ / "out.png"));
   EXPECT_NE(
       run("render -q --method path --set aa.mode=none --set aa.filter=box --resume missing.ckpt -o out.png",
@@ -1252,6 +1256,178 @@ TEST_F(Cli, SettingsThatAskTooMuchMemoryAreBadInputWithTheirLocation) {
             std::string::npos)
       << output;
   EXPECT_EQ(file_count(), 1);
+}
+
+// Issue 24, item 4: CLI11's parse errors carry Candela's prefix, name the sub-command and the
+// option, and a misspelled option gets the nearest one.
+TEST_F(Cli, ParseErrorsCarryThePrefixAndNameTheOption) {
+  std::string output;
+  EXPECT_EQ(run("render --thread 2", output), 2) << output;
+  EXPECT_NE(output.find("candela: error: render: unknown option --thread (did you mean --threads?)"),
+            std::string::npos)
+      << output;
+  EXPECT_NE(output.find("Run 'candela render --help' for the options."), std::string::npos) << output;
+  EXPECT_EQ(run("render --threads many", output), 2) << output;
+  EXPECT_EQ(output.rfind("candela: error: render: ", 0), 0u) << output;
+  EXPECT_NE(output.find("--threads"), std::string::npos) << output;
+  EXPECT_EQ(run("probe room.json --gird 0,0,0", output), 2) << output;
+  EXPECT_NE(output.find("candela: error: probe: "), std::string::npos) << output;
+  EXPECT_EQ(run("convert a.pfm b.png --expsure 2", output), 2) << output;
+  EXPECT_NE(output.find("unknown option --expsure (did you mean --exposure?)"), std::string::npos) << output;
+  EXPECT_EQ(file_count(), 0);
+}
+
+// Issue 24, item 4: every option that takes several values takes them comma-separated, separated
+// by spaces or repeated (bench --accel bvh,embree was refused as one unknown accelerator).
+TEST_F(Cli, EveryListTakesCommasSpacesOrRepeatedOptions) {
+  std::string output;
+  const std::string rays = "bench --sphere 200 --width 8 --height 4 --rays 50 --repeat 1 -q ";
+  for (const std::string accelerators :
+       {"--accel list,bvh", "--accel list bvh", "--accel list --accel bvh"}) {
+    ASSERT_EQ(run(rays + accelerators + " --threads 1,2 --eye 0,0,5 --lookat 0 0 0 --json b.json", output), 0)
+        << accelerators << "\n"
+        << output;
+    std::ifstream in(directory_ / "b.json");
+    const auto json = nlohmann::json::parse(in);
+    std::set<std::string> names;
+    std::set<int> threads;
+    for (const auto& result : json["results"]) {
+      names.insert(result["accel"].get<std::string>());
+      threads.insert(result["threads"].get<int>());
+    }
+    EXPECT_EQ(names, (std::set<std::string>{"list", "bvh"})) << accelerators;
+    EXPECT_EQ(threads, (std::set<int>{1, 2})) << accelerators;
+  }
+  EXPECT_EQ(run(rays + "--eye 0,0", output), 2) << output;  // three values or none
+  EXPECT_NE(output.find("candela: error: bench: "), std::string::npos) << output;
+}
+
+// Issue 24, item 4: pbrt's spellings — --outfile, --nthreads, --pixelbounds x0,x1,y0,y1 and
+// --cropwindow in fractions (pbrt-v4 rounds each edge up: ⌈20·0.22⌉ = 5) — render the pixels of
+// --crop, and those are the full image's pixels (y = 0 the top row).
+TEST_F(Cli, PbrtAliasesForOutputThreadsAndCropping) {
+  std::string output;
+  const std::string render = "render -q --set camera.width=20 --set camera.height=10 --set aa.mode=none ";
+  ASSERT_EQ(run(render + "--outfile full.pfm --nthreads 1", output), 0) << output;
+  ASSERT_EQ(run(render + "--crop 5,2,15,8 -o crop.pfm", output), 0) << output;
+  ASSERT_EQ(run(render + "--pixelbounds 5,15,2,8 -o bounds.pfm", output), 0) << output;
+  ASSERT_EQ(run(render + "--cropwindow 0.22,0.75,0.15,0.8 -o window.pfm", output), 0) << output;
+  EXPECT_EQ(file_bytes(directory_ / "bounds.pfm"), file_bytes(directory_ / "crop.pfm"));
+  EXPECT_EQ(file_bytes(directory_ / "window.pfm"), file_bytes(directory_ / "crop.pfm"));
+  const Film full = read_pfm((directory_ / "full.pfm").string());
+  const Film crop = read_pfm((directory_ / "crop.pfm").string());
+  ASSERT_EQ(crop.width(), 10);
+  ASSERT_EQ(crop.height(), 6);
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < 10; ++x) EXPECT_EQ(crop.at(x, y), full.at(x + 5, y + 2)) << x << ", " << y;
+
+  EXPECT_EQ(run(render + "--crop 5,2,15,8 --pixelbounds 5,15,2,8 -o x.pfm", output), 2) << output;
+  EXPECT_NE(output.find("candela: error: render: "), std::string::npos) << output;
+  EXPECT_EQ(run(render + "--cropwindow 0.5,0.4,0,1 -o x.pfm", output), 2) << output;
+  EXPECT_NE(output.find("--cropwindow 0.5,0.4,0,1 must satisfy 0 <= x0 < x1 <= 1"), std::string::npos)
+      << output;
+  EXPECT_EQ(run(render + "--cropwindow 0,0.01,0,1 -o x.pfm", output), 0) << output;  // ⌈0.2⌉: one column
+  EXPECT_EQ(run(render + "--pixelbounds 0,30,0,5 -o y.pfm", output), 2) << output;
+  EXPECT_NE(output.find("--pixelbounds 0,30,0,5 must satisfy 0 <= x0 < x1 <= 20 and 0 <= y0 < y1 <= 10 "
+                        "(x0,x1,y0,y1)"),
+            std::string::npos)
+      << output;
+  EXPECT_FALSE(fs::exists(directory_ / "y.pfm"));
+}
+
+// Issue 24, item 4: --spp is every method's samples per pixel, not the path tracer's alone: n×n
+// anti-aliasing samples, jittered where the method can place them, on the regular grid where it
+// rasterizes — the very image the scene's aa settings give.
+TEST_F(Cli, SamplesPerPixelForEveryMethod) {
+  std::string output;
+  const std::string render = "render -q --set camera.width=16 --set camera.height=12 ";
+  for (const char* method : {"local", "whitted"}) {
+    ASSERT_EQ(run(render + "--method " + method + " --spp 4 -o spp.pfm", output), 0) << method << output;
+    ASSERT_EQ(run(render + "--method " + method + " --set aa.mode=jittered --set aa.n=2 -o aa.pfm", output),
+              0)
+        << output;
+    EXPECT_EQ(file_bytes(directory_ / "spp.pfm"), file_bytes(directory_ / "aa.pfm")) << method;
+    ASSERT_EQ(run(render + "--method " + method + " -o one.pfm", output), 0) << output;
+    EXPECT_NE(file_bytes(directory_ / "spp.pfm"), file_bytes(directory_ / "one.pfm")) << method;
+  }
+  ASSERT_EQ(run(render + "--method raster --spp 9 -o spp.pfm", output), 0) << output;
+  ASSERT_EQ(run(render + "--method raster --set aa.mode=uniform --set aa.n=3 -o aa.pfm", output), 0)
+      << output;
+  EXPECT_EQ(file_bytes(directory_ / "spp.pfm"), file_bytes(directory_ / "aa.pfm"));
+  // Radiosity's default display (ray-traced) can jitter; with display gouraud it rasterizes.
+  const std::string radiosity = render + "--method radiosity --set radiosity.element_size=2 ";
+  ASSERT_EQ(run(radiosity + "--spp 4 -o spp.pfm", output), 0) << output;
+  ASSERT_EQ(run(radiosity + "--set aa.mode=jittered --set aa.n=2 -o aa.pfm", output), 0) << output;
+  EXPECT_EQ(file_bytes(directory_ / "spp.pfm"), file_bytes(directory_ / "aa.pfm"));
+  ASSERT_EQ(run(radiosity + "--set radiosity.display=gouraud --spp 4 -o spp.pfm", output), 0) << output;
+  ASSERT_EQ(
+      run(radiosity + "--set radiosity.display=gouraud --set aa.mode=uniform --set aa.n=2 -o aa.pfm", output),
+      0)
+      << output;
+  EXPECT_EQ(file_bytes(directory_ / "spp.pfm"), file_bytes(directory_ / "aa.pfm"));
+  // The scene's jittered mode is kept, with --spp's count.
+  ASSERT_EQ(run(render + "--method whitted --set aa.mode=jittered --spp 9 -o kept.pfm", output), 0) << output;
+  ASSERT_EQ(run(render + "--method whitted --set aa.mode=jittered --set aa.n=3 -o aa.pfm", output), 0)
+      << output;
+  EXPECT_EQ(file_bytes(directory_ / "kept.pfm"), file_bytes(directory_ / "aa.pfm"));
+  EXPECT_EQ(run(render + "--method whitted --spp 5 -o bad.pfm", output), 2) << output;
+  EXPECT_NE(output.find("--spp 5: whitted takes n×n samples per pixel (aa.n); use 4 or 9"), std::string::npos)
+      << output;
+  EXPECT_EQ(run(render + "--method whitted --time 1 -o bad.pfm", output), 2) << output;
+  EXPECT_FALSE(fs::exists(directory_ / "bad.pfm"));
+}
+
+// Issue 24, item 4: -o out.hdr, and candela convert between PNG, EXR, PFM and HDR with the
+// exposure and the out-of-range modes of film.out_of_range — the same bytes render writes.
+TEST_F(Cli, ConvertBetweenFormatsWithExposureAndToneMapping) {
+  std::string output;
+  const std::string render = "render -q --set camera.width=16 --set camera.height=12 ";
+  ASSERT_EQ(run(render + "-o image.pfm", output), 0) << output;
+  ASSERT_EQ(run(render + "-o image.hdr", output), 0) << output;
+  ASSERT_EQ(run(render + "-o image.exr", output), 0) << output;
+  ASSERT_EQ(run("convert image.pfm converted.hdr", output), 0) << output;
+  EXPECT_EQ(file_bytes(directory_ / "converted.hdr"), file_bytes(directory_ / "image.hdr"));
+  ASSERT_EQ(run("convert image.exr converted.pfm -q", output), 0) << output;
+  EXPECT_TRUE(output.empty()) << output;
+  EXPECT_EQ(file_bytes(directory_ / "converted.pfm"), file_bytes(directory_ / "image.pfm"));
+
+  // Exposure: every value × 2^STOPS, for float formats too.
+  ASSERT_EQ(run("convert image.pfm brighter.pfm --exposure 2", output), 0) << output;
+  const Film image = read_pfm((directory_ / "image.pfm").string());
+  const Film brighter = read_pfm((directory_ / "brighter.pfm").string());
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 16; ++x) EXPECT_EQ(brighter.at(x, y), image.at(x, y) * 4.0);
+
+  // Tone mapping: scale divides the whole image by its largest value; clamp keeps the rest.
+  ASSERT_EQ(run("convert brighter.pfm scaled.png --tone-map scale", output), 0) << output;
+  ASSERT_EQ(run("convert brighter.pfm clamped.png", output), 0) << output;
+  const RgbImage scaled = read_image(directory_ / "scaled.png", ColorEncoding::linear);
+  const RgbImage clamped = read_image(directory_ / "clamped.png", ColorEncoding::linear);
+  int scaled_white = 0, clamped_white = 0;
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 16; ++x) {
+      scaled_white += scaled.texel(x, y).r == 1.0f;
+      clamped_white += clamped.texel(x, y).r == 1.0f;
+    }
+  EXPECT_GE(scaled_white, 1);
+  EXPECT_GT(clamped_white, scaled_white);
+  // A PNG converted back holds its display values decoded from sRGB.
+  ASSERT_EQ(run("convert clamped.png back.pfm", output), 0) << output;
+  EXPECT_NE(output.find("decoded from sRGB"), std::string::npos) << output;
+
+  const int files = file_count();
+  EXPECT_EQ(run("convert image.pfm image.pfm", output), 2) << output;  // never over its input
+  EXPECT_NE(output.find("an input of this run"), std::string::npos) << output;
+  EXPECT_EQ(run("convert image.pfm out.tiff", output), 2) << output;
+  EXPECT_NE(output.find("(expected .png, .exr, .pfm or .hdr)"), std::string::npos) << output;
+  EXPECT_EQ(run("convert image.pfm out.exr --tone-map scale", output), 2) << output;
+  EXPECT_EQ(run("convert image.pfm out.png --tone-map reinhard", output), 2) << output;
+  EXPECT_NE(output.find("unknown mode (expected one of: clamp, scale, normalize)"), std::string::npos)
+      << output;
+  EXPECT_EQ(run("convert missing.pfm out.png", output), 2) << output;
+  EXPECT_NE(output.find("missing.pfm"), std::string::npos) << output;
+  EXPECT_EQ(file_count(), files);
+  EXPECT_EQ(file_bytes(directory_ / "image.pfm"), file_bytes(directory_ / "converted.pfm"));
 }
 
 }  // namespace

@@ -44,7 +44,8 @@ def cli_render(tmp_path, method, extra=()):
     return read_pfm(out)
 
 
-@pytest.mark.parametrize("method, spp", [("radiosity", None), ("path", 4), ("whitted", None), ("raster", None)])
+@pytest.mark.parametrize("method, spp", [("radiosity", None), ("path", 4), ("whitted", None), ("raster", None),
+                                         ("whitted", 4), ("raster", 9)])
 def test_render_is_the_command_lines_pfm_byte_for_byte(tmp_path, method, spp):
     scene = candela.load_file(CORNELL, **SMALL)
     assert (scene.width, scene.height, scene.method) == (32, 24, "radiosity")
@@ -64,6 +65,10 @@ def test_images_do_not_depend_on_the_thread_count_and_the_seed_is_the_renders():
     assert other_seed.tobytes() != one.tobytes()
     # The seed was this render's alone: the scene's own is back.
     assert candela.render(scene, method="path", spp=2).tobytes() == one.tobytes()
+    # So are the anti-aliasing samples spp gave another method.
+    plain = candela.render(scene, method="whitted")
+    assert candela.render(scene, method="whitted", spp=4).tobytes() != plain.tobytes()
+    assert candela.render(scene, method="whitted").tobytes() == plain.tobytes()
 
 
 def test_bad_input_raises_input_error_with_the_location(tmp_path):
@@ -84,8 +89,8 @@ def test_bad_input_raises_input_error_with_the_location(tmp_path):
     scene = candela.load_file(CORNELL, **SMALL)
     with pytest.raises(ValueError, match="unknown method 'teleport'"):
         candela.render(scene, method="teleport")
-    with pytest.raises(ValueError, match="spp is for"):
-        candela.render(scene, method="whitted", spp=4)
+    with pytest.raises(ValueError, match="spp 5: whitted takes n×n samples per pixel"):
+        candela.render(scene, method="whitted", spp=5)
 
 
 def test_ctrl_c_cancels_a_render_and_the_next_one_runs():

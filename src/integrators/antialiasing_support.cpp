@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <stdexcept>
+
 #include "camera/sample_grid.h"
 #include "integrators/method.h"
 #include "scene/scene.h"
@@ -58,6 +61,28 @@ std::optional<AntialiasingRefusal> sample_grid_refusal(const AntialiasingSetting
 
 std::string describe_refusal(std::string_view method, const AntialiasingRefusal& refusal) {
   return fmt::format("{} cannot do {} {} ({})", method, refusal.key, refusal.value, refusal.reason);
+}
+
+bool set_samples_per_pixel(Scene& scene, std::string_view method, int samples) {
+  const int n = static_cast<int>(std::lround(std::sqrt(double(std::max(samples, 1)))));
+  if (samples < 1 || n * n != samples) {
+    const int below = std::max(1, static_cast<int>(std::floor(std::sqrt(double(std::max(samples, 1))))));
+    throw std::invalid_argument(fmt::format("{}: {} takes n×n samples per pixel (aa.n); use {} or {}",
+                                            samples, method, below * below, (below + 1) * (below + 1)));
+  }
+  if (n > 64)
+    throw std::invalid_argument(
+        fmt::format("{}: {} takes at most 64×64 = 4096 samples per pixel (aa.n)", samples, method));
+  AntialiasingSettings& settings = scene.antialiasing;
+  settings.n = n;
+  if (settings.mode == AntialiasingMode::uniform || settings.mode == AntialiasingMode::jittered) return false;
+  settings.mode = AntialiasingMode::uniform;
+  return true;
+}
+
+void choose_jittered_where_possible(Scene& scene, const Method& method) {
+  scene.antialiasing.mode = AntialiasingMode::jittered;
+  if (method.antialiasing_refusal(scene)) scene.antialiasing.mode = AntialiasingMode::uniform;
 }
 
 void refuse_unsupported_antialiasing(const Method& method, const Scene& scene) {

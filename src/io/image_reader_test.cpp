@@ -267,7 +267,7 @@ TEST_F(TextureImageFiles, PfmReadsBackExactlyAndLinear) {
 }
 
 TEST_F(TextureImageFiles, RadianceHdrIsLinear) {
-  // One RGBE pixel written by hand (candela_core's stb_image_write has no HDR writer): shared
+  // One RGBE pixel written by hand (byte for byte, independent of io/image_writer.h): shared
   // exponent 133 means mantissa · 2^(133 − 136), so (4, 16, 128) is (0.5, 2, 16) exactly.
   const std::string hdr =
       std::string("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 1\n") + '\x04' + '\x10' + '\x80' + '\x85';

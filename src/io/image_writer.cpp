@@ -16,8 +16,9 @@
 
 #include "util/atomic_file.h"
 
+// Files are written here (atomically), never by stb; but Debian's stb (2022) compiles its HDR
+// encoder, stbi_write_hdr_to_func included, only without STBI_WRITE_NO_STDIO, so stdio stays on.
 #define STB_IMAGE_WRITE_IMPLEMENTATION
-#define STBI_WRITE_NO_STDIO
 #include <stb_image_write.h>
 
 namespace candela {
@@ -34,6 +35,8 @@ bool image_format_for_path(const std::string& path, ImageFormat& format) {
     format = ImageFormat::exr;
   else if (extension == "pfm")
     format = ImageFormat::pfm;
+  else if (extension == "hdr")
+    format = ImageFormat::hdr;
   else
     return false;
   return true;
@@ -106,6 +109,23 @@ void write_pfm(const Film& film, const std::string& path, double exposure) {
       path, [&](const std::string& temporary) { write_bytes(temporary, path, data.data(), data.size()); });
 }
 
+void write_hdr(const Film& film, const std::string& path, double exposure) {
+  const std::vector<Color> pixels = expose(film, exposure);
+  std::vector<float> rgb(pixels.size() * 3);
+  for (std::size_t i = 0; i < pixels.size(); ++i)
+    for (int c = 0; c < 3; ++c) rgb[i * 3 + c] = static_cast<float>(std::max(0.0, pixels[i][c]));
+  std::vector<unsigned char> encoded;
+  const auto append = [](void* context, void* data, int size) {
+    auto* out = static_cast<std::vector<unsigned char>*>(context);
+    out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+  };
+  if (!stbi_write_hdr_to_func(append, &encoded, film.width(), film.height(), 3, rgb.data()))
+    throw std::runtime_error("HDR encoding failed for " + path);
+  write_atomically(path, [&](const std::string& temporary) {
+    write_bytes(temporary, path, encoded.data(), encoded.size());
+  });
+}
+
 std::string non_finite_image_problem(const Film& film, ImageFormat format, double exposure) {
   const double scale = std::exp2(exposure);  // as expose() applies it
   const double largest = format == ImageFormat::png ? std::numeric_limits<double>::max()
@@ -151,7 +171,7 @@ std::string non_finite_image_problem(const Film& film, ImageFormat format, doubl
 void write_image(const Film& film, const std::string& path, const DisplaySettings& display) {
   ImageFormat format;
   if (!image_format_for_path(path, format))
-    throw std::runtime_error("unsupported image extension: " + path + " (expected .png, .exr or .pfm)");
+    throw std::runtime_error("unsupported image extension: " + path + " (expected " + kImageExtensions + ")");
   if (const std::string problem = non_finite_image_problem(film, format, display.exposure); !problem.empty())
     throw std::runtime_error("cannot write " + path + ": " + problem);
   switch (format) {
@@ -163,6 +183,9 @@ void write_image(const Film& film, const std::string& path, const DisplaySetting
       break;
     case ImageFormat::pfm:
       write_pfm(film, path, display.exposure);
+      break;
+    case ImageFormat::hdr:
+      write_hdr(film, path, display.exposure);
       break;
   }
 }

@@ -8,6 +8,7 @@
 #include <limits>
 #include <string>
 
+#include "io/image_reader.h"
 #include "scratch_directory.h"
 
 namespace candela {
@@ -45,6 +46,33 @@ TEST(ImageWriter, PixelsThatAreNotFiniteOrBeyondAFloatAreNamedAndNotWritten) {
   display.exposure = 30;
   EXPECT_THROW(write_image(bright, path, display), std::runtime_error);
   EXPECT_TRUE(std::filesystem::is_empty(scratch.path()));  // nothing, not even a temporary
+}
+
+// Issue 24: -o out.hdr and candela convert write Radiance RGBE. Values whose mantissas fit 8 bits
+// come back exactly; the others within RGBE's step (2^e / 256, at most 1/128 of the largest channel);
+// negative values, which RGBE cannot hold, as 0; the top row of the film is the file's first.
+TEST(ImageWriter, RadianceHdrKeepsLinearValuesWithinItsEightBitMantissas) {
+  Film film(9, 2);  // 9 wide: stb run-length encodes rows of 8 pixels or more
+  for (int x = 0; x < 9; ++x) {
+    film.at(x, 0) = Color(0.5, 2, 16);  // shared exponent 5: 4, 16, 128 of 256
+    film.at(x, 1) = Color(0.3 * (x + 1), -0.25, 1e-3);
+  }
+  const testing::ScratchDirectory scratch("candela-image-writer-hdr");
+  const std::string path = (scratch.path() / "film.hdr").string();
+  DisplaySettings display;
+  display.exposure = 1;  // doubles every value, as for .exr and .pfm
+  write_image(film, path, display);
+  const RgbImage image = read_image(path);
+  ASSERT_EQ(image.width(), 9);
+  ASSERT_EQ(image.height(), 2);
+  for (int x = 0; x < 9; ++x) {
+    EXPECT_EQ(image.texel(x, 1), Color(1, 4, 32)) << x;  // read_image's y = 0 is the bottom row
+    const Color bottom = image.texel(x, 0);
+    const double largest = 0.6 * (x + 1);
+    EXPECT_NEAR(bottom.r, largest, largest / 128) << x;
+    EXPECT_EQ(bottom.g, 0) << x;
+    EXPECT_NEAR(bottom.b, 2e-3, largest / 128) << x;
+  }
 }
 
 }  // namespace
