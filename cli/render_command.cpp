@@ -1,6 +1,7 @@
 // candela render [SCENE] [-o FILE] [--method M] [--threads N] [--seed S] [--set k=v]...
 //                [--stats FILE.json] [--quiet] [--crop x0,y0,x1,y1 | --pixelbounds x0,x1,y0,y1 |
 //                --cropwindow x0,x1,y0,y1] [--spp N] [--pixel X,Y]
+//                [--error-reference REF --error-log FILE.csv [--error-mask MASK] [--error-every N]]
 //                [--aa-map FILE.png] [--camera NAME[,NAME...]]... [--export-solution FILE]
 //                [--show-sites FILE.png] [--relight LIGHTS.json]
 #include <fmt/format.h>
@@ -31,6 +32,8 @@
 #include "util/error.h"
 #include "util/hash.h"
 #include "util/input_file.h"
+#include "validate/convergence_log.h"
+#include "validate/image_comparison.h"
 
 namespace candela::cli {
 
@@ -60,6 +63,9 @@ struct RenderOptions {
   std::string checkpoint;
   std::optional<double> checkpoint_every;
   std::string resume;
+  // Issue 24: the convergence log against a reference.
+  std::string error_reference, error_mask, error_log;
+  std::optional<int> error_every;
 };
 
 // What ties a checkpoint (path tracing, progressive radiosity) to this run: the scene file's
@@ -350,7 +356,42 @@ struct RenderJob {
   std::unique_ptr<Method> method;
   std::vector<PixelRect> regions;
   std::string fingerprint;
+  std::optional<ConvergenceLog> convergence;  // --error-log
 };
+
+// --error-reference, --error-mask: the reference in the units the method's film holds (the
+// scene's film.exposure, which render -o applied to it, undone) and the mask, both the size of the
+// image rendered. Throws BadArgument.
+ConvergenceLog convergence_log_for(const RenderOptions& options, const MethodEntry& entry, const Scene& scene,
+                                   const PixelRect& region) {
+  const auto read = [](const std::string& path, const char* option) {
+    try {
+      return read_linear_image(path);
+    } catch (const std::exception& e) {
+      throw BadArgument(fmt::format("{} {}: {}", option, path, e.what()));
+    }
+  };
+  LinearImage reference = read(options.error_reference, "--error-reference");
+  if (reference.srgb_decoded)
+    throw BadArgument("--error-reference " + options.error_reference +
+                      ": an 8-bit display image is no linear reference; use one render wrote as .exr, .pfm or .hdr");
+  const auto check_size = [&](const Film& image, const std::string& what) {
+    if (image.width() != region.width() || image.height() != region.height())
+      throw BadArgument(fmt::format("{} is {}x{}, the image rendered {}x{}", what, image.width(), image.height(),
+                                    region.width(), region.height()));
+  };
+  check_size(reference.film, "--error-reference " + options.error_reference);
+  const double undo_exposure = std::exp2(-scene.display.exposure);
+  for (int y = 0; y < reference.film.height(); ++y)
+    for (int x = 0; x < reference.film.width(); ++x) reference.film.at(x, y) *= undo_exposure;
+  std::vector<uint8_t> mask;
+  if (!options.error_mask.empty()) {
+    const LinearImage mask_image = read(options.error_mask, "--error-mask");
+    check_size(mask_image.film, "--error-mask " + options.error_mask);
+    mask = mask_from_image(mask_image.film);
+  }
+  return ConvergenceLog(std::string(entry.name), std::move(reference.film), std::move(mask));
+}
 
 // Checks the options, loads the scene and makes the method; throws on bad input. Ranks other
 // than 0 (issue 11) check no outputs: only rank 0 writes.
@@ -415,6 +456,15 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
     options.scene.overrides.push_back(fmt::format("path.checkpoint_interval={}", *options.checkpoint_every));
   }
   if (!options.checkpoint.empty()) check_writable(options.checkpoint, "--checkpoint");
+  const bool logs_error = !options.error_log.empty();
+  if (logs_error != !options.error_reference.empty())
+    throw BadArgument("--error-log and --error-reference go together (the log measures against the reference)");
+  if (!logs_error && (!options.error_mask.empty() || options.error_every))
+    throw BadArgument("--error-mask and --error-every need --error-log and --error-reference");
+  if (options.error_every && *options.error_every < 1) throw BadArgument("--error-every must be at least 1");
+  if (logs_error) check_writable(options.error_log, "--error-log");
+  if (logs_error && world_cluster().distributed())
+    throw BadArgument("--error-log runs in one process (start it without mpirun)");
   // Rank 0 alone reads the checkpoint: it need not be on the other ranks' disks.
   if (!options.resume.empty() && writes_outputs && !std::filesystem::is_regular_file(options.resume))
     throw BadArgument("--resume " + options.resume + ": no such checkpoint file");
@@ -500,11 +550,18 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
     if (!options.checkpoint.empty())
       check_writable(path_for_view(options.checkpoint, view, views.size()), "--checkpoint");
   }
+  if (logs_error) {
+    if (views.size() != 1 || !relight_frames.empty())
+      throw BadArgument("--error-log measures one image: one camera and no --relight");
+    job.convergence = convergence_log_for(options, *entry, *scene, regions.front());
+  }
   // Issue 21: no output may be an input of the run, nor two outputs one file.
   if (writes_outputs) {
     std::vector<std::string> inputs = scene->input_files;
     inputs.push_back(options.scene.scene_path);
     inputs.push_back(options.relight);
+    inputs.push_back(options.error_reference);
+    inputs.push_back(options.error_mask);
     // Resuming from the checkpoint it goes on writing is how a run continues (read whole first).
     std::error_code error;
     if (!options.resume.empty() && !(options.resume == options.checkpoint ||
@@ -592,6 +649,11 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
       request.fingerprint = entry->capabilities.solution ? fingerprint : fingerprint + " camera " + view.name;
       if (options.checkpoint_every) request.checkpoint_interval = *options.checkpoint_every;
       request.cluster = &cluster;
+      if (job.convergence) {
+        job.convergence->start();
+        request.on_progress = job.convergence->observer();
+        if (options.error_every) request.progress_every = static_cast<uint64_t>(*options.error_every);
+      }
       RunStatistics statistics;
       // Loading and building are done once, before the first view: they count in its statistics
       // alone, so the views' total_seconds add up to the run's.
@@ -619,6 +681,17 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
       }
       write_image(film, output, scene->display);
       written.wrote(output);
+      if (job.convergence) {
+        job.convergence->finish(film);
+        write_text_atomically(options.error_log, convergence_csv(job.convergence->rows()));
+        written.wrote(options.error_log);
+        const ConvergenceRow& last = job.convergence->rows().back();
+        statistics.extra["error_log"] = {{"file", options.error_log},
+                                         {"rows", job.convergence->rows().size()},
+                                         {"final_rmse", last.rmse},
+                                         {"final_relative_mse", last.relative_mse},
+                                         {"log_seconds", job.convergence->overhead_seconds()}};
+      }
       if (!aa_map_path.empty()) {
         write_aa_map(statistics, film.width(), film.height(), aa_map_path);
         written.wrote(aa_map_path);
@@ -815,6 +888,15 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
   command->add_option(
       "--resume", options->resume,
       "path: continue from a checkpoint of the same scene and settings (to --spp / --time more)");
+  command->add_option("--error-reference", options->error_reference,
+                      "A linear reference image (.exr, .pfm, .hdr as render writes it) for --error-log");
+  command->add_option("--error-mask", options->error_mask,
+                      "With --error-log: measure only the pixels the mask image (white) includes");
+  command->add_option("--error-log", options->error_log,
+                      "Write the error against --error-reference (RMSE, relMSE) and the time at every step: "
+                      "path passes, radiosity shots or sweeps, meshless iterations, and the final image (CSV)");
+  command->add_option("--error-every", options->error_every,
+                      "With --error-log and progressive radiosity: shots between rows (default 50)");
   command->callback([options, &run]() {
     run = [options]() { return run_reporting_bad_input([&] { return run_render(*options); }); };
   });

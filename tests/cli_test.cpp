@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "io/image_reader.h"
+#include "validate/image_comparison.h"
 
 namespace candela {
 namespace {
@@ -1428,6 +1429,136 @@ TEST_F(Cli, ConvertBetweenFormatsWithExposureAndToneMapping) {
   EXPECT_NE(output.find("missing.pfm"), std::string::npos) << output;
   EXPECT_EQ(file_count(), files);
   EXPECT_EQ(file_bytes(directory_ / "image.pfm"), file_bytes(directory_ / "converted.pfm"));
+}
+
+}  // namespace
+}  // namespace candela
+namespace candela {
+namespace {
+
+struct LogRow {
+  std::string method, unit;
+  uint64_t work = 0;
+  double seconds = 0, image_seconds = 0, time_to_image = 0, rmse = 0, relative_mse = 0;
+  std::string unshot_fraction;
+};
+
+std::vector<LogRow> read_error_log(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "method,unit,work,seconds,image_seconds,time_to_image,rmse,relative_mse,unshot_fraction");
+  std::vector<LogRow> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> fields;
+    std::stringstream cells(line);
+    std::string cell;
+    while (std::getline(cells, cell, ',')) fields.push_back(cell);
+    if (line.back() == ',') fields.push_back("");
+    EXPECT_EQ(fields.size(), 9u) << line;
+    if (fields.size() != 9) continue;
+    rows.push_back({fields[0], fields[1], std::stoull(fields[2]), std::stod(fields[3]), std::stod(fields[4]),
+                    std::stod(fields[5]), std::stod(fields[6]), std::stod(fields[7]), fields[8]});
+  }
+  return rows;
+}
+
+// Issue 24, item 2: --error-log writes, for every step of a progressive method (path passes,
+// progressive radiosity every N shots with the unshot fraction, Gauss-Seidel sweeps, meshless
+// iterations) and for the image returned, the time and the RMSE and relMSE against the reference;
+// the last row is the written image's error.
+TEST_F(Cli, ErrorLogsFollowEveryProgressiveMethodAgainstTheReference) {
+  std::string output;
+  const std::string render = "render '" CANDELA_SOURCE_DIR
+                             "/scenes/cornell-box.json' -q --set camera.width=24 --set camera.height=24 ";
+  ASSERT_EQ(run(render + "--method path --spp 64 -o reference.pfm", output), 0) << output;
+  const std::string log = "--error-reference reference.pfm --error-log ";
+  const Film reference = read_pfm((directory_ / "reference.pfm").string());
+
+  ASSERT_EQ(run(render + "--method path --spp 8 -o path.pfm --stats path.json " + log + "path.csv", output), 0)
+      << output;
+  std::vector<LogRow> rows = read_error_log(directory_ / "path.csv");
+  ASSERT_EQ(rows.size(), 9u);
+  for (uint64_t pass = 1; pass <= 8; ++pass) {
+    EXPECT_EQ(rows[pass - 1].method, "path");
+    EXPECT_EQ(rows[pass - 1].unit, "passes");
+    EXPECT_EQ(rows[pass - 1].work, pass);
+    EXPECT_EQ(rows[pass - 1].unshot_fraction, "");
+    if (pass > 1) {
+      EXPECT_GE(rows[pass - 1].seconds, rows[pass - 2].seconds);
+    }
+    EXPECT_NEAR(rows[pass - 1].time_to_image, rows[pass - 1].seconds + rows[pass - 1].image_seconds, 1e-8);
+  }
+  EXPECT_LT(rows[7].rmse, 0.6 * rows[0].rmse);  // 8 passes: about 1/√8 of one pass's error
+  EXPECT_EQ(rows[8].unit, "final");
+  EXPECT_EQ(rows[8].rmse, rows[7].rmse);  // the image of the 8 passes
+  const ImageComparison written = compare_images(read_pfm((directory_ / "path.pfm").string()), reference);
+  EXPECT_NEAR(rows[8].rmse, written.rmse, 1e-6 * written.rmse);
+  EXPECT_NEAR(rows[8].relative_mse, written.relative_mse, 1e-6 * written.relative_mse);
+  std::ifstream stats_file(directory_ / "path.json");
+  const auto stats = nlohmann::json::parse(stats_file);
+  EXPECT_EQ(stats["error_log"]["rows"], 9);
+
+  // Progressive radiosity every 20 shots, the last shot too; the unshot fraction falls.
+  ASSERT_EQ(run(render + "--method radiosity --error-every 20 -o radiosity.pfm " + log + "shots.csv", output), 0)
+      << output;
+  rows = read_error_log(directory_ / "shots.csv");
+  ASSERT_GE(rows.size(), 4u);
+  for (std::size_t k = 0; k + 2 < rows.size(); ++k) {
+    EXPECT_EQ(rows[k].unit, "shots");
+    EXPECT_EQ(rows[k].work, 20 * (k + 1));
+    EXPECT_LT(std::stod(rows[k + 1].unshot_fraction), std::stod(rows[k].unshot_fraction));
+  }
+  EXPECT_EQ(rows.back().unit, "final");
+  EXPECT_EQ(rows.back().work, rows[rows.size() - 2].work);
+  EXPECT_EQ(rows.back().rmse, rows[rows.size() - 2].rmse);
+  EXPECT_LT(std::stod(rows[rows.size() - 2].unshot_fraction), 1e-3);  // radiosity.threshold's default
+
+  // Gauss-Seidel, every sweep; the error of the first sweeps is above the converged one's.
+  ASSERT_EQ(run(render + "--method radiosity --set radiosity.solver=gauss-seidel -o sweeps.pfm " + log +
+                    "sweeps.csv",
+                output),
+            0)
+      << output;
+  rows = read_error_log(directory_ / "sweeps.csv");
+  ASSERT_GE(rows.size(), 3u);
+  for (std::size_t k = 0; k + 1 < rows.size(); ++k) {
+    EXPECT_EQ(rows[k].unit, "sweeps");
+    EXPECT_EQ(rows[k].work, k + 1);
+  }
+  EXPECT_GT(rows.front().relative_mse, rows.back().relative_mse);
+
+  // Meshless, every iteration of λ.
+  ASSERT_EQ(run(render + "--method meshless -o meshless.pfm " + log + "meshless.csv", output), 0) << output;
+  rows = read_error_log(directory_ / "meshless.csv");
+  ASSERT_GE(rows.size(), 3u);
+  for (std::size_t k = 0; k + 1 < rows.size(); ++k) {
+    EXPECT_EQ(rows[k].unit, "iterations");
+    EXPECT_EQ(rows[k].work, k + 1);
+  }
+  EXPECT_GT(rows.front().relative_mse, rows.back().relative_mse);
+
+  // A method without steps: its image alone.
+  ASSERT_EQ(run(render + "--method whitted -o whitted.pfm " + log + "whitted.csv", output), 0) << output;
+  rows = read_error_log(directory_ / "whitted.csv");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].unit, "final");
+  EXPECT_GT(rows[0].rmse, 0);
+
+  // Bad input: refused before any work, nothing written.
+  const int files = file_count();
+  EXPECT_EQ(run(render + "--method path --spp 2 -o x.pfm --error-log x.csv", output), 2) << output;
+  EXPECT_NE(output.find("--error-log and --error-reference go together"), std::string::npos) << output;
+  EXPECT_EQ(run("render '" CANDELA_SOURCE_DIR "/scenes/cornell-box.json' -q --set camera.width=20 "
+                "--set camera.height=24 --method path --spp 2 -o x.pfm " +
+                    log + "x.csv",
+                output),
+            2)
+      << output;
+  EXPECT_NE(output.find("--error-reference reference.pfm is 24x24, the image rendered 20x24"), std::string::npos)
+      << output;
+  EXPECT_EQ(run(render + "--method path --spp 2 -o x.pfm " + log + "reference.pfm", output), 2) << output;
+  EXPECT_EQ(file_count(), files);
 }
 
 }  // namespace

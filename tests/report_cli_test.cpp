@@ -152,7 +152,28 @@ TEST_F(ReportCli, WritesThePageTheJsonAndEveryImage) {
     EXPECT_TRUE(fs::path(file).is_relative()) << file;
     EXPECT_TRUE(fs::is_regular_file(out / file)) << file;
   }
-  EXPECT_EQ(images, 1 + 2 * 7);
+  EXPECT_EQ(images, 2 + 2 * 7);  // the reference, each entry's image and difference, the chart
+
+  // Issue 24: every method's error against time — a row per step, the image's last — on one chart.
+  std::map<std::string, std::vector<std::string>> units;
+  std::istringstream csv(read(out / "convergence.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "method,unit,work,seconds,image_seconds,time_to_image,rmse,relative_mse,unshot_fraction");
+  while (std::getline(csv, line)) units[line.substr(0, line.find(','))].push_back(line.substr(line.find(',') + 1));
+  ASSERT_EQ(units["whitted"].size(), 1u);
+  EXPECT_EQ(units["whitted"][0].rfind("final,", 0), 0u);
+  ASSERT_EQ(units["path"].size(), 5u);  // 4 passes and the image
+  EXPECT_EQ(units["path"][3].rfind("passes,4,", 0), 0u);
+  EXPECT_GE(units["radiosity"].size(), 2u);
+  EXPECT_EQ(units["radiosity"][0].rfind("shots,", 0), 0u);
+  EXPECT_EQ(units["meshless"][0].rfind("iterations,1,", 0), 0u);
+  EXPECT_EQ(units["path (equal time: whitted)"].back().rfind("final,", 0), 0u);
+  const std::string chart = read(out / "convergence.svg");
+  EXPECT_EQ(chart.rfind("<svg xmlns=\"http://www.w3.org/2000/svg\"", 0), 0u);
+  for (const char* label : {">whitted<", ">radiosity<", ">meshless<", ">path<", ">path at radiosity's time<",
+                            ">RMSE against the reference<", ">time to the image (s)<"})
+    EXPECT_NE(chart.find(label), std::string::npos) << label;
 
   // The browser: the page's script sets data-images-loaded="loaded/total" once it has loaded.
   std::string dom;

@@ -222,7 +222,8 @@ std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene,
 }
 
 MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& settings,
-                                const MeshlessGeometry& geometry, bool quiet) {
+                                const MeshlessGeometry& geometry, bool quiet,
+                                const MeshlessIterationCallback& on_iteration) {
   const SiteSet& sites = geometry.sites;
   const auto start = std::chrono::steady_clock::now();
   MeshlessLighting lighting;
@@ -233,8 +234,14 @@ MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& sett
                                    sites.sites[i].normal, sites.albedo[i]);
   });
   ProgressReporter progress("meshless solve", 1000, "per mille of convergence", quiet);
+  TransferIterationCallback each_iteration;
+  if (on_iteration)
+    each_iteration = [&](std::size_t iteration, const std::vector<Color>& lambda) {
+      on_iteration(iteration, lighting.eta, lambda);
+    };
   lighting.transfer = solve_transfer(geometry.matrix, sites.albedo, lighting.eta, settings.tolerance,
-                                     static_cast<std::size_t>(settings.max_iterations), &progress);
+                                     static_cast<std::size_t>(settings.max_iterations), &progress,
+                                     each_iteration);
   progress.finish();
   lighting.seconds = seconds_since(start);
   return lighting;
@@ -300,21 +307,15 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
   };
   if (!geometry) return interrupted("transfer matrix not finished");
   if (cancelled_anywhere(cluster)) return interrupted("sites and transfer matrix; no lighting");
-  const MeshlessLighting lighting =
-      light_meshless(scene, settings_, *geometry, request.quiet || (cluster && !cluster->root()));
-  nlohmann::json facts = geometry_facts(settings_, *geometry);
-  add_lighting_facts(lighting, facts);
-  facts["geometry_reused"] = reused;
   const MeshlessSettings& settings = settings_;
   const MeshlessBasis& basis = *geometry->basis;
-  const struct {
-    const SiteSet& sites;
-    const std::vector<Color>& eta;
-    const TransferSolution& transfer;
-  } solution{geometry->sites, lighting.eta, lighting.transfer};
+  // What the display shows: the lighting's η and λ, or an iteration's (the convergence log).
+  struct Shown {
+    const std::vector<Color>* eta = nullptr;
+    const std::vector<Color>* lambda = nullptr;
+  } solution;
   const Camera& camera = *scene.camera;
   const PixelRect region = request.region;
-  const auto start = std::chrono::steady_clock::now();
   const SurfaceEmitterIndex emitters(scene);
   // The radiance of the display along the camera ray through image point (x, y).
   const RadianceFunction radiance = [&](double x, double y) {
@@ -327,8 +328,8 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
     basis.evaluate(p, weights);
     Color global, direct;
     for (const auto& [i, phi] : weights) {
-      global += solution.transfer.lambda[i] * phi;
-      direct += solution.eta[i] * phi;
+      global += (*solution.lambda)[i] * phi;
+      direct += (*solution.eta)[i] * phi;
     }
     // An emitter is drawn with its own emission (λ and η hold only reflected light).
     const Material& material = scene.material_of(hit);
@@ -362,11 +363,29 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
         sample_image(scene.antialiasing, scene.render.seed, at, scene.render.tile_size, radiance, target);
     camera_rays.fetch_add(sampled.traced, std::memory_order_relaxed);
   };
+  MeshlessIterationCallback on_iteration;
+  if (request.on_progress)  // issue 24: each iteration's λ displayed as render would
+    on_iteration = [&](std::size_t iteration, const std::vector<Color>& eta, const std::vector<Color>& lambda) {
+      request.on_progress({"iterations", iteration, std::nullopt, [&] {
+                             solution = {&eta, &lambda};
+                             Film image(region.width(), region.height());
+                             draw(region, image);
+                             return image;
+                           }});
+    };
+  const MeshlessLighting lighting = light_meshless(
+      scene, settings_, *geometry, request.quiet || (cluster && !cluster->root()), on_iteration);
+  nlohmann::json facts = geometry_facts(settings_, *geometry);
+  add_lighting_facts(lighting, facts);
+  facts["geometry_reused"] = reused;
+  solution = {&lighting.eta, &lighting.transfer.lambda};
+  camera_rays = 0;  // the final display's alone
+  const auto start = std::chrono::steady_clock::now();
   draw_across_ranks(request.cluster, region, draw, film,
                     statistics);  // issue 11: every rank holds the same λ
   // Rank 0 holds the whole image (issue 11), and its result is the one written.
   if (request.sites_image && (!cluster || cluster->root()))
-    output.sites_image = with_sites_drawn(scene, solution.sites, region, film);
+    output.sites_image = with_sites_drawn(scene, geometry->sites, region, film);
   const auto pixel_count = static_cast<uint64_t>(region.width()) * region.height();
   RayCounts primary;
   primary.primary = camera_rays.load();

@@ -31,6 +31,17 @@ struct PixelRect {
   int height() const { return y1 - y0; }
 };
 
+// Issue 24: one step of a progressive method's way to its image (candela render --error-log,
+// candela report's error-against-time chart).
+struct ProgressStep {
+  std::string_view unit;                  // "passes", "shots", "sweeps", "iterations"
+  uint64_t work = 0;                      // of them, so far
+  std::optional<double> unshot_fraction;  // progressive radiosity: the unshot flux left
+  // Makes the image of the state reached: the request's region, as render would return it were it
+  // to stop here (progressive radiosity and meshless: the display of the solution so far).
+  std::function<Film()> image;
+};
+
 struct RenderRequest {
   PixelRect region;
   bool quiet = false;
@@ -55,6 +66,13 @@ struct RenderRequest {
   // Called after every whole pass of a progressive method with the passes done so far (the
   // path tracer): where a caller (a test) may ask the run to stop after exactly N passes.
   std::function<void(uint64_t passes)> after_pass = {};
+  // Issue 24: when set, a progressive method reports its steps — the path tracer after every pass,
+  // progressive radiosity after every `progress_every` shots, Gauss-Seidel after every sweep,
+  // meshless after every iteration of λ — in one process (not across ranks). The time the caller
+  // spends in it (making and measuring the image) is the caller's to account for. A method that
+  // keeps its solution between renders (radiosity, meshless) solves afresh when it is set.
+  std::function<void(const ProgressStep& step)> on_progress = {};
+  uint64_t progress_every = 0;  // progressive radiosity: shots between steps; 0: 50
   // The ranks to split the work across (issue 11, docs/distributed.md); null or one rank: this
   // process alone. Every rank calls render with the same scene and request; rank 0's result
   // holds the image and the checkpoints. Statistics are totals over the ranks.

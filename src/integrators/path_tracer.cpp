@@ -577,8 +577,22 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
     dropped_here += dropped_now.load();
     return true;
   };
+  // Σ w·L / Σ w (with the box of half a pixel Σ w is the pass count, as before the film).
+  const auto film_of_passes = [&](Film& target) {
+    for (int j = 0; j < height; ++j)
+      for (int i = 0; i < width; ++i) {
+        const std::size_t k = std::size_t(j) * width + i;
+        target.at(i, j) = state.weights[k] > 1e-12 ? state.sums[k] * (1.0 / state.weights[k]) : Color();
+      }
+  };
   const auto after_pass = [&](uint64_t passes_done) {
     if (request.after_pass) request.after_pass(passes_done);
+    if (request.on_progress)
+      request.on_progress({"passes", passes_done, std::nullopt, [&] {
+                             Film image(width, height);
+                             film_of_passes(image);
+                             return image;
+                           }});
     progress.set_detail(fmt::format("{} spp", passes_done));
     if (settings.spp > 0) {
       progress.advance();
@@ -733,12 +747,7 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
   progress.finish();
   if (hands_out_checkpoints) output.checkpoint = sealed_state();  // a later run can go on from it
 
-  // Σ w·L / Σ w (with the box of half a pixel Σ w is the pass count, as before the film).
-  for (int j = 0; j < height; ++j)
-    for (int i = 0; i < width; ++i) {
-      const std::size_t k = std::size_t(j) * width + i;
-      film.at(i, j) = state.weights[k] > 1e-12 ? state.sums[k] * (1.0 / state.weights[k]) : Color();
-    }
+  film_of_passes(film);
 
   RayCounts rays;
   for (const RayCounts& c : counts) rays += c;

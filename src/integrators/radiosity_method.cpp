@@ -103,9 +103,9 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
   const std::string key = solution_key(scene, settings);
   Cluster* cluster = several_ranks(request);
   std::lock_guard lock(cache_mutex_);
-  // A checkpoint to write or resume from asks for this run's own solve.
+  // A checkpoint to write or resume from asks for this run's own solve, as does a convergence log.
   const bool checkpointing = request.checkpoint || request.resume;
-  reused = !checkpointing && cached_ && cached_key_ == key;
+  reused = !checkpointing && !request.on_progress && cached_ && cached_key_ == key;
   if (reused) return cached_;
   auto solved = std::make_shared<Solved>();
   ProgressiveCheckpointing run;
@@ -131,6 +131,19 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
   options.facts = &solved->facts;
   options.checkpointing = checkpointing ? &run : nullptr;
   options.cluster = cluster;
+  if (request.on_progress) {  // issue 24: each step's solution displayed as render would
+    if (request.progress_every > 0) options.step_every = request.progress_every;
+    const bool progressive = settings.solver == RadiositySolver::progressive;
+    options.on_step = [&](const RadiositySolveResult& so_far) {
+      request.on_progress({progressive ? "shots" : "sweeps", so_far.steps,
+                           progressive ? std::optional<double>(so_far.unshot_fraction) : std::nullopt, [&] {
+                             const SolutionDisplay display(scene, so_far, settings.display);
+                             Film image(request.region.width(), request.region.height());
+                             display.draw(request.region.x0, request.region.y0, image);
+                             return image;
+                           }});
+    };
+  }
   try {
     solved->result = solve_radiosity(scene, settings, options);
   } catch (const std::invalid_argument& e) {

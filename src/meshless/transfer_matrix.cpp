@@ -262,7 +262,7 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
 
 TransferSolution solve_transfer(const TransferMatrix& transfer, const std::vector<Color>& albedo,
                                 const std::vector<Color>& eta, double tolerance, std::size_t max_iterations,
-                                ProgressReporter* progress) {
+                                ProgressReporter* progress, const TransferIterationCallback& on_iteration) {
   const auto n = static_cast<std::size_t>(transfer.S.rows());
   if (albedo.size() != n || eta.size() != n)
     throw std::invalid_argument("meshless solve: " + std::to_string(n) + " sites, " +
@@ -294,6 +294,7 @@ TransferSolution solve_transfer(const TransferMatrix& transfer, const std::vecto
     solution.lambda.swap(next);
     solution.iterations = iteration + 1;
     solution.final_change = largest > 0 ? change / largest : 0;
+    if (on_iteration) on_iteration(solution.iterations, solution.lambda);
     if (progress) {
       const auto done = static_cast<uint64_t>(1000 * convergence_progress(solution.final_change, tolerance));
       progress->set_detail(

@@ -27,6 +27,7 @@
 #include <Eigen/SparseCore>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "math/vector.h"
@@ -81,11 +82,15 @@ struct TransferSolution {
   double final_change = 0;  // the last iteration's largest change over the largest λ
 };
 
+// Called after every iteration (1-based) with λ then (issue 24: the convergence log).
+using TransferIterationCallback = std::function<void(std::size_t iteration, const std::vector<Color>& lambda)>;
+
 // λ = η + Q S λ by the iteration of 002 §5.2.4 (Q = albedo); progress, when given, advances in
 // per mille of convergence (the change's way down to the tolerance, on a log scale). Throws
 // std::invalid_argument for mismatched sizes.
 TransferSolution solve_transfer(const TransferMatrix& transfer, const std::vector<Color>& albedo,
                                 const std::vector<Color>& eta, double tolerance, std::size_t max_iterations,
-                                ProgressReporter* progress = nullptr);
+                                ProgressReporter* progress = nullptr,
+                                const TransferIterationCallback& on_iteration = {});
 
 }  // namespace candela

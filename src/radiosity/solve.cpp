@@ -34,9 +34,10 @@ struct ElementSolution {
 
 // 000 §6.6 with substructuring (000 §6.7.1): patches shoot, elements receive, from B = E or the
 // checkpoint's state, with the progress bar, checkpoints and Ctrl-C.
-ElementSolution shoot_progressively(const RadiosityMesh& mesh, const ElementRows& rows,
-                                    const RadiositySettings& settings, ProgressReporter& progress,
-                                    ProgressiveCheckpointing* checkpointing, Cluster* cluster) {
+ElementSolution shoot_progressively(
+    const RadiosityMesh& mesh, const ElementRows& rows, const RadiositySettings& settings,
+    ProgressReporter& progress, ProgressiveCheckpointing* checkpointing, Cluster* cluster,
+    const std::function<void(const ProgressiveRefinement&, std::size_t steps, double fraction)>& observe) {
   ProgressiveRefinement refinement(mesh.patch_system(), mesh.element_system(), rows.form_factors);
   if (checkpointing && checkpointing->resume) {
     const RadiosityCheckpoint& state = *checkpointing->resume;
@@ -60,6 +61,7 @@ ElementSolution shoot_progressively(const RadiosityMesh& mesh, const ElementRows
     progress.advance_to(done);
     if (hands_out && checkpointing->save && since_checkpoint.seconds() >= checkpointing->interval)
       checkpointing->save(sealed_state());
+    if (observe) observe(refinement, steps, fraction);
   };
   // Ctrl-C: the solution so far (several ranks agree every 256 shots, so they shoot alike; a shot
   // takes microseconds, an agreement between nodes tens of them).
@@ -122,6 +124,18 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
   double form_factor_seconds = 0;  // of solve_seconds, the time spent computing form factors
   RadiosityMesh& mesh = result.mesh;
   const std::size_t patch_count = mesh.patches.size();
+  // Issue 24: the solution so far handed to options.on_step (the element rows exist by then).
+  std::vector<double>* element_row_sums = nullptr;
+  const auto report_step = [&](std::vector<Color> displayed, std::size_t steps, double unshot_fraction) {
+    result.element_radiosity = std::move(displayed);
+    result.element_hidden.assign(mesh.elements.size(), 0);
+    for (std::size_t q = 0; q < mesh.elements.size(); ++q)
+      result.element_hidden[q] = (*element_row_sums)[q] < kHiddenRowSum;
+    result.steps = steps;
+    result.unshot_fraction = unshot_fraction;
+    options.on_step(result);
+  };
+  const bool observed = options.on_step && !(cluster && cluster->distributed());
 
   // The patch system first (direct solvers), its memory checked before anything is computed.
   std::vector<double> patch_sums;
@@ -138,6 +152,24 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
         settings,
         fmt::format("the full matrix of {} patches ({} elements)", patch_count, mesh.elements.size()),
         "use radiosity.solver \"progressive\", or " + fewer);
+  }
+  // The element rows (before the patch solve: Gauss-Seidel's sweeps are displayed through them
+  // for the convergence log), then solutions and adaptive subdivision (000 §6.7.2) until no
+  // neighbours differ by more than the threshold.
+  check_form_factor_memory(
+      element_rows_bytes(mesh.elements.size(), patch_count), settings,
+      fmt::format("the form factors of {} elements to {} patches", mesh.elements.size(), patch_count), fewer);
+  ElementRows rows{std::make_shared<ElementToPatch>(static_cast<Eigen::Index>(mesh.elements.size()),
+                                                    static_cast<Eigen::Index>(patch_count)),
+                   std::vector<double>(mesh.elements.size())};
+  {
+    Stopwatch form_factor_time;
+    fill_element_form_factor_rows(settings, options.seed, mesh, all_rows(mesh.elements.size()),
+                                  *rows.form_factors, rows.sums, cluster, options.quiet);
+    form_factor_seconds += form_factor_time.seconds();
+  }
+  element_row_sums = &rows.sums;
+  if (!progressive) {
     patch_sums.resize(patch_count);
     Eigen::MatrixXd patch_rows(static_cast<Eigen::Index>(patch_count),
                                static_cast<Eigen::Index>(patch_count));
@@ -156,9 +188,18 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
       const RadiositySystem patches = mesh.patch_system();
       const FormFactorSource patch_source(std::move(patch_rows));
       const auto solve = [&] {
-        if (settings.solver != RadiositySolver::gaussian)
+        if (settings.solver != RadiositySolver::gaussian) {
+          // The convergence log: each sweep's patch radiosities gathered to the elements.
+          GaussSeidelCallback on_sweep;
+          if (observed)
+            on_sweep = [&](std::size_t sweep, double, const std::vector<Color>& radiosity) {
+              report_step(gather_element_radiosities(mesh.element_system(),
+                                                     element_to_patch_source(rows.form_factors), radiosity),
+                          sweep, 0);
+            };
           return solve_gauss_seidel(patches, patch_source, settings.threshold,
-                                    static_cast<std::size_t>(settings.max_steps));
+                                    static_cast<std::size_t>(settings.max_steps), on_sweep);
+        }
         try {
           return solve_gaussian_elimination(patches, patch_source, form_factor_memory_limit(settings));
         } catch (const SolverMemoryError& e) {  // the solver knows bytes, the settings their place
@@ -172,20 +213,6 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
     }
   }
 
-  // The element rows, then solutions and adaptive subdivision (000 §6.7.2) until no neighbours
-  // differ by more than the threshold.
-  check_form_factor_memory(
-      element_rows_bytes(mesh.elements.size(), patch_count), settings,
-      fmt::format("the form factors of {} elements to {} patches", mesh.elements.size(), patch_count), fewer);
-  ElementRows rows{std::make_shared<ElementToPatch>(static_cast<Eigen::Index>(mesh.elements.size()),
-                                                    static_cast<Eigen::Index>(patch_count)),
-                   std::vector<double>(mesh.elements.size())};
-  {
-    Stopwatch form_factor_time;
-    fill_element_form_factor_rows(settings, options.seed, mesh, all_rows(mesh.elements.size()),
-                                  *rows.form_factors, rows.sums, cluster, options.quiet);
-    form_factor_seconds += form_factor_time.seconds();
-  }
   // Ctrl-C before every row was computed: the rows not begun are zero.
   const bool form_factors_complete = !stopped();
   std::size_t form_factor_rows = (progressive ? 0 : patch_count) + mesh.elements.size();
@@ -195,7 +222,15 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
   ElementSolution solution;
   for (;;) {
     if (progressive) {
-      solution = shoot_progressively(mesh, rows, settings, progress, options.checkpointing, cluster);
+      const auto observe = [&](const ProgressiveRefinement& refinement, std::size_t steps, double fraction) {
+        if (steps % std::max<std::size_t>(options.step_every, 1) == 0)
+          report_step(refinement.display_radiosities(settings.ambient), steps, fraction);
+      };
+      solution = shoot_progressively(mesh, rows, settings, progress, options.checkpointing, cluster,
+                                     observed ? observe : std::function<void(const ProgressiveRefinement&,
+                                                                              std::size_t, double)>());
+      if (observed && solution.steps % std::max<std::size_t>(options.step_every, 1) != 0)
+        report_step(solution.displayed, solution.steps, solution.unshot_fraction);  // the last shot
     } else {
       solution.radiosity = gather_element_radiosities(
           mesh.element_system(), element_to_patch_source(rows.form_factors), patch_radiosity);

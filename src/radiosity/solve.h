@@ -55,6 +55,11 @@ struct RadiositySolveOptions {
   // Several ranks (issue 11): the rows farmed out and Ctrl-C agreed, every rank ending with the
   // one-process solution; null: this process alone.
   Cluster* cluster = nullptr;
+  // Issue 24, the convergence log: called with the solution so far — its mesh, element radiosities
+  // (as displayed), hidden elements, steps and unshot fraction — after every `step_every` shots
+  // (progressive) or every sweep (gauss-seidel), in one process. Empty: none.
+  std::function<void(const RadiositySolveResult& so_far)> on_step = {};
+  std::size_t step_every = 50;
 };
 
 // Meshes and solves the scene. Throws SolverMemoryError for form factors that would not fit,

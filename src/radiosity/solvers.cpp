@@ -261,7 +261,7 @@ RadiositySolution solve_gauss_seidel(const RadiositySystem& system, const FormFa
     }
     solution.iterations = sweep;
     solution.relative_change = relative_to(largest_change, largest_component(b));
-    if (on_sweep) on_sweep(sweep, solution.relative_change);
+    if (on_sweep) on_sweep(sweep, solution.relative_change, b);
     if (solution.relative_change <= tolerance) {
       solution.converged = true;
       break;

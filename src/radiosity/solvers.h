@@ -87,8 +87,10 @@ RadiositySolution solve_gaussian_elimination(const RadiositySystem& system,
 
 // ---- Gauss-Seidel ------------------------------------------------------------------------
 
-// Called after every sweep with the sweep number (1-based) and its largest relative change.
-using GaussSeidelCallback = std::function<void(std::size_t sweep, double relative_change)>;
+// Called after every sweep with the sweep number (1-based), its largest relative change and the
+// radiosities then.
+using GaussSeidelCallback =
+    std::function<void(std::size_t sweep, double relative_change, const std::vector<Color>& radiosity)>;
 
 // Gauss-Seidel on 000 eq. 6-9: for i = 0 … n−1, in place,
 //   B_i ← (E_i + ρ_i Σ_{j≠i} F_ij B_j) / (1 − ρ_i F_ii),

@@ -509,12 +509,15 @@ TEST(RadiositySolverGaussSeidel, ReportsSweepsAndStopsAtMaxIterations) {
   const PhysicalSystem physical = random_physical_system(30, 2);
   std::size_t calls = 0;
   std::vector<double> changes;
+  std::vector<Color> last;
   const RadiositySolution solution =
       solve_gauss_seidel(physical.system, counting_provider(physical.form_factors, calls), 1e-9, 1000,
-                         [&](std::size_t sweep, double change) {
+                         [&](std::size_t sweep, double change, const std::vector<Color>& radiosity) {
                            EXPECT_EQ(sweep, changes.size() + 1);
                            changes.push_back(change);
+                           last = radiosity;
                          });
+  EXPECT_EQ(last, solution.radiosity);  // the last sweep's radiosities are the solution
   EXPECT_TRUE(solution.converged);
   EXPECT_EQ(solution.iterations, changes.size());
   EXPECT_LE(changes.back(), 1e-9);

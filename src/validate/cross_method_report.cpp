@@ -17,6 +17,7 @@
 #include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/statistics.h"
+#include "validate/convergence_chart.h"
 
 namespace candela {
 
@@ -85,9 +86,10 @@ class SettingsGuard {
 
 // Renders the whole image with the scene's current settings, the method's settings object changed
 // by `settings` ("spp=16"), and writes DIR/<key>.png and .exr.
+// With a reference, the method's convergence against it is logged (CrossMethodEntry::convergence).
 CrossMethodEntry render_entry(Scene& scene, const CrossMethodOptions& options, const std::string& method_name,
                               const std::string& label, const std::string& key,
-                              const std::vector<std::string>& settings = {}) {
+                              const std::vector<std::string>& settings = {}, const Film* reference = nullptr) {
   const MethodEntry* registered = find_method(method_name);
   if (!registered)
     throw std::invalid_argument("unknown method \"" + method_name + "\" (expected one of: " + method_names() +
@@ -104,18 +106,28 @@ CrossMethodEntry render_entry(Scene& scene, const CrossMethodOptions& options, c
   RenderRequest request;
   request.region = {0, 0, width, height};
   request.quiet = options.quiet;
+  std::optional<ConvergenceLog> log;
+  if (reference) log.emplace(label, *reference);
   Stopwatch timer;
   try {
     const std::unique_ptr<Method> method = create_method(*registered, scene, settings);
+    if (log) {
+      log->start();
+      request.on_progress = log->observer();
+    }
     RenderResult result = method->render(scene, request);
     entry.image = std::move(result.film);
+    if (log) {
+      log->finish(entry.image);
+      entry.convergence = log->rows();
+    }
     statistics.absorb(std::move(result.statistics));
   } catch (const InputError& e) {
     throw InputError(e.location(), "method " + label + ": " + e.message());
   } catch (const std::exception& e) {
     throw std::runtime_error("method " + label + " failed: " + e.what());
   }
-  entry.seconds = timer.seconds();
+  entry.seconds = timer.seconds() - (log ? log->overhead_seconds() : 0.0);
   statistics.add_phase("render", entry.seconds);
   statistics.extra["method"] = method_name;
   statistics.extra["emitters"] = emitter_facts(scene, *registered);
@@ -332,7 +344,8 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
   for (const std::string& method : options.methods) {
     std::vector<std::string> settings;
     if (method == "path" && options.path_spp) settings.push_back("spp=" + std::to_string(*options.path_spp));
-    report.entries.push_back(render_entry(scene, options, method, method, method, settings));
+    report.entries.push_back(
+        render_entry(scene, options, method, method, method, settings, &report.reference.image));
   }
   if (options.equal_time) {
     const std::size_t count = report.entries.size();
@@ -343,7 +356,8 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
       const double seconds = std::max(other.seconds, 1e-6);
       CrossMethodEntry entry =
           render_entry(scene, options, "path", "path (equal time: " + other_method + ")",
-                       equal_time_key(other_method), {"spp=0", fmt::format("time={:.17g}", seconds)});
+                       equal_time_key(other_method), {"spp=0", fmt::format("time={:.17g}", seconds)},
+                       &report.reference.image);
       entry.equal_time_to = other_method;
       entry.facts.emplace_back("time limit (s)", fmt::format("{:.3g}", seconds));
       report.entries.push_back(std::move(entry));
@@ -384,10 +398,37 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
     write_image(picture, (directory / (report.entries[i].key + "-diff.png")).string(), DisplaySettings{});
   }
 
+  std::vector<ConvergenceRow> all_rows;
+  for (const CrossMethodEntry& entry : report.entries)
+    all_rows.insert(all_rows.end(), entry.convergence.begin(), entry.convergence.end());
+  write_text_atomically((directory / "convergence.csv").string(), convergence_csv(all_rows));
+  write_text_atomically((directory / "convergence.svg").string(), convergence_chart(report));
   report.settings = method_settings(options.scene_text, settings_keys(report));
   write_text_atomically((directory / "report.json").string(), cross_method_json(report).dump(2) + "\n");
   write_text_atomically((directory / "index.html").string(), cross_method_html(report));
   return report;
+}
+
+std::string convergence_chart(const CrossMethodReport& report) {
+  std::vector<std::vector<ConvergenceRow>> logs;
+  for (const CrossMethodEntry& entry : report.entries)
+    if (entry.equal_time_to.empty()) logs.push_back(entry.convergence);
+  std::vector<ChartSeries> series = convergence_series(logs);
+  // The equal-time path runs: hollow points in the path curve's colour.
+  std::string path_color = "#404040";
+  for (const ChartSeries& s : series)
+    if (s.label == "path") path_color = s.color;
+  for (const CrossMethodEntry& entry : report.entries) {
+    if (entry.equal_time_to.empty() || entry.convergence.empty()) continue;
+    const ConvergenceRow& last = entry.convergence.back();
+    series.push_back({"path at " + entry.equal_time_to + "'s time", path_color, {{last.time_to_image(), last.rmse}},
+                      false, true});
+  }
+  ChartAxes axes;
+  axes.title = report.scene_name + ": error against time";
+  axes.x_label = "time to the image (s)";
+  axes.y_label = "RMSE against the reference";
+  return log_log_chart_svg(series, axes);
 }
 
 nlohmann::json cross_method_json(const CrossMethodReport& report) {
@@ -506,6 +547,15 @@ std::string cross_method_html(const CrossMethodReport& report) {
             "up)."
           : "");
 
+  // Issue 24: error against time, every method on one chart.
+  html +=
+      "<h2>Error against time</h2>\n<p><img src=\"convergence.svg\" alt=\"RMSE against time, log-log, one "
+      "curve per method\"></p>\n<p class=\"note\">Each method's RMSE (linear RGB) against the reference at "
+      "every step of its way — the path tracer's passes, progressive radiosity's shots (every 50), "
+      "Gauss-Seidel's sweeps, meshless iterations — plotted at the time a run stopped there would have had "
+      "its image (the solve so far and its display); a method without steps is one point; hollow points are "
+      "the equal-time path runs. Data: <a href=\"convergence.csv\">convergence.csv</a>.</p>\n";
+
   // The gallery.
   html += "<h2>Images</h2>\n";
   html += fmt::format(
@@ -572,7 +622,7 @@ std::vector<std::string> cross_method_report_files(const CrossMethodOptions& opt
     keys.push_back(method);
     if (options.equal_time && method != "path") keys.push_back(equal_time_key(method));
   }
-  std::vector<std::string> files{"index.html", "report.json"};
+  std::vector<std::string> files{"index.html", "report.json", "convergence.svg", "convergence.csv"};
   for (const std::string& key : keys)
     for (const char* ending : {".png", ".exr", "-diff.png"}) files.push_back(key + ending);
   return files;

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "camera/film.h"
+#include "validate/convergence_log.h"
 #include "validate/image_comparison.h"
 
 namespace candela {
@@ -72,6 +73,10 @@ struct CrossMethodEntry {
   std::vector<std::pair<std::string, std::string>> facts;  // a few key facts, name → value
   ImageComparison errors;  // against the reference (not set for the reference itself)
   Film image{0, 0};
+  // Issue 24: the error (linear RGB) against the reference at each step of the method and at its
+  // image (validate/convergence_log.h); empty for the reference. `seconds` leaves out the log's
+  // own time (making and measuring the step images).
+  std::vector<ConvergenceRow> convergence;
 };
 
 struct CrossMethodReport {
@@ -94,6 +99,11 @@ struct CrossMethodReport {
   std::string cpu;   // the CPU model, "" when unknown
   std::string date;  // UTC, ISO 8601
 };
+
+// Issue 24: each method's error (RMSE, linear RGB) against the reference as it converged, from its
+// convergence log — every method on one log-log chart, the equal-time path runs as hollow markers —
+// DIR/convergence.svg, with its data in DIR/convergence.csv.
+std::string convergence_chart(const CrossMethodReport& report);
 
 // Renders, compares and writes everything (see the top of this file). The scene's render.method,
 // render.seed and path settings are changed while it runs and restored at the end. Throws
