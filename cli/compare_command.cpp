@@ -86,7 +86,12 @@ DiffPicture make_diff(const CompareOptions& options, const Film& image, const Fi
   const double top = options.diff_scale ? *options.diff_scale : (largest > 0 ? largest : 1.0);
   diff.low = diff.metric == DifferenceMetric::signed_difference ? -top : 0.0;
   diff.high = top;
-  diff.film = false_color_image(values, image.width(), image.height(), diff.low, diff.high, diff.map);
+  FalseColorScale scale;
+  scale.low = diff.low;
+  scale.high = diff.high;
+  scale.quantity = diff.description;
+  scale.unit = options.luminance && diff.metric != DifferenceMetric::relative ? "cd/m²" : "";
+  diff.film = false_color_image(values, image.width(), image.height(), scale, diff.map);
   return diff;
 }
 

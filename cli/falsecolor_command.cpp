@@ -81,7 +81,7 @@ int run_falsecolor(const FalseColorOptions& options) {
   }
   if (finite == 0) throw BadArgument(options.image + ": no pixel has a finite value");
   const FalseColorScale scale =
-      false_color_scale(high, options.scale, options.log, options.contours, "cd/m²");
+      false_color_scale(high, options.scale, options.log, options.contours, "cd/m²", "luminance");
   write_image(false_color_image(values, film.width(), film.height(), scale, ColorMap::viridis),
               options.output, DisplaySettings{});
   const double average = sum / double(finite);  // over the finite pixels (a NaN is drawn grey)

@@ -176,8 +176,15 @@ int run_probe(ProbeOptions& options) {
         if (std::isfinite(value)) high = std::max(high, value);
       }
     const FalseColorScale scale =
-        false_color_scale(high, options.image_scale, options.image_log, options.contours, "lx");
-    const Film picture = false_color_image(values, nu, nv, scale, ColorMap::viridis);
+        false_color_scale(high, options.image_scale, options.image_log, options.contours, "lx", "illuminance");
+    // Each point a square of pixels, the picture at least 240 wide (a 20×20 grid: 12×12 squares), so
+    // that the scale's labels and caption fit beneath it.
+    const int block = std::clamp((240 + nu - 1) / nu, 1, 32);
+    std::vector<double> blocks(std::size_t(nu) * block * nv * block);
+    for (int y = 0; y < nv * block; ++y)
+      for (int x = 0; x < nu * block; ++x)
+        blocks[std::size_t(y) * nu * block + x] = values[std::size_t(y / block) * nu + x / block];
+    const Film picture = false_color_image(blocks, nu * block, nv * block, scale, ColorMap::viridis);
     write_image(picture, options.image, DisplaySettings{});
     if (!options.quiet)
       std::cout << fmt::format("illuminance scale: {} to {} lux{}{}\n", format_scale_value(scale.low),

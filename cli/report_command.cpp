@@ -38,6 +38,7 @@ struct ReportOptions {
   std::string output;
   int reference_spp = 1024;
   std::string reference;
+  std::string error_mask;  // the convergence chart's pixels
   std::optional<int> spp;
   bool equal_time = false;
   bool luminance = false;  // errors in cd/m² (issue 23)
@@ -116,6 +117,19 @@ int run_report(ReportOptions& options) {
     settings.reference_image = std::move(image);
     settings.reference_file = options.reference;
   }
+  if (!options.error_mask.empty()) {
+    LinearImage mask;
+    try {
+      mask = read_linear_image(options.error_mask);
+    } catch (const std::exception& e) {
+      throw BadArgument(std::string("--error-mask: ") + e.what());
+    }
+    if (mask.film.width() != scene->camera->width() || mask.film.height() != scene->camera->height())
+      throw BadArgument(fmt::format("--error-mask {} is {}x{}, the scene's image {}x{}", options.error_mask,
+                                    mask.film.width(), mask.film.height(), scene->camera->width(),
+                                    scene->camera->height()));
+    settings.convergence_mask = mask_from_image(mask.film);
+  }
   settings.path_spp = options.spp;
   settings.equal_time = options.equal_time;
   settings.luminance_efficacy = options.luminance ? kLuminousEfficacy : 0;
@@ -133,6 +147,7 @@ int run_report(ReportOptions& options) {
     outputs.push_back({(std::filesystem::path(options.output) / name).string(), "-o"});
   std::vector<std::string> inputs = scene->input_files;
   inputs.push_back(options.scene.scene_path);
+  inputs.push_back(options.error_mask);
   inputs.push_back(options.reference);
   refuse_outputs_over_inputs(outputs, inputs);
   prepare_directory(options.output);
@@ -177,6 +192,8 @@ void add_report_command(CLI::App& app, std::function<int()>& run) {
       ->excludes(reference_spp);
   command->add_option("--spp", options->spp,
                       "Samples per pixel of the \"path\" entry (default: the scene's path.spp)");
+  command->add_option("--error-mask", options->error_mask,
+                      "Measure the error-against-time chart over the pixels the mask image (white) includes");
   command->add_flag("--luminance", options->luminance,
                     "Measure the errors in luminance, cd/m² (179 lm/W × Y / π) instead of linear RGB");
   command->add_flag("--equal-time", options->equal_time,

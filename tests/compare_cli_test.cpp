@@ -159,7 +159,7 @@ TEST_F(CompareCli, DiffWritesAFalseColorPngWithItsBar) {
   EXPECT_NE(output.find("scale 0 .. 0.35"), std::string::npos) << output;
   const TextureImage png = TextureImage::load(directory_.path() / "d.png", ColorEncoding::linear);
   ASSERT_EQ(png.width(), 8);
-  ASSERT_EQ(png.height(), 6 + color_bar_height(8));
+  ASSERT_EQ(png.height(), 6 + color_bar_height(8, true));  // with the caption "|Y_A - Y_B|"
   const int top = png.height() - 1;  // TextureImage rows count from the bottom
   for (int c = 0; c < 3; ++c) {
     EXPECT_NEAR(png.texel(0, top)[c], color_map_viridis(0)[c], 1.0 / 255);

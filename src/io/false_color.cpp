@@ -6,7 +6,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "io/pixel_font.h"
 #include "io/text.h"
 #include "math/srgb.h"
 
@@ -37,9 +36,11 @@ constexpr int kTickRows = 3;
 constexpr int kLabelGap = 2;
 constexpr int kBottomMargin = 3;
 
-int label_scale(int width) {
-  return width >= 160 ? 2 : 1;
+// The labels' DejaVu Sans height in pixels: 14 from 160 columns, 10 below (a smaller picture).
+double label_height(int width) {
+  return width >= 160 ? 14 : 10;
 }
+constexpr double kSmallestText = 5;  // a label shrunk below this is left out
 
 }  // namespace
 
@@ -80,8 +81,9 @@ Color color_map(ColorMap map, double t) {
   return color_map_viridis(t);
 }
 
-int color_bar_height(int width) {
-  return kBarGap + kBarRows + kTickRows + kLabelGap + kPixelFontHeight * label_scale(width) + kBottomMargin;
+int color_bar_height(int width, bool caption) {
+  const int text = static_cast<int>(std::ceil(label_height(width)));
+  return kBarGap + kBarRows + kTickRows + kLabelGap + text + kBottomMargin + (caption ? text + kLabelGap : 0);
 }
 
 std::string format_scale_value(double value) {
@@ -99,7 +101,7 @@ double FalseColorScale::position(double value) const {
 }
 
 FalseColorScale false_color_scale(double maximum, const std::vector<double>& range, bool logarithmic,
-                                  int contours, const std::string& unit) {
+                                  int contours, const std::string& unit, const std::string& quantity) {
   FalseColorScale scale;
   scale.high = maximum > 0 ? maximum : 1;
   scale.low = logarithmic ? scale.high / 1000 : 0;
@@ -110,6 +112,7 @@ FalseColorScale false_color_scale(double maximum, const std::vector<double>& ran
   scale.logarithmic = logarithmic;
   scale.contours = contours;
   scale.unit = unit;
+  scale.quantity = quantity;
   return scale;
 }
 
@@ -137,7 +140,8 @@ Film false_color_image(const std::vector<double>& values, int width, int height,
     throw std::invalid_argument(fmt::format("a logarithmic false-color scale needs low > 0, got {}", low));
   if (range.contours < 0 || range.contours > 256)
     throw std::invalid_argument(fmt::format("false-color contours must be 0 to 256, got {}", range.contours));
-  const int band = color_bar_height(width);
+  const bool caption = !range.quantity.empty();
+  const int band = color_bar_height(width, caption);
   Film film(width, height + band);
   const Color no_data = display_to_linear(Color(kNoDataGrey));
   const int steps = range.contours > 1 ? range.contours : 0;
@@ -164,46 +168,60 @@ Film false_color_image(const std::vector<double>& values, int width, int height,
     const Color color = display_to_linear(color_map(map, t));
     for (int y = bar_top; y < bar_top + kBarRows; ++y) film.at(x, y) = color;
   }
-  // Ticks and labels: low (left), high (right), middle (centre) while they do not overlap.
+  // Ticks and labels: low (left), high (right), middle (centre) while they do not overlap, in
+  // DejaVu Sans; all of them smaller when the low one alone is wider than the image, none when that
+  // would make them unreadable — a label is drawn whole or not at all.
   const Color white(1.0);
-  const int scale = label_scale(width);
+  const int tick_width = width >= 160 ? 2 : 1;
   const int tick_top = bar_top + kBarRows, label_top = tick_top + kTickRows + kLabelGap;
-  const std::string suffix = range.unit.empty() ? "" : " " + range.unit;
+  // With a caption ("illuminance (lx)") the numbers go bare; without one each carries the unit.
+  const std::string suffix = caption || range.unit.empty() ? "" : " " + range.unit;
   const std::string low_label = format_scale_value(low) + suffix,
                     high_label = format_scale_value(high) + suffix;
   const std::string middle_label =
       format_scale_value(range.logarithmic ? std::sqrt(low * high) : low + (high - low) / 2) + suffix;
-  // With a unit, TrueType text of the band's label rows and margin (its descenders there).
-  const double text_height = (kPixelFontHeight * scale + kBottomMargin) * 1.3;
-  const auto width_of = [&](const std::string& label) {
-    return range.unit.empty() ? pixel_text_width(label, scale) : text_width(label, text_height);
+  const double full_height = label_height(width);
+  const auto fitted = [&](const std::string& text) {  // the height at which text fits the width
+    const int text_wide = text_width(text, full_height);
+    return text_wide <= width ? full_height : full_height * width / text_wide;
   };
+  const double height_of_labels = fitted(low_label);
   const auto draw_label = [&](int x, const std::string& label) {
-    if (range.unit.empty())
-      draw_pixel_text(film, x, label_top, label, white, scale);
-    else
-      draw_text(film, x, label_top - static_cast<int>(0.2 * text_height), label, white, text_height);
+    // draw_text's box top is the ascender line: a fifth of the height above the digits' tops.
+    draw_text(film, x, label_top - static_cast<int>(0.2 * height_of_labels), label, white, height_of_labels);
   };
-  const int low_width = width_of(low_label), high_width = width_of(high_label);
-  const int middle_width = width_of(middle_label);
-  const int space = kPixelFontAdvance * scale;  // at least one character's advance between labels
   const auto tick = [&](int x) {
     for (int y = tick_top; y < tick_top + kTickRows; ++y)
-      for (int dx = 0; dx < scale; ++dx)
+      for (int dx = 0; dx < tick_width; ++dx)
         if (x + dx >= 0 && x + dx < width) film.at(x + dx, y) = white;
   };
   tick(0);
   for (int k = 1; k < steps; ++k) tick(static_cast<int>(std::lround(double(k) / steps * (width - 1))));
-  draw_label(0, low_label);
-  const bool high_fits = low_width + space + high_width <= width;
-  if (high_fits) {
-    tick(width - scale);
-    draw_label(width - high_width, high_label);
+  if (height_of_labels >= kSmallestText) {
+    const int low_width = text_width(low_label, height_of_labels),
+              high_width = text_width(high_label, height_of_labels),
+              middle_width = text_width(middle_label, height_of_labels);
+    const int space = text_width("  ", height_of_labels);  // between two labels
+    draw_label(0, low_label);
+    const bool high_fits = low_width + space + high_width <= width;
+    if (high_fits) {
+      tick(width - tick_width);
+      draw_label(width - high_width, high_label);
+    }
+    const int middle_x = (width - middle_width) / 2;
+    if (high_fits && middle_x >= low_width + space && middle_x + middle_width + space <= width - high_width) {
+      tick(width / 2 - tick_width / 2);
+      draw_label(middle_x, middle_label);
+    }
   }
-  const int middle_x = (width - middle_width) / 2;
-  if (high_fits && middle_x >= low_width + space && middle_x + middle_width + space <= width - high_width) {
-    tick(width / 2 - scale / 2);
-    draw_label(middle_x, middle_label);
+  // The caption: what the colours measure, and in what unit.
+  if (caption) {
+    const std::string text = range.unit.empty() ? range.quantity : range.quantity + " (" + range.unit + ")";
+    const double height = fitted(text);
+    if (height >= kSmallestText)
+      draw_text(film, (width - text_width(text, height)) / 2,
+                label_top + static_cast<int>(std::ceil(full_height)) + kLabelGap - static_cast<int>(0.2 * height),
+                text, white, height);
   }
   return film;
 }

@@ -17,11 +17,13 @@
 //                       width: column x shows t = x / (W − 1) (so column 0 is the map at `low`
 //                       and column W − 1 at `high`); below it white tick marks (3 rows) at the
 //                       left edge, the centre and the right edge, and under them the labels
-//                       low, (low + high)/2 and high in the 3×5 pixel font (io/pixel_font.h), 1
-//                       font pixel a glyph pixel below 160 columns, 2 from 160. The low label is
-//                       left-aligned, the high one right-aligned, the middle one centred; a label
-//                       that would overlap another (narrow images) is left out: the middle first,
-//                       then the high one.
+//                       low, (low + high)/2 and high in DejaVu Sans (io/text.h), 10 pixels high
+//                       below 160 columns, 14 from 160. The low label is left-aligned, the high
+//                       one right-aligned, the middle one centred; a label that would overlap
+//                       another (narrow images) is left out: the middle first, then the high one.
+//                       Labels are drawn whole or not at all: all of them smaller when the low one
+//                       is wider than the image, none below 5 pixels. With a quantity, a caption
+//                       line beneath: "illuminance (lx)", and the labels are bare numbers.
 // The Film holds LINEAR RGB like every Film: written with the default DisplaySettings (sRGB,
 // clamp, exposure 0) the PNG's bytes are the map's display colors (to 8-bit rounding).
 #pragma once
@@ -43,8 +45,9 @@ Color color_map(ColorMap map, double t);
 // The display color of masked-out / missing values.
 inline constexpr double kNoDataGrey = 0.25;
 
-// Rows below the picture taken by the color bar and its labels, for an image `width` wide.
-int color_bar_height(int width);
+// Rows below the picture taken by the color bar and its labels, for an image `width` wide, with
+// the caption's line (FalseColorScale::quantity) or without it.
+int color_bar_height(int width, bool caption = false);
 
 // A number as the color bar labels it: "0", or 3 significant digits in the shortest of fixed
 // and exponent notation ("0.0123", "12.5", "1.23e-05", "-4.5e+06").
@@ -59,18 +62,19 @@ struct FalseColorScale {
   double low = 0, high = 1;
   bool logarithmic = false;
   int contours = 0;  // 0 or 1: none
-  // The quantity's unit ("lx", "cd/m²"): when given, the bar's labels carry it ("0 lx", "600 lx")
-  // in DejaVu Sans (io/text.h) instead of the 3×5 pixel font, in the same band.
+  // The quantity's unit ("lx", "cd/m²"): the bar's labels carry it ("0 lx", "600 lx") unless
+  // there is a quantity, whose caption line says both: "illuminance (lx)".
   std::string unit;
+  std::string quantity;  // "illuminance", "|Y − Y_ref|"; "" : no caption
   // Where value falls on the scale, t in [0, 1] (values outside take the ends; NaN stays NaN).
   double position(double value) const;
 };
 
 // The scale of a false-colour picture (Radiance's falsecolor): `range` {LO, HI} when given (two
 // values), else 0 to `maximum` (1 when it is not positive) — logarithmic: three decades below it,
-// as falsecolor -log 3 — with `contours` steps and the unit's name on the bar.
+// as falsecolor -log 3 — with `contours` steps and the quantity and unit under the bar.
 FalseColorScale false_color_scale(double maximum, const std::vector<double>& range, bool logarithmic,
-                                  int contours, const std::string& unit);
+                                  int contours, const std::string& unit, const std::string& quantity = "");
 
 // values: width·height numbers, row by row, top row first. The scale runs from low (t = 0) to
 // high (t = 1); values outside it take the end colors. Throws std::invalid_argument when the

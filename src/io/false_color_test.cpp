@@ -8,7 +8,6 @@
 #include "camera/tone_map.h"
 #include "io/image_reader.h"
 #include "io/image_writer.h"
-#include "io/pixel_font.h"
 #include "scratch_directory.h"
 
 namespace candela {
@@ -52,8 +51,6 @@ TEST(FalseColor, FormatsScaleValuesCompactly) {
   EXPECT_EQ(format_scale_value(-2), "-2");
   EXPECT_EQ(format_scale_value(1.234e-5), "1.23e-05");
   EXPECT_EQ(format_scale_value(12345), "1.23e+04");
-  for (const double value : {0.0123, 1.234e-5, -12345.0, 3.0})
-    for (const char c : format_scale_value(value)) EXPECT_NE(pixel_font_glyph(c), nullptr) << c;
 }
 
 TEST(FalseColor, ImageHasTheBarBelowWithTheMapsEndColors) {
@@ -75,10 +72,10 @@ TEST(FalseColor, ImageHasTheBarBelowWithTheMapsEndColors) {
   expect_color_near(display(film.at(0, bar_row)), color_map_viridis(0), 1e-9);
   expect_color_near(display(film.at(width - 1, bar_row)), color_map_viridis(1), 1e-9);
   EXPECT_EQ(film.at(width / 2, height), Color(0));
-  // Labels are drawn in white somewhere under the bar.
+  // Labels are drawn in white (anti-aliased DejaVu Sans) somewhere under the bar.
   int white = 0;
   for (int y = height + 3 + 16; y < film.height(); ++y)
-    for (int x = 0; x < width; ++x) white += film.at(x, y) == Color(1);
+    for (int x = 0; x < width; ++x) white += film.at(x, y).g > 0.5;
   EXPECT_GT(white, 30);
 }
 
@@ -151,18 +148,46 @@ TEST(FalseColor, RefusesBadArguments) {
   EXPECT_EQ(tiny.height(), 1 + color_bar_height(1));
 }
 
-TEST(PixelFont, HasTheGlyphsNumbersNeed) {
-  for (const char c : std::string("0123456789.-+e")) EXPECT_NE(pixel_font_glyph(c), nullptr) << c;
-  EXPECT_EQ(pixel_font_glyph('x'), nullptr);
-  EXPECT_EQ(pixel_text_width("12", 1), 7);
-  EXPECT_EQ(pixel_text_width("", 2), 0);
-  Film film(8, 6);
-  draw_pixel_text(film, 0, 0, "1", Color(1), 1);
-  // '1' is {2, 6, 2, 2, 7}: the middle column lit in every row, the bottom row full.
-  for (int y = 0; y < 5; ++y) EXPECT_EQ(film.at(1, y), Color(1)) << y;
-  EXPECT_EQ(film.at(0, 4), Color(1));
-  EXPECT_EQ(film.at(0, 0), Color(0));
-  draw_pixel_text(film, 6, 4, "8", Color(1), 2);  // clipped at the edges, no crash
+// Issue 24: the bar's labels are DejaVu Sans, whole or not at all (smaller when the low label is
+// wider than the picture, left out below 5 pixels), and a quantity gets a caption line with the
+// unit: "illuminance (lx)", the labels then bare numbers.
+TEST(FalseColor, LabelsAreWholeOrAbsentAndTheCaptionNamesTheQuantityAndUnit) {
+  const auto white_columns = [](const Film& film, int row0, int row1) {
+    std::vector<int> columns;
+    for (int x = 0; x < film.width(); ++x)
+      for (int y = row0; y < row1; ++y)
+        if (film.at(x, y).r > 0.5 && film.at(x, y).g > 0.5 && film.at(x, y).b > 0.5) {
+          columns.push_back(x);
+          break;
+        }
+    return columns;
+  };
+  constexpr int width = 300, height = 4;
+  const std::vector<double> values(std::size_t(width) * height, 0.5);
+  const FalseColorScale plain = false_color_scale(600, {}, false, 0, "lx");
+  const FalseColorScale captioned = false_color_scale(600, {}, false, 0, "lx", "illuminance");
+  const Film without = false_color_image(values, width, height, plain, ColorMap::viridis);
+  const Film with = false_color_image(values, width, height, captioned, ColorMap::viridis);
+  EXPECT_EQ(without.height(), height + color_bar_height(width, false));
+  EXPECT_EQ(with.height(), height + color_bar_height(width, true));
+  EXPECT_GT(color_bar_height(width, true), color_bar_height(width, false) + 10);
+  // Below the ticks: "0 lx" at the left, "600 lx" at the right, "300 lx" in the middle.
+  const int labels_top = height + 3 + 16 + 3;
+  const std::vector<int> labels = white_columns(without, labels_top, without.height());
+  ASSERT_FALSE(labels.empty());
+  EXPECT_LT(labels.front(), 3);
+  EXPECT_GT(labels.back(), width - 4);
+  // The caption's line: centred text; the bare numbers above it are narrower than with "lx".
+  const int caption_top = height + color_bar_height(width, false) - 3;
+  const std::vector<int> caption = white_columns(with, caption_top, with.height());
+  ASSERT_FALSE(caption.empty());
+  EXPECT_NEAR((caption.front() + caption.back()) / 2.0, width / 2.0, 4);
+  EXPECT_GT(caption.front(), 60);  // "illuminance (lx)" is about 110 pixels at 14
+  // Too narrow for even a shrunk label: none is drawn, rather than a part of one.
+  const FalseColorScale tiny_scale = false_color_scale(1.234e-5, {1.234e-5, 2e-5}, false, 0, "lx");
+  const Film narrow = false_color_image({1.5e-5, 1.5e-5, 1.5e-5, 1.5e-5}, 4, 1, tiny_scale, ColorMap::viridis);
+  const std::vector<int> drawn = white_columns(narrow, 1 + 3 + 16 + 3, narrow.height());
+  EXPECT_TRUE(drawn.empty()) << drawn.size();
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 // Text drawn into images with a TrueType font — DejaVu Sans (Debian's fonts-dejavu-core, found at
-// configure time) rasterized by stb_truetype (libstb-dev, as stb_image): the axis labels and units
-// of the validation plots (validate/line_plot.h) and the unit of a false-colour legend
-// (io/false_color.h), where the 3×5 pixel font (io/pixel_font.h) has only digits.
+// configure time) rasterized by stb_truetype (libstb-dev, as stb_image): every number, title,
+// axis label and legend of the validation plots (validate/line_plot.h) and of the false-colour
+// scales (io/false_color.h).
 #pragma once
 
 #include <string_view>

@@ -107,7 +107,7 @@ CrossMethodEntry render_entry(Scene& scene, const CrossMethodOptions& options, c
   request.region = {0, 0, width, height};
   request.quiet = options.quiet;
   std::optional<ConvergenceLog> log;
-  if (reference) log.emplace(label, *reference);
+  if (reference) log.emplace(label, *reference, options.convergence_mask);
   Stopwatch timer;
   try {
     const std::unique_ptr<Method> method = create_method(*registered, scene, settings);
@@ -369,6 +369,7 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
   std::vector<std::vector<double>> differences;
   std::vector<double> all;
   report.luminance_efficacy = options.luminance_efficacy;
+  report.convergence_masked = !options.convergence_mask.empty();
   const bool photometric = options.luminance_efficacy > 0;
   const Film reference_measured = photometric
                                       ? luminance_film(report.reference.image, options.luminance_efficacy)
@@ -393,7 +394,7 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
     const Film picture =
         false_color_image(differences[i], width, height,
                           false_color_scale(report.difference_scale, {0.0, report.difference_scale}, false, 0,
-                                            photometric ? "cd/m²" : ""),
+                                            photometric ? "cd/m²" : "", "|Y − Y_ref|"),
                           ColorMap::viridis);
     write_image(picture, (directory / (report.entries[i].key + "-diff.png")).string(), DisplaySettings{});
   }
@@ -425,7 +426,7 @@ std::string convergence_chart(const CrossMethodReport& report) {
                       false, true});
   }
   ChartAxes axes;
-  axes.title = report.scene_name + ": error against time";
+  axes.title = report.scene_name + ": error against time" + (report.convergence_masked ? " (masked)" : "");
   axes.x_label = "time to the image (s)";
   axes.y_label = "RMSE against the reference";
   return log_log_chart_svg(series, axes);

@@ -58,6 +58,9 @@ struct CrossMethodOptions {
   // Issue 23: > 0 measures the errors in luminance, cd/m² (validate/image_comparison.h's
   // luminance_film at this efficacy, lm/W); 0: on the linear RGB the methods render.
   double luminance_efficacy = 0;
+  // Issue 24: the pixels the convergence chart measures (image_comparison.h's mask: the scene's
+  // width·height bytes, row by row from the top); empty: every pixel.
+  std::vector<uint8_t> convergence_mask;
   // Told one line per step ("rendering radiosity"); may be empty.
   std::function<void(const std::string&)> log;
 };
@@ -91,6 +94,7 @@ struct CrossMethodReport {
   std::vector<CrossMethodEntry> entries;  // the methods in the order asked, then the equal-time runs
   double difference_scale = 1;            // the top of every difference picture's scale
   double luminance_efficacy = 0;          // > 0: errors and differences in cd/m² (the options')
+  bool convergence_masked = false;        // the chart measures the pixels of a mask
   // Each method's object of the scene file ("whitted", "radiosity", ...) or null (defaults).
   nlohmann::json settings = nlohmann::json::object();
   std::vector<std::string> overrides;

@@ -4,19 +4,43 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "camera/tone_map.h"
 #include "io/image_writer.h"
-#include "io/pixel_font.h"
 #include "io/text.h"
 
 namespace candela {
 
 namespace {
 
-constexpr int kScale = 2;  // font pixels per glyph pixel
-constexpr int kGlyphAdvance = kPixelFontAdvance * kScale;
 constexpr double kTextHeight = 15;  // pixels of a title, an axis label or a curve's name
+constexpr double kTickHeight = 12;  // pixels of a tick's number
+constexpr int kLineSpacing = 19;    // between the lines of a title
+
+// Text cut into lines no wider than `width` at its spaces (a word wider than that alone on its
+// line): a title longer than its panel is wrapped, never cut.
+std::vector<std::string> wrapped(const std::string& text, int width, double height) {
+  std::vector<std::string> lines;
+  std::string line;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t space = text.find(' ', start);
+    const std::string word = text.substr(start, space == std::string::npos ? std::string::npos : space - start);
+    const std::string longer = line.empty() ? word : line + " " + word;
+    if (!line.empty() && text_width(longer, height) > width) {
+      lines.push_back(line);
+      line = word;
+    } else {
+      line = longer;
+    }
+    if (space == std::string::npos) break;
+    start = space + 1;
+  }
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
 
 class Canvas {
  public:
@@ -44,16 +68,6 @@ class Canvas {
         for (int ox = lo; ox <= hi; ++ox) set(x + ox, y + oy, c);
     }
     run += length;
-  }
-  void text(int x, int y, const std::string& s, const Color& c) {  // top-left corner at (x, y)
-    for (const char ch : s) {
-      if (const PixelGlyph* glyph = pixel_font_glyph(ch))
-        for (int row = 0; row < kPixelFontHeight; ++row)
-          for (int col = 0; col < kPixelFontWidth; ++col)
-            if ((*glyph)[row] & (4 >> col))
-              fill(x + col * kScale, y + row * kScale, x + (col + 1) * kScale, y + (row + 1) * kScale, c);
-      x += kGlyphAdvance;
-    }
   }
   int clip_x0 = 0, clip_y0 = 0, clip_x1 = 0, clip_y1 = 0;
 
@@ -89,8 +103,12 @@ Film draw_line_plot(const std::vector<PlotPanel>& panels, int panel_width, int p
   constexpr int right = 12;
   for (int p = 0; p < static_cast<int>(panels.size()); ++p) {
     const PlotPanel& panel = panels[p];
-    // Room for the labels only where there are some (the unlabelled plots keep their layout).
-    const int left = 64 + (panel.y_label.empty() ? 0 : 20), top = 12 + (panel.title.empty() ? 0 : 20),
+    // Room for the labels only where there are some (the unlabelled plots keep their layout); a
+    // title wider than the panel takes as many lines as it needs.
+    const std::vector<std::string> title_lines =
+        panel.title.empty() ? std::vector<std::string>() : wrapped(panel.title, panel_width - 12, kTextHeight);
+    const int left = 64 + (panel.y_label.empty() ? 0 : 20),
+              top = 12 + kLineSpacing * static_cast<int>(title_lines.size()),
               bottom = 28 + (panel.x_label.empty() ? 0 : 20);
     double y_min = panel.y_min, y_max = panel.y_max;
     if (!(y_max > y_min)) {
@@ -121,7 +139,7 @@ Film draw_line_plot(const std::vector<PlotPanel>& panels, int panel_width, int p
       canvas.fill(ix, y0, ix + 1, y1, grid);
       canvas.fill(ix, y1, ix + 1, y1 + 5, black);
       const std::string label = tick_label(x, x_step);
-      canvas.text(ix - static_cast<int>(label.size()) * kGlyphAdvance / 2, y1 + 8, label, black);
+      draw_text(film, ix - text_width(label, kTickHeight) / 2, y1 + 7, label, black, kTickHeight);
     }
     const double y_step = panel.y_tick > 0 ? panel.y_tick : nice_step(y_max - y_min);
     for (double y = std::ceil(y_min / y_step - 1e-9) * y_step; y <= y_max + 1e-9 * y_step; y += y_step) {
@@ -129,7 +147,7 @@ Film draw_line_plot(const std::vector<PlotPanel>& panels, int panel_width, int p
       canvas.fill(x0, iy, x1, iy + 1, grid);
       canvas.fill(x0 - 5, iy, x0, iy + 1, black);
       const std::string label = tick_label(y, y_step);
-      canvas.text(x0 - 8 - static_cast<int>(label.size()) * kGlyphAdvance, iy - 5, label, black);
+      draw_text(film, x0 - 8 - text_width(label, kTickHeight), iy - 7, label, black, kTickHeight);
     }
     canvas.fill(x0, y0, x0 + 1, y1 + 1, black);  // axes
     canvas.fill(x0, y1, x1, y1 + 1, black);
@@ -157,15 +175,22 @@ Film draw_line_plot(const std::vector<PlotPanel>& panels, int panel_width, int p
     canvas.clip_x1 = film.width();
     canvas.clip_y0 = 0;
     canvas.clip_y1 = film.height();
-    if (!panel.title.empty())
-      draw_text(film, (x0 + x1 - text_width(panel.title, kTextHeight)) / 2, 6, panel.title, black,
-                kTextHeight);
+    for (std::size_t line = 0; line < title_lines.size(); ++line) {
+      const int centre = std::clamp((x0 + x1) / 2, p * panel_width + 6 + text_width(title_lines[line], kTextHeight) / 2,
+                                    (p + 1) * panel_width - 6 - text_width(title_lines[line], kTextHeight) / 2);
+      draw_text(film, centre - text_width(title_lines[line], kTextHeight) / 2,
+                6 + kLineSpacing * static_cast<int>(line), title_lines[line], black, kTextHeight);
+    }
     if (!panel.x_label.empty())
       draw_text(film, (x0 + x1 - text_width(panel.x_label, kTextHeight)) / 2, y1 + 26, panel.x_label, black,
                 kTextHeight);
-    if (!panel.y_label.empty())
-      draw_text(film, p * panel_width + 4, (y0 + y1 + text_width(panel.y_label, kTextHeight)) / 2,
-                panel.y_label, black, kTextHeight, TextDirection::upward);
+    if (!panel.y_label.empty()) {
+      // Along the axis; smaller when longer than the axis, never cut.
+      const double height =
+          std::min(kTextHeight, kTextHeight * (y1 - y0 + 40) / std::max(1, text_width(panel.y_label, kTextHeight)));
+      draw_text(film, p * panel_width + 4, std::min(panel_height - 2, (y0 + y1 + text_width(panel.y_label, height)) / 2),
+                panel.y_label, black, height, TextDirection::upward);
+    }
     // Legend: a box per curve, top right.
     if (p == 0) {
       canvas.clip_x0 = 0;

@@ -1,9 +1,8 @@
 // A small line-plot rasterizer for the validation cases (SPEC §13): one or more panels side by side,
-// each with axes, tick marks labelled with numbers (the 3×5 pixel font of io/pixel_font.h),
-// one colored polyline per curve and a legend of colored boxes; a panel's title, axis labels and
-// the curves' names, when given, in DejaVu Sans (io/text.h) — otherwise the legend's meaning is
-// told where the plot is shown (docs/validation/). It draws into a Film (linear RGB in [0, 1])
-// that io/image_writer.h writes as PNG.
+// each with axes, tick marks labelled with numbers, one colored polyline per curve and a legend of
+// colored boxes; every text — the numbers, a panel's title (wrapped over several lines when wider
+// than the panel), axis labels and the curves' names — in DejaVu Sans (io/text.h). It draws into a
+// Film (linear RGB in [0, 1]) that io/image_writer.h writes as PNG.
 #pragma once
 
 #include <string>
