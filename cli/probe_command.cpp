@@ -175,8 +175,8 @@ int run_probe(ProbeOptions& options) {
         values[std::size_t(nv - 1 - j) * nu + i] = value;
         if (std::isfinite(value)) high = std::max(high, value);
       }
-    const FalseColorScale scale =
-        false_color_scale(high, options.image_scale, options.image_log, options.contours, "lx", "illuminance");
+    const FalseColorScale scale = false_color_scale(high, options.image_scale, options.image_log,
+                                                    options.contours, "lx", "illuminance");
     // Each point a square of pixels, the picture at least 240 wide (a 20×20 grid: 12×12 squares), so
     // that the scale's labels and caption fit beneath it.
     const int block = std::clamp((240 + nu - 1) / nu, 1, 32);

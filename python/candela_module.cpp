@@ -26,6 +26,7 @@
 
 #include "camera/tone_map.h"
 #include "integrators/antialiasing_support.h"
+#include "integrators/meshless_method.h"
 #include "integrators/method_registry.h"
 #include "integrators/probe.h"
 #include "integrators/scene_loading.h"
@@ -290,6 +291,41 @@ py::dict radiosity_solution(Scene& scene, int threads) {
   return out;
 }
 
+// The meshless solution (seed 002): its sites — points with normals on the surfaces — and at each
+// the coefficients the display interpolates with the basis: λ_i (reflected radiosity, η included),
+// η_i (the direct part), the effective area A_i and the object it lies on.
+py::dict meshless_solution(Scene& scene, int threads) {
+  if (threads < 0) throw py::value_error("threads must be >= 0 (0: all cores)");
+  create_method(*find_method("meshless"), scene);  // refuses what the method cannot do, as render
+  const MeshlessSettings settings = read_meshless_settings(scene.plugin_settings.node("meshless"));
+  std::optional<tbb::global_control> thread_limit;
+  if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  const MeshlessSolution solution =
+      run_interruptibly<MeshlessSolution>([&] { return solve_meshless(scene, settings); });
+  const std::vector<Site>& sites = solution.sites.sites;
+  std::vector<Color> positions, normals;
+  for (const Site& site : sites) {
+    positions.push_back(Color(site.position.x, site.position.y, site.position.z));
+    normals.push_back(Color(site.normal.x, site.normal.y, site.normal.z));
+  }
+  py::array_t<uint32_t> objects(py::ssize_t(sites.size()));
+  py::array_t<double> areas(py::ssize_t(sites.size()));
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    objects.mutable_at(py::ssize_t(i)) = solution.sites.object[i];
+    areas.mutable_at(py::ssize_t(i)) = solution.areas[i];
+  }
+  py::dict out;
+  out["positions"] = rows_of(positions);
+  out["normals"] = rows_of(normals);
+  out["radiosity"] = rows_of(solution.transfer.lambda);
+  out["direct"] = rows_of(solution.eta);
+  out["area"] = areas;
+  out["object"] = objects;
+  out["iterations"] = solution.transfer.iterations;
+  out["converged"] = solution.transfer.converged;
+  return out;
+}
+
 }  // namespace
 }  // namespace candela
 
@@ -297,7 +333,7 @@ PYBIND11_MODULE(candela, module) {
   using namespace candela;
   module.doc() =
       "Candela's renderer from Python: load_file, render (NumPy arrays, linear RGB), write_image, "
-      "read_image, compare, probe, radiosity_solution.";
+      "read_image, compare, probe, radiosity_solution, meshless_solution.";
   static py::exception<InputError> input_error(module, "InputError", PyExc_ValueError);
   input_error_type = input_error.ptr();
   py::register_exception_translator([](std::exception_ptr error) {
@@ -352,6 +388,10 @@ PYBIND11_MODULE(candela, module) {
       "radiosity_solution", &radiosity_solution, py::arg("scene"), py::kw_only(), py::arg("threads") = 0,
       "Classic radiosity's solution: {'vertices': (n, 3), 'faces': (m, 3) uint32, 'radiosity': (n, 3)}, "
       "the element mesh with each vertex's radiosity B, as --export-solution writes it.");
+  module.def("meshless_solution", &meshless_solution, py::arg("scene"), py::kw_only(), py::arg("threads") = 0,
+             "Meshless radiosity's solution at its sites: {'positions': (n, 3), 'normals': (n, 3), "
+             "'radiosity': (n, 3) λ, 'direct': (n, 3) η, 'area': (n,) effective areas, 'object': (n,) "
+             "uint32, 'iterations', 'converged'}.");
   module.def("probe", &probe_points, py::arg("scene"), py::arg("points"), py::arg("normals"), py::kw_only(),
              py::arg("method") = "path", py::arg("samples") = 256, py::arg("seed") = 0,
              py::arg("threads") = 0,

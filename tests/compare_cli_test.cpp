@@ -160,7 +160,7 @@ TEST_F(CompareCli, DiffWritesAFalseColorPngWithItsBar) {
   const TextureImage png = TextureImage::load(directory_.path() / "d.png", ColorEncoding::linear);
   ASSERT_EQ(png.width(), 8);
   ASSERT_EQ(png.height(), 6 + color_bar_height(8, true));  // with the caption "|Y_A - Y_B|"
-  const int top = png.height() - 1;  // TextureImage rows count from the bottom
+  const int top = png.height() - 1;                        // TextureImage rows count from the bottom
   for (int c = 0; c < 3; ++c) {
     EXPECT_NEAR(png.texel(0, top)[c], color_map_viridis(0)[c], 1.0 / 255);
     EXPECT_NEAR(png.texel(7, top)[c], color_map_viridis(1)[c], 1.0 / 255);

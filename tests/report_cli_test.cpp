@@ -160,7 +160,8 @@ TEST_F(ReportCli, WritesThePageTheJsonAndEveryImage) {
   std::string line;
   std::getline(csv, line);
   EXPECT_EQ(line, "method,unit,work,seconds,image_seconds,time_to_image,rmse,relative_mse,unshot_fraction");
-  while (std::getline(csv, line)) units[line.substr(0, line.find(','))].push_back(line.substr(line.find(',') + 1));
+  while (std::getline(csv, line))
+    units[line.substr(0, line.find(','))].push_back(line.substr(line.find(',') + 1));
   ASSERT_EQ(units["whitted"].size(), 1u);
   EXPECT_EQ(units["whitted"][0].rfind("final,", 0), 0u);
   ASSERT_EQ(units["path"].size(), 5u);  // 4 passes and the image

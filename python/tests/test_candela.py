@@ -145,7 +145,7 @@ def test_compare_gives_the_command_lines_metrics(tmp_path):
     assert identical["rmse"] == 0 and identical["psnr_db"] == float("inf")
 
 
-def test_probe_matches_an_emitting_square_and_the_radiosity_solution_has_its_mesh(tmp_path):
+def test_probe_matches_an_emitting_square_and_the_solutions_have_their_mesh_and_sites(tmp_path):
     square = tmp_path / "lamp.json"
     square.write_text(json.dumps({
         "format": "candela/1",
@@ -170,3 +170,13 @@ def test_probe_matches_an_emitting_square_and_the_radiosity_solution_has_its_mes
     assert faces.max() < len(vertices)
     # Alone in the scene the square emits and receives nothing: B = E = 3 at every vertex, on y = 1.
     assert np.allclose(radiosity, 3) and np.allclose(vertices[:, 1], 1)
+    # The meshless solution at its sites: on the square, their effective areas summing to its 4 m²;
+    # alone, it receives nothing, so λ (reflected light) and η (its direct part) are 0.
+    sites = candela.meshless_solution(scene)
+    count = len(sites["area"])
+    assert count > 100 and sites["positions"].shape == (count, 3) and sites["normals"].shape == (count, 3)
+    assert sites["radiosity"].shape == (count, 3) and sites["direct"].shape == (count, 3)
+    assert np.allclose(sites["positions"][:, 1], 1) and np.allclose(np.abs(sites["normals"][:, 1]), 1)
+    assert sites["area"].sum() == pytest.approx(4, rel=1e-9)
+    assert np.all(sites["object"] == 0) and sites["converged"]
+    assert np.allclose(sites["radiosity"], 0) and np.allclose(sites["direct"], 0)

@@ -219,9 +219,10 @@ Film false_color_image(const std::vector<double>& values, int width, int height,
     const std::string text = range.unit.empty() ? range.quantity : range.quantity + " (" + range.unit + ")";
     const double height = fitted(text);
     if (height >= kSmallestText)
-      draw_text(film, (width - text_width(text, height)) / 2,
-                label_top + static_cast<int>(std::ceil(full_height)) + kLabelGap - static_cast<int>(0.2 * height),
-                text, white, height);
+      draw_text(
+          film, (width - text_width(text, height)) / 2,
+          label_top + static_cast<int>(std::ceil(full_height)) + kLabelGap - static_cast<int>(0.2 * height),
+          text, white, height);
   }
   return film;
 }

@@ -185,7 +185,8 @@ TEST(FalseColor, LabelsAreWholeOrAbsentAndTheCaptionNamesTheQuantityAndUnit) {
   EXPECT_GT(caption.front(), 60);  // "illuminance (lx)" is about 110 pixels at 14
   // Too narrow for even a shrunk label: none is drawn, rather than a part of one.
   const FalseColorScale tiny_scale = false_color_scale(1.234e-5, {1.234e-5, 2e-5}, false, 0, "lx");
-  const Film narrow = false_color_image({1.5e-5, 1.5e-5, 1.5e-5, 1.5e-5}, 4, 1, tiny_scale, ColorMap::viridis);
+  const Film narrow =
+      false_color_image({1.5e-5, 1.5e-5, 1.5e-5, 1.5e-5}, 4, 1, tiny_scale, ColorMap::viridis);
   const std::vector<int> drawn = white_columns(narrow, 1 + 3 + 16 + 3, narrow.height());
   EXPECT_TRUE(drawn.empty()) << drawn.size();
 }

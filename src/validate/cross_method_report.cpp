@@ -89,7 +89,8 @@ class SettingsGuard {
 // With a reference, the method's convergence against it is logged (CrossMethodEntry::convergence).
 CrossMethodEntry render_entry(Scene& scene, const CrossMethodOptions& options, const std::string& method_name,
                               const std::string& label, const std::string& key,
-                              const std::vector<std::string>& settings = {}, const Film* reference = nullptr) {
+                              const std::vector<std::string>& settings = {},
+                              const Film* reference = nullptr) {
   const MethodEntry* registered = find_method(method_name);
   if (!registered)
     throw std::invalid_argument("unknown method \"" + method_name + "\" (expected one of: " + method_names() +
@@ -354,10 +355,9 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
       if (other.method == "path") continue;
       const std::string other_method = other.method;
       const double seconds = std::max(other.seconds, 1e-6);
-      CrossMethodEntry entry =
-          render_entry(scene, options, "path", "path (equal time: " + other_method + ")",
-                       equal_time_key(other_method), {"spp=0", fmt::format("time={:.17g}", seconds)},
-                       &report.reference.image);
+      CrossMethodEntry entry = render_entry(
+          scene, options, "path", "path (equal time: " + other_method + ")", equal_time_key(other_method),
+          {"spp=0", fmt::format("time={:.17g}", seconds)}, &report.reference.image);
       entry.equal_time_to = other_method;
       entry.facts.emplace_back("time limit (s)", fmt::format("{:.3g}", seconds));
       report.entries.push_back(std::move(entry));
@@ -422,8 +422,11 @@ std::string convergence_chart(const CrossMethodReport& report) {
   for (const CrossMethodEntry& entry : report.entries) {
     if (entry.equal_time_to.empty() || entry.convergence.empty()) continue;
     const ConvergenceRow& last = entry.convergence.back();
-    series.push_back({"path at " + entry.equal_time_to + "'s time", path_color, {{last.time_to_image(), last.rmse}},
-                      false, true});
+    series.push_back({"path at " + entry.equal_time_to + "'s time",
+                      path_color,
+                      {{last.time_to_image(), last.rmse}},
+                      false,
+                      true});
   }
   ChartAxes axes;
   axes.title = report.scene_name + ": error against time" + (report.convergence_masked ? " (masked)" : "");

@@ -27,7 +27,8 @@ std::vector<std::string> wrapped(const std::string& text, int width, double heig
   std::size_t start = 0;
   while (start <= text.size()) {
     const std::size_t space = text.find(' ', start);
-    const std::string word = text.substr(start, space == std::string::npos ? std::string::npos : space - start);
+    const std::string word =
+        text.substr(start, space == std::string::npos ? std::string::npos : space - start);
     const std::string longer = line.empty() ? word : line + " " + word;
     if (!line.empty() && text_width(longer, height) > width) {
       lines.push_back(line);
@@ -105,8 +106,9 @@ Film draw_line_plot(const std::vector<PlotPanel>& panels, int panel_width, int p
     const PlotPanel& panel = panels[p];
     // Room for the labels only where there are some (the unlabelled plots keep their layout); a
     // title wider than the panel takes as many lines as it needs.
-    const std::vector<std::string> title_lines =
-        panel.title.empty() ? std::vector<std::string>() : wrapped(panel.title, panel_width - 12, kTextHeight);
+    const std::vector<std::string> title_lines = panel.title.empty()
+                                                     ? std::vector<std::string>()
+                                                     : wrapped(panel.title, panel_width - 12, kTextHeight);
     const int left = 64 + (panel.y_label.empty() ? 0 : 20),
               top = 12 + kLineSpacing * static_cast<int>(title_lines.size()),
               bottom = 28 + (panel.x_label.empty() ? 0 : 20);
@@ -176,8 +178,9 @@ Film draw_line_plot(const std::vector<PlotPanel>& panels, int panel_width, int p
     canvas.clip_y0 = 0;
     canvas.clip_y1 = film.height();
     for (std::size_t line = 0; line < title_lines.size(); ++line) {
-      const int centre = std::clamp((x0 + x1) / 2, p * panel_width + 6 + text_width(title_lines[line], kTextHeight) / 2,
-                                    (p + 1) * panel_width - 6 - text_width(title_lines[line], kTextHeight) / 2);
+      const int centre =
+          std::clamp((x0 + x1) / 2, p * panel_width + 6 + text_width(title_lines[line], kTextHeight) / 2,
+                     (p + 1) * panel_width - 6 - text_width(title_lines[line], kTextHeight) / 2);
       draw_text(film, centre - text_width(title_lines[line], kTextHeight) / 2,
                 6 + kLineSpacing * static_cast<int>(line), title_lines[line], black, kTextHeight);
     }
@@ -186,10 +189,11 @@ Film draw_line_plot(const std::vector<PlotPanel>& panels, int panel_width, int p
                 kTextHeight);
     if (!panel.y_label.empty()) {
       // Along the axis; smaller when longer than the axis, never cut.
-      const double height =
-          std::min(kTextHeight, kTextHeight * (y1 - y0 + 40) / std::max(1, text_width(panel.y_label, kTextHeight)));
-      draw_text(film, p * panel_width + 4, std::min(panel_height - 2, (y0 + y1 + text_width(panel.y_label, height)) / 2),
-                panel.y_label, black, height, TextDirection::upward);
+      const double height = std::min(
+          kTextHeight, kTextHeight * (y1 - y0 + 40) / std::max(1, text_width(panel.y_label, kTextHeight)));
+      draw_text(film, p * panel_width + 4,
+                std::min(panel_height - 2, (y0 + y1 + text_width(panel.y_label, height)) / 2), panel.y_label,
+                black, height, TextDirection::upward);
     }
     // Legend: a box per curve, top right.
     if (p == 0) {
