@@ -373,12 +373,13 @@ ConvergenceLog convergence_log_for(const RenderOptions& options, const MethodEnt
   };
   LinearImage reference = read(options.error_reference, "--error-reference");
   if (reference.srgb_decoded)
-    throw BadArgument("--error-reference " + options.error_reference +
-                      ": an 8-bit display image is no linear reference; use one render wrote as .exr, .pfm or .hdr");
+    throw BadArgument(
+        "--error-reference " + options.error_reference +
+        ": an 8-bit display image is no linear reference; use one render wrote as .exr, .pfm or .hdr");
   const auto check_size = [&](const Film& image, const std::string& what) {
     if (image.width() != region.width() || image.height() != region.height())
-      throw BadArgument(fmt::format("{} is {}x{}, the image rendered {}x{}", what, image.width(), image.height(),
-                                    region.width(), region.height()));
+      throw BadArgument(fmt::format("{} is {}x{}, the image rendered {}x{}", what, image.width(),
+                                    image.height(), region.width(), region.height()));
   };
   check_size(reference.film, "--error-reference " + options.error_reference);
   const double undo_exposure = std::exp2(-scene.display.exposure);
@@ -458,7 +459,8 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   if (!options.checkpoint.empty()) check_writable(options.checkpoint, "--checkpoint");
   const bool logs_error = !options.error_log.empty();
   if (logs_error != !options.error_reference.empty())
-    throw BadArgument("--error-log and --error-reference go together (the log measures against the reference)");
+    throw BadArgument(
+        "--error-log and --error-reference go together (the log measures against the reference)");
   if (!logs_error && (!options.error_mask.empty() || options.error_every))
     throw BadArgument("--error-mask and --error-every need --error-log and --error-reference");
   if (options.error_every && *options.error_every < 1) throw BadArgument("--error-every must be at least 1");
@@ -892,9 +894,10 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
                       "A linear reference image (.exr, .pfm, .hdr as render writes it) for --error-log");
   command->add_option("--error-mask", options->error_mask,
                       "With --error-log: measure only the pixels the mask image (white) includes");
-  command->add_option("--error-log", options->error_log,
-                      "Write the error against --error-reference (RMSE, relMSE) and the time at every step: "
-                      "path passes, radiosity shots or sweeps, meshless iterations, and the final image (CSV)");
+  command->add_option(
+      "--error-log", options->error_log,
+      "Write the error against --error-reference (RMSE, relMSE) and the time at every step: "
+      "path passes, radiosity shots or sweeps, meshless iterations, and the final image (CSV)");
   command->add_option("--error-every", options->error_every,
                       "With --error-log and progressive radiosity: shots between rows (default 50)");
   command->callback([options, &run]() {

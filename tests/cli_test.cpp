@@ -1475,7 +1475,8 @@ TEST_F(Cli, ErrorLogsFollowEveryProgressiveMethodAgainstTheReference) {
   const std::string log = "--error-reference reference.pfm --error-log ";
   const Film reference = read_pfm((directory_ / "reference.pfm").string());
 
-  ASSERT_EQ(run(render + "--method path --spp 8 -o path.pfm --stats path.json " + log + "path.csv", output), 0)
+  ASSERT_EQ(run(render + "--method path --spp 8 -o path.pfm --stats path.json " + log + "path.csv", output),
+            0)
       << output;
   std::vector<LogRow> rows = read_error_log(directory_ / "path.csv");
   ASSERT_EQ(rows.size(), 9u);
@@ -1500,7 +1501,8 @@ TEST_F(Cli, ErrorLogsFollowEveryProgressiveMethodAgainstTheReference) {
   EXPECT_EQ(stats["error_log"]["rows"], 9);
 
   // Progressive radiosity every 20 shots, the last shot too; the unshot fraction falls.
-  ASSERT_EQ(run(render + "--method radiosity --error-every 20 -o radiosity.pfm " + log + "shots.csv", output), 0)
+  ASSERT_EQ(run(render + "--method radiosity --error-every 20 -o radiosity.pfm " + log + "shots.csv", output),
+            0)
       << output;
   rows = read_error_log(directory_ / "shots.csv");
   ASSERT_GE(rows.size(), 4u);
@@ -1555,7 +1557,8 @@ TEST_F(Cli, ErrorLogsFollowEveryProgressiveMethodAgainstTheReference) {
                 output),
             2)
       << output;
-  EXPECT_NE(output.find("--error-reference reference.pfm is 24x24, the image rendered 20x24"), std::string::npos)
+  EXPECT_NE(output.find("--error-reference reference.pfm is 24x24, the image rendered 20x24"),
+            std::string::npos)
       << output;
   EXPECT_EQ(run(render + "--method path --spp 2 -o x.pfm " + log + "reference.pfm", output), 2) << output;
   EXPECT_EQ(file_count(), files);

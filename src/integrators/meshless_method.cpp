@@ -239,9 +239,9 @@ MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& sett
     each_iteration = [&](std::size_t iteration, const std::vector<Color>& lambda) {
       on_iteration(iteration, lighting.eta, lambda);
     };
-  lighting.transfer = solve_transfer(geometry.matrix, sites.albedo, lighting.eta, settings.tolerance,
-                                     static_cast<std::size_t>(settings.max_iterations), &progress,
-                                     each_iteration);
+  lighting.transfer =
+      solve_transfer(geometry.matrix, sites.albedo, lighting.eta, settings.tolerance,
+                     static_cast<std::size_t>(settings.max_iterations), &progress, each_iteration);
   progress.finish();
   lighting.seconds = seconds_since(start);
   return lighting;
@@ -365,7 +365,8 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
   };
   MeshlessIterationCallback on_iteration;
   if (request.on_progress)  // issue 24: each iteration's λ displayed as render would
-    on_iteration = [&](std::size_t iteration, const std::vector<Color>& eta, const std::vector<Color>& lambda) {
+    on_iteration = [&](std::size_t iteration, const std::vector<Color>& eta,
+                       const std::vector<Color>& lambda) {
       request.on_progress({"iterations", iteration, std::nullopt, [&] {
                              solution = {&eta, &lambda};
                              Film image(region.width(), region.height());

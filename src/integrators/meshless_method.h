@@ -89,8 +89,8 @@ struct MeshlessLighting {
 std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene,
                                                           const MeshlessSettings& settings);
 // Called after every iteration of λ with η and λ then (issue 24: the convergence log).
-using MeshlessIterationCallback =
-    std::function<void(std::size_t iteration, const std::vector<Color>& eta, const std::vector<Color>& lambda)>;
+using MeshlessIterationCallback = std::function<void(std::size_t iteration, const std::vector<Color>& eta,
+                                                     const std::vector<Color>& lambda)>;
 
 // Direct light η at every site and the solve for λ; quiet: no progress bar.
 MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& settings,

@@ -83,7 +83,8 @@ struct TransferSolution {
 };
 
 // Called after every iteration (1-based) with λ then (issue 24: the convergence log).
-using TransferIterationCallback = std::function<void(std::size_t iteration, const std::vector<Color>& lambda)>;
+using TransferIterationCallback =
+    std::function<void(std::size_t iteration, const std::vector<Color>& lambda)>;
 
 // λ = η + Q S λ by the iteration of 002 §5.2.4 (Q = albedo); progress, when given, advances in
 // per mille of convergence (the change's way down to the tolerance, on a log scale). Throws

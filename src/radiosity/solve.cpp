@@ -226,9 +226,9 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
         if (steps % std::max<std::size_t>(options.step_every, 1) == 0)
           report_step(refinement.display_radiosities(settings.ambient), steps, fraction);
       };
-      solution = shoot_progressively(mesh, rows, settings, progress, options.checkpointing, cluster,
-                                     observed ? observe : std::function<void(const ProgressiveRefinement&,
-                                                                              std::size_t, double)>());
+      solution = shoot_progressively(
+          mesh, rows, settings, progress, options.checkpointing, cluster,
+          observed ? observe : std::function<void(const ProgressiveRefinement&, std::size_t, double)>());
       if (observed && solution.steps % std::max<std::size_t>(options.step_every, 1) != 0)
         report_step(solution.displayed, solution.steps, solution.unshot_fraction);  // the last shot
     } else {

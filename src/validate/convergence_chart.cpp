@@ -79,8 +79,8 @@ std::string log_log_chart_svg(const std::vector<ChartSeries>& series, const Char
       const double value = m * std::pow(10.0, e);
       if (std::log10(value) > x1 + 1e-9) continue;
       const double x = px(value);
-      svg += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"{3}\"/>\n", x, top,
-                         bottom, m == 1 ? "#d0d0d0" : "#ececec");
+      svg += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"{3}\"/>\n", x,
+                         top, bottom, m == 1 ? "#d0d0d0" : "#ececec");
       if (m == 1 || minor_labels)
         svg += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", x, bottom + 18,
                            tick_label(value));
@@ -91,25 +91,26 @@ std::string log_log_chart_svg(const std::vector<ChartSeries>& series, const Char
       const double value = m * std::pow(10.0, e);
       if (std::log10(value) > y1 + 1e-9) continue;
       const double y = py(value);
-      svg += fmt::format("<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"{3}\"/>\n", left, y,
-                         right, m == 1 ? "#d0d0d0" : "#ececec");
+      svg += fmt::format("<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"{3}\"/>\n", left,
+                         y, right, m == 1 ? "#d0d0d0" : "#ececec");
       if (m == 1 || minor_y_labels)
         svg += fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{}</text>\n", left - 6, y + 4,
                            tick_label(value));
     }
-  svg += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#404040\"/>\n",
-                     left, top, right - left, bottom - top);
+  svg +=
+      fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#404040\"/>\n",
+                  left, top, right - left, bottom - top);
   svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", (left + right) / 2,
                      bottom + 42, escaped(axes.x_label));
-  svg += fmt::format(
-      "<text transform=\"translate(18 {}) rotate(-90)\" text-anchor=\"middle\">{}</text>\n", (top + bottom) / 2,
-      escaped(axes.y_label));
+  svg += fmt::format("<text transform=\"translate(18 {}) rotate(-90)\" text-anchor=\"middle\">{}</text>\n",
+                     (top + bottom) / 2, escaped(axes.y_label));
 
   // The curves, then the legend, one line per series.
   const auto marker = [](double x, double y, const ChartSeries& s) {
-    return fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4.5\" fill=\"{}\" stroke=\"{}\" "
-                       "stroke-width=\"1.6\"/>\n",
-                       x, y, s.hollow ? "white" : s.color, s.color);
+    return fmt::format(
+        "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4.5\" fill=\"{}\" stroke=\"{}\" "
+        "stroke-width=\"1.6\"/>\n",
+        x, y, s.hollow ? "white" : s.color, s.color);
   };
   for (const ChartSeries& s : series) {
     std::vector<std::pair<double, double>> points;
@@ -130,8 +131,8 @@ std::string log_log_chart_svg(const std::vector<ChartSeries>& series, const Char
   for (const ChartSeries& s : series) {
     const double x = right + 16;
     if (s.line && s.xy.size() > 1)
-      svg += fmt::format("<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\" stroke-width=\"2\"/>\n", x,
-                         legend_y, x + 22, legend_y, s.color);
+      svg += fmt::format("<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\" stroke-width=\"2\"/>\n",
+                         x, legend_y, x + 22, legend_y, s.color);
     svg += marker(x + 11, legend_y, s);
     svg += fmt::format("<text x=\"{}\" y=\"{}\">{}</text>\n", x + 30, legend_y + 4, escaped(s.label));
     legend_y += 22;

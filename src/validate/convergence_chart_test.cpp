@@ -46,7 +46,8 @@ TEST(ConvergenceChart, LogLogAxesOverWholeDecadesAndOneMarkerForAMethodWithoutSt
   EXPECT_EQ(count(svg, "<circle"), 4);
 
   // Values that a log axis cannot show (0, negative, infinite) are left out, not drawn at −∞.
-  const std::string empty = log_log_chart_svg({{"zero", "#000000", {{0.0, 1.0}, {1.0, 0.0}}, true, false}}, axes);
+  const std::string empty =
+      log_log_chart_svg({{"zero", "#000000", {{0.0, 1.0}, {1.0, 0.0}}, true, false}}, axes);
   EXPECT_EQ(count(empty, "<polyline"), 0);
   EXPECT_EQ(empty.find("nan"), std::string::npos);
   EXPECT_EQ(empty.find("inf"), std::string::npos);

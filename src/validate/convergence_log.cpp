@@ -12,8 +12,8 @@ namespace candela {
 ConvergenceLog::ConvergenceLog(std::string method, Film reference, std::vector<uint8_t> mask)
     : method_(std::move(method)), reference_(std::move(reference)), mask_(std::move(mask)) {
   if (!mask_.empty() && mask_.size() != reference_.pixels().size())
-    throw std::invalid_argument(fmt::format("the mask has {} pixels, the reference {}", mask_.size(),
-                                            reference_.pixels().size()));
+    throw std::invalid_argument(
+        fmt::format("the mask has {} pixels, the reference {}", mask_.size(), reference_.pixels().size()));
 }
 
 void ConvergenceLog::start() {
@@ -47,7 +47,8 @@ void ConvergenceLog::finish(const Film& image) {
 }
 
 std::string convergence_csv(const std::vector<ConvergenceRow>& rows) {
-  std::string text = "method,unit,work,seconds,image_seconds,time_to_image,rmse,relative_mse,unshot_fraction\n";
+  std::string text =
+      "method,unit,work,seconds,image_seconds,time_to_image,rmse,relative_mse,unshot_fraction\n";
   for (const ConvergenceRow& row : rows)
     text += fmt::format("{},{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{}\n", row.method, row.unit, row.work,
                         row.seconds, row.image_seconds, row.time_to_image(), row.rmse, row.relative_mse,
