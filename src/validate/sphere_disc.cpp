@@ -319,7 +319,7 @@ std::string csv(const char* header, const std::vector<double>& x,
 }
 
 void write_plot(const std::filesystem::path& path, const std::vector<PlotPanel>& panels) {
-  write_line_plot_png(path.string(), panels);
+  write_line_plot_png(path.string(), panels, 600, 420);
 }
 
 const Color kReferenceTotal(0, 0, 0), kReferenceDirect(0.6, 0.6, 0.6);
@@ -427,12 +427,32 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
   write_text_atomically(
       out / "reference_sphere.csv",
       csv("alpha_deg,direct,total", alpha_degrees, {&reference.sphere_direct, &reference.sphere_total}));
-  const PlotPanel disc_axes{{}, 0, scene.disc_radius, 0, 0, 5, 0, {}, {}, {}};
-  const PlotPanel sphere_axes{{}, -90, 90, 0, 0, 30, 0, {}, {}, {}};
+  // Issue 24: every panel titled, both axes named, every curve named in the legend.
+  const PlotPanel disc_axes{{},
+                            0,
+                            scene.disc_radius,
+                            0,
+                            0,
+                            5,
+                            0,
+                            "disc: radiosity along a radius",
+                            "distance u from the disc's centre",
+                            "radiosity B"};
+  const PlotPanel sphere_axes{{},
+                              -90,
+                              90,
+                              0,
+                              0,
+                              30,
+                              0,
+                              "sphere: radiosity along a meridian",
+                              "angle α from the equator (degrees; 90: top)",
+                              "radiosity B"};
   {
     PlotPanel disc = disc_axes, sphere = sphere_axes;
-    disc.curves = {{reference.u, reference.disc_direct, kReferenceDirect, 2, false, false, {}},
-                   {reference.u, reference.disc_total, kReferenceTotal, 2, false, false, {}}};
+    disc.curves = {
+        {reference.u, reference.disc_direct, kReferenceDirect, 2, false, false, "reference, direct"},
+        {reference.u, reference.disc_total, kReferenceTotal, 2, false, false, "reference, total"}};
     sphere.curves = {{alpha_degrees, reference.sphere_direct, kReferenceDirect, 2, false, false, {}},
                      {alpha_degrees, reference.sphere_total, kReferenceTotal, 2, false, false, {}}};
     write_plot(out / "reference.png", {disc, sphere});
@@ -497,12 +517,16 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
           mean.max, 100 * mean.max_relative, indirect.rms, curves.seconds));
 
       const Color color = basis_color(kind);
+      const std::string basis(kBasisNames.name(kind));
       PlotPanel disc = disc_axes, sphere = sphere_axes;
-      disc.curves = {{reference.u, reference.disc_direct, kReferenceDirect, 2, false, false, {}},
-                     {reference.u, reference.disc_total, kReferenceTotal, 2, false, false, {}},
-                     {reference.u, curves.disc_direct_mean, lighter(color), 2, true, false, {}},
-                     {reference.u, curves.disc_mean, color, 3, false, false, {}},
-                     {reference.u, curves.disc_meridian, color, 1, false, false, {}}};
+      disc.title += fmt::format(", {} basis, Δ = {}", basis, spacing);
+      sphere.title += fmt::format(", Δ = {}", spacing);
+      disc.curves = {
+          {reference.u, reference.disc_direct, kReferenceDirect, 2, false, false, "reference, direct"},
+          {reference.u, reference.disc_total, kReferenceTotal, 2, false, false, "reference, total"},
+          {reference.u, curves.disc_direct_mean, lighter(color), 2, true, false, basis + ", direct"},
+          {reference.u, curves.disc_mean, color, 3, false, false, basis + ", total (azimuth mean)"},
+          {reference.u, curves.disc_meridian, color, 1, false, false, basis + ", total (one meridian)"}};
       sphere.curves = {{alpha_degrees, reference.sphere_direct, kReferenceDirect, 2, false, false, {}},
                        {alpha_degrees, reference.sphere_total, kReferenceTotal, 2, false, false, {}},
                        {alpha_degrees, curves.sphere_direct_mean, lighter(color), 2, true, false, {}},
@@ -527,10 +551,13 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
     best[key] = winner;
     // All three bases against the reference's total.
     PlotPanel disc = disc_axes, sphere = sphere_axes;
-    disc.curves = {{reference.u, reference.disc_total, kReferenceTotal, 2, false, false, {}}};
+    disc.title = fmt::format("disc, Δ = {}: each basis's total", spacing);
+    sphere.title = fmt::format("sphere, Δ = {}", spacing);
+    disc.curves = {{reference.u, reference.disc_total, kReferenceTotal, 2, false, false, "reference, total"}};
     sphere.curves = {{alpha_degrees, reference.sphere_total, kReferenceTotal, 2, false, false, {}}};
     for (const auto& [kind, curves] : by_spacing[spacing]) {
-      disc.curves.push_back({reference.u, curves.disc_mean, basis_color(kind), 2, false, false, {}});
+      disc.curves.push_back({reference.u, curves.disc_mean, basis_color(kind), 2, false, false,
+                             std::string(kBasisNames.name(kind))});
       sphere.curves.push_back({alpha_degrees, curves.sphere_mean, basis_color(kind), 2, false, false, {}});
     }
     write_plot(out / fmt::format("compare_{}.png", key), {disc, sphere});
