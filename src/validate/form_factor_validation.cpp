@@ -222,13 +222,20 @@ nlohmann::json run_form_factor_validation(const std::string& out_dir, const Form
       panel.y_max = 0;
       panel.x_tick = 0.3;
       panel.y_tick = 1;
+      // Issue 24: each panel named by its case, both axes named, every curve in the legend.
+      panel.title = cases[c].name;
+      panel.x_label = "log10 (patch size / scene size)";
+      panel.y_label = "log10 |relative error|";
       PlotCurve hemicube = curves[{c, RadiosityFormFactors::hemicube}];
       hemicube.color = Color(0.1, 0.3, 0.9);
       hemicube.width = 2;
+      hemicube.label = "hemicube";
       PlotCurve ray_cast = curves[{c, RadiosityFormFactors::ray_cast}];
       ray_cast.color = Color(0.9, 0.15, 0.1);
       ray_cast.width = 2;
+      ray_cast.label = "ray cast";
       PlotCurve slope;
+      slope.label = "slope −2";
       slope.x = {panel.x_max - 0.1, panel.x_min + 0.1};
       slope.y = {-1, -1 - 2 * (slope.x[0] - slope.x[1])};
       slope.color = Color(0.6, 0.6, 0.6);
