@@ -172,8 +172,9 @@ TEST_F(ReportCli, WritesThePageTheJsonAndEveryImage) {
   EXPECT_EQ(units["path (equal time: whitted)"].back().rfind("final,", 0), 0u);
   const std::string chart = read(out / "convergence.svg");
   EXPECT_EQ(chart.rfind("<svg xmlns=\"http://www.w3.org/2000/svg\"", 0), 0u);
-  for (const char* label : {">whitted<", ">radiosity<", ">meshless<", ">path<", ">path at radiosity's time<",
-                            ">RMSE against the reference<", ">time to the image (s)<"})
+  for (const char* label :
+       {">whitted<", ">radiosity<", ">meshless<", ">path<", ">path at radiosity&#39;s time<",
+        ">RMSE against the reference<", ">time to the image (s)<"})
     EXPECT_NE(chart.find(label), std::string::npos) << label;
 
   // The browser: the page's script sets data-images-loaded="loaded/total" once it has loaded.

@@ -6,32 +6,11 @@
 #include <cmath>
 #include <limits>
 
+#include "validate/cross_method_report.h"  // html_escape: SVG text is XML
+
 namespace candela {
 
 namespace {
-
-std::string escaped(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 // A decade's label: 0.001, 0.01 … 1000 as numbers, beyond that 10 with a superscript exponent.
 std::string tick_label(double value) {
@@ -71,7 +50,7 @@ std::string log_log_chart_svg(const std::vector<ChartSeries>& series, const Char
       axes.width, axes.height);
   if (!axes.title.empty())
     svg += fmt::format("<text x=\"{}\" y=\"24\" text-anchor=\"middle\" font-size=\"15\">{}</text>\n",
-                       (left + right) / 2, escaped(axes.title));
+                       (left + right) / 2, html_escape(axes.title));
   // Grid and ticks: every decade labelled; 2× and 5× as well over short ranges.
   const bool minor_labels = x1 - x0 < 3;
   for (double e = x0; e <= x1 + 1e-9; ++e)
@@ -101,9 +80,9 @@ std::string log_log_chart_svg(const std::vector<ChartSeries>& series, const Char
       fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#404040\"/>\n",
                   left, top, right - left, bottom - top);
   svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", (left + right) / 2,
-                     bottom + 42, escaped(axes.x_label));
+                     bottom + 42, html_escape(axes.x_label));
   svg += fmt::format("<text transform=\"translate(18 {}) rotate(-90)\" text-anchor=\"middle\">{}</text>\n",
-                     (top + bottom) / 2, escaped(axes.y_label));
+                     (top + bottom) / 2, html_escape(axes.y_label));
 
   // The curves, then the legend, one line per series.
   const auto marker = [](double x, double y, const ChartSeries& s) {
@@ -134,7 +113,7 @@ std::string log_log_chart_svg(const std::vector<ChartSeries>& series, const Char
       svg += fmt::format("<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\" stroke-width=\"2\"/>\n",
                          x, legend_y, x + 22, legend_y, s.color);
     svg += marker(x + 11, legend_y, s);
-    svg += fmt::format("<text x=\"{}\" y=\"{}\">{}</text>\n", x + 30, legend_y + 4, escaped(s.label));
+    svg += fmt::format("<text x=\"{}\" y=\"{}\">{}</text>\n", x + 30, legend_y + 4, html_escape(s.label));
     legend_y += 22;
   }
   svg += "</svg>\n";
