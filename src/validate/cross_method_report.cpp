@@ -369,7 +369,6 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
   std::vector<std::vector<double>> differences;
   std::vector<double> all;
   report.luminance_efficacy = options.luminance_efficacy;
-  report.convergence_masked = !options.convergence_mask.empty();
   const bool photometric = options.luminance_efficacy > 0;
   const Film reference_measured = photometric
                                       ? luminance_film(report.reference.image, options.luminance_efficacy)
@@ -429,7 +428,7 @@ std::string convergence_chart(const CrossMethodReport& report) {
                       true});
   }
   ChartAxes axes;
-  axes.title = report.scene_name + ": error against time" + (report.convergence_masked ? " (masked)" : "");
+  axes.title = report.scene_name + ": error against time";
   axes.x_label = "time to the image (s)";
   axes.y_label = "RMSE against the reference";
   return log_log_chart_svg(series, axes);

@@ -94,7 +94,6 @@ struct CrossMethodReport {
   std::vector<CrossMethodEntry> entries;  // the methods in the order asked, then the equal-time runs
   double difference_scale = 1;            // the top of every difference picture's scale
   double luminance_efficacy = 0;          // > 0: errors and differences in cd/m² (the options')
-  bool convergence_masked = false;        // the chart measures the pixels of a mask
   // Each method's object of the scene file ("whitted", "radiosity", ...) or null (defaults).
   nlohmann::json settings = nlohmann::json::object();
   std::vector<std::string> overrides;
