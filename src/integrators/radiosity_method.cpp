@@ -134,7 +134,8 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
   if (request.on_progress) {  // issue 24: each step's solution displayed as render would
     if (request.progress_every > 0) options.step_every = request.progress_every;
     const bool progressive = settings.solver == RadiositySolver::progressive;
-    options.on_step = [&](const RadiositySolveResult& so_far) {
+    // progressive by value: it lives in this block, the function beyond it (ASan: use after scope).
+    options.on_step = [&, progressive](const RadiositySolveResult& so_far) {
       request.on_progress({progressive ? "shots" : "sweeps", so_far.steps,
                            progressive ? std::optional<double>(so_far.unshot_fraction) : std::nullopt, [&] {
                              const SolutionDisplay display(scene, so_far, settings.display);
