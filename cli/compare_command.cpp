@@ -19,6 +19,7 @@
 
 #include "commands.h"
 #include "false_color_options.h"
+#include "image_arguments.h"
 #include "io/false_color.h"
 #include "io/image_writer.h"
 #include "output_paths.h"
@@ -36,14 +37,6 @@ struct CompareOptions {
   bool luminance = false;  // compare the luminances in cd/m² (efficacy × Y / π)
   double efficacy = kLuminousEfficacy;
 };
-
-LinearImage read(const std::string& path, const char* role) {
-  try {
-    return read_linear_image(path);
-  } catch (const std::exception& e) {
-    throw BadArgument(fmt::format("{}: {}", role, e.what()));
-  }
-}
 
 std::string number(double value) {
   if (std::isnan(value)) return "nan";
@@ -109,8 +102,8 @@ int run_compare(const CompareOptions& options) {
   }
   if (!options.json.empty()) check_writable(options.json, "--json");
 
-  LinearImage image = read(options.image, "A");
-  LinearImage reference = read(options.reference, "B (reference)");
+  LinearImage image = read_image_argument(options.image, "A");
+  LinearImage reference = read_image_argument(options.reference, "B (reference)");
   // Issue 23: in luminance, cd/m² — efficacy × Y / π of a rendered value (π × the radiance), the one
   // conversion of shading/photometric_units.h — of linear images only.
   if (options.luminance) {
@@ -128,15 +121,9 @@ int run_compare(const CompareOptions& options) {
   if (a.width() != b.width() || a.height() != b.height())
     throw BadArgument(fmt::format("the images differ in size: A {} is {}x{}, B {} is {}x{}", options.image,
                                   a.width(), a.height(), options.reference, b.width(), b.height()));
-  std::optional<LinearImage> mask_image;
   std::vector<uint8_t> mask;
   if (!options.mask.empty()) {
-    mask_image = read(options.mask, "--mask");
-    if (mask_image->film.width() != a.width() || mask_image->film.height() != a.height())
-      throw BadArgument(fmt::format("--mask {} is {}x{}, the images {}x{}", options.mask,
-                                    mask_image->film.width(), mask_image->film.height(), a.width(),
-                                    a.height()));
-    mask = mask_from_image(mask_image->film);
+    mask = read_mask_argument(options.mask, "--mask", a.width(), a.height(), "the images");
     if (std::find(mask.begin(), mask.end(), uint8_t(1)) == mask.end())
       throw BadArgument(fmt::format("--mask {} excludes every pixel (none has luminance above {})",
                                     options.mask, kMaskThreshold));
@@ -153,7 +140,7 @@ int run_compare(const CompareOptions& options) {
     table += fmt::format("units        luminance, cd/m² (efficacy {} lm/W × Y / π)\n", options.efficacy);
   table += fmt::format("A            {}\n", describe(options.image, image));
   table += fmt::format("B reference  {}\n", describe(options.reference, reference));
-  if (mask_image)
+  if (!options.mask.empty())
     table += fmt::format("mask         {} ({} of {} pixels compared)\n", options.mask, result.pixels_compared,
                          std::size_t(a.width()) * std::size_t(a.height()));
   const auto row = [&](const std::string& name, const std::string& value, const std::string& note) {

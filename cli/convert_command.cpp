@@ -14,6 +14,7 @@
 
 #include "camera/tone_map.h"
 #include "commands.h"
+#include "image_arguments.h"
 #include "io/image_writer.h"
 #include "output_paths.h"
 #include "validate/image_comparison.h"
@@ -52,12 +53,7 @@ int run_convert(const ConvertOptions& options) {
                       " applies to an 8-bit .png only (" + options.output + " keeps linear values)");
   check_writable(options.output, "OUT");
   refuse_outputs_over_inputs({{options.output, "OUT"}}, {options.input});
-  LinearImage image;
-  try {
-    image = read_linear_image(options.input);
-  } catch (const std::exception& e) {
-    throw BadArgument(fmt::format("{}: {}", options.input, e.what()));
-  }
+  const LinearImage image = read_image_argument(options.input, options.input);
   if (const std::string problem = non_finite_image_problem(image.film, format, display.exposure);
       !problem.empty())
     throw BadArgument(options.input + ": " + problem);

@@ -18,6 +18,7 @@
 
 #include "commands.h"
 #include "false_color_options.h"
+#include "image_arguments.h"
 #include "io/false_color.h"
 #include "io/image_writer.h"
 #include "list_option.h"
@@ -53,12 +54,7 @@ int run_falsecolor(const FalseColorOptions& options) {
   check_efficacy(options.efficacy);
   if (!std::isfinite(options.exposure) || std::fabs(options.exposure) > 64)
     throw BadArgument("--exposure must be a number of stops within ±64");
-  LinearImage image;
-  try {
-    image = read_linear_image(options.image);
-  } catch (const std::exception& e) {
-    throw BadArgument(fmt::format("{}: {}", options.image, e.what()));
-  }
+  const LinearImage image = read_image_argument(options.image, options.image);
   if (image.srgb_decoded)
     throw BadArgument(
         options.image +

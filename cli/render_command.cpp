@@ -17,6 +17,7 @@
 
 #include "commands.h"
 #include "distributed/cluster.h"
+#include "image_arguments.h"
 #include "integrators/antialiasing_support.h"
 #include "integrators/method_registry.h"
 #include "io/checkpoint_file.h"
@@ -364,34 +365,20 @@ struct RenderJob {
 // image rendered. Throws BadArgument.
 ConvergenceLog convergence_log_for(const RenderOptions& options, const MethodEntry& entry, const Scene& scene,
                                    const PixelRect& region) {
-  const auto read = [](const std::string& path, const char* option) {
-    try {
-      return read_linear_image(path);
-    } catch (const std::exception& e) {
-      throw BadArgument(fmt::format("{} {}: {}", option, path, e.what()));
-    }
-  };
-  LinearImage reference = read(options.error_reference, "--error-reference");
+  const LinearImage reference =
+      read_image_argument(options.error_reference, "--error-reference " + options.error_reference);
   if (reference.srgb_decoded)
     throw BadArgument(
         "--error-reference " + options.error_reference +
         ": an 8-bit display image is no linear reference; use one render wrote as .exr, .pfm or .hdr");
-  const auto check_size = [&](const Film& image, const std::string& what) {
-    if (image.width() != region.width() || image.height() != region.height())
-      throw BadArgument(fmt::format("{} is {}x{}, the image rendered {}x{}", what, image.width(),
-                                    image.height(), region.width(), region.height()));
-  };
-  check_size(reference.film, "--error-reference " + options.error_reference);
-  const double undo_exposure = std::exp2(-scene.display.exposure);
-  for (int y = 0; y < reference.film.height(); ++y)
-    for (int x = 0; x < reference.film.width(); ++x) reference.film.at(x, y) *= undo_exposure;
+  check_image_size(reference.film, "--error-reference", options.error_reference, region.width(),
+                   region.height(), "the image rendered");
   std::vector<uint8_t> mask;
-  if (!options.error_mask.empty()) {
-    const LinearImage mask_image = read(options.error_mask, "--error-mask");
-    check_size(mask_image.film, "--error-mask " + options.error_mask);
-    mask = mask_from_image(mask_image.film);
-  }
-  return ConvergenceLog(std::string(entry.name), std::move(reference.film), std::move(mask));
+  if (!options.error_mask.empty())
+    mask = read_mask_argument(options.error_mask, "--error-mask", region.width(), region.height(),
+                              "the image rendered");
+  return ConvergenceLog(std::string(entry.name), exposure_undone(reference.film, scene.display.exposure),
+                        std::move(mask));
 }
 
 // Checks the options, loads the scene and makes the method; throws on bad input. Ranks other

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "image_arguments.h"
 #include "integrators/method_registry.h"
 #include "list_option.h"
 #include "output_paths.h"
@@ -80,11 +81,7 @@ int run_report(ReportOptions& options) {
     throw BadArgument("SCENE " + options.scene.scene_path + ": no such file");
   std::optional<LinearImage> reference;
   if (!options.reference.empty()) {
-    try {
-      reference = read_linear_image(options.reference);
-    } catch (const std::exception& e) {
-      throw BadArgument(std::string("--reference: ") + e.what());
-    }
+    reference = read_image_argument(options.reference, "--reference");
     if (reference->srgb_decoded)
       throw BadArgument("--reference " + options.reference +
                         ": an 8-bit (sRGB) image; the reference must be linear (.exr or .pfm)");
@@ -104,32 +101,14 @@ int run_report(ReportOptions& options) {
   settings.output_directory = options.output;
   settings.reference_spp = options.reference_spp;
   if (reference) {
-    const Film& film = reference->film;
-    if (film.width() != scene->camera->width() || film.height() != scene->camera->height())
-      throw BadArgument(fmt::format("--reference {} is {}x{}, the scene's image {}x{}", options.reference,
-                                    film.width(), film.height(), scene->camera->width(),
-                                    scene->camera->height()));
-    // The file holds what `candela render -o x.exr` writes: the image times 2^exposure.
-    const double undo = std::exp2(-scene->display.exposure);
-    Film image(film.width(), film.height());
-    for (int y = 0; y < film.height(); ++y)
-      for (int x = 0; x < film.width(); ++x) image.at(x, y) = film.at(x, y) * undo;
-    settings.reference_image = std::move(image);
+    check_image_size(reference->film, "--reference", options.reference, scene->camera->width(),
+                     scene->camera->height(), "the scene's image");
+    settings.reference_image = exposure_undone(reference->film, scene->display.exposure);
     settings.reference_file = options.reference;
   }
-  if (!options.error_mask.empty()) {
-    LinearImage mask;
-    try {
-      mask = read_linear_image(options.error_mask);
-    } catch (const std::exception& e) {
-      throw BadArgument(std::string("--error-mask: ") + e.what());
-    }
-    if (mask.film.width() != scene->camera->width() || mask.film.height() != scene->camera->height())
-      throw BadArgument(fmt::format("--error-mask {} is {}x{}, the scene's image {}x{}", options.error_mask,
-                                    mask.film.width(), mask.film.height(), scene->camera->width(),
-                                    scene->camera->height()));
-    settings.convergence_mask = mask_from_image(mask.film);
-  }
+  if (!options.error_mask.empty())
+    settings.convergence_mask = read_mask_argument(options.error_mask, "--error-mask", scene->camera->width(),
+                                                   scene->camera->height(), "the scene's image");
   settings.path_spp = options.spp;
   settings.equal_time = options.equal_time;
   settings.luminance_efficacy = options.luminance ? kLuminousEfficacy : 0;

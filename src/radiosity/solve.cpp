@@ -124,18 +124,6 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
   double form_factor_seconds = 0;  // of solve_seconds, the time spent computing form factors
   RadiosityMesh& mesh = result.mesh;
   const std::size_t patch_count = mesh.patches.size();
-  // Issue 24: the solution so far handed to options.on_step (the element rows exist by then).
-  std::vector<double>* element_row_sums = nullptr;
-  const auto report_step = [&](std::vector<Color> displayed, std::size_t steps, double unshot_fraction) {
-    result.element_radiosity = std::move(displayed);
-    result.element_hidden.assign(mesh.elements.size(), 0);
-    for (std::size_t q = 0; q < mesh.elements.size(); ++q)
-      result.element_hidden[q] = (*element_row_sums)[q] < kHiddenRowSum;
-    result.steps = steps;
-    result.unshot_fraction = unshot_fraction;
-    options.on_step(result);
-  };
-  const bool observed = options.on_step && !(cluster && cluster->distributed());
 
   // The patch system first (direct solvers), its memory checked before anything is computed.
   std::vector<double> patch_sums;
@@ -168,7 +156,22 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
                                   *rows.form_factors, rows.sums, cluster, options.quiet);
     form_factor_seconds += form_factor_time.seconds();
   }
-  element_row_sums = &rows.sums;
+  // Elements whose rows sum to ≈ 0 see nothing: the display leaves them out.
+  const auto mark_hidden_elements = [&] {
+    result.element_hidden.resize(mesh.elements.size());
+    for (std::size_t q = 0; q < mesh.elements.size(); ++q)
+      result.element_hidden[q] = rows.sums[q] < kHiddenRowSum;
+  };
+  // Issue 24: the solution so far handed to options.on_step, every step_every shots or every sweep.
+  const bool observed = options.on_step && !(cluster && cluster->distributed());
+  const std::size_t step_every = std::max<std::size_t>(options.step_every, 1);
+  const auto report_step = [&](std::vector<Color> displayed, std::size_t steps, double unshot_fraction) {
+    result.element_radiosity = std::move(displayed);
+    mark_hidden_elements();
+    result.steps = steps;
+    result.unshot_fraction = unshot_fraction;
+    options.on_step(result);
+  };
   if (!progressive) {
     patch_sums.resize(patch_count);
     Eigen::MatrixXd patch_rows(static_cast<Eigen::Index>(patch_count),
@@ -223,13 +226,13 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
   for (;;) {
     if (progressive) {
       const auto observe = [&](const ProgressiveRefinement& refinement, std::size_t steps, double fraction) {
-        if (steps % std::max<std::size_t>(options.step_every, 1) == 0)
+        if (steps % step_every == 0)
           report_step(refinement.display_radiosities(settings.ambient), steps, fraction);
       };
       solution = shoot_progressively(
           mesh, rows, settings, progress, options.checkpointing, cluster,
           observed ? observe : std::function<void(const ProgressiveRefinement&, std::size_t, double)>());
-      if (observed && solution.steps % std::max<std::size_t>(options.step_every, 1) != 0)
+      if (observed && solution.steps % step_every != 0)
         report_step(solution.displayed, solution.steps, solution.unshot_fraction);  // the last shot
     } else {
       solution.radiosity = gather_element_radiosities(
@@ -267,9 +270,7 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
             .to_dense());
   }
   result.element_radiosity = std::move(solution.displayed);
-  result.element_hidden.resize(mesh.elements.size());
-  for (std::size_t q = 0; q < mesh.elements.size(); ++q)
-    result.element_hidden[q] = rows.sums[q] < kHiddenRowSum;
+  mark_hidden_elements();
   result.steps = solution.steps;
   result.unshot_fraction = solution.unshot_fraction;
   result.converged = solution.converged;
