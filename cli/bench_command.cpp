@@ -323,17 +323,20 @@ int run_radiosity_bench_command(const BenchCommandOptions& options) {
 // Issue 8: the meshless method's sites, transfer matrix (entries, density, memory, time) and
 // solution time, to see how they grow with the number of sites.
 int run_meshless_bench_command(const BenchCommandOptions& options) {
-  const std::string header = fmt::format(
-      "{:>7} {:>7} {:>12} {:>8} {:>9} {:>10} {:>10} {:>10} {:>6} {:>9} {:>9}", "threads", "sites", "entries",
-      "density", "S MiB", "sample s", "areas s", "S s", "iters", "solve s", "peak MiB");
+  const std::string header =
+      fmt::format("{:>7} {:>7} {:>6} {:>12} {:>10} {:>8} {:>9} {:>10} {:>10} {:>10} {:>6} {:>9} {:>9}",
+                  "threads", "sites", "levels", "entries", "links", "density", "S MiB", "sample s", "areas s",
+                  "S s", "iters", "solve s", "peak MiB");
   return run_scene_solve_bench(options, "meshless", header, [&](const Scene& scene, nlohmann::json& facts) {
     const MeshlessSolution solution =
         solve_meshless(scene, read_meshless_settings(scene.plugin_settings.node("meshless")), &facts);
-    return fmt::format("{:>7} {:>12} {:>8.4f} {:>9.1f} {:>10.3f} {:>10.3f} {:>10.3f} {:>6} {:>9.3f}",
-                       solution.sites.sites.size(), solution.matrix.entries(), solution.matrix.density(),
-                       solution.matrix.bytes() / 1048576.0, facts.value("sampling_seconds", 0.0),
-                       facts.value("area_seconds", 0.0), solution.matrix.seconds,
-                       solution.transfer.iterations, facts.value("lighting_seconds", 0.0));
+    // Issue 25: levels 1 and no links for the flat matrix; the hierarchy's levels and cluster links.
+    return fmt::format(
+        "{:>7} {:>6} {:>12} {:>10} {:>8.4f} {:>9.1f} {:>10.3f} {:>10.3f} {:>10.3f} {:>6} {:>9.3f}",
+        solution.sites.sites.size(), facts.value("hierarchy_levels", 1), solution.matrix.entries(),
+        solution.matrix.cluster_links, solution.matrix.density(), solution.matrix.bytes() / 1048576.0,
+        facts.value("sampling_seconds", 0.0), facts.value("area_seconds", 0.0), solution.matrix.seconds,
+        solution.transfer.iterations, facts.value("lighting_seconds", 0.0));
   });
 }
 

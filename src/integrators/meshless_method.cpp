@@ -42,6 +42,8 @@ MeshlessSettings read_meshless_settings(const JsonNode& node) {
   settings.max_sites = node.integer("max_sites", settings.max_sites, {1, 1 << 22, false, false});
   settings.gather_rays = node.integer("gather_rays", settings.gather_rays, {1, 1 << 20, false, false});
   settings.near_field = node.number("near_field", settings.near_field, {0, 100, false, false});
+  settings.transport = node.enumeration("transport", settings.transport, kMeshlessTransportNames);
+  settings.cluster_angle = node.number("cluster_angle", settings.cluster_angle, {0, 10, false, false});
   settings.location = node.get("spacing") ? node.at("spacing").location() : node.location();
   node.finish();
   return settings;
@@ -114,7 +116,8 @@ std::string geometry_key(const Scene& scene, const MeshlessSettings& m) {
   // The sites are sampled through the camera: another view samples its own.
   const Camera& camera = *scene.camera;
   const Vec3 eye = camera.eye_position(), gaze = camera.view_direction();
-  return fmt::format("{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{},{},{}|{},{},{}|{}x{}", scene.unique_id,
+  return fmt::format("{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{},{},{}|{},{},{}|{}x{}",
+                     scene.unique_id, static_cast<int>(m.transport), m.cluster_angle,
                      static_cast<int>(m.basis), static_cast<int>(m.kernel), m.spacing, m.neighbours, m.grid,
                      m.rounds, static_cast<int>(m.effective_area), m.shepard_power, m.max_sites,
                      m.gather_rays, m.near_field, scene.render.seed, static_cast<const void*>(&camera), eye.x,
@@ -131,6 +134,12 @@ nlohmann::json geometry_facts(const MeshlessSettings& settings, const MeshlessGe
           {"neighbours", settings.neighbours},
           {"effective_area", kMeshlessAreaNames.name(settings.effective_area)},
           {"effective_area_sum", area_sum},
+          {"transport", kMeshlessTransportNames.name(settings.transport)},
+          {"hierarchy_levels", geometry.hierarchy ? geometry.hierarchy->level_count() : 1},
+          {"hierarchy_nodes",
+           geometry.hierarchy ? geometry.hierarchy->node_count() : geometry.sites.sites.size()},
+          {"hierarchy_seconds", geometry.hierarchy_seconds},
+          {"cluster_links", geometry.matrix.cluster_links},
           {"transfer_entries", geometry.matrix.entries()},
           {"transfer_density", geometry.matrix.density()},
           {"transfer_memory_mib", static_cast<double>(geometry.matrix.bytes()) / 1048576.0},
@@ -204,9 +213,15 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const Meshl
   transfer.near_field = settings.near_field;
   transfer.seed = scene.render.seed;
   transfer.max_entries = transfer_entry_limit();
+  transfer.cluster_angle = settings.cluster_angle;
+  if (settings.transport == MeshlessTransport::hierarchical) {
+    start = std::chrono::steady_clock::now();
+    geometry->hierarchy = std::make_unique<SiteHierarchy>(sites, settings.neighbours);
+    geometry->hierarchy_seconds = seconds_since(start);
+  }
   try {
     geometry->matrix = compute_transfer_matrix(scene, sites, *geometry->basis, geometry->areas, transfer,
-                                               cluster, &progress);
+                                               cluster, &progress, geometry->hierarchy.get());
   } catch (const std::invalid_argument& e) {  // more entries than memory holds: bad input
     throw InputError(settings.location, e.what());
   }

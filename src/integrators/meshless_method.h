@@ -27,6 +27,7 @@
 #include "integrators/method.h"
 #include "io/json_node.h"
 #include "meshless/meshless_basis.h"
+#include "meshless/site_hierarchy.h"
 #include "meshless/site_sampling.h"
 #include "meshless/transfer_matrix.h"
 #include "util/error.h"
@@ -46,6 +47,13 @@ enum class MeshlessAreas { integrated, thesis };
 inline constexpr auto kMeshlessAreaNames =
     enum_names<MeshlessAreas>({{MeshlessAreas::integrated, "integrated"}, {MeshlessAreas::thesis, "thesis"}});
 
+// The transfer: the thesis's flat matrix, every far element on its own (n² entries at worst), or
+// the hierarchical transport of Lehtinen et al. 2008 (issue 25: clusters of the site hierarchy,
+// O(n log n) entries; meshless/site_hierarchy.h, meshless/transfer_matrix.h).
+enum class MeshlessTransport { flat, hierarchical };
+inline constexpr auto kMeshlessTransportNames = enum_names<MeshlessTransport>(
+    {{MeshlessTransport::flat, "flat"}, {MeshlessTransport::hierarchical, "hierarchical"}});
+
 // The scene file's "meshless" object (SPEC §11, seed 002).
 struct MeshlessSettings {
   BasisKind basis = BasisKind::normalized;
@@ -62,6 +70,8 @@ struct MeshlessSettings {
   int max_sites = 50000;  // refused beyond: the transfer matrix grows as n²
   int gather_rays = 256;  // per site, for the transfer matrix's near field (meshless/transfer_matrix.h)
   double near_field = 2;  // the near field: elements closer than this many of their radii
+  MeshlessTransport transport = MeshlessTransport::flat;
+  double cluster_angle = 0.5;  // hierarchical: a cluster is one sender while extent/distance ≤ this
   // Issue 21: where a refusal of the sites or the transfer matrix (too many, too much memory)
   // points — the spacing when the scene gives it, else the "meshless" object.
   SourceLocation location;
@@ -73,10 +83,11 @@ MeshlessSettings read_meshless_settings(const JsonNode& node);
 // the transfer matrix S (002 §5.3: relighting reuses them).
 struct MeshlessGeometry {
   SiteSet sites;
-  std::unique_ptr<MeshlessBasis> basis;  // over sites.sites and sites.radius
-  std::vector<double> areas;             // A_k
-  TransferMatrix matrix;                 // S
-  double sampling_seconds = 0, area_seconds = 0;
+  std::unique_ptr<MeshlessBasis> basis;      // over sites.sites and sites.radius
+  std::vector<double> areas;                 // A_k
+  std::unique_ptr<SiteHierarchy> hierarchy;  // hierarchical transport: over sites
+  TransferMatrix matrix;                     // S
+  double sampling_seconds = 0, area_seconds = 0, hierarchy_seconds = 0;
 };
 
 // What the lights give: η (emitted and directly reflected) and λ.

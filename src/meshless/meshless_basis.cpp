@@ -10,12 +10,7 @@ namespace candela {
 
 MeshlessBasis::MeshlessBasis(const std::vector<Site>& sites, const std::vector<double>& radii, BasisKind kind,
                              RadialKernel kernel, double shepard_power)
-    : sites_(sites),
-      radii_(radii),
-      kind_(kind),
-      kernel_(kernel),
-      shepard_power_(shepard_power),
-      index_(sites) {
+    : sites_(sites), radii_(radii), kind_(kind), kernel_(kernel), shepard_power_(shepard_power) {
   if (radii.size() != sites.size())
     throw std::invalid_argument("meshless basis: " + std::to_string(radii.size()) + " radii for " +
                                 std::to_string(sites.size()) + " sites");
@@ -32,31 +27,55 @@ MeshlessBasis::MeshlessBasis(const std::vector<Site>& sites, const std::vector<d
   std::vector<double> finite;
   for (const double r : radii)
     if (std::isfinite(r)) finite.push_back(r);
+  double largest_radius = 0;
   if (!finite.empty()) {
     const std::size_t kept = finite.size() - finite.size() / 100 - 1;
     std::nth_element(finite.begin(), finite.begin() + static_cast<std::ptrdiff_t>(kept), finite.end());
-    largest_radius_ = finite[kept];
+    largest_radius = finite[kept];
     for (uint32_t i = 0; i < radii.size(); ++i)
-      if (std::isfinite(radii[i]) && radii[i] > largest_radius_) unbounded_.push_back(i);
+      if (std::isfinite(radii[i]) && radii[i] > largest_radius) unbounded_.push_back(i);
   }
   std::sort(unbounded_.begin(), unbounded_.end());
   is_unbounded_.assign(radii.size(), 0);
   for (const uint32_t i : unbounded_) is_unbounded_[i] = 1;
+  // Classes down from the largest radius, each 1.3 times narrower than the one above; at most 16
+  // (the last takes every smaller radius).
+  constexpr double kClassRatio = 1.3;
+  constexpr int kMaxClasses = 16;
+  std::vector<std::vector<uint32_t>> members(kMaxClasses);
+  for (uint32_t i = 0; i < radii.size(); ++i) {
+    if (is_unbounded_[i]) continue;
+    const int k = static_cast<int>(std::floor(std::log(largest_radius / radii[i]) / std::log(kClassRatio)));
+    members[static_cast<std::size_t>(std::clamp(k, 0, kMaxClasses - 1))].push_back(i);
+  }
+  for (auto& list : members) {
+    if (list.empty()) continue;
+    RadiusClass& added = classes_.emplace_back();
+    added.members = std::move(list);
+    for (const uint32_t i : added.members) {
+      added.sites.push_back(sites[i]);
+      added.reach = std::max(added.reach, radii[i]);
+    }
+  }
+  // Each class's sites stay where they are now (the index refers to them).
+  for (RadiusClass& c : classes_) c.index = std::make_unique<SiteIndex>(c.sites);
 }
 
 void MeshlessBasis::evaluate(const Site& p, std::vector<std::pair<uint32_t, double>>& weights) const {
   weights.clear();
-  // Every element whose support can reach p lies within the largest support in Euclidean terms
-  // (the site distance is never below the Euclidean one).
-  const double reach = largest_radius_;  // every basis's support is r_i (002 eq. 4.5)
-  thread_local std::vector<uint32_t> candidates;
+  // Every element whose support can reach p lies within its class's largest support in Euclidean
+  // terms (the site distance is never below the Euclidean one; every basis's support is r_i, 002
+  // eq. 4.5). The candidates in increasing index, then the unbounded ones: the order the weights
+  // are added in.
+  thread_local std::vector<uint32_t> candidates, found;
   candidates.clear();
-  index_.within_euclidean(p.position, reach, candidates);
-  if (!unbounded_.empty()) {
-    // Once each: the unbounded ones the search found too are dropped, then all of them added.
-    std::erase_if(candidates, [&](uint32_t i) { return is_unbounded_[i] != 0; });
-    candidates.insert(candidates.end(), unbounded_.begin(), unbounded_.end());
+  for (const RadiusClass& c : classes_) {
+    found.clear();
+    c.index->within_euclidean(p.position, c.reach, found);
+    for (const uint32_t k : found) candidates.push_back(c.members[k]);
   }
+  if (classes_.size() > 1) std::sort(candidates.begin(), candidates.end());
+  candidates.insert(candidates.end(), unbounded_.begin(), unbounded_.end());
   double total = 0;
   for (const uint32_t i : candidates) {
     const Site& centre = sites_[i];

@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -14,6 +15,8 @@
 #include "math/constants.h"
 #include "math/pcg32.h"
 #include "meshless/meshless_basis.h"
+#include "meshless/site_hierarchy.h"
+#include "meshless/site_index.h"
 #include "meshless/site_sampling.h"
 #include "sampling/warps.h"
 #include "scene/scene.h"
@@ -28,7 +31,22 @@ double TransferMatrix::density() const {
 
 std::size_t TransferMatrix::bytes() const {
   return static_cast<std::size_t>(S.nonZeros()) * (sizeof(float) + sizeof(int32_t)) +
-         static_cast<std::size_t>(S.rows() + 1) * sizeof(int32_t);
+         static_cast<std::size_t>(S.rows() + 1) * sizeof(int32_t) + cluster_start.size() * sizeof(uint32_t) +
+         cluster_terms.size() * sizeof(cluster_terms[0]);
+}
+
+void TransferMatrix::sender_values(const std::vector<Color>& lambda, std::vector<Color>& senders) const {
+  senders.assign(static_cast<std::size_t>(S.cols()), Color());
+  std::copy(lambda.begin(), lambda.end(), senders.begin());
+  const std::size_t n = lambda.size();
+  // Children before parents: one pass in column order.
+  for (std::size_t c = 0; c + 1 < cluster_start.size(); ++c) {
+    Color mean;
+    for (uint32_t t = cluster_start[c]; t < cluster_start[c + 1]; ++t)
+      mean += senders[static_cast<std::size_t>(cluster_terms[t].first)] *
+              static_cast<double>(cluster_terms[t].second);
+    senders[n + c] = mean;
+  }
 }
 
 namespace {
@@ -40,12 +58,65 @@ struct Entry {
 };
 using Row = std::vector<Entry>;
 
+// The hierarchy's nodes as senders (issue 25): per node its sites' total effective area, their
+// area-weighted centroid and Σ A·normal, how far its sites lie from the centroid, the farthest any
+// of them counts a receiver as near (near_field × its radius), and up to four of its children's
+// sites (the largest) for the visibility oracle.
+struct SenderClusters {
+  std::vector<double> area, extent, near_reach;
+  std::vector<Vec3> centroid, area_normal;
+  std::vector<std::array<uint32_t, 4>> samples;  // site indices, UINT32_MAX past the last
+};
+
+SenderClusters sender_clusters(const SiteHierarchy& hierarchy, const SiteSet& site_set,
+                               const std::vector<double>& effective_area, double near_field) {
+  const std::size_t nodes = hierarchy.node_count(), n = site_set.sites.size();
+  SenderClusters c;
+  c.area.assign(nodes, 0);
+  c.extent.assign(nodes, 0);
+  c.near_reach.assign(nodes, 0);
+  c.centroid.assign(nodes, Vec3());
+  c.area_normal.assign(nodes, Vec3());
+  c.samples.assign(nodes, {UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX});
+  for (uint32_t node = 0; node < nodes; ++node) {  // children before parents
+    if (node < n) {
+      const double a = std::max(0.0, effective_area[node]);
+      c.area[node] = a;
+      c.centroid[node] = site_set.sites[node].position;
+      c.area_normal[node] = site_set.sites[node].normal * a;
+      c.near_reach[node] = near_field * site_set.radius[node];  // infinite for an unbounded element
+      c.samples[node][0] = node;
+      continue;
+    }
+    const std::span<const uint32_t> children = hierarchy.children(node);
+    Vec3 weighted;
+    std::vector<std::pair<double, uint32_t>> by_area;
+    for (const uint32_t child : children) {
+      c.area[node] += c.area[child];
+      weighted += c.centroid[child] * c.area[child];
+      c.area_normal[node] += c.area_normal[child];
+      c.near_reach[node] = std::max(c.near_reach[node], c.near_reach[child]);
+      by_area.emplace_back(-c.area[child], hierarchy.node_site(child));
+    }
+    c.centroid[node] =
+        c.area[node] > 0 ? weighted / c.area[node] : site_set.sites[hierarchy.node_site(node)].position;
+    std::sort(by_area.begin(), by_area.end());
+    for (std::size_t k = 0; k < std::min<std::size_t>(4, by_area.size()); ++k)
+      c.samples[node][k] = by_area[k].second;
+  }
+  // The extent: every site against each of its ancestors.
+  for (uint32_t site = 0; site < n; ++site)
+    for (uint32_t node = hierarchy.parent(site); node != UINT32_MAX; node = hierarchy.parent(node))
+      c.extent[node] = std::max(c.extent[node], length(site_set.sites[site].position - c.centroid[node]));
+  return c;
+}
+
 }  // namespace
 
 TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_set,
                                        const MeshlessBasis& basis, const std::vector<double>& effective_area,
                                        const TransferSettings& settings, Cluster* cluster,
-                                       ProgressReporter* progress) {
+                                       ProgressReporter* progress, const SiteHierarchy* hierarchy) {
   const std::vector<Site>& sites = site_set.sites;
   if (effective_area.size() != sites.size())
     throw std::invalid_argument("transfer matrix: " + std::to_string(effective_area.size()) + " areas for " +
@@ -55,13 +126,38 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
                                 std::to_string(sites.size()) + " sites");
   if (settings.gather_rays < 1) throw std::invalid_argument("transfer matrix: gather_rays must be >= 1");
   if (!(settings.near_field >= 0)) throw std::invalid_argument("transfer matrix: near_field must be >= 0");
+  if (!(settings.cluster_angle >= 0))
+    throw std::invalid_argument("transfer matrix: cluster_angle must be >= 0");
+  if (hierarchy && hierarchy->node_count() < sites.size())
+    throw std::invalid_argument("transfer matrix: the hierarchy is not over these sites");
   const std::size_t max_entries = settings.max_entries;
   const auto start = std::chrono::steady_clock::now();
   const std::size_t n = sites.size();
+  const std::size_t columns = hierarchy ? hierarchy->node_count() : n;
   const std::vector<uint8_t> object_sides = sides_with_sites(site_set, scene.objects.size());
   // N rays on a √N × √N grid of strata (the rest, when N is no square, unstratified).
   const int strata = static_cast<int>(std::sqrt(static_cast<double>(settings.gather_rays)));
   const double ray_weight = 1.0 / settings.gather_rays;
+  // The near elements of a receiver are found through a k-d tree: those within near_field × the
+  // largest finite radius, and the unbounded ones everywhere.
+  const SiteIndex index(sites);
+  double largest_radius = 0;
+  std::vector<uint32_t> unbounded;
+  for (uint32_t k = 0; k < n; ++k) {
+    if (std::isfinite(site_set.radius[k]))
+      largest_radius = std::max(largest_radius, site_set.radius[k]);
+    else
+      unbounded.push_back(k);
+  }
+  const SenderClusters clusters =
+      hierarchy ? sender_clusters(*hierarchy, site_set, effective_area, settings.near_field)
+                : SenderClusters();
+  std::vector<uint32_t> roots;
+  if (hierarchy) {
+    const std::size_t top = hierarchy->level_count() - 1;
+    for (std::size_t member = 0; member < hierarchy->level_sites(top).size(); ++member)
+      roots.push_back(hierarchy->node(top, member));
+  }
   TransferMatrix result;
   std::vector<Row> rows(n);
   std::atomic<uint64_t> rays{0};
@@ -79,19 +175,27 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
     Vec3 b1, b2;
     orthonormal_basis(receiver.normal, b1, b2);
     Pcg32 random(settings.seed ^ 0x6D65736868656D69ull, j);
-    // No near element reaches a point farther than this from p_j (a support is a ball of radius
-    // r_k in Euclidean terms too): beyond it a hit needs no basis evaluation — most of them, as a
-    // site's near elements are mostly on its own plane, where no ray lands.
     // The near elements: |ṗ_k − ṗ_j| < near_field · r_k, the receiver's own, and those of
-    // unbounded support; one flag per site, for this row.
+    // unbounded support; one flag per site, set for this row and cleared after it.
+    // No near element reaches a point farther than near_reach from p_j (a support is a ball of
+    // radius r_k in Euclidean terms too): beyond it a hit needs no basis evaluation — most of
+    // them, as a site's near elements are mostly on its own plane, where no ray lands.
     thread_local std::vector<uint8_t> near;
-    near.assign(n, 0);
+    thread_local std::vector<uint32_t> near_list, candidates;
+    if (near.size() != n) near.assign(n, 0);
+    near_list.clear();
+    candidates.clear();
+    index.within_euclidean(receiver.position, settings.near_field * largest_radius, candidates);
+    candidates.insert(candidates.end(), unbounded.begin(), unbounded.end());
+    candidates.push_back(static_cast<uint32_t>(j));
     double near_reach = 0;
-    for (std::size_t k = 0; k < n; ++k) {
+    for (const uint32_t k : candidates) {
+      if (near[k]) continue;
       const double r = site_set.radius[k], d2 = length_squared(sites[k].position - receiver.position);
       const double reach = settings.near_field * r;
       if (k == j || !std::isfinite(r) || d2 < reach * reach) {
         near[k] = 1;
+        near_list.push_back(k);
         near_reach = std::max(near_reach, std::sqrt(d2) + r);
       }
     }
@@ -124,39 +228,88 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
       }
     }
     uint64_t row_rays = 0;
-    double far_sum = 0;
-    for (std::size_t k = 0; k < n; ++k) {
-      if (!(effective_area[k] > 0) || near[k]) continue;
+    // V: a shadow ray from the receiver toward a sender's site, both ends off their surfaces.
+    const auto visible = [&](uint32_t k) {
       const Site& sender = sites[k];
-      const Vec3 between = receiver.position - sender.position;  // v_kj · d
-      const double d2 = dot(between, between);
-      if (!(d2 > 0)) continue;
-      const double d = std::sqrt(d2);
-      const Vec3 v = between / d;
-      const double cos_sender = dot(v, sender.normal), cos_receiver = -dot(v, receiver.normal);
-      if (!(cos_sender > 0) || !(cos_receiver > 0)) continue;
-      const double transfer =
-          cos_sender * cos_receiver * effective_area[k] / (kPi * d2);  // 002 eq. 5.2 × A_k
-      // V: a shadow ray from the receiver toward the sender, both ends off their surfaces.
       Ray ray;
       ray.origin = origin;
       const Vec3 target = sender.position + sender.normal * scene.ray_offset(sender.position);
       const Vec3 to_target = target - ray.origin;
       const double distance = length(to_target);
-      if (!(distance > 0)) continue;
+      if (!(distance > 0)) return false;
       ray.direction = to_target / distance;
       ray.t_max = distance * (1 - 1e-9);
       ++row_rays;
-      if (scene.occluded(ray)) continue;
-      row.push_back({static_cast<int32_t>(k), static_cast<float>(transfer)});
-      far_sum += transfer;
+      return !scene.occluded(ray);
+    };
+    // 002 eq. 5.2 × A: the transfer from a sender of area-weighted normal sum `area_normal`
+    // (A_k p⃗_k for one site) at `position`; 0 when either faces away.
+    const auto point_transfer = [&](const Vec3& position, const Vec3& area_normal) {
+      const Vec3 between = receiver.position - position;  // v_kj · d
+      const double d2 = dot(between, between);
+      if (!(d2 > 0)) return 0.0;
+      const double d = std::sqrt(d2);
+      const Vec3 v = between / d;
+      const double cos_sender_area = dot(v, area_normal), cos_receiver = -dot(v, receiver.normal);
+      if (!(cos_sender_area > 0) || !(cos_receiver > 0)) return 0.0;
+      return cos_sender_area * cos_receiver / (kPi * d2);
+    };
+    std::vector<std::pair<int32_t, double>> far_entries;
+    if (!hierarchy) {
+      for (uint32_t k = 0; k < n; ++k) {
+        if (!(effective_area[k] > 0) || near[k]) continue;
+        const double transfer = point_transfer(sites[k].position, sites[k].normal * effective_area[k]);
+        if (transfer > 0 && visible(k)) far_entries.emplace_back(static_cast<int32_t>(k), transfer);
+      }
+    } else {
+      // The refinement oracle, from the top level down (see the header).
+      thread_local std::vector<uint32_t> open;
+      open.assign(roots.rbegin(), roots.rend());
+      while (!open.empty()) {
+        const uint32_t node = open.back();
+        open.pop_back();
+        if (!(clusters.area[node] > 0)) continue;
+        if (node < n) {
+          if (near[node]) continue;
+          const double transfer = point_transfer(sites[node].position, clusters.area_normal[node]);
+          if (transfer > 0 && visible(node)) far_entries.emplace_back(static_cast<int32_t>(node), transfer);
+          continue;
+        }
+        const double d = length(receiver.position - clusters.centroid[node]);
+        const double extent = clusters.extent[node];
+        // A node of one child is that child (no cluster of its own); cluster_angle 0 opens every node.
+        bool closed = hierarchy->children(node).size() > 1 && d > extent + clusters.near_reach[node] &&
+                      extent < settings.cluster_angle * d &&
+                      length(clusters.area_normal[node]) >= 0.9 * clusters.area[node];
+        double transfer = 0;
+        if (closed) {
+          transfer = point_transfer(clusters.centroid[node], clusters.area_normal[node]);
+          if (!(transfer > 0)) continue;  // the whole cluster faces away or lies below the horizon
+          int seen = 0, tried = 0;
+          for (const uint32_t sample : clusters.samples[node]) {
+            if (sample == UINT32_MAX) break;
+            ++tried;
+            seen += visible(sample);
+          }
+          if (seen == 0) continue;  // hidden
+          closed = seen == tried;   // partly hidden: refined
+        }
+        if (closed) {
+          far_entries.emplace_back(static_cast<int32_t>(node), transfer);
+          continue;
+        }
+        const std::span<const uint32_t> children = hierarchy->children(node);
+        open.insert(open.end(), children.rbegin(), children.rend());
+      }
     }
-    // The far field's shape from eq. 5.2, its total from the rays.
-    if (far_sum > 0) {
-      const double scale = far_gathered / far_sum;
-      far_scales[j] = scale;
-      for (Entry& entry : row) entry.value = static_cast<float>(entry.value * scale);
-    }
+    // The far field's shape from eq. 5.2, its total from the rays (summed in column order).
+    std::sort(far_entries.begin(), far_entries.end());
+    double far_sum = 0;
+    for (const auto& entry : far_entries) far_sum += entry.second;
+    const double scale = far_sum > 0 ? far_gathered / far_sum : 1.0;
+    if (far_sum > 0) far_scales[j] = scale;
+    for (const auto& [column, transfer] : far_entries)
+      row.push_back({column, static_cast<float>(static_cast<float>(transfer) * scale)});
     // The near entries, one per element (added up in ray order), and the row in column order.
     std::stable_sort(near_entries.begin(), near_entries.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -166,6 +319,7 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
       for (; e < near_entries.size() && near_entries[e].first == column; ++e) total += near_entries[e].second;
       row.push_back({column, static_cast<float>(total)});
     }
+    for (const uint32_t k : near_list) near[k] = 0;
     std::sort(row.begin(), row.end(), [](const Entry& a, const Entry& b) { return a.column < b.column; });
     std::erase_if(row, [](const Entry& entry) { return !(entry.value > 0); });
     return row_rays;
@@ -241,14 +395,28 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
   // alone would take gigabytes), each row's memory released as it is copied.
   std::size_t total = 0;
   for (const auto& row : rows) total += row.size();
-  result.S.resize(static_cast<int32_t>(n), static_cast<int32_t>(n));
+  result.S.resize(static_cast<int32_t>(n), static_cast<int32_t>(columns));
   result.S.reserve(static_cast<Eigen::Index>(total));
   for (std::size_t j = 0; j < n; ++j) {
     result.S.startVec(static_cast<int32_t>(j));
-    for (const auto& [k, value] : rows[j]) result.S.insertBack(static_cast<int32_t>(j), k) = value;
+    for (const auto& [k, value] : rows[j]) {
+      result.S.insertBack(static_cast<int32_t>(j), k) = value;
+      result.cluster_links += static_cast<std::size_t>(k) >= n;
+    }
     Row().swap(rows[j]);
   }
   result.S.finalize();
+  if (hierarchy) {
+    // A cluster's radiosity: the area-weighted mean of its children's.
+    result.cluster_start.push_back(0);
+    for (uint32_t node = static_cast<uint32_t>(n); node < columns; ++node) {
+      for (const uint32_t child : hierarchy->children(node))
+        if (clusters.area[node] > 0 && clusters.area[child] > 0)
+          result.cluster_terms.emplace_back(static_cast<int32_t>(child),
+                                            static_cast<float>(clusters.area[child] / clusters.area[node]));
+      result.cluster_start.push_back(static_cast<uint32_t>(result.cluster_terms.size()));
+    }
+  }
   result.visibility_rays = rays;
   result.gather_rays = static_cast<uint64_t>(n) * static_cast<uint64_t>(settings.gather_rays);
   double scale_sum = 0;
@@ -273,16 +441,19 @@ TransferSolution solve_transfer(const TransferMatrix& transfer, const std::vecto
   double largest_eta = 0;
   for (const Color& e : eta)
     largest_eta = std::max({largest_eta, std::fabs(e.r), std::fabs(e.g), std::fabs(e.b)});
-  std::vector<Color> next(n);
+  std::vector<Color> next(n), senders;
+  const bool clustered = static_cast<std::size_t>(transfer.S.cols()) != n;
   for (std::size_t iteration = 0; iteration < max_iterations; ++iteration) {
+    // Hierarchical transport: the clusters' radiosity from λ first.
+    if (clustered) transfer.sender_values(solution.lambda, senders);
+    const std::vector<Color>& sender = clustered ? senders : solution.lambda;
     // λ' = η + Q S λ, each row by one thread.
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t j) {
       Color gathered;
       for (Eigen::SparseMatrix<float, Eigen::RowMajor, int32_t>::InnerIterator entry(transfer.S,
                                                                                      static_cast<int32_t>(j));
            entry; ++entry)
-        gathered +=
-            solution.lambda[static_cast<std::size_t>(entry.col())] * static_cast<double>(entry.value());
+        gathered += sender[static_cast<std::size_t>(entry.col())] * static_cast<double>(entry.value());
       next[j] = eta[j] + albedo[j] * gathered;
     });
     double change = 0, largest = 0;

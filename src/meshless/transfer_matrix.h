@@ -19,6 +19,23 @@
 // A row then sums to the rays' share that hit covered surface, which is 1 in a closed room
 // whatever the spacing; the rays are seeded per receiver, so S does not depend on threads or ranks.
 //
+// Hierarchical transport (issue 25; Lehtinen et al. 2008, after hierarchical radiosity): given a
+// site hierarchy (meshless/site_hierarchy.h), the far field of a receiver is gathered from the
+// hierarchy's nodes as clusters — a node's subtree of sites standing as one sender with their total
+// effective area, their area-weighted centroid and mean normal and their area-weighted mean
+// radiosity — chosen by a refinement oracle that walks down from the top level and opens a node
+//   - while its sites' extent about the centroid exceeds cluster_angle × its distance (the
+//     transfer's error grows with the sender's angular size, as in Barnes–Hut and hierarchical
+//     radiosity's form-factor oracle), or its normals spread by more than about 25°;
+//   - while any of its sites could be a near element of the receiver (those are integrated);
+//   - while its visibility is partial: shadow rays to up to four of its children's sites disagree.
+// A closed node becomes one entry (a link) of the row, in column n + (node − n), so S has n rows
+// and as many columns as the hierarchy has nodes; its far field is scaled to the rays' total just
+// as the flat rows are, so rows still sum to the covered share of the hemisphere. The number of
+// links per row grows with log n (each level contributes a shell of about the same number of
+// nodes), so S holds O(n log n) entries; with cluster_angle = 0 every node is opened and S is the
+// flat matrix, entry for entry.
+//
 // The solution (002 §5.2.4): λ ← η + Q S λ, per channel, from λ = η, until no coefficient changes by
 // more than tolerance × the largest; λ are the coefficients of the radiosity (exitance) in the
 // basis, η those of what is emitted and directly reflected.
@@ -39,6 +56,7 @@ class Cluster;
 class MeshlessBasis;
 class ProgressReporter;
 class Scene;
+class SiteHierarchy;
 struct SiteSet;
 
 struct TransferSettings {
@@ -46,13 +64,24 @@ struct TransferSettings {
   double near_field = 2;        // elements closer than this many of their radii are integrated
   uint64_t seed = 0;            // the rays' streams: one per (seed, receiver)
   std::size_t max_entries = 0;  // refused past this (0: no limit)
+  double cluster_angle = 0.5;   // hierarchical transport: a node is one sender while extent/distance ≤ this
 };
 
 struct TransferMatrix {
-  Eigen::SparseMatrix<float, Eigen::RowMajor, int32_t> S;  // n × n
+  // n × n, or n × (nodes of the hierarchy) for hierarchical transport
+  Eigen::SparseMatrix<float, Eigen::RowMajor, int32_t> S;
+  // Hierarchical transport: column n + c is cluster c, whose radiosity is Σ weight × its
+  // children's (site columns or earlier clusters), the terms of cluster c in
+  // cluster_terms[cluster_start[c], cluster_start[c + 1]). Empty for the flat matrix.
+  std::vector<uint32_t> cluster_start;
+  std::vector<std::pair<int32_t, float>> cluster_terms;
+  std::size_t cluster_links = 0;  // entries whose column is a cluster
   std::size_t entries() const { return static_cast<std::size_t>(S.nonZeros()); }
-  double density() const;        // entries / n²
-  std::size_t bytes() const;     // values, column indices and row offsets
+  double density() const;     // entries / n²
+  std::size_t bytes() const;  // values, column indices, row offsets and cluster terms
+  // The radiosity of every column's sender from the sites' λ: λ itself for the sites, then each
+  // cluster's area-weighted mean of its children's.
+  void sender_values(const std::vector<Color>& lambda, std::vector<Color>& senders) const;
   double seconds = 0;            // to compute
   uint64_t visibility_rays = 0;  // shadow rays between sites
   uint64_t gather_rays = 0;      // the rows' hemisphere rays
@@ -63,6 +92,7 @@ struct TransferMatrix {
 
 // S for the sites (positions, normals, the objects and sides they lie on), their basis (which
 // refers to the same sites) and their effective areas A_k; the scene's accelerator traces the rays.
+// With a hierarchy over the same sites, the hierarchical transport described above.
 // Rows in parallel, each by one thread into its own place: the result does not depend on the
 // thread count. settings.max_entries refuses (std::invalid_argument naming the spacing) before
 // more would be kept. With a cluster of several ranks the rows are computed across them and every
@@ -72,7 +102,8 @@ struct TransferMatrix {
 TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& sites, const MeshlessBasis& basis,
                                        const std::vector<double>& effective_area,
                                        const TransferSettings& settings = {}, Cluster* cluster = nullptr,
-                                       ProgressReporter* progress = nullptr);
+                                       ProgressReporter* progress = nullptr,
+                                       const SiteHierarchy* hierarchy = nullptr);
 
 struct TransferSolution {
   std::vector<Color> lambda;
