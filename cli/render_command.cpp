@@ -505,6 +505,7 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   if (!relight_frames.empty() && views.size() != 1)
     throw BadArgument("--relight renders one camera, not " + std::to_string(views.size()));
   for (const LightSetup& frame : relight_frames) {
+    find_albedo_edit_targets(*scene, frame.albedo_edits);  // every material named, before any work
     check_writable(path_with_suffix(options.output, frame.name), "-o");
     if (!options.stats_path.empty())
       check_writable(path_with_suffix(options.stats_path, frame.name), "--stats");
@@ -735,6 +736,22 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
         return root ? report_interrupted_before(relight_frames.size() - f, "frame") : kInterruptedExitCode;
       std::swap(scene->lights, frame.lights);
       std::swap(scene->ambient, frame.ambient);
+      // Issue 25: the frame's albedo edits, undone after it (the geometry and S are reused).
+      const std::vector<std::size_t> edited = find_albedo_edit_targets(*scene, frame.albedo_edits);
+      std::vector<std::shared_ptr<const Texture>> kept_kd;
+      for (std::size_t e = 0; e < edited.size(); ++e) {
+        Material& material = scene->materials[edited[e]];
+        kept_kd.push_back(material.kd);
+        material.kd = constant_texture(frame.albedo_edits[e].kd);
+        material.prepare();
+      }
+      const auto undo_edits = [&] {
+        for (std::size_t e = 0; e < kept_kd.size(); ++e) {
+          Material& material = scene->materials[edited[e]];
+          material.kd = kept_kd[e];
+          material.prepare();
+        }
+      };
       const CurrentCamera current(*scene, views.front());
       RenderRequest request;
       request.region = regions.front();
@@ -742,8 +759,16 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
       request.cluster = &cluster;
       Stopwatch frame_timer;
       RunStatistics statistics;
-      const RenderResult result = timed_render(*method, *scene, request, threads, statistics);
+      const RenderResult result = [&] {
+        try {
+          return timed_render(*method, *scene, request, threads, statistics);
+        } catch (...) {
+          undo_edits();
+          throw;
+        }
+      }();
       const Film& film = result.film;
+      undo_edits();
       std::swap(scene->lights, frame.lights);
       std::swap(scene->ambient, frame.ambient);
       if (!root) {

@@ -1564,5 +1564,53 @@ TEST_F(Cli, ErrorLogsFollowEveryProgressiveMethodAgainstTheReference) {
   EXPECT_EQ(file_count(), files);
 }
 
+// Issue 25: relight frames through the hierarchical transport equal fresh solves with the same
+// lights, and a frame's albedo edits (R = QS: the sites, areas and S reused, Q redone) equal a fresh
+// solve of the edited scene; an edit is undone after its frame; an unknown material is refused
+// before any work, naming the scene's materials.
+TEST_F(Cli, RelightFramesAndAlbedoEditsEqualFreshSolves) {
+  const auto scene_with = [](const std::string& light, const std::string& red) {
+    return R"({"format": "candela/1",
+    "camera": {"eye": [5, 4, 9.5], "target": [5, 4, 0], "fov": 60, "width": 16, "height": 16},
+    "meshless": {"spacing": 1.2, "grid": 12, "rounds": 2, "transport": "hierarchical"},
+    "materials": {"red": {"kd": )" +
+           red + R"(}, "white": {"kd": 0.6}},
+    "lights": [)" +
+           light + R"(],
+    "shapes": [{"type": "box", "min": [0, 0, 0], "max": [10, 8, 10], "material": "white"},
+               {"type": "box", "min": [3, 0, 3], "max": [6, 3, 6], "material": "red"}]})";
+  };
+  const std::string high = R"({"type": "point", "position": [5, 7, 5], "intensity": 10})";
+  const std::string low = R"({"type": "point", "position": [2, 1, 8], "intensity": 10})";
+  write("room.json", scene_with(high, "[0.7, 0.1, 0.1]"));
+  write("low.json", scene_with(low, "[0.7, 0.1, 0.1]"));
+  write("green.json", scene_with(low, "[0.1, 0.6, 0.2]"));
+  write("frames.json", R"({"frames": [{"name": "low", "lights": [)" + low + R"(]},
+    {"name": "green", "lights": [)" +
+                           low + R"(], "materials": {"red": {"kd": [0.1, 0.6, 0.2]}}},
+    {"name": "back", "lights": [)" +
+                           high + R"(]}]})");
+  std::string output;
+  ASSERT_EQ(run("render room.json -q --method meshless --relight frames.json -o room.pfm", output), 0)
+      << output;
+  ASSERT_EQ(run("render low.json -q --method meshless -o fresh-low.pfm", output), 0) << output;
+  ASSERT_EQ(run("render green.json -q --method meshless -o fresh-green.pfm", output), 0) << output;
+  const auto bytes = [&](const std::string& name) {
+    std::ifstream in(directory_ / name, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(bytes("room-low.pfm"), bytes("fresh-low.pfm"));
+  EXPECT_EQ(bytes("room-green.pfm"), bytes("fresh-green.pfm"));
+  EXPECT_NE(bytes("room-green.pfm"), bytes("room-low.pfm"));
+  EXPECT_EQ(bytes("room-back.pfm"), bytes("room.pfm"));  // the edit did not outlive its frame
+  write("bad.json", R"({"frames": [{"name": "x", "lights": [],
+    "materials": {"blue": {"kd": 0.5}}}]})");
+  EXPECT_EQ(run("render room.json -q --method meshless --relight bad.json -o r.png", output), 2);
+  EXPECT_NE(output.find("bad.json:2:"), std::string::npos) << output;
+  EXPECT_NE(output.find("no material \"blue\" (its named materials: red, white)"), std::string::npos)
+      << output;
+  EXPECT_FALSE(std::filesystem::exists(directory_ / "r.png"));
+}
+
 }  // namespace
 }  // namespace candela

@@ -244,9 +244,18 @@ MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& sett
   MeshlessLighting lighting;
   lighting.eta.resize(sites.sites.size());
   const SurfaceEmitterIndex emitters(scene);
+  // Issue 25 (albedo edits, R = QS): Q as the scene's materials have it now — a relight frame may
+  // give a material another kd; a constant kd is read afresh, a textured one is as it was where
+  // the site was sampled. S does not depend on it.
+  std::vector<Color> albedo = sites.albedo;
   tbb::parallel_for(std::size_t(0), sites.sites.size(), [&](std::size_t i) {
+    const Material& material = scene.materials[scene.primitives[sites.primitive[i]].material];
+    if (material.kd && material.kd->is_constant()) {
+      const Color kd = material.kd->evaluate(SurfaceHit{});
+      for (int c = 0; c < 3; ++c) albedo[i][c] = std::clamp(kd[c], 0.0, 1.0);  // diffuse_albedo()
+    }
     lighting.eta[i] = direct_light(scene, emitters, i, settings.gather_rays, sites.sites[i].position,
-                                   sites.sites[i].normal, sites.albedo[i]);
+                                   sites.sites[i].normal, albedo[i]);
   });
   ProgressReporter progress("meshless solve", 1000, "per mille of convergence", quiet);
   TransferIterationCallback each_iteration;
@@ -255,7 +264,7 @@ MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& sett
       on_iteration(iteration, lighting.eta, lambda);
     };
   lighting.transfer =
-      solve_transfer(geometry.matrix, sites.albedo, lighting.eta, settings.tolerance,
+      solve_transfer(geometry.matrix, albedo, lighting.eta, settings.tolerance,
                      static_cast<std::size_t>(settings.max_iterations), &progress, each_iteration);
   progress.finish();
   lighting.seconds = seconds_since(start);

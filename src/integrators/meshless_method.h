@@ -71,7 +71,7 @@ struct MeshlessSettings {
   int gather_rays = 256;  // per site, for the transfer matrix's near field (meshless/transfer_matrix.h)
   double near_field = 2;  // the near field: elements closer than this many of their radii
   MeshlessTransport transport = MeshlessTransport::flat;
-  double cluster_angle = 0.5;  // hierarchical: a cluster is one sender while extent/distance ≤ this
+  double cluster_angle = 0.2;  // hierarchical: a cluster is one sender while extent/distance ≤ this
   // Issue 21: where a refusal of the sites or the transfer matrix (too many, too much memory)
   // points — the spacing when the scene gives it, else the "meshless" object.
   SourceLocation location;

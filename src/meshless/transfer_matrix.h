@@ -64,7 +64,7 @@ struct TransferSettings {
   double near_field = 2;        // elements closer than this many of their radii are integrated
   uint64_t seed = 0;            // the rays' streams: one per (seed, receiver)
   std::size_t max_entries = 0;  // refused past this (0: no limit)
-  double cluster_angle = 0.5;   // hierarchical transport: a node is one sender while extent/distance ≤ this
+  double cluster_angle = 0.2;   // hierarchical transport: a node is one sender while extent/distance ≤ this
 };
 
 struct TransferMatrix {

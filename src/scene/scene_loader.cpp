@@ -405,11 +405,38 @@ std::vector<LightSetup> load_light_setups_text(const std::string& text, const st
         frame.at("name").fail("\"" + setup.name + "\" names an earlier frame too");
     setup.ambient = frame.color("ambient", Color(0), Range::non_negative());
     read_light_list(frame.at("lights"), setup.ambient, setup.lights, context);
+    if (const auto materials = frame.get("materials")) {
+      materials->expect_object();
+      for (const auto& [material, value] : materials->json().items()) {
+        const JsonNode edit = materials->at(material);
+        edit.expect_object();
+        setup.albedo_edits.push_back({material, edit.at("kd").as_color(Range::unit()), edit.location()});
+        edit.finish();
+      }
+    }
     frame.finish();
     setups.push_back(std::move(setup));
   }
   root.finish();
   return setups;
+}
+
+std::vector<std::size_t> find_albedo_edit_targets(const Scene& scene, const std::vector<AlbedoEdit>& edits) {
+  std::vector<std::size_t> targets;
+  for (const AlbedoEdit& edit : edits) {
+    const auto found = std::find_if(scene.materials.begin(), scene.materials.end(),
+                                    [&](const Material& m) { return m.name == edit.material; });
+    if (found == scene.materials.end()) {
+      std::string known;
+      for (const Material& m : scene.materials)
+        if (!m.name.empty() && m.name != "default") known += (known.empty() ? "" : ", ") + m.name;
+      throw InputError(edit.location, "the scene has no material \"" + edit.material +
+                                          "\" (its named materials: " + (known.empty() ? "none" : known) +
+                                          ")");
+    }
+    targets.push_back(static_cast<std::size_t>(found - scene.materials.begin()));
+  }
+  return targets;
 }
 
 std::unique_ptr<Scene> read_default_scene(const std::vector<std::string>& overrides,
