@@ -13,6 +13,7 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <map>
 #include <optional>
 
 #include "commands.h"
@@ -35,6 +36,7 @@
 #include "util/input_file.h"
 #include "validate/convergence_log.h"
 #include "validate/image_comparison.h"
+#include "validate/relight_page.h"
 
 namespace candela::cli {
 
@@ -58,6 +60,7 @@ struct RenderOptions {
   std::string export_solution;
   std::string show_sites;
   std::string relight;
+  std::string relight_page;  // issue 25: the relighting page
   // The path tracer's progressive run (SPEC §12).
   std::optional<int> spp;
   std::optional<double> time;
@@ -358,7 +361,32 @@ struct RenderJob {
   std::vector<PixelRect> regions;
   std::string fingerprint;
   std::optional<ConvergenceLog> convergence;  // --error-log
+  std::vector<RelightPageFrame> page_frames;  // --relight-page: every frame written, in order
+  nlohmann::json precomputation;              // --relight-page: the first render's meshless facts
 };
+
+// Issue 25: the relighting page's line for a frame just rendered (rank 0).
+RelightPageFrame relight_page_frame(const std::string& name, const std::string& image,
+                                    const std::string& page, const Scene& scene,
+                                    const RunStatistics& statistics, double seconds) {
+  RelightPageFrame frame;
+  frame.name = name;
+  const std::filesystem::path folder = std::filesystem::absolute(page).parent_path();
+  frame.image = std::filesystem::absolute(image).lexically_relative(folder).generic_string();
+  std::map<std::string, int> kinds;
+  for (const auto& light : scene.lights) ++kinds[std::string(light->type_name())];
+  for (const auto& [kind, count] : kinds)
+    frame.lights += (frame.lights.empty() ? "" : ", ") + fmt::format("{} {}", count, kind);
+  if (!scene.ambient.is_black()) frame.lights += frame.lights.empty() ? "ambient" : " and ambient";
+  if (frame.lights.empty()) frame.lights = "emissive surfaces only";
+  const auto found = statistics.extra.find("meshless");
+  if (found != statistics.extra.end()) {
+    frame.lighting_seconds = found->value("lighting_seconds", 0.0);
+    frame.iterations = found->value("iterations", 0);
+  }
+  frame.frame_seconds = seconds;
+  return frame;
+}
 
 // --error-reference, --error-mask: the reference in the units the method's film holds (the
 // scene's film.exposure, which render -o applied to it, undone) and the mask, both the size of the
@@ -504,6 +532,15 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
     throw BadArgument("--resume continues one camera's image, not " + std::to_string(views.size()));
   if (!relight_frames.empty() && views.size() != 1)
     throw BadArgument("--relight renders one camera, not " + std::to_string(views.size()));
+  if (!options.relight_page.empty()) {
+    if (relight_frames.empty()) throw BadArgument("--relight-page needs --relight");
+    if (format != ImageFormat::png)
+      throw BadArgument("--relight-page shows the frames in a browser: -o must name a .png, not " +
+                        options.output);
+    if (std::filesystem::path(options.relight_page).extension() != ".html")
+      throw BadArgument("--relight-page " + options.relight_page + ": expected a .html file");
+    check_writable(options.relight_page, "--relight-page");
+  }
   for (const LightSetup& frame : relight_frames) {
     find_albedo_edit_targets(*scene, frame.albedo_edits);  // every material named, before any work
     check_writable(path_with_suffix(options.output, frame.name), "-o");
@@ -651,6 +688,7 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
         statistics.add_phase("load", load_seconds);
         statistics.add_phase("build", build_seconds);
       }
+      const Stopwatch view_timer;
       const RenderResult result = timed_render(*method, *scene, request, threads, statistics);
       const Film& film = result.film;
       // A method's warning about its result (the path tracer: nothing emits light).
@@ -715,6 +753,11 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
                                  method->name(), views.size() > 1 ? ", camera " + view.name : std::string())
                   << statistics.summary();
       statistics.extra["ranks"] = cluster.size();
+      if (!options.relight_page.empty())
+        job.page_frames.push_back(relight_page_frame("scene", output, options.relight_page, *scene,
+                                                     statistics, view_timer.seconds()));
+      if (!options.relight_page.empty())
+        job.precomputation = statistics.extra.value("meshless", nlohmann::json());
       if (!stats_path.empty()) write_statistics(statistics, stats_path);
       written.finish(output + " (camera " + view.name + ")");
       if (interrupted())
@@ -792,6 +835,15 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
                                  output);
       if (!options.stats_path.empty())
         write_statistics(statistics, path_with_suffix(options.stats_path, frame.name));
+      if (!options.relight_page.empty()) {
+        // The lights of the frame are back in `frame`: described from a scene holding them.
+        std::swap(scene->lights, frame.lights);
+        std::swap(scene->ambient, frame.ambient);
+        job.page_frames.push_back(relight_page_frame(frame.name, output, options.relight_page, *scene,
+                                                     statistics, frame_timer.seconds()));
+        std::swap(scene->lights, frame.lights);
+        std::swap(scene->ambient, frame.ambient);
+      }
       written.finish(output + " (frame " + frame.name + ")");
       if (interrupted()) return report_interrupted(statistics, output, relight_frames.size() - f - 1);
     } catch (...) {
@@ -800,6 +852,28 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
                                views.size() + relight_frames.size());
       throw;
     }
+  }
+  if (root && !options.relight_page.empty()) {
+    const nlohmann::json& m = job.precomputation;
+    RelightPage page;
+    page.title = "Relighting " + scene->source + " (meshless radiosity)";
+    page.facts = {
+        {"sites", fmt::format("{}", m.value("sites", 0))},
+        {"transport", fmt::format("{} ({} levels)", m.value("transport", std::string("flat")),
+                                  m.value("hierarchy_levels", 1))},
+        {"entries of S", fmt::format("{} ({} cluster links, {:.1f} MiB)", m.value("transfer_entries", 0),
+                                     m.value("cluster_links", 0), m.value("transfer_memory_mib", 0.0))},
+        {"precomputation (s)",
+         fmt::format("{:.2f}: sites {:.2f}, effective areas {:.2f}, hierarchy {:.2f}, S {:.2f}",
+                     m.value("sampling_seconds", 0.0) + m.value("area_seconds", 0.0) +
+                         m.value("hierarchy_seconds", 0.0) + m.value("transfer_seconds", 0.0),
+                     m.value("sampling_seconds", 0.0), m.value("area_seconds", 0.0),
+                     m.value("hierarchy_seconds", 0.0), m.value("transfer_seconds", 0.0))},
+        {"frames", fmt::format("{}", job.page_frames.size())}};
+    page.frames = job.page_frames;
+    write_text_atomically(options.relight_page, relight_page_html(page));
+    if (!options.quiet)
+      std::cerr << fmt::format("candela: wrote {} ({} frames)\n", options.relight_page, page.frames.size());
   }
   return 0;
 }
@@ -884,6 +958,10 @@ void add_render_command(CLI::App& app, std::function<int()>& run) {
       "--relight", options->relight,
       "meshless: also render each light set-up of FILE ({\"frames\": [{\"name\", \"lights\"}]}) from the "
       "same sites and transfer matrix, -o out.png -> out-NAME.png");
+  command->add_option(
+      "--relight-page", options->relight_page,
+      "meshless, with --relight: also write an HTML page with every frame, a slider over them and "
+      "their times (-o must be a .png)");
   command->add_option("--show-sites", options->show_sites,
                       "meshless: also write the image with the element centres (sites) drawn over it");
   command->add_option(

@@ -305,5 +305,52 @@ TEST_F(ReportCli, AFailingMethodWritesNoPage) {
   EXPECT_FALSE(fs::exists(directory_ / "again" / "report.json"));
 }
 
+// Issue 25, item 5: the relighting page — every frame written (the scene's own lights first), each
+// image loads in headless Chromium, page.html#2 opens at the third frame; refused without --relight
+// or with an image a browser cannot show.
+TEST_F(ReportCli, RelightPageShowsEveryFrameWithASlider) {
+  std::ofstream(directory_ / "frames.json") << R"({"frames": [
+    {"name": "low", "lights": [{"type": "point", "position": [1, 0.5, 2], "intensity": 2}]},
+    {"name": "green-floor", "lights": [{"type": "point", "position": [2, 2.5, 2], "intensity": 2}],
+     "materials": {"white": {"kd": [0.2, 0.7, 0.2]}}}]})";
+  fs::create_directories(directory_ / "frames");
+  fs::create_directories(directory_ / "page");
+  std::string output;
+  ASSERT_EQ(
+      candela(
+          "render room.json --method meshless --set meshless.transport=hierarchical --relight frames.json "
+          "-q -o frames/room.png --relight-page page/relight.html",
+          output),
+      0)
+      << output;
+  const std::string page = read(directory_ / "page" / "relight.html");
+  for (const char* image : {"../frames/room.png", "../frames/room-low.png", "../frames/room-green-floor.png"})
+    EXPECT_NE(page.find(image), std::string::npos) << image;
+  EXPECT_NE(page.find("hierarchical ("), std::string::npos);
+  std::string dom;
+  const int status = shell(
+      "(timeout 60 chromium --headless --no-sandbox --disable-gpu --virtual-time-budget=5000 "
+      "--user-data-dir='" +
+          (directory_ / "chromium-profile").string() + "' --dump-dom 'file://" +
+          (directory_ / "page" / "relight.html").string() + "#2' > dom.html 2> chromium-log.txt)",
+      dom);
+  ASSERT_EQ(status, 0) << read(directory_ / "chromium-log.txt");
+  dom = read(directory_ / "dom.html");
+  EXPECT_NE(dom.find("data-images-loaded=\"4/4\""), std::string::npos)
+      << dom.substr(0, 3000);  // frame + 3 thumbs
+  EXPECT_NE(dom.find("data-frame=\"green-floor\""), std::string::npos) << dom.substr(0, 3000);
+  EXPECT_NE(dom.find("Frame 3 of 3: green-floor"), std::string::npos);
+  // Refusals, before any work.
+  EXPECT_EQ(candela("render room.json --method meshless -q -o x.png --relight-page p.html", output), 2);
+  EXPECT_NE(output.find("--relight-page needs --relight"), std::string::npos) << output;
+  EXPECT_EQ(
+      candela("render room.json --method meshless --relight frames.json -q -o x.pfm --relight-page p.html",
+              output),
+      2);
+  EXPECT_NE(output.find("-o must name a .png"), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(directory_ / "x.pfm"));
+  EXPECT_FALSE(fs::exists(directory_ / "p.html"));
+}
+
 }  // namespace
 }  // namespace candela

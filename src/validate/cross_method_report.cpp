@@ -182,6 +182,14 @@ window.addEventListener('load', function () {
 });
 )";
 
+}  // namespace
+
+const char* page_load_check_script() {
+  return kScript;
+}
+
+namespace {
+
 std::string seconds_text(double seconds) {
   return seconds < 0 ? "&mdash;" : fmt::format("{:.3f}", seconds);
 }

@@ -115,6 +115,9 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
 
 // The pieces, for tests.
 std::string html_escape(std::string_view text);
+// A script that sets <body data-images-loaded="loaded/total"> once the page has loaded, and the text
+// of an element with id image-status: what the headless checks of our pages read.
+const char* page_load_check_script();
 
 // The names of every file a run with these options may write in its directory (index.html,
 // report.json, reference.*, each entry's .png, .exr and -diff.png): what must not be one of its
