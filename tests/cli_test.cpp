@@ -717,6 +717,20 @@ TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
       }
       EXPECT_GT(entry["sites"].get<int>(), 0) << name;
     }
+  // Issue 25: the flat and the hierarchical transport, each with its precomputation time and error;
+  // the same sites (the transport does not change the sampling), the hierarchy fewer entries.
+  EXPECT_TRUE(fs::exists(out / "transport.csv"));
+  const nlohmann::json& transport = errors["transport"];
+  ASSERT_EQ(transport.size(), 2u);
+  EXPECT_EQ(transport[0]["transport"], "flat");
+  EXPECT_EQ(transport[1]["transport"], "hierarchical");
+  EXPECT_EQ(transport[0]["sites"], transport[1]["sites"]);
+  EXPECT_LT(transport[1]["entries"].get<double>(), transport[0]["entries"].get<double>());
+  for (const auto& entry : transport) {
+    EXPECT_GT(entry["precompute_seconds"].get<double>(), 0);
+    EXPECT_TRUE(std::isfinite(entry["rms"].get<double>()));
+    EXPECT_LT(entry["rms_relative"].get<double>(), 0.5);
+  }
   // A directory that cannot be created is bad input.
   write("file", "x");
   EXPECT_EQ(run("validate sphere-disc --quick --out file/sub", output), 2) << output;

@@ -85,17 +85,34 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
         if (i + j + 1 < n) sample(corner + du + dv - (du + dv) / 3.0);  // inverted
       }
     });
-    // One sum per site for the triangle (sorted by site, added in row order: thread-independent).
-    std::vector<std::pair<uint32_t, double>> sums;
-    for (auto& row : rows) sums.insert(sums.end(), row.begin(), row.end());
-    std::stable_sort(sums.begin(), sums.end(),
-                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    // One sum per site for the triangle, each site's values added in row order and within a row in
+    // the order of its midpoints (thread-independent). A large triangle (a room's wall: millions of
+    // values) adds them into one slot per site as they come; a small one sorts its few by site
+    // (stable: the same order of addition, the same sums to the bit).
+    std::size_t values = 0;
+    for (const auto& row : rows) values += row.size();
     std::vector<std::pair<uint32_t, double>> merged;
-    for (const auto& [k, value] : sums) {
-      if (!merged.empty() && merged.back().first == k)
-        merged.back().second += value;
-      else
-        merged.emplace_back(k, value);
+    if (values > site_count / 4 + 1024) {
+      std::vector<double> total(site_count, 0.0);
+      std::vector<uint8_t> touched(site_count, 0);
+      std::vector<uint32_t> sites_touched;
+      for (const auto& row : rows)
+        for (const auto& [k, value] : row) {
+          if (!touched[k]) touched[k] = 1, sites_touched.push_back(k);
+          total[k] += value;
+        }
+      std::sort(sites_touched.begin(), sites_touched.end());
+      for (const uint32_t k : sites_touched) merged.emplace_back(k, total[k]);
+    } else {
+      std::vector<std::pair<uint32_t, double>> sums;
+      for (auto& row : rows) sums.insert(sums.end(), row.begin(), row.end());
+      std::stable_sort(sums.begin(), sums.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      for (const auto& [k, value] : sums) {
+        if (!merged.empty() && merged.back().first == k)
+          merged.back().second += value;
+        else
+          merged.emplace_back(k, value);
+      }
     }
     contributions[t] = std::move(merged);
     if (!cluster || !cluster->distributed()) progress.advance();

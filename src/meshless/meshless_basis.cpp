@@ -91,10 +91,14 @@ void MeshlessBasis::evaluate(const Site& p, std::vector<std::pair<uint32_t, doub
           value = cubic_kernel(t);
         break;
       }
-      case BasisKind::normalized:  // 002 eq. 4.9
-        value = cubic_kernel(length(p.position - centre.position) / r) *
-                std::max(0.0, dot(p.normal, centre.normal));
+      case BasisKind::normalized: {  // 002 eq. 4.9
+        // Most candidates lie outside their support: they are passed by before the square root
+        // and the division (a hair beyond r² so that rounding cannot drop one K would keep).
+        const double d2 = length_squared(p.position - centre.position);
+        if (d2 > r * r * (1 + 1e-12)) break;
+        value = cubic_kernel(std::sqrt(d2) / r) * std::max(0.0, dot(p.normal, centre.normal));
         break;
+      }
       case BasisKind::shepard: {  // 002 eqs. 4.10–4.11, Franke–Little weights
         const double d = site_distance(p, centre);
         if (!(d < r)) break;

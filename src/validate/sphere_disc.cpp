@@ -193,7 +193,7 @@ std::string sphere_disc_scene_json(const SphereDiscScene& scene, const FeSetting
   "camera": {{"type": "orthographic", "eye": [0, {eye}, 0], "target": [0, 0, 0], "up": [0, 0, -1],
              "window": [{lo}, {hi}, {lo}, {hi}], "width": 64, "height": 64}},
   "render": {{"method": "meshless"}},
-  "meshless": {{"basis": "{basis}", "spacing": {spacing}, "grid": {grid}, "rounds": {rounds}}},
+  "meshless": {{"basis": "{basis}", "spacing": {spacing}, "grid": {grid}, "rounds": {rounds}, "transport": "{transport}"}},
   "lights": [{{"type": "directional", "direction": [0, -1, 0], "intensity": {mu}}}],
   "shapes": [
     {{"type": "disc", "center": [0, 0, 0], "normal": [0, 1, 0], "radius": {R}, "material": {{"kd": {delta}}}}},
@@ -201,6 +201,7 @@ std::string sphere_disc_scene_json(const SphereDiscScene& scene, const FeSetting
   ]}})",
       fmt::arg("eye", scene.height * 5), fmt::arg("lo", -window), fmt::arg("hi", window),
       fmt::arg("basis", kBasisNames.name(settings.basis)), fmt::arg("spacing", settings.spacing),
+      fmt::arg("transport", settings.transport),
       fmt::arg("grid", settings.grid), fmt::arg("rounds", settings.rounds), fmt::arg("mu", scene.light),
       fmt::arg("R", scene.disc_radius), fmt::arg("delta", scene.disc_albedo), fmt::arg("h", scene.height),
       fmt::arg("r", scene.sphere_radius), fmt::arg("beta", scene.sphere_albedo));
@@ -210,8 +211,9 @@ FeCurves solve_fe(const SphereDiscScene& scene, const FeSettings& settings, cons
                   const std::vector<double>& alpha) {
   const auto start = std::chrono::steady_clock::now();
   const auto loaded = load_scene_text(sphere_disc_scene_json(scene, settings), "sphere-disc.json", ".");
+  nlohmann::json facts;
   const MeshlessSolution solution =
-      solve_meshless(*loaded, read_meshless_settings(loaded->plugin_settings.node("meshless")));
+      solve_meshless(*loaded, read_meshless_settings(loaded->plugin_settings.node("meshless")), &facts);
   const SiteSet& set = solution.sites;
   const MeshlessBasis basis(set.sites, set.radius, settings.basis);
   FeCurves curves;
@@ -219,6 +221,9 @@ FeCurves solve_fe(const SphereDiscScene& scene, const FeSettings& settings, cons
   for (const Site& site : set.sites)
     (std::abs(site.position.y) < 1e-6 ? curves.disc_sites : curves.sphere_sites)++;
   curves.converged = solution.transfer.converged;
+  curves.precompute_seconds = facts.value("sampling_seconds", 0.0) + facts.value("area_seconds", 0.0) +
+                              facts.value("hierarchy_seconds", 0.0) + facts.value("transfer_seconds", 0.0);
+  curves.entries = solution.matrix.entries();
   const int k = std::max(1, settings.azimuths);
   // One ring: (mean, meridian, direct mean, uncovered points) of L = Σ λ_i φ_i at k azimuths.
   struct Ring {
@@ -563,6 +568,44 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
     write_plot(out / fmt::format("compare_{}.png", key), {disc, sphere});
   }
   result["least_rms"] = best;
+
+  // Issue 25: the flat and the hierarchical transport (normalized basis) at several spacings, each
+  // with its precomputation time: which is more accurate for the same time.
+  {
+    std::string table = "transport,spacing,sites,entries,precompute_seconds,rms,rms_relative\n";
+    nlohmann::json runs = nlohmann::json::array();
+    const std::vector<std::pair<std::string, std::vector<double>>> plan =
+        run.quick ? std::vector<std::pair<std::string, std::vector<double>>>{{"flat", {3}}, {"hierarchical", {3}}}
+                  : std::vector<std::pair<std::string, std::vector<double>>>{
+                        {"flat", {3, 2, 1.5, 1.2, 1}}, {"hierarchical", {3, 2, 1.5, 1.2, 1, 0.8, 0.7}}};
+    for (const auto& [transport, spacings_of_run] : plan)
+      for (const double spacing : spacings_of_run) {
+        FeSettings fe;
+        fe.spacing = spacing;
+        fe.transport = transport;
+        if (run.quick) {
+          fe.grid = 64;
+          fe.azimuths = 16;
+        }
+        const FeCurves curves = solve_fe(scene, fe, reference.u, reference.alpha);
+        const CurveErrors mean =
+            curve_errors(curves.disc_mean, reference.disc_total, curves.sphere_mean, reference.sphere_total);
+        nlohmann::json entry = to_json(mean);
+        entry["transport"] = transport;
+        entry["spacing"] = spacing;
+        entry["sites"] = curves.sites;
+        entry["entries"] = curves.entries;
+        entry["precompute_seconds"] = curves.precompute_seconds;
+        runs.push_back(entry);
+        table += fmt::format("{},{},{},{},{:.3f},{:.6g},{:.6g}\n", transport, spacing, curves.sites, curves.entries,
+                             curves.precompute_seconds, mean.rms, mean.rms_relative);
+        say(fmt::format("{:<12} delta {}: {:>5} sites, {:>9} entries, precomputed in {:.2f} s, RMS {:.4g} ({:.3g} %)",
+                        transport, spacing, curves.sites, curves.entries, curves.precompute_seconds, mean.rms,
+                        100 * mean.rms_relative));
+      }
+    write_text_atomically(out / "transport.csv", table);
+    result["transport"] = runs;
+  }
   result["error_definition"] =
       "FE azimuth mean (or meridian) minus reference total at the reference's n disc nodes and m sphere "
       "nodes "

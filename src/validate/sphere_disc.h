@@ -90,6 +90,7 @@ class ReferenceSolution {
 struct FeSettings {
   BasisKind basis = BasisKind::normalized;
   double spacing = 3;  // Δ
+  std::string transport = "flat";  // issue 25: or "hierarchical" (meshless.transport)
   int grid = 256;      // camera rays per side (an orthographic camera over the disc, from above)
   int rounds = 8;      // rounds of secondary rays
   int azimuths = 100;  // points per ring for the azimuth mean
@@ -107,6 +108,8 @@ struct FeCurves {
   std::size_t uncovered = 0;  // sample points no element reaches (counted as 0)
   bool converged = false;
   double seconds = 0;
+  double precompute_seconds = 0;  // sites, effective areas, hierarchy and S (what relighting reuses)
+  std::size_t entries = 0;        // S's
 };
 
 FeCurves solve_fe(const SphereDiscScene& scene, const FeSettings& settings, const std::vector<double>& u,
@@ -124,7 +127,9 @@ CurveErrors curve_errors(const std::vector<double>& disc_fe, const std::vector<d
 // (n = m = k = 4× — its values at the reference's nodes show that the reference has converged),
 // and the FE solutions for the three bases at Δ = 3 and Δ = 1, written to directory:
 // reference_disc.csv, reference_sphere.csv, fe_<basis>_delta<Δ>_disc.csv / _sphere.csv,
-// errors.json and PNG plots. quick (for tests): a disc of radius 15, n = m = k = 30, a 64² camera grid. Every
+// errors.json and PNG plots; and (issue 25) the normalized basis's flat and hierarchical transport at
+// several spacings, each with its precomputation seconds and RMS error (transport.csv, errors.json's
+// "transport": the hierarchical one's error at equal precomputation time). quick (for tests): a disc of radius 15, n = m = k = 30, a 64² camera grid. Every
 // file is written atomically; progress lines go to log when not null. Returns errors.json's content.
 struct SphereDiscRun {
   bool quick = false;
