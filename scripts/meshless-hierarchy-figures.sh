@@ -34,7 +34,7 @@ print(f'{sys.argv[2]} (cluster_angle {sys.argv[4]}),{sys.argv[3]},{r["sites"]},{
       f'{r["hierarchy_seconds"]:.2f},{r["transfer_seconds"]:.2f},{pre:.2f},{r["peak_memory_mib"]:.0f}')
 PY
 }
-for angle in 0.5 0.2; do
+for angle in 0.5 0.15; do
   for spacing in 0.235 0.1177 0.0589; do scale scenes/cornell-box.json $spacing 256 $angle; done
 done
 scale scenes/cornell-box.json 0.0527 256 0.5
@@ -57,8 +57,8 @@ pre = m["sampling_seconds"] + m["area_seconds"] + m["hierarchy_seconds"] + m["tr
 print(f'{sys.argv[2]},{sys.argv[3] if sys.argv[2] == "hierarchical" else "—"},{sys.argv[4]},{m["sites"]},{m["transfer_entries"]},{pre:.2f},{c["rmse"]:.5f}')
 PY
 }
-for spacing in 0.325 0.28 0.25 0.22; do accuracy flat 0.2 $spacing; done
-for spacing in 0.325 0.25 0.2 0.16 0.14; do accuracy hierarchical 0.2 $spacing; done
+for spacing in 0.325 0.28 0.25 0.22; do accuracy flat 0.15 $spacing; done
+for spacing in 0.325 0.25 0.2 0.16 0.14; do accuracy hierarchical 0.15 $spacing; done
 
 python3 - "$out" <<'PY'
 import csv, math, sys

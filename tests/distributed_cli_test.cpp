@@ -197,6 +197,21 @@ TEST_F(Distributed, MeshlessTransferRowsAcrossRanksGiveTheSameImage) {
   EXPECT_EQ(json("m.json")["meshless"]["visibility_rays"], two["meshless"]["visibility_rays"]);
 }
 
+// Issue 25: the hierarchical transport across ranks — the sites' rows shared out, the links of the
+// hierarchy computed alike on every rank — gives the single process's image and matrix.
+TEST_F(Distributed, HierarchicalMeshlessTransportAcrossRanksGivesTheSameImage) {
+  const std::string arguments = "render " + kCornell +
+                                " --method meshless --set meshless.spacing=0.4 --set meshless.gather_rays=16 "
+                                "--set meshless.transport=hierarchical";
+  expect_identical("hierarchical", arguments);
+  std::string output;
+  ASSERT_EQ(run(0, arguments + " -o h.pfm --stats h.json", output), 0) << output;
+  const nlohmann::json two = json("hierarchical-2.json");
+  EXPECT_GT(json("h.json")["meshless"]["cluster_links"].get<int>(), 0);
+  EXPECT_EQ(json("h.json")["meshless"]["transfer_entries"], two["meshless"]["transfer_entries"]);
+  EXPECT_EQ(json("h.json")["meshless"]["cluster_links"], two["meshless"]["cluster_links"]);
+}
+
 // 002 §5.3 relighting reuses the sites and S: each frame, and the sites picture (written by rank
 // 0 alone), as one process makes them.
 TEST_F(Distributed, MeshlessRelightFramesAndSitesPicture) {

@@ -48,8 +48,8 @@ inline constexpr auto kMeshlessAreaNames =
     enum_names<MeshlessAreas>({{MeshlessAreas::integrated, "integrated"}, {MeshlessAreas::thesis, "thesis"}});
 
 // The transfer: the thesis's flat matrix, every far element on its own (n² entries at worst), or
-// the hierarchical transport of Lehtinen et al. 2008 (issue 25: clusters of the site hierarchy,
-// O(n log n) entries; meshless/site_hierarchy.h, meshless/transfer_matrix.h).
+// the hierarchical transport of Lehtinen et al. 2008 (issue 25: links between nodes of the site
+// hierarchy, O(n log n) entries at worst; meshless/site_hierarchy.h, meshless/transfer_matrix.h).
 enum class MeshlessTransport { flat, hierarchical };
 inline constexpr auto kMeshlessTransportNames = enum_names<MeshlessTransport>(
     {{MeshlessTransport::flat, "flat"}, {MeshlessTransport::hierarchical, "hierarchical"}});
@@ -71,7 +71,7 @@ struct MeshlessSettings {
   int gather_rays = 256;  // per site, for the transfer matrix's near field (meshless/transfer_matrix.h)
   double near_field = 2;  // the near field: elements closer than this many of their radii
   MeshlessTransport transport = MeshlessTransport::flat;
-  double cluster_angle = 0.2;  // hierarchical: a cluster is one sender while extent/distance ≤ this
+  double cluster_angle = 0.15;  // hierarchical: two nodes are linked while extent/distance < this
   // Issue 21: where a refusal of the sites or the transfer matrix (too many, too much memory)
   // points — the spacing when the scene gives it, else the "meshless" object.
   SourceLocation location;

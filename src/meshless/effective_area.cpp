@@ -106,7 +106,8 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
     } else {
       std::vector<std::pair<uint32_t, double>> sums;
       for (auto& row : rows) sums.insert(sums.end(), row.begin(), row.end());
-      std::stable_sort(sums.begin(), sums.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      std::stable_sort(sums.begin(), sums.end(),
+                       [](const auto& x, const auto& y) { return x.first < y.first; });
       for (const auto& [k, value] : sums) {
         if (!merged.empty() && merged.back().first == k)
           merged.back().second += value;

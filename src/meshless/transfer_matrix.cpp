@@ -30,9 +30,11 @@ double TransferMatrix::density() const {
 }
 
 std::size_t TransferMatrix::bytes() const {
-  return static_cast<std::size_t>(S.nonZeros()) * (sizeof(float) + sizeof(int32_t)) +
-         static_cast<std::size_t>(S.rows() + 1) * sizeof(int32_t) + cluster_start.size() * sizeof(uint32_t) +
-         cluster_terms.size() * sizeof(cluster_terms[0]);
+  return static_cast<std::size_t>(S.nonZeros() + receiver_links.nonZeros()) *
+             (sizeof(float) + sizeof(int32_t)) +
+         static_cast<std::size_t>(S.rows() + receiver_links.rows() + 2) * sizeof(int32_t) +
+         push_scale.size() * sizeof(double) + parent.size() * sizeof(uint32_t) +
+         cluster_start.size() * sizeof(uint32_t) + cluster_terms.size() * sizeof(cluster_terms[0]);
 }
 
 void TransferMatrix::sender_values(const std::vector<Color>& lambda, std::vector<Color>& senders) const {
@@ -57,6 +59,44 @@ struct Entry {
   float value;
 };
 using Row = std::vector<Entry>;
+
+// V: a shadow ray from one site toward another, both ends off their surfaces.
+bool sites_see_each_other(const Scene& scene, const Site& from, const Site& to) {
+  Ray ray;
+  ray.origin = from.position + from.normal * scene.ray_offset(from.position);
+  const Vec3 target = to.position + to.normal * scene.ray_offset(to.position);
+  const Vec3 to_target = target - ray.origin;
+  const double distance = length(to_target);
+  if (!(distance > 0)) return false;
+  ray.direction = to_target / distance;
+  ray.t_max = distance * (1 - 1e-9);
+  return !scene.occluded(ray);
+}
+
+// 002 eq. 5.2 × A: the transfer to a receiver at `receiver` facing `receiver_normal` (unit) from a
+// sender at `sender` whose area-weighted normal sum is `area_normal` (A_k p⃗_k for one site); 0
+// when either faces away.
+double point_transfer(const Vec3& receiver, const Vec3& receiver_normal, const Vec3& sender,
+                      const Vec3& area_normal) {
+  const Vec3 between = receiver - sender;  // v_kj · d
+  const double d2 = dot(between, between);
+  if (!(d2 > 0)) return 0.0;
+  const double d = std::sqrt(d2);
+  const Vec3 v = between / d;
+  const double cos_sender_area = dot(v, area_normal), cos_receiver = -dot(v, receiver_normal);
+  if (!(cos_sender_area > 0) || !(cos_receiver > 0)) return 0.0;
+  return cos_sender_area * cos_receiver / (kPi * d2);
+}
+
+// One link of the hierarchical transport: what receiver node gathers from sender node per unit of
+// the sender's radiosity (unscaled: before the receiver's far field is scaled to its rays).
+struct Link {
+  uint32_t receiver, sender;
+  double transfer;
+  bool operator<(const Link& other) const {
+    return receiver != other.receiver ? receiver < other.receiver : sender < other.sender;
+  }
+};
 
 // The hierarchy's nodes as senders (issue 25): per node its sites' total effective area, their
 // area-weighted centroid and Σ A·normal, how far its sites lie from the centroid, the farthest any
@@ -158,6 +198,121 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
     for (std::size_t member = 0; member < hierarchy->level_sites(top).size(); ++member)
       roots.push_back(hierarchy->node(top, member));
   }
+  // Issue 25: the links of the hierarchical transport, refining pairs of nodes from every pair of
+  // top-level nodes down (hierarchical radiosity's refinement, Hanrahan, Salzman and Aupperle 1991):
+  // a pair is linked while both nodes are small for their distance (cluster_angle), their normals
+  // agree, no site of the sender is a near element of a site of the receiver, and up to four shadow
+  // rays between their largest children agree; otherwise the larger one is split. A pair of sites
+  // that are not near each other is linked as the flat matrix would (one shadow ray).
+  std::vector<Link> links;
+  std::vector<std::size_t> link_start;
+  std::vector<double> from_ancestors;  // per site: Σ transfer of its ancestors' links
+  uint64_t link_rays = 0;
+  if (hierarchy) {
+    const double angle = settings.cluster_angle;
+    const auto unit_normal = [&](uint32_t node) {
+      return node < n ? sites[node].normal : clusters.area_normal[node] / length(clusters.area_normal[node]);
+    };
+    const auto closable = [&](uint32_t node) {
+      return node < n || (hierarchy->children(node).size() > 1 && clusters.area[node] > 0 &&
+                          length(clusters.area_normal[node]) >= 0.9 * clusters.area[node]);
+    };
+    std::vector<std::vector<Link>> found(roots.size() * roots.size());
+    std::vector<uint64_t> found_rays(found.size(), 0);
+    tbb::parallel_for(std::size_t(0), found.size(), [&](std::size_t task) {
+      std::vector<std::pair<uint32_t, uint32_t>> open{
+          {roots[task / roots.size()], roots[task % roots.size()]}};
+      std::vector<Link>& out = found[task];
+      uint64_t& task_rays = found_rays[task];
+      while (!open.empty()) {
+        const auto [receiver, sender] = open.back();
+        open.pop_back();
+        if (!(clusters.area[sender] > 0)) continue;
+        if (receiver < n && sender < n) {
+          // Two sites: the flat matrix's far entry, unless the sender is a near element.
+          const double r = site_set.radius[sender];
+          const double d2 = length_squared(sites[sender].position - sites[receiver].position);
+          if (receiver == sender || !std::isfinite(r) ||
+              d2 < settings.near_field * r * settings.near_field * r)
+            continue;
+          const double transfer = point_transfer(sites[receiver].position, sites[receiver].normal,
+                                                 sites[sender].position, clusters.area_normal[sender]);
+          if (!(transfer > 0)) continue;
+          ++task_rays;
+          if (sites_see_each_other(scene, sites[receiver], sites[sender]))
+            out.push_back({receiver, sender, transfer});
+          continue;
+        }
+        const double d = length(clusters.centroid[receiver] - clusters.centroid[sender]);
+        const double receiver_extent = clusters.extent[receiver], sender_extent = clusters.extent[sender];
+        bool closed = closable(receiver) && closable(sender) &&
+                      d > receiver_extent + sender_extent + clusters.near_reach[sender] &&
+                      receiver_extent < angle * d && sender_extent < angle * d;
+        if (closed) {
+          const double transfer = point_transfer(clusters.centroid[receiver], unit_normal(receiver),
+                                                 clusters.centroid[sender], clusters.area_normal[sender]);
+          if (!(transfer > 0)) continue;  // facing away, or below the receiver's horizon
+          const auto& from = clusters.samples[receiver];
+          const auto& to = clusters.samples[sender];
+          const auto count = [](const std::array<uint32_t, 4>& samples) {
+            return static_cast<int>(std::find(samples.begin(), samples.end(), UINT32_MAX) - samples.begin());
+          };
+          const int from_count = count(from), to_count = count(to), tried = std::max(from_count, to_count);
+          int seen = 0;
+          for (int i = 0; i < tried; ++i)
+            seen += sites_see_each_other(scene, sites[from[static_cast<std::size_t>(i % from_count)]],
+                                         sites[to[static_cast<std::size_t>(i % to_count)]]);
+          task_rays += static_cast<uint64_t>(tried);
+          if (seen == 0) continue;  // hidden
+          if (seen == tried) {
+            out.push_back({receiver, sender, transfer});
+            continue;
+          }
+          closed = false;  // partly hidden: refined
+        }
+        // Split the larger (a site cannot be split).
+        const bool split_sender = receiver < n || (sender >= n && sender_extent >= receiver_extent);
+        if (split_sender) {
+          const auto children = hierarchy->children(sender);
+          for (auto child = children.rbegin(); child != children.rend(); ++child)
+            open.emplace_back(receiver, *child);
+        } else {
+          const auto children = hierarchy->children(receiver);
+          for (auto child = children.rbegin(); child != children.rend(); ++child)
+            open.emplace_back(*child, sender);
+        }
+      }
+      std::sort(out.begin(), out.end());
+    });
+    std::size_t total_links = 0;
+    for (const auto& list : found) total_links += list.size();
+    if (max_entries > 0 && total_links > max_entries)
+      throw std::invalid_argument("transfer matrix: more than " + std::to_string(max_entries) +
+                                  " links; raise meshless.spacing (fewer sites) or meshless.cluster_angle");
+    links.reserve(total_links);
+    for (auto& list : found) {
+      links.insert(links.end(), list.begin(), list.end());
+      std::vector<Link>().swap(list);
+    }
+    std::sort(links.begin(), links.end());
+    for (const uint64_t r : found_rays) link_rays += r;
+    link_start.assign(columns + 1, 0);
+    for (const Link& link : links) ++link_start[link.receiver + 1];
+    for (std::size_t c = 0; c < columns; ++c) link_start[c + 1] += link_start[c];
+    // Per node the transfer of its links, then per site the sum over its coarser ancestors.
+    std::vector<double> own(columns, 0.0), above(columns, 0.0);
+    for (std::size_t c = 0; c < columns; ++c)
+      for (std::size_t l = link_start[c]; l < link_start[c + 1]; ++l) own[c] += links[l].transfer;
+    for (std::size_t c = columns; c-- > n;) {  // parents before children
+      const uint32_t parent = hierarchy->parent(static_cast<uint32_t>(c));
+      above[c] = parent == UINT32_MAX ? 0.0 : above[parent] + own[parent];
+    }
+    from_ancestors.assign(n, 0.0);
+    for (uint32_t j = 0; j < n; ++j) {
+      const uint32_t parent = hierarchy->parent(j);
+      from_ancestors[j] = parent == UINT32_MAX ? 0.0 : above[parent] + own[parent];
+    }
+  }
   TransferMatrix result;
   std::vector<Row> rows(n);
   std::atomic<uint64_t> rays{0};
@@ -228,84 +383,29 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
       }
     }
     uint64_t row_rays = 0;
-    // V: a shadow ray from the receiver toward a sender's site, both ends off their surfaces.
-    const auto visible = [&](uint32_t k) {
-      const Site& sender = sites[k];
-      Ray ray;
-      ray.origin = origin;
-      const Vec3 target = sender.position + sender.normal * scene.ray_offset(sender.position);
-      const Vec3 to_target = target - ray.origin;
-      const double distance = length(to_target);
-      if (!(distance > 0)) return false;
-      ray.direction = to_target / distance;
-      ray.t_max = distance * (1 - 1e-9);
-      ++row_rays;
-      return !scene.occluded(ray);
-    };
-    // 002 eq. 5.2 × A: the transfer from a sender of area-weighted normal sum `area_normal`
-    // (A_k p⃗_k for one site) at `position`; 0 when either faces away.
-    const auto point_transfer = [&](const Vec3& position, const Vec3& area_normal) {
-      const Vec3 between = receiver.position - position;  // v_kj · d
-      const double d2 = dot(between, between);
-      if (!(d2 > 0)) return 0.0;
-      const double d = std::sqrt(d2);
-      const Vec3 v = between / d;
-      const double cos_sender_area = dot(v, area_normal), cos_receiver = -dot(v, receiver.normal);
-      if (!(cos_sender_area > 0) || !(cos_receiver > 0)) return 0.0;
-      return cos_sender_area * cos_receiver / (kPi * d2);
-    };
     std::vector<std::pair<int32_t, double>> far_entries;
     if (!hierarchy) {
       for (uint32_t k = 0; k < n; ++k) {
         if (!(effective_area[k] > 0) || near[k]) continue;
-        const double transfer = point_transfer(sites[k].position, sites[k].normal * effective_area[k]);
-        if (transfer > 0 && visible(k)) far_entries.emplace_back(static_cast<int32_t>(k), transfer);
+        const double transfer = point_transfer(receiver.position, receiver.normal, sites[k].position,
+                                               sites[k].normal * effective_area[k]);
+        if (!(transfer > 0)) continue;
+        ++row_rays;
+        if (sites_see_each_other(scene, receiver, sites[k]))
+          far_entries.emplace_back(static_cast<int32_t>(k), transfer);
       }
     } else {
-      // The refinement oracle, from the top level down (see the header).
-      thread_local std::vector<uint32_t> open;
-      open.assign(roots.rbegin(), roots.rend());
-      while (!open.empty()) {
-        const uint32_t node = open.back();
-        open.pop_back();
-        if (!(clusters.area[node] > 0)) continue;
-        if (node < n) {
-          if (near[node]) continue;
-          const double transfer = point_transfer(sites[node].position, clusters.area_normal[node]);
-          if (transfer > 0 && visible(node)) far_entries.emplace_back(static_cast<int32_t>(node), transfer);
-          continue;
-        }
-        const double d = length(receiver.position - clusters.centroid[node]);
-        const double extent = clusters.extent[node];
-        // A node of one child is that child (no cluster of its own); cluster_angle 0 opens every node.
-        bool closed = hierarchy->children(node).size() > 1 && d > extent + clusters.near_reach[node] &&
-                      extent < settings.cluster_angle * d &&
-                      length(clusters.area_normal[node]) >= 0.9 * clusters.area[node];
-        double transfer = 0;
-        if (closed) {
-          transfer = point_transfer(clusters.centroid[node], clusters.area_normal[node]);
-          if (!(transfer > 0)) continue;  // the whole cluster faces away or lies below the horizon
-          int seen = 0, tried = 0;
-          for (const uint32_t sample : clusters.samples[node]) {
-            if (sample == UINT32_MAX) break;
-            ++tried;
-            seen += visible(sample);
-          }
-          if (seen == 0) continue;  // hidden
-          closed = seen == tried;   // partly hidden: refined
-        }
-        if (closed) {
-          far_entries.emplace_back(static_cast<int32_t>(node), transfer);
-          continue;
-        }
-        const std::span<const uint32_t> children = hierarchy->children(node);
-        open.insert(open.end(), children.rbegin(), children.rend());
-      }
+      // The links the refinement oracle gave this site as a receiver (their rays were counted there).
+      for (std::size_t l = link_start[j]; l < link_start[j + 1]; ++l)
+        far_entries.emplace_back(static_cast<int32_t>(links[l].sender), links[l].transfer);
     }
     // The far field's shape from eq. 5.2, its total from the rays (summed in column order).
     std::sort(far_entries.begin(), far_entries.end());
     double far_sum = 0;
     for (const auto& entry : far_entries) far_sum += entry.second;
+    // What the links of the receiver's coarser ancestors bring (per unit radiosity) belongs to
+    // its far field too.
+    if (hierarchy) far_sum += from_ancestors[j];
     const double scale = far_sum > 0 ? far_gathered / far_sum : 1.0;
     if (far_sum > 0) far_scales[j] = scale;
     for (const auto& [column, transfer] : far_entries)
@@ -416,8 +516,24 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
                                             static_cast<float>(clusters.area[child] / clusters.area[node]));
       result.cluster_start.push_back(static_cast<uint32_t>(result.cluster_terms.size()));
     }
+    // The coarse receivers' links, unscaled (each site scales what its ancestors bring by its own
+    // far-field scale), and the tree to push them down.
+    const std::size_t coarse = columns - n;
+    result.receiver_links.resize(static_cast<int32_t>(coarse), static_cast<int32_t>(columns));
+    result.receiver_links.reserve(static_cast<Eigen::Index>(links.size() - link_start[n]));
+    for (std::size_t c = n; c < columns; ++c) {
+      result.receiver_links.startVec(static_cast<int32_t>(c - n));
+      for (std::size_t l = link_start[c]; l < link_start[c + 1]; ++l)
+        result.receiver_links.insertBack(static_cast<int32_t>(c - n), static_cast<int32_t>(links[l].sender)) =
+            static_cast<float>(links[l].transfer);
+    }
+    result.receiver_links.finalize();
+    result.cluster_links += static_cast<std::size_t>(result.receiver_links.nonZeros());
+    result.parent.resize(columns);
+    for (uint32_t node = 0; node < columns; ++node) result.parent[node] = hierarchy->parent(node);
+    result.push_scale = far_scales;
   }
-  result.visibility_rays = rays;
+  result.visibility_rays = rays + link_rays;
   result.gather_rays = static_cast<uint64_t>(n) * static_cast<uint64_t>(settings.gather_rays);
   double scale_sum = 0;
   std::size_t scaled_rows = 0;
@@ -426,6 +542,25 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
   result.far_field_scale = scaled_rows > 0 ? scale_sum / static_cast<double>(scaled_rows) : 1.0;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
+}
+
+void TransferMatrix::pushed_values(const std::vector<Color>& senders, std::vector<Color>& pushed) const {
+  const auto n = static_cast<std::size_t>(S.rows()), columns = static_cast<std::size_t>(S.cols());
+  pushed.assign(columns, Color());
+  if (receiver_links.rows() == 0) return;
+  tbb::parallel_for(std::size_t(n), columns, [&](std::size_t c) {
+    Color gathered;
+    for (Eigen::SparseMatrix<float, Eigen::RowMajor, int32_t>::InnerIterator entry(
+             receiver_links, static_cast<int32_t>(c - n));
+         entry; ++entry)
+      gathered += senders[static_cast<std::size_t>(entry.col())] * static_cast<double>(entry.value());
+    pushed[c] = gathered;
+  });
+  // Parents before children (a parent's index is larger): each node adds what its ancestors gathered.
+  for (std::size_t c = columns; c-- > n;)
+    if (parent[c] != UINT32_MAX) pushed[c] += pushed[parent[c]];
+  for (std::size_t j = 0; j < n; ++j)
+    pushed[j] = parent[j] == UINT32_MAX ? Color() : pushed[parent[j]] * push_scale[j];
 }
 
 TransferSolution solve_transfer(const TransferMatrix& transfer, const std::vector<Color>& albedo,
@@ -441,15 +576,17 @@ TransferSolution solve_transfer(const TransferMatrix& transfer, const std::vecto
   double largest_eta = 0;
   for (const Color& e : eta)
     largest_eta = std::max({largest_eta, std::fabs(e.r), std::fabs(e.g), std::fabs(e.b)});
-  std::vector<Color> next(n), senders;
+  std::vector<Color> next(n), senders, pushed;
   const bool clustered = static_cast<std::size_t>(transfer.S.cols()) != n;
   for (std::size_t iteration = 0; iteration < max_iterations; ++iteration) {
     // Hierarchical transport: the clusters' radiosity from λ first.
     if (clustered) transfer.sender_values(solution.lambda, senders);
     const std::vector<Color>& sender = clustered ? senders : solution.lambda;
+    // The coarse receivers' links, each node's gathered light plus its ancestors' (pushed down).
+    if (clustered) transfer.pushed_values(sender, pushed);
     // λ' = η + Q S λ, each row by one thread.
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t j) {
-      Color gathered;
+      Color gathered = clustered ? pushed[j] : Color();
       for (Eigen::SparseMatrix<float, Eigen::RowMajor, int32_t>::InnerIterator entry(transfer.S,
                                                                                      static_cast<int32_t>(j));
            entry; ++entry)

@@ -19,22 +19,25 @@
 // A row then sums to the rays' share that hit covered surface, which is 1 in a closed room
 // whatever the spacing; the rays are seeded per receiver, so S does not depend on threads or ranks.
 //
-// Hierarchical transport (issue 25; Lehtinen et al. 2008, after hierarchical radiosity): given a
-// site hierarchy (meshless/site_hierarchy.h), the far field of a receiver is gathered from the
-// hierarchy's nodes as clusters — a node's subtree of sites standing as one sender with their total
-// effective area, their area-weighted centroid and mean normal and their area-weighted mean
-// radiosity — chosen by a refinement oracle that walks down from the top level and opens a node
-//   - while its sites' extent about the centroid exceeds cluster_angle × its distance (the
-//     transfer's error grows with the sender's angular size, as in Barnes–Hut and hierarchical
-//     radiosity's form-factor oracle), or its normals spread by more than about 25°;
-//   - while any of its sites could be a near element of the receiver (those are integrated);
-//   - while its visibility is partial: shadow rays to up to four of its children's sites disagree.
-// A closed node becomes one entry (a link) of the row, in column n + (node − n), so S has n rows
-// and as many columns as the hierarchy has nodes; its far field is scaled to the rays' total just
-// as the flat rows are, so rows still sum to the covered share of the hemisphere. The number of
-// links per row grows with log n (each level contributes a shell of about the same number of
-// nodes), so S holds O(n log n) entries; with cluster_angle = 0 every node is opened and S is the
-// flat matrix, entry for entry.
+// Hierarchical transport (issue 25; Lehtinen et al. 2008, after hierarchical radiosity, Hanrahan,
+// Salzman and Aupperle 1991): given a site hierarchy (meshless/site_hierarchy.h), the far field is
+// carried by links between nodes of the hierarchy — a node standing for its subtree of sites with
+// their total effective area, area-weighted centroid and mean normal and, as a sender, their
+// area-weighted mean radiosity. A refinement oracle starts from every pair of top-level nodes and
+// links a pair (receiver, sender) when
+//   - both are small for their distance: each one's extent about its centroid under cluster_angle
+//     × the distance between them (the transfer's error grows with the nodes' angular size), and
+//     neither one's normals spread by more than about 25°;
+//   - no site of the sender is a near element of a site of the receiver (those are integrated);
+//   - shadow rays between up to four of their largest children agree (partial visibility is refined);
+// otherwise it splits the larger of the two; a pair of sites is linked as the flat matrix links
+// them. A site gathers through its own links and those of its coarser ancestors (pushed down the
+// tree), the whole far field scaled to the rays' total as the flat rows are, so that what a site
+// gathers from a radiosity of 1 is still the covered share of its hemisphere (1 in a closed room).
+// S holds the near entries and the sites' own links (scaled), in n rows and as many columns as the
+// hierarchy has nodes; receiver_links the clusters' links. The links grow as O(n log n) at worst
+// and about as n where the oracle can close pairs at every level; with cluster_angle = 0 every pair
+// is refined down to sites and S is the flat matrix, entry for entry.
 //
 // The solution (002 §5.2.4): λ ← η + Q S λ, per channel, from λ = η, until no coefficient changes by
 // more than tolerance × the largest; λ are the coefficients of the radiosity (exitance) in the
@@ -64,7 +67,7 @@ struct TransferSettings {
   double near_field = 2;        // elements closer than this many of their radii are integrated
   uint64_t seed = 0;            // the rays' streams: one per (seed, receiver)
   std::size_t max_entries = 0;  // refused past this (0: no limit)
-  double cluster_angle = 0.2;   // hierarchical transport: a node is one sender while extent/distance ≤ this
+  double cluster_angle = 0.15;  // hierarchical transport: nodes are linked while extent/distance < this
 };
 
 struct TransferMatrix {
@@ -75,13 +78,22 @@ struct TransferMatrix {
   // cluster_terms[cluster_start[c], cluster_start[c + 1]). Empty for the flat matrix.
   std::vector<uint32_t> cluster_start;
   std::vector<std::pair<int32_t, float>> cluster_terms;
-  std::size_t cluster_links = 0;  // entries whose column is a cluster
-  std::size_t entries() const { return static_cast<std::size_t>(S.nonZeros()); }
+  // Links whose receiver is a cluster: row c − n for node c (n rows fewer than columns), unscaled;
+  // a site gets its ancestors' gathered light times push_scale (its far-field scale); parent: the
+  // hierarchy's tree (UINT32_MAX at the top).
+  Eigen::SparseMatrix<float, Eigen::RowMajor, int32_t> receiver_links;
+  std::vector<double> push_scale;
+  std::vector<uint32_t> parent;
+  std::size_t cluster_links = 0;  // links with a cluster at either end
+  std::size_t entries() const { return static_cast<std::size_t>(S.nonZeros() + receiver_links.nonZeros()); }
   double density() const;     // entries / n²
   std::size_t bytes() const;  // values, column indices, row offsets and cluster terms
   // The radiosity of every column's sender from the sites' λ: λ itself for the sites, then each
   // cluster's area-weighted mean of its children's.
   void sender_values(const std::vector<Color>& lambda, std::vector<Color>& senders) const;
+  // Per site (the first n), what the links of its coarser ancestors gather from `senders` (one per
+  // column), scaled by its far-field scale; empty-handed for the flat matrix.
+  void pushed_values(const std::vector<Color>& senders, std::vector<Color>& pushed) const;
   double seconds = 0;            // to compute
   uint64_t visibility_rays = 0;  // shadow rays between sites
   uint64_t gather_rays = 0;      // the rows' hemisphere rays

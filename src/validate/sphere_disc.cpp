@@ -201,10 +201,10 @@ std::string sphere_disc_scene_json(const SphereDiscScene& scene, const FeSetting
   ]}})",
       fmt::arg("eye", scene.height * 5), fmt::arg("lo", -window), fmt::arg("hi", window),
       fmt::arg("basis", kBasisNames.name(settings.basis)), fmt::arg("spacing", settings.spacing),
-      fmt::arg("transport", settings.transport),
-      fmt::arg("grid", settings.grid), fmt::arg("rounds", settings.rounds), fmt::arg("mu", scene.light),
-      fmt::arg("R", scene.disc_radius), fmt::arg("delta", scene.disc_albedo), fmt::arg("h", scene.height),
-      fmt::arg("r", scene.sphere_radius), fmt::arg("beta", scene.sphere_albedo));
+      fmt::arg("transport", settings.transport), fmt::arg("grid", settings.grid),
+      fmt::arg("rounds", settings.rounds), fmt::arg("mu", scene.light), fmt::arg("R", scene.disc_radius),
+      fmt::arg("delta", scene.disc_albedo), fmt::arg("h", scene.height), fmt::arg("r", scene.sphere_radius),
+      fmt::arg("beta", scene.sphere_albedo));
 }
 
 FeCurves solve_fe(const SphereDiscScene& scene, const FeSettings& settings, const std::vector<double>& u,
@@ -575,9 +575,10 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
     std::string table = "transport,spacing,sites,entries,precompute_seconds,rms,rms_relative\n";
     nlohmann::json runs = nlohmann::json::array();
     const std::vector<std::pair<std::string, std::vector<double>>> plan =
-        run.quick ? std::vector<std::pair<std::string, std::vector<double>>>{{"flat", {3}}, {"hierarchical", {3}}}
-                  : std::vector<std::pair<std::string, std::vector<double>>>{
-                        {"flat", {3, 2, 1.5, 1.2, 1}}, {"hierarchical", {3, 2, 1.5, 1.2, 1, 0.8, 0.7}}};
+        run.quick
+            ? std::vector<std::pair<std::string, std::vector<double>>>{{"flat", {3}}, {"hierarchical", {3}}}
+            : std::vector<std::pair<std::string, std::vector<double>>>{
+                  {"flat", {3, 2, 1.5, 1.2, 1}}, {"hierarchical", {3, 2, 1.5, 1.2, 1, 0.8, 0.7}}};
     for (const auto& [transport, spacings_of_run] : plan)
       for (const double spacing : spacings_of_run) {
         FeSettings fe;
@@ -597,11 +598,12 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
         entry["entries"] = curves.entries;
         entry["precompute_seconds"] = curves.precompute_seconds;
         runs.push_back(entry);
-        table += fmt::format("{},{},{},{},{:.3f},{:.6g},{:.6g}\n", transport, spacing, curves.sites, curves.entries,
-                             curves.precompute_seconds, mean.rms, mean.rms_relative);
-        say(fmt::format("{:<12} delta {}: {:>5} sites, {:>9} entries, precomputed in {:.2f} s, RMS {:.4g} ({:.3g} %)",
-                        transport, spacing, curves.sites, curves.entries, curves.precompute_seconds, mean.rms,
-                        100 * mean.rms_relative));
+        table += fmt::format("{},{},{},{},{:.3f},{:.6g},{:.6g}\n", transport, spacing, curves.sites,
+                             curves.entries, curves.precompute_seconds, mean.rms, mean.rms_relative);
+        say(fmt::format(
+            "{:<12} delta {}: {:>5} sites, {:>9} entries, precomputed in {:.2f} s, RMS {:.4g} ({:.3g} %)",
+            transport, spacing, curves.sites, curves.entries, curves.precompute_seconds, mean.rms,
+            100 * mean.rms_relative));
       }
     write_text_atomically(out / "transport.csv", table);
     result["transport"] = runs;

@@ -89,11 +89,11 @@ class ReferenceSolution {
 
 struct FeSettings {
   BasisKind basis = BasisKind::normalized;
-  double spacing = 3;  // Δ
+  double spacing = 3;              // Δ
   std::string transport = "flat";  // issue 25: or "hierarchical" (meshless.transport)
-  int grid = 256;      // camera rays per side (an orthographic camera over the disc, from above)
-  int rounds = 8;      // rounds of secondary rays
-  int azimuths = 100;  // points per ring for the azimuth mean
+  int grid = 256;                  // camera rays per side (an orthographic camera over the disc, from above)
+  int rounds = 8;                  // rounds of secondary rays
+  int azimuths = 100;              // points per ring for the azimuth mean
 };
 
 // The scene as candela/1 JSON (y up: disc in y = 0, sphere centre at y = h, light along −y).
@@ -129,8 +129,9 @@ CurveErrors curve_errors(const std::vector<double>& disc_fe, const std::vector<d
 // reference_disc.csv, reference_sphere.csv, fe_<basis>_delta<Δ>_disc.csv / _sphere.csv,
 // errors.json and PNG plots; and (issue 25) the normalized basis's flat and hierarchical transport at
 // several spacings, each with its precomputation seconds and RMS error (transport.csv, errors.json's
-// "transport": the hierarchical one's error at equal precomputation time). quick (for tests): a disc of radius 15, n = m = k = 30, a 64² camera grid. Every
-// file is written atomically; progress lines go to log when not null. Returns errors.json's content.
+// "transport": the hierarchical one's error at equal precomputation time). quick (for tests): a disc of
+// radius 15, n = m = k = 30, a 64² camera grid. Every file is written atomically; progress lines go to log
+// when not null. Returns errors.json's content.
 struct SphereDiscRun {
   bool quick = false;
   bool refine = true;  // also solve the refined reference
