@@ -5,8 +5,12 @@
 #   2. accuracy at equal precomputation time: the flat and the hierarchical transport at several
 #      spacings, each image's RMSE against the path-traced reference of scripts/validation-figures.sh
 #      (without the lamp, its mask) beside its precomputation seconds (sites + areas + hierarchy + S).
-# Writes docs/images/meshless-hierarchy/{scaling,accuracy}.csv and tables.md. Run it alone on the
-# machine (the seconds are the figures); about 6 minutes on 2 cores, after the validation reference.
+#   3. pictures: the Cornell box's indirect light by either transport, and the relighting page of
+#      the point-lit Cornell box over a light path of eight frames (with a screenshot when chromium
+#      is installed).
+# Writes docs/images/meshless-hierarchy/{scaling,accuracy}.csv, tables.md and the pictures. Run it
+# alone on the machine (the seconds are the figures); about 4 minutes on 2 cores, after the
+# validation reference.
 # Usage: scripts/meshless-hierarchy-figures.sh [candela-binary]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -38,6 +42,7 @@ for angle in 0.5 0.15; do
   for spacing in 0.235 0.1177 0.0589; do scale scenes/cornell-box.json $spacing 256 $angle; done
 done
 scale scenes/cornell-box.json 0.0527 256 0.5
+scale scenes/cornell-box.json 0.0527 256 0.15
 for spacing in 1.9 0.95 0.47; do scale scenes/meshless/room-a.json $spacing 256 0.5; done
 
 # 2. Accuracy at equal precomputation time (render.seed 1, as the validation page).
@@ -86,3 +91,27 @@ for r in acc:
 open(f"{out}/tables.md", "w").write("\n".join(lines) + "\n")
 print("\n".join(lines))
 PY
+
+# 3. Pictures.
+for transport in flat hierarchical; do
+  "$candela" render scenes/cornell-box.json --method meshless --set meshless.transport=$transport \
+    --set meshless.display=indirect -q -o "$out/cornell-indirect-$transport.png"
+done
+python3 - "$work/light-path.json" <<'PY'
+import json, math, sys
+frames = []
+for k in range(8):  # a lamp circling under the ceiling, then the red wall painted green (an albedo edit)
+    angle = 2 * math.pi * k / 8
+    frames.append({"name": f"lamp{k}", "lights": [{"type": "point", "position": [5 + 3 * math.cos(angle), 7.5, 5 + 3 * math.sin(angle)],
+                                                   "intensity": [48, 48, 44], "attenuation": "inverse-square"}]})
+frames.append({"name": "red-wall-painted-green", "lights": frames[0]["lights"], "materials": {"red": {"kd": [0.15, 0.7, 0.2]}}})
+json.dump({"frames": frames}, open(sys.argv[1], "w"), indent=1)
+PY
+mkdir -p "$out/relight"
+"$candela" render scenes/cornell-box-point.json --method meshless --set meshless.transport=hierarchical \
+  --set camera.width=192 --set camera.height=192 --relight "$work/light-path.json" -q \
+  -o "$out/relight/cornell.png" --relight-page "$out/relight/index.html"
+if command -v chromium > /dev/null; then
+  chromium --headless --no-sandbox --disable-gpu --virtual-time-budget=5000 --window-size=900,1250 \
+    --screenshot="$out/relight-page.png" "file://$PWD/$out/relight/index.html#3" > /dev/null 2>&1 || true
+fi

@@ -124,6 +124,15 @@ std::string geometry_key(const Scene& scene, const MeshlessSettings& m) {
                      eye.y, eye.z, gaze.x, gaze.y, gaze.z, camera.width(), camera.height());
 }
 
+// The number of sites on each level of the hierarchy, finest first (one level without one).
+std::vector<std::size_t> level_sizes(const MeshlessGeometry& geometry) {
+  if (!geometry.hierarchy) return {geometry.sites.sites.size()};
+  std::vector<std::size_t> sizes;
+  for (std::size_t l = 0; l < geometry.hierarchy->level_count(); ++l)
+    sizes.push_back(geometry.hierarchy->level_sites(l).size());
+  return sizes;
+}
+
 nlohmann::json geometry_facts(const MeshlessSettings& settings, const MeshlessGeometry& geometry) {
   double area_sum = 0;
   for (const double a : geometry.areas) area_sum += a;
@@ -138,6 +147,7 @@ nlohmann::json geometry_facts(const MeshlessSettings& settings, const MeshlessGe
           {"hierarchy_levels", geometry.hierarchy ? geometry.hierarchy->level_count() : 1},
           {"hierarchy_nodes",
            geometry.hierarchy ? geometry.hierarchy->node_count() : geometry.sites.sites.size()},
+          {"hierarchy_level_sites", level_sizes(geometry)},
           {"hierarchy_seconds", geometry.hierarchy_seconds},
           {"cluster_links", geometry.matrix.cluster_links},
           {"transfer_entries", geometry.matrix.entries()},

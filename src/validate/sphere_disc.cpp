@@ -578,7 +578,7 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
         run.quick
             ? std::vector<std::pair<std::string, std::vector<double>>>{{"flat", {3}}, {"hierarchical", {3}}}
             : std::vector<std::pair<std::string, std::vector<double>>>{
-                  {"flat", {3, 2, 1.5, 1.2, 1}}, {"hierarchical", {3, 2, 1.5, 1.2, 1, 0.8, 0.7}}};
+                  {"flat", {3, 2, 1.5, 1.2, 1, 0.8, 0.7}}, {"hierarchical", {3, 2, 1.5, 1.2, 1, 0.8, 0.7}}};
     for (const auto& [transport, spacings_of_run] : plan)
       for (const double spacing : spacings_of_run) {
         FeSettings fe;
