@@ -11,10 +11,12 @@
 #include "integrators/meshless_method.h"
 #include "integrators/scene_loading.h"
 #include "math/pcg32.h"
+#include "meshless/meshless_basis.h"
 #include "meshless/site_hierarchy.h"
 #include "meshless/site_sampling.h"
 #include "meshless/transfer_matrix.h"
 #include "render_support.h"
+#include "util/error.h"
 
 namespace candela {
 namespace {
@@ -256,6 +258,41 @@ TEST(HierarchicalTransport, EntriesGrowSubQuadratically) {
   EXPECT_LT(exponent, 1.45) << sites.front() << " → " << sites.back() << " sites, " << entries.front()
                             << " → " << entries.back() << " entries";
   EXPECT_LT(entries.back(), 0.25 * sites.back() * sites.back());
+}
+
+// More links than the limit: refused naming the settings to change, before the rows are computed;
+// the new settings are checked like the others.
+TEST(HierarchicalTransport, TooManyLinksAndBadSettingsAreRefused) {
+  const auto scene = cube(0.5, R"({"transport": "hierarchical", "spacing": 0.2, "grid": 16, "rounds": 4})");
+  const MeshlessSettings settings = read_meshless_settings(scene->plugin_settings.node("meshless"));
+  EXPECT_EQ(settings.transport, MeshlessTransport::hierarchical);
+  SiteSamplingSettings sampling;
+  sampling.grid = 16;
+  sampling.spacing = 0.2;
+  const SiteSet sites = sample_sites(*scene, sampling);
+  const SiteHierarchy hierarchy(sites, 10);
+  const MeshlessBasis basis(sites.sites, sites.radius, BasisKind::normalized);
+  TransferSettings transfer;
+  transfer.gather_rays = 4;
+  transfer.max_entries = 2000;
+  try {
+    compute_transfer_matrix(*scene, sites, basis, sites.effective_area, transfer, nullptr, nullptr,
+                            &hierarchy);
+    FAIL() << "not refused";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("meshless.spacing"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("meshless.cluster_angle"), std::string::npos) << e.what();
+  }
+  for (const std::string bad :
+       {R"({"transport": "wavelet"})", R"({"cluster_angle": -1})", R"({"cluster_angle": 11})"}) {
+    try {  // refused where the scene is read, located at the key
+      cube(0.5, bad);
+      ADD_FAILURE() << "not refused: " << bad;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("cube.json:3:"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("meshless."), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace

@@ -204,6 +204,7 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
   // agree, no site of the sender is a near element of a site of the receiver, and up to four shadow
   // rays between their largest children agree; otherwise the larger one is split. A pair of sites
   // that are not near each other is linked as the flat matrix would (one shadow ray).
+  std::atomic<bool> too_many{false};
   std::vector<Link> links;
   std::vector<std::size_t> link_start;
   std::vector<double> from_ancestors;  // per site: Σ transfer of its ancestors' links
@@ -219,12 +220,20 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
     };
     std::vector<std::vector<Link>> found(roots.size() * roots.size());
     std::vector<uint64_t> found_rays(found.size(), 0);
+    // Past the entry limit every task stops (memory stays bounded) and the matrix is refused below.
+    std::atomic<std::size_t> found_count{0};
     tbb::parallel_for(std::size_t(0), found.size(), [&](std::size_t task) {
       std::vector<std::pair<uint32_t, uint32_t>> open{
           {roots[task / roots.size()], roots[task % roots.size()]}};
       std::vector<Link>& out = found[task];
       uint64_t& task_rays = found_rays[task];
+      std::size_t counted = 0;  // of out's links, those added to found_count
       while (!open.empty()) {
+        if (out.size() >= counted + 1024) {
+          counted += 1024;
+          if (max_entries > 0 && (found_count += 1024) > max_entries) too_many = true;
+        }
+        if (too_many.load(std::memory_order_relaxed)) break;
         const auto [receiver, sender] = open.back();
         open.pop_back();
         if (!(clusters.area[sender] > 0)) continue;
@@ -286,7 +295,7 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
     });
     std::size_t total_links = 0;
     for (const auto& list : found) total_links += list.size();
-    if (max_entries > 0 && total_links > max_entries)
+    if (too_many || (max_entries > 0 && total_links > max_entries))
       throw std::invalid_argument("transfer matrix: more than " + std::to_string(max_entries) +
                                   " links; raise meshless.spacing (fewer sites) or meshless.cluster_angle");
     links.reserve(total_links);
@@ -318,7 +327,6 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
   std::atomic<uint64_t> rays{0};
   std::vector<double> far_scales(n, 0.0);  // per row, 0 where it has no far field
   std::atomic<std::size_t> kept{0};
-  std::atomic<bool> too_many{false};
   // Row j: what receiver j gathers from every site; returns the shadow rays it traced.
   const auto compute_row = [&](std::size_t j, Row& row) -> uint64_t {
     const Site& receiver = sites[j];
