@@ -463,20 +463,26 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
     write_plot(out / "reference.png", {disc, sphere});
   }
 
+  // One FE solve's settings; quick: a coarser camera grid and fewer azimuths.
+  const auto fe_settings = [&](BasisKind kind, double spacing, const std::string& transport) {
+    FeSettings fe;
+    fe.basis = kind;
+    fe.spacing = spacing;
+    fe.transport = transport;
+    if (run.quick) {
+      fe.grid = 64;
+      fe.azimuths = 16;
+    }
+    return fe;
+  };
   nlohmann::json bases = nlohmann::json::object();
   const BasisKind kinds[] = {BasisKind::radial, BasisKind::normalized, BasisKind::shepard};
   const double spacings[] = {3, 1};
   std::map<double, std::vector<std::pair<BasisKind, FeCurves>>> by_spacing;
   for (const BasisKind kind : kinds) {
     for (const double spacing : spacings) {
-      FeSettings fe;
-      fe.basis = kind;
-      fe.spacing = spacing;
-      if (run.quick) {
-        fe.grid = 64;
-        fe.azimuths = 16;
-      }
-      const FeCurves curves = solve_fe(scene, fe, reference.u, reference.alpha);
+      const FeCurves curves =
+          solve_fe(scene, fe_settings(kind, spacing, "flat"), reference.u, reference.alpha);
       const std::string name = fmt::format("fe_{}_delta{}", std::string(kBasisNames.name(kind)), spacing);
       write_text_atomically(out / (name + "_disc.csv"),
                             csv("u,direct,total,total_meridian", reference.u,
@@ -581,14 +587,8 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
                   {"flat", {3, 2, 1.5, 1.2, 1, 0.8, 0.7}}, {"hierarchical", {3, 2, 1.5, 1.2, 1, 0.8, 0.7}}};
     for (const auto& [transport, spacings_of_run] : plan)
       for (const double spacing : spacings_of_run) {
-        FeSettings fe;
-        fe.spacing = spacing;
-        fe.transport = transport;
-        if (run.quick) {
-          fe.grid = 64;
-          fe.azimuths = 16;
-        }
-        const FeCurves curves = solve_fe(scene, fe, reference.u, reference.alpha);
+        const FeCurves curves = solve_fe(scene, fe_settings(BasisKind::normalized, spacing, transport),
+                                         reference.u, reference.alpha);
         const CurveErrors mean =
             curve_errors(curves.disc_mean, reference.disc_total, curves.sphere_mean, reference.sphere_total);
         nlohmann::json entry = to_json(mean);
