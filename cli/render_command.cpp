@@ -365,6 +365,37 @@ struct RenderJob {
   nlohmann::json precomputation;              // --relight-page: the first render's meshless facts
 };
 
+// Issue 25: a relight frame's albedo edits — each named material's kd replaced by the frame's
+// constant, and put back by undo() or at the latest when the frame's scope ends (an exception).
+class AlbedoEditsInPlace {
+ public:
+  AlbedoEditsInPlace(Scene& scene, const std::vector<AlbedoEdit>& edits) : scene_(scene) {
+    const std::vector<std::size_t> targets = find_albedo_edit_targets(scene, edits);
+    for (std::size_t e = 0; e < targets.size(); ++e) {
+      Material& material = scene.materials[targets[e]];
+      kept_.emplace_back(targets[e], material.kd);
+      material.kd = constant_texture(edits[e].kd);
+      material.prepare();
+    }
+  }
+  AlbedoEditsInPlace(const AlbedoEditsInPlace&) = delete;
+  AlbedoEditsInPlace& operator=(const AlbedoEditsInPlace&) = delete;
+  ~AlbedoEditsInPlace() { undo(); }
+  void undo() {
+    // In reverse, so that a material named twice gets its own kd back.
+    for (auto kept = kept_.rbegin(); kept != kept_.rend(); ++kept) {
+      Material& material = scene_.materials[kept->first];
+      material.kd = kept->second;
+      material.prepare();
+    }
+    kept_.clear();
+  }
+
+ private:
+  Scene& scene_;
+  std::vector<std::pair<std::size_t, std::shared_ptr<const Texture>>> kept_;
+};
+
 // Issue 25: the relighting page's line for a frame just rendered (rank 0).
 RelightPageFrame relight_page_frame(const std::string& name, const std::string& image,
                                     const std::string& page, const Scene& scene,
@@ -779,22 +810,9 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
         return root ? report_interrupted_before(relight_frames.size() - f, "frame") : kInterruptedExitCode;
       std::swap(scene->lights, frame.lights);
       std::swap(scene->ambient, frame.ambient);
-      // Issue 25: the frame's albedo edits, undone after it (the geometry and S are reused).
-      const std::vector<std::size_t> edited = find_albedo_edit_targets(*scene, frame.albedo_edits);
-      std::vector<std::shared_ptr<const Texture>> kept_kd;
-      for (std::size_t e = 0; e < edited.size(); ++e) {
-        Material& material = scene->materials[edited[e]];
-        kept_kd.push_back(material.kd);
-        material.kd = constant_texture(frame.albedo_edits[e].kd);
-        material.prepare();
-      }
-      const auto undo_edits = [&] {
-        for (std::size_t e = 0; e < kept_kd.size(); ++e) {
-          Material& material = scene->materials[edited[e]];
-          material.kd = kept_kd[e];
-          material.prepare();
-        }
-      };
+      // Issue 25: the frame's albedo edits, undone when the frame ends however it ends (the
+      // geometry and S are reused).
+      AlbedoEditsInPlace edits(*scene, frame.albedo_edits);
       const CurrentCamera current(*scene, views.front());
       RenderRequest request;
       request.region = regions.front();
@@ -802,16 +820,9 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
       request.cluster = &cluster;
       Stopwatch frame_timer;
       RunStatistics statistics;
-      const RenderResult result = [&] {
-        try {
-          return timed_render(*method, *scene, request, threads, statistics);
-        } catch (...) {
-          undo_edits();
-          throw;
-        }
-      }();
+      const RenderResult result = timed_render(*method, *scene, request, threads, statistics);
       const Film& film = result.film;
-      undo_edits();
+      edits.undo();
       std::swap(scene->lights, frame.lights);
       std::swap(scene->ambient, frame.ambient);
       if (!root) {

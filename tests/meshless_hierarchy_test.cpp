@@ -1,6 +1,7 @@
 // Issue 25: the hierarchical meshless basis (meshless/site_hierarchy.h) and the hierarchical
 // transport (meshless/transfer_matrix.h) of Lehtinen et al. 2008.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
@@ -55,7 +56,7 @@ TEST(SiteHierarchy, LevelsNestThinAsPoissonDiscsAndEndSmall) {
       EXPECT_LT(ratio, 6.0) << "level " << l + 1;
     }
     const double spacing = hierarchy.level_spacing(l + 1);
-    EXPECT_DOUBLE_EQ(spacing, set.spacing * std::pow(2.0, static_cast<double>(l + 1)));
+    EXPECT_DOUBLE_EQ(spacing, set.spacing * std::pow(2.0, static_cast<double>(l + 1)));  // each shrinks
     // No two closer than the level's spacing, and every finer site within it of a coarser one.
     for (std::size_t a = 0; a < coarser.size(); ++a)
       for (std::size_t b = a + 1; b < coarser.size(); ++b)
@@ -293,6 +294,61 @@ TEST(HierarchicalTransport, TooManyLinksAndBadSettingsAreRefused) {
       EXPECT_NE(std::string(e.what()).find("meshless."), std::string::npos) << e.what();
     }
   }
+}
+
+// Objects farther apart than the spacing thin nothing until it passes their distance: the spacing
+// doubles on without making levels, and the top level still ends small (it ended at 40 sites).
+TEST(SiteHierarchy, ScatteredObjectsStillEndInASmallTopLevel) {
+  SiteSet set;
+  for (int group = 0; group < 40; ++group)
+    for (int k = 0; k < 10; ++k) set.sites.push_back({Vec3{100.0 * group, 0.1 * k, 0}, Vec3{0, 0, 1}});
+  set.spacing = 0.1;
+  assign_radii(set, 4);
+  const SiteHierarchy hierarchy(set, 4);
+  EXPECT_LE(hierarchy.level_sites(hierarchy.level_count() - 1).size(), 16u);
+  for (std::size_t l = 1; l < hierarchy.level_count(); ++l) {
+    EXPECT_LT(hierarchy.level_sites(l).size(), hierarchy.level_sites(l - 1).size());
+    EXPECT_GE(hierarchy.level_spacing(l), 2 * hierarchy.level_spacing(l - 1));
+  }
+}
+
+// Uneven light — a point light in one corner of a closed grey box, a red wall — the hierarchical
+// transport's λ against the flat matrix's, site by site; and the same bytes with one thread or two.
+TEST(HierarchicalTransport, FollowsTheFlatSolutionUnderUnevenLightAndIgnoresThreads) {
+  const std::string shapes = testing::closed_cube_shapes(R"({"kd": [0.7, 0.5, 0.4]})");
+  const auto scene_with = [&](const std::string& transport) {
+    return load_scene_text(R"({"format": "candela/1",
+      "camera": {"eye": [1, 1.1, 1.7], "target": [0.9, 0.8, 0], "fov": 80, "width": 16, "height": 16},
+      "render": {"method": "meshless"},
+      "lights": [{"type": "point", "position": [0.3, 1.7, 0.3], "intensity": 1}],
+      "meshless": {"transport": ")" +
+                               transport + R"(", "spacing": 0.12, "grid": 32, "rounds": 6}, )" + shapes + "}",
+                           "uneven.json", ".");
+  };
+  const MeshlessSolution flat = solve(*scene_with("flat"));
+  const auto hierarchical_scene = scene_with("hierarchical");
+  const MeshlessSolution hierarchical = solve(*hierarchical_scene);
+  ASSERT_EQ(flat.sites.sites.size(), hierarchical.sites.sites.size());
+  ASSERT_GT(hierarchical.matrix.receiver_links.nonZeros(), 0);
+  double squares = 0, reference = 0, indirect_squares = 0;
+  for (std::size_t i = 0; i < flat.transfer.lambda.size(); ++i) {
+    const double a = flat.transfer.lambda[i].g, b = hierarchical.transfer.lambda[i].g;
+    squares += (a - b) * (a - b);
+    reference += a * a;
+    const double indirect = a - flat.eta[i].g;
+    indirect_squares += indirect * indirect;
+  }
+  // The difference is a small part of the indirect light (the only part the transport makes).
+  EXPECT_LT(std::sqrt(squares / indirect_squares), 0.015) << "of the indirect light";  // 0.0037 measured
+  EXPECT_LT(std::sqrt(squares / reference), 0.006) << "of the light";                  // 0.0018
+  MeshlessSolution one_thread;
+  {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one_thread = solve(*hierarchical_scene);
+  }
+  ASSERT_EQ(one_thread.matrix.entries(), hierarchical.matrix.entries());
+  for (std::size_t i = 0; i < one_thread.transfer.lambda.size(); ++i)
+    ASSERT_EQ(one_thread.transfer.lambda[i].g, hierarchical.transfer.lambda[i].g) << "site " << i;
 }
 
 }  // namespace

@@ -226,7 +226,11 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const Meshl
   transfer.cluster_angle = settings.cluster_angle;
   if (settings.transport == MeshlessTransport::hierarchical) {
     start = std::chrono::steady_clock::now();
-    geometry->hierarchy = std::make_unique<SiteHierarchy>(sites, settings.neighbours);
+    try {
+      geometry->hierarchy = std::make_unique<SiteHierarchy>(sites, settings.neighbours);
+    } catch (const std::invalid_argument& e) {  // settings the sites cannot be thinned with: bad input
+      throw InputError(settings.location, e.what());
+    }
     geometry->hierarchy_seconds = seconds_since(start);
   }
   try {

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "math/bounds.h"
 #include "meshless/site_index.h"
 #include "meshless/site_sampling.h"
 #include "meshless/spacing_filter.h"
@@ -38,18 +39,25 @@ SiteHierarchy::SiteHierarchy(const SiteSet& set, int neighbours, std::size_t coa
   finest->radius = set.radius;
   finest->spacing = set.spacing;
   levels_.push_back(std::move(finest));
-  // Poisson-disc thinning, the spacing doubling per level, until a level is small or stops shrinking.
-  while (levels_.back()->members.size() > coarsest_sites && levels_.size() < 48) {
+  // Poisson-disc thinning, the spacing doubling per level, until a level is small. A spacing that
+  // thins nothing (objects farther apart than it) doubles again without making a level; once it
+  // passes the sites' extent, only normals 90° or more apart keep sites apart and thinning ends.
+  Bounds3 extent;
+  for (const Site& site : set.sites) extent.extend(site.position);
+  const double diameter = set.sites.empty() ? 0.0 : length(extent.diagonal());
+  double spacing = set.spacing;
+  while (levels_.back()->members.size() > coarsest_sites && spacing <= 2 * diameter) {
     const Level& finer = *levels_.back();
     auto coarser = std::make_unique<Level>();
-    coarser->spacing = finer.spacing * 2;
+    spacing *= 2;
+    coarser->spacing = spacing;
     SpacingFilter filter(coarser->spacing);
     for (std::size_t i = 0; i < finer.members.size(); ++i)
       if (filter.try_keep(finer.sites[i])) {
         coarser->members.push_back(finer.members[i]);
         coarser->sites.push_back(finer.sites[i]);
       }
-    if (coarser->members.size() == finer.members.size()) break;
+    if (coarser->members.size() == finer.members.size()) continue;
     // 002 §4.2.7 within the level: the site distance holding its m nearest sites of that level.
     const SiteIndex index(coarser->sites);
     coarser->radius.resize(coarser->sites.size());

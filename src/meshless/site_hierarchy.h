@@ -7,8 +7,10 @@
 //   - level l + 1 is a subset of level l, thinned as a Poisson-disc set with twice the spacing:
 //     level l's sites are offered in their order and kept unless a kept one lies within
 //     2^(l+1)·Δ (site distance), so the levels nest and each is about a quarter as dense on a
-//     surface; thinning stops at a level of at most `coarsest_sites` sites or one that no longer
-//     shrinks;
+//     surface; a spacing that thins nothing (objects farther apart than it) doubles again without
+//     making a level; thinning stops at a level of at most `coarsest_sites` sites, or once the
+//     spacing passes twice the sites' extent (then only normals 90° or more apart keep sites
+//     apart);
 //   - each level has its own radii (the site distance holding its m nearest sites of the same
 //     level, 002 §4.2.7) and its own normalized radial basis φ^l_i (002 eq. 4.9), a partition of
 //     unity over the surfaces its sites cover.
@@ -68,7 +70,8 @@ class SiteHierarchy {
   uint32_t parent(uint32_t node) const { return parent_[node]; }  // UINT32_MAX on the top level
   std::span<const uint32_t> children(uint32_t node) const;        // empty for level 0
 
-  // Every non-zero φ^l_i(p) over all levels, as (node, value) pairs in increasing node order.
+  // Every non-zero φ^l_i(p) over all levels, as (node, value) pairs, level by level (each level's
+  // as its basis gives them: increasing, then its elements of unbounded support).
   void evaluate(const Site& p, std::vector<std::pair<uint32_t, double>>& weights) const;
   // L(p) from one coefficient per node.
   Color reconstruct(const Site& p, std::span<const Color> coefficients) const;

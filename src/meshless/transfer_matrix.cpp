@@ -8,9 +8,11 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
+#include "distributed/cluster.h"
 #include "distributed/task_farm.h"
 #include "math/constants.h"
 #include "math/pcg32.h"
@@ -26,7 +28,7 @@ namespace candela {
 
 double TransferMatrix::density() const {
   const double n = static_cast<double>(S.rows());
-  return n > 0 ? static_cast<double>(S.nonZeros()) / (n * n) : 0.0;
+  return n > 0 ? static_cast<double>(entries()) / (n * n) : 0.0;
 }
 
 std::size_t TransferMatrix::bytes() const {
@@ -104,6 +106,7 @@ struct Link {
 // sites (the largest) for the visibility oracle.
 struct SenderClusters {
   std::vector<double> area, extent, near_reach;
+  std::vector<double> cone;  // the least cosine between a site's normal and the node's mean normal
   std::vector<Vec3> centroid, area_normal;
   std::vector<std::array<uint32_t, 4>> samples;  // site indices, UINT32_MAX past the last
 };
@@ -124,7 +127,9 @@ SenderClusters sender_clusters(const SiteHierarchy& hierarchy, const SiteSet& si
       c.area[node] = a;
       c.centroid[node] = site_set.sites[node].position;
       c.area_normal[node] = site_set.sites[node].normal * a;
-      c.near_reach[node] = near_field * site_set.radius[node];  // infinite for an unbounded element
+      // Infinite for an unbounded element (even with near_field 0: it is always a near element).
+      c.near_reach[node] = std::isfinite(site_set.radius[node]) ? near_field * site_set.radius[node]
+                                                                : std::numeric_limits<double>::infinity();
       c.samples[node][0] = node;
       continue;
     }
@@ -144,10 +149,19 @@ SenderClusters sender_clusters(const SiteHierarchy& hierarchy, const SiteSet& si
     for (std::size_t k = 0; k < std::min<std::size_t>(4, by_area.size()); ++k)
       c.samples[node][k] = by_area[k].second;
   }
-  // The extent: every site against each of its ancestors.
+  // The extent and the normals' spread: every site against each of its ancestors.
+  c.cone.assign(nodes, 1.0);
+  std::vector<Vec3> mean_normal(nodes);
+  for (uint32_t node = 0; node < nodes; ++node) {
+    const double norm = length(c.area_normal[node]);
+    mean_normal[node] = norm > 0 ? c.area_normal[node] / norm : Vec3();
+    if (!(norm > 0)) c.cone[node] = -1;  // no direction: never linked as a cluster
+  }
   for (uint32_t site = 0; site < n; ++site)
-    for (uint32_t node = hierarchy.parent(site); node != UINT32_MAX; node = hierarchy.parent(node))
+    for (uint32_t node = hierarchy.parent(site); node != UINT32_MAX; node = hierarchy.parent(node)) {
       c.extent[node] = std::max(c.extent[node], length(site_set.sites[site].position - c.centroid[node]));
+      c.cone[node] = std::min(c.cone[node], dot(site_set.sites[site].normal, mean_normal[node]));
+    }
   return c;
 }
 
@@ -214,17 +228,19 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
     const auto unit_normal = [&](uint32_t node) {
       return node < n ? sites[node].normal : clusters.area_normal[node] / length(clusters.area_normal[node]);
     };
+    // A cluster is linked whole only when every one of its sites' normals lies within about 25° of
+    // its mean (cos 25° = 0.906).
     const auto closable = [&](uint32_t node) {
       return node < n || (hierarchy->children(node).size() > 1 && clusters.area[node] > 0 &&
-                          length(clusters.area_normal[node]) >= 0.9 * clusters.area[node]);
+                          clusters.cone[node] >= 0.906);
     };
-    std::vector<std::vector<Link>> found(roots.size() * roots.size());
+    std::vector<std::vector<Link>> found(roots.size());  // per top-level receiver
     std::vector<uint64_t> found_rays(found.size(), 0);
     // Past the entry limit every task stops (memory stays bounded) and the matrix is refused below.
     std::atomic<std::size_t> found_count{0};
     tbb::parallel_for(std::size_t(0), found.size(), [&](std::size_t task) {
-      std::vector<std::pair<uint32_t, uint32_t>> open{
-          {roots[task / roots.size()], roots[task % roots.size()]}};
+      std::vector<std::pair<uint32_t, uint32_t>> open;
+      for (auto root = roots.rbegin(); root != roots.rend(); ++root) open.emplace_back(roots[task], *root);
       std::vector<Link>& out = found[task];
       uint64_t& task_rays = found_rays[task];
       std::size_t counted = 0;  // of out's links, those added to found_count
@@ -239,11 +255,10 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
         if (!(clusters.area[sender] > 0)) continue;
         if (receiver < n && sender < n) {
           // Two sites: the flat matrix's far entry, unless the sender is a near element.
-          const double r = site_set.radius[sender];
+          // The near test of compute_row, to the bit.
+          const double r = site_set.radius[sender], reach = settings.near_field * r;
           const double d2 = length_squared(sites[sender].position - sites[receiver].position);
-          if (receiver == sender || !std::isfinite(r) ||
-              d2 < settings.near_field * r * settings.near_field * r)
-            continue;
+          if (receiver == sender || !std::isfinite(r) || d2 < reach * reach) continue;
           const double transfer = point_transfer(sites[receiver].position, sites[receiver].normal,
                                                  sites[sender].position, clusters.area_normal[sender]);
           if (!(transfer > 0)) continue;
@@ -295,7 +310,10 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
     });
     std::size_t total_links = 0;
     for (const auto& list : found) total_links += list.size();
-    if (too_many || (max_entries > 0 && total_links > max_entries))
+    if (max_entries > 0 && total_links > max_entries) too_many = true;
+    // Every rank refuses alike (their limits follow each machine's memory): a collective.
+    if (cluster && cluster->distributed()) too_many = !cluster->all(!too_many);
+    if (too_many)
       throw std::invalid_argument("transfer matrix: more than " + std::to_string(max_entries) +
                                   " links; raise meshless.spacing (fewer sites) or meshless.cluster_angle");
     links.reserve(total_links);
@@ -435,6 +453,7 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
   const auto keep = [&](std::size_t entries) {
     if (max_entries > 0 && (kept += entries) > max_entries) too_many = true;
   };
+  if (hierarchy) keep(links.size() - link_start[n]);  // the coarse receivers' links are kept too
   if (!cluster || !cluster->distributed()) {
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t j) {
       if (too_many.load(std::memory_order_relaxed)) return;
