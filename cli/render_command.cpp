@@ -398,17 +398,18 @@ class AlbedoEditsInPlace {
 
 // Issue 25: the relighting page's line for a frame just rendered (rank 0).
 RelightPageFrame relight_page_frame(const std::string& name, const std::string& image,
-                                    const std::string& page, const Scene& scene,
+                                    const std::string& page,
+                                    const std::vector<std::unique_ptr<Light>>& lights, const Color& ambient,
                                     const RunStatistics& statistics, double seconds) {
   RelightPageFrame frame;
   frame.name = name;
   const std::filesystem::path folder = std::filesystem::absolute(page).parent_path();
   frame.image = std::filesystem::absolute(image).lexically_relative(folder).generic_string();
   std::map<std::string, int> kinds;
-  for (const auto& light : scene.lights) ++kinds[std::string(light->type_name())];
+  for (const auto& light : lights) ++kinds[std::string(light->type_name())];
   for (const auto& [kind, count] : kinds)
     frame.lights += (frame.lights.empty() ? "" : ", ") + fmt::format("{} {}", count, kind);
-  if (!scene.ambient.is_black()) frame.lights += frame.lights.empty() ? "ambient" : " and ambient";
+  if (!ambient.is_black()) frame.lights += frame.lights.empty() ? "ambient" : " and ambient";
   if (frame.lights.empty()) frame.lights = "emissive surfaces only";
   const auto found = statistics.extra.find("meshless");
   if (found != statistics.extra.end()) {
@@ -785,8 +786,8 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
                   << statistics.summary();
       statistics.extra["ranks"] = cluster.size();
       if (!options.relight_page.empty())
-        job.page_frames.push_back(relight_page_frame("scene", output, options.relight_page, *scene,
-                                                     statistics, view_timer.seconds()));
+        job.page_frames.push_back(relight_page_frame("scene", output, options.relight_page, scene->lights,
+                                                     scene->ambient, statistics, view_timer.seconds()));
       if (!options.relight_page.empty())
         job.precomputation = statistics.extra.value("meshless", nlohmann::json());
       if (!stats_path.empty()) write_statistics(statistics, stats_path);
@@ -847,13 +848,9 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
       if (!options.stats_path.empty())
         write_statistics(statistics, path_with_suffix(options.stats_path, frame.name));
       if (!options.relight_page.empty()) {
-        // The lights of the frame are back in `frame`: described from a scene holding them.
-        std::swap(scene->lights, frame.lights);
-        std::swap(scene->ambient, frame.ambient);
-        job.page_frames.push_back(relight_page_frame(frame.name, output, options.relight_page, *scene,
-                                                     statistics, frame_timer.seconds()));
-        std::swap(scene->lights, frame.lights);
-        std::swap(scene->ambient, frame.ambient);
+        // The frame's lights are back in `frame`.
+        job.page_frames.push_back(relight_page_frame(frame.name, output, options.relight_page, frame.lights,
+                                                     frame.ambient, statistics, frame_timer.seconds()));
       }
       written.finish(output + " (frame " + frame.name + ")");
       if (interrupted()) return report_interrupted(statistics, output, relight_frames.size() - f - 1);

@@ -265,8 +265,9 @@ MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& sett
   tbb::parallel_for(std::size_t(0), sites.sites.size(), [&](std::size_t i) {
     const Material& material = scene.materials[scene.primitives[sites.primitive[i]].material];
     if (material.kd && material.kd->is_constant()) {
-      const Color kd = material.kd->evaluate(SurfaceHit{});
-      for (int c = 0; c < 3; ++c) albedo[i][c] = std::clamp(kd[c], 0.0, 1.0);  // diffuse_albedo()
+      SurfaceProperties properties;
+      properties.kd = material.kd->evaluate(SurfaceHit{});
+      albedo[i] = properties.diffuse_albedo();
     }
     lighting.eta[i] = direct_light(scene, emitters, i, settings.gather_rays, sites.sites[i].position,
                                    sites.sites[i].normal, albedo[i]);

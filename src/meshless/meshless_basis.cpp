@@ -36,15 +36,15 @@ MeshlessBasis::MeshlessBasis(const std::vector<Site>& sites, const std::vector<d
       if (std::isfinite(radii[i]) && radii[i] > largest_radius) unbounded_.push_back(i);
   }
   std::sort(unbounded_.begin(), unbounded_.end());
-  is_unbounded_.assign(radii.size(), 0);
-  for (const uint32_t i : unbounded_) is_unbounded_[i] = 1;
+  std::vector<uint8_t> is_unbounded(radii.size(), 0);
+  for (const uint32_t i : unbounded_) is_unbounded[i] = 1;
   // Classes down from the largest radius, each 1.3 times narrower than the one above; at most 16
   // (the last takes every smaller radius).
   constexpr double kClassRatio = 1.3;
   constexpr int kMaxClasses = 16;
   std::vector<std::vector<uint32_t>> members(kMaxClasses);
   for (uint32_t i = 0; i < radii.size(); ++i) {
-    if (is_unbounded_[i]) continue;
+    if (is_unbounded[i]) continue;
     const int k = static_cast<int>(std::floor(std::log(largest_radius / radii[i]) / std::log(kClassRatio)));
     members[static_cast<std::size_t>(std::clamp(k, 0, kMaxClasses - 1))].push_back(i);
   }

@@ -76,9 +76,8 @@ class MeshlessBasis {
     std::vector<uint32_t> members;  // their indices
     std::unique_ptr<SiteIndex> index;
   };
-  std::vector<RadiusClass> classes_;   // all finite supports but the widest 1 %
-  std::vector<uint32_t> unbounded_;    // sites of infinite or widest support: candidates everywhere
-  std::vector<uint8_t> is_unbounded_;  // per site: in unbounded_
+  std::vector<RadiusClass> classes_;  // all finite supports but the widest 1 %
+  std::vector<uint32_t> unbounded_;   // sites of infinite or widest support: candidates everywhere
 };
 
 // K(t) = 2t³ − 3t² + 1 on [0, 1], 0 beyond (002 eq. 4.8).

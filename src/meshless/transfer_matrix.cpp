@@ -108,6 +108,7 @@ struct SenderClusters {
   std::vector<double> area, extent, near_reach;
   std::vector<double> cone;  // the least cosine between a site's normal and the node's mean normal
   std::vector<Vec3> centroid, area_normal;
+  std::vector<Vec3> mean_normal;                 // unit (a site's own normal); 0 for a cluster without area
   std::vector<std::array<uint32_t, 4>> samples;  // site indices, UINT32_MAX past the last
 };
 
@@ -151,16 +152,20 @@ SenderClusters sender_clusters(const SiteHierarchy& hierarchy, const SiteSet& si
   }
   // The extent and the normals' spread: every site against each of its ancestors.
   c.cone.assign(nodes, 1.0);
-  std::vector<Vec3> mean_normal(nodes);
+  c.mean_normal.assign(nodes, Vec3());
   for (uint32_t node = 0; node < nodes; ++node) {
     const double norm = length(c.area_normal[node]);
-    mean_normal[node] = norm > 0 ? c.area_normal[node] / norm : Vec3();
-    if (!(norm > 0)) c.cone[node] = -1;  // no direction: never linked as a cluster
+    if (node < n)
+      c.mean_normal[node] = site_set.sites[node].normal;
+    else if (norm > 0)
+      c.mean_normal[node] = c.area_normal[node] / norm;
+    else
+      c.cone[node] = -1;  // no direction: never linked as a cluster
   }
   for (uint32_t site = 0; site < n; ++site)
     for (uint32_t node = hierarchy.parent(site); node != UINT32_MAX; node = hierarchy.parent(node)) {
       c.extent[node] = std::max(c.extent[node], length(site_set.sites[site].position - c.centroid[node]));
-      c.cone[node] = std::min(c.cone[node], dot(site_set.sites[site].normal, mean_normal[node]));
+      c.cone[node] = std::min(c.cone[node], dot(site_set.sites[site].normal, c.mean_normal[node]));
     }
   return c;
 }
@@ -225,9 +230,6 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
   uint64_t link_rays = 0;
   if (hierarchy) {
     const double angle = settings.cluster_angle;
-    const auto unit_normal = [&](uint32_t node) {
-      return node < n ? sites[node].normal : clusters.area_normal[node] / length(clusters.area_normal[node]);
-    };
     // A cluster is linked whole only when every one of its sites' normals lies within about 25° of
     // its mean (cos 25° = 0.906).
     const auto closable = [&](uint32_t node) {
@@ -269,11 +271,10 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
         }
         const double d = length(clusters.centroid[receiver] - clusters.centroid[sender]);
         const double receiver_extent = clusters.extent[receiver], sender_extent = clusters.extent[sender];
-        bool closed = closable(receiver) && closable(sender) &&
-                      d > receiver_extent + sender_extent + clusters.near_reach[sender] &&
-                      receiver_extent < angle * d && sender_extent < angle * d;
-        if (closed) {
-          const double transfer = point_transfer(clusters.centroid[receiver], unit_normal(receiver),
+        if (closable(receiver) && closable(sender) &&
+            d > receiver_extent + sender_extent + clusters.near_reach[sender] &&
+            receiver_extent < angle * d && sender_extent < angle * d) {
+          const double transfer = point_transfer(clusters.centroid[receiver], clusters.mean_normal[receiver],
                                                  clusters.centroid[sender], clusters.area_normal[sender]);
           if (!(transfer > 0)) continue;  // facing away, or below the receiver's horizon
           const auto& from = clusters.samples[receiver];
@@ -292,7 +293,7 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
             out.push_back({receiver, sender, transfer});
             continue;
           }
-          closed = false;  // partly hidden: refined
+          // Partly hidden: refined.
         }
         // Split the larger (a site cannot be split).
         const bool split_sender = receiver < n || (sender >= n && sender_extent >= receiver_extent);
@@ -306,7 +307,6 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
             open.emplace_back(*child, sender);
         }
       }
-      std::sort(out.begin(), out.end());
     });
     std::size_t total_links = 0;
     for (const auto& list : found) total_links += list.size();
@@ -330,15 +330,11 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
     std::vector<double> own(columns, 0.0), above(columns, 0.0);
     for (std::size_t c = 0; c < columns; ++c)
       for (std::size_t l = link_start[c]; l < link_start[c + 1]; ++l) own[c] += links[l].transfer;
-    for (std::size_t c = columns; c-- > n;) {  // parents before children
+    for (std::size_t c = columns; c-- > 0;) {  // parents before children
       const uint32_t parent = hierarchy->parent(static_cast<uint32_t>(c));
       above[c] = parent == UINT32_MAX ? 0.0 : above[parent] + own[parent];
     }
-    from_ancestors.assign(n, 0.0);
-    for (uint32_t j = 0; j < n; ++j) {
-      const uint32_t parent = hierarchy->parent(j);
-      from_ancestors[j] = parent == UINT32_MAX ? 0.0 : above[parent] + own[parent];
-    }
+    from_ancestors.assign(above.begin(), above.begin() + static_cast<std::ptrdiff_t>(n));
   }
   TransferMatrix result;
   std::vector<Row> rows(n);
