@@ -1,10 +1,11 @@
 #include "accel/bvh.h"
 
-#include <emmintrin.h>  // SSE2, part of x86-64
+#include <immintrin.h>  // SSE2 everywhere; AVX2 and AVX-512 only in their target regions
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
@@ -28,6 +29,11 @@ namespace candela {
 namespace {
 
 constexpr int kLeafHardCap = 16;  // the SAH may keep up to this many in a leaf
+// The default bvh.max_leaf_primitives (a node with more is split) for a tree of triangles only
+// and for one with other shapes, and the SAH's cost of one packet's float pre-test against a
+// traversal step of 1 (measured on dragon_100k and Igea, docs/benchmarks.md).
+constexpr int kTriangleLeaf = 8, kShapeLeaf = 4;
+constexpr double kPacketCost = 0.6;
 constexpr std::size_t kStackSize =
     (Bvh::kWidth - 1) * 128 + Bvh::kWidth;  // depth below 128, at most 7 left per level
 constexpr std::size_t kGrain = 4096;
@@ -76,7 +82,7 @@ double max_abs(const Vec3& v) {
 // What build() does with each primitive.
 enum class Kind : uint8_t { unbounded, shape, triangle, never_hit };
 
-// The per-ray constants of the float slab test (four lanes at a time).
+// The per-ray constants of the float slab test (FloatSlabs: eight or four lanes at a time).
 //
 // Why it never culls a box that the ray's segment [t_lo, t_hi] (the double interval the
 // triangle tests need, widened by kSlack as before) meets: let t* in [t_lo, t_hi] be a point of
@@ -99,9 +105,9 @@ enum class Kind : uint8_t { unbounded, shape, triangle, never_hit };
 // - d = ±0 gives a reciprocal of ±inf: (plane - origin) · inf is ±inf with the exact sign, or
 //   NaN, which _mm_max_ps / _mm_min_ps (second operand on NaN) ignore.
 // Other rays (never made by the renderer) test every primitive (intersect_all_slots).
-struct FloatSlabs {
-  __m128 origin_near[3], origin_far[3];
-  __m128 inverse_near[3], inverse_far[3];
+struct SlabSetup {
+  float origin_near[3], origin_far[3];
+  float inverse_near[3], inverse_far[3];
   std::size_t near_offset[3], far_offset[3];  // byte offsets of the rows in a Node
   float t0 = 0, margin = 0;
 
@@ -119,16 +125,15 @@ struct FloatSlabs {
       const std::size_t upper = lower + sizeof(float[Bvh::kWidth]) * 3;
       near_offset[axis] = negative ? upper : lower;
       far_offset[axis] = negative ? lower : upper;
-      origin_near[axis] = _mm_set1_ps(negative ? round_down(o) : round_up(o));
-      origin_far[axis] = _mm_set1_ps(negative ? round_up(o) : round_down(o));
+      origin_near[axis] = negative ? round_down(o) : round_up(o);
+      origin_far[axis] = negative ? round_up(o) : round_down(o);
       if (d == 0) {
-        const float inf = std::copysign(std::numeric_limits<float>::infinity(), d);
-        inverse_near[axis] = inverse_far[axis] = _mm_set1_ps(inf);
+        inverse_near[axis] = inverse_far[axis] = std::copysign(std::numeric_limits<float>::infinity(), d);
       } else {
         const double inv = 1.0 / d;
         const double shrunk = inv * (1.0 - 0x1p-21), grown = inv * (1.0 + 0x1p-21);
-        inverse_near[axis] = _mm_set1_ps(negative ? round_up(shrunk) : round_down(shrunk));
-        inverse_far[axis] = _mm_set1_ps(negative ? round_down(grown) : round_up(grown));
+        inverse_near[axis] = negative ? round_up(shrunk) : round_down(shrunk);
+        inverse_far[axis] = negative ? round_down(grown) : round_up(grown);
       }
     }
     if (!(largest >= 1e-6) || !(t_lo >= -1e30)) return false;
@@ -136,34 +141,13 @@ struct FloatSlabs {
     margin = round_up(0x1p-17 * std::max(0.0, -t_lo) + 1e-35);
     return true;
   }
-
-  // The lanes whose box the ray meets within [t0, t1] (bit per lane); entries receives the
-  // (conservative) entry distances.
-  int hit(const Bvh::Node& node, __m128 t0v, __m128 t1v, float* entries) const {
-    return hit4(node, 0, t0v, t1v, entries) | (hit4(node, 4, t0v, t1v, entries + 4) << 4);
-  }
-
-  // hit() for the four lanes from first.
-  int hit4(const Bvh::Node& node, int first, __m128 t0v, __m128 t1v, float* entries) const {
-    __m128 near[3], far[3];
-    for (int axis = 0; axis < 3; ++axis) {
-      const char* base = reinterpret_cast<const char*>(&node) + sizeof(float) * first;
-      near[axis] =
-          _mm_mul_ps(_mm_sub_ps(_mm_load_ps(reinterpret_cast<const float*>(base + near_offset[axis])),
-                                origin_near[axis]),
-                     inverse_near[axis]);
-      far[axis] = _mm_mul_ps(
-          _mm_sub_ps(_mm_load_ps(reinterpret_cast<const float*>(base + far_offset[axis])), origin_far[axis]),
-          inverse_far[axis]);
-    }
-    // A tree of max / min (a NaN operand makes its pair NaN or drops one bound, then the outer
-    // max / min drops that pair: only constraints are lost, never gained).
-    const __m128 entry = _mm_max_ps(_mm_max_ps(near[1], near[2]), _mm_max_ps(near[0], t0v));
-    const __m128 exit = _mm_min_ps(_mm_min_ps(far[1], far[2]), _mm_min_ps(far[0], t1v));
-    _mm_store_ps(entries, entry);
-    return _mm_movemask_ps(_mm_cmple_ps(entry, _mm_add_ps(exit, _mm_set1_ps(margin))));
-  }
 };
+
+// The box test of one node in vector registers: SlabSetup's constants against all eight
+// children at once (AVX2, AVX-512) or four at a time (SSE). Defined per instruction set in
+// accel/bvh_traversal.inc.
+template <int Isa>
+struct FloatSlabs;
 
 // The conservative float pre-test of the watertight triangle test (WatertightRay): the same
 // sheared edge functions u, v, w in float, a lane rejected only when they certainly have mixed
@@ -221,22 +205,25 @@ struct FloatShear {
   }
 };
 
-// Calls visit(slot) for every slot of the leaf packets [ref, ref + ceil(count / 4)) whose
-// triangle survives the float pre-test (shapes always do), in slot order; stops and returns
-// true as soon as visit does. Shared by the nearest-hit and the any-hit traversal. A packet
-// without triangles (triangle_lanes 0: quads, spheres, boxes) skips the pre-test, and the ray's
-// shear (shear(), made on first use) is never made for a ray that meets only shapes: on the
-// 21-quad Cornell box that per-ray set-up made the tree 20 % slower than the plain list.
-template <class PacketType, class SlotType, class Shear, class Visit>
-inline bool visit_candidates(const PacketType* packets, const uint8_t* triangle_lanes, const SlotType* slots,
-                             uint32_t ref, uint32_t count, Shear&& shear, Visit&& visit) {
+// Calls visit(packet, index, lane) for every lane of the leaf packets [ref, ref + ceil(count /
+// 4)) whose triangle survives the float pre-test (shapes always do), in order; stops and
+// returns true as soon as visit does. Shared by the nearest-hit and the any-hit traversal. A
+// packet without triangles (quads, spheres, boxes) skips the pre-test, and the ray's shear
+// (shear(), made on first use) is never made for a ray that meets only shapes: on the 21-quad
+// Cornell box that per-ray set-up made the tree 20 % slower than the plain list.
+template <class Shear, class Visit>
+inline bool visit_candidates(const Bvh::Packet* packets, uint32_t ref, uint32_t count, Shear&& shear,
+                             Visit&& visit) {
   for (uint32_t first = 0; first < count; first += 4, ++ref) {
+    const Bvh::Packet& packet = packets[ref];
     const int used = (1 << std::min(4u, count - first)) - 1;
-    int mask = triangle_lanes[ref] != 0 ? shear().candidates(packets[ref]) & used : used;
+    // The shapes' lanes have the sign bit of their primitive set (kShapeSlot).
+    const int shapes = _mm_movemask_ps(_mm_load_ps(reinterpret_cast<const float*>(packet.primitive)));
+    int mask = (shapes & used) != used ? shear().candidates(packet) & used : used;
     while (mask != 0) {
-      const SlotType& slot = slots[4 * std::size_t{ref} + __builtin_ctz(static_cast<unsigned>(mask))];
+      const int lane = __builtin_ctz(static_cast<unsigned>(mask));
       mask &= mask - 1;
-      if (visit(slot)) return true;
+      if (visit(packet, ref, lane)) return true;
     }
   }
   return false;
@@ -299,10 +286,40 @@ void bvh_free(void* memory) noexcept {
   std::free(memory);
 }
 
+BvhIsa widest_bvh_isa() {
+  // libgcc's checks include the operating system's support for the wider registers (XGETBV).
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+      __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
+      __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2"))
+    return BvhIsa::avx512;
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2"))
+    return BvhIsa::avx2;
+  return BvhIsa::sse;
+}
+
+const char* bvh_isa_name(BvhIsa isa) {
+  switch (isa) {
+    case BvhIsa::automatic:
+      return "auto";
+    case BvhIsa::sse:
+      return "sse";
+    case BvhIsa::avx2:
+      return "avx2";
+    case BvhIsa::avx512:
+      return "avx512";
+  }
+  return "?";
+}
+
 Bvh::Bvh(const BvhSettings& settings)
-    : max_leaf_primitives_(settings.max_leaf_primitives), bins_(settings.bins) {
-  if (max_leaf_primitives_ < 1 || max_leaf_primitives_ > 1024)
-    throw std::invalid_argument("bvh.max_leaf_primitives must be in [1, 1024], got " +
+    : max_leaf_primitives_(settings.max_leaf_primitives),
+      bins_(settings.bins),
+      isa_(settings.isa == BvhIsa::automatic ? widest_bvh_isa() : settings.isa) {
+  if (static_cast<int>(isa_) > static_cast<int>(widest_bvh_isa()))
+    throw std::invalid_argument(std::string("bvh.isa: this CPU does not support ") + bvh_isa_name(isa_) +
+                                " (the widest it supports is " + bvh_isa_name(widest_bvh_isa()) + ")");
+  if (max_leaf_primitives_ < 0 || max_leaf_primitives_ > 1024)
+    throw std::invalid_argument("bvh.max_leaf_primitives must be in [0, 1024] (0: automatic), got " +
                                 std::to_string(max_leaf_primitives_));
   if (bins_ < 2 || bins_ > 256)
     throw std::invalid_argument("bvh.bins must be in [2, 256], got " + std::to_string(bins_));
@@ -311,10 +328,9 @@ Bvh::Bvh(const BvhSettings& settings)
 void Bvh::build(std::span<const Primitive> primitives) {
   primitives_ = primitives;
   nodes_.clear();
-  lane_slots_.clear();
-  slot_count_ = 0;
   packets_.clear();
-  packet_triangles_.clear();
+  corners_.clear();
+  slot_count_ = triangle_count_ = 0;
   unbounded_.clear();
   only_mesh_ = nullptr;
   scene_scale_ = 0;
@@ -373,10 +389,21 @@ void Bvh::build(std::span<const Primitive> primitives) {
     first_mesh = false;
   }
 
+  // A tree of triangles only is costed per packet of four (one float pre-test tests them all)
+  // with a lower cost per packet, which makes leaves of 4-8 triangles and a tree two levels
+  // shallower: each level is a dependent cache miss, and on Igea that was worth 15-20 % of the
+  // incoherent rays' time. Shapes are tested one by one through their Shape.
+  const bool only_triangles = std::all_of(tree_primitive.begin(), tree_primitive.end(),
+                                          [&](uint32_t index) { return kinds[index] == Kind::triangle; });
   BvhBuildSettings settings;
-  settings.max_leaf_primitives = max_leaf_primitives_;
-  settings.max_leaf_hard = std::max(kLeafHardCap, max_leaf_primitives_);
+  settings.max_leaf_primitives =
+      max_leaf_primitives_ > 0 ? max_leaf_primitives_ : (only_triangles ? kTriangleLeaf : kShapeLeaf);
+  settings.max_leaf_hard = std::max(kLeafHardCap, settings.max_leaf_primitives);
   settings.bins = bins_;
+  if (only_triangles) {
+    settings.block_size = 4;
+    settings.intersection_cost = kPacketCost;
+  }
   const BvhBuildResult tree = build_bvh(tree_bounds, settings);
   tree_bounds = {};
   tree_nodes_ = static_cast<uint32_t>(tree.nodes.size());
@@ -385,54 +412,75 @@ void Bvh::build(std::span<const Primitive> primitives) {
   sah_cost_ = tree.sah_cost;
   scene_scale_ = std::max(max_abs(tree.nodes[0].bounds.lower), max_abs(tree.nodes[0].bounds.upper));
 
-  std::vector<Slot> slots_(tree.order.size());
-  slot_count_ = slots_.size();
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, slots_.size(), kGrain),
-                    [&](const tbb::blocked_range<std::size_t>& range) {
-                      for (std::size_t s = range.begin(); s < range.end(); ++s) {
-                        const uint32_t index = tree_primitive[tree.order[s]];
-                        Slot& slot = slots_[s];
-                        if (kinds[index] != Kind::triangle) {
-                          slot = {};
-                          slot.primitive = index | kShapeSlot;
-                          continue;
-                        }
-                        const auto* triangle = static_cast<const MeshTriangle*>(primitives[index].shape);
-                        const TriangleMesh& mesh = triangle->mesh();
-                        const auto& corners = mesh.triangles[triangle->triangle_index()];
-                        slot = {mesh.positions[corners[0]], mesh.positions[corners[1]],
-                                mesh.positions[corners[2]], index, triangle->triangle_index()};
-                      }
-                    });
-
-  // Packets: each leaf's slots in groups of four, in leaf order.
-  std::vector<uint32_t> packet_of(slots_.size());  // first packet of the leaf starting at a slot
+  // Packets: each leaf's primitives in groups of four, in leaf order.
+  slot_count_ = tree.order.size();
+  std::vector<uint32_t> packet_of(slot_count_);  // first packet of the leaf starting at a slot
+  struct PacketSlots {
+    uint32_t first, end;  // its slots
+  };
+  std::vector<PacketSlots> packet_slots;
   for (const BvhBuildNode& built : tree.nodes) {
     if (built.count == 0) continue;
-    packet_of[built.index] = static_cast<uint32_t>(packets_.size());
-    for (uint32_t first = built.index; first < built.index + built.count; first += 4) {
-      Packet packet{};
-      uint8_t triangle_lanes = 0;
-      for (int lane = 0; lane < 4; ++lane) {
-        const uint32_t s = first + static_cast<uint32_t>(lane);
-        const bool used = s < built.index + built.count;
-        lane_slots_.push_back(used ? slots_[s] : Slot{});
-        if (used && !(slots_[s].primitive & kShapeSlot)) triangle_lanes |= uint8_t(1u << lane);
-        for (int vertex = 0; vertex < 3; ++vertex) {
-          for (int axis = 0; axis < 3; ++axis) {
-            float value = std::numeric_limits<float>::quiet_NaN();
-            if (used && !(slots_[s].primitive & kShapeSlot)) {
-              const Slot& slot = slots_[s];
-              const Vec3& p = vertex == 0 ? slot.p0 : vertex == 1 ? slot.p1 : slot.p2;
-              value = static_cast<float>(p[axis]);
-            }
-            packet.p[vertex][axis][lane] = value;
-          }
-        }
-      }
-      packets_.push_back(packet);
-      packet_triangles_.push_back(triangle_lanes);
-    }
+    packet_of[built.index] = static_cast<uint32_t>(packet_slots.size());
+    const uint32_t end = built.index + built.count;
+    for (uint32_t first = built.index; first < end; first += 4)
+      packet_slots.push_back({first, std::min(first + 4, end)});
+  }
+  packets_.resize(packet_slots.size());
+  // Whether every triangle's vertices are floats (then the packets alone hold them exactly).
+  std::atomic<bool> float_exact = true;
+  std::atomic<std::size_t> triangles = 0;
+  const auto fill_packets = [&](bool keep_corners) {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, packets_.size(), kGrain / 4),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        std::size_t range_triangles = 0;
+                        bool range_exact = true;
+                        for (std::size_t k = range.begin(); k < range.end(); ++k) {
+                          Packet& packet = packets_[k];
+                          const auto [first, end] = packet_slots[k];
+                          for (int lane = 0; lane < 4; ++lane) {
+                            const uint32_t s = first + static_cast<uint32_t>(lane);
+                            Vec3 corner[3];
+                            packet.primitive[lane] = kShapeSlot;
+                            packet.triangle[lane] = 0;
+                            bool triangle = false;
+                            if (s < end) {
+                              const uint32_t index = tree_primitive[tree.order[s]];
+                              triangle = kinds[index] == Kind::triangle;
+                              packet.primitive[lane] = triangle ? index : index | kShapeSlot;
+                              if (triangle) {
+                                const auto* shape = static_cast<const MeshTriangle*>(primitives[index].shape);
+                                const TriangleMesh& mesh = shape->mesh();
+                                const auto& corners = mesh.triangles[shape->triangle_index()];
+                                packet.triangle[lane] = static_cast<uint32_t>(shape->triangle_index());
+                                for (int v = 0; v < 3; ++v) corner[v] = mesh.positions[corners[v]];
+                                ++range_triangles;
+                              }
+                            }
+                            for (int v = 0; v < 3; ++v) {
+                              for (int axis = 0; axis < 3; ++axis) {
+                                const float value = triangle ? static_cast<float>(corner[v][axis])
+                                                             : std::numeric_limits<float>::quiet_NaN();
+                                packet.p[v][axis][lane] = value;
+                                if (triangle && static_cast<double>(value) != corner[v][axis])
+                                  range_exact = false;
+                              }
+                            }
+                            if (keep_corners) {
+                              Corners& kept = corners_[4 * k + static_cast<std::size_t>(lane)];
+                              for (int v = 0; v < 3; ++v) kept.p[v] = triangle ? corner[v] : Vec3{};
+                            }
+                          }
+                        }
+                        if (!keep_corners) triangles += range_triangles;
+                        if (!range_exact) float_exact = false;
+                      });
+  };
+  fill_packets(false);
+  triangle_count_ = triangles;
+  if (!float_exact) {
+    corners_.resize(4 * packets_.size());
+    fill_packets(true);
   }
 
   // Collapse the binary tree into eight-wide nodes, depth first: a node's children start as
@@ -497,25 +545,41 @@ void Bvh::build(std::span<const Primitive> primitives) {
   }
 }
 
-// Brings a child's first cache lines in while the nearer children are visited.
+// Brings a child's cache lines in while the nearer children are visited.
 inline void Bvh::prefetch_child(uint32_t child, uint32_t count) const {
-  const char* address = count == 0 ? reinterpret_cast<const char*>(&nodes_[child])
-                                   : reinterpret_cast<const char*>(&packets_[child]);
-  _mm_prefetch(address, _MM_HINT_T0);
-  _mm_prefetch(address + 64, _MM_HINT_T0);
-  _mm_prefetch(address + 128, _MM_HINT_T0);
-  if (count != 0) {
-    prefetch_lanes(child);
+  if (count == 0) {
+    const char* address = reinterpret_cast<const char*>(&nodes_[child]);
+    for (int line = 0; line < 4; ++line) _mm_prefetch(address + 64 * line, _MM_HINT_T0);
   } else {
-    _mm_prefetch(address + 192, _MM_HINT_T0);
+    // A packet is 176 bytes on a 16-byte boundary: up to four lines.
+    const char* address = reinterpret_cast<const char*>(&packets_[child]);
+    _mm_prefetch(address, _MM_HINT_T0);
+    _mm_prefetch(address + 64, _MM_HINT_T0);
+    _mm_prefetch(address + 128, _MM_HINT_T0);
+    _mm_prefetch(address + sizeof(Packet) - 1, _MM_HINT_T0);
   }
 }
 
-// The exact data of a leaf's first four lanes (320 bytes), fetched together with its packet
-// so that the two misses overlap.
-inline void Bvh::prefetch_lanes(uint32_t packet) const {
-  const char* lanes = reinterpret_cast<const char*>(&lane_slots_[4 * std::size_t{packet}]);
-  for (int line = 0; line < 6; ++line) _mm_prefetch(lanes + 64 * line, _MM_HINT_T0);
+// The double vertices of a leaf's first four lanes (288 bytes), when kept: fetched with the
+// packet so that the two misses overlap.
+inline void Bvh::prefetch_corners(uint32_t packet) const {
+  if (corners_.empty()) return;
+  const char* lanes = reinterpret_cast<const char*>(&corners_[4 * std::size_t{packet}]);
+  for (int line = 0; line < 5; ++line) _mm_prefetch(lanes + 64 * line, _MM_HINT_T0);
+}
+
+inline void Bvh::lane_corners(uint32_t packet, int lane, Vec3& p0, Vec3& p1, Vec3& p2) const {
+  if (!corners_.empty()) {
+    const Corners& corners = corners_[4 * std::size_t{packet} + static_cast<std::size_t>(lane)];
+    p0 = corners.p[0];
+    p1 = corners.p[1];
+    p2 = corners.p[2];
+    return;
+  }
+  const Packet& data = packets_[packet];
+  p0 = {data.p[0][0][lane], data.p[0][1][lane], data.p[0][2][lane]};
+  p1 = {data.p[1][0][lane], data.p[1][1][lane], data.p[1][2][lane]};
+  p2 = {data.p[2][0][lane], data.p[2][1][lane], data.p[2][2][lane]};
 }
 
 bool Bvh::intersect_all_slots(const Ray& ray, Intersection& intersection) const {
@@ -544,212 +608,47 @@ bool Bvh::occluded_all_slots(const Ray& ray) const {
   return false;
 }
 
+// The traversal, compiled once per instruction set: the same source (accel/bvh_traversal.inc)
+// for SSE2 (every x86-64), for AVX2 and FMA, and for AVX-512, each in its own target region so
+// that only the traversal uses the wider instructions; the constructor picks the widest the CPU
+// has (or bvh.isa).
+#define CANDELA_BVH_ISA 0
+#include "accel/bvh_traversal.inc"
+#undef CANDELA_BVH_ISA
+
+#pragma GCC push_options
+#pragma GCC target("avx2,fma,bmi,bmi2,lzcnt,popcnt")
+#define CANDELA_BVH_ISA 1
+#include "accel/bvh_traversal.inc"
+#undef CANDELA_BVH_ISA
+#pragma GCC pop_options
+
+#pragma GCC push_options
+#pragma GCC target("avx512f,avx512vl,avx512dq,avx512bw,avx2,fma,bmi,bmi2,lzcnt,popcnt")
+#define CANDELA_BVH_ISA 2
+#include "accel/bvh_traversal.inc"
+#undef CANDELA_BVH_ISA
+#pragma GCC pop_options
+
 bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
-  const Slack slack(ray, scene_scale_);
-  FloatSlabs slabs;
-  if (!nodes_.empty() && !slabs.init(ray, slack.down(ray.t_min)))
-    return intersect_all_slots(ray, intersection);
-
-  double best_t = ray.t_max;
-  uint32_t best = std::numeric_limits<uint32_t>::max();
-  bool found = false, best_is_triangle = false;
-  const Slot* best_slot = nullptr;
-  TriangleIntersection best_triangle;  // its weights
-  // A shape's hit goes to whichever of two buffers does not hold the best hit so far, so an
-  // accepted hit is never copied (SurfaceHit is some 300 bytes: the copies and the zero fill of two
-  // were a sixth of this function on a scene of quads): a scratch one, made when a shape is first
-  // tested, and the result itself, written only once something has been found.
-  Lazy<SurfaceHit> scratch;
-  SurfaceHit* best_hit = nullptr;
-  // Hits at exactly best_t must still be seen (a lower index wins the tie), so once something
-  // is found the shape tests run with t_max just above best_t.
-  Ray test = ray;
-  // The per-ray part of every triangle test, made at the first leaf.
-  Lazy<WatertightRay> sheared;
-  Lazy<FloatShear> shear;
-  const auto accept = [&](double t, uint32_t primitive) {
-    best_t = t;
-    best = primitive;
-    found = true;
-    test.t_max = std::nextafter(t, kInfinity);
-    if (sheared) sheared->t_max = test.t_max;
-  };
-  const auto test_shape = [&](uint32_t primitive) {
-    SurfaceHit* candidate = &intersection.surface;
-    if (best_hit == nullptr || best_hit == &intersection.surface) {
-      if (!scratch) scratch.emplace();
-      candidate = &*scratch;
-    }
-    if (primitives_[primitive].shape->intersect(test, *candidate) &&
-        closer_hit(candidate->t, primitive, best_t, best)) {
-      accept(candidate->t, primitive);
-      best_hit = candidate;
-      best_is_triangle = false;
-    }
-  };
-
-  for (uint32_t primitive : unbounded_) test_shape(primitive);
-
-  if (!nodes_.empty()) {
-    const __m128 t0v = _mm_set1_ps(slabs.t0);
-    float t1 = round_up(slack.up(best_t));
-    float t1_skip = t1 + slabs.margin;
-    alignas(16) float entries[kWidth];
-    Pending stack[kStackSize];
-    std::size_t top = 0;
-    uint32_t ref = 0, count = 0;
-    while (true) {
-      if (count == 0) {
-        const Node& node = nodes_[ref];
-        int mask = slabs.hit(node, t0v, _mm_set1_ps(t1), entries);
-        if (mask != 0) {
-          int lane = __builtin_ctz(static_cast<unsigned>(mask));
-          mask &= mask - 1;
-          if (mask == 0) {
-            ref = node.child[lane];
-            count = node.count[lane];
-            continue;
-          }
-          const int second = __builtin_ctz(static_cast<unsigned>(mask));
-          if ((mask & (mask - 1)) == 0) {  // two: push the farther, go on with the nearer
-            const int swap = -static_cast<int>(entries[second] < entries[lane]);  // branch free
-            const int near_lane = lane ^ ((lane ^ second) & swap), far_lane = lane ^ second ^ near_lane;
-            prefetch_child(node.child[far_lane], node.count[far_lane]);
-            stack[top++] = {entries[far_lane], node.child[far_lane], node.count[far_lane]};
-            ref = node.child[near_lane];
-            count = node.count[near_lane];
-            continue;
-          }
-          // More: push them all, farthest first, and go on with the nearest.
-          const std::size_t base = top;
-          while (true) {
-            const Pending pending{entries[lane], node.child[lane], node.count[lane]};
-            prefetch_child(pending.child, pending.count);
-            std::size_t k = top++;
-            while (k > base && stack[k - 1].t_enter < pending.t_enter) {
-              stack[k] = stack[k - 1];
-              --k;
-            }
-            stack[k] = pending;
-            if (mask == 0) break;
-            lane = __builtin_ctz(static_cast<unsigned>(mask));
-            mask &= mask - 1;
-          }
-          --top;
-          ref = stack[top].child;
-          count = stack[top].count;
-          continue;
-        }
-      } else {
-        prefetch_lanes(ref);
-        const auto make_shear = [&]() -> const FloatShear& {
-          if (!sheared) {
-            sheared.emplace(ray);
-            sheared->t_max = test.t_max;
-            shear.emplace(*sheared, scene_scale_);
-          }
-          return *shear;
-        };
-        visit_candidates(
-            packets_.data(), packet_triangles_.data(), lane_slots_.data(), ref, count, make_shear,
-            [&](const Slot& slot) {
-              if (!(slot.primitive & kShapeSlot)) {
-                TriangleIntersection found_triangle;
-                if (sheared->intersect(slot.p0, slot.p1, slot.p2, found_triangle) &&
-                    closer_hit(found_triangle.t, slot.primitive, best_t, best)) {
-                  accept(found_triangle.t, slot.primitive);
-                  best_triangle = found_triangle;
-                  best_is_triangle = true;
-                  best_slot = &slot;
-                  if (only_mesh_ && !only_mesh_->corner_normals.empty())  // for the fill below
-                    _mm_prefetch(reinterpret_cast<const char*>(&only_mesh_->corner_normals[slot.triangle]),
-                                 _MM_HINT_T0);
-                }
-              } else {
-                test_shape(slot.primitive & ~kShapeSlot);
-              }
-              return false;
-            });
-        t1 = round_up(slack.up(best_t));
-        t1_skip = t1 + slabs.margin;
-      }
-      // Pop the next child that still starts before the nearest hit.
-      while (top > 0 && stack[top - 1].t_enter > t1_skip) --top;
-      if (top == 0) break;
-      --top;
-      ref = stack[top].child;
-      count = stack[top].count;
-    }
+  switch (isa_) {
+    case BvhIsa::avx512:
+      return intersect_tree<2>(ray, intersection);
+    case BvhIsa::avx2:
+      return intersect_tree<1>(ray, intersection);
+    default:
+      return intersect_tree<0>(ray, intersection);
   }
-
-  if (!found) return false;
-  if (best_is_triangle) {
-    // Filled as the triangle's own Shape does (normals, uv), from the slot's copy of its
-    // corners and the weights of the same computation as intersect_triangle's.
-    const TriangleMesh& mesh =
-        only_mesh_ ? *only_mesh_ : static_cast<const MeshTriangle*>(primitives_[best].shape)->mesh();
-    // Every field is written, so filling the result directly equals filling a shape's hit.
-    fill_triangle_hit(mesh, best_slot->triangle, best_slot->p0, best_slot->p1, best_slot->p2, best_triangle,
-                      intersection.surface);
-  } else if (best_hit != &intersection.surface) {
-    intersection.surface = *best_hit;
-  }
-  intersection.primitive = best;
-  return true;
 }
 
 bool Bvh::occluded_in_tree(const Ray& ray) const {
-  const Slack slack(ray, scene_scale_);
-  FloatSlabs slabs;
-  if (!slabs.init(ray, slack.down(ray.t_min))) return occluded_all_slots(ray);
-  const __m128 t0v = _mm_set1_ps(slabs.t0);
-  const __m128 t1v = _mm_set1_ps(round_up(slack.up(ray.t_max)));
-  Lazy<WatertightRay> sheared;  // made at the first leaf
-  Lazy<FloatShear> shear;
-  alignas(16) float entries[kWidth];
-  Pending stack[kStackSize];
-  std::size_t top = 0;
-  uint32_t ref = 0, count = 0;
-  while (true) {
-    if (count == 0) {
-      const Node& node = nodes_[ref];
-      int mask = slabs.hit(node, t0v, t1v, entries);
-      if (mask != 0) {
-        int lane = __builtin_ctz(static_cast<unsigned>(mask));
-        mask &= mask - 1;
-        while (mask != 0) {
-          stack[top++] = {0.0f, node.child[lane], node.count[lane]};
-          prefetch_child(node.child[lane], node.count[lane]);
-          lane = __builtin_ctz(static_cast<unsigned>(mask));
-          mask &= mask - 1;
-        }
-        ref = node.child[lane];
-        count = node.count[lane];
-        continue;
-      }
-    } else {
-      prefetch_lanes(ref);
-      const auto make_shear = [&]() -> const FloatShear& {
-        if (!sheared) {
-          sheared.emplace(ray);
-          shear.emplace(*sheared, scene_scale_);
-        }
-        return *shear;
-      };
-      if (visit_candidates(packets_.data(), packet_triangles_.data(), lane_slots_.data(), ref, count,
-                           make_shear, [&](const Slot& slot) {
-                             if (!(slot.primitive & kShapeSlot)) {
-                               double t;
-                               return sheared->distance(slot.p0, slot.p1, slot.p2, t);
-                             }
-                             return primitives_[slot.primitive & ~kShapeSlot].shape->occluded(ray);
-                           }))
-        return true;
-    }
-    if (top == 0) return false;
-    --top;
-    ref = stack[top].child;
-    count = stack[top].count;
+  switch (isa_) {
+    case BvhIsa::avx512:
+      return occluded_tree<2>(ray);
+    case BvhIsa::avx2:
+      return occluded_tree<1>(ray);
+    default:
+      return occluded_tree<0>(ray);
   }
 }
 
@@ -769,8 +668,10 @@ AcceleratorReport Bvh::report() const {
       {"primitives per leaf", leaves_ > 0 ? static_cast<double>(slot_count_) / leaves_ : 0.0},
       {"unbounded primitives", static_cast<double>(unbounded_.size())},
   };
-  report.bytes = nodes_.size() * sizeof(Node) + lane_slots_.size() * sizeof(Slot) +
-                 packets_.size() * (sizeof(Packet) + 1) + unbounded_.size() * sizeof(uint32_t);
+  report.bytes = nodes_.size() * sizeof(Node) + packets_.size() * sizeof(Packet) +
+                 corners_.size() * sizeof(Corners) + unbounded_.size() * sizeof(uint32_t);
+  if (triangle_count_ > 0)
+    report.figures.push_back({"bytes per triangle", static_cast<double>(report.bytes) / triangle_count_});
   return report;
 }
 

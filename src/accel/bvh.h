@@ -62,10 +62,20 @@ struct BvhAllocator {
   }
 };
 
+// The instruction set of the traversal's box test (the same traversal compiled for each; see
+// accel/bvh_traversal.inc).
+enum class BvhIsa { automatic, sse, avx2, avx512 };
+
+// The widest instruction set this CPU (and its operating system) supports.
+BvhIsa widest_bvh_isa();
+const char* bvh_isa_name(BvhIsa isa);
+
 // The scene file's "bvh" object.
 struct BvhSettings {
-  int max_leaf_primitives = 4;  // a node with more is split (binned SAH)
+  // A node with more is split (binned SAH); 0: 8 for a tree of triangles only, else 4.
+  int max_leaf_primitives = 0;
   int bins = 16;
+  BvhIsa isa = BvhIsa::automatic;  // automatic: the widest the CPU supports
 };
 
 class Bvh final : public Accelerator {
@@ -91,28 +101,39 @@ class Bvh final : public Accelerator {
   };
   static_assert(sizeof(Node) == 256);
 
-  // Up to four slots of a leaf with their triangles' vertices rounded to float, lane by lane
-  // (p[vertex][axis][lane]), for the conservative float pre-test; a shape's lane holds NaN
-  // (never rejected). A leaf of n slots has ceil(n / 4) consecutive packets; lane j of packet k
-  // is slot 4 k + j of lane_slots_.
+  // Up to four lanes of a leaf: their triangles' vertices rounded to float, lane by lane
+  // (p[vertex][axis][lane]), for the conservative float pre-test, and which primitive each lane
+  // is; a shape's lane holds NaN vertices (never rejected). A leaf of n primitives has
+  // ceil(n / 4) consecutive packets. When every triangle's vertices are floats already (the
+  // benchmark's meshes, as Embree gets them), these floats are the exact test's vertices too
+  // and nothing else is stored; otherwise the double vertices are kept in corners_ (one entry
+  // per lane), read only by the triangles that survive the pre-test.
   struct alignas(16) Packet {
     float p[3][3][4];
+    uint32_t primitive[4];  // primitive index, | kShapeSlot for a shape; kShapeSlot when unused
+    uint32_t triangle[4];   // the triangle's index in its mesh (unused for shapes)
   };
+  static_assert(sizeof(Packet) == 176);
 
  private:
-  // A leaf entry: an inline triangle (its vertices) or a primitive tested through its Shape.
-  struct Slot {
-    Vec3 p0, p1, p2;     // unused for shapes
-    uint32_t primitive;  // primitive index, | kShapeSlot for shapes
-    uint32_t triangle;   // the triangle's index in its mesh (unused for shapes)
+  // A lane's triangle's vertices in double, when they are not all floats.
+  struct Corners {
+    Vec3 p[3];
   };
-  static_assert(sizeof(Slot) == 80);
-  // Slot entries whose primitive goes through its Shape (not an inline triangle).
+  // Packet lanes whose primitive goes through its Shape (not an inline triangle).
   static constexpr uint32_t kShapeSlot = 0x80000000u;
 
+  // The exact vertices of a triangle lane.
+  void lane_corners(uint32_t packet, int lane, Vec3& p0, Vec3& p1, Vec3& p2) const;
   bool occluded_in_tree(const Ray& ray) const;
+  // The traversal for instruction set Isa (0 SSE, 1 AVX2, 2 AVX-512), specialised per set in
+  // accel/bvh_traversal.inc.
+  template <int Isa>
+  bool intersect_tree(const Ray& ray, Intersection& intersection) const;
+  template <int Isa>
+  bool occluded_tree(const Ray& ray) const;
   void prefetch_child(uint32_t child, uint32_t count) const;
-  void prefetch_lanes(uint32_t packet) const;
+  void prefetch_corners(uint32_t packet) const;
   // Rays the float slab test is not proven for (huge or non-finite values): every primitive,
   // as the list does.
   bool intersect_all_slots(const Ray& ray, Intersection& intersection) const;
@@ -120,16 +141,17 @@ class Bvh final : public Accelerator {
 
   int max_leaf_primitives_;
   int bins_;
+  BvhIsa isa_;
   std::span<const Primitive> primitives_;
   std::vector<Node, BvhAllocator<Node>> nodes_;
   std::vector<Packet, BvhAllocator<Packet>> packets_;
-  std::vector<uint8_t> packet_triangles_;             // per packet: the lanes holding triangles (bits)
-  std::vector<Slot, BvhAllocator<Slot>> lane_slots_;  // four per packet (unused lanes zero)
-  std::size_t slot_count_ = 0;                        // slots in leaves
-  std::vector<uint32_t> unbounded_;                   // primitives with infinite bounds
-  const TriangleMesh* only_mesh_ = nullptr;           // the mesh of every inline triangle, when only one
-  double scene_scale_ = 0;                            // largest |coordinate| of the tree's bounds
-  uint32_t tree_nodes_ = 0;                           // nodes of the binary tree, leaves included
+  std::vector<Corners, BvhAllocator<Corners>> corners_;  // four per packet; empty when the floats are exact
+  std::size_t slot_count_ = 0;                           // primitives in leaves
+  std::size_t triangle_count_ = 0;                       // of which mesh triangles
+  std::vector<uint32_t> unbounded_;                      // primitives with infinite bounds
+  const TriangleMesh* only_mesh_ = nullptr;              // the mesh of every inline triangle, when only one
+  double scene_scale_ = 0;                               // largest |coordinate| of the tree's bounds
+  uint32_t tree_nodes_ = 0;                              // nodes of the binary tree, leaves included
   uint32_t leaves_ = 0;
   uint32_t depth_ = 0;
   double sah_cost_ = 0;

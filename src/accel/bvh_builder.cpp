@@ -98,6 +98,7 @@ class Builder {
     bins_ = std::clamp(settings.bins, 2, kMaxBins);
     max_leaf_ = static_cast<std::size_t>(std::max(1, settings.max_leaf_primitives));
     max_leaf_hard_ = std::max(max_leaf_, static_cast<std::size_t>(std::max(1, settings.max_leaf_hard)));
+    block_size_ = static_cast<std::size_t>(std::max(1, settings.block_size));
   }
 
   // Builds refs[begin, end) into the node at `slot`; its subtree uses slots
@@ -133,6 +134,9 @@ class Builder {
   }
 
  private:
+  // The intersection tests a leaf of n references costs.
+  double blocks(std::size_t n) const { return static_cast<double>((n + block_size_ - 1) / block_size_); }
+
   Split choose_split(std::size_t begin, std::size_t end, const Bounds3& bounds, const Bounds3& centroids,
                      uint32_t depth) const {
     Split split;
@@ -161,7 +165,7 @@ class Builder {
       for (int b = bins_ - 1; b > 0; --b) {
         right.extend(bins[b].bounds);
         right_n += bins[b].count;
-        right_cost[static_cast<std::size_t>(b)] = half_area(right) * right_n;
+        right_cost[static_cast<std::size_t>(b)] = half_area(right) * blocks(right_n);
       }
       Bounds3 left;
       uint32_t left_n = 0;
@@ -170,7 +174,7 @@ class Builder {
         left_n += bins[plane - 1].count;
         if (left_n == 0 || left_n == count) continue;
         // Unnormalised by the node's area, so that flat or point-like nodes compare safely.
-        const double cost = half_area(left) * left_n + right_cost[static_cast<std::size_t>(plane)];
+        const double cost = half_area(left) * blocks(left_n) + right_cost[static_cast<std::size_t>(plane)];
         if (cost < best_cost) {
           best_cost = cost;
           best_axis = axis;
@@ -181,7 +185,7 @@ class Builder {
     if (best_axis < 0) return median_split(begin, end, centroids);
 
     const double split_cost = traversal * area + intersection * best_cost;
-    const double leaf_cost = intersection * static_cast<double>(count) * area;
+    const double leaf_cost = intersection * blocks(count) * area;
     if (count <= max_leaf_hard_ && leaf_cost <= split_cost) {
       split.leaf = true;
       return split;
@@ -273,6 +277,7 @@ class Builder {
   int bins_;
   std::size_t max_leaf_;
   std::size_t max_leaf_hard_;
+  std::size_t block_size_ = 1;
 };
 
 struct RootBounds {
@@ -337,7 +342,9 @@ BvhBuildResult build_bvh(std::span<const Bounds3> bounds, const BvhBuildSettings
     result.depth = std::max(result.depth, pending.depth);
     if (node.count > 0) {
       ++result.leaves;
-      result.sah_cost += settings.intersection_cost * node.count * relative_area(node.bounds);
+      result.sah_cost += settings.intersection_cost *
+                         std::ceil(static_cast<double>(node.count) / std::max(1, settings.block_size)) *
+                         relative_area(node.bounds);
     } else {
       result.sah_cost += settings.traversal_cost * relative_area(node.bounds);
       stack.push_back({node.index, dense, pending.depth + 1});

@@ -28,6 +28,9 @@ struct BvhBuildSettings {
   int bins = 16;                // per axis; clamped to [2, 256]
   double traversal_cost = 1.0;
   double intersection_cost = 1.5;
+  // References a leaf tests at once (SIMD lanes): the SAH counts a leaf of n references as
+  // ceil(n / block_size) intersections (Embree's sahBlockSize).
+  int block_size = 1;
 };
 
 // A node of the built tree, flattened depth first: an inner node's first child is the next
