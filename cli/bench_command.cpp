@@ -100,6 +100,7 @@ BenchMesh load_mesh(const BenchCommandOptions& options) {
 
 BenchOptions bench_options(const BenchCommandOptions& options) {
   BenchOptions bench;
+  bench.accelerator_settings = options.overrides;
   const std::vector<std::string> known = bench_accelerator_names();
   for (const std::string& name : options.accelerators) {
     if (std::find(known.begin(), known.end(), name) == known.end()) {
@@ -344,7 +345,6 @@ int run_bench_command(const BenchCommandOptions& given) {
   if (given.radiosity) return run_radiosity_bench_command(given);
   if (given.meshless) return run_meshless_bench_command(given);
   if (given.raster) return run_raster_bench_command(given);
-  if (!given.overrides.empty()) throw BadArgument("--set applies to --radiosity and --meshless only");
   if (given.inputs.size() > 1) throw BadArgument("give exactly one of MESH, --sphere N or --terrain N");
   BenchCommandOptions options = given;
   if (!given.inputs.empty()) options.mesh_path = given.inputs.front();
@@ -403,7 +403,8 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   // One key=value per --set, as for render.
   command
       ->add_option("--set", options->overrides,
-                   "--radiosity: override a scene setting, e.g. radiosity.patch_size=1")
+                   "--radiosity, --meshless: override a scene setting, e.g. radiosity.patch_size=1; rays: an "
+                   "accelerator's setting, e.g. bvh.isa=sse")
       ->expected(1)
       ->allow_extra_args(false)
       ->take_all();

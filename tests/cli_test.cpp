@@ -586,10 +586,14 @@ TEST_F(Cli, BenchRadiositySolvesASceneAndReportsItsFacts) {
   // The solution does not depend on the thread count.
   EXPECT_EQ(json["runs"][0]["steps"], json["runs"][1]["steps"]);
   EXPECT_EQ(json["runs"][0]["unshot_fraction"], json["runs"][1]["unshot_fraction"]);
-  // The ray-set options do not apply; nor does --set without --radiosity.
+  // The ray-set options do not apply; a ray bench's --set names an accelerator's setting.
   EXPECT_EQ(run("bench --radiosity --accel bvh -q", output), 2) << output;
   EXPECT_EQ(run("bench --radiosity --raster -q", output), 2) << output;
   EXPECT_EQ(run("bench --sphere 100 --set radiosity.patch_size=5 -q", output), 2) << output;
+  EXPECT_NE(output.find("no accelerator named radiosity"), std::string::npos) << output;
+  EXPECT_EQ(run("bench --sphere 100 --accel bvh --threads 1 --repeat 1 --set bvh.isa=sse -q", output), 0)
+      << output;
+  EXPECT_NE(output.find("instruction set (1 sse, 2 avx2, 3 avx512) 1"), std::string::npos) << output;
 }
 
 // Issue 21, "non-regular files": a FIFO given as an input blocked in open() forever, a device

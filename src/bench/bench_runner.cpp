@@ -15,6 +15,8 @@
 #include <stdexcept>
 
 #include "accel/accelerator_registry.h"
+#include "io/json_document.h"
+#include "io/json_node.h"
 #include "util/atomic_file.h"
 #include "util/registry.h"
 #include "util/statistics.h"
@@ -89,7 +91,21 @@ std::vector<std::string> bench_accelerator_names() {
   return names;
 }
 
-std::unique_ptr<Accelerator> make_bench_accelerator(std::string_view name) {
+std::unique_ptr<Accelerator> make_bench_accelerator(std::string_view name,
+                                                    const std::vector<std::string>& settings) {
+  if (!settings.empty()) {
+    JsonDocument document = JsonDocument::parse("{}", "--set");
+    for (const std::string& assignment : settings) document.apply_override(assignment);
+    for (const auto& [key, value] : document.root().items()) {
+      if (!find_accelerator(key))
+        throw InputError(document.locate(key), "no accelerator named " + key + " (expected one of: " +
+                                                   entry_names(accelerator_entries()) + ")");
+    }
+    const AcceleratorEntry* entry = find_accelerator(name);
+    if (entry && document.root().contains(std::string(name)))
+      return entry->create(JsonNode(document, document.root()[std::string(name)], std::string(name)),
+                           BoundingVolumeKind::none);
+  }
 #ifdef CANDELA_HAVE_EMBREE
   if (name == "embree") return std::make_unique<EmbreeAccelerator>(EmbreeAccelerator::Mode::native_triangles);
   if (name == "embree-exact") return std::make_unique<EmbreeAccelerator>(EmbreeAccelerator::Mode::exact);
@@ -188,7 +204,7 @@ BenchReport run_bench(const BenchInput& mesh, const BenchOptions& options,
   if (names.empty())
     for (const AcceleratorEntry& entry : accelerator_entries()) names.emplace_back(entry.name);
   for (const std::string& name : names)
-    if (!make_bench_accelerator(name))
+    if (!make_bench_accelerator(name, options.accelerator_settings))
       throw std::invalid_argument("unknown accelerator \"" + name + "\" (expected one of: " + [] {
         std::string list;
         for (const std::string& n : bench_accelerator_names()) list += (list.empty() ? "" : ", ") + n;
@@ -227,7 +243,7 @@ BenchReport run_bench(const BenchInput& mesh, const BenchOptions& options,
     tbb::task_arena arena(threads);
     for (const std::string& name : names) {
       arena.execute([&] {
-        std::unique_ptr<Accelerator> accelerator = make_bench_accelerator(name);
+        std::unique_ptr<Accelerator> accelerator = make_bench_accelerator(name, options.accelerator_settings);
         Stopwatch build_timer;
         accelerator->build(scene.primitives());
         const double build_seconds = build_timer.seconds();

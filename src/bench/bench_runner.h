@@ -72,11 +72,15 @@ Checksums checksums(const TraceResults& results, const BenchScene& scene, RayQue
 
 // The names `candela bench --accel` accepts: the registry's, and "embree-exact" with Embree.
 std::vector<std::string> bench_accelerator_names();
-// nullptr for an unknown name; "embree" is native_triangles mode.
-std::unique_ptr<Accelerator> make_bench_accelerator(std::string_view name);
+// nullptr for an unknown name; "embree" is native_triangles mode. settings: "NAME.key=value"
+// assignments (--set); those for NAME are read by the accelerator's registry entry, as a
+// scene's "NAME" object would be (unknown keys and bad values refused, naming the assignment).
+std::unique_ptr<Accelerator> make_bench_accelerator(std::string_view name,
+                                                    const std::vector<std::string>& settings = {});
 
 struct BenchOptions {
-  std::vector<std::string> accelerators;  // empty: every registered accelerator
+  std::vector<std::string> accelerators;          // empty: every registered accelerator
+  std::vector<std::string> accelerator_settings;  // --set NAME.key=value (see make_bench_accelerator)
   std::vector<int> threads{1, 2};
   RaySetOptions rays;
   int repeat = 3;              // timed repetitions

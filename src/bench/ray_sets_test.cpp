@@ -7,9 +7,11 @@
 
 #include <cmath>
 
+#include "accel/bvh.h"
 #include "accel/primitive_list.h"
 #include "bench/bench_mesh.h"
 #include "bench/bench_runner.h"
+#include "util/error.h"
 #ifdef CANDELA_HAVE_EMBREE
 #include "accel/embree_accelerator.h"
 #endif
@@ -239,6 +241,32 @@ TEST(BenchRunner, RunsEverySetAndWritesJson) {
   EXPECT_NE(report.table().find("incoherent_occlusion"), std::string::npos);
   options.accelerators = {"no-such-accelerator"};
   EXPECT_THROW(run_bench(mesh, options), std::invalid_argument);
+}
+
+// `candela bench --set NAME.key=value`: the accelerator reads its settings as from a scene's
+// "NAME" object; other accelerators keep their defaults; unknown names and values are refused.
+TEST(BenchRunner, SetAssignmentsReachTheNamedAccelerator) {
+  const BenchMesh mesh = bench_sphere(2000);
+  const BenchScene scene{mesh.mesh};
+  const auto figure = [&](Accelerator& accelerator, const std::string& name) {
+    accelerator.build(scene.primitives());
+    for (const auto& [key, value] : accelerator.report().figures)
+      if (key.rfind(name, 0) == 0) return value;
+    return -1.0;
+  };
+  // Up to 64 a leaf: more than any default tree holds (at most 16).
+  const std::vector<std::string> settings = {"bvh.isa=sse", "bvh.max_leaf_primitives=64"};
+  const auto bvh = make_bench_accelerator("bvh", settings);
+  ASSERT_NE(bvh, nullptr);
+  EXPECT_EQ(figure(*bvh, "instruction set"), 1.0);
+  EXPECT_GT(figure(*bvh, "primitives per leaf"), 16);
+  const auto automatic = make_bench_accelerator("bvh");
+  EXPECT_LE(figure(*automatic, "primitives per leaf"), 16);
+  EXPECT_EQ(figure(*automatic, "instruction set"), static_cast<double>(widest_bvh_isa()));
+  EXPECT_NE(make_bench_accelerator("grid", settings), nullptr);  // bvh.* is not the grid's
+  EXPECT_THROW(make_bench_accelerator("bvh", {"bvh.isa=neon"}), InputError);
+  EXPECT_THROW(make_bench_accelerator("bvh", {"bvh.leaf=2"}), InputError);
+  EXPECT_THROW(make_bench_accelerator("bvh", {"radiosity.patch_size=5"}), InputError);
 }
 
 #ifdef CANDELA_HAVE_EMBREE
