@@ -339,7 +339,7 @@ void Bvh::build(std::span<const Primitive> primitives) {
   const std::size_t count = primitives.size();
   if (count >= kShapeSlot) throw std::invalid_argument("BVH: too many primitives (at most 2^31 - 1)");
 
-  std::vector<Bounds3> bounds(count);
+  BvhArray<Bounds3> bounds(count);  // written for the reportable primitives only, read for them only
   std::vector<Kind> kinds(count, Kind::never_hit);
   // Only the reportable primitives go in (degenerate triangles and repeated ones stay never_hit).
   const std::vector<uint32_t> reportable = reportable_primitives(primitives);
@@ -360,7 +360,8 @@ void Bvh::build(std::span<const Primitive> primitives) {
                     });
 
   std::vector<uint32_t> tree_primitive;
-  std::vector<Bounds3> tree_bounds;
+  tree_primitive.reserve(reportable.size());
+  BvhArray<Bounds3> tree_bounds(reportable.size());
   for (std::size_t i = 0; i < count; ++i) {
     const auto index = static_cast<uint32_t>(i);
     switch (kinds[i]) {
@@ -369,14 +370,15 @@ void Bvh::build(std::span<const Primitive> primitives) {
         break;
       case Kind::shape:
       case Kind::triangle:
+        tree_bounds[tree_primitive.size()] = bounds[i];
         tree_primitive.push_back(index);
-        tree_bounds.push_back(bounds[i]);
         break;
       case Kind::never_hit:
         break;
     }
   }
   bounds = {};
+  tree_bounds.shrink(tree_primitive.size());
   if (tree_primitive.empty()) return;
   bool first_mesh = true;
   for (uint32_t index : tree_primitive) {
@@ -404,7 +406,8 @@ void Bvh::build(std::span<const Primitive> primitives) {
     settings.block_size = 4;
     settings.intersection_cost = kPacketCost;
   }
-  const BvhBuildResult tree = build_bvh(tree_bounds, settings);
+  const BvhBuildResult tree =
+      build_bvh(std::span<const Bounds3>(tree_bounds.data(), tree_bounds.size()), settings);
   tree_bounds = {};
   tree_nodes_ = static_cast<uint32_t>(tree.nodes.size());
   leaves_ = tree.leaves;

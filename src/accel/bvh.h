@@ -37,30 +37,11 @@
 #include <vector>
 
 #include "accel/accelerator.h"
+#include "accel/bvh_memory.h"
 
 namespace candela {
 
 struct TriangleMesh;
-
-// Memory for the BVH's large arrays: 128-byte aligned, and on Linux a block of 1 MiB or more is
-// 2 MiB aligned and marked for transparent huge pages (random access over tens of MiB misses
-// the TLB far less). Throws std::bad_alloc.
-void* bvh_allocate(std::size_t bytes);
-void bvh_free(void* memory) noexcept;
-
-template <class T>
-struct BvhAllocator {
-  using value_type = T;
-  BvhAllocator() = default;
-  template <class U>
-  BvhAllocator(const BvhAllocator<U>&) {}
-  T* allocate(std::size_t n) { return static_cast<T*>(bvh_allocate(n * sizeof(T))); }
-  void deallocate(T* p, std::size_t) noexcept { bvh_free(p); }
-  template <class U>
-  bool operator==(const BvhAllocator<U>&) const {
-    return true;
-  }
-};
 
 // The instruction set of the traversal's box test (the same traversal compiled for each; see
 // accel/bvh_traversal.inc).

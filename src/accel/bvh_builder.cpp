@@ -93,7 +93,7 @@ struct Split {
 
 class Builder {
  public:
-  Builder(std::vector<PrimRef>& refs, std::vector<BvhBuildNode>& nodes, const BvhBuildSettings& settings)
+  Builder(BvhArray<PrimRef>& refs, BvhArray<BvhBuildNode>& nodes, const BvhBuildSettings& settings)
       : refs_(refs), nodes_(nodes), settings_(settings) {
     bins_ = std::clamp(settings.bins, 2, kMaxBins);
     max_leaf_ = static_cast<std::size_t>(std::max(1, settings.max_leaf_primitives));
@@ -112,6 +112,7 @@ class Builder {
     if (split.leaf) {
       node.index = static_cast<uint32_t>(begin);
       node.count = static_cast<uint32_t>(count);
+      node.axis = 0;
       return;
     }
     const std::size_t middle = begin + split.left_count;
@@ -271,8 +272,8 @@ class Builder {
     return split;
   }
 
-  std::vector<PrimRef>& refs_;
-  std::vector<BvhBuildNode>& nodes_;
+  BvhArray<PrimRef>& refs_;
+  BvhArray<BvhBuildNode>& nodes_;
   const BvhBuildSettings& settings_;
   int bins_;
   std::size_t max_leaf_;
@@ -293,7 +294,7 @@ BvhBuildResult build_bvh(std::span<const Bounds3> bounds, const BvhBuildSettings
   if (count >= (std::size_t{1} << 31))
     throw std::invalid_argument("BVH: too many primitives (at most 2^31 - 1)");
 
-  std::vector<PrimRef> refs(count);
+  BvhArray<PrimRef> refs(count);
   const RootBounds root = tbb::parallel_reduce(
       tbb::blocked_range<std::size_t>(0, count, kBinningGrain), RootBounds{},
       [&](const tbb::blocked_range<std::size_t>& range, RootBounds acc) {
@@ -312,7 +313,7 @@ BvhBuildResult build_bvh(std::span<const Bounds3> bounds, const BvhBuildSettings
 
   // Sparse slots: a subtree over n references fits in 2n - 1 slots (every leaf holds one or
   // more), so both children can be placed before either is built.
-  std::vector<BvhBuildNode> sparse(2 * count - 1);
+  BvhArray<BvhBuildNode> sparse(2 * count - 1);
   Builder builder(refs, sparse, settings);
   builder.build(0, 0, count, root.bounds, root.centroids, 1);
 
@@ -331,14 +332,15 @@ BvhBuildResult build_bvh(std::span<const Bounds3> bounds, const BvhBuildSettings
     uint32_t depth;
   };
   std::vector<Pending> stack{{0, -1, 1}};
-  result.nodes.reserve(2 * count - 1);
+  result.nodes = BvhArray<BvhBuildNode>(2 * count - 1);
+  uint32_t dense_count = 0;
   while (!stack.empty()) {
     const Pending pending = stack.back();
     stack.pop_back();
-    const auto dense = static_cast<uint32_t>(result.nodes.size());
+    const uint32_t dense = dense_count++;
     if (pending.parent >= 0) result.nodes[static_cast<std::size_t>(pending.parent)].index = dense;
     const BvhBuildNode& node = sparse[pending.slot];
-    result.nodes.push_back(node);
+    result.nodes[dense] = node;
     result.depth = std::max(result.depth, pending.depth);
     if (node.count > 0) {
       ++result.leaves;
@@ -351,7 +353,7 @@ BvhBuildResult build_bvh(std::span<const Bounds3> bounds, const BvhBuildSettings
       stack.push_back({pending.slot + 1, -1, pending.depth + 1});
     }
   }
-  result.nodes.shrink_to_fit();
+  result.nodes.shrink(dense_count);
   return result;
 }
 

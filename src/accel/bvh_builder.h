@@ -18,6 +18,7 @@
 #include <span>
 #include <vector>
 
+#include "accel/bvh_memory.h"
 #include "math/bounds.h"
 
 namespace candela {
@@ -43,8 +44,8 @@ struct BvhBuildNode {
 };
 
 struct BvhBuildResult {
-  std::vector<BvhBuildNode> nodes;  // empty when there was nothing to build
-  std::vector<uint32_t> order;      // reference indices (into the input) in leaf order
+  BvhArray<BvhBuildNode> nodes;  // empty when there was nothing to build
+  std::vector<uint32_t> order;   // reference indices (into the input) in leaf order
   uint32_t leaves = 0;
   uint32_t depth = 0;   // levels: a single leaf has depth 1
   double sah_cost = 0;  // the tree's SAH cost with the settings' costs, relative to the root
