@@ -52,7 +52,7 @@ const std::array kAcceleratorEntries = {
           BvhSettings bvh;
           // 0: automatic (8 for a mesh-only scene, 4 with other shapes)
           bvh.max_leaf_primitives = settings.integer("max_leaf_primitives", 0, {0, 64, false, false});
-          bvh.bins = settings.integer("bins", 16, {2, 256, false, false});
+          bvh.bins = settings.integer("bins", BvhSettings{}.bins, {2, 256, false, false});
           // the traversal's instruction set: auto = the widest this CPU supports
           const std::string isa = settings.choice("isa", "auto", {"auto", "sse", "avx2", "avx512"});
           bvh.isa = isa == "sse"      ? BvhIsa::sse
