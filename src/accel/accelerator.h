@@ -58,6 +58,8 @@ inline constexpr auto kBoundingVolumeNames =
 struct AcceleratorReport {
   std::vector<std::pair<std::string, double>> figures;
   uint64_t bytes = 0;  // memory held by the structure
+  // What makes some rays slow (the scene's warnings: `candela render` and `bench` print them).
+  std::vector<std::string> warnings;
   std::string text() const;
 };
 

@@ -1,5 +1,6 @@
 #include "accel/bvh.h"
 
+#include <fmt/format.h>
 #include <immintrin.h>  // SSE2 everywhere; AVX2 and AVX-512 only in their target regions
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -34,6 +35,8 @@ constexpr int kLeafHardCap = 16;  // the SAH may keep up to this many in a leaf
 // traversal step of 1 (measured on dragon_100k and Igea, docs/benchmarks.md).
 constexpr int kTriangleLeaf = 8, kShapeLeaf = 4;
 constexpr double kPacketCost = 0.6;
+// Past this many primitives with one centroid the build warns (16 overlapping leaves of 16).
+constexpr uint32_t kCoincidentWarning = 256;
 constexpr std::size_t kStackSize =
     (Bvh::kWidth - 1) * 128 + Bvh::kWidth;  // depth below 128, at most 7 left per level
 constexpr std::size_t kGrain = 4096;
@@ -334,7 +337,7 @@ void Bvh::build(std::span<const Primitive> primitives) {
   unbounded_.clear();
   only_mesh_ = nullptr;
   scene_scale_ = 0;
-  tree_nodes_ = leaves_ = depth_ = 0;
+  tree_nodes_ = leaves_ = depth_ = largest_coincident_group_ = 0;
   sah_cost_ = 0;
   const std::size_t count = primitives.size();
   if (count >= kShapeSlot) throw std::invalid_argument("BVH: too many primitives (at most 2^31 - 1)");
@@ -413,6 +416,7 @@ void Bvh::build(std::span<const Primitive> primitives) {
   leaves_ = tree.leaves;
   depth_ = tree.depth;
   sah_cost_ = tree.sah_cost;
+  largest_coincident_group_ = tree.largest_coincident_group;
   scene_scale_ = std::max(max_abs(tree.nodes[0].bounds.lower), max_abs(tree.nodes[0].bounds.upper));
 
   // Packets: each leaf's primitives in groups of four, in leaf order.
@@ -675,7 +679,14 @@ AcceleratorReport Bvh::report() const {
   report.bytes = nodes_.size() * sizeof(Node) + packets_.size() * sizeof(Packet) +
                  corners_.size() * sizeof(Corners) + unbounded_.size() * sizeof(uint32_t);
   if (triangle_count_ > 0)
-    report.figures.push_back({"bytes per triangle", static_cast<double>(report.bytes) / triangle_count_});
+    report.figures.emplace_back("bytes per triangle", static_cast<double>(report.bytes) / triangle_count_);
+  if (largest_coincident_group_ > 0)
+    report.figures.emplace_back("largest coincident group", static_cast<double>(largest_coincident_group_));
+  if (largest_coincident_group_ >= kCoincidentWarning)
+    report.warnings.push_back(fmt::format(
+        "bvh: {} primitives share one centroid (copies or rotations of one shape about a point): no split "
+        "separates them, so every ray that meets one of them tests them all",
+        largest_coincident_group_));
   return report;
 }
 

@@ -139,6 +139,7 @@ class Bvh final : public Accelerator {
   uint32_t leaves_ = 0;
   uint32_t depth_ = 0;
   double sah_cost_ = 0;
+  uint32_t largest_coincident_group_ = 0;  // BvhBuildResult::largest_coincident_group
 };
 
 }  // namespace candela

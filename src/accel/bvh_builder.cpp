@@ -6,6 +6,7 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -249,6 +250,7 @@ class Builder {
       return split;
     }
     const Vec3 extent = centroids.diagonal();
+    if (!(extent.x > 0 || extent.y > 0 || extent.z > 0)) note_coincident_group(count);
     split.axis = max_dimension(extent);
     split.left_count = count / 2;
     auto first = refs_.begin() + static_cast<std::ptrdiff_t>(begin);
@@ -272,6 +274,21 @@ class Builder {
     return split;
   }
 
+  // The largest group halved because its centroids coincide (the first split of a group is its
+  // largest node; the maximum does not depend on the order the tasks run in).
+  void note_coincident_group(std::size_t count) const {
+    uint32_t seen = largest_coincident_group_.load(std::memory_order_relaxed);
+    const auto value = static_cast<uint32_t>(count);
+    while (value > seen &&
+           !largest_coincident_group_.compare_exchange_weak(seen, value, std::memory_order_relaxed)) {
+    }
+  }
+
+ public:
+  uint32_t largest_coincident_group() const { return largest_coincident_group_.load(); }
+
+ private:
+  mutable std::atomic<uint32_t> largest_coincident_group_ = 0;
   BvhArray<PrimRef>& refs_;
   BvhArray<BvhBuildNode>& nodes_;
   const BvhBuildSettings& settings_;
@@ -316,6 +333,7 @@ BvhBuildResult build_bvh(std::span<const Bounds3> bounds, const BvhBuildSettings
   BvhArray<BvhBuildNode> sparse(2 * count - 1);
   Builder builder(refs, sparse, settings);
   builder.build(0, 0, count, root.bounds, root.centroids, 1);
+  result.largest_coincident_group = builder.largest_coincident_group();
 
   // Compact depth first (first child next, second child at `index`) and measure the tree.
   result.order.resize(count);

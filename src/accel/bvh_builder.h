@@ -49,6 +49,10 @@ struct BvhBuildResult {
   uint32_t leaves = 0;
   uint32_t depth = 0;   // levels: a single leaf has depth 1
   double sah_cost = 0;  // the tree's SAH cost with the settings' costs, relative to the root
+  // The most references whose centroids all coincide (no split can separate them: they are
+  // halved in index order into leaves that every ray meeting one of them visits); 0 when no
+  // such group is larger than a leaf.
+  uint32_t largest_coincident_group = 0;
 };
 
 // Every bounds must be finite and non-empty. The maximum depth is below 128.

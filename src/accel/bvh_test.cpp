@@ -662,5 +662,37 @@ TEST(BvhBuilder, BlockSizeCountsLeavesInPackets) {
   }
 }
 
+// Issue 26 item 5: primitives that share one centroid cannot be separated by any split (they are
+// halved into overlapping leaves of at most 16); the build says how many, and warns past 256.
+TEST(Bvh, ManyPrimitivesWithOneCentroidAreCountedAndWarnedAbout) {
+  // Distinct triangles whose boxes [-x, x] × [-y, y] × [-z, z] all have their centre at 0.
+  auto mesh = std::make_shared<TriangleMesh>();
+  for (int i = 0; i < 2000; ++i) {
+    const double x = 1 + i / 1024.0, y = 1 + i / 2048.0, z = 0.5 + i / 4096.0;
+    const auto first = static_cast<uint32_t>(mesh->positions.size());
+    mesh->positions.insert(mesh->positions.end(), {{x, y, 0}, {-x, 0, z}, {0, -y, -z}});
+    mesh->triangles.push_back({first, first + 1, first + 2});
+  }
+  TestScene scene;
+  scene.add_mesh(mesh);
+  Bvh bvh;
+  bvh.build(scene.primitives);
+  const AcceleratorReport report = bvh.report();
+  double group = 0;
+  for (const auto& [name, value] : report.figures)
+    if (name == "largest coincident group") group = value;
+  EXPECT_EQ(group, 2000);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("share one centroid"), std::string::npos);
+  Pcg32 rng(47, 12);
+  EXPECT_GT(expect_same_as_list(scene, random_rays(rng, {{-3, -3, -3}, {3, 3, 3}}, 300)).hits, 20);
+
+  TestScene sphere;
+  sphere.add_mesh(tessellated_sphere(30, 60, 1.0));
+  Bvh plain;
+  plain.build(sphere.primitives);
+  EXPECT_TRUE(plain.report().warnings.empty());
+}
+
 }  // namespace
 }  // namespace candela

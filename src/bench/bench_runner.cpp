@@ -253,7 +253,10 @@ BenchReport run_bench(const BenchInput& mesh, const BenchOptions& options,
                         quality.bytes / (1024.0 * 1024.0)));
         const auto known = std::find_if(report.quality.begin(), report.quality.end(),
                                         [&](const auto& entry) { return entry.first == name; });
-        if (known == report.quality.end()) report.quality.emplace_back(name, quality.text());
+        if (known == report.quality.end()) {
+          report.quality.emplace_back(name, quality.text());
+          for (const std::string& warning : quality.warnings) say("warning: " + warning);
+        }
 
         const auto record = [&](BenchResult result) {
           result.accel = name;

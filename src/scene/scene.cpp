@@ -71,6 +71,7 @@ void Scene::prepare() {
   accelerator_ = entry->create(plugin_settings.node(entry->name), render.bounding_volume);
   accelerator_->build(primitives);
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (std::string& warning : accelerator_->report().warnings) warnings.push_back(std::move(warning));
   bounds_ = Bounds3();
   for (const Primitive& primitive : primitives) {
     const Bounds3 b = primitive.shape->bounds();
