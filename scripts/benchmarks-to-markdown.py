@@ -43,6 +43,8 @@ def table(path):
 
 def main(directory="docs/bench"):
     for path in sorted(pathlib.Path(directory).glob("*.json")):
+        if "results" not in json.loads(path.read_text()):
+            continue  # the rasterizer's, radiosity's and meshless runs have their own sections
         print(table(path))
         print()
 
