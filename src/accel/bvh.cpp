@@ -290,6 +290,7 @@ void bvh_free(void* memory) noexcept {
 }
 
 BvhIsa widest_bvh_isa() {
+  __builtin_cpu_init();  // may be called from a static constructor, before libgcc's own has run
   // libgcc's checks include the operating system's support for the wider registers (XGETBV).
   if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
       __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw") &&
@@ -623,19 +624,39 @@ bool Bvh::occluded_all_slots(const Ray& ray) const {
 #include "accel/bvh_traversal.inc"
 #undef CANDELA_BVH_ISA
 
+// GCC's target regions; clang (scripts/fuzz.sh builds with it) spells them as an attribute
+// applied to every function of the region.
+#if defined(__clang__)
+#pragma clang attribute push(__attribute__((target("avx2,fma,bmi,bmi2,lzcnt,popcnt"))), apply_to = function)
+#else
 #pragma GCC push_options
 #pragma GCC target("avx2,fma,bmi,bmi2,lzcnt,popcnt")
+#endif
 #define CANDELA_BVH_ISA 1
 #include "accel/bvh_traversal.inc"
 #undef CANDELA_BVH_ISA
+#if defined(__clang__)
+#pragma clang attribute pop
+#else
 #pragma GCC pop_options
+#endif
 
+#if defined(__clang__)
+#pragma clang attribute push(                                                                     \
+    __attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx2,fma,bmi,bmi2,lzcnt,popcnt"))), \
+    apply_to = function)
+#else
 #pragma GCC push_options
 #pragma GCC target("avx512f,avx512vl,avx512dq,avx512bw,avx2,fma,bmi,bmi2,lzcnt,popcnt")
+#endif
 #define CANDELA_BVH_ISA 2
 #include "accel/bvh_traversal.inc"
 #undef CANDELA_BVH_ISA
+#if defined(__clang__)
+#pragma clang attribute pop
+#else
 #pragma GCC pop_options
+#endif
 
 bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
   switch (isa_) {

@@ -102,6 +102,9 @@ class Builder {
     block_size_ = static_cast<std::size_t>(std::max(1, settings.block_size));
   }
 
+  // See BvhBuildResult::largest_coincident_group.
+  uint32_t largest_coincident_group() const { return largest_coincident_group_.load(); }
+
   // Builds refs[begin, end) into the node at `slot`; its subtree uses slots
   // [slot, slot + 2 (end - begin) - 1).
   void build(std::size_t slot, std::size_t begin, std::size_t end, const Bounds3& bounds,
@@ -284,10 +287,6 @@ class Builder {
     }
   }
 
- public:
-  uint32_t largest_coincident_group() const { return largest_coincident_group_.load(); }
-
- private:
   mutable std::atomic<uint32_t> largest_coincident_group_ = 0;
   BvhArray<PrimRef>& refs_;
   BvhArray<BvhBuildNode>& nodes_;

@@ -4,10 +4,12 @@
 // Binned SAH (Wald 2007, "On fast Construction of SAH-based Bounding Volume Hierarchies"):
 // centroids are binned into `bins` bins along each of the three axes, the split planes between
 // bins are rated by the surface area heuristic
-//   cost = traversal + intersection · (A_left · N_left + A_right · N_right) / A_node,
-// and the best plane wins. A node with at most max_leaf_primitives references becomes a leaf;
-// a larger one with at most max_leaf_hard references becomes a leaf too when the SAH says that
-// splitting costs more than intersecting everything (intersection · N). When every centroid
+//   cost = traversal + intersection · (A_left · B(N_left) + A_right · B(N_right)) / A_node,
+// B(n) = ceil(n / block_size) the tests a leaf of n costs (1 per reference, or 1 per packet of
+// four when a SIMD pre-test tests four at once), and the best plane wins. A node with at most
+// max_leaf_primitives references becomes a leaf; a larger one with at most max_leaf_hard
+// references becomes a leaf too when the SAH says that splitting costs more than intersecting
+// everything (intersection · B(N)). When every centroid
 // coincides, the references are halved in index order (object median); below a depth of
 // kSahMaxDepth the split is an object median on the longest centroid axis, so the depth stays
 // bounded whatever the input. Large nodes bin in parallel and children build in parallel (TBB);
