@@ -624,39 +624,33 @@ bool Bvh::occluded_all_slots(const Ray& ray) const {
 #include "accel/bvh_traversal.inc"
 #undef CANDELA_BVH_ISA
 
-// GCC's target regions; clang (scripts/fuzz.sh builds with it) spells them as an attribute
-// applied to every function of the region.
+// A target region: GCC's push_options / target pragmas; clang (scripts/fuzz.sh builds with it)
+// spells them as an attribute applied to every function of the region.
+#define CANDELA_PRAGMA(text) _Pragma(#text)
 #if defined(__clang__)
-#pragma clang attribute push(__attribute__((target("avx2,fma,bmi,bmi2,lzcnt,popcnt"))), apply_to = function)
+#define CANDELA_TARGET_BEGIN(features) \
+  CANDELA_PRAGMA(clang attribute push(__attribute__((target(features))), apply_to = function))
+#define CANDELA_TARGET_END CANDELA_PRAGMA(clang attribute pop)
 #else
-#pragma GCC push_options
-#pragma GCC target("avx2,fma,bmi,bmi2,lzcnt,popcnt")
+#define CANDELA_TARGET_BEGIN(features) CANDELA_PRAGMA(GCC push_options) CANDELA_PRAGMA(GCC target(features))
+#define CANDELA_TARGET_END CANDELA_PRAGMA(GCC pop_options)
 #endif
+
+CANDELA_TARGET_BEGIN("avx2,fma,bmi,bmi2,lzcnt,popcnt")
 #define CANDELA_BVH_ISA 1
 #include "accel/bvh_traversal.inc"
 #undef CANDELA_BVH_ISA
-#if defined(__clang__)
-#pragma clang attribute pop
-#else
-#pragma GCC pop_options
-#endif
+CANDELA_TARGET_END
 
-#if defined(__clang__)
-#pragma clang attribute push(                                                                     \
-    __attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx2,fma,bmi,bmi2,lzcnt,popcnt"))), \
-    apply_to = function)
-#else
-#pragma GCC push_options
-#pragma GCC target("avx512f,avx512vl,avx512dq,avx512bw,avx2,fma,bmi,bmi2,lzcnt,popcnt")
-#endif
+CANDELA_TARGET_BEGIN("avx512f,avx512vl,avx512dq,avx512bw,avx2,fma,bmi,bmi2,lzcnt,popcnt")
 #define CANDELA_BVH_ISA 2
 #include "accel/bvh_traversal.inc"
 #undef CANDELA_BVH_ISA
-#if defined(__clang__)
-#pragma clang attribute pop
-#else
-#pragma GCC pop_options
-#endif
+CANDELA_TARGET_END
+
+#undef CANDELA_TARGET_BEGIN
+#undef CANDELA_TARGET_END
+#undef CANDELA_PRAGMA
 
 bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
   switch (isa_) {
