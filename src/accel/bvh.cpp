@@ -208,29 +208,12 @@ struct FloatShear {
   }
 };
 
-// Calls visit(packet, index, lane) for every lane of the leaf packets [ref, ref + ceil(count /
-// 4)) whose triangle survives the float pre-test (shapes always do), in order; stops and
-// returns true as soon as visit does. Shared by the nearest-hit and the any-hit traversal. A
-// packet without triangles (quads, spheres, boxes) skips the pre-test, and the ray's shear
-// (shear(), made on first use) is never made for a ray that meets only shapes: on the 21-quad
-// Cornell box that per-ray set-up made the tree 20 % slower than the plain list.
-template <class Shear, class Visit>
-inline bool visit_candidates(const Bvh::Packet* packets, uint32_t ref, uint32_t count, Shear&& shear,
-                             Visit&& visit) {
-  for (uint32_t first = 0; first < count; first += 4, ++ref) {
-    const Bvh::Packet& packet = packets[ref];
-    const int used = (1 << std::min(4u, count - first)) - 1;
-    // The shapes' lanes have the sign bit of their primitive set (kShapeSlot).
-    const int shapes = _mm_movemask_ps(_mm_load_ps(reinterpret_cast<const float*>(packet.primitive)));
-    int mask = (shapes & used) != used ? shear().candidates(packet) & used : used;
-    while (mask != 0) {
-      const int lane = __builtin_ctz(static_cast<unsigned>(mask));
-      mask &= mask - 1;
-      if (visit(packet, ref, lane)) return true;
-    }
-  }
-  return false;
-}
+// The leaf loop shared by the nearest-hit and the any-hit traversal (LeafVisitor<Isa>::visit),
+// defined per instruction set in accel/bvh_traversal.inc: a template defined out here would be
+// compiled for the default target, and the traversal's lambdas (compiled for AVX2 / AVX-512)
+// could not be inlined into it — every surviving lane cost a call.
+template <int Isa>
+struct LeafVisitor;
 
 // The double interval [t_lo, t_hi] every box test must cover: [t_min, t] widened by a small
 // relative and scene-scaled slack, far more than any shape's rounding of its hit distance near
