@@ -54,14 +54,11 @@ const std::array kAcceleratorEntries = {
           bvh.max_leaf_primitives = settings.integer("max_leaf_primitives", 0, {0, 64, false, false});
           bvh.bins = settings.integer("bins", BvhSettings{}.bins, {2, 256, false, false});
           // the traversal's instruction set: auto = the widest this CPU supports
-          const std::string isa = settings.choice("isa", "auto", {"auto", "sse", "avx2", "avx512"});
-          bvh.isa = isa == "sse"      ? BvhIsa::sse
-                    : isa == "avx2"   ? BvhIsa::avx2
-                    : isa == "avx512" ? BvhIsa::avx512
-                                      : BvhIsa::automatic;
+          bvh.isa = settings.enumeration("isa", BvhIsa::automatic, kBvhIsaNames);
           if (static_cast<int>(bvh.isa) > static_cast<int>(widest_bvh_isa()))
-            settings.at("isa").fail("this CPU does not support " + isa + " (the widest it supports is " +
-                                    bvh_isa_name(widest_bvh_isa()) + ")");
+            settings.at("isa").fail("this CPU does not support " + std::string(kBvhIsaNames.name(bvh.isa)) +
+                                    " (the widest it supports is " +
+                                    std::string(kBvhIsaNames.name(widest_bvh_isa())) + ")");
           return finished(settings, std::make_unique<Bvh>(bvh));
         }},
 #ifdef CANDELA_HAVE_EMBREE

@@ -6,7 +6,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
@@ -284,27 +283,14 @@ BvhIsa widest_bvh_isa() {
   return BvhIsa::sse;
 }
 
-const char* bvh_isa_name(BvhIsa isa) {
-  switch (isa) {
-    case BvhIsa::automatic:
-      return "auto";
-    case BvhIsa::sse:
-      return "sse";
-    case BvhIsa::avx2:
-      return "avx2";
-    case BvhIsa::avx512:
-      return "avx512";
-  }
-  return "?";
-}
-
 Bvh::Bvh(const BvhSettings& settings)
     : max_leaf_primitives_(settings.max_leaf_primitives),
       bins_(settings.bins),
       isa_(settings.isa == BvhIsa::automatic ? widest_bvh_isa() : settings.isa) {
   if (static_cast<int>(isa_) > static_cast<int>(widest_bvh_isa()))
-    throw std::invalid_argument(std::string("bvh.isa: this CPU does not support ") + bvh_isa_name(isa_) +
-                                " (the widest it supports is " + bvh_isa_name(widest_bvh_isa()) + ")");
+    throw std::invalid_argument(std::string("bvh.isa: this CPU does not support ") +
+                                std::string(kBvhIsaNames.name(isa_)) + " (the widest it supports is " +
+                                std::string(kBvhIsaNames.name(widest_bvh_isa())) + ")");
   if (max_leaf_primitives_ < 0 || max_leaf_primitives_ > 1024)
     throw std::invalid_argument("bvh.max_leaf_primitives must be in [0, 1024] (0: automatic), got " +
                                 std::to_string(max_leaf_primitives_));
@@ -367,23 +353,33 @@ void Bvh::build(std::span<const Primitive> primitives) {
   bounds = {};
   tree_bounds.shrink(tree_primitive.size());
   if (tree_primitive.empty()) return;
-  bool first_mesh = true;
+  // What the tree holds: its triangles, their meshes, whether every vertex is a float (then the
+  // packets alone hold them exactly, and no double copies are kept).
+  bool only_triangles = true, float_exact = true, first_mesh = true;
   for (uint32_t index : tree_primitive) {
-    if (kinds[index] != Kind::triangle) continue;
-    const TriangleMesh* mesh = &static_cast<const MeshTriangle*>(primitives[index].shape)->mesh();
+    if (kinds[index] != Kind::triangle) {
+      only_triangles = false;
+      continue;
+    }
+    ++triangle_count_;
+    const auto* shape = static_cast<const MeshTriangle*>(primitives[index].shape);
+    const TriangleMesh* mesh = &shape->mesh();
     if (first_mesh)
       only_mesh_ = mesh;
     else if (mesh != only_mesh_)
       only_mesh_ = nullptr;
     first_mesh = false;
+    for (const uint32_t corner : mesh->triangles[shape->triangle_index()])
+      for (int axis = 0; axis < 3; ++axis) {
+        const double value = mesh->positions[corner][axis];
+        float_exact = float_exact && static_cast<double>(static_cast<float>(value)) == value;
+      }
   }
 
   // A tree of triangles only is costed per packet of four (one float pre-test tests them all)
   // with a lower cost per packet, which makes leaves of 4-8 triangles and a tree two levels
   // shallower: each level is a dependent cache miss, and on Igea that was worth 15-20 % of the
   // incoherent rays' time. Shapes are tested one by one through their Shape.
-  const bool only_triangles = std::all_of(tree_primitive.begin(), tree_primitive.end(),
-                                          [&](uint32_t index) { return kinds[index] == Kind::triangle; });
   BvhBuildSettings settings;
   settings.max_leaf_primitives =
       max_leaf_primitives_ > 0 ? max_leaf_primitives_ : (only_triangles ? kTriangleLeaf : kShapeLeaf);
@@ -418,61 +414,41 @@ void Bvh::build(std::span<const Primitive> primitives) {
       packet_slots.push_back({first, std::min(first + 4, end)});
   }
   packets_.resize(packet_slots.size());
-  // Whether every triangle's vertices are floats (then the packets alone hold them exactly).
-  std::atomic<bool> float_exact = true;
-  std::atomic<std::size_t> triangles = 0;
-  const auto fill_packets = [&](bool keep_corners) {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, packets_.size(), kGrain / 4),
-                      [&](const tbb::blocked_range<std::size_t>& range) {
-                        std::size_t range_triangles = 0;
-                        bool range_exact = true;
-                        for (std::size_t k = range.begin(); k < range.end(); ++k) {
-                          Packet& packet = packets_[k];
-                          const auto [first, end] = packet_slots[k];
-                          for (int lane = 0; lane < 4; ++lane) {
-                            const uint32_t s = first + static_cast<uint32_t>(lane);
-                            Vec3 corner[3];
-                            packet.primitive[lane] = kShapeSlot;
-                            packet.triangle[lane] = 0;
-                            bool triangle = false;
-                            if (s < end) {
-                              const uint32_t index = tree_primitive[tree.order[s]];
-                              triangle = kinds[index] == Kind::triangle;
-                              packet.primitive[lane] = triangle ? index : index | kShapeSlot;
-                              if (triangle) {
-                                const auto* shape = static_cast<const MeshTriangle*>(primitives[index].shape);
-                                const TriangleMesh& mesh = shape->mesh();
-                                const auto& corners = mesh.triangles[shape->triangle_index()];
-                                packet.triangle[lane] = static_cast<uint32_t>(shape->triangle_index());
-                                for (int v = 0; v < 3; ++v) corner[v] = mesh.positions[corners[v]];
-                                ++range_triangles;
-                              }
-                            }
-                            for (int v = 0; v < 3; ++v) {
-                              for (int axis = 0; axis < 3; ++axis) {
-                                const float value = triangle ? static_cast<float>(corner[v][axis])
-                                                             : std::numeric_limits<float>::quiet_NaN();
-                                packet.p[v][axis][lane] = value;
-                                if (triangle && static_cast<double>(value) != corner[v][axis])
-                                  range_exact = false;
-                              }
-                            }
-                            if (keep_corners) {
-                              Corners& kept = corners_[4 * k + static_cast<std::size_t>(lane)];
-                              for (int v = 0; v < 3; ++v) kept.p[v] = triangle ? corner[v] : Vec3{};
+  if (!float_exact) corners_.resize(4 * packets_.size());
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, packets_.size(), kGrain / 4),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t k = range.begin(); k < range.end(); ++k) {
+                        Packet& packet = packets_[k];
+                        const auto [first, end] = packet_slots[k];
+                        for (int lane = 0; lane < 4; ++lane) {
+                          const uint32_t s = first + static_cast<uint32_t>(lane);
+                          Vec3 corner[3];
+                          packet.primitive[lane] = kShapeSlot;
+                          packet.triangle[lane] = 0;
+                          bool triangle = false;
+                          if (s < end) {
+                            const uint32_t index = tree_primitive[tree.order[s]];
+                            triangle = kinds[index] == Kind::triangle;
+                            packet.primitive[lane] = triangle ? index : index | kShapeSlot;
+                            if (triangle) {
+                              const auto* shape = static_cast<const MeshTriangle*>(primitives[index].shape);
+                              const TriangleMesh& mesh = shape->mesh();
+                              const auto& corners = mesh.triangles[shape->triangle_index()];
+                              packet.triangle[lane] = static_cast<uint32_t>(shape->triangle_index());
+                              for (int v = 0; v < 3; ++v) corner[v] = mesh.positions[corners[v]];
                             }
                           }
+                          for (int v = 0; v < 3; ++v)
+                            for (int axis = 0; axis < 3; ++axis)
+                              packet.p[v][axis][lane] = triangle ? static_cast<float>(corner[v][axis])
+                                                                 : std::numeric_limits<float>::quiet_NaN();
+                          if (!corners_.empty()) {
+                            Corners& kept = corners_[4 * k + static_cast<std::size_t>(lane)];
+                            for (int v = 0; v < 3; ++v) kept.p[v] = triangle ? corner[v] : Vec3{};
+                          }
                         }
-                        if (!keep_corners) triangles += range_triangles;
-                        if (!range_exact) float_exact = false;
-                      });
-  };
-  fill_packets(false);
-  triangle_count_ = triangles;
-  if (!float_exact) {
-    corners_.resize(4 * packets_.size());
-    fill_packets(true);
-  }
+                      }
+                    });
 
   // Collapse the binary tree into eight-wide nodes, depth first: a node's children start as
   // the two children of a binary inner node, and the inner child of largest surface area is

@@ -41,6 +41,7 @@
 
 #include "accel/accelerator.h"
 #include "accel/bvh_memory.h"
+#include "util/enum_names.h"
 
 namespace candela {
 
@@ -50,9 +51,11 @@ struct TriangleMesh;
 // accel/bvh_traversal.inc).
 enum class BvhIsa { automatic, sse, avx2, avx512 };
 
+inline constexpr auto kBvhIsaNames = enum_names<BvhIsa>(
+    {{BvhIsa::automatic, "auto"}, {BvhIsa::sse, "sse"}, {BvhIsa::avx2, "avx2"}, {BvhIsa::avx512, "avx512"}});
+
 // The widest instruction set this CPU (and its operating system) supports.
 BvhIsa widest_bvh_isa();
-const char* bvh_isa_name(BvhIsa isa);
 
 // The scene file's "bvh" object.
 struct BvhSettings {

@@ -579,7 +579,7 @@ TEST(Bvh, EveryInstructionSetOfThisCpuGivesTheListsAnswers) {
   int tested = 0;
   for (BvhIsa isa : {BvhIsa::sse, BvhIsa::avx2, BvhIsa::avx512}) {
     if (static_cast<int>(isa) > static_cast<int>(widest_bvh_isa())) continue;
-    SCOPED_TRACE(bvh_isa_name(isa));
+    SCOPED_TRACE(std::string(kBvhIsaNames.name(isa)));
     BvhSettings settings;
     settings.isa = isa;
     EXPECT_GT(expect_same_as_list(doubles, rays, settings).hits, 300);
