@@ -44,37 +44,28 @@ constexpr std::size_t kGrain = 4096;
 // more than any shape's rounding of its hit distance near a box face.
 constexpr double kSlack = 0x1p-32;
 
-// v rounded to float, then moved one step towards +inf when that rounding went below v (when
-// up) or towards -inf when it went above (when down): branch-free on the bit pattern (the
-// rounding direction is unpredictable). |v| <= FLT_MAX here.
-float round_directed(double v, bool up) {
+// The smallest float >= v (v rounded to float, then moved one step towards +inf when that
+// rounding went below it), without a branch: the traversal rounds a dozen values per ray, and
+// with branches on their signs (unpredictable for incoherent rays) that set-up cost more than
+// the rest of an occlusion ray's traversal. +inf for v > FLT_MAX, -inf only for v = -inf; never
+// -0 (that +0 is the same bound).
+inline float round_up(double v) {
   const float f = static_cast<float>(v) + 0.0f;  // -0 becomes +0
-  const double back = static_cast<double>(f);
-  const uint32_t step = up ? (back < v) : (back > v);
+  const auto below = static_cast<uint32_t>(static_cast<double>(f) < v);
   uint32_t bits;
   std::memcpy(&bits, &f, sizeof bits);
-  // Away from zero is +1 on the magnitude, towards zero -1; +0 (bits 0) steps to ±denorm_min.
-  const uint32_t negative = bits >> 31;
-  const bool away = up != static_cast<bool>(negative) || bits == 0;
-  if (bits == 0 && !up) bits = 0x80000000u;  // -0, so that +1 gives -denorm_min
-  bits += away ? step : 0u - step;
+  // One step up: +1 on the bit pattern of a positive float (+0 to the smallest denormal, FLT_MAX
+  // to +inf), -1 on a negative one's (-inf to -FLT_MAX): 1 | (the sign bit spread) is +1 or -1.
+  const uint32_t step = 1u | static_cast<uint32_t>(static_cast<int32_t>(bits) >> 31);
+  bits += step & (0u - below);
   float result;
   std::memcpy(&result, &bits, sizeof result);
   return result;
 }
 
-float round_down(double v) {
-  constexpr double kMax = std::numeric_limits<float>::max();
-  if (v > kMax) return kMax;
-  if (v < -kMax) return -std::numeric_limits<float>::infinity();
-  return round_directed(v, false);
-}
-
-float round_up(double v) {
-  constexpr double kMax = std::numeric_limits<float>::max();
-  if (v > kMax) return std::numeric_limits<float>::infinity();
-  if (v < -kMax) return -kMax;
-  return round_directed(v, true);
+// The largest float <= v.
+inline float round_down(double v) {
+  return -round_up(-v);
 }
 
 double max_abs(const Vec3& v) {
@@ -113,32 +104,38 @@ struct SlabSetup {
   std::size_t near_offset[3], far_offset[3];  // byte offsets of the rows in a Node
   float t0 = 0, margin = 0;
 
-  // False when the ray is outside the proven range (see above).
+  // False when the ray is outside the proven range (see above). Branch-free but for that one
+  // answer: with s the sign of d (+1 or -1, exact to multiply by), a rounding towards s is
+  // s · round_up(s · x) and one towards -s is -s · round_up(-s · x), so no choice depends on the
+  // direction's signs, which incoherent rays make unpredictable.
   bool init(const Ray& ray, double t_lo) {
     double largest = 0;
+    bool valid = true;
     for (int axis = 0; axis < 3; ++axis) {
       const double o = ray.origin[axis], d = ray.direction[axis];
-      if (!(std::fabs(o) <= 1e30)) return false;
       const double ad = std::fabs(d);
-      if (!(d == 0 || (ad >= 1e-30 && ad <= 1e30))) return false;
+      valid &= std::fabs(o) <= 1e30;
+      valid &= d == 0 || (ad >= 1e-30 && ad <= 1e30);
       largest = std::max(largest, ad);
-      const bool negative = std::signbit(d);
+      uint64_t d_bits;
+      std::memcpy(&d_bits, &d, sizeof d_bits);
+      const auto negative = static_cast<std::size_t>(d_bits >> 63);
+      const double s = std::copysign(1.0, d);
       const std::size_t lower = offsetof(Bvh::Node, bounds) + sizeof(float[Bvh::kWidth]) * axis;
-      const std::size_t upper = lower + sizeof(float[Bvh::kWidth]) * 3;
-      near_offset[axis] = negative ? upper : lower;
-      far_offset[axis] = negative ? lower : upper;
-      origin_near[axis] = negative ? round_down(o) : round_up(o);
-      origin_far[axis] = negative ? round_up(o) : round_down(o);
-      if (d == 0) {
-        inverse_near[axis] = inverse_far[axis] = std::copysign(std::numeric_limits<float>::infinity(), d);
-      } else {
-        const double inv = 1.0 / d;
-        const double shrunk = inv * (1.0 - 0x1p-21), grown = inv * (1.0 + 0x1p-21);
-        inverse_near[axis] = negative ? round_up(shrunk) : round_down(shrunk);
-        inverse_far[axis] = negative ? round_down(grown) : round_up(grown);
-      }
+      constexpr std::size_t kUpperRows = sizeof(float[Bvh::kWidth]) * 3;
+      near_offset[axis] = lower + negative * kUpperRows;
+      far_offset[axis] = lower + (1 - negative) * kUpperRows;
+      // Entry planes: the origin rounded towards the direction (smaller plane distances); exit
+      // planes: away from it.
+      origin_near[axis] = static_cast<float>(s) * round_up(s * o);
+      origin_far[axis] = -static_cast<float>(s) * round_up(-s * o);
+      // 1 / ±0 is ±inf, as the proof wants; |inverse| rounded towards zero for entries and away
+      // from it for exits (shrunk, grown: |1/d| scaled by 1 ∓ 2^-21).
+      const double magnitude = 1.0 / ad;
+      inverse_near[axis] = static_cast<float>(s) * -round_up(-(magnitude * (1.0 - 0x1p-21)));
+      inverse_far[axis] = static_cast<float>(s) * round_up(magnitude * (1.0 + 0x1p-21));
     }
-    if (!(largest >= 1e-6) || !(t_lo >= -1e30)) return false;
+    if (!valid || !(largest >= 1e-6) || !(t_lo >= -1e30)) return false;
     t0 = round_down(t_lo);
     margin = round_up(0x1p-17 * std::max(0.0, -t_lo) + 1e-35);
     return true;
