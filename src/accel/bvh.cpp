@@ -68,6 +68,25 @@ inline float round_down(double v) {
   return -round_up(-v);
 }
 
+// Four lanes of doubles and floats (GCC's vector extensions, also clang's): compiled for the
+// target of the function they are inlined into, two SSE2 halves or one AVX register. A cast
+// between two of these types of one size reinterprets the bits (std::bit_cast would return a
+// vector by value, whose ABI differs between the SSE2 and AVX copies).
+using Double4 = double __attribute__((vector_size(32)));
+using Int64x4 = int64_t __attribute__((vector_size(32)));
+using Float4 = float __attribute__((vector_size(16)));
+using Int32x4 = int32_t __attribute__((vector_size(16)));
+
+// round_up lane by lane, the same steps on the bit patterns. Results by reference: a vector
+// argument or result by value would change the ABI between the SSE2 and AVX copies.
+[[gnu::always_inline]] inline void round_up(const Double4& v, Float4& result) {
+  const Float4 f = __builtin_convertvector(v, Float4) + 0.0f;  // -0 becomes +0
+  const Int64x4 below = __builtin_convertvector(f, Double4) < v;  // -1 where below
+  Int32x4 bits = (Int32x4)(f);
+  bits += (1 | (bits >> 31)) & __builtin_convertvector(below, Int32x4);
+  result = (Float4)(bits);
+}
+
 double max_abs(const Vec3& v) {
   return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
 }
@@ -104,38 +123,50 @@ struct SlabSetup {
   std::size_t near_offset[3], far_offset[3];  // byte offsets of the rows in a Node
   float t0 = 0, margin = 0;
 
-  // False when the ray is outside the proven range (see above). Branch-free but for that one
-  // answer: with s the sign of d (+1 or -1, exact to multiply by), a rounding towards s is
-  // s · round_up(s · x) and one towards -s is -s · round_up(-s · x), so no choice depends on the
-  // direction's signs, which incoherent rays make unpredictable.
-  bool init(const Ray& ray, double t_lo) {
-    double largest = 0;
-    bool valid = true;
+  // False when the ray is outside the proven range (see above). Without a branch but for that
+  // one answer, and three axes at once: with s the sign of d (+1 or -1, exact to multiply by),
+  // a rounding towards s is s · round_up(s · x) and one towards -s is -s · round_up(-s · x), so
+  // no choice depends on the direction's signs, which incoherent rays make unpredictable.
+  [[gnu::always_inline]] bool init(const Ray& ray, double t_lo) {
+    // Lanes x, y, z and a spare one that passes every check.
+    const Double4 o = {ray.origin.x, ray.origin.y, ray.origin.z, 0.0};
+    const Double4 d = {ray.direction.x, ray.direction.y, ray.direction.z, 1.0};
+    const Int64x4 sign = (Int64x4)(d) & std::numeric_limits<int64_t>::min();
+    const Double4 one = {1.0, 1.0, 1.0, 1.0};
+    const Double4 ad = (Double4)((Int64x4)(d) ^ sign);
+    const Double4 s = (Double4)((Int64x4)(one) | sign);
+    const Double4 ao = (Double4)((Int64x4)(o) &
+                                                        std::numeric_limits<int64_t>::max());
+    const Int64x4 valid = (ao <= 1e30) & ((d == 0) | ((ad >= 1e-30) & (ad <= 1e30)));
+    const double largest = std::max({ad[0], ad[1], ad[2]});
+    if (!(valid[0] & valid[1] & valid[2]) || !(largest >= 1e-6) || !(t_lo >= -1e30)) return false;
+    const Float4 s_float = __builtin_convertvector(s, Float4);
+    const Double4 so = s * o;
+    // 1 / ±0 is ±inf, as the proof wants; |inverse| is rounded towards zero for entries and away
+    // from it for exits, after scaling |1/d| by 1 ∓ 2^-21.
+    const Double4 magnitude = one / ad;
+    Float4 up;
+    // Entry planes: the origin rounded towards the direction (smaller plane distances); exit
+    // planes: away from it.
+    round_up(so, up);
+    const Float4 near = s_float * up;
+    round_up(-so, up);
+    const Float4 far = -s_float * up;
+    round_up(-(magnitude * (1.0 - 0x1p-21)), up);
+    const Float4 inverse_toward_zero = s_float * -up;
+    round_up(magnitude * (1.0 + 0x1p-21), up);
+    const Float4 inverse_away = s_float * up;
+    constexpr std::size_t kUpperRows = sizeof(float[Bvh::kWidth]) * 3;
     for (int axis = 0; axis < 3; ++axis) {
-      const double o = ray.origin[axis], d = ray.direction[axis];
-      const double ad = std::fabs(d);
-      valid &= std::fabs(o) <= 1e30;
-      valid &= d == 0 || (ad >= 1e-30 && ad <= 1e30);
-      largest = std::max(largest, ad);
-      uint64_t d_bits;
-      std::memcpy(&d_bits, &d, sizeof d_bits);
-      const auto negative = static_cast<std::size_t>(d_bits >> 63);
-      const double s = std::copysign(1.0, d);
+      origin_near[axis] = near[axis];
+      origin_far[axis] = far[axis];
+      inverse_near[axis] = inverse_toward_zero[axis];
+      inverse_far[axis] = inverse_away[axis];
       const std::size_t lower = offsetof(Bvh::Node, bounds) + sizeof(float[Bvh::kWidth]) * axis;
-      constexpr std::size_t kUpperRows = sizeof(float[Bvh::kWidth]) * 3;
+      const std::size_t negative = sign[axis] != 0;
       near_offset[axis] = lower + negative * kUpperRows;
       far_offset[axis] = lower + (1 - negative) * kUpperRows;
-      // Entry planes: the origin rounded towards the direction (smaller plane distances); exit
-      // planes: away from it.
-      origin_near[axis] = static_cast<float>(s) * round_up(s * o);
-      origin_far[axis] = -static_cast<float>(s) * round_up(-s * o);
-      // 1 / ±0 is ±inf, as the proof wants; |inverse| rounded towards zero for entries and away
-      // from it for exits (shrunk, grown: |1/d| scaled by 1 ∓ 2^-21).
-      const double magnitude = 1.0 / ad;
-      inverse_near[axis] = static_cast<float>(s) * -round_up(-(magnitude * (1.0 - 0x1p-21)));
-      inverse_far[axis] = static_cast<float>(s) * round_up(magnitude * (1.0 + 0x1p-21));
     }
-    if (!valid || !(largest >= 1e-6) || !(t_lo >= -1e30)) return false;
     t0 = round_down(t_lo);
     margin = round_up(0x1p-17 * std::max(0.0, -t_lo) + 1e-35);
     return true;
