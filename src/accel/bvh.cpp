@@ -80,11 +80,11 @@ using Int32x4 = int32_t __attribute__((vector_size(16)));
 // round_up lane by lane, the same steps on the bit patterns. Results by reference: a vector
 // argument or result by value would change the ABI between the SSE2 and AVX copies.
 [[gnu::always_inline]] inline void round_up(const Double4& v, Float4& result) {
-  const Float4 f = __builtin_convertvector(v, Float4) + 0.0f;  // -0 becomes +0
+  const Float4 f = __builtin_convertvector(v, Float4) + 0.0f;     // -0 becomes +0
   const Int64x4 below = __builtin_convertvector(f, Double4) < v;  // -1 where below
-  Int32x4 bits = (Int32x4)(f);
+  auto bits = (Int32x4)f;
   bits += (1 | (bits >> 31)) & __builtin_convertvector(below, Int32x4);
-  result = (Float4)(bits);
+  result = (Float4)bits;
 }
 
 double max_abs(const Vec3& v) {
@@ -131,12 +131,12 @@ struct SlabSetup {
     // Lanes x, y, z and a spare one that passes every check.
     const Double4 o = {ray.origin.x, ray.origin.y, ray.origin.z, 0.0};
     const Double4 d = {ray.direction.x, ray.direction.y, ray.direction.z, 1.0};
-    const Int64x4 sign = (Int64x4)(d) & std::numeric_limits<int64_t>::min();
     const Double4 one = {1.0, 1.0, 1.0, 1.0};
-    const Double4 ad = (Double4)((Int64x4)(d) ^ sign);
-    const Double4 s = (Double4)((Int64x4)(one) | sign);
-    const Double4 ao = (Double4)((Int64x4)(o) &
-                                                        std::numeric_limits<int64_t>::max());
+    const auto d_bits = (Int64x4)d, o_bits = (Int64x4)o, one_bits = (Int64x4)one;
+    const Int64x4 sign = d_bits & std::numeric_limits<int64_t>::min();
+    const auto ad = (Double4)(d_bits ^ sign);
+    const auto s = (Double4)(one_bits | sign);
+    const auto ao = (Double4)(o_bits & std::numeric_limits<int64_t>::max());
     const Int64x4 valid = (ao <= 1e30) & ((d == 0) | ((ad >= 1e-30) & (ad <= 1e30)));
     const double largest = std::max({ad[0], ad[1], ad[2]});
     if (!(valid[0] & valid[1] & valid[2]) || !(largest >= 1e-6) || !(t_lo >= -1e30)) return false;
