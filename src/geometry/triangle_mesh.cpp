@@ -181,14 +181,24 @@ void compute_corner_normals(TriangleMesh& mesh, double crease_angle_degrees) {
 WatertightRay::WatertightRay(const Ray& ray) : origin(ray.origin), t_min(ray.t_min), t_max(ray.t_max) {
   // The dominant direction axis becomes z; swapping x and y when it points down keeps the
   // winding (the test is two-sided, so this only matters for bit-identical edge values).
-  kz = max_dimension(abs(ray.direction));
-  kx = kz + 1 == 3 ? 0 : kz + 1;
-  ky = kx + 1 == 3 ? 0 : kx + 1;
-  if (ray.direction[kz] < 0) std::swap(kx, ky);
+  // Without branches: the axes change from ray to ray, and the accelerators make this for
+  // every ray, so branches on them would often be mispredicted. kz is
+  // max_dimension(abs(direction)): the axis of the largest magnitude, the later on a tie.
+  const Vec3 magnitude = abs(ray.direction);
+  const int x_over_y = magnitude.x > magnitude.y, x_over_z = magnitude.x > magnitude.z,
+            y_over_z = magnitude.y > magnitude.z;
+  kz = x_over_y * 2 * (1 - x_over_z) + (1 - x_over_y) * (2 - y_over_z);
+  static constexpr int kNext[3] = {1, 2, 0};
+  kx = kNext[kz];
+  ky = kNext[kx];
+  const double direction[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
+  const int swap = (kx ^ ky) & -static_cast<int>(direction[kz] < 0);
+  kx ^= swap;
+  ky ^= swap;
   // Shear so that the ray becomes the +z axis (the z scale is applied later, only for t).
-  sx = ray.direction[kx] / ray.direction[kz];
-  sy = ray.direction[ky] / ray.direction[kz];
-  sz = 1.0 / ray.direction[kz];
+  sx = direction[kx] / direction[kz];
+  sy = direction[ky] / direction[kz];
+  sz = 1.0 / direction[kz];
 }
 
 bool WatertightRay::edges(const Vec3& p0, const Vec3& p1, const Vec3& p2, double& u, double& v, double& w,

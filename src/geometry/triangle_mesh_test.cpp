@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <tuple>
+#include <vector>
 
 #include "math/constants.h"
 #include "math/pcg32.h"
@@ -522,5 +523,34 @@ TEST(TriangleMesh, RepeatedTrianglesAreMergedIntoTheFirst) {
   EXPECT_EQ(make_triangles(mesh).size(), 5u);  // not asked: every non-degenerate triangle
 }
 
+// The shear's axes, now chosen without branches: z is max_dimension(abs(direction)) (the later
+// axis on a tie), x and y follow it cyclically and swap when the direction along z is negative
+// (below zero: -0 does not swap); the shear factors are the directions' quotients.
+TEST(WatertightRay, AxesFollowTheDominantDirectionAndItsSign) {
+  std::vector<Vec3> directions;
+  const double values[] = {-2.0, -1.0, -0.0, 0.0, 0.5, 1.0, 2.0};
+  for (double x : values)
+    for (double y : values)
+      for (double z : values) directions.push_back({x, y, z});
+  Pcg32 rng(7, 3);
+  for (int i = 0; i < 200; ++i)
+    directions.push_back({rng.next_double() - 0.5, rng.next_double() - 0.5, rng.next_double() - 0.5});
+  for (const Vec3& d : directions) {
+    Ray ray;
+    ray.direction = d;
+    const WatertightRay sheared(ray);
+    const int kz = max_dimension(abs(d));
+    int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+    if (d[kz] < 0) std::swap(kx, ky);
+    EXPECT_EQ(sheared.kz, kz) << d.x << " " << d.y << " " << d.z;
+    EXPECT_EQ(sheared.kx, kx) << d.x << " " << d.y << " " << d.z;
+    EXPECT_EQ(sheared.ky, ky) << d.x << " " << d.y << " " << d.z;
+    if (d[kz] != 0) {
+      EXPECT_EQ(sheared.sx, d[kx] / d[kz]);
+      EXPECT_EQ(sheared.sy, d[ky] / d[kz]);
+      EXPECT_EQ(sheared.sz, 1.0 / d[kz]);
+    }
+  }
+}
 }  // namespace
 }  // namespace candela
