@@ -196,9 +196,13 @@ WatertightRay::WatertightRay(const Ray& ray) : origin(ray.origin), t_min(ray.t_m
   kx ^= swap;
   ky ^= swap;
   // Shear so that the ray becomes the +z axis (the z scale is applied later, only for t).
-  sx = direction[kx] / direction[kz];
-  sy = direction[ky] / direction[kz];
-  sz = 1.0 / direction[kz];
+  // The three quotients in one vector division (each lane rounded as its scalar division).
+  using Double4 = double __attribute__((vector_size(32)));
+  const Double4 numerator = {direction[kx], direction[ky], 1.0, 1.0};
+  const Double4 quotient = numerator / direction[kz];
+  sx = quotient[0];
+  sy = quotient[1];
+  sz = quotient[2];
 }
 
 bool WatertightRay::edges(const Vec3& p0, const Vec3& p1, const Vec3& p2, double& u, double& v, double& w,
