@@ -19,6 +19,7 @@
 
 #include "accel/bvh_builder.h"
 #include "geometry/triangle_mesh.h"
+#include "math/lanes.h"
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -68,17 +69,8 @@ inline float round_down(double v) {
   return -round_up(-v);
 }
 
-// Four lanes of doubles and floats (GCC's vector extensions, also clang's): compiled for the
-// target of the function they are inlined into, two SSE2 halves or one AVX register. A cast
-// between two of these types of one size reinterprets the bits (std::bit_cast would return a
-// vector by value, whose ABI differs between the SSE2 and AVX copies).
-using Double4 = double __attribute__((vector_size(32)));
-using Int64x4 = int64_t __attribute__((vector_size(32)));
-using Float4 = float __attribute__((vector_size(16)));
-using Int32x4 = int32_t __attribute__((vector_size(16)));
-
-// round_up lane by lane, the same steps on the bit patterns. Results by reference: a vector
-// argument or result by value would change the ABI between the SSE2 and AVX copies.
+// round_up lane by lane, the same steps on the bit patterns (math/lanes.h: the result by
+// reference).
 [[gnu::always_inline]] inline void round_up(const Double4& v, Float4& result) {
   const Float4 f = __builtin_convertvector(v, Float4) + 0.0f;     // -0 becomes +0
   const Int64x4 below = __builtin_convertvector(f, Double4) < v;  // -1 where below

@@ -10,6 +10,7 @@
 
 #include "geometry/tessellation.h"
 #include "math/constants.h"
+#include "math/lanes.h"
 #include "util/hash.h"
 
 // The watertight test relies on every edge function a*b - c*d being rounded term by term:
@@ -197,7 +198,6 @@ WatertightRay::WatertightRay(const Ray& ray) : origin(ray.origin), t_min(ray.t_m
   ky ^= swap;
   // Shear so that the ray becomes the +z axis (the z scale is applied later, only for t).
   // The three quotients in one vector division (each lane rounded as its scalar division).
-  using Double4 = double __attribute__((vector_size(32)));
   const Double4 numerator = {direction[kx], direction[ky], 1.0, 1.0};
   const Double4 quotient = numerator / direction[kz];
   sx = quotient[0];

@@ -552,5 +552,6 @@ TEST(WatertightRay, AxesFollowTheDominantDirectionAndItsSign) {
     }
   }
 }
+
 }  // namespace
 }  // namespace candela
