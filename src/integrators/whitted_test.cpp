@@ -6,6 +6,7 @@
 #include <regex>
 
 #include "integrators/local.h"
+#include "integrators/ray_tree.h"
 #include "integrators/scene_loading.h"
 #include "scene_text.h"
 
@@ -79,6 +80,36 @@ TEST(Whitted, OpaqueOccluderCastsAShadowAndTransparentOneIsAttenuatedByKt) {
   const double lit = render_pixel(*open, whitted_of(*open)).r;
   EXPECT_GT(lit, 0);
   EXPECT_NEAR(render_pixel(*glass, whitted_of(*glass)).r, 0.6 * lit, 1e-12);
+}
+
+// Without a material that lets light through, shadow rays only ask the accelerator whether
+// anything lies on their segment (Scene::occluded); with the ray tree recorded, or with glass in
+// the scene, they walk the crossings. Both give the same radiance and the same shadow-ray count.
+TEST(Whitted, ShadowRaysOfAnOpaqueSceneAskOnlyWhetherAnythingIsInTheWay) {
+  const std::string base = R"(
+    "lights": [{"type": "point", "position": [0, 0, 8]}, {"type": "point", "position": [6, 0, 8]}],
+    "materials": {"floor": {"kd": 1, "ks": 0.3, "n": 8}, "blocker": {"kd": 0.5, "kt": KT}},
+    "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 0, 1], "material": "floor"},
+               {"type": "polygon", "vertices": [[-1, -1, 4], [1, -1, 4], [1, 1, 4], [-1, 1, 4]], "material": "blocker"}])";
+  const char* side = R"({"eye": [3, 0, 1], "target": [0, 0, 0], "fov": 0.5, "width": 1, "height": 1})";
+  for (const std::string kt : {"0", "0.6"}) {
+    const auto scene = scene_from(std::regex_replace(base, std::regex("KT"), kt), side);
+    EXPECT_EQ(scene->lets_light_through(), kt != "0");
+    const WhittedMethod method = whitted_of(*scene);
+    // Floor points in the blocker's shadow from one light, from both, and from neither.
+    for (const Vec3 target : {Vec3{0, 0, 0}, Vec3{0.4, 0.2, 0}, Vec3{2.5, 0, 0}, Vec3{-3, 0.5, 0}}) {
+      const Ray ray{Vec3{3, 0, 1}, normalize(target - Vec3{3, 0, 1})};
+      TraceContext plain;
+      const Color asked = method.trace_primary(*scene, ray, plain);
+      RayTree tree;
+      TraceContext recorded;
+      recorded.tree = &tree;
+      const Color walked = method.trace_primary(*scene, ray, recorded);
+      EXPECT_EQ(asked, walked) << kt << " " << target.x;
+      EXPECT_EQ(plain.counts.shadow, recorded.counts.shadow);
+      EXPECT_GT(plain.counts.shadow, 0u);
+    }
+  }
 }
 
 TEST(Whitted, AbsorptionDarkensLongerPathsThroughGlass) {

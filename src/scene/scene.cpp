@@ -55,10 +55,11 @@ Color Scene::transmittance(const Ray& ray) const {
 }
 
 void Scene::prepare() {
-  thin_sheets_ = false;
+  thin_sheets_ = lets_light_through_ = false;
   for (Material& material : materials) {
     material.prepare();
     thin_sheets_ = thin_sheets_ || (material.thin && material.has_refraction());
+    lets_light_through_ = lets_light_through_ || material.lets_light_through();
   }
   if (environment) {
     environment->prepare_sampling();

@@ -126,6 +126,9 @@ class Scene {
   // Whether a material is a thin sheet that lets light through (Material::thin with kt: a window
   // pane): shadow rays then look for what they cross instead of asking occluded().
   bool has_thin_sheets() const { return thin_sheets_; }
+  // Whether any material lets light through (Material::lets_light_through: refraction or
+  // transparency); without one, whatever lies on a shadow ray's segment blocks it.
+  bool lets_light_through() const { return lets_light_through_; }
   // The first hit along the ray that is not a thin sheet, the sheets before it crossed: `through` is
   // the product of what each lets through at the angle it is crossed (thin_sheet_transmittance,
   // shading/material_bsdf.h); 1 when none is crossed. False, with what crosses in `through`, when
@@ -167,6 +170,7 @@ class Scene {
   double ray_offset_ = 1e-6;
   double build_seconds_ = 0;
   bool thin_sheets_ = false;
+  bool lets_light_through_ = false;
 };
 
 }  // namespace candela
