@@ -110,57 +110,57 @@ enum class Kind : uint8_t { unbounded, shape, triangle, never_hit };
 //   NaN, which _mm_max_ps / _mm_min_ps (second operand on NaN) ignore.
 // Other rays (never made by the renderer) test every primitive (intersect_all_slots).
 struct SlabSetup {
-  float origin_near[3], origin_far[3];
-  float inverse_near[3], inverse_far[3];
+  // Lanes x, y, z (the fourth unused).
+  Float4 origin_near, origin_far;
+  Float4 inverse_near, inverse_far;
   std::size_t near_offset[3], far_offset[3];  // byte offsets of the rows in a Node
   float t0 = 0, margin = 0;
+  float t1 = 0;  // the box tests' far end: t_hi rounded up
 
   // False when the ray is outside the proven range (see above). Without a branch but for that
   // one answer, and three axes at once: with s the sign of d (+1 or -1, exact to multiply by),
   // a rounding towards s is s · round_up(s · x) and one towards -s is -s · round_up(-s · x), so
-  // no choice depends on the direction's signs, which incoherent rays make unpredictable.
-  [[gnu::always_inline]] bool init(const Ray& ray, double t_lo) {
-    // Lanes x, y, z and a spare one that passes every check.
+  // no choice depends on the direction's signs, which incoherent rays make unpredictable. The
+  // spare fourth lanes round t_hi up, t_lo down and the margin up in the same operations.
+  [[gnu::always_inline]] bool init(const Ray& ray, double t_lo, double t_hi) {
     const Double4 o = {ray.origin.x, ray.origin.y, ray.origin.z, 0.0};
-    const Double4 d = {ray.direction.x, ray.direction.y, ray.direction.z, 1.0};
+    const Double4 d = {ray.direction.x, ray.direction.y, ray.direction.z, 1.0};  // lane 3 passes every check
     const Double4 one = {1.0, 1.0, 1.0, 1.0};
     const auto d_bits = (Int64x4)d, o_bits = (Int64x4)o, one_bits = (Int64x4)one;
     const Int64x4 sign = d_bits & std::numeric_limits<int64_t>::min();
     const auto ad = (Double4)(d_bits ^ sign);
-    const auto s = (Double4)(one_bits | sign);
+    const auto s = (Double4)(one_bits | sign);  // lane 3: +1
     const auto ao = (Double4)(o_bits & std::numeric_limits<int64_t>::max());
     const Int64x4 valid = (ao <= 1e30) & ((d == 0) | ((ad >= 1e-30) & (ad <= 1e30)));
     const double largest = std::max({ad[0], ad[1], ad[2]});
     if (!(valid[0] & valid[1] & valid[2]) || !(largest >= 1e-6) || !(t_lo >= -1e30)) return false;
     const Float4 s_float = __builtin_convertvector(s, Float4);
     const Double4 so = s * o;
+    const Double4 t_values = {t_hi, -t_lo, 0x1p-17 * std::max(0.0, -t_lo) + 1e-35, 0.0};
     // 1 / ±0 is ±inf, as the proof wants; |inverse| is rounded towards zero for entries and away
     // from it for exits, after scaling |1/d| by 1 ∓ 2^-21.
     const Double4 magnitude = one / ad;
     Float4 up;
     // Entry planes: the origin rounded towards the direction (smaller plane distances); exit
     // planes: away from it.
-    round_up(so, up);
-    const Float4 near = s_float * up;
-    round_up(-so, up);
-    const Float4 far = -s_float * up;
-    round_up(-(magnitude * (1.0 - 0x1p-21)), up);
-    const Float4 inverse_toward_zero = s_float * -up;
+    round_up(__builtin_shufflevector(so, t_values, 0, 1, 2, 4), up);
+    origin_near = s_float * up;
+    t1 = up[3];
+    round_up(__builtin_shufflevector(-so, t_values, 0, 1, 2, 5), up);
+    origin_far = -s_float * up;
+    t0 = -up[3];
+    round_up(__builtin_shufflevector(-(magnitude * (1.0 - 0x1p-21)), t_values, 0, 1, 2, 6), up);
+    inverse_near = s_float * -up;
+    margin = up[3];
     round_up(magnitude * (1.0 + 0x1p-21), up);
-    const Float4 inverse_away = s_float * up;
+    inverse_far = s_float * up;
     constexpr std::size_t kUpperRows = sizeof(float[Bvh::kWidth]) * 3;
     for (int axis = 0; axis < 3; ++axis) {
-      origin_near[axis] = near[axis];
-      origin_far[axis] = far[axis];
-      inverse_near[axis] = inverse_toward_zero[axis];
-      inverse_far[axis] = inverse_away[axis];
       const std::size_t lower = offsetof(Bvh::Node, bounds) + sizeof(float[Bvh::kWidth]) * axis;
       const std::size_t negative = sign[axis] != 0;
       near_offset[axis] = lower + negative * kUpperRows;
       far_offset[axis] = lower + (1 - negative) * kUpperRows;
     }
-    t0 = round_down(t_lo);
-    margin = round_up(0x1p-17 * std::max(0.0, -t_lo) + 1e-35);
     return true;
   }
 };
