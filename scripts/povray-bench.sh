@@ -4,8 +4,9 @@
 # untextured — each procedural texture replaced by the mean of its two colours, as POV-Ray gets
 # it — at 500 × 500 with 3 × 3 uniform supersampling, rays to depth 12, one thread, whole
 # process, RUNS alternating runs each (default 3); prints each run's wall, user and system
-# seconds and the ratios of the medians (wall, and CPU = user + system). POV-Ray is the Debian package `povray`, installed on the measuring machine only:
-# never a dependency of Candela or of its CI.
+# seconds and the ratios of the medians (wall, and CPU = user + system). POV-Ray is the Debian
+# package `povray`, installed on the measuring machine only: never a dependency of Candela or
+# of its CI.
 #   scripts/povray-bench.sh [candela-binary]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,8 +24,10 @@ scene = json.loads(text)
 
 def plain(kd):  # a texture's mean colour; a colour or a number as it is
     if isinstance(kd, dict):
-        a, b = (kd['even'], kd['odd']) if 'even' in kd else (kd['light'], kd['dark'])
-        return [(x + y) / 2 for x, y in zip(a, b)]
+        for first, second in (('even', 'odd'), ('light', 'dark')):
+            if first in kd and second in kd:
+                return [(x + y) / 2 for x, y in zip(kd[first], kd[second])]
+        sys.exit('povray-bench: no plain colour for a %r texture (two colours expected)' % kd.get('type'))
     return kd if isinstance(kd, list) else [kd] * 3
 
 for material in scene['materials'].values():

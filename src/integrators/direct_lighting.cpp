@@ -13,8 +13,8 @@ Color shadow_transmittance(const Scene& scene, const Vec3& origin, const Vec3& L
   ++context.counts.shadow;
   Ray ray{origin, L, 0.0, distance};
   // Nothing lets light through: the first thing on the segment blocks it, which the
-  // accelerator's any-hit query answers without filling a hit (a third of a Whitted render's
-  // rays are these). The ray tree names the blocker, so it takes the loop below.
+  // accelerator's any-hit query answers without filling a hit (on the two-mirror scene 4.3 M of
+  // a render's 6.7 M rays are these). The ray tree names the blocker, so it takes the loop below.
   if (!scene.lets_light_through() && !context.tree) return Color(scene.occluded(ray) ? 0.0 : 1.0);
   Color transmittance(1);
   // Absorbing objects the ray is inside: where it entered (0 when it started inside) and
