@@ -20,6 +20,7 @@
 #include "accel/bvh_builder.h"
 #include "geometry/triangle_mesh.h"
 #include "math/lanes.h"
+#include "math/next_up.h"
 
 #if defined(__linux__)
 #include <sys/mman.h>
@@ -582,7 +583,7 @@ bool Bvh::intersect_all_slots(const Ray& ray, Intersection& intersection) const 
       best_t = hit.t;
       best = primitive;
       best_hit = hit;
-      test.t_max = std::nextafter(hit.t, kInfinity);
+      test.t_max = next_up(hit.t);
     }
   }
   if (best == std::numeric_limits<uint32_t>::max()) return false;

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "geometry/triangle_mesh.h"
+#include "math/next_up.h"
 
 namespace candela {
 
@@ -104,7 +105,7 @@ struct ExactContext {
   // the test limit is nextafter(best_t) so that an equal t with a lower index is seen).
   bool consider(uint32_t primitive) {
     Ray test = *ray;
-    if (found) test.t_max = std::nextafter(best_t, kInfinity);
+    if (found) test.t_max = next_up(best_t);
     SurfaceHit candidate;
     if (!state->primitives[primitive].shape->intersect(test, candidate)) return false;
     if (found && !closer_hit(candidate.t, primitive, best_t, best_primitive)) return false;

@@ -23,6 +23,7 @@
 #include "accel/accelerator.h"
 #include "math/bounds.h"
 #include "math/constants.h"
+#include "math/next_up.h"
 
 namespace candela::subdivision {
 
@@ -129,7 +130,7 @@ class NearestHit {
     result_.primitive = index;
     best_t_ = hit_.t;
     found_ = true;
-    probe_.t_max = std::min(t_max_, std::nextafter(best_t_, kInfinity));
+    probe_.t_max = std::min(t_max_, next_up(best_t_));
   }
 
   bool found() const { return found_; }
