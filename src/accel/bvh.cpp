@@ -70,16 +70,6 @@ inline float round_down(double v) {
   return -round_up(-v);
 }
 
-// round_up lane by lane, the same steps on the bit patterns (math/lanes.h: the result by
-// reference).
-[[gnu::always_inline]] inline void round_up(const Double4& v, Float4& result) {
-  const Float4 f = __builtin_convertvector(v, Float4) + 0.0f;     // -0 becomes +0
-  const Int64x4 below = __builtin_convertvector(f, Double4) < v;  // -1 where below
-  auto bits = (Int32x4)f;
-  bits += (1 | (bits >> 31)) & __builtin_convertvector(below, Int32x4);
-  result = (Float4)bits;
-}
-
 double max_abs(const Vec3& v) {
   return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
 }
@@ -92,17 +82,23 @@ enum class Kind : uint8_t { unbounded, shape, triangle, never_hit };
 // Why it never culls a box that the ray's segment [t_lo, t_hi] (the double interval the
 // triangle tests need, widened by kSlack as before) meets: let t* in [t_lo, t_hi] be a point of
 // the segment inside the box (exactly), so that near_a <= t* <= far_a on every axis, with
-// near_a = (entry plane - o) / d and far_a = (exit plane - o) / d.
-// - The origin is rounded to float towards the side that makes each plane distance smaller for
-//   entry planes and larger for exit planes (directed rounding, per sign of d).
-// - The reciprocal is rounded towards zero after scaling by 1 - 2^-21 for entry planes, away
-//   from zero after scaling by 1 + 2^-21 for exit planes; with the two float roundings of
-//   (plane - origin) * reciprocal, a computed entry lies in [x, x (1 - 2^-20)] of its
-//   directed value x (a computed exit in [x, x (1 + 2^-20)]), so: a computed entry is <= t*
-//   when near_a >= 0 and <= 0 (indeed <= t* + |t*| 2^-20) when near_a < 0; a computed exit is
-//   >= t* when t* >= 0, else >= t* - |t*| 2^-20.
-// - Hence max(t0, entries) <= min(t1, exits) + margin, with margin >= 2^-17 max(0, -t_lo) plus
-//   a floor for underflow (an absolute error of at most 2^-149 per product).
+// near_a = (entry plane - o) / d and far_a = (exit plane - o) / d. Take d > 0 (d < 0 is its
+// mirror image: every step below is symmetric under negation, as rounding to nearest is).
+// - The origin in float, moved towards the direction for entry planes and away from it for exit
+//   planes: o_near = fl(fl(o) + w), o_far = fl(fl(o) - w), w = fl(|fl(o)| 2^-22 + 2^-126). fl(o)
+//   is within half an ulp of o (2^-24 |o|, or 2^-150 below the normal range), and the step w
+//   exceeds that half ulp plus the rounding of the sum, so o_near >= o >= o_far: entry plane
+//   distances come out smaller and exit ones larger.
+// - The reciprocal: fl(1 / fl(|d|)) scaled by 1 -+ 2^-21 and rounded, three roundings of at
+//   most 2^-24 each (|d| >= 1e-30: no denormals): an entry reciprocal lies in [1 - 2^-20,
+//   1 - 2^-22] / |d|, an exit one in [1 + 2^-22, 1 + 2^-20] / |d|.
+// - With the two roundings of (plane - o_dir) * reciprocal, a computed entry e satisfies e <= x
+//   when x >= 0 and e <= x (1 - 2^-19) when x < 0, x = near_a; likewise a computed exit f >= far_a
+//   when far_a >= 0 and f >= far_a (1 + 2^-19) when far_a < 0. So e <= t* when t* >= 0, and
+//   e <= t* + |t*| 2^-19 when t* < 0; f >= t* when t* >= 0, and f >= t* - |t*| 2^-19 when t* < 0.
+// - Hence max(t0, entries) <= min(t1, exits) + margin, with t0 <= t_lo and t1 >= t_hi (rounded
+//   outward as the origin is) and margin >= 2^-17 max(0, -t_lo) plus a floor for underflow (an
+//   absolute error of at most 2^-149 per product).
 // - Overflow: the float path is taken only when |origin| and the scene's scale are at most
 //   1e30 and every direction component is 0 or in [1e-30, 1e30] with the largest >= 1e-6, so
 //   that t* <= 2e36: a product overflowing to +inf (an entry) or -inf (an exit) then only culls
@@ -118,43 +114,37 @@ struct SlabSetup {
   float t0 = 0, margin = 0;
   float t1 = 0;  // the box tests' far end: t_hi rounded up
 
-  // False when the ray is outside the proven range (see above). Without a branch but for that
-  // one answer, and three axes at once: with s the sign of d (+1 or -1, exact to multiply by),
-  // a rounding towards s is s · round_up(s · x) and one towards -s is -s · round_up(-s · x), so
-  // no choice depends on the direction's signs, which incoherent rays make unpredictable. The
-  // spare fourth lanes round t_hi up, t_lo down and the margin up in the same operations.
+  // False when the ray is outside the proven range (see above). In float, three axes at once
+  // and without a branch but for that one answer: with s the sign of d (+1 or -1, exact to
+  // multiply by), the origin moved towards the direction is fl(o) + s w and away from it
+  // fl(o) - s w, so no choice depends on the direction's signs, which incoherent rays make
+  // unpredictable. The origin's spare fourth lane rounds t_hi up in the same operations.
   [[gnu::always_inline]] bool init(const Ray& ray, double t_lo, double t_hi) {
-    const Double4 o = {ray.origin.x, ray.origin.y, ray.origin.z, 0.0};
+    const Double4 o = {ray.origin.x, ray.origin.y, ray.origin.z, t_hi};
     const Double4 d = {ray.direction.x, ray.direction.y, ray.direction.z, 1.0};  // lane 3 passes every check
-    const Double4 one = {1.0, 1.0, 1.0, 1.0};
-    const auto d_bits = (Int64x4)d, o_bits = (Int64x4)o, one_bits = (Int64x4)one;
-    const Int64x4 sign = d_bits & std::numeric_limits<int64_t>::min();
-    const auto ad = (Double4)(d_bits ^ sign);
-    const auto s = (Double4)(one_bits | sign);  // lane 3: +1
+    const auto d_bits = (Int64x4)d, o_bits = (Int64x4)o;
+    const auto ad = (Double4)(d_bits & std::numeric_limits<int64_t>::max());
     const auto ao = (Double4)(o_bits & std::numeric_limits<int64_t>::max());
     const Int64x4 valid = (ao <= 1e30) & ((d == 0) | ((ad >= 1e-30) & (ad <= 1e30)));
     const double largest = std::max({ad[0], ad[1], ad[2]});
     if (!(valid[0] & valid[1] & valid[2]) || !(largest >= 1e-6) || !(t_lo >= -1e30)) return false;
-    const Float4 s_float = __builtin_convertvector(s, Float4);
-    const Double4 so = s * o;
-    const Double4 t_values = {t_hi, -t_lo, 0x1p-17 * std::max(0.0, -t_lo) + 1e-35, 0.0};
-    // 1 / ±0 is ±inf, as the proof wants; |inverse| is rounded towards zero for entries and away
-    // from it for exits, after scaling |1/d| by 1 ∓ 2^-21.
-    const Double4 magnitude = one / ad;
-    Float4 up;
-    // Entry planes: the origin rounded towards the direction (smaller plane distances); exit
-    // planes: away from it.
-    round_up(__builtin_shufflevector(so, t_values, 0, 1, 2, 4), up);
-    origin_near = s_float * up;
-    t1 = up[3];
-    round_up(__builtin_shufflevector(-so, t_values, 0, 1, 2, 5), up);
-    origin_far = -s_float * up;
-    t0 = -up[3];
-    round_up(__builtin_shufflevector(-(magnitude * (1.0 - 0x1p-21)), t_values, 0, 1, 2, 6), up);
-    inverse_near = s_float * -up;
-    margin = up[3];
-    round_up(magnitude * (1.0 + 0x1p-21), up);
-    inverse_far = s_float * up;
+
+    const Float4 origin = __builtin_convertvector(o, Float4);  // lane 3: t_hi
+    const auto direction_bits = (Int32x4) __builtin_convertvector(d, Float4);
+    const Int32x4 sign = direction_bits & std::numeric_limits<int32_t>::min();
+    const auto s = (Float4)(sign | (Int32x4)Float4{1.0f, 1.0f, 1.0f, 1.0f});  // lane 3: +1
+    // 1 / ±0 is +inf here, and s gives it the sign the proof wants.
+    const Float4 inverse = 1.0f / (Float4)(direction_bits ^ sign);
+    inverse_near = s * (inverse * (1.0f - 0x1p-21f));
+    inverse_far = s * (inverse * (1.0f + 0x1p-21f));
+    const auto magnitude = (Float4)((Int32x4)origin & std::numeric_limits<int32_t>::max());
+    const Float4 step = s * (magnitude * 0x1p-22f + 0x1p-126f);
+    origin_near = origin + step;
+    origin_far = origin - step;
+    t1 = origin_near[3];  // t_hi + its step: rounded up (+inf stays +inf)
+    const auto low = static_cast<float>(t_lo);
+    t0 = low - (std::fabs(low) * 0x1p-22f + 0x1p-126f);
+    margin = std::max(0.0f, -low) * 0x1p-16f + 2e-35f;
     constexpr std::size_t kUpperRows = sizeof(float[Bvh::kWidth]) * 3;
     for (int axis = 0; axis < 3; ++axis) {
       const std::size_t lower = offsetof(Bvh::Node, bounds) + sizeof(float[Bvh::kWidth]) * axis;
