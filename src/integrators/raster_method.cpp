@@ -270,7 +270,7 @@ class RasterShader {
     Color reached, total;
     for (int index = 0; index < light.sample_count(); ++index) {
       LightSample sample;
-      if (!light.illuminate_sample(p, index, jitter.at(p, e, index), sample)) continue;
+      if (!illuminate_cell(light, p, e, index, jitter, sample)) continue;
       total += sample.intensity;
       if (dot(normal, sample.direction) <= 0)
         continue;  // behind the face: this part of the light is not seen

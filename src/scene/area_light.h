@@ -21,6 +21,7 @@ class AreaLight final : public Light {
   AreaLight(const Vec3& corner, const Vec3& edge_u, const Vec3& edge_v, const Color& exitance, int samples,
             bool two_sided);
   bool illuminate(const Vec3& point, LightSample& sample) const override;
+  bool stratified() const override { return true; }
   bool illuminate_sample(const Vec3& point, int index, const Vec2& within,
                          LightSample& sample) const override;
   int sample_count() const override { return samples_ * samples_; }

@@ -27,7 +27,7 @@ Color direct_irradiance(const Scene& scene, const Vec3& point, const Vec3& norma
     const double sample_count = light.sample_count();
     for (int index = 0; index < light.sample_count(); ++index) {  // an area light's samples²
       LightSample sample;
-      if (!light.illuminate_sample(point, index, jitter.at(point, e, index), sample)) continue;
+      if (!illuminate_cell(light, point, e, index, jitter, sample)) continue;
       const double cosine = dot(normal, sample.direction);
       if (!(cosine > 0)) continue;
       Ray shadow;

@@ -25,6 +25,7 @@ class EnvironmentLight final : public Light {
   // The whole sky as the one direction its sampling gives for u = (0.5, 0.5).
   bool illuminate(const Vec3& point, LightSample& sample) const override;
   int sample_count() const override { return samples_ * samples_; }
+  bool stratified() const override { return true; }
   bool illuminate_sample(const Vec3& point, int index, const Vec2& within,
                          LightSample& sample) const override;
   bool illuminate_random(const Vec3& point, const Vec2& u, LightSample& sample) const override;

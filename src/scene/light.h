@@ -82,6 +82,9 @@ class Light {
   // stratification, sample `index` taken at `within` ∈ [0, 1)² of its cell ({0.5, 0.5}: the
   // centre; StratumJitter says where).
   virtual int sample_count() const { return 1; }
+  // Whether illuminate_sample reads `within` (the lights made of many points); the others are
+  // never handed StratumJitter's hash (see illuminate_cell).
+  virtual bool stratified() const { return false; }
   virtual bool illuminate_sample(const Vec3& point, int index, const Vec2& within,
                                  LightSample& sample) const {
     (void)within;
@@ -95,5 +98,14 @@ class Light {
     return illuminate(point, sample);
   }
 };
+
+// Sample `index` of emitter `light_index` for `point`, at the place in its cell `jitter` gives —
+// hashed only for a stratified light: for a point light the hash cost as much as the rest of its
+// sample (the Whitted two-mirror scene spent some 5 % of its time there).
+inline bool illuminate_cell(const Light& light, const Vec3& point, std::size_t light_index, int index,
+                            const StratumJitter& jitter, LightSample& sample) {
+  const Vec2 within = light.stratified() ? jitter.at(point, light_index, index) : Vec2{0.5, 0.5};
+  return light.illuminate_sample(point, index, within, sample);
+}
 
 }  // namespace candela

@@ -151,5 +151,32 @@ TEST(Lights, RandomSamplesOfSurfacesAndTheSkyCarryTheirDensity) {
   EXPECT_EQ(sample.pdf, 0);  // no ray can hit it
 }
 
+// illuminate_cell hashes the sample's place in its cell only for the lights that say they read it
+// (stratified()): every light whose samples move with `within` must say so, or it would lose its
+// jitter; the point-like ones, handed the centre instead, give the same sample either way.
+TEST(Lights, OnlyTheStratifiedLightsReadWhereInTheCellTheSampleIs) {
+  const PointLight point({0, 3, 0}, Color(1), Attenuation{});
+  const SpotLight spot({0, 3, 0}, {0, -1, 0}, Color(2), 40, 30, 0, Attenuation{});
+  const DirectionalLight sun({1, -2, 0.5}, Color(0.7));
+  const AreaLight area({-0.5, 3, -0.25}, {1, 0, 0}, {0, 0, 0.5}, Color(4), 2, true);
+  const Quad quad({-1, 3, -1}, {2, 0, 0}, {0, 0, 1.5});
+  const SurfaceLight surface("lamp", {&quad}, Color(1.5), 2);
+  ConstantEnvironment sky_color(Color(0.8, 0.6, 0.4));
+  const EnvironmentLight sky(sky_color, 2);
+  const Light* lights[] = {&point, &spot, &sun, &area, &surface, &sky};
+  const Vec3 at{0.1, 0, 0.2};
+  for (const Light* light : lights) {
+    bool moves = false;
+    for (int index = 0; index < light->sample_count(); ++index) {
+      LightSample low, high;
+      const bool lit_low = light->illuminate_sample(at, index, {0.1, 0.2}, low);
+      const bool lit_high = light->illuminate_sample(at, index, {0.9, 0.7}, high);
+      moves =
+          moves || lit_low != lit_high || low.direction != high.direction || low.distance != high.distance;
+    }
+    EXPECT_EQ(moves, light->stratified()) << light->type_name();
+  }
+}
+
 }  // namespace
 }  // namespace candela

@@ -34,6 +34,7 @@ class LuminaireLight final : public Light {
                  int samples = 1);
   bool illuminate(const Vec3& point, LightSample& sample) const override;
   int sample_count() const override { return samples_ * samples_; }
+  bool stratified() const override { return true; }
   bool illuminate_sample(const Vec3& point, int index, const Vec2& within,
                          LightSample& sample) const override;
   bool illuminate_random(const Vec3& point, const Vec2& u, LightSample& sample) const override;
