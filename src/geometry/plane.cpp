@@ -40,6 +40,11 @@ bool Plane::occluded(const Ray& ray) const {
   return nearest_t(ray) < kInfinity;
 }
 
+bool Plane::hit_distance(const Ray& ray, double& t) const {
+  t = nearest_t(ray);
+  return t < kInfinity;
+}
+
 Bounds3 Plane::bounds() const {
   return {Vec3{-kInfinity, -kInfinity, -kInfinity}, Vec3{kInfinity, kInfinity, kInfinity}};
 }

@@ -14,6 +14,7 @@ class Plane final : public Shape {
 
   bool intersect(const Ray& ray, SurfaceHit& hit) const override;
   bool occluded(const Ray& ray) const override;
+  bool hit_distance(const Ray& ray, double& t) const override;
   Bounds3 bounds() const override;
   std::string_view type_name() const override { return "plane"; }
   // The convex polygon (3 to 6 vertices) where the plane meets settings.clip, found on the

@@ -2,9 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <memory>
 
 #include "geometry/transformed_shape.h"
+#include "math/constants.h"
 #include "math/transform.h"
 #include "shape_test_support.h"
 
@@ -114,6 +118,32 @@ TEST(Plane, TransformedPlane) {
   EXPECT_NEAR(hit.position.y, 3.0, 1e-12);
   EXPECT_NEAR(hit.geometric_normal.y, -1.0, 1e-12);
   EXPECT_FALSE(plane.intersect(make_ray({2, 10, 1}, {1, 0, 0}), hit));
+}
+
+// hit_distance (what the accelerators ask of every plane on every ray) is intersect's t bit for
+// bit, and false exactly when intersect is; a transformed plane answers through the default.
+TEST(Plane, HitDistanceIsIntersectsDistance) {
+  const Plane plane({0.3, -0.2, 0.7}, {0.2, 1, -0.4});
+  const TransformedShape moved(std::make_unique<Plane>(Vec3{0, 0, 0}, Vec3{0, 0, 1}),
+                               Transform::rotate(30, {1, 1, 0}) * Transform::translate({0, 0, 0.5}));
+  int hits = 0;
+  for (int i = 0; i < 400; ++i) {
+    const double a = 0.37 * i, b = 0.11 * i;
+    Ray ray = make_ray({std::sin(a) * 3, std::cos(b) * 2, std::sin(a + b)},
+                       {std::cos(a) * std::sin(b), std::sin(a) * std::sin(b), std::cos(b)});
+    ray.t_min = (i % 3) * 0.25;
+    ray.t_max = i % 5 ? kInfinity : 2.0;
+    for (const Shape* shape : {static_cast<const Shape*>(&plane), static_cast<const Shape*>(&moved)}) {
+      SurfaceHit hit;
+      double t = -1;
+      const bool intersected = shape->intersect(ray, hit);
+      ASSERT_EQ(shape->hit_distance(ray, t), intersected) << i;
+      if (!intersected) continue;
+      ++hits;
+      EXPECT_EQ(std::bit_cast<uint64_t>(t), std::bit_cast<uint64_t>(hit.t)) << i;
+    }
+  }
+  EXPECT_GT(hits, 200);
 }
 
 }  // namespace

@@ -46,6 +46,16 @@ class Shape {
     return intersect(ray, hit);
   }
 
+  // The t intersect would report, bit for bit, without filling a hit: the accelerators test the
+  // unbounded shapes (planes) on every ray and fill the hit of the nearest one only if nothing
+  // closer turns up.
+  virtual bool hit_distance(const Ray& ray, double& t) const {
+    SurfaceHit hit;
+    if (!intersect(ray, hit)) return false;
+    t = hit.t;
+    return true;
+  }
+
   // World-space bounds; unbounded shapes (plane) return infinite bounds.
   virtual Bounds3 bounds() const = 0;
 
