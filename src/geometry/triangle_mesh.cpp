@@ -10,7 +10,6 @@
 
 #include "geometry/tessellation.h"
 #include "math/constants.h"
-#include "math/lanes.h"
 #include "util/hash.h"
 
 // The watertight test relies on every edge function a*b - c*d being rounded term by term:
@@ -178,32 +177,6 @@ void compute_corner_normals(TriangleMesh& mesh, double crease_angle_degrees) {
 
 // ---------------------------------------------------------------------------------------------
 // The watertight test
-
-WatertightRay::WatertightRay(const Ray& ray) : origin(ray.origin), t_min(ray.t_min), t_max(ray.t_max) {
-  // The dominant direction axis becomes z; swapping x and y when it points down keeps the
-  // winding (the test is two-sided, so this only matters for bit-identical edge values).
-  // Without branches: the axes change from ray to ray, and the accelerators make this for
-  // every ray, so branches on them would often be mispredicted. kz is
-  // max_dimension(abs(direction)): the axis of the largest magnitude, the later on a tie.
-  const Vec3 magnitude = abs(ray.direction);
-  const int x_over_y = magnitude.x > magnitude.y, x_over_z = magnitude.x > magnitude.z,
-            y_over_z = magnitude.y > magnitude.z;
-  kz = x_over_y * 2 * (1 - x_over_z) + (1 - x_over_y) * (2 - y_over_z);
-  static constexpr int kNext[3] = {1, 2, 0};
-  kx = kNext[kz];
-  ky = kNext[kx];
-  const double direction[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
-  const int swap = (kx ^ ky) & -static_cast<int>(direction[kz] < 0);
-  kx ^= swap;
-  ky ^= swap;
-  // Shear so that the ray becomes the +z axis (the z scale is applied later, only for t).
-  // The three quotients in one vector division (each lane rounded as its scalar division).
-  const Double4 numerator = {direction[kx], direction[ky], 1.0, 1.0};
-  const Double4 quotient = numerator / direction[kz];
-  sx = quotient[0];
-  sy = quotient[1];
-  sz = quotient[2];
-}
 
 bool WatertightRay::edges(const Vec3& p0, const Vec3& p1, const Vec3& p2, double& u, double& v, double& w,
                           double& det) const {

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "geometry/shape.h"
+#include "math/lanes.h"
 #include "math/transform.h"
 
 namespace candela {
@@ -98,6 +99,9 @@ struct WatertightRay {
   double sx, sy, sz;
   double t_min, t_max;
 
+  // Inline (below): the accelerators make one per ray, and the call cost as much as the
+  // arithmetic; it has only divisions and comparisons, nothing a target with FMA could contract,
+  // so the BVH's AVX2 and AVX-512 copies compute the same bits.
   explicit WatertightRay(const Ray& ray);
   // Edge functions u, v, w (weights of p0, p1, p2 times det) and det = u + v + w; false when
   // the ray misses the triangle's interior (or is edge-on).
@@ -109,6 +113,32 @@ struct WatertightRay {
   // left as it was): exactly intersect_triangle's result for the ray this was made from.
   bool intersect(const Vec3& p0, const Vec3& p1, const Vec3& p2, TriangleIntersection& result) const;
 };
+
+inline WatertightRay::WatertightRay(const Ray& ray) : origin(ray.origin), t_min(ray.t_min), t_max(ray.t_max) {
+  // The dominant direction axis becomes z; swapping x and y when it points down keeps the
+  // winding (the test is two-sided, so this only matters for bit-identical edge values).
+  // Without branches: the axes change from ray to ray, and the accelerators make this for
+  // every ray, so branches on them would often be mispredicted. kz is
+  // max_dimension(abs(direction)): the axis of the largest magnitude, the later on a tie.
+  const Vec3 magnitude = abs(ray.direction);
+  const int x_over_y = magnitude.x > magnitude.y, x_over_z = magnitude.x > magnitude.z,
+            y_over_z = magnitude.y > magnitude.z;
+  kz = x_over_y * 2 * (1 - x_over_z) + (1 - x_over_y) * (2 - y_over_z);
+  static constexpr int kNext[3] = {1, 2, 0};
+  kx = kNext[kz];
+  ky = kNext[kx];
+  const double direction[3] = {ray.direction.x, ray.direction.y, ray.direction.z};
+  const int swap = (kx ^ ky) & -static_cast<int>(direction[kz] < 0);
+  kx ^= swap;
+  ky ^= swap;
+  // Shear so that the ray becomes the +z axis (the z scale is applied later, only for t).
+  // The three quotients in one vector division (each lane rounded as its scalar division).
+  const Double4 numerator = {direction[kx], direction[ky], 1.0, 1.0};
+  const Double4 quotient = numerator / direction[kz];
+  sx = quotient[0];
+  sy = quotient[1];
+  sz = quotient[2];
+}
 
 class MeshTriangle final : public Shape {
  public:
