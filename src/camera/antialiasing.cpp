@@ -60,6 +60,13 @@ bool exceeds(const Color& threshold, const Color& c00, const Color& c10, const C
 // pixel, own weight a (1 for a point sample, the area for a leaf square).
 using SampleSink = std::function<void(double dx, double dy, double a, const Color& value)>;
 
+// Where a pixel's samples go: the film, the filter and the pixel.
+struct PixelSplat {
+  SplatFilm& film;
+  const PixelFilter& filter;
+  int x, y;
+};
+
 // none, uniform, jittered: each pixel alone, from its own random stream.
 class PointSampler {
  public:
@@ -263,7 +270,9 @@ SamplingResult sample_image(const AntialiasingSettings& settings, uint64_t seed,
   };
   const bool lattice_mode =
       settings.mode == AntialiasingMode::corners || settings.mode == AntialiasingMode::adaptive;
-  const PointSampler points(settings, seed, counted);
+  // The point sampler traces samples_per_pixel() rays a pixel, counted per tile below; the
+  // lattice's samples, shared between pixels, are counted as they are traced.
+  const PointSampler points(settings, seed, radiance);
   std::unique_ptr<LatticeSampler> lattice;
   if (lattice_mode)
     lattice = std::make_unique<LatticeSampler>(settings, seed, region, target, sampled, counted);
@@ -289,10 +298,14 @@ SamplingResult sample_image(const AntialiasingSettings& settings, uint64_t seed,
       if (cancel_requested()) return;  // Ctrl-C: the tiles not begun stay black
       const int64_t index = members[member];
       const PixelBox tile = tiles.at(index, sampled);
+      uint64_t tile_traced = 0;
       for (int y = tile.y0; y < tile.y1; ++y)
         for (int x = tile.x0; x < tile.x1; ++x) {
-          const SampleSink emit = [&](double dx, double dy, double a, const Color& value) {
-            whole.splat(*filter, x, y, dx, dy, a, value);
+          // One pointer captured, which std::function keeps inline: capturing the four by reference
+          // made it allocate once a pixel.
+          const PixelSplat here{whole, *filter, x, y};
+          const SampleSink emit = [&here](double dx, double dy, double a, const Color& value) {
+            here.film.splat(here.filter, here.x, here.y, dx, dy, a, value);
           };
           const bool counted_here = target.contains(x, y);
           const std::size_t pixel =
@@ -302,10 +315,12 @@ SamplingResult sample_image(const AntialiasingSettings& settings, uint64_t seed,
             if (counted_here) result.samples_per_pixel[pixel] = used;
           } else {
             points.pixel(x, y, emit);
+            tile_traced += points.samples_per_pixel();
             if (counted_here)
               result.samples_per_pixel[pixel] = result.traced_per_pixel[pixel] = points.samples_per_pixel();
           }
         }
+      traced.fetch_add(tile_traced, std::memory_order_relaxed);
       tile_finished[static_cast<std::size_t>(index)] = 1;
       if (tile_done) tile_done();
     });

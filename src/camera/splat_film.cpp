@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
+#include <new>
 
 namespace candela {
 
@@ -16,8 +18,11 @@ int filter_reach(const PixelFilter& filter) {
   return std::max(0, static_cast<int>(std::ceil(filter.radius() + 0.5)) - 1);
 }
 
-SplatFilm::SplatFilm(const PixelBox& box)
-    : box_(box.empty() ? PixelBox{} : box), pixels_(std::size_t(box_.width()) * box_.height()) {}
+SplatFilm::SplatFilm(const PixelBox& box) : box_(box.empty() ? PixelBox{} : box) {
+  const std::size_t count = std::max<std::size_t>(std::size_t(box_.width()) * box_.height(), 1);
+  pixels_.reset(static_cast<Sums*>(std::calloc(count, sizeof(Sums))));
+  if (!pixels_) throw std::bad_alloc();
+}
 
 void SplatFilm::splat(const PixelFilter& filter, int px, int py, double dx, double dy, double a,
                       const Color& value) {
