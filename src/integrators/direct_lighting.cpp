@@ -108,8 +108,7 @@ Color local_illumination(const Scene& scene, const Intersection& hit, const Surf
     // Each of the light's samples (one, or an area light's samples²) with its own shadow ray.
     for (int index = 0; index < light.sample_count(); ++index) {
       LightSample sample;
-      if (!illuminate_cell(light, surface.position, e, index, jitter, sample))
-        continue;
+      if (!illuminate_cell(light, surface.position, e, index, jitter, sample)) continue;
       // 001's I_lum: only where N·L > 0; a light behind the surface itself casts no light on it —
       // behind the facet, unless the facet stands for a smooth surface whose shading normal faces
       // the light: then the shadow ray from the lifted point decides (no stepped terminator).
