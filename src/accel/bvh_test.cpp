@@ -11,9 +11,11 @@
 #include "accel/primitive_list.h"
 #include "geometry/plane.h"
 #include "geometry/sphere.h"
+#include "geometry/transformed_shape.h"
 #include "geometry/triangle_mesh.h"
 #include "math/constants.h"
 #include "math/pcg32.h"
+#include "math/transform.h"
 
 namespace candela {
 namespace {
@@ -331,6 +333,11 @@ TEST(Bvh, PlanesAndBoundedPrimitives) {
   for (int i = 0; i < 200; ++i)
     scene.add(std::make_unique<Sphere>(random_in(rng, {{-8, -8, -8}, {8, 8, 8}}), 0.4));
   scene.add(std::make_unique<Plane>(Vec3{0, -8, 0}, Vec3{0, 1, 0}));  // a duplicate plane
+  // A transformed plane: its t_max test is in its own (scaled) coordinates, so a second intersect
+  // under next_up(t) may refuse the hit its first found.
+  scene.add(
+      std::make_unique<TransformedShape>(std::make_unique<Plane>(Vec3{0, 0, 0}, Vec3{1, 0, 0.2}),
+                                         Transform::translate({8.5, 0, 0}) * Transform::scale({3, 3, 3})));
   const Agreement agreement = expect_same_as_list(scene, random_rays(rng, scene.bounds(), 3000));
   EXPECT_GT(agreement.hits, 1500);
 
@@ -338,8 +345,49 @@ TEST(Bvh, PlanesAndBoundedPrimitives) {
   bvh.build(scene.primitives);
   for (const auto& [name, value] : bvh.report().figures)
     if (name == "unbounded primitives") {
-      EXPECT_EQ(value, 3);
+      EXPECT_EQ(value, 4);
     }
+}
+
+// A plane's hit, filled at the end of the traversal, goes into a fresh hit: an Intersection
+// reused after a smooth mesh's hit keeps none of that mesh's interpolated-normal flag and
+// terminator lifts.
+TEST(Bvh, APlaneHitInAReusedIntersectionIsFreshlyFilled) {
+  TestScene scene;
+  auto mesh = tessellated_sphere(12, 24, 1.0);
+  mesh->corner_normals.clear();
+  for (const auto& triangle : mesh->triangles)
+    mesh->corner_normals.push_back({normalize(mesh->positions[triangle[0]]),
+                                    normalize(mesh->positions[triangle[1]]),
+                                    normalize(mesh->positions[triangle[2]])});
+  scene.add_mesh(mesh);
+  scene.add(std::make_unique<Plane>(Vec3{0, -3, 0}, Vec3{0, 1, 0}));
+  Bvh bvh;
+  bvh.build(scene.primitives);
+  Intersection reused;
+  int lifted = 0;
+  for (int i = 0; i < 64; ++i) {
+    const double angle = 0.1 * i;
+    Ray to_mesh;  // grazing the smooth sphere, where the lifts are largest
+    to_mesh.origin = {4 * std::cos(angle), 0.95 * std::sin(3 * angle), 4 * std::sin(angle)};
+    to_mesh.direction = normalize(Vec3{0, 0.1, 0} - to_mesh.origin);
+    ASSERT_TRUE(bvh.intersect(to_mesh, reused));
+    ASSERT_TRUE(reused.surface.interpolated_normal);
+    if (length(reused.surface.terminator_lift_outside) + length(reused.surface.terminator_lift_inside) > 0)
+      ++lifted;
+    Ray to_plane;
+    to_plane.origin = {5 + std::cos(angle), 0, std::sin(angle)};
+    to_plane.direction = normalize(Vec3{0.1 * std::sin(angle), -1, 0.2});
+    Intersection fresh;
+    ASSERT_TRUE(bvh.intersect(to_plane, fresh));
+    ASSERT_TRUE(bvh.intersect(to_plane, reused));
+    EXPECT_EQ(reused.primitive, fresh.primitive);
+    EXPECT_EQ(reused.surface.t, fresh.surface.t);
+    EXPECT_FALSE(reused.surface.interpolated_normal) << i;
+    EXPECT_EQ(reused.surface.terminator_lift_outside, Vec3{}) << i;
+    EXPECT_EQ(reused.surface.terminator_lift_inside, Vec3{}) << i;
+  }
+  EXPECT_GT(lifted, 10);
 }
 
 TEST(Bvh, OnlyPlanes) {
