@@ -32,6 +32,7 @@ class DirectionalLight final : public Light {
     return true;
   }
   int sample_count() const override { return samples_ * samples_; }
+  bool stratified() const override { return disc_; }  // the disc's samples move in their cells
   bool illuminate_sample(const Vec3&, int index, const Vec2& within, LightSample& sample) const override {
     if (!disc_) return index == 0 && illuminate({}, sample);
     sample = {toward(stratum_point(index, samples_, within)), kInfinity,

@@ -158,12 +158,13 @@ TEST(Lights, OnlyTheStratifiedLightsReadWhereInTheCellTheSampleIs) {
   const PointLight point({0, 3, 0}, Color(1), Attenuation{});
   const SpotLight spot({0, 3, 0}, {0, -1, 0}, Color(2), 40, 30, 0, Attenuation{});
   const DirectionalLight sun({1, -2, 0.5}, Color(0.7));
+  const DirectionalLight sun_disc({1, -2, 0.5}, Color(0.7), "sun", 0.02, 2);  // an angular diameter
   const AreaLight area({-0.5, 3, -0.25}, {1, 0, 0}, {0, 0, 0.5}, Color(4), 2, true);
   const Quad quad({-1, 3, -1}, {2, 0, 0}, {0, 0, 1.5});
   const SurfaceLight surface("lamp", {&quad}, Color(1.5), 2);
   ConstantEnvironment sky_color(Color(0.8, 0.6, 0.4));
   const EnvironmentLight sky(sky_color, 2);
-  const Light* lights[] = {&point, &spot, &sun, &area, &surface, &sky};
+  const Light* lights[] = {&point, &spot, &sun, &sun_disc, &area, &surface, &sky};
   const Vec3 at{0.1, 0, 0.2};
   for (const Light* light : lights) {
     bool moves = false;
