@@ -82,8 +82,10 @@ class Light {
   // stratification, sample `index` taken at `within` ∈ [0, 1)² of its cell ({0.5, 0.5}: the
   // centre; StratumJitter says where).
   virtual int sample_count() const { return 1; }
-  // Whether illuminate_sample reads `within` (the lights made of many points); the others are
-  // never handed StratumJitter's hash (see illuminate_cell).
+  // Whether illuminate_sample reads `within` (the lights made of many points or directions: area,
+  // surface, environment, luminaire with a size, the sun's disc); the others are never handed
+  // StratumJitter's hash (see illuminate_cell). A light that overrides illuminate_sample and
+  // reads `within` must say so, or its samples stay at the cells' centres.
   virtual bool stratified() const { return false; }
   virtual bool illuminate_sample(const Vec3& point, int index, const Vec2& within,
                                  LightSample& sample) const {
