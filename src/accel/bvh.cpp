@@ -107,7 +107,14 @@ enum class Kind : uint8_t { unbounded, shape, triangle, never_hit };
 //   NaN, which _mm_max_ps / _mm_min_ps (second operand on NaN) ignore.
 // Other rays (never made by the renderer) test every primitive (intersect_all_slots).
 struct SlabSetup {
-  // Lanes x, y, z (the fourth unused).
+  // The proof's w for a float of magnitude |x|, lane by lane or for one float: the step that
+  // moves fl(v) past the double v it was rounded from, in either direction.
+  template <class T>
+  [[gnu::always_inline]] static T outward_step(const T& magnitude) {
+    return magnitude * 0x1p-22f + 0x1p-126f;
+  }
+
+  // Lanes x, y, z (the origins' fourth lane moves t_hi, read as t1; the reciprocals' is unused).
   Float4 origin_near, origin_far;
   Float4 inverse_near, inverse_far;
   std::size_t near_offset[3], far_offset[3];  // byte offsets of the rows in a Node
@@ -138,12 +145,12 @@ struct SlabSetup {
     inverse_near = s * (inverse * (1.0f - 0x1p-21f));
     inverse_far = s * (inverse * (1.0f + 0x1p-21f));
     const auto magnitude = (Float4)((Int32x4)origin & std::numeric_limits<int32_t>::max());
-    const Float4 step = s * (magnitude * 0x1p-22f + 0x1p-126f);
+    const Float4 step = s * outward_step(magnitude);
     origin_near = origin + step;
     origin_far = origin - step;
     t1 = origin_near[3];  // t_hi + its step: rounded up (+inf stays +inf)
     const auto low = static_cast<float>(t_lo);
-    t0 = low - (std::fabs(low) * 0x1p-22f + 0x1p-126f);
+    t0 = low - outward_step(std::fabs(low));
     margin = std::max(0.0f, -low) * 0x1p-16f + 2e-35f;
     constexpr std::size_t kUpperRows = sizeof(float[Bvh::kWidth]) * 3;
     for (int axis = 0; axis < 3; ++axis) {
