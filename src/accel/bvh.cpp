@@ -190,10 +190,16 @@ struct FloatSlabs;
 // sz G / det with G = u a0 + v a1 + w a2 and a_i = p_i[kz] − (o + t_min d)[kz], each vertex's
 // offset along kz from the ray's point at t_min. The float a_i = (p_i[kz] − fl(o[kz])) −
 // fl(t_min d[kz]) is off by at most alpha = 2^-20 (S + |t_min d[kz]| + A), A the largest |float
-// a_i| (five roundings of values below S, |t_min d[kz]| or A, each 2^-24: a factor 4 spare);
+// a_i| (six roundings — vertex, origin, difference, t_min d[kz] in double and in float, the last
+// difference — of values below S, |t_min d[kz]| or A, 2^-24 each: a spare of 8 or more; the
+// 1e-30 in alpha covers their absolute errors below float's normal range);
 // with |u − float u| <= E (and the same for v, w), the float G is off by at most alpha Σ|u| +
-// 3 E (A + alpha) + 2^-22 A Σ|u| (its own roundings) <= B = 2 alpha Σ|u| + 6 E (A + alpha), and
-// the double test's own roundings (2^-50 of the same terms) are inside the spare. det's sign is
+// 3 E (A + alpha) + 2^-22 A Σ|u| (its own roundings, in the normal range) <= B = 2 alpha Σ|u| +
+// 6 E (A + alpha) + 2^-126, the last term for G's products and sums below the normal range
+// (2^-150 each: B itself could round to 0 there while G is −2^-149; a review's one-triangle
+// scene at 2^-45 showed it), and the double test's own roundings (2^-50 of the same terms) are
+// inside the spare. A G that overflowed (±inf, or NaN) is never used: B need not (a review's
+// scene at 2^47 had u a0 = −inf under a finite B). det's sign is
 // known only when one weight is beyond E (the exact ones then share its sign, or the exact test
 // rejects): such a lane with sign(d[kz]) sign(det) G < −B has t < t_min for the exact test too,
 // and is rejected. Shadow rays leave their own triangle at t ~ 0, and a ray's t_min (1e-4 of
@@ -225,9 +231,10 @@ struct FloatShear {
       c3 = _mm_set1_ps(std::numeric_limits<float>::infinity());
     }
     // The t_min test only where it can reject something near the origin: B >= 2^-19 S |det|
-    // (alpha >= 2^-20 S) while |G| = |t − t_min| |d[kz]| |det|, so with |t_min d[kz]| below
-    // 2^-18 S (t_min 0, or a tiny offset) the triangles a ray starts on are never rejected and
-    // the test is skipped (incoherent occlusion with it: 1 % slower, nothing saved).
+    // (alpha >= 2^-20 S) while |G| = |t − t_min| |d[kz]| |det|, so a rejection needs |t − t_min|
+    // |d[kz]| > 2^-19 S, and with |t_min d[kz]| below 2^-18 S (t_min 0, or a tiny offset) the
+    // triangles a ray starts on are seldom rejected: the test is skipped (incoherent occlusion
+    // with it: 1 % slower, nothing saved).
     const double offset = direction ? ray.t_min * (*direction)[kz] : 0.0;
     test_t_min = std::fabs(offset) > 0x1p-18 * scale && std::fabs(offset) <= 1e30 && scale <= 1e15;
     if (test_t_min) {
@@ -273,12 +280,15 @@ struct FloatShear {
         _mm_add_ps(_mm_add_ps(_mm_and_ps(u, abs_mask), _mm_and_ps(v, abs_mask)), _mm_and_ps(w, abs_mask));
     const __m128 alpha = _mm_add_ps(near_alpha, _mm_mul_ps(_mm_set1_ps(0x1p-20f), largest_a));
     const __m128 bound =
-        _mm_add_ps(_mm_mul_ps(_mm_add_ps(alpha, alpha), weights),
-                   _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(6.0f), e), _mm_add_ps(largest_a, alpha)));
+        _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_add_ps(alpha, alpha), weights),
+                              _mm_mul_ps(_mm_mul_ps(_mm_set1_ps(6.0f), e), _mm_add_ps(largest_a, alpha))),
+                   _mm_set1_ps(0x1p-126f));
     // sign(d[kz]) sign(det) G: det is negative where a weight is below −E.
     const __m128 signed_g = _mm_xor_ps(g, _mm_xor_ps(direction_sign, _mm_and_ps(negative, sign_mask)));
-    const __m128 before =
-        _mm_and_ps(_mm_or_ps(negative, positive), _mm_cmplt_ps(signed_g, _mm_xor_ps(bound, sign_mask)));
+    const __m128 finite =
+        _mm_cmplt_ps(_mm_and_ps(g, abs_mask), _mm_set1_ps(std::numeric_limits<float>::infinity()));
+    const __m128 before = _mm_and_ps(_mm_and_ps(_mm_or_ps(negative, positive), finite),
+                                     _mm_cmplt_ps(signed_g, _mm_xor_ps(bound, sign_mask)));
     return kept & ~_mm_movemask_ps(before);
   }
 };

@@ -704,6 +704,42 @@ TEST(Bvh, ShadowRaysFromASurfaceAndTMinNearAHitGiveTheListsAnswers) {
   EXPECT_GE(tested, 1);
 }
 
+// The t_min pre-test at the ends of float's range (a review's counterexamples): one triangle
+// hit just past t_min, seen from the origin along +z, where the float G underflows to −2^-149
+// while its bound rounded to 0 (scale 2^-45), or overflows to −inf under a finite bound (scale
+// 2^47). Both were rejected before the bound's 2^-126 floor and the finite-G condition; the
+// exact test (and the list) says the ray is occluded.
+TEST(Bvh, TheTMinPreTestKeepsAHitWhereItsFloatsUnderflowOrOverflow) {
+  struct Case {
+    double r, t_min, s, z0, z1, z2;
+  };
+  for (const Case& c : {Case{0x1p-45, 0x1p-50, 0x1p-60, -1.625, 1.375, 0.375},
+                        Case{0x1p47, 0x1p40, 0x1p33, -1.5, 0.875, 0.875}}) {
+    auto mesh = std::make_shared<TriangleMesh>();
+    mesh->positions = {{-c.r, -c.r, c.t_min + c.z0 * c.s},
+                       {0, 2 * c.r, c.t_min + c.z1 * c.s},
+                       {c.r, -c.r, c.t_min + c.z2 * c.s}};
+    mesh->triangles = {{0, 1, 2}};
+    TestScene scene;
+    scene.add_mesh(mesh);
+    Ray ray;
+    ray.origin = {0, 0, 0};
+    ray.direction = {0, 0, 1};
+    ray.t_min = c.t_min;
+    PrimitiveList list;
+    list.build(scene.primitives);
+    ASSERT_TRUE(list.occluded(ray)) << "scale " << c.r;
+    for (BvhIsa isa : {BvhIsa::sse, BvhIsa::avx2, BvhIsa::avx512}) {
+      if (static_cast<int>(isa) > static_cast<int>(widest_bvh_isa())) continue;
+      BvhSettings settings;
+      settings.isa = isa;
+      Bvh bvh(settings);
+      bvh.build(scene.primitives);
+      EXPECT_TRUE(bvh.occluded(ray)) << "scale " << c.r << ", " << kBvhIsaNames.name(isa);
+    }
+  }
+}
+
 TEST(Bvh, AnInstructionSetTheCpuLacksIsRefused) {
   BvhSettings settings;
   settings.isa = BvhIsa::avx512;
