@@ -199,11 +199,11 @@ struct FloatSlabs;
 // (2^-150 each: B itself could round to 0 there while G is −2^-149; a review's one-triangle
 // scene at 2^-45 showed it), and the double test's own roundings (2^-50 of the same terms) are
 // inside the spare. A G that overflowed (±inf, or NaN) is never used: B need not (a review's
-// scene at 2^47 had u a0 = −inf under a finite B). det's sign is
-// known only when one weight is beyond E (the exact ones then share its sign, or the exact test
-// rejects): such a lane with sign(d[kz]) sign(det) G < −B has t < t_min for the exact test too,
-// and is rejected. Shadow rays leave their own triangle at t ~ 0, and a ray's t_min (1e-4 of
-// the scene for the benchmark's shadow set) rejects it here instead of in the exact test.
+// scene at 2^47 had u a0 = −inf under a finite B). det's sign is known only when one weight is
+// beyond E (the exact ones then share its sign, or the exact test rejects): such a lane with
+// sign(d[kz]) sign(det) G < −B has t < t_min for the exact test too, and is rejected. Shadow rays leave their
+// own triangle at t ~ 0, and a ray's t_min (1e-4 of the scene for the benchmark's shadow set) rejects it here
+// instead of in the exact test.
 struct FloatShear {
   __m128 origin[3];
   __m128 sx, sy;
