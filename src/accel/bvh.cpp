@@ -201,9 +201,9 @@ struct FloatSlabs;
 // inside the spare. A G that overflowed (±inf, or NaN) is never used: B need not (a review's
 // scene at 2^47 had u a0 = −inf under a finite B). det's sign is known only when one weight is
 // beyond E (the exact ones then share its sign, or the exact test rejects): such a lane with
-// sign(d[kz]) sign(det) G < −B has t < t_min for the exact test too, and is rejected. Shadow rays leave their
-// own triangle at t ~ 0, and a ray's t_min (1e-4 of the scene for the benchmark's shadow set) rejects it here
-// instead of in the exact test.
+// sign(d[kz]) sign(det) G < −B has t < t_min for the exact test too, and is rejected. Shadow
+// rays leave their own triangle at t ~ 0, and a ray's t_min (1e-4 of the scene for the
+// benchmark's shadow set) rejects it here instead of in the exact test.
 struct FloatShear {
   __m128 origin[3];
   __m128 sx, sy;
