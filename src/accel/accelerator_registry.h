@@ -19,6 +19,9 @@ struct AcceleratorEntry {
   // settings: the scene file's object named after the accelerator; object_volume: what the list
   // tests per scene object first (render.bounding_volume; the other structures bound primitives).
   std::unique_ptr<Accelerator> (*create)(const JsonNode& settings, BoundingVolumeKind object_volume);
+  // Whether it keeps the contract of accel/accelerator.h (the list's hits, to the last bit);
+  // false only for bvh-fast, which trades it for speed (issue 26).
+  bool exact = true;
 };
 
 std::span<const AcceleratorEntry> accelerator_entries();

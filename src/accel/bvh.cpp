@@ -293,6 +293,70 @@ struct FloatShear {
   }
 };
 
+// bvh-fast's triangle test (accel/bvh.h): Möller & Trumbore 1997 in float, four lanes at once,
+// with the determinant's sign folded into the weights as Embree does, so that no division is
+// made for a lane that misses. A lane hits when its weights b1, b2 >= 0, b1 + b2 <= 1 and t_min
+// < t <= t_max; the hits' t, b1 and b2 are left in t, b1, b2 for the caller.
+struct FloatMoller {
+  __m128 origin[3], direction[3];
+  // Rounded outward: the caller tests a hit's t against the ray's own interval in double.
+  float t_min, t_max;  // t_max: the nearest hit's t so far, or the ray's
+  alignas(16) float t[4], b1[4], b2[4];
+
+  explicit FloatMoller(const Ray& ray) : t_min(round_down(ray.t_min)), t_max(round_up(ray.t_max)) {
+    for (int axis = 0; axis < 3; ++axis) {
+      origin[axis] = _mm_set1_ps(static_cast<float>(ray.origin[axis]));
+      direction[axis] = _mm_set1_ps(static_cast<float>(ray.direction[axis]));
+    }
+  }
+
+  template <bool AfterTMin>  // LeafVisitor's interface; t_min is always tested here
+  int candidates(const Bvh::Packet& packet) {
+    __m128 e1[3], e2[3], s[3];
+    for (int axis = 0; axis < 3; ++axis) {
+      const __m128 p0 = _mm_load_ps(packet.p[0][axis]);
+      e1[axis] = _mm_sub_ps(_mm_load_ps(packet.p[1][axis]), p0);
+      e2[axis] = _mm_sub_ps(_mm_load_ps(packet.p[2][axis]), p0);
+      s[axis] = _mm_sub_ps(origin[axis], p0);
+    }
+    const auto cross = [](const __m128* a, const __m128* b, __m128* out) {
+      for (int axis = 0; axis < 3; ++axis) {
+        const int next = (axis + 1) % 3, last = (axis + 2) % 3;
+        out[axis] = _mm_sub_ps(_mm_mul_ps(a[next], b[last]), _mm_mul_ps(a[last], b[next]));
+      }
+    };
+    const auto dot = [](const __m128* a, const __m128* b) {
+      return _mm_add_ps(_mm_add_ps(_mm_mul_ps(a[0], b[0]), _mm_mul_ps(a[1], b[1])), _mm_mul_ps(a[2], b[2]));
+    };
+    __m128 h[3], q[3];
+    cross(direction, e2, h);  // P = D × e2
+    cross(s, e1, q);          // Q = T × e1
+    const __m128 det = dot(e1, h);
+    const __m128 sign = _mm_and_ps(det, _mm_set1_ps(-0.0f));
+    const __m128 magnitude = _mm_xor_ps(det, sign);
+    const __m128 u = _mm_xor_ps(dot(s, h), sign);          // b1 |det|
+    const __m128 v = _mm_xor_ps(dot(direction, q), sign);  // b2 |det|
+    const __m128 distance = _mm_xor_ps(dot(e2, q), sign);  // t |det|
+    const __m128 zero = _mm_setzero_ps();
+    __m128 hit = _mm_and_ps(_mm_cmpge_ps(u, zero), _mm_cmpge_ps(v, zero));
+    hit = _mm_and_ps(hit, _mm_cmple_ps(_mm_add_ps(u, v), magnitude));
+    hit = _mm_and_ps(hit, _mm_cmpgt_ps(distance, _mm_mul_ps(_mm_set1_ps(t_min), magnitude)));
+    hit = _mm_and_ps(hit, _mm_cmple_ps(distance, _mm_mul_ps(_mm_set1_ps(t_max), magnitude)));
+    hit = _mm_and_ps(hit, _mm_cmpgt_ps(magnitude, zero));  // an edge-on triangle is missed
+    // A NaN lane (a shape's, or an overflow) is kept, as the exact pre-test keeps it: LeafVisitor
+    // sends a shape to its own test, and a triangle's NaN t fails the caller's interval test.
+    hit = _mm_or_ps(hit, _mm_cmpunord_ps(magnitude, magnitude));
+    const int mask = _mm_movemask_ps(hit);
+    if (mask != 0) {
+      const __m128 inverse = _mm_div_ps(_mm_set1_ps(1.0f), magnitude);
+      _mm_store_ps(t, _mm_mul_ps(distance, inverse));
+      _mm_store_ps(b1, _mm_mul_ps(u, inverse));
+      _mm_store_ps(b2, _mm_mul_ps(v, inverse));
+    }
+    return mask;
+  }
+};
+
 // The leaf loop shared by the nearest-hit and the any-hit traversal (LeafVisitor<Isa>::visit),
 // defined per instruction set in accel/bvh_traversal.inc: a template defined out here would be
 // compiled for the default target, and the traversal's lambdas (compiled for AVX2 / AVX-512)
@@ -372,7 +436,8 @@ BvhIsa widest_bvh_isa() {
 Bvh::Bvh(const BvhSettings& settings)
     : max_leaf_primitives_(settings.max_leaf_primitives),
       bins_(settings.bins),
-      isa_(settings.isa == BvhIsa::automatic ? widest_bvh_isa() : settings.isa) {
+      isa_(settings.isa == BvhIsa::automatic ? widest_bvh_isa() : settings.isa),
+      exact_(settings.exact) {
   if (static_cast<int>(isa_) > static_cast<int>(widest_bvh_isa()))
     throw std::invalid_argument(std::string("bvh.isa: this CPU does not support ") +
                                 std::string(kBvhIsaNames.name(isa_)) + " (the widest it supports is " +
@@ -667,6 +732,13 @@ bool Bvh::occluded_all_slots(const Ray& ray) const {
 // for SSE2 (every x86-64), for AVX2 and FMA, and for AVX-512, each in its own target region so
 // that only the traversal uses the wider instructions; the constructor picks the widest the CPU
 // has (or bvh.isa).
+// The traversals are member templates (external linkage) whose lambdas capture this file's
+// anonymous-namespace types; they are instantiated here only, so GCC's warning that another
+// file could not name those types does not apply.
+#if !defined(__clang__)  // a GCC warning (clang has no such group)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wsubobject-linkage"
+#endif
 #define CANDELA_BVH_ISA 0
 #include "accel/bvh_traversal.inc"
 #undef CANDELA_BVH_ISA
@@ -695,6 +767,10 @@ CANDELA_TARGET_BEGIN("avx512f,avx512vl,avx512dq,avx512bw,avx2,fma,bmi,bmi2,lzcnt
 #undef CANDELA_BVH_ISA
 CANDELA_TARGET_END
 
+#if !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+
 #undef CANDELA_TARGET_BEGIN
 #undef CANDELA_TARGET_END
 #undef CANDELA_PRAGMA
@@ -702,22 +778,25 @@ CANDELA_TARGET_END
 bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
   switch (isa_) {
     case BvhIsa::avx512:
-      return intersect_tree<2>(ray, intersection);
+      return exact_ ? intersect_tree<true>(IsaTag<2>{}, ray, intersection)
+                    : intersect_tree<false>(IsaTag<2>{}, ray, intersection);
     case BvhIsa::avx2:
-      return intersect_tree<1>(ray, intersection);
+      return exact_ ? intersect_tree<true>(IsaTag<1>{}, ray, intersection)
+                    : intersect_tree<false>(IsaTag<1>{}, ray, intersection);
     default:
-      return intersect_tree<0>(ray, intersection);
+      return exact_ ? intersect_tree<true>(IsaTag<0>{}, ray, intersection)
+                    : intersect_tree<false>(IsaTag<0>{}, ray, intersection);
   }
 }
 
 bool Bvh::occluded_in_tree(const Ray& ray) const {
   switch (isa_) {
     case BvhIsa::avx512:
-      return occluded_tree<2>(ray);
+      return exact_ ? occluded_tree<true>(IsaTag<2>{}, ray) : occluded_tree<false>(IsaTag<2>{}, ray);
     case BvhIsa::avx2:
-      return occluded_tree<1>(ray);
+      return exact_ ? occluded_tree<true>(IsaTag<1>{}, ray) : occluded_tree<false>(IsaTag<1>{}, ray);
     default:
-      return occluded_tree<0>(ray);
+      return exact_ ? occluded_tree<true>(IsaTag<0>{}, ray) : occluded_tree<false>(IsaTag<0>{}, ray);
   }
 }
 

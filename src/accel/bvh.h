@@ -26,6 +26,18 @@
 // out. Rays outside the float test's proven range (huge or non-finite values, tiny direction
 // components) test every primitive instead.
 //
+// bvh-fast (BvhSettings::exact false, issue 26): the same tree, packets and box tests, but a
+// lane's hit is the float Möller–Trumbore test of its packet's vertices (FloatMoller in bvh.cpp,
+// four lanes at once, as Embree's default triangle test) instead of the float pre-test and the
+// exact double test: no shear set-up per ray, no double test per lane. It leaves the contract of
+// accel/accelerator.h: distances differ from the list's in float's last bits (relative 1e-6,
+// more where the ray grazes the triangle), a ray through an edge or a vertex shared by two
+// triangles can pass between them (the test is not watertight), the copies per instruction set
+// may differ in the last bit (the wide ones contract products into fused multiply-adds), and
+// t_min and t_max are compared in float. Shapes still answer through their own tests.
+// docs/accelerators.md shows the image differences; measured at 0.93–1.29 of Embree where the
+// exact bvh runs at 0.69–1.06 (docs/benchmarks.md).
+//
 // Traversal: the children a ray enters are pushed farthest first with their (float, lower
 // bound) entry distances and the nearest is visited; popped entries that start beyond the
 // current nearest hit are skipped. Boxes are tested against [t_min, t] widened by a small
@@ -63,6 +75,8 @@ struct BvhSettings {
   int max_leaf_primitives = 0;
   int bins = 32;  // SAH bins per axis (16 gave a 1 % higher SAH cost on dragon_100k and Igea)
   BvhIsa isa = BvhIsa::automatic;  // automatic: the widest the CPU supports
+  // false: bvh-fast, float Möller–Trumbore leaf tests without the exact contract (see above).
+  bool exact = true;
 };
 
 class Bvh final : public Accelerator {
@@ -72,7 +86,7 @@ class Bvh final : public Accelerator {
   void build(std::span<const Primitive> primitives) override;
   bool intersect(const Ray& ray, Intersection& intersection) const override;
   bool occluded(const Ray& ray) const override;
-  std::string_view name() const override { return "bvh"; }
+  std::string_view name() const override { return exact_ ? "bvh" : "bvh-fast"; }
   // Figures: nodes, leaves, depth, SAH cost, primitives per leaf (mean), unbounded primitives.
   AcceleratorReport report() const override;
 
@@ -113,12 +127,23 @@ class Bvh final : public Accelerator {
   // The exact vertices of a triangle lane.
   void lane_corners(uint32_t packet, int lane, Vec3& p0, Vec3& p1, Vec3& p2) const;
   bool occluded_in_tree(const Ray& ray) const;
-  // The traversal for instruction set Isa (0 SSE, 1 AVX2, 2 AVX-512), specialised per set in
-  // accel/bvh_traversal.inc.
+  // The traversal for one instruction set (Isa 0 SSE, 1 AVX2, 2 AVX-512): an overload per set,
+  // each defined by accel/bvh_traversal.inc inside that set's target region; Exact false is
+  // bvh-fast's leaf test.
   template <int Isa>
-  bool intersect_tree(const Ray& ray, Intersection& intersection) const;
-  template <int Isa>
-  bool occluded_tree(const Ray& ray) const;
+  struct IsaTag {};
+  template <bool Exact>
+  bool intersect_tree(IsaTag<0>, const Ray& ray, Intersection& intersection) const;
+  template <bool Exact>
+  bool intersect_tree(IsaTag<1>, const Ray& ray, Intersection& intersection) const;
+  template <bool Exact>
+  bool intersect_tree(IsaTag<2>, const Ray& ray, Intersection& intersection) const;
+  template <bool Exact>
+  bool occluded_tree(IsaTag<0>, const Ray& ray) const;
+  template <bool Exact>
+  bool occluded_tree(IsaTag<1>, const Ray& ray) const;
+  template <bool Exact>
+  bool occluded_tree(IsaTag<2>, const Ray& ray) const;
   void prefetch_child(uint32_t child, uint32_t count) const;
   void prefetch_corners(uint32_t packet) const;
   // Rays the float slab test is not proven for (huge or non-finite values): every primitive,
@@ -129,6 +154,7 @@ class Bvh final : public Accelerator {
   int max_leaf_primitives_;
   int bins_;
   BvhIsa isa_;
+  bool exact_;
   std::span<const Primitive> primitives_;
   std::vector<Node, BvhAllocator<Node>> nodes_;
   std::vector<Packet, BvhAllocator<Packet>> packets_;

@@ -267,6 +267,15 @@ TEST(BenchRunner, SetAssignmentsReachTheNamedAccelerator) {
   EXPECT_THROW(make_bench_accelerator("bvh", {"bvh.isa=neon"}), InputError);
   EXPECT_THROW(make_bench_accelerator("bvh", {"bvh.leaf=2"}), InputError);
   EXPECT_THROW(make_bench_accelerator("bvh", {"radiosity.patch_size=5"}), InputError);
+  // bvh-fast reads the same keys from its own object.
+  const auto fast =
+      make_bench_accelerator("bvh-fast", {"bvh-fast.isa=sse", "bvh-fast.max_leaf_primitives=64"});
+  ASSERT_NE(fast, nullptr);
+  EXPECT_EQ(fast->name(), "bvh-fast");
+  EXPECT_EQ(figure(*fast, "instruction set"), 1.0);
+  EXPECT_GT(figure(*fast, "primitives per leaf"), 16);
+  EXPECT_EQ(make_bench_accelerator("bvh-fast", settings)->name(), "bvh-fast");  // bvh.* is not its
+  EXPECT_THROW(make_bench_accelerator("bvh-fast", {"bvh-fast.leaf=2"}), InputError);
 }
 
 #ifdef CANDELA_HAVE_EMBREE
