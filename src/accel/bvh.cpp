@@ -173,6 +173,9 @@ struct SlabSetup {
 // accel/bvh_traversal.inc.
 template <int Isa>
 struct FloatSlabs;
+// bvh-fast's box test (no outward rounding; accel/bvh_traversal.inc).
+template <int Isa>
+struct FastSlabs;
 
 // The conservative float pre-test of the watertight triangle test (WatertightRay): the same
 // sheared edge functions u, v, w in float, a lane rejected only when they certainly have mixed
@@ -299,11 +302,13 @@ struct FloatShear {
 // < t <= t_max; the hits' t, b1 and b2 are left in t, b1, b2 for the caller.
 struct FloatMoller {
   __m128 origin[3], direction[3];
-  // Rounded outward: the caller tests a hit's t against the ray's own interval in double.
-  float t_min, t_max;  // t_max: the nearest hit's t so far, or the ray's
+  // Rounded outward, in every lane: the caller tests a hit's t against the ray's own interval in
+  // double.
+  __m128 t_min, t_max;  // t_max: the nearest hit's t so far, or the ray's
   alignas(16) float t[4], b1[4], b2[4];
 
-  explicit FloatMoller(const Ray& ray) : t_min(round_down(ray.t_min)), t_max(round_up(ray.t_max)) {
+  explicit FloatMoller(const Ray& ray)
+      : t_min(_mm_set1_ps(round_down(ray.t_min))), t_max(_mm_set1_ps(round_up(ray.t_max))) {
     for (int axis = 0; axis < 3; ++axis) {
       origin[axis] = _mm_set1_ps(static_cast<float>(ray.origin[axis]));
       direction[axis] = _mm_set1_ps(static_cast<float>(ray.direction[axis]));
@@ -340,8 +345,8 @@ struct FloatMoller {
     const __m128 zero = _mm_setzero_ps();
     __m128 hit = _mm_and_ps(_mm_cmpge_ps(u, zero), _mm_cmpge_ps(v, zero));
     hit = _mm_and_ps(hit, _mm_cmple_ps(_mm_add_ps(u, v), magnitude));
-    hit = _mm_and_ps(hit, _mm_cmpgt_ps(distance, _mm_mul_ps(_mm_set1_ps(t_min), magnitude)));
-    hit = _mm_and_ps(hit, _mm_cmple_ps(distance, _mm_mul_ps(_mm_set1_ps(t_max), magnitude)));
+    hit = _mm_and_ps(hit, _mm_cmpgt_ps(distance, _mm_mul_ps(t_min, magnitude)));
+    hit = _mm_and_ps(hit, _mm_cmple_ps(distance, _mm_mul_ps(t_max, magnitude)));
     hit = _mm_and_ps(hit, _mm_cmpgt_ps(magnitude, zero));  // an edge-on triangle is missed
     // A NaN lane (a shape's, or an overflow) is kept, as the exact pre-test keeps it: LeafVisitor
     // sends a shape to its own test, and a triangle's NaN t fails the caller's interval test.
