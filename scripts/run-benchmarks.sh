@@ -10,7 +10,7 @@ candela="${1:-build/cli/candela}"
 models="${2:-../shared/models}"
 out=docs/bench
 mkdir -p "$out"
-accels=(bvh grid octree embree)
+accels=(bvh bvh-fast grid octree embree)
 common=(--threads 1 2 --repeat 3 --min-time 1 -q)
 
 run() {  # name, arguments...

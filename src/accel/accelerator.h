@@ -3,7 +3,8 @@
 // Contract, so that every accelerator returns the same hit as the brute-force list and images
 // do not depend on the accelerator: a primitive's hit distance depends only on the ray and the
 // primitive (each shape's own exact test); the nearest hit is the smallest t, and among equal t
-// the lowest primitive index (see closer_hit).
+// the lowest primitive index (see closer_hit). One registered accelerator leaves the contract on
+// purpose: bvh-fast (AcceleratorEntry::exact false; accel/bvh.h), float triangle tests for speed.
 #pragma once
 
 #include <cstdint>
