@@ -75,6 +75,10 @@ class Accelerator {
   virtual bool occluded(const Ray& ray) const = 0;
   virtual std::string_view name() const = 0;
   virtual AcceleratorReport report() const { return {}; }
+  // How far, relative to |p|, a ray's own surface at p may seem to lie from p in the hit
+  // distances it reports, beyond the shapes' exact tests: 0 for the exact accelerators; bvh-fast
+  // rounds the vertices and the ray's origin to float. Scene::ray_offset adds this much of |p|.
+  virtual double position_error() const { return 0; }
 };
 
 }  // namespace candela

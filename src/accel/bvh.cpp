@@ -348,8 +348,9 @@ struct FloatMoller {
     hit = _mm_and_ps(hit, _mm_cmpgt_ps(distance, _mm_mul_ps(t_min, magnitude)));
     hit = _mm_and_ps(hit, _mm_cmple_ps(distance, _mm_mul_ps(t_max, magnitude)));
     hit = _mm_and_ps(hit, _mm_cmpgt_ps(magnitude, zero));  // an edge-on triangle is missed
-    // A NaN lane (a shape's, or an overflow) is kept, as the exact pre-test keeps it: LeafVisitor
-    // sends a shape to its own test, and a triangle's NaN t fails the caller's interval test.
+    // A lane whose determinant is NaN (a shape's, whose vertices are NaN, or an overflow) is kept,
+    // as the exact pre-test keeps it: the leaf loop sends a shape to its own test, and a
+    // triangle's NaN t fails the caller's interval test.
     hit = _mm_or_ps(hit, _mm_cmpunord_ps(magnitude, magnitude));
     const int mask = _mm_movemask_ps(hit);
     if (mask != 0) {
@@ -780,28 +781,35 @@ CANDELA_TARGET_END
 #undef CANDELA_TARGET_END
 #undef CANDELA_PRAGMA
 
+// FastSlabs' o / d, with d at least 1e-18: within float's range for |o| and the boxes up to 1e18.
+bool Bvh::fast_for(const Ray& ray) const {
+  return !exact_ && scene_scale_ <= 1e18 && max_abs(ray.origin) <= 1e18;
+}
+
 bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
+  const bool fast = fast_for(ray);
   switch (isa_) {
     case BvhIsa::avx512:
-      return exact_ ? intersect_tree<true>(IsaTag<2>{}, ray, intersection)
-                    : intersect_tree<false>(IsaTag<2>{}, ray, intersection);
+      return fast ? intersect_tree<false>(IsaTag<2>{}, ray, intersection)
+                  : intersect_tree<true>(IsaTag<2>{}, ray, intersection);
     case BvhIsa::avx2:
-      return exact_ ? intersect_tree<true>(IsaTag<1>{}, ray, intersection)
-                    : intersect_tree<false>(IsaTag<1>{}, ray, intersection);
+      return fast ? intersect_tree<false>(IsaTag<1>{}, ray, intersection)
+                  : intersect_tree<true>(IsaTag<1>{}, ray, intersection);
     default:
-      return exact_ ? intersect_tree<true>(IsaTag<0>{}, ray, intersection)
-                    : intersect_tree<false>(IsaTag<0>{}, ray, intersection);
+      return fast ? intersect_tree<false>(IsaTag<0>{}, ray, intersection)
+                  : intersect_tree<true>(IsaTag<0>{}, ray, intersection);
   }
 }
 
 bool Bvh::occluded_in_tree(const Ray& ray) const {
+  const bool fast = fast_for(ray);
   switch (isa_) {
     case BvhIsa::avx512:
-      return exact_ ? occluded_tree<true>(IsaTag<2>{}, ray) : occluded_tree<false>(IsaTag<2>{}, ray);
+      return fast ? occluded_tree<false>(IsaTag<2>{}, ray) : occluded_tree<true>(IsaTag<2>{}, ray);
     case BvhIsa::avx2:
-      return exact_ ? occluded_tree<true>(IsaTag<1>{}, ray) : occluded_tree<false>(IsaTag<1>{}, ray);
+      return fast ? occluded_tree<false>(IsaTag<1>{}, ray) : occluded_tree<true>(IsaTag<1>{}, ray);
     default:
-      return exact_ ? occluded_tree<true>(IsaTag<0>{}, ray) : occluded_tree<false>(IsaTag<0>{}, ray);
+      return fast ? occluded_tree<false>(IsaTag<0>{}, ray) : occluded_tree<true>(IsaTag<0>{}, ray);
   }
 }
 

@@ -26,17 +26,22 @@
 // out. Rays outside the float test's proven range (huge or non-finite values, tiny direction
 // components) test every primitive instead.
 //
-// bvh-fast (BvhSettings::exact false, issue 26): the same tree, packets and box tests, but a
-// lane's hit is the float Möller–Trumbore test of its packet's vertices (FloatMoller in bvh.cpp,
-// four lanes at once, as Embree's default triangle test) instead of the float pre-test and the
-// exact double test: no shear set-up per ray, no double test per lane. It leaves the contract of
-// accel/accelerator.h: distances differ from the list's in float's last bits (relative 1e-6,
-// more where the ray grazes the triangle), a ray through an edge or a vertex shared by two
-// triangles can pass between them (the test is not watertight), the copies per instruction set
-// may differ in the last bit (the wide ones contract products into fused multiply-adds), and
-// t_min and t_max are compared in float. Shapes still answer through their own tests.
-// docs/accelerators.md shows the image differences; measured at 0.93–1.29 of Embree where the
-// exact bvh runs at 0.69–1.06 (docs/benchmarks.md).
+// bvh-fast (BvhSettings::exact false, issue 26): the same tree, packets and traversal with
+// Embree's kind of tests: a lane's hit is the float Möller–Trumbore test of its packet's
+// vertices (FloatMoller in bvh.cpp, four lanes at once) instead of the float pre-test and the
+// exact double test (no shear set-up per ray, no double test per lane), and a node's boxes the
+// non-robust slab test (FastSlabs in accel/bvh_traversal.inc: no outward rounding). It leaves
+// the contract of accel/accelerator.h: distances differ from the list's in float's last bits, a
+// box or triangle grazed within float's error may be missed, a ray through an edge or a vertex
+// shared by two triangles can pass between them (not watertight), and the copies per
+// instruction set may differ in the last bit (the wide ones contract products into fused
+// multiply-adds). Each hit's t is still tested against the ray's [t_min, t_max] in double, hits
+// at the same float distance that both pass the float test still go to the lower primitive
+// index, shapes still answer through their own tests, and secondary rays start farther off the
+// surface (position_error, Scene::ray_offset). Rays starting beyond 1e18 of the origin, or
+// scenes larger than that, take the exact traversal (o / d would overflow float there).
+// docs/accelerators.md shows the image differences; one thread, medians of three runs, it traces
+// 0.88–1.19 of Embree's rays a second where the exact bvh traces 0.76–1.15 (docs/benchmarks.md).
 //
 // Traversal: the children a ray enters are pushed farthest first with their (float, lower
 // bound) entry distances and the nearest is visited; popped entries that start beyond the
@@ -87,6 +92,9 @@ class Bvh final : public Accelerator {
   bool intersect(const Ray& ray, Intersection& intersection) const override;
   bool occluded(const Ray& ray) const override;
   std::string_view name() const override { return exact_ ? "bvh" : "bvh-fast"; }
+  // bvh-fast: the origin and the vertices in float (2^-24 of |p| each) move a ray's own triangle
+  // by about 2^-23 |p| / cos θ along it; 2^-18 covers grazing angles down to cos θ = 1/32.
+  double position_error() const override { return exact_ ? 0.0 : 0x1p-18; }
   // Figures: nodes, leaves, depth, SAH cost, primitives per leaf (mean), unbounded primitives.
   AcceleratorReport report() const override;
 
@@ -127,9 +135,11 @@ class Bvh final : public Accelerator {
   // The exact vertices of a triangle lane.
   void lane_corners(uint32_t packet, int lane, Vec3& p0, Vec3& p1, Vec3& p2) const;
   bool occluded_in_tree(const Ray& ray) const;
+  // Whether bvh-fast's tests serve this ray (see above: within 1e18 of the origin).
+  bool fast_for(const Ray& ray) const;
   // The traversal for one instruction set (Isa 0 SSE, 1 AVX2, 2 AVX-512): an overload per set,
   // each defined by accel/bvh_traversal.inc inside that set's target region; Exact false is
-  // bvh-fast's leaf test.
+  // bvh-fast's (its box and leaf tests).
   template <int Isa>
   struct IsaTag {};
   template <bool Exact>

@@ -83,6 +83,7 @@ void Scene::prepare() {
   const double size = std::max({extent.x, extent.y, extent.z});
   // The extent part of ray_offset(p); its position part covers scenes far from the origin.
   ray_offset_ = render.ray_offset > 0 ? render.ray_offset : 1e-7 * size;
+  offset_per_position_ = 1e-12 + accelerator_->position_error();
 }
 
 }  // namespace candela

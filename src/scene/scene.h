@@ -157,9 +157,10 @@ class Scene {
   const Bounds3& bounds() const { return bounds_; }
   // SPEC §8: secondary rays start this far off the surface at p, along the normal, to avoid
   // acne: a part scaled to the scene's extent plus a part relative to |p|, far above double
-  // rounding of a hit point there and far below any feature.
+  // rounding of a hit point there (and above float's, with bvh-fast: its position_error) and
+  // far below any feature.
   double ray_offset(const Vec3& p) const {
-    return ray_offset_ + 1e-12 * std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+    return ray_offset_ + offset_per_position_ * std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
   }
   const Accelerator& accelerator() const { return *accelerator_; }
   double accelerator_build_seconds() const { return build_seconds_; }
@@ -168,6 +169,7 @@ class Scene {
   std::unique_ptr<Accelerator> accelerator_;
   Bounds3 bounds_;
   double ray_offset_ = 1e-6;
+  double offset_per_position_ = 1e-12;
   double build_seconds_ = 0;
   bool thin_sheets_ = false;
   bool lets_light_through_ = false;
