@@ -307,16 +307,16 @@ struct FloatMoller {
   __m128 t_min, t_max;  // t_max: the nearest hit's t so far, or the ray's
   alignas(16) float t[4], b1[4], b2[4];
 
-  explicit FloatMoller(const Ray& ray)
-      : t_min(_mm_set1_ps(round_down(ray.t_min))), t_max(_mm_set1_ps(round_up(ray.t_max))) {
+  FloatMoller(const Ray& ray, double t_max)
+      : t_min(_mm_set1_ps(round_down(ray.t_min))), t_max(_mm_set1_ps(round_up(t_max))) {
     for (int axis = 0; axis < 3; ++axis) {
       origin[axis] = _mm_set1_ps(static_cast<float>(ray.origin[axis]));
       direction[axis] = _mm_set1_ps(static_cast<float>(ray.direction[axis]));
     }
   }
 
-  template <bool AfterTMin>  // LeafVisitor's interface; t_min is always tested here
-  int candidates(const Bvh::Packet& packet) {
+  // The lanes that hit (bit per lane).
+  int hits(const Bvh::Packet& packet) {
     __m128 e1[3], e2[3], s[3];
     for (int axis = 0; axis < 3; ++axis) {
       const __m128 p0 = _mm_load_ps(packet.p[0][axis]);
