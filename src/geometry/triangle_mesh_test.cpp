@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <map>
 #include <memory>
 #include <tuple>
@@ -210,6 +212,48 @@ TEST(MeshTriangle, CornerUvsGiveUvAndDerivatives) {
   EXPECT_NEAR(length(hit.dpdv), 1.0, 1e-12);
   EXPECT_NEAR(dot(hit.dpdu, hit.dpdv), 0.0, 1e-12);
   expect_vec_near(cross(hit.dpdu, hit.dpdv), hit.geometric_normal, 1e-12);
+}
+
+// fill_triangle_hit writes the default uvs' solve out (a fifth of its instructions); it must give
+// the bits the general solve gives with kDefaultCornerUvs as the mesh's own uvs, signed zeros and
+// NaN included: corners on a small grid (equal coordinates make the differences +0 or -0) and
+// in general position, weights that are 0, -0, negative, NaN or ordinary.
+TEST(MeshTriangle, DefaultUvsGiveTheGeneralSolvesBits) {
+  const auto same_bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  const double weights[] = {0.0, -0.0, 1.0, 0.25, -1e-17, 0.5, std::numeric_limits<double>::quiet_NaN()};
+  Pcg32 rng(26, 7);
+  int compared = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    auto implicit = std::make_shared<TriangleMesh>();
+    for (int v = 0; v < 3; ++v) {
+      Vec3 p;
+      for (int axis = 0; axis < 3; ++axis)
+        p[axis] = trial % 2 == 0 ? static_cast<double>(rng.next_uint() % 3) - 1.0 : rng.next_double() * 4 - 2;
+      implicit->positions.push_back(p);
+    }
+    implicit->triangles = {{0, 1, 2}};
+    auto explicit_uvs = std::make_shared<TriangleMesh>(*implicit);
+    explicit_uvs->corner_uvs = {kDefaultCornerUvs};
+    const Vec3 &p0 = implicit->positions[0], &p1 = implicit->positions[1], &p2 = implicit->positions[2];
+    for (double b1 : weights) {
+      for (double b2 : weights) {
+        const TriangleIntersection found{1.5, 1.0 - b1 - b2, b1, b2};
+        SurfaceHit a, b;
+        fill_triangle_hit(*implicit, 0, p0, p1, p2, found, a);
+        fill_triangle_hit(*explicit_uvs, 0, p0, p1, p2, found, b);
+        const double a_values[] = {a.uv.x,   a.uv.y,   a.dpdu.x, a.dpdu.y,
+                                   a.dpdu.z, a.dpdv.x, a.dpdv.y, a.dpdv.z};
+        const double b_values[] = {b.uv.x,   b.uv.y,   b.dpdu.x, b.dpdu.y,
+                                   b.dpdu.z, b.dpdv.x, b.dpdv.y, b.dpdv.z};
+        for (int k = 0; k < 8; ++k)
+          EXPECT_TRUE(same_bits(a_values[k], b_values[k]))
+              << "trial " << trial << " b1 " << b1 << " b2 " << b2 << " value " << k << ": " << a_values[k]
+              << " vs " << b_values[k];
+        ++compared;
+      }
+    }
+  }
+  EXPECT_EQ(compared, 400 * 49);
 }
 
 TEST(MeshTriangle, ShadingNormalInterpolatesCornerNormals) {
