@@ -315,33 +315,36 @@ struct FloatMoller {
     }
   }
 
-  // The lanes that hit (bit per lane).
-  int hits(const Bvh::Packet& packet) {
-    __m128 e1[3], e2[3], s[3];
+  // The lanes that hit (bit per lane), in the form of Embree's test: with e1 = p1 − p0,
+  // e2 = p2 − p0, the packet's normal N = e1 × e2, C = p0 − o and R = D × C, the triple products
+  // give det = −D · N, b1 det = e2 · R, b2 det = −e1 · R and t det = −C · N. The edges and N are
+  // made at the build, so a packet costs one cross product (R) where P = D × e2, Q = (o − p0) × e1
+  // and the edges took two cross products and six differences, for the same result up to
+  // float's rounding (callgrind, 256 × 256 dragon sets: 4.8 % fewer instructions).
+  int hits(const Bvh::Packet& packet, const Bvh::PacketNormals& normals) {
+    __m128 e1[3], e2[3], c[3], normal[3];
     for (int axis = 0; axis < 3; ++axis) {
-      const __m128 p0 = _mm_load_ps(packet.p[0][axis]);
-      e1[axis] = _mm_sub_ps(_mm_load_ps(packet.p[1][axis]), p0);
-      e2[axis] = _mm_sub_ps(_mm_load_ps(packet.p[2][axis]), p0);
-      s[axis] = _mm_sub_ps(origin[axis], p0);
+      e1[axis] = _mm_load_ps(packet.p[1][axis]);  // bvh-fast's packets: p0, e1, e2
+      e2[axis] = _mm_load_ps(packet.p[2][axis]);
+      c[axis] = _mm_sub_ps(_mm_load_ps(packet.p[0][axis]), origin[axis]);
+      normal[axis] = _mm_load_ps(normals.n[axis]);
     }
-    const auto cross = [](const __m128* a, const __m128* b, __m128* out) {
-      for (int axis = 0; axis < 3; ++axis) {
-        const int next = (axis + 1) % 3, last = (axis + 2) % 3;
-        out[axis] = _mm_sub_ps(_mm_mul_ps(a[next], b[last]), _mm_mul_ps(a[last], b[next]));
-      }
-    };
     const auto dot = [](const __m128* a, const __m128* b) {
       return _mm_add_ps(_mm_add_ps(_mm_mul_ps(a[0], b[0]), _mm_mul_ps(a[1], b[1])), _mm_mul_ps(a[2], b[2]));
     };
-    __m128 h[3], q[3];
-    cross(direction, e2, h);  // P = D × e2
-    cross(s, e1, q);          // Q = T × e1
-    const __m128 det = dot(e1, h);
-    const __m128 sign = _mm_and_ps(det, _mm_set1_ps(-0.0f));
-    const __m128 magnitude = _mm_xor_ps(det, sign);
-    const __m128 u = _mm_xor_ps(dot(s, h), sign);          // b1 |det|
-    const __m128 v = _mm_xor_ps(dot(direction, q), sign);  // b2 |det|
-    const __m128 distance = _mm_xor_ps(dot(e2, q), sign);  // t |det|
+    __m128 r[3];
+    for (int axis = 0; axis < 3; ++axis) {
+      const int next = (axis + 1) % 3, last = (axis + 2) % 3;
+      r[axis] = _mm_sub_ps(_mm_mul_ps(direction[next], c[last]), _mm_mul_ps(direction[last], c[next]));
+    }
+    const __m128 minus_det = dot(direction, normal);
+    const __m128 sign_bit = _mm_set1_ps(-0.0f);
+    const __m128 sign = _mm_andnot_ps(minus_det, sign_bit);  // det's sign bit (−det's flipped)
+    const __m128 minus_sign = _mm_and_ps(minus_det, sign_bit);
+    const __m128 magnitude = _mm_andnot_ps(sign_bit, minus_det);
+    const __m128 u = _mm_xor_ps(dot(e2, r), sign);                   // b1 |det|
+    const __m128 v = _mm_xor_ps(dot(e1, r), minus_sign);             // b2 |det|
+    const __m128 distance = _mm_xor_ps(dot(c, normal), minus_sign);  // t |det|
     const __m128 zero = _mm_setzero_ps();
     __m128 hit = _mm_and_ps(_mm_cmpge_ps(u, zero), _mm_cmpge_ps(v, zero));
     hit = _mm_and_ps(hit, _mm_cmple_ps(_mm_add_ps(u, v), magnitude));
@@ -460,6 +463,7 @@ void Bvh::build(std::span<const Primitive> primitives) {
   nodes_.clear();
   packets_.clear();
   corners_.clear();
+  normals_.clear();
   slot_count_ = triangle_count_ = 0;
   unbounded_.clear();
   only_mesh_ = nullptr;
@@ -572,6 +576,7 @@ void Bvh::build(std::span<const Primitive> primitives) {
   }
   packets_.resize(packet_slots.size());
   if (!float_exact) corners_.resize(4 * packets_.size());
+  if (!exact_) normals_.resize(packets_.size());
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, packets_.size(), kGrain / 4),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t k = range.begin(); k < range.end(); ++k) {
@@ -602,6 +607,19 @@ void Bvh::build(std::span<const Primitive> primitives) {
                           if (!corners_.empty()) {
                             Corners& kept = corners_[4 * k + static_cast<std::size_t>(lane)];
                             for (int v = 0; v < 3; ++v) kept.p[v] = triangle ? corner[v] : Vec3{};
+                          }
+                          if (!normals_.empty()) {  // a shape's lane: NaN, from its NaN vertices
+                            float e1[3], e2[3];
+                            for (int axis = 0; axis < 3; ++axis) {
+                              e1[axis] = packet.p[1][axis][lane] - packet.p[0][axis][lane];
+                              e2[axis] = packet.p[2][axis][lane] - packet.p[0][axis][lane];
+                            }
+                            for (int axis = 0; axis < 3; ++axis) {
+                              const int next = (axis + 1) % 3, last = (axis + 2) % 3;
+                              normals_[k].n[axis][lane] = e1[next] * e2[last] - e1[last] * e2[next];
+                              packet.p[1][axis][lane] = e1[axis];  // bvh-fast's packets hold the edges
+                              packet.p[2][axis][lane] = e2[axis];
+                            }
                           }
                         }
                       }
@@ -683,6 +701,11 @@ void Bvh::build(std::span<const Primitive> primitives) {
     _mm_prefetch(address + 64, _MM_HINT_T0);
     _mm_prefetch(address + 128, _MM_HINT_T0);
     _mm_prefetch(address + sizeof(Packet) - 1, _MM_HINT_T0);
+    if (!normals_.empty()) {  // bvh-fast: 48 bytes on a 16-byte boundary, up to two lines
+      const char* normals = reinterpret_cast<const char*>(&normals_[child]);
+      _mm_prefetch(normals, _MM_HINT_T0);
+      _mm_prefetch(normals + sizeof(PacketNormals) - 1, _MM_HINT_T0);
+    }
   }
 }
 
@@ -706,6 +729,12 @@ inline void Bvh::lane_corners(uint32_t packet, int lane, Vec3& p0, Vec3& p1, Vec
   p0 = {data.p[0][0][lane], data.p[0][1][lane], data.p[0][2][lane]};
   p1 = {data.p[1][0][lane], data.p[1][1][lane], data.p[1][2][lane]};
   p2 = {data.p[2][0][lane], data.p[2][1][lane], data.p[2][2][lane]};
+  if (!exact_) {
+    // bvh-fast's edges, rounded to float at the build (2^-24 of the edge): the corners they give
+    // are that close to the triangle's, which is all its filled hit needs.
+    p1 += p0;
+    p2 += p0;
+  }
 }
 
 bool Bvh::intersect_all_slots(const Ray& ray, Intersection& intersection) const {
@@ -782,12 +811,15 @@ CANDELA_TARGET_END
 #undef CANDELA_PRAGMA
 
 // FastSlabs' o / d, with d at least 1e-18: within float's range for |o| and the boxes up to 1e18.
+// bvh-fast's other rays test every primitive (intersect_all_slots, occluded_all_slots).
 bool Bvh::fast_for(const Ray& ray) const {
   return !exact_ && scene_scale_ <= 1e18 && max_abs(ray.origin) <= 1e18;
 }
 
 bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
   const bool fast = fast_for(ray);
+  // bvh-fast's other rays: its packets hold edges, not the corners the exact traversal tests.
+  if (!exact_ && !fast) return intersect_all_slots(ray, intersection);
   switch (isa_) {
     case BvhIsa::avx512:
       return fast ? intersect_tree<false>(IsaTag<2>{}, ray, intersection)
@@ -803,6 +835,7 @@ bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
 
 bool Bvh::occluded_in_tree(const Ray& ray) const {
   const bool fast = fast_for(ray);
+  if (!exact_ && !fast) return occluded_all_slots(ray);
   switch (isa_) {
     case BvhIsa::avx512:
       return fast ? occluded_tree<false>(IsaTag<2>{}, ray) : occluded_tree<true>(IsaTag<2>{}, ray);
@@ -831,7 +864,8 @@ AcceleratorReport Bvh::report() const {
       {"instruction set (1 sse, 2 avx2, 3 avx512)", static_cast<double>(isa_)},
   };
   report.bytes = nodes_.size() * sizeof(Node) + packets_.size() * sizeof(Packet) +
-                 corners_.size() * sizeof(Corners) + unbounded_.size() * sizeof(uint32_t);
+                 corners_.size() * sizeof(Corners) + normals_.size() * sizeof(PacketNormals) +
+                 unbounded_.size() * sizeof(uint32_t);
   if (triangle_count_ > 0)
     report.figures.emplace_back("bytes per triangle", static_cast<double>(report.bytes) / triangle_count_);
   if (largest_coincident_group_ > 0)

@@ -27,10 +27,13 @@
 // components) test every primitive instead.
 //
 // bvh-fast (BvhSettings::exact false, issue 26): the same tree, packets and traversal with
-// Embree's kind of tests: a lane's hit is the float Möller–Trumbore test of its packet's
-// vertices (FloatMoller in bvh.cpp, four lanes at once) instead of the float pre-test and the
+// Embree's kind of tests: a lane's hit is the float Möller–Trumbore test in the form of
+// Embree's Triangle4, on its packet's first vertex and edges (p[1], p[2] hold p1 − p0 and
+// p2 − p0 in bvh-fast) and their normal, kept beside the packets (PacketNormals, 48 bytes a
+// packet; FloatMoller in bvh.cpp, four lanes at once) instead of the float pre-test and the
 // exact double test (no shear set-up per ray, no double test per lane), and a node's boxes the
-// non-robust slab test (FastSlabs in accel/bvh_traversal.inc: no outward rounding). It leaves
+// non-robust slab test (FastSlabs in accel/bvh_traversal.inc: no outward rounding); after a
+// triangle's hit the boxes' far end is its float t, not the double slack above it. It leaves
 // the contract of accel/accelerator.h: distances differ from the list's in float's last bits, a
 // box or triangle grazed within float's error may be missed, a ray through an edge or a vertex
 // shared by two triangles can pass between them (not watertight), and the copies per
@@ -39,9 +42,9 @@
 // at the same float distance that both pass the float test still go to the lower primitive
 // index, shapes still answer through their own tests, and secondary rays start farther off the
 // surface (position_error, Scene::ray_offset). Rays starting beyond 1e18 of the origin, or
-// scenes larger than that, take the exact traversal (o / d would overflow float there).
-// docs/accelerators.md shows the image differences; one thread, medians of three runs, it traces
-// 0.88–1.19 of Embree's rays a second where the exact bvh traces 0.76–1.15 (docs/benchmarks.md).
+// scenes larger than that, test every primitive through its own exact test, as the list does
+// (o / d would overflow float in the box test there). docs/accelerators.md shows the image
+// differences, docs/benchmarks.md its speed against Embree's and the exact bvh's.
 //
 // Traversal: the children a ray enters are pushed farthest first with their (float, lower
 // bound) entry distances and the nearest is visited; popped entries that start beyond the
@@ -116,13 +119,19 @@ class Bvh final : public Accelerator {
   // ceil(n / 4) consecutive packets. When every triangle's vertices are floats already (the
   // benchmark's meshes, as Embree gets them), these floats are the exact test's vertices too
   // and nothing else is stored; otherwise the double vertices are kept in corners_ (one entry
-  // per lane), read only by the triangles that survive the pre-test.
+  // per lane), read only by the triangles that survive the pre-test. bvh-fast keeps the edges
+  // p1 − p0 and p2 − p0 (rounded to float from the float vertices) in p[1] and p[2].
   struct alignas(16) Packet {
     float p[3][3][4];
     uint32_t primitive[4];  // primitive index, | kShapeSlot for a shape; kShapeSlot when unused
     uint32_t triangle[4];   // the triangle's index in its mesh (unused for shapes)
   };
   static_assert(sizeof(Packet) == 176);
+  // bvh-fast only: each packet's lanes' normals (p1 − p0) × (p2 − p0), in float from the
+  // packet's floats, beside the packets (n[axis][lane]); Embree's Triangle4 keeps its normal too.
+  struct alignas(16) PacketNormals {
+    float n[3][4];
+  };
 
  private:
   // A lane's triangle's vertices in double, when they are not all floats.
@@ -169,12 +178,13 @@ class Bvh final : public Accelerator {
   std::vector<Node, BvhAllocator<Node>> nodes_;
   std::vector<Packet, BvhAllocator<Packet>> packets_;
   std::vector<Corners, BvhAllocator<Corners>> corners_;  // four per packet; empty when the floats are exact
-  std::size_t slot_count_ = 0;                           // primitives in leaves
-  std::size_t triangle_count_ = 0;                       // of which mesh triangles
-  std::vector<uint32_t> unbounded_;                      // primitives with infinite bounds
-  const TriangleMesh* only_mesh_ = nullptr;              // the mesh of every inline triangle, when only one
-  double scene_scale_ = 0;                               // largest |coordinate| of the tree's bounds
-  uint32_t tree_nodes_ = 0;                              // nodes of the binary tree, leaves included
+  std::vector<PacketNormals, BvhAllocator<PacketNormals>> normals_;  // one per packet, bvh-fast only
+  std::size_t slot_count_ = 0;                                       // primitives in leaves
+  std::size_t triangle_count_ = 0;                                   // of which mesh triangles
+  std::vector<uint32_t> unbounded_;                                  // primitives with infinite bounds
+  const TriangleMesh* only_mesh_ = nullptr;  // the mesh of every inline triangle, when only one
+  double scene_scale_ = 0;                   // largest |coordinate| of the tree's bounds
+  uint32_t tree_nodes_ = 0;                  // nodes of the binary tree, leaves included
   uint32_t leaves_ = 0;
   uint32_t depth_ = 0;
   double sah_cost_ = 0;
