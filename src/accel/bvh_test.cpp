@@ -11,6 +11,7 @@
 #include "accel/bvh_builder.h"
 #include "accel/primitive_list.h"
 #include "geometry/plane.h"
+#include "geometry/quad.h"
 #include "geometry/sphere.h"
 #include "geometry/transformed_shape.h"
 #include "geometry/triangle_mesh.h"
@@ -969,8 +970,8 @@ TEST(Bvh, FastVariantHitsTheTriangleInsideTheRaysInterval) {
   }
 }
 
-// Rays from beyond 1e18 of the origin take the exact traversal (FastSlabs' o / d would leave
-// float's range there): the list's hit to the last bit.
+// Rays from beyond 1e18 of the origin test every primitive through its own exact test
+// (FastSlabs' o / d would leave float's range there): the list's hit to the last bit.
 TEST(Bvh, FastVariantLeavesFarRaysToTheExactTests) {
   auto mesh = std::make_shared<TriangleMesh>();
   mesh->positions = {{0, -1, -1}, {0, 3, -1}, {0, -1, 3}};
@@ -990,6 +991,62 @@ TEST(Bvh, FastVariantLeavesFarRaysToTheExactTests) {
   EXPECT_EQ(actual.surface.t, expected.surface.t);
   EXPECT_EQ(actual.surface.position, expected.surface.position);
   EXPECT_TRUE(fast.occluded(ray));
+}
+
+// bvh-fast's far end after a triangle's hit is one float step above its float t, which may have
+// rounded below the true distance: a box that starts exactly there must still be entered. Found
+// in review: with the far end at the float t itself both cases below failed on every ISA.
+TEST(Bvh, FastVariantKeepsTiesAndCloserShapesAcrossLeaves) {
+  // Two triangles with a corner V = (0, 0, z) on the ray, B (index 0) beyond V and A (index 1)
+  // before it, in different leaves (fillers off the ray): both give the float t 1.59698451 (< z);
+  // B's leaf box starts at z, one float step above. The tie goes to B, the lower index.
+  const double a = 1.17143548f, b = 1.0224818f, z = 1.59698462f;
+  auto tie = std::make_shared<TriangleMesh>();
+  tie->positions = {{0, 0, z}, {-b, 0.5, 2 * z}, {0.5, -1, 2 * z}, {0, 0, z}, {a, -0.5, 0}, {-0.5, 1, 0}};
+  tie->triangles = {{0, 1, 2}, {3, 4, 5}};
+  for (int k = 0; k < 7; ++k) {
+    for (int side = 0; side < 2; ++side) {
+      const double x = -0.5 + 0.75 * (k % 2), y = 0.625 * (k % 4 < 2 ? 1 : -1),
+                   filler_z = side == 0 ? z * (1.0625 + 0.125 * (k % 3)) : z * 0.125 * (k % 3);
+      const auto base = static_cast<uint32_t>(tie->positions.size());
+      tie->positions.push_back({x, y, filler_z});
+      tie->positions.push_back({x + 0.25, y, filler_z});
+      tie->positions.push_back({x, y, filler_z + 0.5 * z});
+      tie->triangles.push_back({base, base + 1, base + 2});
+    }
+  }
+  TestScene tie_scene;
+  tie_scene.add_mesh(tie);
+  // A quad (index 0, its exact test) 1.1e-7 closer than a slanted triangle's float t, its flat
+  // box's float entry above that t.
+  const Quad quad({-1, -1, 3.0685653686523438}, {2, 0, 0}, {0, 2, 0});
+  auto slanted = std::make_shared<TriangleMesh>();
+  slanted->positions = {{0.028137108716781656, 0.17699888865678329, 2.5789974310601247},
+                        {-0.54140230204384454, -0.15704674455122333, 2.7232991530725852},
+                        {0.13774062081765703, 0.14943138375161905, 3.9034005514511958}};
+  slanted->triangles = {{0, 1, 2}};
+  const auto slanted_triangles = make_triangles(slanted);
+  const std::vector<Primitive> quad_scene = {{&quad, 0, 0}, {slanted_triangles[0].get(), 0, 1}};
+  const Ray slanted_ray{{-0.27085186340846118, 0.01074239853769543, -2.0929245420265943},
+                        {0.028211486167929387, 0.0088537971290239756, 0.99956276557532642}};
+  SurfaceHit quad_hit;
+  ASSERT_TRUE(quad.intersect(slanted_ray, quad_hit));
+  for (BvhIsa isa : instruction_sets_of_this_cpu()) {
+    SCOPED_TRACE(std::string(kBvhIsaNames.name(isa)));
+    BvhSettings settings;
+    settings.exact = false;
+    settings.isa = isa;
+    Bvh fast(settings);
+    fast.build(tie_scene.primitives);
+    Intersection hit;
+    ASSERT_TRUE(fast.intersect(Ray{{0, 0, 0}, {0, 0, 1}}, hit));
+    EXPECT_EQ(hit.primitive, 0u) << "t " << hit.surface.t;
+    settings.max_leaf_primitives = 1;
+    Bvh one_per_leaf(settings);
+    one_per_leaf.build(quad_scene);
+    ASSERT_TRUE(one_per_leaf.intersect(slanted_ray, hit));
+    EXPECT_EQ(hit.primitive, 0u) << "the quad at " << quad_hit.t << ", the hit at " << hit.surface.t;
+  }
 }
 
 }  // namespace

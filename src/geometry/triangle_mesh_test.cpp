@@ -216,20 +216,29 @@ TEST(MeshTriangle, CornerUvsGiveUvAndDerivatives) {
 
 // fill_triangle_hit writes the default uvs' solve out (a fifth of its instructions); it must give
 // the bits the general solve gives with kDefaultCornerUvs as the mesh's own uvs, signed zeros and
-// NaN included: corners on a small grid (equal coordinates make the differences +0 or -0) and
-// in general position, weights that are 0, -0, negative, NaN or ordinary.
+// NaN included: corners on a small grid (equal coordinates make the differences +0 or -0), in
+// general position and a few that overflow, are NaN or collapse; weights that are 0, -0,
+// negative, NaN or ordinary.
 TEST(MeshTriangle, DefaultUvsGiveTheGeneralSolvesBits) {
   const auto same_bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
   const double weights[] = {0.0, -0.0, 1.0, 0.25, -1e-17, 0.5, std::numeric_limits<double>::quiet_NaN()};
+  // And corners that make the solve overflow, or NaN, or collapse (the fallback basis).
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const Vec3 special[][3] = {{{kInf, 0, 0}, {0, 1, 0}, {1, 0, 0}},
+                             {{std::numeric_limits<double>::quiet_NaN(), 0, 0}, {0, 1, 0}, {1, 0, 0}},
+                             {{1e300, 1e300, 0}, {-1e300, 0, 0}, {0, 1e300, 0}},
+                             {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}},
+                             {{-0.0, 1e-310, 0}, {0, -0.0, 5e-324}, {1e-310, 0, -0.0}}};
+  constexpr int kSpecial = sizeof special / sizeof special[0];
   Pcg32 rng(26, 7);
   int compared = 0;
-  for (int trial = 0; trial < 400; ++trial) {
+  for (int trial = 0; trial < 400 + kSpecial; ++trial) {
     auto implicit = std::make_shared<TriangleMesh>();
     for (int v = 0; v < 3; ++v) {
       Vec3 p;
       for (int axis = 0; axis < 3; ++axis)
         p[axis] = trial % 2 == 0 ? static_cast<double>(rng.next_uint() % 3) - 1.0 : rng.next_double() * 4 - 2;
-      implicit->positions.push_back(p);
+      implicit->positions.push_back(trial < 400 ? p : special[trial - 400][v]);
     }
     implicit->triangles = {{0, 1, 2}};
     auto explicit_uvs = std::make_shared<TriangleMesh>(*implicit);
@@ -253,7 +262,7 @@ TEST(MeshTriangle, DefaultUvsGiveTheGeneralSolvesBits) {
       }
     }
   }
-  EXPECT_EQ(compared, 400 * 49);
+  EXPECT_EQ(compared, (400 + kSpecial) * 49);
 }
 
 TEST(MeshTriangle, ShadingNormalInterpolatesCornerNormals) {

@@ -18,4 +18,12 @@ inline double next_up(double t) {
   return std::bit_cast<double>(bits);
 }
 
+// The same step for a float (bvh-fast's box limit after a hit, one float step above its t).
+inline float next_up(float t) {
+  if (!(t < std::numeric_limits<float>::infinity())) return t;
+  auto bits = std::bit_cast<uint32_t>(t + 0.0f);
+  bits += 1 | static_cast<uint32_t>(static_cast<int32_t>(bits) >> 31);
+  return std::bit_cast<float>(bits);
+}
+
 }  // namespace candela

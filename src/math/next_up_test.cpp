@@ -38,5 +38,32 @@ TEST(NextUp, EqualsNextafterTowardsInfinity) {
   }
 }
 
+TEST(NextUp, FloatEqualsNextafterTowardsInfinity) {
+  constexpr float kMax = std::numeric_limits<float>::max();
+  constexpr float kInfinityF = std::numeric_limits<float>::infinity();
+  const float values[] = {0.0f,
+                          -0.0f,
+                          std::numeric_limits<float>::denorm_min(),
+                          -std::numeric_limits<float>::min(),
+                          1.0f,
+                          -1.0f,
+                          1.59698451f,
+                          -3.75e30f,
+                          kMax,
+                          -kMax,
+                          -kInfinityF};
+  for (const float t : values)
+    EXPECT_EQ(std::bit_cast<uint32_t>(next_up(t)), std::bit_cast<uint32_t>(std::nextafter(t, kInfinityF)))
+        << t;
+  EXPECT_EQ(next_up(kInfinityF), kInfinityF);
+  Pcg32 random(7, 2);
+  for (int i = 0; i < 100000; ++i) {
+    const float t = std::bit_cast<float>(random.next_uint());
+    if (std::isnan(t)) continue;
+    ASSERT_EQ(std::bit_cast<uint32_t>(next_up(t)), std::bit_cast<uint32_t>(std::nextafter(t, kInfinityF)))
+        << t;
+  }
+}
+
 }  // namespace
 }  // namespace candela
