@@ -33,7 +33,8 @@
 // packet; FloatMoller in bvh.cpp, four lanes at once) instead of the float pre-test and the
 // exact double test (no shear set-up per ray, no double test per lane), and a node's boxes the
 // non-robust slab test (FastSlabs in accel/bvh_traversal.inc: no outward rounding); after a
-// triangle's hit the boxes' far end is its float t, not the double slack above it. It leaves
+// triangle's hit the boxes' far end is one float step above its float t, not the double slack
+// above it. It leaves
 // the contract of accel/accelerator.h: distances differ from the list's in float's last bits, a
 // box or triangle grazed within float's error may be missed, a ray through an edge or a vertex
 // shared by two triangles can pass between them (not watertight), and the copies per
