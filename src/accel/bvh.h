@@ -26,26 +26,25 @@
 // out. Rays outside the float test's proven range (huge or non-finite values, tiny direction
 // components) test every primitive instead.
 //
-// bvh-fast (BvhSettings::exact false, issue 26): the same tree, packets and traversal with
-// Embree's kind of tests: a lane's hit is the float Möller–Trumbore test in the form of
-// Embree's Triangle4, on its packet's first vertex and edges (p[1], p[2] hold p1 − p0 and
-// p2 − p0 in bvh-fast) and their normal, kept beside the packets (PacketNormals, 48 bytes a
-// packet; FloatMoller in bvh.cpp, four lanes at once) instead of the float pre-test and the
-// exact double test (no shear set-up per ray, no double test per lane), and a node's boxes the
-// non-robust slab test (FastSlabs in accel/bvh_traversal.inc: no outward rounding); after a
-// triangle's hit the boxes' far end is one float step above its float t, not the double slack
-// above it. It leaves
-// the contract of accel/accelerator.h: distances differ from the list's in float's last bits, a
-// box or triangle grazed within float's error may be missed, a ray through an edge or a vertex
-// shared by two triangles can pass between them (not watertight), and the copies per
-// instruction set may differ in the last bit (the wide ones contract products into fused
-// multiply-adds). Each hit's t is still tested against the ray's [t_min, t_max] in double, hits
-// at the same float distance that both pass the float test still go to the lower primitive
-// index, shapes still answer through their own tests, and secondary rays start farther off the
-// surface (position_error, Scene::ray_offset). Rays starting beyond 1e18 of the origin, or
-// scenes larger than that, test every primitive through its own exact test, as the list does
-// (o / d would overflow float in the box test there). docs/accelerators.md shows the image
-// differences, docs/benchmarks.md its speed against Embree's and the exact bvh's.
+// bvh-fast (BvhSettings::exact false, issue 26): the same tree, packets and traversal with Embree's
+// kind of tests: a lane's hit is the float Möller–Trumbore test in the form of Embree's Triangle4,
+// on its packet's first vertex and edges (p[1], p[2] hold p1 − p0 and p2 − p0 in bvh-fast) and
+// their normal, kept beside the packets (PacketNormals, 48 bytes a packet; FloatMoller in bvh.cpp,
+// four lanes at once) instead of the float pre-test and the exact double test (no shear set-up per
+// ray, no double test per lane), and a node's boxes the non-robust slab test (FastSlabs in
+// accel/bvh_traversal.inc: no outward rounding); after a triangle's hit the boxes' far end is one
+// float step above its float t, not the double slack above it. It leaves the contract of
+// accel/accelerator.h: distances differ from the list's in float's last bits, a box or triangle
+// grazed within float's error may be missed, a ray through an edge or a vertex shared by two
+// triangles can pass between them (not watertight), and the copies per instruction set may differ
+// in the last bit (the wide ones contract products into fused multiply-adds). Each hit's t is still
+// tested against the ray's [t_min, t_max] in double, hits at the same float distance that both pass
+// the float test still go to the lower primitive index, shapes still answer through their own
+// tests, and secondary rays start farther off the surface (position_error, Scene::ray_offset). Rays
+// starting beyond 1e18 of the origin, or scenes larger than that, test every primitive through its
+// own exact test, as the list does (o / d would overflow float in the box test there).
+// docs/accelerators.md shows the image differences, docs/benchmarks.md its speed against Embree's
+// and the exact bvh's.
 //
 // Traversal: the children a ray enters are pushed farthest first with their (float, lower
 // bound) entry distances and the nearest is visited; popped entries that start beyond the
