@@ -811,38 +811,35 @@ CANDELA_TARGET_END
 #undef CANDELA_PRAGMA
 
 // FastSlabs' o / d, with d at least 1e-18: within float's range for |o| and the boxes up to 1e18.
-// bvh-fast's other rays test every primitive (intersect_all_slots, occluded_all_slots).
-bool Bvh::fast_for(const Ray& ray) const {
-  return !exact_ && scene_scale_ <= 1e18 && max_abs(ray.origin) <= 1e18;
+bool Bvh::in_fast_range(const Ray& ray) const {
+  return scene_scale_ <= 1e18 && max_abs(ray.origin) <= 1e18;
 }
 
 bool Bvh::intersect(const Ray& ray, Intersection& intersection) const {
-  const bool fast = fast_for(ray);
   // bvh-fast's other rays: its packets hold edges, not the corners the exact traversal tests.
-  if (!exact_ && !fast) return intersect_all_slots(ray, intersection);
+  if (!exact_ && !in_fast_range(ray)) return intersect_all_slots(ray, intersection);
   switch (isa_) {
     case BvhIsa::avx512:
-      return fast ? intersect_tree<false>(IsaTag<2>{}, ray, intersection)
-                  : intersect_tree<true>(IsaTag<2>{}, ray, intersection);
+      return exact_ ? intersect_tree<true>(IsaTag<2>{}, ray, intersection)
+                    : intersect_tree<false>(IsaTag<2>{}, ray, intersection);
     case BvhIsa::avx2:
-      return fast ? intersect_tree<false>(IsaTag<1>{}, ray, intersection)
-                  : intersect_tree<true>(IsaTag<1>{}, ray, intersection);
+      return exact_ ? intersect_tree<true>(IsaTag<1>{}, ray, intersection)
+                    : intersect_tree<false>(IsaTag<1>{}, ray, intersection);
     default:
-      return fast ? intersect_tree<false>(IsaTag<0>{}, ray, intersection)
-                  : intersect_tree<true>(IsaTag<0>{}, ray, intersection);
+      return exact_ ? intersect_tree<true>(IsaTag<0>{}, ray, intersection)
+                    : intersect_tree<false>(IsaTag<0>{}, ray, intersection);
   }
 }
 
 bool Bvh::occluded_in_tree(const Ray& ray) const {
-  const bool fast = fast_for(ray);
-  if (!exact_ && !fast) return occluded_all_slots(ray);
+  if (!exact_ && !in_fast_range(ray)) return occluded_all_slots(ray);
   switch (isa_) {
     case BvhIsa::avx512:
-      return fast ? occluded_tree<false>(IsaTag<2>{}, ray) : occluded_tree<true>(IsaTag<2>{}, ray);
+      return exact_ ? occluded_tree<true>(IsaTag<2>{}, ray) : occluded_tree<false>(IsaTag<2>{}, ray);
     case BvhIsa::avx2:
-      return fast ? occluded_tree<false>(IsaTag<1>{}, ray) : occluded_tree<true>(IsaTag<1>{}, ray);
+      return exact_ ? occluded_tree<true>(IsaTag<1>{}, ray) : occluded_tree<false>(IsaTag<1>{}, ray);
     default:
-      return fast ? occluded_tree<false>(IsaTag<0>{}, ray) : occluded_tree<true>(IsaTag<0>{}, ray);
+      return exact_ ? occluded_tree<true>(IsaTag<0>{}, ray) : occluded_tree<false>(IsaTag<0>{}, ray);
   }
 }
 

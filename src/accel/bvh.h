@@ -144,8 +144,9 @@ class Bvh final : public Accelerator {
   // The exact vertices of a triangle lane.
   void lane_corners(uint32_t packet, int lane, Vec3& p0, Vec3& p1, Vec3& p2) const;
   bool occluded_in_tree(const Ray& ray) const;
-  // Whether bvh-fast's tests serve this ray (see above: within 1e18 of the origin).
-  bool fast_for(const Ray& ray) const;
+  // Whether bvh-fast's box test stays in float's range for this ray (see above: within 1e18 of
+  // the origin); bvh-fast's other rays test every primitive.
+  bool in_fast_range(const Ray& ray) const;
   // The traversal for one instruction set (Isa 0 SSE, 1 AVX2, 2 AVX-512): an overload per set,
   // each defined by accel/bvh_traversal.inc inside that set's target region; Exact false is
   // bvh-fast's (its box and leaf tests).
