@@ -33,6 +33,7 @@
 #include "integrators/radiosity_method.h"
 #include "integrators/scene_loading.h"
 #include "list_option.h"
+#include "output_paths.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/statistics.h"
@@ -161,6 +162,12 @@ int finish_bench(const BenchReport& report, const BenchCommandOptions& options) 
   return write_json(report.to_json(), options);
 }
 
+// Issue 51: --json must not be one of the files the scene reads (its meshes, textures, luminaires).
+void refuse_json_over_scene_files(const BenchCommandOptions& options, const Scene& scene) {
+  if (!options.json_path.empty())
+    refuse_outputs_over_inputs({{options.json_path, "--json"}}, scene.input_files);
+}
+
 bool is_scene_file(const std::string& path) {
   return path.size() > 5 && path.compare(path.size() - 5, 5, ".json") == 0;
 }
@@ -279,6 +286,7 @@ int run_scene_solve_bench(const BenchCommandOptions& options, const std::string&
 
   const std::unique_ptr<Scene> scene = scene_path.empty() ? load_default_scene(options.overrides)
                                                           : load_scene_file(scene_path, options.overrides);
+  refuse_json_over_scene_files(options, *scene);
   for (const auto& warning : scene->warnings) std::cerr << "candela: warning: " << warning << "\n";
   nlohmann::json runs = nlohmann::json::array();
   std::cout << fmt::format("scene: {}\n", scene_path.empty() ? "(built-in default)" : scene_path) << header
@@ -342,6 +350,12 @@ int run_meshless_bench_command(const BenchCommandOptions& options) {
 }
 
 int run_bench_command(const BenchCommandOptions& given) {
+  // Issue 51: --json is checked before any work, against the meshes and scene given (a scene's own
+  // files again once it is loaded, refuse_json_over_scene_files).
+  if (!given.json_path.empty()) {
+    check_writable(given.json_path, "--json");
+    refuse_outputs_over_inputs({{given.json_path, "--json"}}, given.inputs);
+  }
   if (given.radiosity) return run_radiosity_bench_command(given);
   if (given.meshless) return run_meshless_bench_command(given);
   if (given.raster) return run_raster_bench_command(given);
@@ -358,6 +372,7 @@ int run_bench_command(const BenchCommandOptions& given) {
     if (options.sphere || options.terrain)
       throw BadArgument("give exactly one of MESH, --sphere N or --terrain N");
     const std::unique_ptr<Scene> scene = load_scene_file(options.mesh_path);
+    refuse_json_over_scene_files(options, *scene);
     if (bench.accelerators.empty())
       for (const std::string& name : bench_accelerator_names())
         if (name != "embree") bench.accelerators.push_back(name);

@@ -101,6 +101,11 @@ int run_compare(const CompareOptions& options) {
     check_writable(options.diff, "--diff");
   }
   if (!options.json.empty()) check_writable(options.json, "--json");
+  // Issue 51: neither output may be an image compared, the mask, or the other output.
+  std::vector<OutputFile> outputs;
+  if (!options.diff.empty()) outputs.push_back({options.diff, "--diff"});
+  if (!options.json.empty()) outputs.push_back({options.json, "--json"});
+  refuse_outputs_over_inputs(outputs, {options.image, options.reference, options.mask});
 
   LinearImage image = read_image_argument(options.image, "A");
   LinearImage reference = read_image_argument(options.reference, "B (reference)");
@@ -124,9 +129,6 @@ int run_compare(const CompareOptions& options) {
   std::vector<uint8_t> mask;
   if (!options.mask.empty()) {
     mask = read_mask_argument(options.mask, "--mask", a.width(), a.height(), "the images");
-    if (std::find(mask.begin(), mask.end(), uint8_t(1)) == mask.end())
-      throw BadArgument(fmt::format("--mask {} excludes every pixel (none has luminance above {})",
-                                    options.mask, kMaskThreshold));
   }
   const std::vector<uint8_t>* mask_pointer = options.mask.empty() ? nullptr : &mask;
   const ImageComparison result = compare_images(a, b, mask_pointer);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "commands.h"
+#include "shading/photometric_units.h"
 
 namespace candela::cli {
 
@@ -19,8 +20,13 @@ void check_false_color_options(const std::vector<double>& scale, bool logarithmi
 }
 
 void check_efficacy(double efficacy) {
-  if (!(std::isfinite(efficacy) && efficacy > 0))
-    throw BadArgument("--efficacy must be a positive number (lm/W)");
+  // Issue 51: 1e308 lm/W overflowed every lux value to inf. No light has more than 683 lm/W (the
+  // luminous efficacy of 555 nm light, where V(λ) = 1: the definition of the candela).
+  if (!(std::isfinite(efficacy) && efficacy > 0 && efficacy <= kMaximumLuminousEfficacy))
+    throw BadArgument(
+        fmt::format("--efficacy {}: must be a positive number of lm/W, at most {} (the luminous "
+                    "efficacy of 555 nm light, the largest of any light)",
+                    efficacy, kMaximumLuminousEfficacy));
 }
 
 }  // namespace candela::cli

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 
@@ -28,7 +29,13 @@ std::vector<uint8_t> read_mask_argument(const std::string& path, const std::stri
                                         int height, const std::string& of_what) {
   const LinearImage mask = read_image_argument(path, option);
   check_image_size(mask.film, option, path, width, height, of_what);
-  return mask_from_image(mask.film);
+  std::vector<uint8_t> included = mask_from_image(mask.film);
+  // Issue 51: a mask that leaves out every pixel measures nothing; refused before any work (an
+  // all-black --error-mask once ran the whole render, wrote the image, then failed).
+  if (std::find(included.begin(), included.end(), uint8_t(1)) == included.end())
+    throw BadArgument(fmt::format("{} {} excludes every pixel (none has luminance above {})", option, path,
+                                  kMaskThreshold));
+  return included;
 }
 
 Film exposure_undone(const Film& image, double exposure) {

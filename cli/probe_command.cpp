@@ -16,6 +16,8 @@
 
 #include "commands.h"
 #include "false_color_options.h"
+#include "integrators/memory_estimate.h"
+#include "integrators/meshless_method.h"
 #include "integrators/method_registry.h"
 #include "integrators/probe.h"
 #include "io/false_color.h"
@@ -79,11 +81,14 @@ int run_probe(ProbeOptions& options) {
   if ((options.image_log || options.contours != 0) && options.image.empty())
     throw BadArgument(options.image_log ? "--log needs --image" : "--contours needs --image");
   check_false_color_options(options.image_scale, options.image_log, options.contours, "lux");
-  if (!options.json.empty()) {
-    if (options.json == options.output || options.json == options.image)
-      throw BadArgument("--json must name a file of its own");
-    check_writable(options.json, "--json");
-  }
+  if (!options.json.empty()) check_writable(options.json, "--json");
+  // Issue 51: no output may be the scene, the points file, a file the scene reads (checked again
+  // once it is loaded) or another output.
+  std::vector<OutputFile> outputs{{options.output, "-o"}};
+  if (!options.image.empty()) outputs.push_back({options.image, "--image"});
+  if (!options.json.empty()) outputs.push_back({options.json, "--json"});
+  std::vector<std::string> inputs{options.scene.scene_path, options.points_path};
+  refuse_outputs_over_inputs(outputs, inputs);
   std::vector<ProbePoint> points;
   int nu = 0, nv = 0;
   if (!options.grid.empty()) {
@@ -108,6 +113,8 @@ int run_probe(ProbeOptions& options) {
 
   Stopwatch timer;
   std::unique_ptr<Scene> scene = options.scene.load();
+  inputs.insert(inputs.end(), scene->input_files.begin(), scene->input_files.end());
+  refuse_outputs_over_inputs(outputs, inputs);
   for (const auto& warning : scene->warnings) std::cerr << "candela: warning: " << warning << "\n";
   ProbeSettings settings;
   settings.method = options.method;
@@ -135,6 +142,11 @@ int run_probe(ProbeOptions& options) {
           "sky, whose light the factor counts too (--set 'lights=[]' leaves the daylight alone)\n",
           scene->lights.size(), scene->surface_lights.size());
   }
+  // Issue 51: the meshless solution is held to render.memory_limit_mib before it starts (radiosity
+  // checks its form factors itself).
+  if (options.method == "meshless")
+    refuse_beyond_memory_limit(
+        MeshlessMethod(read_meshless_settings(scene->plugin_settings.node("meshless"))), *scene, PixelRect{});
   nlohmann::json facts;
   const std::vector<ProbeResult> results = probe(*scene, points, settings, &facts);
 
@@ -144,6 +156,18 @@ int run_probe(ProbeOptions& options) {
   std::vector<double> daylight_factor;
   if (options.daylight_factor)
     for (const double lux : illuminance) daylight_factor.push_back(100 * lux / sky_lux);
+  // Issue 51: nothing that is not finite is written (an efficacy of 1e308 once wrote a CSV of inf).
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    const ProbeResult& r = results[i];
+    const double values[] = {
+        r.irradiance.r, r.irradiance.g, r.irradiance.b, r.radiance.r,
+        r.radiance.g,   r.radiance.b,   illuminance[i], options.efficacy * r.irradiance_error};
+    for (const double value : values)
+      if (!std::isfinite(value))
+        throw std::runtime_error(
+            fmt::format("point {} ({}, {}, {}): its estimate is not finite ({}); nothing written", i + 1,
+                        points[i].position.x, points[i].position.y, points[i].position.z, value));
+  }
   // Streamed row by row (a 4,000,000-point grid is 600 MB of text), into a temporary file renamed
   // into place.
   write_atomically(options.output, [&](const std::string& temporary) {

@@ -20,6 +20,7 @@
 #include "distributed/cluster.h"
 #include "image_arguments.h"
 #include "integrators/antialiasing_support.h"
+#include "integrators/memory_estimate.h"
 #include "integrators/method_registry.h"
 #include "io/checkpoint_file.h"
 #include "io/image_writer.h"
@@ -515,14 +516,25 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   if (logs_error && world_cluster().distributed())
     throw BadArgument("--error-log runs in one process (start it without mpirun)");
   // Rank 0 alone reads the checkpoint: it need not be on the other ranks' disks.
-  if (!options.resume.empty() && writes_outputs && !std::filesystem::is_regular_file(options.resume))
-    throw BadArgument("--resume " + options.resume + ": no such checkpoint file");
+  // Issue 51: a folder or a FIFO is named as what it is, not "no such file".
+  if (!options.resume.empty() && writes_outputs) {
+    std::error_code error;
+    if (!std::filesystem::exists(options.resume, error))
+      throw BadArgument("--resume " + options.resume + ": no such checkpoint file");
+    if (const std::string problem = input_file_problem(options.resume, "the checkpoint", kLargeInputLimit);
+        !problem.empty())
+      throw BadArgument("--resume " + options.resume + ": " + problem);
+  }
   Stopwatch load_timer;
   job.scene = options.scene.load();
   const std::unique_ptr<Scene>& scene = job.scene;
   job.build_seconds = scene->accelerator_build_seconds();
   job.load_seconds = load_timer.seconds() - job.build_seconds;
   for (const auto& warning : scene->warnings) std::cerr << "candela: warning: " << warning << "\n";
+  // Issue 51: a frame's warnings as the scene's (a sun below the horizon rendered black unannounced).
+  for (const LightSetup& frame : relight_frames)
+    for (const auto& warning : frame.warnings)
+      std::cerr << fmt::format("candela: warning: {}: frame {}: {}\n", options.relight, frame.name, warning);
   if (!options.method.empty()) {
     scene->render.method = options.method;
     scene->render.method_location = {"--method", 0, 0, {}};
@@ -599,6 +611,10 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
       if (views.size() == 1) throw;
       throw BadArgument(std::string(e.what()) + " (camera " + view.name + ")");
     }
+    {  // Issue 51: what the method would hold for this view, against render.memory_limit_mib.
+      const CurrentCamera current(*scene, view);
+      refuse_beyond_memory_limit(*job.method, *scene, regions.back());
+    }
     check_writable(path_for_view(options.output, view, views.size()), "-o");
     if (!options.stats_path.empty())
       check_writable(path_for_view(options.stats_path, view, views.size()), "--stats");
@@ -621,6 +637,8 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
     inputs.push_back(options.relight);
     inputs.push_back(options.error_reference);
     inputs.push_back(options.error_mask);
+    for (const LightSetup& frame : relight_frames)  // issue 51: the frames' luminaire files
+      inputs.insert(inputs.end(), frame.input_files.begin(), frame.input_files.end());
     // Resuming from the checkpoint it goes on writing is how a run continues (read whole first).
     std::error_code error;
     if (!options.resume.empty() && !(options.resume == options.checkpoint ||

@@ -1,4 +1,5 @@
 // The candela executable end to end: exit codes, messages, outputs (SPEC §15).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -1055,7 +1056,7 @@ TEST_F(Cli, ProbeGridReportsTheUniformitiesAndTheirJson) {
       {"--image g.png --log --scale 0,10", "--scale with --log needs LO > 0"},
       {"--image g.png --contours 300", "--contours expects 0 to 256"},
       {"--contours 4", "--contours needs --image"},
-      {"--json grid2.csv -o grid2.csv", "--json must name a file of its own"},
+      {"--json grid2.csv -o grid2.csv", "--json grid2.csv: the same file as -o grid2.csv"},
   };
   for (const auto& [arguments, expected] : bad) {
     const std::string command =
@@ -1633,6 +1634,261 @@ TEST_F(Cli, RelightFramesAndAlbedoEditsEqualFreshSolves) {
   EXPECT_NE(output.find("no material \"blue\" (its named materials: red, white)"), std::string::npos)
       << output;
   EXPECT_FALSE(std::filesystem::exists(directory_ / "r.png"));
+}
+
+}  // namespace
+}  // namespace candela
+
+// Issue 51: reliability, round three.
+namespace candela {
+namespace {
+
+// A room lit by a downlight whose IES file is `lamp.ies`.
+const char* kLuminaireRoom = R"({"format": "candela/1",
+  "camera": {"eye": [2, 1.5, 3.9], "target": [2, 1, 0], "fov": 60, "width": 12, "height": 10},
+  "radiosity": {"patch_size": 1}, "meshless": {"spacing": 1, "grid": 8, "rounds": 1}, "path": {"spp": 1},
+  "lights": [{"type": "luminaire", "file": "lamp.ies", "position": [2, 2.9, 2], "target": [2, 0, 2]}],
+  "shapes": [{"type": "box", "min": [0, 0, 0], "max": [4, 3, 4], "material": {"kd": 0.5}}]})";
+
+// Candela multiplier 1e10 × ballast factor 1e10: every number legal, their products 1e23 cd.
+const char* kOverflowingIes =
+    "IESNA:LM-63-2002\n[TEST] t\nTILT=NONE\n1 -1 1e10 2 1 1 2 0 0 0\n1e10 1 0\n0 90\n0\n0 1000\n";
+const char* kPlainIes =
+    "IESNA:LM-63-2002\n[TEST] t\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 0\n0 90\n0\n500 400\n";
+
+// Class 1: the luminaire is refused where the product is read, by every method and command, before
+// anything is written (before: inf intensities, black images with exit 0, CSVs of inf, exit 1).
+TEST_F(Cli, LuminaireIntensitiesThatOverflowAreRefusedAtTheirLineByEveryCommand) {
+  write("room.json", kLuminaireRoom);
+  write("lamp.ies", kOverflowingIes);
+  write("pts.csv", "2,0.01,2,0,1,0\n");
+  const std::string where = "lamp.ies:8:3: the candela value 1000 × the candela multiplier 1e+10";
+  std::string output;
+  for (const std::string method : {"local", "whitted", "raster", "radiosity", "meshless", "path"}) {
+    EXPECT_EQ(run("render room.json -q --method " + method + " -o out.png", output), 2) << method << output;
+    EXPECT_NE(output.find("room.json:4:"), std::string::npos) << method << output;
+    EXPECT_NE(output.find(where), std::string::npos) << method << output;
+  }
+  for (const std::string method : {"path", "radiosity", "meshless"}) {
+    EXPECT_EQ(run("probe room.json --method " + method + " --points pts.csv -o out.csv", output), 2)
+        << output;
+    EXPECT_NE(output.find(where), std::string::npos) << method << output;
+  }
+  // A relight frame's luminaire: refused before the scene's own image is rendered.
+  write("lamp.ies", kPlainIes);
+  write("big.ies", kOverflowingIes);
+  write("frames.json", R"({"frames": [{"name": "big", "lights": [
+    {"type": "luminaire", "file": "big.ies", "position": [2, 2.9, 2], "target": [2, 0, 2]}]}]})");
+  EXPECT_EQ(run("render room.json -q --method meshless --relight frames.json -o out.png", output), 2)
+      << output;
+  EXPECT_NE(output.find("frames.json:2:35: frames[0].lights[0].file: ./big.ies:8:3: the candela value"),
+            std::string::npos)
+      << output;
+  // A tiny table scaled to a large flux (the scale was inf): refused at luminous_flux.
+  write("tiny.ies",
+        "IESNA:LM-63-2002\n[TEST] t\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 0\n0 90\n0\n1e-300 0\n");
+  std::string scene = kLuminaireRoom;
+  scene.replace(scene.find("\"file\": \"lamp.ies\""), 18, "\"file\": \"tiny.ies\", \"luminous_flux\": 1e16");
+  write("tiny.json", scene);
+  EXPECT_EQ(run("render tiny.json -q --method local -o out.png", output), 2) << output;
+  EXPECT_NE(output.find("lights[0].luminous_flux: \"tiny.ies\" peaks at 1e-300 cd"), std::string::npos)
+      << output;
+  EXPECT_EQ(file_count(), 7);  // the inputs alone
+  // A luminaire of an unknown extension names its location once.
+  write("lamp.txt", kPlainIes);
+  scene = kLuminaireRoom;
+  scene.replace(scene.find("lamp.ies"), 8, "lamp.txt");
+  write("txt.json", scene);
+  EXPECT_EQ(run("render txt.json -q --method local -o out.png", output), 2) << output;
+  EXPECT_EQ(output.find("txt.json:4:"), output.rfind("txt.json:4:")) << output;
+  EXPECT_NE(output.find("expected an IES (.ies) or EULUMDAT (.ldt) file"), std::string::npos) << output;
+}
+
+// Class 2: one rule for every sub-command — no output may be an input of the run (the scene, a
+// file it or a relight frame reads, the points, an image compared, a mesh measured) or another
+// output. Before: probe, compare, render --relight and bench overwrote them and exited 0.
+TEST_F(Cli, NoSubCommandWritesOverItsInputs) {
+  write("room.json", kLuminaireRoom);
+  write("lamp.ies", kPlainIes);
+  write("frame.ies", kPlainIes);
+  write("pts.csv", "2,0.01,2,0,1,0\n");
+  write("frames.json", R"({"frames": [{"name": "f", "lights": [
+    {"type": "luminaire", "file": "frame.ies", "position": [2, 2.9, 2], "target": [2, 0, 2]}]}]})");
+  write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  std::string output;
+  ASSERT_EQ(run("render room.json -q --method local -o a.pfm", output), 0) << output;
+  ASSERT_EQ(run("render room.json -q --method local -o b.pfm", output), 0) << output;
+  std::map<std::string, std::string> before;
+  for (const auto& entry : fs::directory_iterator(directory_))
+    if (entry.path().filename() != "log.txt") before[entry.path().filename()] = file_bytes(entry.path());
+  struct Case {
+    std::string arguments, expected;
+  };
+  const std::vector<Case> cases{
+      {"probe room.json --points pts.csv -o out.csv --json pts.csv", "--json pts.csv: that is pts.csv"},
+      {"probe room.json --points pts.csv -o room.csv --json room.json",
+       "--json room.json: that is room.json"},
+      {"probe room.json --points pts.csv -o out.csv --json lamp.ies", "--json lamp.ies: that is"},
+      {"probe room.json --points pts.csv -o out.csv --json out.csv", "--json out.csv: the same file as -o"},
+      {"compare a.pfm b.pfm --json a.pfm", "--json a.pfm: that is a.pfm"},
+      {"compare a.pfm b.pfm --diff d.png --json d.png", "--json d.png: the same file as --diff d.png"},
+      {"compare a.pfm b.pfm --mask a.pfm --diff b.pfm", "--diff b.pfm: that is"},
+      {"render room.json -q --method meshless --relight frames.json -o out.png --stats frame.ies",
+       "--stats frame.ies: that is"},
+      {"bench tri.obj --json tri.obj", "--json tri.obj: that is tri.obj"},
+      {"bench room.json --json lamp.ies", "--json lamp.ies: that is"},
+  };
+  for (const Case& c : cases) {
+    EXPECT_EQ(run(c.arguments, output), 2) << c.arguments << "\n" << output;
+    EXPECT_NE(output.find(c.expected), std::string::npos) << c.arguments << "\n" << output;
+    for (const auto& [name, bytes] : before) EXPECT_EQ(file_bytes(directory_ / name), bytes) << c.arguments;
+    EXPECT_EQ(file_count(), static_cast<int>(before.size())) << c.arguments;
+  }
+}
+
+// Class 3: what can be checked before the work is; nothing not finite is written. Before: probe
+// with --efficacy 1e308 wrote a CSV of inf and exited 1; an all-black --error-mask rendered and
+// wrote the image, then failed.
+TEST_F(Cli, ChecksThatCanPrecedeTheWorkDoAndNothingInfiniteIsWritten) {
+  write("room.json", kLuminaireRoom);
+  write("lamp.ies", kPlainIes);
+  write("pts.csv", "2,0.01,2,0,1,0\n");
+  std::string output;
+  EXPECT_EQ(run("probe room.json --points pts.csv --efficacy 1e308 -o out.csv", output), 2) << output;
+  EXPECT_NE(output.find("--efficacy 1e+308: must be a positive number of lm/W, at most 683"),
+            std::string::npos)
+      << output;
+  EXPECT_EQ(run("probe room.json --points pts.csv --efficacy 683 -o out.csv", output), 0) << output;
+  fs::remove(directory_ / "out.csv");
+  ASSERT_EQ(run("render room.json -q --method path -o ref.pfm", output), 0) << output;
+  ASSERT_EQ(run("render room.json -q --method local --set lights=[] -o black.png", output), 0) << output;
+  EXPECT_EQ(run("render room.json -q --method path --spp 64 --error-log e.csv --error-reference ref.pfm "
+                "--error-mask black.png -o out.pfm",
+                output),
+            2)
+      << output;
+  EXPECT_NE(output.find("--error-mask black.png excludes every pixel"), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(directory_ / "out.pfm"));
+  EXPECT_FALSE(fs::exists(directory_ / "e.csv"));
+}
+
+// Class 5: exit codes and messages.
+TEST_F(Cli, RefusalsAreBadInputWithTheirLocationAndWarningsAreGiven) {
+  std::string output;
+  // A scene of one infinite plane: radiosity exited 1, "the scene has zero size", no location.
+  write("plane.json", R"({"format": "candela/1", "camera": {"eye": [0, 2, 5], "width": 8, "height": 6},
+    "lights": [{"type": "point", "position": [0, 3, 0], "intensity": 5}],
+    "shapes": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0]}]})");
+  EXPECT_EQ(run("render plane.json -q --method radiosity -o out.png", output), 2) << output;
+  EXPECT_NE(output.find("plane.json: shapes: radiosity meshes the surfaces within the bounded shapes' box"),
+            std::string::npos)
+      << output;
+  // A relight frame with the sun below the horizon warns as the scene does.
+  write("room.json", R"({"format": "candela/1",
+    "camera": {"eye": [5, 4, 9.5], "target": [5, 4, 0], "fov": 60, "width": 8, "height": 8},
+    "meshless": {"spacing": 1.5, "grid": 8, "rounds": 1},
+    "lights": [{"type": "point", "position": [5, 7, 5], "intensity": 10}],
+    "shapes": [{"type": "box", "min": [0, 0, 0], "max": [10, 8, 10], "material": {"kd": 0.6}}]})");
+  write("night.json", R"({"frames": [{"name": "night", "ambient": 0.1, "lights": [{"type": "sun",
+    "latitude": 48.85, "longitude": 2.35, "date": "2026-06-21", "time": "01:00", "timezone": 2}]}]})");
+  EXPECT_EQ(run("render room.json -q --method meshless --relight night.json -o out.png", output), 0)
+      << output;
+  EXPECT_NE(output.find("night.json: frame night: frames[0].lights[0]: the sun is below the horizon"),
+            std::string::npos)
+      << output;
+  // Dates and times that are not ISO 8601's.
+  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{{"date", "2026-+6-21"},
+                                                                                   {"date", "2026-06-2x"},
+                                                                                   {"date", "2026- 6-21"},
+                                                                                   {"date", "2026-13-01"},
+                                                                                   {"time", "12:00 tomorrow"},
+                                                                                   {"time", "+9:30"},
+                                                                                   {"time", "12:5"},
+                                                                                   {"time", "12:00:60"},
+                                                                                   {"time", "24:01"},
+                                                                                   {"time", "12:00:30."}}) {
+    std::string sun = R"({"type": "sun", "latitude": 48.85, "longitude": 2.35, "date": "2026-06-21",
+      "time": "12:00", "timezone": 2})";
+    const std::string field = "\"" + key + "\": \"";
+    const std::size_t at = sun.find(field) + field.size();
+    sun.replace(at, sun.find('"', at) - at, value);
+    write("sun.json", R"({"format": "candela/1", "camera": {"width": 8, "height": 6}, "lights": [)" + sun +
+                          R"(], "shapes": [{"type": "sphere"}]})");
+    EXPECT_EQ(run("render sun.json -q -o out.png", output), 2) << value << output;
+    EXPECT_NE(output.find("lights[0]." + key + ": expected"), std::string::npos) << value << output;
+  }
+  for (const std::string time : {"9:30", "12:00:30.5", "24:00"}) {
+    write("sun.json",
+          R"({"format": "candela/1", "camera": {"width": 8, "height": 6}, "lights": [{"type": "sun",
+      "latitude": 48.85, "longitude": 2.35, "date": "2026-06-21", "time": ")" +
+              time + R"(", "timezone": 2}], "shapes": [{"type": "sphere"}]})");
+    EXPECT_EQ(run("render sun.json -q -o out.png", output), 0) << time << output;
+  }
+  // A folder or a FIFO given to --resume is named as what it is.
+  fs::create_directories(directory_ / "folder.ckpt");
+  ASSERT_EQ(::mkfifo((directory_ / "pipe.ckpt").c_str(), 0600), 0);
+  EXPECT_EQ(run("render room.json -q --method path --resume folder.ckpt -o out.png", output), 2) << output;
+  EXPECT_NE(output.find("--resume folder.ckpt: the checkpoint is a directory, not a file"), std::string::npos)
+      << output;
+  EXPECT_EQ(run_with_timeout("render room.json -q --method path --resume pipe.ckpt -o out.png", output, 20),
+            2)
+      << output;
+  EXPECT_NE(output.find("--resume pipe.ckpt: the checkpoint is a FIFO (named pipe)"), std::string::npos)
+      << output;
+}
+
+// Class 6: a valid scene that would exhaust the machine is refused before any work with what the
+// method would hold and the setting to change (before: meshless on the 10,584-sphere field grew past
+// 24 GB and was killed). render.memory_limit_mib stands in for the machine here.
+TEST_F(Cli, MethodsThatWouldHoldMoreThanTheMemoryLimitAreRefusedBeforeAnyWork) {
+  std::string spheres;
+  for (int i = 0; i < 20; ++i)
+    spheres += fmt::format(R"({{"type": "sphere", "center": [{}, 0.3, 0], "radius": 0.25}},)", i);
+  write("field.json", R"({"format": "candela/1",
+    "camera": {"eye": [10, 3, 8], "target": [10, 0, 0], "width": 40, "height": 30},
+    "lights": [{"type": "point", "position": [10, 5, 2], "intensity": 20}],
+    "meshless": {"spacing": 0.5, "grid": 8, "rounds": 1},
+    "shapes": [)" + spheres +
+                          R"({"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0]}]})");
+  std::string output;
+  // 20 spheres of 64 × 62 triangles (the effective areas' tessellation: 64 longitudes, 32 bands of
+  // which the two at the poles are single triangles); the plane lies outside the spheres' box.
+  EXPECT_EQ(run("render field.json -q --method meshless --set render.memory_limit_mib=60 -o out.png", output),
+            2)
+      << output;
+  EXPECT_NE(output.find("--set render.memory_limit_mib=60: render.memory_limit_mib: meshless would hold"),
+            std::string::npos)
+      << output;
+  EXPECT_NE(output.find("the effective-area integration's 79360 triangles"), std::string::npos) << output;
+  EXPECT_NE(output.find("more than the 60.0 MiB render.memory_limit_mib allows; meshless.effective_area: set "
+                        "it to \"thesis\""),
+            std::string::npos)
+      << output;
+  EXPECT_EQ(run("probe field.json --method meshless --grid 0,0.01,-1,20,0,0,0,0,2 --grid-size 4,2 "
+                "--set render.memory_limit_mib=60 -o out.csv",
+                output),
+            2)
+      << output;
+  EXPECT_NE(output.find("meshless would hold"), std::string::npos) << output;
+  // The setting it names lets the scene through.
+  EXPECT_EQ(run("render field.json -q --method meshless --set render.memory_limit_mib=60 --set "
+                "meshless.effective_area=\\\"thesis\\\" -o out.png",
+                output),
+            0)
+      << output;
+  fs::remove(directory_ / "out.png");
+  // The image itself, the raster's samples and triangles, the path tracer's sums.
+  for (const std::string method : {"local", "raster", "path"}) {
+    EXPECT_EQ(
+        run("render field.json -q --method " + method +
+                " --set camera.width=4000 --set camera.height=3000 --set render.memory_limit_mib=100 -o "
+                "out.png",
+            output),
+        2)
+        << method << output;
+    EXPECT_NE(output.find(method + " would hold"), std::string::npos) << method << output;
+  }
+  EXPECT_EQ(file_count(), 1);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "camera/antialiasing.h"
 #include "distributed/cluster.h"
 #include "integrators/distributed_tiles.h"
+#include "integrators/memory_estimate.h"
 #include "integrators/solution_field.h"
 #include "meshless/effective_area.h"
 #include "meshless/meshless_basis.h"
@@ -165,6 +166,9 @@ nlohmann::json geometry_facts(const MeshlessSettings& settings, const MeshlessGe
 
 namespace {
 
+// Divisions of a full turn of the curved shapes the effective areas are integrated over.
+constexpr int kEffectiveAreaSegments = 64;
+
 // The most transfer entries S may keep: Eigen's 32-bit index, and half the machine's memory at
 // 16 bytes an entry while S is built (a row's (index, value) pairs, then the compressed copy) —
 // past it the build stops and is refused naming meshless.spacing (SPEC §15).
@@ -211,8 +215,8 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const Meshl
                                                     settings.kernel, settings.shepard_power);
   geometry->areas = sites.effective_area;  // the thesis's πh²/(m + 1)
   if (settings.effective_area == MeshlessAreas::integrated)
-    geometry->areas =
-        integrate_effective_areas(scene, *geometry->basis, sites, sites.spacing / 4, 64, cluster, quiet);
+    geometry->areas = integrate_effective_areas(scene, *geometry->basis, sites, sites.spacing / 4,
+                                                kEffectiveAreaSegments, cluster, quiet);
   geometry->area_seconds = seconds_since(start);
   if (stop()) return nullptr;
   // Issue 19: the longest phase shows its rows (rank 0, for every rank).
@@ -244,6 +248,29 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const Meshl
 }
 
 }  // namespace
+
+std::vector<MemoryPart> MeshlessMethod::memory_needed(const Scene& scene, const PixelRect& region) const {
+  std::vector<MemoryPart> parts = Method::memory_needed(scene, region);
+  // The sites with their radii, areas, coefficients and index: well under a kilobyte each.
+  parts.push_back({fmt::format("up to {} sites", settings_.max_sites),
+                   static_cast<uint64_t>(settings_.max_sites) * 1024, "meshless.max_sites",
+                   "lower it, or raise meshless.spacing"});
+  if (settings_.effective_area == MeshlessAreas::integrated) {
+    // The surfaces as integrate_effective_areas tessellates them (planes end where sites reach: a
+    // few triangles whatever the box).
+    TessellationRequest request;
+    request.max_segments = kEffectiveAreaSegments;
+    request.clip = scene.bounds();
+    const std::size_t triangles = tessellated_triangle_count(scene, request);
+    parts.push_back({fmt::format("the effective-area integration's {} triangles", triangles),
+                     static_cast<uint64_t>(triangles) * kEffectiveAreaTriangleBytes,
+                     "meshless.effective_area",
+                     "set it to \"thesis\" (A = πh²/(m + 1), no integration over the tessellated surfaces)"});
+  }
+  // The transfer matrix's size is known only as it is built: it is refused then, past half the
+  // machine's memory (transfer_entry_limit).
+  return parts;
+}
 
 std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene,
                                                           const MeshlessSettings& settings) {

@@ -128,6 +128,8 @@ class MeshlessMethod final : public Method {
   explicit MeshlessMethod(const MeshlessSettings& settings = {}) : settings_(settings) {}
   std::string_view name() const override { return "meshless"; }
   RenderResult render(const Scene& scene, const RenderRequest& request) const override;
+  // The image, the sites and, with integrated effective areas, the tessellated surfaces.
+  std::vector<MemoryPart> memory_needed(const Scene& scene, const PixelRect& region) const override;
 
  private:
   std::shared_ptr<const MeshlessGeometry> geometry_for(const Scene& scene, bool& reused, Cluster* cluster,

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "camera/film.h"
 #include "integrators/antialiasing_support.h"
@@ -90,6 +91,15 @@ struct RenderResult {
   std::optional<Bytes> checkpoint;  // the final state, sealed (RenderRequest::checkpoint; rank 0)
 };
 
+// Issue 51 (SPEC §15): a part of what a render will hold beyond the loaded scene, estimated before
+// any work, and the setting that makes it smaller.
+struct MemoryPart {
+  std::string what;  // "the image", "the effective-area integration's 42,600,000 triangles"
+  uint64_t bytes = 0;
+  std::string setting;  // the JSON path to change ("camera.width", "meshless.effective_area")
+  std::string remedy;   // how ("set it to \"thesis\"")
+};
+
 class Method {
  public:
   virtual ~Method() = default;
@@ -107,6 +117,9 @@ class Method {
   // Throws the InputError of a scene the method cannot render with its settings (an emitter its
   // shading cannot take), so that create_method refuses it before any work; render checks again.
   virtual void refuse_scene(const Scene& scene) const { (void)scene; }
+  // Issue 51: what rendering `region` (empty: the solution alone, as probe needs it) will hold,
+  // part by part; by default the image (integrators/memory_estimate.h).
+  virtual std::vector<MemoryPart> memory_needed(const Scene& scene, const PixelRect& region) const;
 };
 
 // Throws the InputError of method.antialiasing_refusal(scene), naming the method, the setting

@@ -16,6 +16,7 @@
 #include "distributed/cluster.h"
 #include "distributed/task_farm.h"
 #include "integrators/distributed_tiles.h"
+#include "integrators/memory_estimate.h"
 #include "integrators/path_checkpoint.h"
 #include "math/constants.h"
 #include "sampling/independent_sampler.h"
@@ -365,6 +366,15 @@ Color path_irradiance(const Scene& scene, const PathSettings& settings, const Li
       path_irradiance(scene, settings, lights, point, normal, static_cast<Sampler&>(sampler), rays);
   rng = sampler.stream();
   return E;
+}
+
+std::vector<MemoryPart> PathMethod::memory_needed(const Scene&, const PixelRect& region) const {
+  // A Color and a double a pixel for the sums and weights, again in a checkpoint; the image and a
+  // pass's (RenderResult, the pass image).
+  const uint64_t pixels = film_bytes(region, 1) / sizeof(Color);
+  return {{"the image, a pass's, the running sums and weights and their checkpoint",
+           film_bytes(region, 4) + 2 * pixels * sizeof(double), "camera.width",
+           "lower camera.width and camera.height, or render a part (--crop)"}};
 }
 
 RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request) const {

@@ -171,6 +171,17 @@ std::optional<AntialiasingRefusal> RadiosityMethod::antialiasing_refusal(const S
   return refusal;
 }
 
+// Issue 51: it exited 1 with "the radiosity mesh: the scene has zero size", no location.
+void RadiosityMethod::refuse_scene(const Scene& scene) const {
+  const Bounds3& bounds = scene.bounds();
+  if (bounds.empty() || !(length(bounds.diagonal()) > 0))
+    throw InputError(
+        {scene.source, 0, 0, "shapes"},
+        "radiosity meshes the surfaces within the bounded shapes' box (planes are cut there, and "
+        "patch_size defaults to an eighth of its size): this scene has no bounded shape of any "
+        "size, only unbounded planes");
+}
+
 RenderResult RadiosityMethod::render(const Scene& scene, const RenderRequest& request) const {
   refuse_unsupported_antialiasing(*this, scene);  // before the solve
   RenderResult output(request.region);

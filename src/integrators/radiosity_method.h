@@ -71,6 +71,8 @@ class RadiosityMethod final : public Method {
   // flat, ray-traced, elements: every aa mode and filter; gouraud: the modes whose samples lie on
   // a grid (camera/sample_grid.h).
   std::optional<AntialiasingRefusal> antialiasing_refusal(const Scene& scene) const override;
+  // A scene with no bounded shape of any size (only planes): nothing to mesh within.
+  void refuse_scene(const Scene& scene) const override;
 
  private:
   struct Solved {

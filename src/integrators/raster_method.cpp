@@ -14,6 +14,7 @@
 #include "camera/antialiasing.h"
 #include "camera/sample_grid.h"
 #include "integrators/direct_lighting.h"
+#include "integrators/memory_estimate.h"
 #include "raster/rasterizer.h"
 #include "raster/tessellated_scene.h"
 #include "shading/cook_torrance.h"
@@ -298,6 +299,55 @@ struct TileBuffers {
 
 }  // namespace
 
+namespace {
+
+// The scene's tessellation for the camera's view on the sample grid: curved shapes by their size on
+// screen, planes cut by a box around the scene, the eye and the planes' points nearest the eye, a
+// hundred times its size (a floor reaches a horizon far beyond the scene).
+TessellationRequest tessellation_for_view(const Scene& scene, const SampleGrid& grid,
+                                          const RasterSettings& settings) {
+  const Camera& camera = *scene.camera;
+  const Bounds3 clip = raster_clip_box(scene, camera.eye_position(), 100);
+  // Depth range: everything inside the clip box; near small enough for the closest surface.
+  const double far = 2 * length(clip.diagonal());
+  const double near = far * 1e-8;
+  Eigen::Matrix4d clip_from_world = camera.view_projection(near, far);
+  // The grid's rasterizer has its pixel centres on the sample points.
+  clip_from_world.row(0) *= grid.ndc_scale(camera.width());
+  clip_from_world.row(1) *= grid.ndc_scale(camera.height());
+  TessellationRequest tessellation;
+  tessellation.max_segments = settings.segments;
+  tessellation.crease_angle_degrees = settings.crease_angle;
+  tessellation.clip = clip;
+  tessellation.has_view = true;
+  tessellation.clip_from_world = clip_from_world;
+  tessellation.image_width = camera.width();
+  tessellation.eye = camera.eye_position();
+  return tessellation;
+}
+
+}  // namespace
+
+// Issue 51: the image, the samples of the grid (colour and depth) and the view's triangles with
+// their per-corner clip positions and varyings.
+std::vector<MemoryPart> RasterMethod::memory_needed(const Scene& scene, const PixelRect& region) const {
+  std::vector<MemoryPart> parts = Method::memory_needed(scene, region);
+  const std::optional<SampleGrid> grid = sample_grid(scene.antialiasing);
+  if (!grid) return parts;  // refused as it is rendered
+  const uint64_t samples = static_cast<uint64_t>(grid->end(region.width())) * grid->end(region.height());
+  parts.push_back({"the samples", samples * (sizeof(Color) + sizeof(double)), "aa.n", "lower it"});
+  const std::size_t triangles =
+      tessellated_triangle_count(scene, tessellation_for_view(scene, *grid, settings_));
+  // The tessellation three times at its peak (its arrays grow by doubling), then clip positions and
+  // varyings per corner and a flat colour.
+  constexpr std::size_t kRasterTriangleBytes =
+      3 * kTessellatedTriangleBytes + 3 * sizeof(Eigen::Vector4d) + 3 * 4 * sizeof(double) + sizeof(Color);
+  parts.push_back({fmt::format("the {} triangles of the view", triangles),
+                   static_cast<uint64_t>(triangles) * kRasterTriangleBytes, "raster.segments",
+                   "lower it (curved shapes' divisions of a full turn)"});
+  return parts;
+}
+
 void RasterMethod::refuse_scene(const Scene& scene) const {
   refuse_dot_product_scene(settings_, scene);
 }
@@ -324,24 +374,8 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
                              static_cast<int>(grid.end(pixels.x1)), static_cast<int>(grid.end(pixels.y1))};
   Film samples(samples_box.width(), samples_box.height());
   Stopwatch tessellation_time;
-  // Unbounded shapes (planes) are cut by a box around the scene, the eye and the planes' points
-  // nearest the eye, a hundred times its size: a floor reaches a horizon far beyond the scene.
-  const Bounds3 clip = raster_clip_box(scene, camera.eye_position(), 100);
-  // Depth range: everything inside the clip box; near small enough for the closest surface.
-  const double far = 2 * length(clip.diagonal());
-  const double near = far * 1e-8;
-  Eigen::Matrix4d clip_from_world = camera.view_projection(near, far);
-  // The grid's rasterizer has its pixel centres on the sample points.
-  clip_from_world.row(0) *= grid.ndc_scale(camera.width());
-  clip_from_world.row(1) *= grid.ndc_scale(camera.height());
-  TessellationRequest tessellation;
-  tessellation.max_segments = settings_.segments;
-  tessellation.crease_angle_degrees = settings_.crease_angle;
-  tessellation.clip = clip;
-  tessellation.has_view = true;
-  tessellation.clip_from_world = clip_from_world;
-  tessellation.image_width = camera.width();
-  tessellation.eye = camera.eye_position();
+  const TessellationRequest tessellation = tessellation_for_view(scene, grid, settings_);
+  const Eigen::Matrix4d& clip_from_world = tessellation.clip_from_world;
   const TessellatedScene triangles = tessellate_scene(scene, tessellation);
   const double tessellation_seconds = tessellation_time.seconds();
 

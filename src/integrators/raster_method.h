@@ -56,6 +56,8 @@ class RasterMethod final : public Method {
   std::optional<AntialiasingRefusal> antialiasing_refusal(const Scene& scene) const override;
   // "dotproduct" shading and the environment, or more lights than it interpolates.
   void refuse_scene(const Scene& scene) const override;
+  // The image, the grid's samples and the view's triangles.
+  std::vector<MemoryPart> memory_needed(const Scene& scene, const PixelRect& region) const override;
 
  private:
   RasterSettings settings_;

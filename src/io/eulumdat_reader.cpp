@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "math/constants.h"
 #include "util/input_file.h"
 #include "util/number_text.h"
 
@@ -41,6 +42,10 @@ class LineReader {
     double value = 0;
     if (!parse_finite_number(token, value))
       fail(fmt::format("\"{}\" is not a number (expected {})", std::string(row), what));
+    // Issue 51: the scene file's limit on every number, so that no product of them overflows.
+    if (std::fabs(value) > kMaxSceneMagnitude)
+      fail(fmt::format("{}: magnitude above {:g} is not supported (found {:g})", what, kMaxSceneMagnitude,
+                       value));
     return value;
   }
   int integer(const std::string& what, int low, int high) {
@@ -180,6 +185,12 @@ Photometry parse_eulumdat(std::string_view text, const std::string& file) {
       const double value = lines.number(
           fmt::format("the intensity at C{}°, γ {}° (cd/klm)", result.horizontal[p], result.vertical[g]));
       if (value < 0) lines.fail(fmt::format("intensities cannot be negative ({})", value));
+      // Issue 51: two large legal numbers made every intensity infinite (and 0 × inf NaN).
+      if (value * scale > kMaxSceneMagnitude)
+        lines.fail(fmt::format(
+            "the intensity {:g} cd/klm × the lamp flux {:g} lm / 1000 × the conversion factor {:g} is {:g} "
+            "cd, above {:g} (the largest intensity supported)",
+            value, fluxes[0], conversion, value * scale, kMaxSceneMagnitude));
       result.candela[std::size_t(p) * gammas + g] = value * scale;
     }
   return result;

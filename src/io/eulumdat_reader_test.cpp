@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -119,6 +120,26 @@ TEST(Eulumdat, BadFilesNameTheLineAndWhatWasExpected) {
   bad.replace(ng + 1, 1, "two");
   EXPECT_NE(eulumdat_error(bad).find("lamp.ldt:6: \"two\" is not a number"), std::string::npos)
       << eulumdat_error(bad);
+}
+
+// Issue 51: flux / 1000 × the conversion factor of two large legal numbers made every intensity
+// inf; every number is held to 1e16 and each scaled intensity too, at its line.
+TEST(Eulumdat, IntensitiesThatWouldOverflowAreRefusedWhereTheyAreRead) {
+  const std::string products = ldt_file(1, 24, {0, 90}, {0, 1000}, 1e16, 1e12);
+  EXPECT_NE(eulumdat_error(products).find("the intensity 1000 cd/klm × the lamp flux 1e+16 lm / 1000 × the "
+                                          "conversion factor 1e+12 is 1e+28 cd, above 1e+16"),
+            std::string::npos)
+      << eulumdat_error(products);
+  // The last line of the file is the value 1000.
+  const int last_line = static_cast<int>(std::count(products.begin(), products.end(), '\n'));
+  EXPECT_NE(eulumdat_error(products).find("lamp.ldt:" + std::to_string(last_line) + ":"), std::string::npos)
+      << eulumdat_error(products);
+  const std::string huge = ldt_file(1, 24, {0, 90}, {0, 1}, 2000, 1e300);
+  EXPECT_NE(
+      eulumdat_error(huge).find("lamp.ldt:24: the conversion factor for luminous intensities (line 24): "
+                                "magnitude above 1e+16 is not supported"),
+      std::string::npos)
+      << eulumdat_error(huge);
 }
 
 }  // namespace

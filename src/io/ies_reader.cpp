@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "math/constants.h"
 #include "util/input_file.h"
 #include "util/number_text.h"
 
@@ -37,6 +38,10 @@ class NumberReader {
                        fmt::format("\"{}\" is not a number (expected {})", std::string(token), what));
     last_line_ = line;
     last_column_ = column;
+    // Issue 51: the scene file's limit on every number, so that no product of them overflows.
+    if (std::fabs(value) > kMaxSceneMagnitude)
+      fail(fmt::format("{}: magnitude above {:g} is not supported (found {:g})", what, kMaxSceneMagnitude,
+                       value));
     return value;
   }
   // The next number, which must be an integer in [low, high].
@@ -201,6 +206,12 @@ Photometry parse_ies(std::string_view text, const std::string& file) {
       const double value = numbers.number(fmt::format(
           "the candela value at vertical angle {}°, horizontal {}°", ies.vertical[v], ies.horizontal[h]));
       if (value < 0) numbers.fail(fmt::format("candela values cannot be negative ({})", value));
+      // Issue 51: two large legal numbers made every intensity infinite (and 0 × inf NaN).
+      if (value * scale > kMaxSceneMagnitude)
+        numbers.fail(fmt::format(
+            "the candela value {:g} × the candela multiplier {:g} × the ballast factor {:g} is {:g} cd, "
+            "above {:g} (the largest intensity supported)",
+            value, ies.candela_multiplier, ies.ballast_factor, value * scale, kMaxSceneMagnitude));
       ies.candela[std::size_t(h) * vertical_count + v] = value * scale;
     }
   return ies;

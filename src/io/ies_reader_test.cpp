@@ -135,5 +135,34 @@ TEST(Ies, BadFilesNameTheLineColumnAndWhatWasExpected) {
   EXPECT_NE(ies_error("TILT=NONE\n1 -1 1 2 1 4 2 0 0 0\n").find("photometric type"), std::string::npos);
 }
 
+// Issue 51: a candela multiplier × ballast factor of two large legal-looking numbers made every
+// intensity inf (NaN where a value was 0); every number is held to the scene file's 1e16, and each
+// scaled value too, at its line and column.
+TEST(Ies, IntensitiesThatWouldOverflowAreRefusedWhereTheyAreRead) {
+  const std::string header = "IESNA:LM-63-2002\n[TEST] t\nTILT=NONE\n";
+  const std::string products = header + "1 -1 1e10 2 1 1 2 0 0 0\n1e10 1 0\n0 90\n0\n0 1000\n";
+  EXPECT_NE(
+      ies_error(products).find("lamp.ies:8:3: the candela value 1000 × the candela multiplier 1e+10 × the "
+                               "ballast factor 1e+10 is 1e+23 cd, above 1e+16"),
+      std::string::npos)
+      << ies_error(products);
+  const std::string huge = header + "1 -1 1e300 2 1 1 2 0 0 0\n1e300 1 0\n0 90\n0\n0 1000\n";
+  EXPECT_NE(
+      ies_error(huge).find("lamp.ies:4:6: the candela multiplier: magnitude above 1e+16 is not supported "
+                           "(found 1e+300)"),
+      std::string::npos)
+      << ies_error(huge);
+  const std::string value = header + "1 -1 1 2 1 1 2 0 0 0\n1 1 0\n0 90\n0\n1e17 0\n";
+  EXPECT_NE(
+      ies_error(value).find("lamp.ies:8:1: the candela value at vertical angle 0°, horizontal 0°: magnitude "
+                            "above 1e+16"),
+      std::string::npos)
+      << ies_error(value);
+  // At the limit the table is read, its intensities and flux finite.
+  const Photometry at_limit = parse_ies(header + "1 -1 1e8 2 1 1 2 0 0 0\n1e8 1 0\n0 90\n0\n0 1\n", "t.ies");
+  EXPECT_EQ(at_limit.intensity(90, 0), 1e16);
+  EXPECT_TRUE(std::isfinite(at_limit.flux()));
+}
+
 }  // namespace
 }  // namespace candela

@@ -15,10 +15,13 @@
 //     the areas still add up to the surface (eq. 5.4).
 #pragma once
 
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "meshless/meshless_basis.h"
 #include "meshless/site_sampling.h"
+#include "raster/tessellated_scene.h"
 
 namespace candela {
 
@@ -29,6 +32,15 @@ class Scene;
 // std::invalid_argument unless cell > 0 and segments ≥ 3. With a cluster of several ranks the
 // triangles are shared out among them; every rank gets the same areas as one process. Unless
 // quiet, a progress bar counts the triangles.
+// Issue 51: what integrate_effective_areas holds at its peak per triangle of the tessellated scene,
+// for the method's memory estimate: the triangle three times (its arrays grow by doubling, and a
+// reallocation holds the old and the new array), and its per-site sums (four entries and the
+// allocation's own header). Measured: 800 spheres of scenes/sphere-field-10584.json, 3,174,400
+// triangles, peaked at 3.07 GB resident, 967 bytes a triangle; this gives 1,004.
+inline constexpr std::size_t kEffectiveAreaTriangleBytes = 3 * kTessellatedTriangleBytes +
+                                                           sizeof(std::vector<std::pair<uint32_t, double>>) +
+                                                           16 + 4 * sizeof(std::pair<uint32_t, double>);
+
 std::vector<double> integrate_effective_areas(const Scene& scene, const MeshlessBasis& basis,
                                               const SiteSet& sites, double cell, int segments = 64,
                                               Cluster* cluster = nullptr, bool quiet = true);

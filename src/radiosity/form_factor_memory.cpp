@@ -3,14 +3,12 @@
 #include <fmt/format.h>
 
 #include "radiosity/solvers.h"
+#include "util/memory.h"
 
 namespace candela {
 
 uint64_t form_factor_memory_limit(const RadiositySettings& settings) {
-  if (!(settings.memory_limit_mib > 0)) return default_gaussian_elimination_memory_limit();
-  const double bytes = settings.memory_limit_mib * 1048576.0;
-  // Saturated: beyond 2⁶⁴ bytes the conversion would be undefined.
-  return bytes >= 18446744073709549568.0 ? UINT64_MAX : static_cast<uint64_t>(bytes);
+  return memory_limit_bytes(settings.memory_limit_mib);
 }
 
 void check_form_factor_memory(uint64_t required, const RadiositySettings& settings, const std::string& what,

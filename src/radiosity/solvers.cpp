@@ -137,8 +137,7 @@ uint64_t gaussian_elimination_memory_bytes(std::size_t patch_count) {
 }
 
 uint64_t default_gaussian_elimination_memory_limit() {
-  const uint64_t physical = physical_memory_bytes();
-  return physical > 0 ? physical / 2 : uint64_t{8} << 30;
+  return memory_limit_bytes(0);
 }
 
 RadiositySolution solve_gaussian_elimination(const RadiositySystem& system,

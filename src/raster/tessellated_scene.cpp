@@ -113,6 +113,27 @@ Bounds3 raster_clip_box(const Scene& scene, const Vec3& eye, double margin) {
   return {middle - half, middle + half};
 }
 
+std::size_t tessellated_triangle_count(const Scene& scene, const TessellationRequest& request) {
+  TessellationSettings settings;
+  settings.clip = request.clip;
+  std::size_t count = 0;
+  TriangleMesh mesh;
+  for (const Primitive& primitive : scene.primitives) {
+    const Shape& shape = *primitive.shape;
+    settings.segments = segments_for(shape, request);
+    mesh.positions.clear();
+    mesh.triangles.clear();
+    mesh.corner_normals.clear();
+    mesh.corner_uvs.clear();
+    shape.tessellate(settings, mesh);
+    Vec3 point, normal;
+    if (request.has_view && !mesh.triangles.empty() && world_plane(shape, point, normal))
+      refine_toward(mesh, 0, request.eye);
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) count += !mesh.is_degenerate(t);
+  }
+  return count;
+}
+
 TessellatedScene tessellate_scene(const Scene& scene, const TessellationRequest& request) {
   TessellatedScene result;
   TessellationSettings settings;

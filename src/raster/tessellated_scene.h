@@ -50,6 +50,14 @@ struct TessellationRequest {
 // so flat and Gouraud shading have vertices where the light changes.
 TessellatedScene tessellate_scene(const Scene& scene, const TessellationRequest& request);
 
+// Issue 51: the number of triangles tessellate_scene gives for the request, counted a primitive at
+// a time without holding them: what a method's memory estimate needs before it tessellates.
+std::size_t tessellated_triangle_count(const Scene& scene, const TessellationRequest& request);
+
+// The bytes a TessellatedScene keeps per triangle (its corners' four arrays and its own four).
+inline constexpr std::size_t kTessellatedTriangleBytes =
+    3 * (3 * sizeof(Vec3) + sizeof(Vec2)) + sizeof(Vec3) + 3 * sizeof(uint32_t);
+
 // The box that holds the scene's bounded shapes, the eye, and the point of every plane nearest
 // the eye, grown `margin` times its size about its centre: where planes are cut.
 Bounds3 raster_clip_box(const Scene& scene, const Vec3& eye, double margin);

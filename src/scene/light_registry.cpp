@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -212,13 +213,11 @@ std::unique_ptr<Light> make_luminaire(const JsonNode& node, Color&, const LoadCo
   const std::string path = context.resolve(name).string();
   const std::string extension = std::filesystem::path(name).extension().string();
   std::shared_ptr<const Photometry> photometry;
+  const bool ies = extension == ".ies" || extension == ".IES";
+  if (!ies && extension != ".ldt" && extension != ".LDT")
+    file.fail("\"" + name + "\": expected an IES (.ies) or EULUMDAT (.ldt) file");
   try {
-    if (extension == ".ies" || extension == ".IES")
-      photometry = std::make_shared<Photometry>(read_ies(path));
-    else if (extension == ".ldt" || extension == ".LDT")
-      photometry = std::make_shared<Photometry>(read_eulumdat(path));
-    else
-      file.fail("\"" + name + "\": expected an IES (.ies) or EULUMDAT (.ldt) file");
+    photometry = std::make_shared<Photometry>(ies ? read_ies(path) : read_eulumdat(path));
   } catch (const InputError& e) {
     file.fail(e.what());
   }
@@ -236,13 +235,24 @@ std::unique_ptr<Light> make_luminaire(const JsonNode& node, Color&, const LoadCo
   if (!(length(c0 - unit_nadir * dot(c0, unit_nadir)) > 1e-9 * length(c0)))
     node.at("c0").fail("must not be parallel to the nadir (position to target)");
   double scale = 1;
-  if (amount_key(node, {"multiplier", "luminous_flux"}) == "multiplier") {
+  const std::string amount = amount_key(node, {"multiplier", "luminous_flux"});
+  if (amount == "multiplier") {
     scale = node.number("multiplier", 1, Range::non_negative());
   } else {
     const double flux = photometry->flux();
     if (!(flux > 0)) file.fail("\"" + name + "\" emits nothing: it cannot be scaled to a luminous_flux");
     scale = node.number("luminous_flux", 0, Range::non_negative()) / flux;
   }
+  // Issue 51: the file's peak times the scale is held to the limit a point light's intensity has
+  // (a tiny table scaled to a large flux overflowed to an infinite intensity).
+  const double peak = photometry->candela.empty()
+                          ? 0.0
+                          : *std::max_element(photometry->candela.begin(), photometry->candela.end());
+  if (!(peak * scale <= kMaxSceneMagnitude))
+    (node.has(amount) ? node.at(amount) : file)
+        .fail(fmt::format(
+            "\"{}\" peaks at {:g} cd, × {:g} is {:g} cd: above {:g}, the largest intensity supported", name,
+            peak, scale, peak * scale, kMaxSceneMagnitude));
   // An area luminaire: "size" [width along C0, depth along C90] in metres, "samples" per side.
   double width = 0, depth = 0;
   int samples = 1;

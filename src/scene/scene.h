@@ -37,6 +37,10 @@ struct RenderSettings {
   int tile_size = 16;
   int surface_light_samples = 4;      // per side: an emissive surface's samples² shadow rays
   int environment_light_samples = 4;  // per side: the environment's samples² shadow rays
+  // Issue 51: what a method may hold before it is refused (MiB; 0: half the machine's memory),
+  // and where the scene sets it (empty when it does not).
+  double memory_limit_mib = 0;
+  SourceLocation memory_limit_location;
 };
 
 // One entry of the scene file's "shapes" array.

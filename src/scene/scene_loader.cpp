@@ -154,6 +154,9 @@ class SceneReader {
           "surface_light_samples", scene_->render.surface_light_samples, {1, 64, false, false});
       scene_->render.environment_light_samples = render->integer(
           "environment_light_samples", scene_->render.environment_light_samples, {1, 64, false, false});
+      scene_->render.memory_limit_mib = render->number("memory_limit_mib", 0.0, Range::non_negative());
+      if (render->has("memory_limit_mib"))
+        scene_->render.memory_limit_location = render->at("memory_limit_mib").location();
       render->finish();
     }
     if (const auto film = root_.get("film")) {
@@ -404,6 +407,8 @@ std::vector<LightSetup> load_light_setups_text(const std::string& text, const st
       if (earlier.name == setup.name)
         frame.at("name").fail("\"" + setup.name + "\" names an earlier frame too");
     setup.ambient = frame.color("ambient", Color(0), Range::non_negative());
+    context.input_files = &setup.input_files;
+    context.warnings = &setup.warnings;
     read_light_list(frame.at("lights"), setup.ambient, setup.lights, context);
     if (const auto materials = frame.get("materials")) {
       materials->expect_object();

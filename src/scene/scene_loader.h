@@ -39,6 +39,10 @@ struct LightSetup {
   std::vector<std::unique_ptr<Light>> lights;
   Color ambient;
   std::vector<AlbedoEdit> albedo_edits;
+  // Issue 51: the files the frame's lights read (luminaires), inputs no output may overwrite, and
+  // what its lights warn of (a sun below the horizon), as a scene's.
+  std::vector<std::string> input_files;
+  std::vector<std::string> warnings;
 };
 std::vector<LightSetup> load_light_setups(const std::string& path);
 std::vector<LightSetup> load_light_setups_text(const std::string& text, const std::string& name);

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "math/constants.h"
@@ -16,16 +15,51 @@ namespace {
 // outside; beyond 1900–2100 a date is refused rather than placed wrongly.
 constexpr int kFirstYear = 1900, kLastYear = 2100;
 
-bool read_date(const std::string& text, int& year, int& month, int& day) {
-  return text.size() == 10 && std::sscanf(text.c_str(), "%d-%d-%d", &year, &month, &day) == 3 &&
-         year >= kFirstYear && year <= kLastYear && day_of_year(year, month, day) > 0;
+// The number of the `count` digits at text[at...]; -1 unless they are all digits (issue 51:
+// sscanf's %d took signs, blanks and anything after the last field: "2026-+6-21", "12:00 tomorrow").
+int digits_at(const std::string& text, std::size_t at, std::size_t count) {
+  if (at + count > text.size()) return -1;
+  int value = 0;
+  for (std::size_t i = at; i < at + count; ++i) {
+    if (text[i] < '0' || text[i] > '9') return -1;
+    value = 10 * value + (text[i] - '0');
+  }
+  return value;
 }
 
+// YYYY-MM-DD exactly (ISO 8601's calendar date).
+bool read_date(const std::string& text, int& year, int& month, int& day) {
+  if (text.size() != 10 || text[4] != '-' || text[7] != '-') return false;
+  year = digits_at(text, 0, 4);
+  month = digits_at(text, 5, 2);
+  day = digits_at(text, 8, 2);
+  return year >= kFirstYear && year <= kLastYear && month >= 1 && day >= 1 &&
+         day_of_year(year, month, day) > 0;
+}
+
+// HH:MM or HH:MM:SS (the hour may have one digit), seconds with an optional fraction; up to 24:00.
 bool read_time(const std::string& text, double& hours) {
-  int h = 0, m = 0;
+  const std::size_t colon = text.find(':');
+  if (colon != 1 && colon != 2) return false;
+  const int h = digits_at(text, 0, colon), m = digits_at(text, colon + 1, 2);
   double seconds = 0;
-  const int parts = std::sscanf(text.c_str(), "%d:%d:%lf", &h, &m, &seconds);
-  if (parts < 2 || h < 0 || h > 24 || m < 0 || m > 59 || seconds < 0 || seconds >= 60) return false;
+  std::size_t end = colon + 3;
+  if (end < text.size()) {
+    if (text[end] != ':') return false;
+    const int whole = digits_at(text, end + 1, 2);
+    if (whole < 0) return false;
+    seconds = whole;
+    end += 3;
+    if (end < text.size()) {
+      if (text[end] != '.' || end + 1 == text.size()) return false;
+      double scale = 0.1;
+      for (std::size_t i = end + 1; i < text.size(); ++i, scale /= 10) {
+        if (text[i] < '0' || text[i] > '9') return false;
+        seconds += (text[i] - '0') * scale;
+      }
+    }
+  }
+  if (h < 0 || h > 24 || m < 0 || m > 59 || seconds >= 60) return false;
   hours = h + m / 60.0 + seconds / 3600;
   return hours <= 24;
 }

@@ -15,6 +15,9 @@ namespace candela {
 
 // lm/W: lumens per watt of the renderer's RGB (Radiance's 179, WHITE_EFFICACY).
 inline constexpr double kLuminousEfficacy = 179.0;
+// lm/W: the most any light has, monochromatic 555 nm where V(λ) = 1 (the candela's definition, SI
+// 2019: 683 lm/W at 540 THz); what an --efficacy option is held to.
+inline constexpr double kMaximumLuminousEfficacy = 683.0;
 
 // c scaled to Rec. 709 luminance 1 (c must have a positive luminance).
 inline Color unit_luminance(const Color& c) {

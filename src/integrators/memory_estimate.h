@@ -1,0 +1,24 @@
+// What a render will hold, estimated before any work, and its refusal past the limit (issue 51,
+// SPEC §15: a valid scene must not exhaust the machine — meshless on the 10,584-sphere field grew
+// past 24 GB in two minutes). Each method says what it holds (Method::memory_needed); the limit is
+// render.memory_limit_mib, half the machine's memory by default (util/memory.h). Radiosity's
+// form factors keep their own, finer checks (radiosity/form_factor_memory.h).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "integrators/method.h"
+
+namespace candela {
+
+// The bytes of `copies` films of the region's pixels.
+uint64_t film_bytes(const PixelRect& region, int copies);
+
+// Throws InputError (bad input: exit 2, nothing written) when the parts add up to more than the
+// scene's render.memory_limit_mib allows: the message gives the total, the parts largest first, the
+// largest part's setting and remedy, and render.memory_limit_mib; it is located at the largest
+// part's setting (or at render.memory_limit_mib where the scene sets it).
+void refuse_beyond_memory_limit(const Method& method, const Scene& scene, const PixelRect& region);
+
+}  // namespace candela
