@@ -7,7 +7,9 @@
 // ("file:line:column: json.path: what was expected") and its parts as attributes. A render runs
 // on a worker thread with the GIL released; the calling thread looks at Python's signals every
 // 50 ms, so Ctrl-C stops the method at its next coarse point (util/cancellation.h) and raises
-// KeyboardInterrupt once it has stopped.
+// KeyboardInterrupt once it has stopped. Issue 51: no function writes to a Scene, so several Python
+// threads may render (probe, solve) one Scene at once, each getting what the same call alone gives.
+#include <fmt/format.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -15,8 +17,10 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -32,6 +36,7 @@
 #include "integrators/scene_loading.h"
 #include "io/image_reader.h"
 #include "io/image_writer.h"
+#include "math/direction.h"
 #include "radiosity/solution_export.h"
 #include "util/cancellation.h"
 #include "util/error.h"
@@ -59,12 +64,19 @@ std::vector<std::string> overrides_from(const py::kwargs& overrides) {
   return assignments;
 }
 
+// The runs in progress (run_interruptibly), from every Python thread; read and written with the
+// GIL held.
+int runs_in_progress = 0;
+
 // Runs work() on a worker thread while this (Python's) thread, without the GIL, looks at its
 // signals every 50 ms: on Ctrl-C the run is asked to stop (request_cancellation) and, once it has,
-// KeyboardInterrupt is raised instead of its result.
+// KeyboardInterrupt is raised instead of its result. Issue 51: the cancellation flag is one for the
+// process, so with runs from several Python threads at once it is cleared only when none is in
+// progress (a run starting does not undo another's Ctrl-C), and a run it cut short raises
+// KeyboardInterrupt too rather than return a part of its image.
 template <class Result, class Work>
 Result run_interruptibly(Work&& work) {
-  reset_cancellation();
+  if (runs_in_progress++ == 0) reset_cancellation();
   std::optional<Result> result;
   std::exception_ptr error;
   std::mutex mutex;
@@ -95,9 +107,14 @@ Result run_interruptibly(Work&& work) {
     }
   }
   worker.join();
-  reset_cancellation();
+  const bool cut_short = cancel_requested();
+  if (--runs_in_progress == 0) reset_cancellation();
   if (interrupted) throw py::error_already_set();
   if (error) std::rethrow_exception(error);
+  if (cut_short) {  // another thread's Ctrl-C
+    PyErr_SetNone(PyExc_KeyboardInterrupt);
+    throw py::error_already_set();
+  }
   return std::move(*result);
 }
 
@@ -152,42 +169,39 @@ std::shared_ptr<Scene> load_file(const std::string& path, const py::kwargs& over
   return load_scene_file(path, overrides_from(overrides));
 }
 
-py::array_t<float> render(Scene& scene, std::optional<std::string> method_name, std::optional<int> spp,
+// Issue 51: the scene is only read — this render's seed and anti-aliasing samples go down in the
+// RenderRequest — so that renders of one Scene from several Python threads (the GIL is released
+// while they run) are each what the same render alone gives, and the Scene stays as it was.
+py::array_t<float> render(const Scene& scene, std::optional<std::string> method_name, std::optional<int> spp,
                           int threads, std::optional<uint64_t> seed) {
   const std::string name = method_name.value_or(scene.render.method);
   const MethodEntry* entry = find_method(name);
   if (!entry)
     throw py::value_error("unknown method '" + name + "' (expected one of: " + method_names() + ")");
   if (threads < 0) throw py::value_error("threads must be >= 0 (0: all cores)");
-  // The seed and the anti-aliasing spp sets are this render's: the scene keeps its own for the next.
-  struct RestoreScene {
-    Scene& scene;
-    const uint64_t seed;
-    const AntialiasingSettings antialiasing;
-    ~RestoreScene() {
-      scene.render.seed = seed;
-      scene.antialiasing = antialiasing;
-    }
-  } restore{scene, scene.render.seed, scene.antialiasing};
   // spp: the path tracer's passes; every other method's n×n anti-aliasing samples, as --spp.
   std::vector<std::string> settings;
+  std::optional<AntialiasingSettings> antialiasing;
   bool choose_mode = false;
   if (spp && entry->capabilities.progressive_passes) {
     if (*spp < 1) throw py::value_error("spp must be >= 1");
     settings.push_back("spp=" + std::to_string(*spp));
   } else if (spp) {
+    antialiasing = scene.antialiasing;
     try {
-      choose_mode = set_samples_per_pixel(scene, entry->name, *spp);
+      choose_mode = set_samples_per_pixel(*antialiasing, entry->name, *spp);
     } catch (const std::invalid_argument& e) {
       throw py::value_error(std::string("spp ") + e.what());
     }
   }
-  const std::unique_ptr<Method> method = create_method(*entry, scene, settings);
-  if (choose_mode) choose_jittered_where_possible(scene, *method);
-  if (seed) scene.render.seed = *seed;
+  const std::unique_ptr<Method> method =
+      create_method(*entry, scene, settings, antialiasing ? *antialiasing : scene.antialiasing);
+  if (choose_mode) choose_jittered_where_possible(*antialiasing, scene, *method);
   RenderRequest request;
   request.region = {0, 0, scene.camera->width(), scene.camera->height()};
   request.quiet = true;
+  request.seed = seed;
+  request.antialiasing = antialiasing;
   std::optional<tbb::global_control> thread_limit;
   if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   Film film = run_interruptibly<Film>([&] { return std::move(method->render(scene, request).film); });
@@ -205,11 +219,31 @@ void write_image_file(const std::string& path, const DoubleArray& image) {
   write_image(film, path, display);
 }
 
+// Issue 51: a pixel no image file holds — not finite, or beyond the largest float (3.4e38), whose
+// square overflows the metrics' sums (±1e308) — is refused naming the array, the pixel and the
+// value, as `candela compare` refuses such a file (read_linear_image), rather than metrics of NaN
+// and a max error of −1. The first such pixel, row by row.
+void refuse_values_beyond_float(const Film& film, const char* name) {
+  const double largest = static_cast<double>(std::numeric_limits<float>::max());
+  for (int y = 0; y < film.height(); ++y)
+    for (int x = 0; x < film.width(); ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double value = film.at(x, y)[c];
+        if (std::isfinite(value) && std::abs(value) <= largest) continue;
+        throw py::value_error(fmt::format(
+            "{}: pixel ({}, {}) channel {} is {:g}: compare takes finite values within the float range "
+            "(|v| <= 3.4e38), as image files hold them",
+            name, x, y, c, value));
+      }
+}
+
 // The metrics of `candela compare` (validate/image_comparison.h), with its JSON's names; infinite
 // values (psnr_db of identical images, luminance_ratio against black) as float infinities.
 py::dict compare(const DoubleArray& image, const DoubleArray& reference,
                  const std::optional<BoolArray>& mask) {
   const Film a = film_of(image, "image"), b = film_of(reference, "reference");
+  refuse_values_beyond_float(a, "image");
+  refuse_values_beyond_float(b, "reference");
   std::optional<std::vector<uint8_t>> included;
   if (mask) {
     if (mask->ndim() != 2 || mask->shape(0) != b.height() || mask->shape(1) != b.width())
@@ -231,12 +265,20 @@ py::dict probe_points(const Scene& scene, const DoubleArray& points, const Doubl
   if (positions.size() != directions.size())
     throw py::value_error("points and normals: " + std::to_string(positions.size()) + " points but " +
                           std::to_string(directions.size()) + " normals");
+  // Issue 51: as `candela probe --points` reads its file (read_probe_points): every value finite
+  // (a NaN point gave zeros), and a normal any non-zero vector, normalised by direction_of (a huge
+  // but finite one too).
   std::vector<ProbePoint> sensors;
   for (std::size_t i = 0; i < positions.size(); ++i) {
-    const double norm = length(directions[i]);
-    if (!(norm > 0) || !std::isfinite(norm))
-      throw py::value_error("normals[" + std::to_string(i) + "]: expected a non-zero finite vector");
-    sensors.push_back({positions[i], directions[i] / norm});
+    if (!is_finite(positions[i]))
+      throw py::value_error(fmt::format("points[{}]: ({:g}, {:g}, {:g}): every value must be finite", i,
+                                        positions[i].x, positions[i].y, positions[i].z));
+    if (!is_finite(directions[i]))
+      throw py::value_error(fmt::format("normals[{}]: ({:g}, {:g}, {:g}): every value must be finite", i,
+                                        directions[i].x, directions[i].y, directions[i].z));
+    const std::optional<Vec3> normal = direction_of(directions[i]);
+    if (!normal) throw py::value_error(fmt::format("normals[{}]: the normal must not be zero", i));
+    sensors.push_back({positions[i], *normal});
   }
   ProbeSettings settings;
   settings.method = method;
@@ -264,7 +306,7 @@ py::dict probe_points(const Scene& scene, const DoubleArray& points, const Doubl
 // Classic radiosity's solution of the scene (its "radiosity" settings): the element mesh's vertices
 // (n, 3), triangles (m, 3) and each vertex's radiosity B (n, 3), as --export-solution's PLY holds
 // them. The image is not rendered (one pixel is).
-py::dict radiosity_solution(Scene& scene, int threads) {
+py::dict radiosity_solution(const Scene& scene, int threads) {
   if (threads < 0) throw py::value_error("threads must be >= 0 (0: all cores)");
   const std::unique_ptr<Method> method = create_method(*find_method("radiosity"), scene);
   RenderRequest request;
@@ -294,7 +336,7 @@ py::dict radiosity_solution(Scene& scene, int threads) {
 // The meshless solution (seed 002): its sites — points with normals on the surfaces — and at each
 // the coefficients the display interpolates with the basis: λ_i (reflected radiosity, η included),
 // η_i (the direct part), the effective area A_i and the object it lies on.
-py::dict meshless_solution(Scene& scene, int threads) {
+py::dict meshless_solution(const Scene& scene, int threads) {
   if (threads < 0) throw py::value_error("threads must be >= 0 (0: all cores)");
   create_method(*find_method("meshless"), scene);  // refuses what the method cannot do, as render
   const MeshlessSettings settings = read_meshless_settings(scene.plugin_settings.node("meshless"));
@@ -333,7 +375,10 @@ PYBIND11_MODULE(candela, module) {
   using namespace candela;
   module.doc() =
       "Candela's renderer from Python: load_file, render (NumPy arrays, linear RGB), write_image, "
-      "read_image, compare, probe, radiosity_solution, meshless_solution.";
+      "read_image, compare, probe, radiosity_solution, meshless_solution.\n\n"
+      "Thread safety: no function changes a Scene (render's method, spp and seed are that render's "
+      "alone), and the GIL is released while one runs, so several Python threads may render, probe or "
+      "solve one Scene at once; each result equals the same call made alone.";
   static py::exception<InputError> input_error(module, "InputError", PyExc_ValueError);
   input_error_type = input_error.ptr();
   py::register_exception_translator([](std::exception_ptr error) {
@@ -371,7 +416,8 @@ PYBIND11_MODULE(candela, module) {
       "Renders the scene by a method (default: the scene's) into a float32 array (height, width, 3) of "
       "linear RGB, what `candela render -o image.pfm` writes. spp: passes of the path tracer, n×n "
       "anti-aliasing samples of the others (as --spp); threads: 0 for "
-      "all cores; seed: this render's (default render.seed).");
+      "all cores; seed: this render's (default render.seed). The Scene is not changed: renders of one "
+      "Scene from several threads at once are thread-safe, each the image the same render alone gives.");
   module.def("write_image", &write_image_file, py::arg("path"), py::arg("image"),
              "Writes an array (height, width, 3) to .exr or .pfm (linear) or .png (tone-mapped sRGB).");
   module.def(
@@ -383,7 +429,8 @@ PYBIND11_MODULE(candela, module) {
       py::arg("path"), "Reads an .exr, .pfm or .hdr file (or an 8-bit image, decoded to linear) as float32.");
   module.def("compare", &compare, py::arg("image"), py::arg("reference"), py::arg("mask") = py::none(),
              "The metrics of `candela compare` (rmse, relative_mse, psnr, ...) as a dict; mask: a boolean "
-             "(height, width) array of the pixels that count.");
+             "(height, width) array of the pixels that count. A value that is not finite or beyond the "
+             "float range (3.4e38) raises ValueError naming the array, the pixel and the value.");
   module.def(
       "radiosity_solution", &radiosity_solution, py::arg("scene"), py::kw_only(), py::arg("threads") = 0,
       "Classic radiosity's solution: {'vertices': (n, 3), 'faces': (m, 3) uint32, 'radiosity': (n, 3)}, "
@@ -396,5 +443,6 @@ PYBIND11_MODULE(candela, module) {
              py::arg("method") = "path", py::arg("samples") = 256, py::arg("seed") = 0,
              py::arg("threads") = 0,
              "Irradiance (n, 3), radiance (n, 3) and the irradiance's standard error (n) at sensor points "
-             "(n, 3) facing normals (n, 3), as `candela probe`.");
+             "(n, 3) facing normals (n, 3), as `candela probe`. A point or normal that is not finite, or a "
+             "zero normal, raises ValueError naming its index.");
 }

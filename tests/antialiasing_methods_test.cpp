@@ -2,6 +2,7 @@
 // sampling and reconstruction (camera/antialiasing.h) — every aa mode and pixel filter either
 // honoured, with the same bytes on one and two threads, or refused before any work with an error
 // naming the method and the setting.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
@@ -150,6 +151,81 @@ TEST(EveryMethodSampling, OneAndTwoThreadsGiveTheSameBytesForEveryFilterAndModeO
       }
     }
     EXPECT_GT(rendered, 0) << variant.label();
+  }
+}
+
+bool same_bytes(const Film& a, const Film& b) {
+  return a.pixels().size() == b.pixels().size() &&
+         std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Color)) == 0;
+}
+
+// Issue 51: a render's own seed and aa settings go down in the RenderRequest (candela.render(seed=,
+// spp=) in Python) rather than into the Scene: every method gives the image of the scene loaded
+// with them, byte for byte, and a method that keeps its solution between renders (radiosity,
+// meshless) does not reuse the one it made with the scene's seed.
+TEST(EveryMethodSampling, ARequestsSeedAndAntialiasingGiveTheImageOfTheSceneLoadedWithThem) {
+  const auto scene = room();
+  const uint64_t seed = 77;
+  const std::string room_text = kRoom;
+  const std::string format = "\"format\": \"candela/1\",";
+  for (const MethodVariant& variant : every_method_view()) {
+    const bool grid = variant.takes == MethodVariant::Takes::grid;
+    AntialiasingSettings antialiasing;
+    antialiasing.mode = grid ? AntialiasingMode::uniform : AntialiasingMode::jittered;
+    antialiasing.n = 2;
+    std::string text = room_text;
+    text.insert(text.find(format) + format.size(),
+                fmt::format(R"( "render": {{"seed": {}}}, "aa": {{"mode": "{}", "n": 2}},)", seed,
+                            grid ? "uniform" : "jittered"));
+    const auto loaded = load_scene_text(text, "room.json", ".");
+    ASSERT_EQ(loaded->render.seed, seed);
+    const auto method = create_method(*find_method(variant.method), *scene, variant.settings, antialiasing);
+    RenderRequest request;
+    request.region = {0, 0, scene->camera->width(), scene->camera->height()};
+    request.quiet = true;
+    // The scene's own first, so that a kept solution would be the scene seed's.
+    const RenderResult plain = method->render(*scene, request);
+    request.seed = seed;
+    request.antialiasing = antialiasing;
+    const RenderResult overridden = method->render(*scene, request);
+    const Film expected =
+        render_with(*create_method(*find_method(variant.method), *loaded, variant.settings), *loaded, 2);
+    EXPECT_TRUE(same_bytes(overridden.film, expected)) << variant.label();
+    EXPECT_FALSE(same_bytes(overridden.film, plain.film)) << variant.label();
+    if (variant.method == "radiosity") {
+      EXPECT_FALSE(overridden.statistics.extra["radiosity"]["solution_reused"].get<bool>());
+    }
+    if (variant.method == "meshless") {
+      EXPECT_FALSE(overridden.statistics.extra["meshless"]["geometry_reused"].get<bool>());
+    }
+    // The scene is as it was: its own render again gives the first image.
+    request.seed.reset();
+    request.antialiasing.reset();
+    EXPECT_TRUE(same_bytes(method->render(*scene, request).film, plain.film)) << variant.label();
+    EXPECT_EQ(scene->render.seed, 0u);
+    EXPECT_EQ(scene->antialiasing.mode, AntialiasingSettings{}.mode);
+  }
+}
+
+// The seed alone (the aa settings the scene's): the path tracer and the ray tracers, whose images
+// it changes, give the image of the scene loaded with it.
+TEST(EveryMethodSampling, ARequestsSeedAloneGivesTheImageOfTheSceneLoadedWithIt) {
+  const auto scene = room();
+  std::string text = kRoom;
+  const std::string format = "\"format\": \"candela/1\",";
+  text.insert(text.find(format) + format.size(), R"( "render": {"seed": 12345},)");
+  const auto loaded = load_scene_text(text, "room.json", ".");
+  for (const char* name : {"path", "whitted", "local"}) {
+    const auto method = create_method(*find_method(name), *scene);
+    RenderRequest request;
+    request.region = {0, 0, scene->camera->width(), scene->camera->height()};
+    request.quiet = true;
+    request.seed = 12345;
+    const Film overridden = method->render(*scene, request).film;
+    const Film expected = render_with(*create_method(*find_method(name), *loaded), *loaded, 2);
+    EXPECT_TRUE(same_bytes(overridden, expected)) << name;
+    request.seed.reset();
+    EXPECT_FALSE(same_bytes(method->render(*scene, request).film, expected)) << name;
   }
 }
 

@@ -180,3 +180,96 @@ def test_probe_matches_an_emitting_square_and_the_solutions_have_their_mesh_and_
     assert sites["area"].sum() == pytest.approx(4, rel=1e-9)
     assert np.all(sites["object"] == 0) and sites["converged"]
     assert np.allclose(sites["radiosity"], 0) and np.allclose(sites["direct"], 0)
+
+
+# Issue 51: render passes its seed and anti-aliasing samples down instead of setting them on the
+# Scene, so Python threads rendering one Scene at once (the GIL is released while they run) each get
+# the image the same render gives alone, and the Scene is as it was afterwards. Before, they took
+# each other's seed and aa.n, and the Scene kept one of them.
+def test_threads_rendering_one_scene_get_the_images_of_the_same_renders_alone():
+    scene = candela.load_file(CORNELL, **SMALL)
+    jobs = [("path", 1, 3), ("path", 4, 11), ("whitted", 4, 5), ("whitted", 9, None), ("raster", None, None),
+            ("raster", 4, 7)]
+    before = {"path": candela.render(scene, method="path", spp=2),
+              "whitted": candela.render(scene, method="whitted"),
+              "raster": candela.render(scene, method="raster")}
+    alone = [candela.render(scene, method=method, spp=spp, seed=seed, threads=1) for method, spp, seed in jobs]
+    threads, rounds = 3, 3
+    start = threading.Barrier(threads)
+    results = [[] for _ in range(threads)]
+    errors = []
+
+    def worker(index):
+        try:
+            start.wait()
+            for round_ in range(rounds):
+                # Each thread takes the jobs in its own order, so that different renders overlap.
+                for k in range(len(jobs)):
+                    job = (k * (index + 1) + round_) % len(jobs)
+                    method, spp, seed = jobs[job]
+                    results[index].append((job, candela.render(scene, method=method, spp=spp, seed=seed,
+                                                               threads=1)))
+        except BaseException as error:  # noqa: BLE001 - reported below, in the test's thread
+            errors.append(error)
+
+    workers = [threading.Thread(target=worker, args=(i,)) for i in range(threads)]
+    for thread in workers:
+        thread.start()
+    for thread in workers:
+        thread.join()
+    assert not errors
+    differing = [(jobs[job], index) for index in range(threads) for job, image in results[index]
+                 if not np.array_equal(image, alone[job])]
+    assert sum(len(r) for r in results) == threads * rounds * len(jobs)
+    assert not differing, f"{len(differing)} of {threads * rounds * len(jobs)} images differ: {differing[:5]}"
+    # The seed and the samples were the renders' alone: the Scene renders as before.
+    for method, image in before.items():
+        again = candela.render(scene, method=method, spp=2 if method == "path" else None)
+        assert np.array_equal(again, image), method
+    # And the seeds and samples matter, so the comparison above could fail.
+    assert not np.array_equal(alone[0], alone[1]) and not np.array_equal(alone[2], alone[3])
+    assert not np.array_equal(alone[4], alone[5])
+
+
+# Issue 51: probe refuses what `candela probe --points` refuses — a point or a normal that is not
+# finite (it returned zeros) — naming the index; a huge but finite normal has its direction.
+def test_probe_refuses_points_and_normals_that_are_not_finite(tmp_path):
+    scene = candela.load_file(CORNELL, **SMALL)
+    good = [[0, 0.5, 0], [0.1, 0.5, 0.1]]
+    up = [[0, 1, 0], [0, 1, 0]]
+    for bad in [float("nan"), float("inf"), -float("inf")]:
+        points = [list(p) for p in good]
+        points[1][2] = bad
+        with pytest.raises(ValueError, match=r"points\[1\]"):
+            candela.probe(scene, points, up, samples=4)
+        normals = [list(n) for n in up]
+        normals[1][0] = bad
+        with pytest.raises(ValueError, match=r"normals\[1\]"):
+            candela.probe(scene, good, normals, samples=4)
+    with pytest.raises(ValueError, match=r"normals\[0\]"):
+        candela.probe(scene, good, [[0, 0, 0], [0, 1, 0]], samples=4)
+    # (0, 1e300, 0) is the direction (0, 1, 0), as the command line's direction_of makes it.
+    plain = candela.probe(scene, good, up, samples=16)
+    huge = candela.probe(scene, good, [[0, 1e300, 0], [0, 1e300, 0]], samples=16)
+    assert np.array_equal(plain["irradiance"], huge["irradiance"])
+
+
+# Issue 51: compare refuses a value no image file holds — NaN, ±inf, or beyond the float range
+# (±1e308, whose square overflows) — naming the array, the pixel and the value, rather than
+# returning NaN or None metrics and a max error of -1.
+@pytest.mark.parametrize("value", [float("nan"), float("inf"), -float("inf"), 1e308, -1e308])
+@pytest.mark.parametrize("which", ["image", "reference"])
+def test_compare_refuses_values_that_are_not_finite_or_beyond_the_float_range(value, which):
+    a = np.full((4, 6, 3), 0.5)
+    b = np.full((4, 6, 3), 0.25)
+    bad = a.copy() if which == "image" else b.copy()
+    bad[3, 5, 1] = value
+    image, reference = (bad, b) if which == "image" else (a, bad)
+    with pytest.raises(ValueError, match=rf"{which}: pixel \(5, 3\)") as caught:
+        candela.compare(image, reference)
+    assert ("nan" if value != value else "inf" if abs(value) == float("inf") else "1e+308") in str(caught.value)
+    # Within the float range the metrics are finite.
+    bad[3, 5, 1] = 3e38
+    image, reference = (bad, b) if which == "image" else (a, bad)
+    metrics = candela.compare(image, reference)
+    assert np.isfinite(metrics["rmse"]) and metrics["max_absolute_error"] > 1e38

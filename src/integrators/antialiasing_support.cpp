@@ -63,7 +63,7 @@ std::string describe_refusal(std::string_view method, const AntialiasingRefusal&
   return fmt::format("{} cannot do {} {} ({})", method, refusal.key, refusal.value, refusal.reason);
 }
 
-bool set_samples_per_pixel(Scene& scene, std::string_view method, int samples) {
+bool set_samples_per_pixel(AntialiasingSettings& settings, std::string_view method, int samples) {
   const int n = static_cast<int>(std::lround(std::sqrt(double(std::max(samples, 1)))));
   if (samples < 1 || n * n != samples) {
     const int below = std::max(1, static_cast<int>(std::floor(std::sqrt(double(std::max(samples, 1))))));
@@ -73,21 +73,34 @@ bool set_samples_per_pixel(Scene& scene, std::string_view method, int samples) {
   if (n > 64)
     throw std::invalid_argument(
         fmt::format("{}: {} takes at most 64×64 = 4096 samples per pixel (aa.n)", samples, method));
-  AntialiasingSettings& settings = scene.antialiasing;
   settings.n = n;
   if (settings.mode == AntialiasingMode::uniform || settings.mode == AntialiasingMode::jittered) return false;
   settings.mode = AntialiasingMode::uniform;
   return true;
 }
 
+bool set_samples_per_pixel(Scene& scene, std::string_view method, int samples) {
+  return set_samples_per_pixel(scene.antialiasing, method, samples);
+}
+
+void choose_jittered_where_possible(AntialiasingSettings& settings, const Scene& scene,
+                                    const Method& method) {
+  settings.mode = AntialiasingMode::jittered;
+  if (method.antialiasing_refusal(scene, settings)) settings.mode = AntialiasingMode::uniform;
+}
+
 void choose_jittered_where_possible(Scene& scene, const Method& method) {
-  scene.antialiasing.mode = AntialiasingMode::jittered;
-  if (method.antialiasing_refusal(scene)) scene.antialiasing.mode = AntialiasingMode::uniform;
+  choose_jittered_where_possible(scene.antialiasing, scene, method);
+}
+
+void refuse_unsupported_antialiasing(const Method& method, const Scene& scene,
+                                     const AntialiasingSettings& antialiasing) {
+  if (const auto refusal = method.antialiasing_refusal(scene, antialiasing))
+    throw InputError({scene.source, 0, 0, refusal->key}, describe_refusal(method.name(), *refusal));
 }
 
 void refuse_unsupported_antialiasing(const Method& method, const Scene& scene) {
-  if (const auto refusal = method.antialiasing_refusal(scene))
-    throw InputError({scene.source, 0, 0, refusal->key}, describe_refusal(method.name(), *refusal));
+  refuse_unsupported_antialiasing(method, scene, scene.antialiasing);
 }
 
 }  // namespace candela

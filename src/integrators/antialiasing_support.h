@@ -33,13 +33,19 @@ std::string describe_refusal(std::string_view method, const AntialiasingRefusal&
 class Method;
 
 // pbrt's --spp N for a method without passes (candela render --spp, candela.render(spp=); issue
-// 24): n×n = N anti-aliasing samples per pixel. Sets the scene's aa.n; keeps its aa.mode when it
-// is "uniform" or "jittered", otherwise sets "uniform", which every method can do, and returns true:
+// 24): n×n = N anti-aliasing samples per pixel. Sets settings.n; keeps settings.mode when it is
+// "uniform" or "jittered", otherwise sets "uniform", which every method can do, and returns true:
 // the mode is then chosen by choose_jittered_where_possible once the method is made. Throws
 // std::invalid_argument when N is not a square in [1, 64²] ("whitted takes n×n samples per pixel
-// (aa.n); use 4 or 9").
+// (aa.n); use 4 or 9"). Issue 51: on a value, so that a render may take its own settings
+// (RenderRequest::antialiasing) and leave the scene's alone.
+bool set_samples_per_pixel(AntialiasingSettings& settings, std::string_view method, int samples);
+// The same on the scene's own "aa" settings (candela render --spp).
 bool set_samples_per_pixel(Scene& scene, std::string_view method, int samples);
-// "jittered" when the method can place jittered samples, "uniform" when it rasterizes on a grid.
+// settings.mode "jittered" when the method can place jittered samples in the scene, "uniform"
+// when it rasterizes on a grid.
+void choose_jittered_where_possible(AntialiasingSettings& settings, const Scene& scene, const Method& method);
+// The same on the scene's own "aa" settings.
 void choose_jittered_where_possible(Scene& scene, const Method& method);
 
 }  // namespace candela

@@ -102,7 +102,7 @@ Color local_illumination(const Scene& scene, const Intersection& hit, const Surf
   const Vec3 shadow_origin = surface.lifted_toward(V) + geometric * offset;
   // Issue 19: every emitter — the lights and the emissive surfaces — each sample of an area light
   // or an emissive surface jittered within its cell per shading point (no stepped penumbrae).
-  const StratumJitter jitter{true, scene.render.seed};
+  const StratumJitter jitter{true, context.seed};
   for (std::size_t e = 0; e < scene.emitter_count(); ++e) {
     const Light& light = scene.emitter(e);
     // Each of the light's samples (one, or an area light's samples²) with its own shadow ray.

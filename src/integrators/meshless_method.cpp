@@ -64,11 +64,11 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 // Issue 20: and through `rays` cosine-distributed rays from the site, weighed against the
 // surfaces' samples (scene/direct_irradiance.h) — a site beside a glowing wall got 0.25–27 times
 // its irradiance from the samples alone, 2 % low on average in a glowing box.
-Color direct_light(const Scene& scene, const SurfaceEmitterIndex& emitters, std::size_t site, int rays,
-                   const Vec3& point, const Vec3& normal, const Color& albedo) {
+Color direct_light(const Scene& scene, const SurfaceEmitterIndex& emitters, uint64_t seed, std::size_t site,
+                   int rays, const Vec3& point, const Vec3& normal, const Color& albedo) {
   if (albedo.is_black()) return Color();
-  const StratumJitter jitter{true, scene.render.seed};
-  Pcg32 random(scene.render.seed ^ 0x6D6573686C657373ull, site);
+  const StratumJitter jitter{true, seed};
+  Pcg32 random(seed ^ 0x6D6573686C657373ull, site);
   const HemisphereRays hemisphere{emitters, rays, random};
   return albedo * direct_irradiance(scene, point, normal, EmitterSet::everything, jitter, &hemisphere);
 }
@@ -112,8 +112,9 @@ Film with_sites_drawn(const Scene& scene, const SiteSet& sites, const PixelRect&
 }
 
 // What a solution depends on besides the scene object: the meshless settings that shape the
-// geometry (not the display, the tolerance or the lights) and the seed.
-std::string geometry_key(const Scene& scene, const MeshlessSettings& m) {
+// geometry (not the display, the tolerance or the lights) and the seed — the render's (issue 51: a
+// render with another seed than the scene's does not reuse the scene's sites).
+std::string geometry_key(const Scene& scene, const MeshlessSettings& m, uint64_t seed) {
   // The sites are sampled through the camera: another view samples its own.
   const Camera& camera = *scene.camera;
   const Vec3 eye = camera.eye_position(), gaze = camera.view_direction();
@@ -121,8 +122,8 @@ std::string geometry_key(const Scene& scene, const MeshlessSettings& m) {
                      scene.unique_id, static_cast<int>(m.transport), m.cluster_angle,
                      static_cast<int>(m.basis), static_cast<int>(m.kernel), m.spacing, m.neighbours, m.grid,
                      m.rounds, static_cast<int>(m.effective_area), m.shepard_power, m.max_sites,
-                     m.gather_rays, m.near_field, scene.render.seed, static_cast<const void*>(&camera), eye.x,
-                     eye.y, eye.z, gaze.x, gaze.y, gaze.z, camera.width(), camera.height());
+                     m.gather_rays, m.near_field, seed, static_cast<const void*>(&camera), eye.x, eye.y,
+                     eye.z, gaze.x, gaze.y, gaze.z, camera.width(), camera.height());
 }
 
 // The number of sites on each level of the hierarchy, finest first (one level without one).
@@ -182,7 +183,8 @@ std::size_t transfer_entry_limit() {
 // build_meshless_geometry; when cancellable, null once Ctrl-C arrives between its phases
 // (sampling, areas, transfer matrix).
 std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const MeshlessSettings& settings,
-                                                 bool cancellable, bool quiet, Cluster* cluster = nullptr) {
+                                                 uint64_t seed, bool cancellable, bool quiet,
+                                                 Cluster* cluster = nullptr) {
   // Every rank stops at the same phase (a collective when distributed).
   const auto stop = [&] { return cancellable && cancelled_anywhere(cluster); };
   auto geometry = std::make_shared<MeshlessGeometry>();
@@ -192,7 +194,7 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const Meshl
   sampling.rounds = settings.rounds;
   sampling.spacing = settings.spacing;
   sampling.neighbours = settings.neighbours;
-  sampling.seed = scene.render.seed;
+  sampling.seed = seed;
   sampling.max_sites = static_cast<std::size_t>(settings.max_sites);
   {
     ProgressReporter progress("sites", 1 + static_cast<uint64_t>(settings.rounds), "rounds",
@@ -225,7 +227,7 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const Meshl
   TransferSettings transfer;
   transfer.gather_rays = settings.gather_rays;
   transfer.near_field = settings.near_field;
-  transfer.seed = scene.render.seed;
+  transfer.seed = seed;
   transfer.max_entries = transfer_entry_limit();
   transfer.cluster_angle = settings.cluster_angle;
   if (settings.transport == MeshlessTransport::hierarchical) {
@@ -273,12 +275,12 @@ std::vector<MemoryPart> MeshlessMethod::memory_needed(const Scene& scene, const 
 }
 
 std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene,
-                                                          const MeshlessSettings& settings) {
-  return build_geometry(scene, settings, false, true);
+                                                          const MeshlessSettings& settings, uint64_t seed) {
+  return build_geometry(scene, settings, seed, false, true);
 }
 
 MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& settings,
-                                const MeshlessGeometry& geometry, bool quiet,
+                                const MeshlessGeometry& geometry, uint64_t seed, bool quiet,
                                 const MeshlessIterationCallback& on_iteration) {
   const SiteSet& sites = geometry.sites;
   const auto start = std::chrono::steady_clock::now();
@@ -296,7 +298,7 @@ MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& sett
       properties.kd = material.kd->evaluate(SurfaceHit{});
       albedo[i] = properties.diffuse_albedo();
     }
-    lighting.eta[i] = direct_light(scene, emitters, i, settings.gather_rays, sites.sites[i].position,
+    lighting.eta[i] = direct_light(scene, emitters, seed, i, settings.gather_rays, sites.sites[i].position,
                                    sites.sites[i].normal, albedo[i]);
   });
   ProgressReporter progress("meshless solve", 1000, "per mille of convergence", quiet);
@@ -326,8 +328,9 @@ void add_lighting_facts(const MeshlessLighting& lighting, nlohmann::json& facts)
 }  // namespace
 
 MeshlessSolution solve_meshless(const Scene& scene, const MeshlessSettings& settings, nlohmann::json* facts) {
-  const std::shared_ptr<MeshlessGeometry> geometry = build_meshless_geometry(scene, settings);
-  MeshlessLighting lighting = light_meshless(scene, settings, *geometry);
+  const std::shared_ptr<MeshlessGeometry> geometry =
+      build_meshless_geometry(scene, settings, scene.render.seed);
+  MeshlessLighting lighting = light_meshless(scene, settings, *geometry, scene.render.seed);
   if (facts) {
     *facts = geometry_facts(settings, *geometry);
     add_lighting_facts(lighting, *facts);
@@ -341,13 +344,15 @@ MeshlessSolution solve_meshless(const Scene& scene, const MeshlessSettings& sett
   return solution;
 }
 
-std::shared_ptr<const MeshlessGeometry> MeshlessMethod::geometry_for(const Scene& scene, bool& reused,
-                                                                     Cluster* cluster, bool quiet) const {
-  const std::string key = geometry_key(scene, settings_);
+std::shared_ptr<const MeshlessGeometry> MeshlessMethod::geometry_for(const Scene& scene, uint64_t seed,
+                                                                     bool& reused, Cluster* cluster,
+                                                                     bool quiet) const {
+  const std::string key = geometry_key(scene, settings_, seed);
   std::lock_guard lock(cache_mutex_);
   reused = cached_ && cached_key_ == key;
   if (reused) return cached_;
-  std::shared_ptr<const MeshlessGeometry> geometry = build_geometry(scene, settings_, true, quiet, cluster);
+  std::shared_ptr<const MeshlessGeometry> geometry =
+      build_geometry(scene, settings_, seed, true, quiet, cluster);
   if (!geometry) return nullptr;  // Ctrl-C: nothing kept
   cached_ = std::move(geometry);
   cached_key_ = key;
@@ -362,8 +367,11 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
   // other light set-ups: --relight); the direct light and the iteration are redone every time.
   bool reused = false;
   Cluster* cluster = several_ranks(request);
+  // Issue 51: the render's seed and aa settings, which may not be the scene's.
+  const uint64_t seed = request.seed_for(scene);
+  const AntialiasingSettings& antialiasing = request.antialiasing_for(scene);
   const std::shared_ptr<const MeshlessGeometry> geometry =
-      geometry_for(scene, reused, cluster, request.quiet);
+      geometry_for(scene, seed, reused, cluster, request.quiet);
   // Ctrl-C before λ exists: the film stays black.
   const auto interrupted = [&](const char* completed) {
     statistics.extra["interrupted"] = true;
@@ -412,7 +420,7 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
       case MeshlessDisplay::hybrid: {
         const Color albedo = material.at(hit.surface).diffuse_albedo();
         // Per pixel the light's samples alone, as the local model draws direct light.
-        color = material.emission + direct_light(scene, emitters, 0, 0, p.position, p.normal, albedo) +
+        color = material.emission + direct_light(scene, emitters, seed, 0, 0, p.position, p.normal, albedo) +
                 (global - direct);
         break;
       }
@@ -426,7 +434,7 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
   const auto draw = [&](const PixelRect& area, Film& target) {
     const SamplingRegion at{area.x0, area.y0, camera.width(), camera.height()};
     const SamplingResult sampled =
-        sample_image(scene.antialiasing, scene.render.seed, at, scene.render.tile_size, radiance, target);
+        sample_image(antialiasing, seed, at, scene.render.tile_size, radiance, target);
     camera_rays.fetch_add(sampled.traced, std::memory_order_relaxed);
   };
   MeshlessIterationCallback on_iteration;
@@ -441,7 +449,7 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
                            }});
     };
   const MeshlessLighting lighting = light_meshless(
-      scene, settings_, *geometry, request.quiet || (cluster && !cluster->root()), on_iteration);
+      scene, settings_, *geometry, seed, request.quiet || (cluster && !cluster->root()), on_iteration);
   nlohmann::json facts = geometry_facts(settings_, *geometry);
   add_lighting_facts(lighting, facts);
   facts["geometry_reused"] = reused;
@@ -501,8 +509,9 @@ class MeshlessField final : public SolutionField {
 
 std::unique_ptr<SolutionField> make_meshless_field(const Scene& scene) {
   const MeshlessSettings settings = read_meshless_settings(scene.plugin_settings.node("meshless"));
-  std::shared_ptr<const MeshlessGeometry> geometry = build_meshless_geometry(scene, settings);
-  MeshlessLighting lighting = light_meshless(scene, settings, *geometry);
+  std::shared_ptr<const MeshlessGeometry> geometry =
+      build_meshless_geometry(scene, settings, scene.render.seed);
+  MeshlessLighting lighting = light_meshless(scene, settings, *geometry, scene.render.seed);
   return std::make_unique<MeshlessField>(scene, std::move(geometry), std::move(lighting));
 }
 

@@ -97,15 +97,17 @@ struct MeshlessLighting {
   double seconds = 0;  // direct light and iteration
 };
 
+// Issue 51: seed is the render's (RenderRequest::seed_for), which need not be the scene's.
 std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene,
-                                                          const MeshlessSettings& settings);
+                                                          const MeshlessSettings& settings, uint64_t seed);
 // Called after every iteration of λ with η and λ then (issue 24: the convergence log).
 using MeshlessIterationCallback = std::function<void(std::size_t iteration, const std::vector<Color>& eta,
                                                      const std::vector<Color>& lambda)>;
 
-// Direct light η at every site and the solve for λ; quiet: no progress bar.
+// Direct light η at every site (its samples jittered by seed) and the solve for λ; quiet: no
+// progress bar.
 MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& settings,
-                                const MeshlessGeometry& geometry, bool quiet = true,
+                                const MeshlessGeometry& geometry, uint64_t seed, bool quiet = true,
                                 const MeshlessIterationCallback& on_iteration = {});
 
 struct MeshlessSolution {
@@ -116,13 +118,13 @@ struct MeshlessSolution {
   std::vector<double> areas;  // A_k, the effective areas
 };
 
-// Samples, builds and solves; fills facts for --stats when given.
+// Samples, builds and solves with the scene's render.seed; fills facts for --stats when given.
 MeshlessSolution solve_meshless(const Scene& scene, const MeshlessSettings& settings,
                                 nlohmann::json* facts = nullptr);
 
-// Keeps the last scene's geometry (recognised by Scene::unique_id and the settings that shape it)
-// and reuses it when called again for the same scene: other views, or other lights
-// (candela render --relight, which swaps the scene's lights between renders).
+// Keeps the last scene's geometry (recognised by Scene::unique_id, the settings that shape it and
+// the render's seed) and reuses it when called again for the same scene: other views, or other
+// lights (candela render --relight, which swaps the scene's lights between renders).
 class MeshlessMethod final : public Method {
  public:
   explicit MeshlessMethod(const MeshlessSettings& settings = {}) : settings_(settings) {}
@@ -132,8 +134,8 @@ class MeshlessMethod final : public Method {
   std::vector<MemoryPart> memory_needed(const Scene& scene, const PixelRect& region) const override;
 
  private:
-  std::shared_ptr<const MeshlessGeometry> geometry_for(const Scene& scene, bool& reused, Cluster* cluster,
-                                                       bool quiet) const;
+  std::shared_ptr<const MeshlessGeometry> geometry_for(const Scene& scene, uint64_t seed, bool& reused,
+                                                       Cluster* cluster, bool quiet) const;
   MeshlessSettings settings_;
   mutable std::mutex cache_mutex_;
   mutable std::shared_ptr<const MeshlessGeometry> cached_;

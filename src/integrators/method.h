@@ -78,6 +78,17 @@ struct RenderRequest {
   // process alone. Every rank calls render with the same scene and request; rank 0's result
   // holds the image and the checkpoints. Statistics are totals over the ranks.
   Cluster* cluster = nullptr;
+  // Issue 51: this render's seed and anti-aliasing settings where they are not the scene's
+  // (candela.render(seed=, spp=) in Python). A method reads them through seed_for and
+  // antialiasing_for, never from scene.render.seed or scene.antialiasing on its render path, so
+  // that a render with other values leaves the Scene as it was and renders of one Scene with
+  // different values may run at once.
+  std::optional<uint64_t> seed = {};
+  std::optional<AntialiasingSettings> antialiasing = {};
+  uint64_t seed_for(const Scene& scene) const { return seed.value_or(scene.render.seed); }
+  const AntialiasingSettings& antialiasing_for(const Scene& scene) const {
+    return antialiasing ? *antialiasing : scene.antialiasing;
+  }
 };
 
 // What a render gives: the image of the request's region, what the run measured, and the extras
@@ -108,10 +119,13 @@ class Method {
   // The ray tree of pixel (x, y) and its radiance, for methods whose capabilities say ray_trees;
   // the others throw std::logic_error.
   virtual RayTree pixel_ray_tree(const Scene& scene, int x, int y, Color& radiance) const;
-  // Why the method cannot honour the scene's "aa" settings (none when it can; by default it can:
-  // the path tracer and the ray tracers take every mode and filter).
-  virtual std::optional<AntialiasingRefusal> antialiasing_refusal(const Scene& scene) const {
+  // Why the method cannot honour the "aa" settings `antialiasing` for the scene — its own or a
+  // render's (RenderRequest::antialiasing_for; issue 51) — none when it can; by default it can:
+  // the path tracer and the ray tracers take every mode and filter.
+  virtual std::optional<AntialiasingRefusal> antialiasing_refusal(
+      const Scene& scene, const AntialiasingSettings& antialiasing) const {
     (void)scene;
+    (void)antialiasing;
     return std::nullopt;
   }
   // Throws the InputError of a scene the method cannot render with its settings (an emitter its
@@ -122,8 +136,11 @@ class Method {
   virtual std::vector<MemoryPart> memory_needed(const Scene& scene, const PixelRect& region) const;
 };
 
-// Throws the InputError of method.antialiasing_refusal(scene), naming the method, the setting
-// and its value (SPEC §17: never a silent fallback).
+// Throws the InputError of method.antialiasing_refusal(scene, antialiasing), naming the method,
+// the setting and its value (SPEC §17: never a silent fallback).
+void refuse_unsupported_antialiasing(const Method& method, const Scene& scene,
+                                     const AntialiasingSettings& antialiasing);
+// The same for the scene's own "aa" settings.
 void refuse_unsupported_antialiasing(const Method& method, const Scene& scene);
 
 inline RayTree Method::pixel_ray_tree(const Scene&, int, int, Color&) const {

@@ -171,8 +171,14 @@ std::vector<std::string_view> method_names_with(bool MethodCapabilities::*capabi
 
 std::unique_ptr<Method> create_method(const MethodEntry& entry, const Scene& scene,
                                       const std::vector<std::string>& overrides) {
+  return create_method(entry, scene, overrides, scene.antialiasing);
+}
+
+std::unique_ptr<Method> create_method(const MethodEntry& entry, const Scene& scene,
+                                      const std::vector<std::string>& overrides,
+                                      const AntialiasingSettings& antialiasing) {
   std::unique_ptr<Method> method = made_from_settings(entry, scene, overrides);
-  refuse_unsupported_antialiasing(*method, scene);
+  refuse_unsupported_antialiasing(*method, scene, antialiasing);
   refuse_unsampled_emitters(entry, scene);
   method->refuse_scene(scene);
   return method;

@@ -59,6 +59,11 @@ nlohmann::json emitter_facts(const Scene& scene, const MethodEntry& entry);
 // by one of its emitters, or refuses the scene otherwise (Method::refuse_scene), before any work.
 std::unique_ptr<Method> create_method(const MethodEntry& entry, const Scene& scene,
                                       const std::vector<std::string>& overrides = {});
+// The same, the "aa" settings checked being a render's own (RenderRequest::antialiasing; issue 51)
+// rather than the scene's.
+std::unique_ptr<Method> create_method(const MethodEntry& entry, const Scene& scene,
+                                      const std::vector<std::string>& overrides,
+                                      const AntialiasingSettings& antialiasing);
 
 // One section per method, for the scene loader: every method's object is checked at load time.
 std::span<const SettingsSection> method_settings_sections();

@@ -384,13 +384,16 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
   const PixelRect region = request.region;
   const int width = region.width(), height = region.height();
   const PathSettings& settings = settings_;
+  // Issue 51: the render's seed and aa settings, which may not be the scene's.
+  const uint64_t seed = request.seed_for(scene);
+  const AntialiasingSettings& aa = request.antialiasing_for(scene);
   // Everything besides the scene file that changes a sample: a checkpoint made with other values
   // cannot be continued.
   const std::string fingerprint = fmt::format(
       "{}|path max_depth={} roulette_depth={} sampler={}{} seed={} image={}x{}", request.fingerprint,
       settings.max_depth, settings.roulette_depth, settings.sampler,
       find_sampler(settings.sampler)->needs_sample_count ? fmt::format("/{}", settings.spp) : std::string(),
-      scene.render.seed, scene.camera->width(), scene.camera->height());
+      seed, scene.camera->width(), scene.camera->height());
 
   PathCheckpoint state;
   state.fingerprint = fingerprint;
@@ -464,12 +467,11 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
   // dropped as zero, never allowed to poison the pixels). The point, by aa.mode: "none" uniform in
   // the square; "jittered" n × n the passes take the n² cells in turn (pass k the cell k mod n²),
   // a random point in each — stratified across passes; "uniform" the cells' centres in turn.
-  const AntialiasingSettings& aa = scene.antialiasing;
   const int cells = aa.mode == AntialiasingMode::none ? 1 : aa.n;
   // path.sampler draws each pixel's samples: one sampler per thread, restarted for every pixel
   // and pass (its values depend on neither the thread nor the tile).
-  const std::unique_ptr<Sampler> prototype = create_sampler(
-      settings.sampler, SamplerParameters{scene.render.seed, uint64_t(std::max(settings.spp, 0))});
+  const std::unique_ptr<Sampler> prototype =
+      create_sampler(settings.sampler, SamplerParameters{seed, uint64_t(std::max(settings.spp, 0))});
   tbb::enumerable_thread_specific<std::unique_ptr<Sampler>> samplers([&] { return prototype->clone(); });
   const auto sample_pixel = [&](uint64_t pass, int i, int j, RayCounts& rays, uint64_t& dropped) {
     const auto x = static_cast<uint32_t>(region.x0 + i), y = static_cast<uint32_t>(region.y0 + j);
@@ -509,7 +511,7 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
     const double x0 = at.x0, y0 = at.y0, x1 = at.x0 + pixels.width(), y1 = at.y0 + pixels.height();
     std::atomic<uint64_t> dropped_now{0};
     const RadianceFunction radiance = [&](double x, double y) {
-      Pcg32 rng = path_point_rng(scene.render.seed, pass, x, y);
+      Pcg32 rng = path_point_rng(seed, pass, x, y);
       RayCounts& rays = counts.local();
       ++rays.primary;
       Color value = path_radiance(scene, settings, lights, scene.camera->generate_ray(x, y), rng, rays);
@@ -520,8 +522,7 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
       return value;
     };
     Film image(pixels.width(), pixels.height());
-    sample_image(aa, mix64(scene.render.seed ^ mix64(pass + 0x5851f42d4c957f2dULL)), at, tile, radiance,
-                 image);
+    sample_image(aa, mix64(seed ^ mix64(pass + 0x5851f42d4c957f2dULL)), at, tile, radiance, image);
     if (cancel_requested()) return false;  // tiles of the pass may have been skipped
     for (int j = 0; j < pixels.height(); ++j)
       for (int i = 0; i < pixels.width(); ++i) {
@@ -536,8 +537,7 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
   // its reach (pbrt-v4's film), gathered here per pixel in a fixed order, so the image does not
   // depend on the threads or on the tiles. The pixels [x0, x1) × [y0, y1) of the region take their
   // passes from the samples of the box grown by the reach (clipped to the image).
-  const std::unique_ptr<PixelFilter> filter =
-      create_pixel_filter(scene.antialiasing.filter, scene.antialiasing.filter_parameters);
+  const std::unique_ptr<PixelFilter> filter = create_pixel_filter(aa.filter, aa.filter_parameters);
   const int reach = filter_reach(*filter);
   const PixelBox image{-region.x0, -region.y0, scene.camera->width() - region.x0,
                        scene.camera->height() - region.y0};

@@ -25,13 +25,14 @@ RadiositySettings settings_of(const Scene& scene) {
 }
 
 // What a solution depends on besides the scene object: its radiosity settings (all but the
-// display) and the seed of the ray-cast form factors.
-std::string solution_key(const Scene& scene, const RadiositySettings& r) {
+// display) and the seed of the ray-cast form factors — the render's (issue 51: a render with
+// another seed than the scene's does not reuse the scene's solution).
+std::string solution_key(const Scene& scene, const RadiositySettings& r, uint64_t seed) {
   return fmt::format("{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}", scene.unique_id,
                      static_cast<int>(r.solver), static_cast<int>(r.form_factors), r.hemicube_resolution,
                      r.ray_cast_samples, r.patch_size, r.element_size, r.segments, r.threshold, r.max_steps,
                      r.ambient, r.subdivision_threshold, r.min_element_size, r.memory_limit_mib,
-                     r.split_at_contacts, scene.render.seed);
+                     r.split_at_contacts, seed);
 }
 
 // What ties a checkpoint to the scene and settings that made it: the caller's fingerprint and
@@ -39,10 +40,10 @@ std::string solution_key(const Scene& scene, const RadiositySettings& r) {
 // or memory_limit_mib, which only say how far to go (a resumed run may go further).
 std::string checkpoint_fingerprint(const Scene& scene, const RadiositySettings& r,
                                    const RenderRequest& request) {
+  const uint64_t seed = request.seed_for(scene);
   return fmt::format("{}|radiosity {} {} {} {} {} {} {} {} {}", request.fingerprint,
                      static_cast<int>(r.form_factors), r.hemicube_resolution, r.ray_cast_samples,
-                     r.patch_size, r.element_size, r.segments, r.ambient, r.split_at_contacts,
-                     scene.render.seed);
+                     r.patch_size, r.element_size, r.segments, r.ambient, r.split_at_contacts, seed);
 }
 
 // The state to resume from: rank 0 alone reads the checkpoint (an InputError when it is another
@@ -100,7 +101,8 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
                                                                              const RenderRequest& request,
                                                                              bool& reused) const {
   const RadiositySettings& settings = settings_;
-  const std::string key = solution_key(scene, settings);
+  const uint64_t seed = request.seed_for(scene);
+  const std::string key = solution_key(scene, settings, seed);
   Cluster* cluster = several_ranks(request);
   std::lock_guard lock(cache_mutex_);
   // A checkpoint to write or resume from asks for this run's own solve, as does a convergence log.
@@ -126,7 +128,7 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
     }
   }
   RadiositySolveOptions options;
-  options.seed = scene.render.seed;
+  options.seed = seed;
   options.quiet = request.quiet || (cluster && !cluster->root());
   options.facts = &solved->facts;
   options.checkpointing = checkpointing ? &run : nullptr;
@@ -138,7 +140,8 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
     options.on_step = [&, progressive](const RadiositySolveResult& so_far) {
       request.on_progress({progressive ? "shots" : "sweeps", so_far.steps,
                            progressive ? std::optional<double>(so_far.unshot_fraction) : std::nullopt, [&] {
-                             const SolutionDisplay display(scene, so_far, settings.display);
+                             const SolutionDisplay display(scene, so_far, settings.display,
+                                                           request.antialiasing_for(scene), seed);
                              Film image(request.region.width(), request.region.height());
                              display.draw(request.region.x0, request.region.y0, image);
                              return image;
@@ -163,10 +166,11 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
   return solved;
 }
 
-std::optional<AntialiasingRefusal> RadiosityMethod::antialiasing_refusal(const Scene& scene) const {
+std::optional<AntialiasingRefusal> RadiosityMethod::antialiasing_refusal(
+    const Scene& scene, const AntialiasingSettings& antialiasing) const {
   // The ray-cast displays take any samples; gouraud rasterizes at a grid's.
   if (settings_.display != RadiosityDisplay::gouraud) return std::nullopt;
-  std::optional<AntialiasingRefusal> refusal = sample_grid_refusal(scene.antialiasing, scene);
+  std::optional<AntialiasingRefusal> refusal = sample_grid_refusal(antialiasing, scene);
   if (refusal) refusal->reason = "radiosity.display \"gouraud\": " + refusal->reason;
   return refusal;
 }
@@ -183,7 +187,9 @@ void RadiosityMethod::refuse_scene(const Scene& scene) const {
 }
 
 RenderResult RadiosityMethod::render(const Scene& scene, const RenderRequest& request) const {
-  refuse_unsupported_antialiasing(*this, scene);  // before the solve
+  // Issue 51: the render's aa settings and seed, which may not be the scene's.
+  const AntialiasingSettings& antialiasing = request.antialiasing_for(scene);
+  refuse_unsupported_antialiasing(*this, scene, antialiasing);  // before the solve
   RenderResult output(request.region);
   RunStatistics& statistics = output.statistics;
   const RadiositySettings& settings = settings_;
@@ -201,7 +207,7 @@ RenderResult RadiosityMethod::render(const Scene& scene, const RenderRequest& re
   output.checkpoint = solved->checkpoint;
   const PixelRect region = request.region;
   Stopwatch display_time;
-  const SolutionDisplay display(scene, solution, settings.display);
+  const SolutionDisplay display(scene, solution, settings.display, antialiasing, request.seed_for(scene));
   std::atomic<uint64_t> samples{0};
   // Issue 11: every rank holds the same solution.
   draw_across_ranks(

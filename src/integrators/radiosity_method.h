@@ -61,8 +61,8 @@ RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet);
 RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet, nlohmann::json* facts);
 
 // One solution serves every view: render() keeps the last scene's solution (recognised by
-// Scene::unique_id and the radiosity settings and seed) and reuses it when called again for the
-// same scene with another camera.
+// Scene::unique_id and the radiosity settings and the render's seed, RenderRequest::seed_for) and reuses it
+// when called again for the same scene with another camera.
 class RadiosityMethod final : public Method {
  public:
   explicit RadiosityMethod(const RadiositySettings& settings = {}) : settings_(settings) {}
@@ -70,7 +70,8 @@ class RadiosityMethod final : public Method {
   RenderResult render(const Scene& scene, const RenderRequest& request) const override;
   // flat, ray-traced, elements: every aa mode and filter; gouraud: the modes whose samples lie on
   // a grid (camera/sample_grid.h).
-  std::optional<AntialiasingRefusal> antialiasing_refusal(const Scene& scene) const override;
+  std::optional<AntialiasingRefusal> antialiasing_refusal(
+      const Scene& scene, const AntialiasingSettings& antialiasing) const override;
   // A scene with no bounded shape of any size (only planes): nothing to mesh within.
   void refuse_scene(const Scene& scene) const override;
 

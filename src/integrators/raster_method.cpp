@@ -267,7 +267,7 @@ class RasterShader {
       const double reach = std::isfinite(sample.distance) ? sample.distance - 2 * offset : kInfinity;
       return shadow_transmittance(scene_, origin, sample.direction, reach, context, -1);
     }
-    const StratumJitter jitter{true, scene_.render.seed};
+    const StratumJitter jitter{true, context.seed};  // issue 51: the render's seed
     Color reached, total;
     for (int index = 0; index < light.sample_count(); ++index) {
       LightSample sample;
@@ -352,12 +352,16 @@ void RasterMethod::refuse_scene(const Scene& scene) const {
   refuse_dot_product_scene(settings_, scene);
 }
 
-std::optional<AntialiasingRefusal> RasterMethod::antialiasing_refusal(const Scene& scene) const {
-  return sample_grid_refusal(scene.antialiasing, scene);
+std::optional<AntialiasingRefusal> RasterMethod::antialiasing_refusal(
+    const Scene& scene, const AntialiasingSettings& antialiasing) const {
+  return sample_grid_refusal(antialiasing, scene);
 }
 
 RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& request) const {
-  refuse_unsupported_antialiasing(*this, scene);
+  // Issue 51: the render's aa settings and seed, which may not be the scene's.
+  const AntialiasingSettings& antialiasing = request.antialiasing_for(scene);
+  const uint64_t seed = request.seed_for(scene);
+  refuse_unsupported_antialiasing(*this, scene, antialiasing);
   RenderResult output(request.region);
   Film& film = output.film;
   RunStatistics& statistics = output.statistics;
@@ -365,11 +369,11 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
   const Camera& camera = *scene.camera;
   // The scene is drawn at the points of the aa mode's sample grid (camera/sample_grid.h), over
   // every pixel sample_image asks about, and sample_image reconstructs the pixels from them.
-  const SampleGrid grid = *sample_grid(scene.antialiasing);
+  const SampleGrid grid = *sample_grid(antialiasing);
   const int grid_width = static_cast<int>(grid.end(camera.width()));
   const int grid_height = static_cast<int>(grid.end(camera.height()));
   const SamplingRegion sampling{region.x0, region.y0, camera.width(), camera.height()};
-  const PixelBox pixels = sampled_pixels(scene.antialiasing, sampling, region.width(), region.height());
+  const PixelBox pixels = sampled_pixels(antialiasing, sampling, region.width(), region.height());
   const PixelBox samples_box{static_cast<int>(grid.first(pixels.x0)), static_cast<int>(grid.first(pixels.y0)),
                              static_cast<int>(grid.end(pixels.x1)), static_cast<int>(grid.end(pixels.y1))};
   Film samples(samples_box.width(), samples_box.height());
@@ -389,7 +393,11 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
   std::vector<Eigen::Vector4d> clip_positions(3 * triangle_count);
   std::vector<double> corner_varyings(varying_count > 0 ? 3 * triangle_count * stride : 0);
   std::vector<Color> flat_colors(settings_.shading == RasterShading::flat ? triangle_count : 0);
-  tbb::enumerable_thread_specific<TraceContext> contexts;
+  tbb::enumerable_thread_specific<TraceContext> contexts([seed] {
+    TraceContext context;
+    context.seed = seed;
+    return context;
+  });
   tbb::parallel_for(std::size_t(0), triangle_count, [&](std::size_t t) {
     TraceContext& context = contexts.local();
     for (int k = 0; k < 3; ++k) {
@@ -494,7 +502,7 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
     const auto j = std::clamp<int64_t>(grid.index(y) - samples_box.y0, 0, samples.height() - 1);
     return samples.at(static_cast<int>(i), static_cast<int>(j));
   };
-  sample_image(scene.antialiasing, scene.render.seed, sampling, scene.render.tile_size, sample_at, film);
+  sample_image(antialiasing, seed, sampling, scene.render.tile_size, sample_at, film);
   if (cancel_requested()) {
     statistics.extra["interrupted"] = true;
     statistics.extra["completed"] = fmt::format("{} of {} tiles", tiles_done.load(), tiles_x * tiles_y);

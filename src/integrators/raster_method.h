@@ -53,7 +53,8 @@ class RasterMethod final : public Method {
   RenderResult render(const Scene& scene, const RenderRequest& request) const override;
   // The aa modes whose samples lie on a grid (camera/sample_grid.h): none, uniform, and corners
   // and adaptive without jitter; every filter.
-  std::optional<AntialiasingRefusal> antialiasing_refusal(const Scene& scene) const override;
+  std::optional<AntialiasingRefusal> antialiasing_refusal(
+      const Scene& scene, const AntialiasingSettings& antialiasing) const override;
   // "dotproduct" shading and the environment, or more lights than it interpolates.
   void refuse_scene(const Scene& scene) const override;
   // The image, the grid's samples and the view's triangles.

@@ -21,24 +21,31 @@ RenderResult RayTracingMethod::render(const Scene& scene, const RenderRequest& r
   RunStatistics& statistics = output.statistics;
   const PixelRect region = request.region;
   const int tile = scene.render.tile_size;
+  // Issue 51: the render's seed and aa settings, which may not be the scene's.
+  const uint64_t seed = request.seed_for(scene);
+  const AntialiasingSettings& antialiasing = request.antialiasing_for(scene);
   Cluster* cluster = several_ranks(request);
   // Across ranks the tiles are the larger ones handed out; rank 0 shows their progress.
   const SamplingRegion sampling{region.x0, region.y0, scene.camera->width(), scene.camera->height()};
   const int64_t tiles_total =
       cluster ? tile_count(region.width(), region.height(), kDistributedTileSize)
-              : sampling_tile_count(scene.antialiasing, sampling, region.width(), region.height(), tile);
+              : sampling_tile_count(antialiasing, sampling, region.width(), region.height(), tile);
   ProgressReporter progress("render", static_cast<uint64_t>(tiles_total), "tiles",
                             request.quiet || (cluster && !cluster->root()));
   // Counts are per thread and summed at the end; the random stream is reseeded per ray from the
   // pixel that holds the sample point, so values never depend on the thread.
-  tbb::enumerable_thread_specific<TraceContext> contexts;
+  tbb::enumerable_thread_specific<TraceContext> contexts([seed] {
+    TraceContext context;
+    context.seed = seed;
+    return context;
+  });
   const RadianceFunction radiance = [&](double x, double y) {
     TraceContext& context = contexts.local();
     const auto px =
         static_cast<uint32_t>(std::clamp(static_cast<int>(std::floor(x)), 0, scene.camera->width() - 1));
     const auto py =
         static_cast<uint32_t>(std::clamp(static_cast<int>(std::floor(y)), 0, scene.camera->height() - 1));
-    context.rng = pixel_rng(scene.render.seed, px, py);
+    context.rng = pixel_rng(seed, px, py);
     ++context.counts.primary;
     return trace_primary(scene, scene.camera->generate_ray(x, y), context);
   };
@@ -59,8 +66,7 @@ RenderResult RayTracingMethod::render(const Scene& scene, const RenderRequest& r
         [&](const PixelRect& piece) {
           RenderedTile rendered{Film(piece.width(), piece.height()), {}};
           const SamplingRegion at_piece{piece.x0, piece.y0, scene.camera->width(), scene.camera->height()};
-          SamplingResult sampled =
-              sample_image(scene.antialiasing, scene.render.seed, at_piece, tile, radiance, rendered.film);
+          SamplingResult sampled = sample_image(antialiasing, seed, at_piece, tile, radiance, rendered.film);
           rendered.counts = std::move(sampled.traced_per_pixel);
           rendered.counts.insert(rendered.counts.end(), sampled.samples_per_pixel.begin(),
                                  sampled.samples_per_pixel.end());
@@ -82,7 +88,7 @@ RenderResult RayTracingMethod::render(const Scene& scene, const RenderRequest& r
     interrupted = run.interrupted;
     statistics.extra["distributed"] = distributed_facts(*cluster, run.tiles_by_rank, "tiles");
   } else {
-    result = sample_image(scene.antialiasing, scene.render.seed, sampling, tile, radiance, film, [&] {
+    result = sample_image(antialiasing, seed, sampling, tile, radiance, film, [&] {
       tiles_done.fetch_add(1, std::memory_order_relaxed);
       progress.advance();
     });
@@ -99,7 +105,7 @@ RenderResult RayTracingMethod::render(const Scene& scene, const RenderRequest& r
   statistics.pixels += static_cast<uint64_t>(region.width()) * region.height();
   statistics.primary_per_pixel = std::move(result.traced_per_pixel);
   statistics.samples_per_pixel = std::move(result.samples_per_pixel);
-  statistics.extra["antialiasing"] = std::string(kAntialiasingModeNames.name(scene.antialiasing.mode));
+  statistics.extra["antialiasing"] = std::string(kAntialiasingModeNames.name(antialiasing.mode));
   return output;
 }
 
@@ -107,6 +113,7 @@ RayTree RayTracingMethod::pixel_ray_tree(const Scene& scene, int x, int y, Color
   RayTree tree;
   TraceContext context;
   context.tree = &tree;
+  context.seed = scene.render.seed;
   context.rng = pixel_rng(scene.render.seed, static_cast<uint32_t>(x), static_cast<uint32_t>(y));
   radiance = trace_primary(scene, scene.camera->generate_ray(x + 0.5, y + 0.5), context);
   return tree;

@@ -57,14 +57,15 @@ Color ray_traced_radiosity(const RadiositySolveResult& solution, const VertexRad
 }
 
 SolutionDisplay::SolutionDisplay(const Scene& scene, const RadiositySolveResult& solution,
-                                 RadiosityDisplay display)
-    : scene_(scene), solution_(solution), display_(display) {
+                                 RadiosityDisplay display, const AntialiasingSettings& antialiasing,
+                                 uint64_t seed)
+    : scene_(scene), solution_(solution), display_(display), antialiasing_(antialiasing), seed_(seed) {
   if (display != RadiosityDisplay::gouraud && display != RadiosityDisplay::ray_traced) return;
   vertices_ =
       compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity, solution.element_hidden);
   if (display != RadiosityDisplay::gouraud) return;
   // The method refuses the aa settings without a grid before any work (sample_grid_refusal).
-  const std::optional<SampleGrid> grid = sample_grid(scene.antialiasing);
+  const std::optional<SampleGrid> grid = sample_grid(antialiasing_);
   if (!grid) throw std::logic_error("the gouraud display needs aa settings whose samples lie on a grid");
   grid_ = *grid;
   // 000 §6.5: the elements drawn as triangles through the scanline rasterizer with their vertex
@@ -112,11 +113,11 @@ SolutionDisplay::SolutionDisplay(const Scene& scene, const RadiositySolveResult&
 
 uint64_t SolutionDisplay::draw(int x0, int y0, Film& film) const {
   const Camera& camera = *scene_.camera;
-  const AntialiasingSettings& aa = scene_.antialiasing;
+  const AntialiasingSettings& aa = antialiasing_;
   const SamplingRegion at{x0, y0, camera.width(), camera.height()};
   if (display_ != RadiosityDisplay::gouraud) {
     const RadianceFunction radiance = [&](double x, double y) { return ray_cast(x, y); };
-    return sample_image(aa, scene_.render.seed, at, scene_.render.tile_size, radiance, film).traced;
+    return sample_image(aa, seed_, at, scene_.render.tile_size, radiance, film).traced;
   }
   // The grid samples of every pixel sample_image asks about, rasterized first.
   const PixelBox pixels = sampled_pixels(aa, at, film.width(), film.height());
@@ -128,7 +129,7 @@ uint64_t SolutionDisplay::draw(int x0, int y0, Film& film) const {
     const auto j = std::clamp<int64_t>(grid_.index(y) - gy0, 0, samples.height() - 1);
     return samples.at(static_cast<int>(i), static_cast<int>(j));
   };
-  return sample_image(aa, scene_.render.seed, at, scene_.render.tile_size, radiance, film).traced;
+  return sample_image(aa, seed_, at, scene_.render.tile_size, radiance, film).traced;
 }
 
 // Tiles of 32 × 32 grid samples, each drawn by one thread from the same inputs with its own depth

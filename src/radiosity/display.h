@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "accel/accelerator.h"
+#include "camera/antialiasing.h"
 #include "camera/film.h"
 #include "camera/sample_grid.h"
 #include "radiosity/radiosity_settings.h"
@@ -36,8 +37,10 @@ class SolutionDisplay {
  public:
   // Prepares the view once: the vertex radiosities (gouraud, ray-traced) and, for gouraud, the
   // elements projected (tiles across ranks, issue 11, do not redo it). The scene and the solution
-  // must outlive the display.
-  SolutionDisplay(const Scene& scene, const RadiositySolveResult& solution, RadiosityDisplay display);
+  // must outlive the display. The samples are placed by `antialiasing` with `seed`: the render's,
+  // which need not be the scene's (issue 51: RenderRequest::seed, antialiasing).
+  SolutionDisplay(const Scene& scene, const RadiositySolveResult& solution, RadiosityDisplay display,
+                  const AntialiasingSettings& antialiasing, uint64_t seed);
 
   // Draws the pixels [x0, x0 + film.width()) × [y0, y0 + film.height()) of the camera's image
   // into film; returns the samples taken (rays, or grid samples for gouraud).
@@ -55,6 +58,8 @@ class SolutionDisplay {
   const Scene& scene_;
   const RadiositySolveResult& solution_;
   RadiosityDisplay display_;
+  AntialiasingSettings antialiasing_;
+  uint64_t seed_;
   SampleGrid grid_;           // gouraud
   VertexRadiosity vertices_;  // gouraud, ray-traced
   // gouraud: every element's triangle in clip space (the grid's: camera/sample_grid.h), and its
