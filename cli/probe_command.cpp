@@ -146,7 +146,8 @@ int run_probe(ProbeOptions& options) {
   // checks its form factors itself).
   if (options.method == "meshless")
     refuse_beyond_memory_limit(
-        MeshlessMethod(read_meshless_settings(scene->plugin_settings.node("meshless"))), *scene, PixelRect{});
+        MeshlessMethod(read_meshless_settings(scene->plugin_settings.node("meshless"))), *scene,
+        RenderRequest{});
   nlohmann::json facts;
   const std::vector<ProbeResult> results = probe(*scene, points, settings, &facts);
 

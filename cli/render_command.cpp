@@ -613,7 +613,9 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
     }
     {  // Issue 51: what the method would hold for this view, against render.memory_limit_mib.
       const CurrentCamera current(*scene, view);
-      refuse_beyond_memory_limit(*job.method, *scene, regions.back());
+      RenderRequest request;
+      request.region = regions.back();
+      refuse_beyond_memory_limit(*job.method, *scene, request);
     }
     check_writable(path_for_view(options.output, view, views.size()), "-o");
     if (!options.stats_path.empty())

@@ -30,6 +30,7 @@
 
 #include "camera/tone_map.h"
 #include "integrators/antialiasing_support.h"
+#include "integrators/memory_estimate.h"
 #include "integrators/meshless_method.h"
 #include "integrators/method_registry.h"
 #include "integrators/probe.h"
@@ -202,6 +203,7 @@ py::array_t<float> render(const Scene& scene, std::optional<std::string> method_
   request.quiet = true;
   request.seed = seed;
   request.antialiasing = antialiasing;
+  refuse_beyond_memory_limit(*method, scene, request);  // issue 51: before any work, as the CLI
   std::optional<tbb::global_control> thread_limit;
   if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   Film film = run_interruptibly<Film>([&] { return std::move(method->render(scene, request).film); });
@@ -284,6 +286,9 @@ py::dict probe_points(const Scene& scene, const DoubleArray& points, const Doubl
   settings.method = method;
   settings.samples = samples;
   settings.seed = seed;
+  if (method == "meshless")  // issue 51: the solution is held to render.memory_limit_mib first
+    refuse_beyond_memory_limit(MeshlessMethod(read_meshless_settings(scene.plugin_settings.node("meshless"))),
+                               scene, RenderRequest{});
   if (threads < 0) throw py::value_error("threads must be >= 0 (0: all cores)");
   std::optional<tbb::global_control> thread_limit;
   if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));

@@ -273,3 +273,16 @@ def test_compare_refuses_values_that_are_not_finite_or_beyond_the_float_range(va
     image, reference = (bad, b) if which == "image" else (a, bad)
     metrics = candela.compare(image, reference)
     assert np.isfinite(metrics["rmse"]) and metrics["max_absolute_error"] > 1e38
+
+
+def test_renders_and_probes_that_would_hold_more_than_the_memory_limit_raise_before_any_work():
+    """Issue 51, class 6: the command line's refusal, from Python too (render.memory_limit_mib)."""
+    scene = candela.load_file(CORNELL, **{"camera.width": 4000, "camera.height": 3000,
+                                          "render.memory_limit_mib": 100})
+    for method in ("local", "raster", "path"):
+        with pytest.raises(candela.InputError, match=f"{method} would hold .* more than the 100.0 MiB"):
+            candela.render(scene, method=method)
+    # A meshless probe solves first: its sites and effective areas are counted before the solve.
+    tight = candela.load_file(CORNELL, **SMALL, **{"render.memory_limit_mib": 1})
+    with pytest.raises(candela.InputError, match="meshless would hold .*up to 50000 sites"):
+        candela.probe(tight, np.array([[0.0, 0.01, 0.0]]), np.array([[0.0, 1.0, 0.0]]), method="meshless")

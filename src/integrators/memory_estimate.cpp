@@ -23,13 +23,13 @@ uint64_t film_bytes(const PixelRect& region, int copies) {
 }
 
 // The image and its exposed copy for writing.
-std::vector<MemoryPart> Method::memory_needed(const Scene&, const PixelRect& region) const {
-  return {{"the image", film_bytes(region, 2), "camera.width",
+std::vector<MemoryPart> Method::memory_needed(const Scene&, const RenderRequest& request) const {
+  return {{"the image", film_bytes(request.region, 2), "camera.width",
            "lower camera.width and camera.height, or render a part (--crop)"}};
 }
 
-void refuse_beyond_memory_limit(const Method& method, const Scene& scene, const PixelRect& region) {
-  std::vector<MemoryPart> parts = method.memory_needed(scene, region);
+void refuse_beyond_memory_limit(const Method& method, const Scene& scene, const RenderRequest& request) {
+  std::vector<MemoryPart> parts = method.memory_needed(scene, request);
   uint64_t total = 0;
   for (const MemoryPart& part : parts) total += part.bytes;
   const uint64_t limit = memory_limit_bytes(scene.render.memory_limit_mib);

@@ -15,10 +15,11 @@ namespace candela {
 // The bytes of `copies` films of the region's pixels.
 uint64_t film_bytes(const PixelRect& region, int copies);
 
-// Throws InputError (bad input: exit 2, nothing written) when the parts add up to more than the
+// Throws InputError (bad input: exit 2, nothing written) when the parts of a render of the request
+// (its region, and its seed and aa settings where it gives them) add up to more than the
 // scene's render.memory_limit_mib allows: the message gives the total, the parts largest first, the
 // largest part's setting and remedy, and render.memory_limit_mib; it is located at the largest
 // part's setting (or at render.memory_limit_mib where the scene sets it).
-void refuse_beyond_memory_limit(const Method& method, const Scene& scene, const PixelRect& region);
+void refuse_beyond_memory_limit(const Method& method, const Scene& scene, const RenderRequest& request);
 
 }  // namespace candela

@@ -251,8 +251,9 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const Meshl
 
 }  // namespace
 
-std::vector<MemoryPart> MeshlessMethod::memory_needed(const Scene& scene, const PixelRect& region) const {
-  std::vector<MemoryPart> parts = Method::memory_needed(scene, region);
+std::vector<MemoryPart> MeshlessMethod::memory_needed(const Scene& scene,
+                                                      const RenderRequest& request) const {
+  std::vector<MemoryPart> parts = Method::memory_needed(scene, request);
   // The sites with their radii, areas, coefficients and index: well under a kilobyte each.
   parts.push_back({fmt::format("up to {} sites", settings_.max_sites),
                    static_cast<uint64_t>(settings_.max_sites) * 1024, "meshless.max_sites",

@@ -131,7 +131,7 @@ class MeshlessMethod final : public Method {
   std::string_view name() const override { return "meshless"; }
   RenderResult render(const Scene& scene, const RenderRequest& request) const override;
   // The image, the sites and, with integrated effective areas, the tessellated surfaces.
-  std::vector<MemoryPart> memory_needed(const Scene& scene, const PixelRect& region) const override;
+  std::vector<MemoryPart> memory_needed(const Scene& scene, const RenderRequest& request) const override;
 
  private:
   std::shared_ptr<const MeshlessGeometry> geometry_for(const Scene& scene, uint64_t seed, bool& reused,

@@ -131,9 +131,9 @@ class Method {
   // Throws the InputError of a scene the method cannot render with its settings (an emitter its
   // shading cannot take), so that create_method refuses it before any work; render checks again.
   virtual void refuse_scene(const Scene& scene) const { (void)scene; }
-  // Issue 51: what rendering `region` (empty: the solution alone, as probe needs it) will hold,
-  // part by part; by default the image (integrators/memory_estimate.h).
-  virtual std::vector<MemoryPart> memory_needed(const Scene& scene, const PixelRect& region) const;
+  // Issue 51: what rendering the request (its region empty: the solution alone, as probe needs
+  // it) will hold, part by part; by default the image (integrators/memory_estimate.h).
+  virtual std::vector<MemoryPart> memory_needed(const Scene& scene, const RenderRequest& request) const;
 };
 
 // Throws the InputError of method.antialiasing_refusal(scene, antialiasing), naming the method,

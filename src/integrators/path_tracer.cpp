@@ -368,7 +368,8 @@ Color path_irradiance(const Scene& scene, const PathSettings& settings, const Li
   return E;
 }
 
-std::vector<MemoryPart> PathMethod::memory_needed(const Scene&, const PixelRect& region) const {
+std::vector<MemoryPart> PathMethod::memory_needed(const Scene&, const RenderRequest& request) const {
+  const PixelRect& region = request.region;
   // A Color and a double a pixel for the sums and weights, again in a checkpoint; the image and a
   // pass's (RenderResult, the pass image).
   const uint64_t pixels = film_bytes(region, 1) / sizeof(Color);

@@ -65,7 +65,7 @@ class PathMethod final : public Method {
   std::string_view name() const override { return "path"; }
   RenderResult render(const Scene& scene, const RenderRequest& request) const override;
   // Issue 51: the image, a pass's, the running sums and weights and their checkpoint.
-  std::vector<MemoryPart> memory_needed(const Scene& scene, const PixelRect& region) const override;
+  std::vector<MemoryPart> memory_needed(const Scene& scene, const RenderRequest& request) const override;
 
  private:
   PathSettings settings_;

@@ -330,9 +330,10 @@ TessellationRequest tessellation_for_view(const Scene& scene, const SampleGrid& 
 
 // Issue 51: the image, the samples of the grid (colour and depth) and the view's triangles with
 // their per-corner clip positions and varyings.
-std::vector<MemoryPart> RasterMethod::memory_needed(const Scene& scene, const PixelRect& region) const {
-  std::vector<MemoryPart> parts = Method::memory_needed(scene, region);
-  const std::optional<SampleGrid> grid = sample_grid(scene.antialiasing);
+std::vector<MemoryPart> RasterMethod::memory_needed(const Scene& scene, const RenderRequest& request) const {
+  std::vector<MemoryPart> parts = Method::memory_needed(scene, request);
+  const PixelRect& region = request.region;
+  const std::optional<SampleGrid> grid = sample_grid(request.antialiasing_for(scene));
   if (!grid) return parts;  // refused as it is rendered
   const uint64_t samples = static_cast<uint64_t>(grid->end(region.width())) * grid->end(region.height());
   parts.push_back({"the samples", samples * (sizeof(Color) + sizeof(double)), "aa.n", "lower it"});

@@ -58,7 +58,7 @@ class RasterMethod final : public Method {
   // "dotproduct" shading and the environment, or more lights than it interpolates.
   void refuse_scene(const Scene& scene) const override;
   // The image, the grid's samples and the view's triangles.
-  std::vector<MemoryPart> memory_needed(const Scene& scene, const PixelRect& region) const override;
+  std::vector<MemoryPart> memory_needed(const Scene& scene, const RenderRequest& request) const override;
 
  private:
   RasterSettings settings_;

@@ -113,7 +113,7 @@ CrossMethodEntry render_entry(Scene& scene, const CrossMethodOptions& options, c
   Stopwatch timer;
   try {
     const std::unique_ptr<Method> method = create_method(*registered, scene, settings);
-    refuse_beyond_memory_limit(*method, scene, request.region);  // issue 51, before its work
+    refuse_beyond_memory_limit(*method, scene, request);  // issue 51, before its work
     if (log) {
       log->start();
       request.on_progress = log->observer();
