@@ -29,6 +29,7 @@
 #include "bench/bench_runner.h"
 #include "bench/raster_bench.h"
 #include "commands.h"
+#include "integrators/memory_estimate.h"
 #include "integrators/meshless_method.h"
 #include "integrators/radiosity_method.h"
 #include "integrators/scene_loading.h"
@@ -191,6 +192,8 @@ std::vector<BenchMesh> raster_meshes(const BenchCommandOptions& options) {
                       "or pass the meshes)",
                       kDefaultModelDirectory));
   }
+  // Issue 51: the meshes found in the models folder are inputs too.
+  if (!options.json_path.empty()) refuse_outputs_over_inputs({{options.json_path, "--json"}}, paths);
   for (const std::string& path : paths) {
     meshes.push_back(read_bench_obj(path));
     if (meshes.back().skipped_faces > 0)
@@ -337,8 +340,9 @@ int run_meshless_bench_command(const BenchCommandOptions& options) {
                   "threads", "sites", "levels", "entries", "links", "density", "S MiB", "sample s", "areas s",
                   "S s", "iters", "solve s", "peak MiB");
   return run_scene_solve_bench(options, "meshless", header, [&](const Scene& scene, nlohmann::json& facts) {
-    const MeshlessSolution solution =
-        solve_meshless(scene, read_meshless_settings(scene.plugin_settings.node("meshless")), &facts);
+    const MeshlessSettings settings = read_meshless_settings(scene.plugin_settings.node("meshless"));
+    refuse_beyond_memory_limit(MeshlessMethod(settings), scene, RenderRequest{});  // issue 51
+    const MeshlessSolution solution = solve_meshless(scene, settings, &facts);
     // Issue 25: levels 1 and no links for the flat matrix; the hierarchy's levels and cluster links.
     return fmt::format(
         "{:>7} {:>6} {:>12} {:>10} {:>8.4f} {:>9.1f} {:>10.3f} {:>10.3f} {:>10.3f} {:>6} {:>9.3f}",
@@ -363,6 +367,17 @@ int run_bench_command(const BenchCommandOptions& given) {
   BenchCommandOptions options = given;
   if (!given.inputs.empty()) options.mesh_path = given.inputs.front();
   BenchOptions bench = bench_options(options);
+  // Issue 51: --dump's files are outputs too, checked against --json and the mesh.
+  if (!options.dump_directory.empty()) {
+    std::vector<OutputFile> outputs;
+    if (!options.json_path.empty()) outputs.push_back({options.json_path, "--json"});
+    std::vector<std::string> sets{"primary", "incoherent"};
+    for (const std::string& name : bench_accelerator_names()) sets.push_back("shadow-" + name);
+    for (const std::string& set : sets)
+      outputs.push_back(
+          {(std::filesystem::path(options.dump_directory) / (set + ".rays")).string(), "--dump"});
+    refuse_outputs_over_inputs(outputs, {options.mesh_path});
+  }
   const auto log = [&](const std::string& line) {
     if (!options.quiet) std::cerr << "candela: bench: " << line << "\n";
   };

@@ -38,8 +38,11 @@ std::string file_identity(const std::string& path) {
   if (::stat(path.c_str(), &status) == 0)
     return fmt::format("inode {}:{}", static_cast<uint64_t>(status.st_dev),
                        static_cast<uint64_t>(status.st_ino));
+  // Made absolute first: weakly_canonical leaves "out.png" relative (no part of it exists) but
+  // resolves "./out.png" (issue 51: the two were not seen to be one file).
   std::error_code error;
-  const std::filesystem::path absolute = std::filesystem::weakly_canonical(path, error);
+  const std::filesystem::path absolute =
+      std::filesystem::weakly_canonical(std::filesystem::absolute(path, error), error);
   return "path " + (error ? std::filesystem::path(path).lexically_normal().string() : absolute.string());
 }
 

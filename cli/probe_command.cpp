@@ -168,6 +168,13 @@ int run_probe(ProbeOptions& options) {
         throw std::runtime_error(
             fmt::format("point {} ({}, {}, {}): its estimate is not finite ({}); nothing written", i + 1,
                         points[i].position.x, points[i].position.y, points[i].position.z, value));
+    // A faint sky under a bright light: the ratio overflows though both are finite.
+    if (options.daylight_factor && !std::isfinite(daylight_factor[i]))
+      throw InputError(
+          {options.scene.scene_path, 0, 0, "environment"},
+          fmt::format("--daylight-factor: point {} has {:g} lux under a sky that gives an unobstructed "
+                      "horizontal surface {:g} lux: the ratio is beyond a double; nothing written",
+                      i + 1, illuminance[i], sky_lux));
   }
   // Streamed row by row (a 4,000,000-point grid is 600 MB of text), into a temporary file renamed
   // into place.

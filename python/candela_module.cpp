@@ -77,7 +77,17 @@ int runs_in_progress = 0;
 // KeyboardInterrupt too rather than return a part of its image.
 template <class Result, class Work>
 Result run_interruptibly(Work&& work) {
-  if (runs_in_progress++ == 0) reset_cancellation();
+  // Counted for the whole call, whatever leaves it (a thread that cannot start included).
+  struct RunInProgress {
+    RunInProgress() {
+      if (runs_in_progress++ == 0) reset_cancellation();
+    }
+    ~RunInProgress() {
+      if (--runs_in_progress == 0) reset_cancellation();
+    }
+    RunInProgress(const RunInProgress&) = delete;
+    RunInProgress& operator=(const RunInProgress&) = delete;
+  } counted;
   std::optional<Result> result;
   std::exception_ptr error;
   std::mutex mutex;
@@ -109,7 +119,6 @@ Result run_interruptibly(Work&& work) {
   }
   worker.join();
   const bool cut_short = cancel_requested();
-  if (--runs_in_progress == 0) reset_cancellation();
   if (interrupted) throw py::error_already_set();
   if (error) std::rethrow_exception(error);
   if (cut_short) {  // another thread's Ctrl-C
@@ -203,10 +212,13 @@ py::array_t<float> render(const Scene& scene, std::optional<std::string> method_
   request.quiet = true;
   request.seed = seed;
   request.antialiasing = antialiasing;
-  refuse_beyond_memory_limit(*method, scene, request);  // issue 51: before any work, as the CLI
   std::optional<tbb::global_control> thread_limit;
   if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-  Film film = run_interruptibly<Film>([&] { return std::move(method->render(scene, request).film); });
+  Film film = run_interruptibly<Film>([&] {
+    // Issue 51: refused before any work, as the CLI; without the GIL (it counts triangles).
+    refuse_beyond_memory_limit(*method, scene, request);
+    return std::move(method->render(scene, request).film);
+  });
   return array_of(film, scene.display.exposure);
 }
 
@@ -286,14 +298,16 @@ py::dict probe_points(const Scene& scene, const DoubleArray& points, const Doubl
   settings.method = method;
   settings.samples = samples;
   settings.seed = seed;
-  if (method == "meshless")  // issue 51: the solution is held to render.memory_limit_mib first
-    refuse_beyond_memory_limit(MeshlessMethod(read_meshless_settings(scene.plugin_settings.node("meshless"))),
-                               scene, RenderRequest{});
   if (threads < 0) throw py::value_error("threads must be >= 0 (0: all cores)");
   std::optional<tbb::global_control> thread_limit;
   if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-  const std::vector<ProbeResult> results =
-      run_interruptibly<std::vector<ProbeResult>>([&] { return probe(scene, sensors, settings); });
+  const std::vector<ProbeResult> results = run_interruptibly<std::vector<ProbeResult>>([&] {
+    if (method == "meshless")  // issue 51: the solution is held to render.memory_limit_mib first
+      refuse_beyond_memory_limit(
+          MeshlessMethod(read_meshless_settings(scene.plugin_settings.node("meshless"))), scene,
+          RenderRequest{});
+    return probe(scene, sensors, settings);
+  });
   std::vector<Color> irradiance, radiance;
   py::array_t<double> error(py::ssize_t(results.size()));
   for (std::size_t i = 0; i < results.size(); ++i) {
@@ -347,8 +361,10 @@ py::dict meshless_solution(const Scene& scene, int threads) {
   const MeshlessSettings settings = read_meshless_settings(scene.plugin_settings.node("meshless"));
   std::optional<tbb::global_control> thread_limit;
   if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-  const MeshlessSolution solution =
-      run_interruptibly<MeshlessSolution>([&] { return solve_meshless(scene, settings); });
+  const MeshlessSolution solution = run_interruptibly<MeshlessSolution>([&] {
+    refuse_beyond_memory_limit(MeshlessMethod(settings), scene, RenderRequest{});  // issue 51
+    return solve_meshless(scene, settings);
+  });
   const std::vector<Site>& sites = solution.sites.sites;
   std::vector<Color> positions, normals;
   for (const Site& site : sites) {

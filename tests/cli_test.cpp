@@ -1737,6 +1737,11 @@ TEST_F(Cli, NoSubCommandWritesOverItsInputs) {
        "--stats frame.ies: that is"},
       {"bench tri.obj --json tri.obj", "--json tri.obj: that is tri.obj"},
       {"bench room.json --json lamp.ies", "--json lamp.ies: that is"},
+      {"bench tri.obj --json primary.rays --dump .", "--dump ./primary.rays: the same file as --json"},
+      {"bench --raster tri.obj --json tri.obj", "--json tri.obj: that is tri.obj"},
+      // Spelled differently, the same file (a path none of whose folders exists was left relative).
+      {"render room.json -q --method local -o x.pfm --stats ./x.pfm",
+       "--stats ./x.pfm: the same file as -o x.pfm"},
   };
   for (const Case& c : cases) {
     EXPECT_EQ(run(c.arguments, output), 2) << c.arguments << "\n" << output;
@@ -1760,6 +1765,21 @@ TEST_F(Cli, ChecksThatCanPrecedeTheWorkDoAndNothingInfiniteIsWritten) {
       << output;
   EXPECT_EQ(run("probe room.json --points pts.csv --efficacy 683 -o out.csv", output), 0) << output;
   fs::remove(directory_ / "out.csv");
+  // A faint sky under a bright lamp: the daylight factor overflows though both are finite.
+  write("faint.json", R"({"format": "candela/1", "camera": {"width": 8, "height": 8},
+    "environment": {"type": "constant", "color": 1e-300},
+    "lights": [{"type": "point", "position": [0, 0.001, 0], "intensity": 1e16, "attenuation": "none"}],
+    "shapes": [{"type": "sphere", "center": [5, 5, 5], "radius": 0.1}]})");
+  write("origin.csv", "0,0,0,0,1,0\n");
+  EXPECT_EQ(
+      run("probe faint.json --method local --points origin.csv --daylight-factor -o out.csv --json o.json",
+          output),
+      2)
+      << output;
+  EXPECT_NE(output.find("faint.json: environment: --daylight-factor: point 1 has"), std::string::npos)
+      << output;
+  EXPECT_FALSE(fs::exists(directory_ / "out.csv"));
+  EXPECT_FALSE(fs::exists(directory_ / "o.json"));
   ASSERT_EQ(run("render room.json -q --method path -o ref.pfm", output), 0) << output;
   ASSERT_EQ(run("render room.json -q --method local --set lights=[] -o black.png", output), 0) << output;
   EXPECT_EQ(run("render room.json -q --method path --spp 64 --error-log e.csv --error-reference ref.pfm "
@@ -1817,7 +1837,7 @@ TEST_F(Cli, RefusalsAreBadInputWithTheirLocationAndWarningsAreGiven) {
     EXPECT_EQ(run("render sun.json -q -o out.png", output), 2) << value << output;
     EXPECT_NE(output.find("lights[0]." + key + ": expected"), std::string::npos) << value << output;
   }
-  for (const std::string time : {"9:30", "12:00:30.5", "24:00"}) {
+  for (const std::string time : {"9:30", "12:00:30.5", "24:00", "12:00:59.99999999999999999"}) {
     write("sun.json",
           R"({"format": "candela/1", "camera": {"width": 8, "height": 6}, "lights": [{"type": "sun",
       "latitude": 48.85, "longitude": 2.35, "date": "2026-06-21", "time": ")" +
@@ -1877,6 +1897,39 @@ TEST_F(Cli, MethodsThatWouldHoldMoreThanTheMemoryLimitAreRefusedBeforeAnyWork) {
             0)
       << output;
   fs::remove(directory_ / "out.png");
+  // bench --meshless and report (before the reference and every method render and write).
+  EXPECT_EQ(run("bench --meshless field.json --quiet --set render.memory_limit_mib=60", output), 2) << output;
+  EXPECT_NE(output.find("meshless would hold"), std::string::npos) << output;
+  EXPECT_EQ(run("report field.json -q -o rep --methods local,meshless --reference-spp 1 --set "
+                "render.memory_limit_mib=60",
+                output),
+            2)
+      << output;
+  EXPECT_NE(output.find("method meshless: meshless would hold"), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(directory_ / "rep" / "reference.png"));
+  EXPECT_FALSE(fs::exists(directory_ / "rep" / "local.png"));
+  fs::remove_all(directory_ / "rep");
+  // The transfer matrix, whose size is known only as it is built, is held to the limit then (16 bytes
+  // an entry; before: half the machine whatever the setting). A closed room of 100 sites has 7,121
+  // entries; the estimate of 100 sites and the image, 105,472 bytes, fits 0.105 MiB, they do not.
+  write("room.json", R"({"format": "candela/1",
+    "camera": {"eye": [5, 4, 9.5], "target": [5, 4, 0], "fov": 60, "width": 8, "height": 8},
+    "meshless": {"spacing": 1, "grid": 8, "rounds": 1, "effective_area": "thesis", "max_sites": 100},
+    "lights": [{"type": "point", "position": [5, 7, 5], "intensity": 10}],
+    "shapes": [{"type": "box", "min": [0, 0, 0], "max": [10, 8, 10], "material": {"kd": 0.6}}]})");
+  EXPECT_EQ(
+      run("render room.json -q --method meshless --set render.memory_limit_mib=0.105 -o out.png", output), 2)
+      << output;
+  EXPECT_NE(
+      output.find("transfer matrix: more than 6881 entries; raise meshless.spacing (fewer sites) (or raise "
+                  "render.memory_limit_mib"),
+      std::string::npos)
+      << output;
+  EXPECT_EQ(run("render room.json -q --method meshless --set render.memory_limit_mib=0.2 -o out.png", output),
+            0)
+      << output;
+  fs::remove(directory_ / "out.png");
+  fs::remove(directory_ / "room.json");
   // The image itself, the raster's samples and triangles, the path tracer's sums.
   for (const std::string method : {"local", "raster", "path"}) {
     EXPECT_EQ(

@@ -170,14 +170,14 @@ namespace {
 // Divisions of a full turn of the curved shapes the effective areas are integrated over.
 constexpr int kEffectiveAreaSegments = 64;
 
-// The most transfer entries S may keep: Eigen's 32-bit index, and half the machine's memory at
-// 16 bytes an entry while S is built (a row's (index, value) pairs, then the compressed copy) —
-// past it the build stops and is refused naming meshless.spacing (SPEC §15).
-std::size_t transfer_entry_limit() {
+// The most transfer entries S may keep: Eigen's 32-bit index, and render.memory_limit_mib (half
+// the machine's memory by default; issue 51) at 16 bytes an entry while S is built (a row's
+// (index, value) pairs, then the compressed copy) — past it the build stops and is refused naming
+// meshless.spacing (SPEC §15).
+std::size_t transfer_entry_limit(const Scene& scene) {
   const std::size_t index_limit = std::size_t{INT32_MAX} - 1;
-  const uint64_t physical = physical_memory_bytes();
-  if (physical == 0) return index_limit;
-  return std::min<std::size_t>(index_limit, static_cast<std::size_t>(physical / 2 / 16));
+  return std::min<std::size_t>(
+      index_limit, static_cast<std::size_t>(memory_limit_bytes(scene.render.memory_limit_mib) / 16));
 }
 
 // build_meshless_geometry; when cancellable, null once Ctrl-C arrives between its phases
@@ -228,7 +228,7 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const Meshl
   transfer.gather_rays = settings.gather_rays;
   transfer.near_field = settings.near_field;
   transfer.seed = seed;
-  transfer.max_entries = transfer_entry_limit();
+  transfer.max_entries = transfer_entry_limit(scene);
   transfer.cluster_angle = settings.cluster_angle;
   if (settings.transport == MeshlessTransport::hierarchical) {
     start = std::chrono::steady_clock::now();
@@ -270,8 +270,8 @@ std::vector<MemoryPart> MeshlessMethod::memory_needed(const Scene& scene,
                      "meshless.effective_area",
                      "set it to \"thesis\" (A = πh²/(m + 1), no integration over the tessellated surfaces)"});
   }
-  // The transfer matrix's size is known only as it is built: it is refused then, past half the
-  // machine's memory (transfer_entry_limit).
+  // The transfer matrix's size is known only as it is built: it is refused then, past
+  // render.memory_limit_mib at 16 bytes an entry (transfer_entry_limit).
   return parts;
 }
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "math/constants.h"
@@ -121,7 +122,8 @@ Photometry parse_eulumdat(std::string_view text, const std::string& file) {
   for (int s = 0; s < sets; ++s) lines.text(fmt::format("the colour of set {}", s + 1));
   for (int s = 0; s < sets; ++s) lines.text(fmt::format("the colour rendering of set {}", s + 1));
   for (int s = 0; s < sets; ++s) watts[s] = lines.number(fmt::format("the wattage of set {} (W)", s + 1));
-  result.lamps = std::max(1, static_cast<int>(std::lround(std::fabs(lamp_counts[0]))));
+  // Held to the IES reader's 1 to 1,000,000 (a count of 1e16 once wrapped round an int).
+  result.lamps = static_cast<int>(std::clamp(std::lround(std::fabs(lamp_counts[0])), 1L, 1'000'000L));
   result.lumens_per_lamp = fluxes[0] / result.lamps;
   result.input_watts = watts[0];
   for (int k = 0; k < 10; ++k) lines.number(fmt::format("direct ratio {} of 10 (line 27)", k + 1));

@@ -314,8 +314,10 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
     // Every rank refuses alike (their limits follow each machine's memory): a collective.
     if (cluster && cluster->distributed()) too_many = !cluster->all(!too_many);
     if (too_many)
-      throw std::invalid_argument("transfer matrix: more than " + std::to_string(max_entries) +
-                                  " links; raise meshless.spacing (fewer sites) or meshless.cluster_angle");
+      throw std::invalid_argument(
+          "transfer matrix: more than " + std::to_string(max_entries) +
+          " links; raise meshless.spacing (fewer sites) or meshless.cluster_angle (or raise "
+          "render.memory_limit_mib: 16 bytes an entry)");
     links.reserve(total_links);
     for (auto& list : found) {
       links.insert(links.end(), list.begin(), list.end());
@@ -512,8 +514,10 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
     rays = rays_elsewhere;  // every row's rays, wherever it was computed
   }
   if (too_many)
-    throw std::invalid_argument("transfer matrix: more than " + std::to_string(max_entries) +
-                                " entries; raise meshless.spacing (fewer sites)");
+    throw std::invalid_argument(
+        "transfer matrix: more than " + std::to_string(max_entries) +
+        " entries; raise meshless.spacing (fewer sites) (or raise render.memory_limit_mib: 16 "
+        "bytes an entry)");
   // Rows straight into the compressed row storage (no triplet list: at 20,000 sites that list
   // alone would take gigabytes), each row's memory released as it is copied.
   std::size_t total = 0;

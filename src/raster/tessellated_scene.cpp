@@ -1,8 +1,12 @@
 #include "raster/tessellated_scene.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 
 #include "geometry/flipped_shape.h"
 #include "geometry/plane.h"
@@ -114,24 +118,31 @@ Bounds3 raster_clip_box(const Scene& scene, const Vec3& eye, double margin) {
 }
 
 std::size_t tessellated_triangle_count(const Scene& scene, const TessellationRequest& request) {
-  TessellationSettings settings;
-  settings.clip = request.clip;
-  std::size_t count = 0;
-  TriangleMesh mesh;
-  for (const Primitive& primitive : scene.primitives) {
-    const Shape& shape = *primitive.shape;
-    settings.segments = segments_for(shape, request);
-    mesh.positions.clear();
-    mesh.triangles.clear();
-    mesh.corner_normals.clear();
-    mesh.corner_uvs.clear();
-    shape.tessellate(settings, mesh);
-    Vec3 point, normal;
-    if (request.has_view && !mesh.triangles.empty() && world_plane(shape, point, normal))
-      refine_toward(mesh, 0, request.eye);
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) count += !mesh.is_degenerate(t);
-  }
-  return count;
+  // In parallel over the primitives (the 10,584 spheres of scenes/sphere-field-10584.json are 42
+  // million triangles at 64 segments: seconds), each chunk's mesh reused; a sum of integers, so the
+  // count is the same for every thread count.
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::size_t>(0, scene.primitives.size(), 64), std::size_t{0},
+      [&](const tbb::blocked_range<std::size_t>& range, std::size_t count) {
+        TessellationSettings settings;
+        settings.clip = request.clip;
+        TriangleMesh mesh;
+        for (std::size_t p = range.begin(); p < range.end(); ++p) {
+          const Shape& shape = *scene.primitives[p].shape;
+          settings.segments = segments_for(shape, request);
+          mesh.positions.clear();
+          mesh.triangles.clear();
+          mesh.corner_normals.clear();
+          mesh.corner_uvs.clear();
+          shape.tessellate(settings, mesh);
+          Vec3 point, normal;
+          if (request.has_view && !mesh.triangles.empty() && world_plane(shape, point, normal))
+            refine_toward(mesh, 0, request.eye);
+          for (std::size_t t = 0; t < mesh.triangles.size(); ++t) count += !mesh.is_degenerate(t);
+        }
+        return count;
+      },
+      std::plus<>());
 }
 
 TessellatedScene tessellate_scene(const Scene& scene, const TessellationRequest& request) {

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -47,7 +48,7 @@ bool read_time(const std::string& text, double& hours) {
   if (end < text.size()) {
     if (text[end] != ':') return false;
     const int whole = digits_at(text, end + 1, 2);
-    if (whole < 0) return false;
+    if (whole < 0 || whole > 59) return false;
     seconds = whole;
     end += 3;
     if (end < text.size()) {
@@ -57,9 +58,11 @@ bool read_time(const std::string& text, double& hours) {
         if (text[i] < '0' || text[i] > '9') return false;
         seconds += (text[i] - '0') * scale;
       }
+      // 59.999… of many digits may round up to 60 in the sum: it is still within the minute.
+      seconds = std::min(seconds, std::nextafter(60.0, 0.0));
     }
   }
-  if (h < 0 || h > 24 || m < 0 || m > 59 || seconds >= 60) return false;
+  if (h < 0 || h > 24 || m < 0 || m > 59) return false;
   hours = h + m / 60.0 + seconds / 3600;
   return hours <= 24;
 }

@@ -113,7 +113,6 @@ CrossMethodEntry render_entry(Scene& scene, const CrossMethodOptions& options, c
   Stopwatch timer;
   try {
     const std::unique_ptr<Method> method = create_method(*registered, scene, settings);
-    refuse_beyond_memory_limit(*method, scene, request);  // issue 51, before its work
     if (log) {
       log->start();
       request.on_progress = log->observer();
@@ -315,6 +314,18 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
   const SettingsGuard guard(scene);
   const uint64_t seed = scene.render.seed;
   const fs::path directory(options.output_directory);
+  // Issue 51: every method the report renders is held to render.memory_limit_mib before the first
+  // renders and writes anything.
+  RenderRequest whole_image;
+  whole_image.region = {0, 0, width, height};
+  std::vector<std::string> checked = options.methods;
+  if (!options.reference_image) checked.push_back("path");
+  for (const std::string& method_name : checked)
+    if (const MethodEntry* registered = find_method(method_name)) try {
+        refuse_beyond_memory_limit(*create_method(*registered, scene), scene, whole_image);
+      } catch (const InputError& e) {
+        throw InputError(e.location(), "method " + method_name + ": " + e.message());
+      }
   // A page left from an earlier report would describe images this run is about to replace: it
   // goes first, so that a run that fails leaves no page at all.
   std::error_code ignored;
