@@ -273,7 +273,7 @@ py::dict compare(const DoubleArray& image, const DoubleArray& reference,
 }
 
 py::dict probe_points(const Scene& scene, const DoubleArray& points, const DoubleArray& normals,
-                      const std::string& method, int samples, uint64_t seed, int threads) {
+                      const std::string& method, int samples, std::optional<uint64_t> seed, int threads) {
   const std::vector<Vec3> positions = vectors_of(points, "points"),
                           directions = vectors_of(normals, "normals");
   if (positions.size() != directions.size())
@@ -297,7 +297,7 @@ py::dict probe_points(const Scene& scene, const DoubleArray& points, const Doubl
   ProbeSettings settings;
   settings.method = method;
   settings.samples = samples;
-  settings.seed = seed;
+  settings.seed = seed.value_or(scene.render.seed);  // as candela probe's --seed
   if (threads < 0) throw py::value_error("threads must be >= 0 (0: all cores)");
   std::optional<tbb::global_control> thread_limit;
   if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
@@ -461,7 +461,7 @@ PYBIND11_MODULE(candela, module) {
              "'radiosity': (n, 3) λ, 'direct': (n, 3) η, 'area': (n,) effective areas, 'object': (n,) "
              "uint32, 'iterations', 'converged'}.");
   module.def("probe", &probe_points, py::arg("scene"), py::arg("points"), py::arg("normals"), py::kw_only(),
-             py::arg("method") = "path", py::arg("samples") = 256, py::arg("seed") = 0,
+             py::arg("method") = "path", py::arg("samples") = 256, py::arg("seed") = py::none(),
              py::arg("threads") = 0,
              "Irradiance (n, 3), radiance (n, 3) and the irradiance's standard error (n) at sensor points "
              "(n, 3) facing normals (n, 3), as `candela probe`. A point or normal that is not finite, or a "

@@ -1944,5 +1944,33 @@ TEST_F(Cli, MethodsThatWouldHoldMoreThanTheMemoryLimitAreRefusedBeforeAnyWork) {
   EXPECT_EQ(file_count(), 1);
 }
 
+// Issue 51 (review): probe's --seed is the solution's too, as render.seed is (before, radiosity's and
+// meshless's solutions and direct light kept render.seed: --seed 2 and --set render.seed=2 differed).
+TEST_F(Cli, ProbeSeedSeedsTheSolutionItProbes) {
+  write("room.json", R"({"format": "candela/1",
+    "camera": {"eye": [5, 4, 9.5], "target": [5, 4, 0], "fov": 60, "width": 8, "height": 8},
+    "meshless": {"spacing": 1.5, "grid": 8, "rounds": 1}, "radiosity": {"patch_size": 2},
+    "lights": [{"type": "area", "corner": [4, 7.9, 4], "edge_u": [2, 0, 0], "edge_v": [0, 0, 2], "exitance": 20}],
+    "shapes": [{"type": "box", "min": [0, 0, 0], "max": [10, 8, 10], "material": {"kd": 0.6}}]})");
+  write("pts.csv", "5,0.01,5,0,1,0\n2,0.01,8,0,1,0\n");
+  std::string output;
+  for (const std::string method : {"meshless", "radiosity"}) {
+    ASSERT_EQ(run("probe room.json --method " + method + " --points pts.csv --samples 16 --seed 2 -o a.csv",
+                  output),
+              0)
+        << output;
+    ASSERT_EQ(run("probe room.json --method " + method +
+                      " --points pts.csv --samples 16 --set render.seed=2 -o b.csv",
+                  output),
+              0)
+        << output;
+    EXPECT_EQ(file_bytes(directory_ / "a.csv"), file_bytes(directory_ / "b.csv")) << method;
+    ASSERT_EQ(run("probe room.json --method " + method + " --points pts.csv --samples 16 -o c.csv", output),
+              0)
+        << output;
+    EXPECT_NE(file_bytes(directory_ / "a.csv"), file_bytes(directory_ / "c.csv")) << method;
+  }
+}
+
 }  // namespace
 }  // namespace candela

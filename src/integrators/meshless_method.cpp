@@ -483,8 +483,8 @@ namespace {
 class MeshlessField final : public SolutionField {
  public:
   MeshlessField(const Scene& scene, std::shared_ptr<const MeshlessGeometry> geometry,
-                MeshlessLighting lighting)
-      : scene_(scene), geometry_(std::move(geometry)), lighting_(std::move(lighting)) {}
+                MeshlessLighting lighting, uint64_t seed)
+      : scene_(scene), geometry_(std::move(geometry)), lighting_(std::move(lighting)), seed_(seed) {}
   bool exitance(const Ray& ray, const Intersection& hit, Color& exitance) const override {
     const Site p{hit.surface.position, face_forward(hit.surface.geometric_normal, -ray.direction)};
     thread_local std::vector<std::pair<uint32_t, double>> weights;
@@ -496,24 +496,23 @@ class MeshlessField final : public SolutionField {
   }
   // What rays cannot hit: the lights (the same samples and shadows as η).
   Color direct_irradiance(const Vec3& point, const Vec3& normal) const override {
-    return candela::direct_irradiance(scene_, point, normal, EmitterSet::lights,
-                                      StratumJitter{true, scene_.render.seed});
+    return candela::direct_irradiance(scene_, point, normal, EmitterSet::lights, StratumJitter{true, seed_});
   }
 
  private:
   const Scene& scene_;
   std::shared_ptr<const MeshlessGeometry> geometry_;
   MeshlessLighting lighting_;
+  uint64_t seed_;
 };
 
 }  // namespace
 
-std::unique_ptr<SolutionField> make_meshless_field(const Scene& scene) {
+std::unique_ptr<SolutionField> make_meshless_field(const Scene& scene, uint64_t seed) {
   const MeshlessSettings settings = read_meshless_settings(scene.plugin_settings.node("meshless"));
-  std::shared_ptr<const MeshlessGeometry> geometry =
-      build_meshless_geometry(scene, settings, scene.render.seed);
-  MeshlessLighting lighting = light_meshless(scene, settings, *geometry, scene.render.seed);
-  return std::make_unique<MeshlessField>(scene, std::move(geometry), std::move(lighting));
+  std::shared_ptr<const MeshlessGeometry> geometry = build_meshless_geometry(scene, settings, seed);
+  MeshlessLighting lighting = light_meshless(scene, settings, *geometry, seed);
+  return std::make_unique<MeshlessField>(scene, std::move(geometry), std::move(lighting), seed);
 }
 
 }  // namespace candela

@@ -239,9 +239,9 @@ std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>
   // The path tracer's depth limits: its object of the scene file.
   const PathSettings path = read_path_settings(scene.plugin_settings.node("path"));
   if (settings.method == "radiosity") {
-    field = make_radiosity_field(scene, settings.quiet);
+    field = make_radiosity_field(scene, settings.quiet, settings.seed);
   } else if (settings.method == "meshless") {
-    field = make_meshless_field(scene);
+    field = make_meshless_field(scene, settings.seed);
   } else if (settings.method != "path" && settings.method != "local") {
     throw std::invalid_argument("probe: method \"" + settings.method +
                                 "\" cannot be probed (expected one of: " + probe_method_names() + ")");

@@ -14,11 +14,12 @@ namespace {
 // The ray-traced display's field: the vertex radiosities interpolated over the element hit.
 class RadiosityField final : public SolutionField {
  public:
-  RadiosityField(const Scene& scene, RadiositySolveResult solution)
+  RadiosityField(const Scene& scene, RadiositySolveResult solution, uint64_t seed)
       : scene_(scene),
         solution_(std::move(solution)),
         vertices_(compute_vertex_radiosity(solution_.mesh.elements, solution_.element_radiosity,
-                                           solution_.element_hidden)) {}
+                                           solution_.element_hidden)),
+        seed_(seed) {}
   bool exitance(const Ray& ray, const Intersection& hit, Color& exitance) const override {
     const uint32_t element = solution_.mesh.element_at(hit.primitive, hit.surface.position, -ray.direction);
     if (element == UINT32_MAX) return false;
@@ -32,20 +33,20 @@ class RadiosityField final : public SolutionField {
   }
   // What rays cannot hit: the lights, as the first shot lit the elements (radiosity/first_shot.h).
   Color direct_irradiance(const Vec3& point, const Vec3& normal) const override {
-    return candela::direct_irradiance(scene_, point, normal, EmitterSet::lights,
-                                      StratumJitter{true, scene_.render.seed});
+    return candela::direct_irradiance(scene_, point, normal, EmitterSet::lights, StratumJitter{true, seed_});
   }
 
  private:
   const Scene& scene_;
   RadiositySolveResult solution_;
   VertexRadiosity vertices_;
+  uint64_t seed_;
 };
 
 }  // namespace
 
-std::unique_ptr<SolutionField> make_radiosity_field(const Scene& scene, bool quiet) {
-  return std::make_unique<RadiosityField>(scene, solve_radiosity(scene, quiet));
+std::unique_ptr<SolutionField> make_radiosity_field(const Scene& scene, bool quiet, uint64_t seed) {
+  return std::make_unique<RadiosityField>(scene, solve_radiosity(scene, quiet, nullptr, seed), seed);
 }
 
 }  // namespace candela

@@ -90,8 +90,12 @@ RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet) {
 }
 
 RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet, nlohmann::json* facts) {
+  return solve_radiosity(scene, quiet, facts, scene.render.seed);
+}
+
+RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet, nlohmann::json* facts, uint64_t seed) {
   RadiositySolveOptions options;
-  options.seed = scene.render.seed;
+  options.seed = seed;
   options.quiet = quiet;
   options.facts = facts;
   return solve_radiosity(scene, settings_of(scene), options);
