@@ -29,7 +29,6 @@
 #include "bench/bench_runner.h"
 #include "bench/raster_bench.h"
 #include "commands.h"
-#include "integrators/memory_estimate.h"
 #include "integrators/meshless_method.h"
 #include "integrators/radiosity_method.h"
 #include "integrators/scene_loading.h"
@@ -340,9 +339,8 @@ int run_meshless_bench_command(const BenchCommandOptions& options) {
                   "threads", "sites", "levels", "entries", "links", "density", "S MiB", "sample s", "areas s",
                   "S s", "iters", "solve s", "peak MiB");
   return run_scene_solve_bench(options, "meshless", header, [&](const Scene& scene, nlohmann::json& facts) {
-    const MeshlessSettings settings = read_meshless_settings(scene.plugin_settings.node("meshless"));
-    refuse_beyond_memory_limit(MeshlessMethod(settings), scene, RenderRequest{});  // issue 51
-    const MeshlessSolution solution = solve_meshless(scene, settings, &facts);
+    const MeshlessSolution solution =
+        solve_meshless(scene, read_meshless_settings(scene.plugin_settings.node("meshless")), &facts);
     // Issue 25: levels 1 and no links for the flat matrix; the hierarchy's levels and cluster links.
     return fmt::format(
         "{:>7} {:>6} {:>12} {:>10} {:>8.4f} {:>9.1f} {:>10.3f} {:>10.3f} {:>10.3f} {:>6} {:>9.3f}",

@@ -16,8 +16,6 @@
 
 #include "commands.h"
 #include "false_color_options.h"
-#include "integrators/memory_estimate.h"
-#include "integrators/meshless_method.h"
 #include "integrators/method_registry.h"
 #include "integrators/probe.h"
 #include "io/false_color.h"
@@ -142,12 +140,6 @@ int run_probe(ProbeOptions& options) {
           "sky, whose light the factor counts too (--set 'lights=[]' leaves the daylight alone)\n",
           scene->lights.size(), scene->surface_lights.size());
   }
-  // Issue 51: the meshless solution is held to render.memory_limit_mib before it starts (radiosity
-  // checks its form factors itself).
-  if (options.method == "meshless")
-    refuse_beyond_memory_limit(
-        MeshlessMethod(read_meshless_settings(scene->plugin_settings.node("meshless"))), *scene,
-        RenderRequest{});
   nlohmann::json facts;
   const std::vector<ProbeResult> results = probe(*scene, points, settings, &facts);
 

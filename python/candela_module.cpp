@@ -301,13 +301,8 @@ py::dict probe_points(const Scene& scene, const DoubleArray& points, const Doubl
   if (threads < 0) throw py::value_error("threads must be >= 0 (0: all cores)");
   std::optional<tbb::global_control> thread_limit;
   if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-  const std::vector<ProbeResult> results = run_interruptibly<std::vector<ProbeResult>>([&] {
-    if (method == "meshless")  // issue 51: the solution is held to render.memory_limit_mib first
-      refuse_beyond_memory_limit(
-          MeshlessMethod(read_meshless_settings(scene.plugin_settings.node("meshless"))), scene,
-          RenderRequest{});
-    return probe(scene, sensors, settings);
-  });
+  const std::vector<ProbeResult> results =
+      run_interruptibly<std::vector<ProbeResult>>([&] { return probe(scene, sensors, settings); });
   std::vector<Color> irradiance, radiance;
   py::array_t<double> error(py::ssize_t(results.size()));
   for (std::size_t i = 0; i < results.size(); ++i) {
@@ -361,10 +356,8 @@ py::dict meshless_solution(const Scene& scene, int threads) {
   const MeshlessSettings settings = read_meshless_settings(scene.plugin_settings.node("meshless"));
   std::optional<tbb::global_control> thread_limit;
   if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-  const MeshlessSolution solution = run_interruptibly<MeshlessSolution>([&] {
-    refuse_beyond_memory_limit(MeshlessMethod(settings), scene, RenderRequest{});  // issue 51
-    return solve_meshless(scene, settings);
-  });
+  const MeshlessSolution solution =
+      run_interruptibly<MeshlessSolution>([&] { return solve_meshless(scene, settings); });
   const std::vector<Site>& sites = solution.sites.sites;
   std::vector<Color> positions, normals;
   for (const Site& site : sites) {

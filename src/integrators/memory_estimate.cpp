@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <utility>
 
 #include "util/memory.h"
 
@@ -22,10 +23,14 @@ uint64_t film_bytes(const PixelRect& region, int copies) {
   return pixels * sizeof(Color) * static_cast<uint64_t>(copies);
 }
 
+MemoryPart image_memory_part(std::string what, uint64_t bytes) {
+  return {std::move(what), bytes, "camera.width",
+          "lower camera.width and camera.height, or render a part (--crop)"};
+}
+
 // The image and its exposed copy for writing.
 std::vector<MemoryPart> Method::memory_needed(const Scene&, const RenderRequest& request) const {
-  return {{"the image", film_bytes(request.region, 2), "camera.width",
-           "lower camera.width and camera.height, or render a part (--crop)"}};
+  return {image_memory_part("the image", film_bytes(request.region, 2))};
 }
 
 void refuse_beyond_memory_limit(const Method& method, const Scene& scene, const RenderRequest& request) {
@@ -33,7 +38,7 @@ void refuse_beyond_memory_limit(const Method& method, const Scene& scene, const 
   uint64_t total = 0;
   for (const MemoryPart& part : parts) total += part.bytes;
   const uint64_t limit = memory_limit_bytes(scene.render.memory_limit_mib);
-  if (total <= limit || parts.empty()) return;
+  if (total <= limit) return;
   std::stable_sort(parts.begin(), parts.end(),
                    [](const MemoryPart& a, const MemoryPart& b) { return a.bytes > b.bytes; });
   std::string listed;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "integrators/method.h"
@@ -14,6 +15,8 @@ namespace candela {
 
 // The bytes of `copies` films of the region's pixels.
 uint64_t film_bytes(const PixelRect& region, int copies);
+// A part held per pixel of the image (`what` names it): made smaller by the image's size.
+MemoryPart image_memory_part(std::string what, uint64_t bytes);
 
 // Throws InputError (bad input: exit 2, nothing written) when the parts of a render of the request
 // (its region, and its seed and aa settings where it gives them) add up to more than the

@@ -275,6 +275,17 @@ std::vector<MemoryPart> MeshlessMethod::memory_needed(const Scene& scene,
   return parts;
 }
 
+namespace {
+
+// Issue 51: a solution without an image (solve_meshless: bench --meshless, Python's
+// meshless_solution; make_meshless_field: probe) is held to render.memory_limit_mib before any work,
+// as a render is (Method::memory_needed; the render's own check is its caller's, per view).
+void refuse_solution_beyond_memory_limit(const Scene& scene, const MeshlessSettings& settings) {
+  refuse_beyond_memory_limit(MeshlessMethod(settings), scene, RenderRequest{});
+}
+
+}  // namespace
+
 std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene,
                                                           const MeshlessSettings& settings, uint64_t seed) {
   return build_geometry(scene, settings, seed, false, true);
@@ -329,6 +340,7 @@ void add_lighting_facts(const MeshlessLighting& lighting, nlohmann::json& facts)
 }  // namespace
 
 MeshlessSolution solve_meshless(const Scene& scene, const MeshlessSettings& settings, nlohmann::json* facts) {
+  refuse_solution_beyond_memory_limit(scene, settings);
   const std::shared_ptr<MeshlessGeometry> geometry =
       build_meshless_geometry(scene, settings, scene.render.seed);
   MeshlessLighting lighting = light_meshless(scene, settings, *geometry, scene.render.seed);
@@ -510,6 +522,7 @@ class MeshlessField final : public SolutionField {
 
 std::unique_ptr<SolutionField> make_meshless_field(const Scene& scene, uint64_t seed) {
   const MeshlessSettings settings = read_meshless_settings(scene.plugin_settings.node("meshless"));
+  refuse_solution_beyond_memory_limit(scene, settings);
   std::shared_ptr<const MeshlessGeometry> geometry = build_meshless_geometry(scene, settings, seed);
   MeshlessLighting lighting = light_meshless(scene, settings, *geometry, seed);
   return std::make_unique<MeshlessField>(scene, std::move(geometry), std::move(lighting), seed);

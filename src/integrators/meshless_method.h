@@ -119,6 +119,7 @@ struct MeshlessSolution {
 };
 
 // Samples, builds and solves with the scene's render.seed; fills facts for --stats when given.
+// Throws InputError before any work past render.memory_limit_mib (issue 51).
 MeshlessSolution solve_meshless(const Scene& scene, const MeshlessSettings& settings,
                                 nlohmann::json* facts = nullptr);
 

@@ -373,9 +373,8 @@ std::vector<MemoryPart> PathMethod::memory_needed(const Scene&, const RenderRequ
   // A Color and a double a pixel for the sums and weights, again in a checkpoint; the image and a
   // pass's (RenderResult, the pass image).
   const uint64_t pixels = film_bytes(region, 1) / sizeof(Color);
-  return {{"the image, a pass's, the running sums and weights and their checkpoint",
-           film_bytes(region, 4) + 2 * pixels * sizeof(double), "camera.width",
-           "lower camera.width and camera.height, or render a part (--crop)"}};
+  return {image_memory_part("the image, a pass's, the running sums and weights and their checkpoint",
+                            film_bytes(region, 4) + 2 * pixels * sizeof(double))};
 }
 
 RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request) const {

@@ -25,7 +25,8 @@ class SolutionField {
 // solve's and the direct light's (the probe's own; issue 51: it was render.seed whatever the probe's).
 std::unique_ptr<SolutionField> make_radiosity_field(const Scene& scene, bool quiet, uint64_t seed);
 // The meshless solution of scene.meshless (its sites are sampled from the scene's camera: points
-// the camera never sees may have no site near them), with `seed` as the radiosity field's.
+// the camera never sees may have no site near them), with `seed` as the radiosity field's; refused
+// (InputError) before any work past render.memory_limit_mib.
 std::unique_ptr<SolutionField> make_meshless_field(const Scene& scene, uint64_t seed);
 
 }  // namespace candela

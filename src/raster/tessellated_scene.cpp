@@ -101,6 +101,19 @@ void refine_toward(TriangleMesh& mesh, std::size_t first, const Vec3& eye) {
   }
 }
 
+// Appends the primitive's triangles for the request to mesh: curved shapes by their segments, a
+// plane refined toward the eye when there is a view. (Degenerate triangles are left in: the caller
+// drops them.)
+void append_primitive(const Shape& shape, const TessellationRequest& request, TessellationSettings& settings,
+                      TriangleMesh& mesh) {
+  settings.segments = segments_for(shape, request);
+  const std::size_t first = mesh.triangles.size();
+  shape.tessellate(settings, mesh);
+  Vec3 point, normal;
+  if (request.has_view && first < mesh.triangles.size() && world_plane(shape, point, normal))
+    refine_toward(mesh, first, request.eye);
+}
+
 }  // namespace
 
 Bounds3 raster_clip_box(const Scene& scene, const Vec3& eye, double margin) {
@@ -128,16 +141,11 @@ std::size_t tessellated_triangle_count(const Scene& scene, const TessellationReq
         settings.clip = request.clip;
         TriangleMesh mesh;
         for (std::size_t p = range.begin(); p < range.end(); ++p) {
-          const Shape& shape = *scene.primitives[p].shape;
-          settings.segments = segments_for(shape, request);
           mesh.positions.clear();
           mesh.triangles.clear();
           mesh.corner_normals.clear();
           mesh.corner_uvs.clear();
-          shape.tessellate(settings, mesh);
-          Vec3 point, normal;
-          if (request.has_view && !mesh.triangles.empty() && world_plane(shape, point, normal))
-            refine_toward(mesh, 0, request.eye);
+          append_primitive(*scene.primitives[p].shape, request, settings, mesh);
           for (std::size_t t = 0; t < mesh.triangles.size(); ++t) count += !mesh.is_degenerate(t);
         }
         return count;
@@ -156,13 +164,7 @@ TessellatedScene tessellate_scene(const Scene& scene, const TessellationRequest&
     TriangleMesh mesh;
     std::vector<uint32_t> source_primitive;
     for (uint32_t p = object.first_primitive; p < object.first_primitive + object.primitive_count; ++p) {
-      const Shape& shape = *scene.primitives[p].shape;
-      settings.segments = segments_for(shape, request);
-      const std::size_t first = mesh.triangles.size();
-      shape.tessellate(settings, mesh);
-      Vec3 point, normal;
-      if (request.has_view && first < mesh.triangles.size() && world_plane(shape, point, normal))
-        refine_toward(mesh, first, request.eye);
+      append_primitive(*scene.primitives[p].shape, request, settings, mesh);
       source_primitive.resize(mesh.triangles.size(), p);
     }
     if (mesh.triangles.empty()) continue;
