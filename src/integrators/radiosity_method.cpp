@@ -28,11 +28,11 @@ RadiositySettings settings_of(const Scene& scene) {
 // display) and the seed of the ray-cast form factors — the render's (issue 51: a render with
 // another seed than the scene's does not reuse the scene's solution).
 std::string solution_key(const Scene& scene, const RadiositySettings& r, uint64_t seed) {
-  return fmt::format("{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}", scene.unique_id,
+  return fmt::format("{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}", scene.unique_id,
                      static_cast<int>(r.solver), static_cast<int>(r.form_factors), r.hemicube_resolution,
                      r.ray_cast_samples, r.patch_size, r.element_size, r.segments, r.threshold, r.max_steps,
                      r.ambient, r.subdivision_threshold, r.min_element_size, r.memory_limit_mib,
-                     r.split_at_contacts, seed);
+                     r.split_at_contacts, r.refinement_tolerance, seed);
 }
 
 // What ties a checkpoint to the scene and settings that made it: the caller's fingerprint and

@@ -35,6 +35,22 @@ void onto_surface(const Shape& shape, const RadiositySurface& element, Vec3& poi
 
 }  // namespace
 
+std::array<Color, 4> direct_irradiance_samples(const Scene& scene, const RadiositySurface& surface,
+                                               const StratumJitter& jitter) {
+  const auto& [a, b, c] = surface.corners;
+  // The centroids of the four triangles of the midpoint subdivision.
+  const std::array<Vec3, 4> points = {(a * 4 + b + c) / 6, (a + b * 4 + c) / 6, (a + b + c * 4) / 6,
+                                      (a + b + c) / 3};
+  const Shape& shape = *scene.primitives[surface.primitive].shape;
+  std::array<Color, 4> samples;
+  for (std::size_t k = 0; k < 4; ++k) {
+    Vec3 point = points[k], normal = surface.normal;
+    onto_surface(shape, surface, point, normal);
+    samples[k] = direct_irradiance(scene, point, normal, EmitterSet::lights_and_environment, jitter);
+  }
+  return samples;
+}
+
 void shoot_scene_lights(const Scene& scene, RadiosityMesh& mesh, std::span<const uint32_t> elements,
                         uint64_t seed, bool quiet) {
   if (!scene.lights.empty() || scene.environment_light) {
@@ -42,17 +58,8 @@ void shoot_scene_lights(const Scene& scene, RadiosityMesh& mesh, std::span<const
     ProgressReporter progress("direct light", elements.size(), "elements", quiet);
     tbb::parallel_for(std::size_t(0), elements.size(), [&](std::size_t i) {
       RadiositySurface& element = mesh.elements[elements[i]];
-      const auto& [a, b, c] = element.corners;
-      // The centroids of the four triangles of the midpoint subdivision.
-      const std::array<Vec3, 4> points = {(a * 4 + b + c) / 6, (a + b * 4 + c) / 6, (a + b + c * 4) / 6,
-                                          (a + b + c) / 3};
-      const Shape& shape = *scene.primitives[element.primitive].shape;
       Color sum;
-      for (Vec3 point : points) {
-        Vec3 normal = element.normal;
-        onto_surface(shape, element, point, normal);
-        sum += direct_irradiance(scene, point, normal, EmitterSet::lights_and_environment, jitter);
-      }
+      for (const Color& sample : direct_irradiance_samples(scene, element, jitter)) sum += sample;
       element.first_shot = element.reflectance * sum * 0.25;
       progress.advance();
     });

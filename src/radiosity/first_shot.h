@@ -13,14 +13,22 @@
 // depend on the thread count.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 
 #include "radiosity/radiosity_mesh.h"
+#include "scene/direct_irradiance.h"
 
 namespace candela {
 
 class Scene;
+
+// The direct irradiance of the scene's lights and environment at the centroids of the four
+// triangles of the surface's midpoint subdivision (shadow rays from there, on the true surface of
+// a curved shape): the samples a first shot averages.
+std::array<Color, 4> direct_irradiance_samples(const Scene& scene, const RadiositySurface& surface,
+                                               const StratumJitter& jitter);
 
 // Sets first_shot of the listed elements, then of every patch from its elements.
 void shoot_scene_lights(const Scene& scene, RadiosityMesh& mesh, std::span<const uint32_t> elements,

@@ -16,31 +16,12 @@
 #include "radiosity/delta_form_factors.h"
 #include "radiosity/hemicube_form_factors.h"
 #include "radiosity/ray_cast_form_factors.h"
+#include "radiosity/triangle_occluders.h"
 #include "util/cancellation.h"
 #include "util/progress.h"
 
 namespace candela {
 namespace {
-
-// A triangle mesh as occluders: an accelerator over its triangles.
-class TriangleOccluders {
- public:
-  explicit TriangleOccluders(const TriangleMesh& mesh)
-      : mesh_(std::make_shared<const TriangleMesh>(mesh)),
-        triangles_(make_triangles(mesh_)),
-        accelerator_(create_default_accelerator(*find_accelerator("bvh"))) {
-    primitives_.reserve(triangles_.size());
-    for (const auto& triangle : triangles_) primitives_.push_back({triangle.get(), 0, 0});
-    accelerator_->build(primitives_);
-  }
-  const Accelerator& accelerator() const { return *accelerator_; }
-
- private:
-  std::shared_ptr<const TriangleMesh> mesh_;
-  std::vector<std::unique_ptr<Shape>> triangles_;
-  std::vector<Primitive> primitives_;
-  std::unique_ptr<Accelerator> accelerator_;
-};
 
 // Orients the hemicube around a surface's normal: its first edge (never along the normal).
 Vec3 tangent_of(const RadiositySurface& surface) {

@@ -18,19 +18,6 @@ namespace {
 // The most elements a mesh may have (issue 7's scale is 10⁴; 2²⁴ leaves room and still fits).
 constexpr uint64_t kMaxElements = uint64_t{1} << 24;
 
-// A corner carried through the bisection: world and object positions and the uv, all
-// interpolated linearly along an edge.
-struct MeshCorner {
-  Vec3 position, object_position;
-  Vec2 uv;
-};
-using CornerTriangle = std::array<MeshCorner, 3>;
-
-MeshCorner midpoint(const MeshCorner& a, const MeshCorner& b) {
-  return {(a.position + b.position) * 0.5, (a.object_position + b.object_position) * 0.5,
-          Vec2{(a.uv.x + b.uv.x) * 0.5, (a.uv.y + b.uv.y) * 0.5}};
-}
-
 // 000 §6.7.1: patches (and elements) by binary subdivision. Longest-edge bisection: the
 // longest edge (k, k+1) is halved at m and the triangle becomes (k, m, k+2) and (m, k+1, k+2),
 // both with the original winding. Every split halves the area, and the longest edge of the
@@ -58,9 +45,15 @@ void bisect(const CornerTriangle& triangle, double max_edge, std::vector<CornerT
   bisect({m, b, c}, max_edge, out);
 }
 
-// A surface of the mesh from its corners: area, centroid, normal, and ρ, E of the material
-// evaluated at the centroid (000 eq. 6-7's ρ_i and E_i taken constant over the surface).
-RadiositySurface make_surface(const Scene& scene, const CornerTriangle& triangle, uint32_t primitive) {
+}  // namespace
+
+MeshCorner midpoint(const MeshCorner& a, const MeshCorner& b) {
+  return {(a.position + b.position) * 0.5, (a.object_position + b.object_position) * 0.5,
+          Vec2{(a.uv.x + b.uv.x) * 0.5, (a.uv.y + b.uv.y) * 0.5}};
+}
+
+RadiositySurface make_radiosity_surface(const Scene& scene, const CornerTriangle& triangle,
+                                        uint32_t primitive) {
   RadiositySurface surface;
   for (int k = 0; k < 3; ++k) surface.corners[k] = triangle[k].position;
   const Vec3 face_cross =
@@ -90,6 +83,8 @@ RadiositySurface make_surface(const Scene& scene, const CornerTriangle& triangle
   surface.emission = material.emission;
   return surface;
 }
+
+namespace {
 
 FormFactorGeometry geometry_of(const std::vector<RadiositySurface>& surfaces) {
   FormFactorGeometry geometry;
@@ -449,7 +444,8 @@ std::vector<uint32_t> RadiosityMesh::split_elements(const Scene& scene, const st
         pieces = {triangle};
       }
       for (const CornerTriangle& piece : pieces) {
-        new_elements.push_back(split[q] ? make_surface(scene, piece, elements[q].primitive) : elements[q]);
+        new_elements.push_back(split[q] ? make_radiosity_surface(scene, piece, elements[q].primitive)
+                                        : elements[q]);
         new_patch_of_element.push_back(static_cast<uint32_t>(p));
         new_object_corners.push_back(
             {piece[0].object_position, piece[1].object_position, piece[2].object_position});
@@ -474,54 +470,23 @@ std::vector<uint32_t> RadiosityMesh::split_elements(const Scene& scene, const st
 namespace {
 
 // The sizes a mesh is built with, checked, and the scene's triangles before any split.
-struct MeshStart {
-  double scene_size = 0, patch_size = 0, element_size = 0;
-  std::vector<CornerTriangle> triangles;
-  std::vector<uint32_t> primitives;
+struct MeshStart : RadiosityInput {
+  double patch_size = 0, element_size = 0;
 };
 
 MeshStart start_mesh(const Scene& scene, const RadiosityMeshSettings& settings) {
-  if (settings.segments < 3) {
-    throw std::invalid_argument("radiosity mesh: segments " + std::to_string(settings.segments) +
-                                " (must be >= 3)");
-  }
   if (!(settings.patch_size >= 0) || !std::isfinite(settings.patch_size) || !(settings.element_size >= 0) ||
       !std::isfinite(settings.element_size)) {
     throw std::invalid_argument("radiosity mesh: patch_size and element_size must be finite and >= 0");
   }
-  const Bounds3 clip = settings.clip.empty() ? scene.bounds() : settings.clip;
-  if (clip.empty() || !clip.is_finite()) {
-    throw std::invalid_argument(
-        "radiosity mesh: the scene has no bounded shape and no clip box (where planes end)");
-  }
   MeshStart start;
-  start.scene_size = length(clip.diagonal());
+  static_cast<RadiosityInput&>(start) = radiosity_input(scene, settings);
   start.patch_size = settings.patch_size > 0 ? settings.patch_size : start.scene_size / 8;
   start.element_size = settings.element_size > 0 ? settings.element_size : start.patch_size / 2;
   if (!(start.patch_size > 0)) throw std::invalid_argument("radiosity mesh: the scene has zero size");
   if (start.element_size > start.patch_size) {
     throw std::invalid_argument("radiosity mesh: element_size " + std::to_string(start.element_size) +
                                 " exceeds patch_size " + std::to_string(start.patch_size));
-  }
-  TessellationRequest request;
-  request.max_segments = settings.segments;
-  request.clip = clip;
-  const TessellatedScene tessellated = tessellate_scene(scene, request);
-  start.triangles.resize(tessellated.triangle_count());
-  start.primitives.assign(tessellated.primitives.begin(), tessellated.primitives.end());
-  for (std::size_t t = 0; t < start.triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k)
-      start.triangles[t][k] = {tessellated.corner_positions[3 * t + k],
-                               tessellated.corner_object_positions[3 * t + k],
-                               tessellated.corner_uvs[3 * t + k]};
-  // Issue 20: a two-sided object's triangles again, wound the other way (its back side).
-  const std::size_t one_sided = start.triangles.size();
-  for (std::size_t t = 0; t < one_sided; ++t) {
-    if (!scene.objects[tessellated.objects[t]].two_sided) continue;
-    CornerTriangle back = start.triangles[t];
-    std::swap(back[1], back[2]);
-    start.triangles.push_back(back);
-    start.primitives.push_back(start.primitives[t]);
   }
   return start;
 }
@@ -534,6 +499,68 @@ double total_area(const std::vector<CornerTriangle>& triangles) {
 }
 
 }  // namespace
+
+RadiosityInput radiosity_input(const Scene& scene, const RadiosityMeshSettings& settings) {
+  if (settings.segments < 3) {
+    throw std::invalid_argument("radiosity mesh: segments " + std::to_string(settings.segments) +
+                                " (must be >= 3)");
+  }
+  const Bounds3 clip = settings.clip.empty() ? scene.bounds() : settings.clip;
+  if (clip.empty() || !clip.is_finite()) {
+    throw std::invalid_argument(
+        "radiosity mesh: the scene has no bounded shape and no clip box (where planes end)");
+  }
+  RadiosityInput input;
+  input.scene_size = length(clip.diagonal());
+  TessellationRequest request;
+  request.max_segments = settings.segments;
+  request.clip = clip;
+  const TessellatedScene tessellated = tessellate_scene(scene, request);
+  input.triangles.resize(tessellated.triangle_count());
+  input.primitives.assign(tessellated.primitives.begin(), tessellated.primitives.end());
+  for (std::size_t t = 0; t < input.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k)
+      input.triangles[t][k] = {tessellated.corner_positions[3 * t + k],
+                               tessellated.corner_object_positions[3 * t + k],
+                               tessellated.corner_uvs[3 * t + k]};
+  // Issue 20: a two-sided object's triangles again, wound the other way (its back side).
+  const std::size_t one_sided = input.triangles.size();
+  for (std::size_t t = 0; t < one_sided; ++t) {
+    if (!scene.objects[tessellated.objects[t]].two_sided) continue;
+    CornerTriangle back = input.triangles[t];
+    std::swap(back[1], back[2]);
+    input.triangles.push_back(back);
+    input.primitives.push_back(input.primitives[t]);
+  }
+  return input;
+}
+
+RadiosityMesh assemble_radiosity_mesh(std::vector<RadiositySurface> patches,
+                                      std::vector<RadiositySurface> elements, std::vector<uint32_t> first,
+                                      std::vector<std::array<Vec3, 3>> object_corners,
+                                      std::vector<std::array<Vec2, 3>> uvs, std::size_t primitive_count) {
+  RadiosityMesh mesh;
+  mesh.patches = std::move(patches);
+  mesh.elements = std::move(elements);
+  mesh.first_element = std::move(first);
+  mesh.element_object_corners = std::move(object_corners);
+  mesh.element_uvs = std::move(uvs);
+  mesh.patch_of_element.resize(mesh.elements.size());
+  for (std::size_t p = 0; p + 1 < mesh.first_element.size(); ++p)
+    for (uint32_t q = mesh.first_element[p]; q < mesh.first_element[p + 1]; ++q)
+      mesh.patch_of_element[q] = static_cast<uint32_t>(p);
+  mesh.elements_of_primitive.resize(primitive_count);
+  for (uint32_t q = 0; q < mesh.elements.size(); ++q)
+    mesh.elements_of_primitive[mesh.elements[q].primitive].push_back(q);
+  for (const RadiositySurface& patch : mesh.patches)
+    mesh.patch_size = std::max(mesh.patch_size, longest_edge(patch));
+  for (const RadiositySurface& element : mesh.elements)
+    mesh.element_size = std::max(mesh.element_size, longest_edge(element));
+  mesh.element_geometry = geometry_of(mesh.elements);
+  mesh.patch_geometry = geometry_of(mesh.patches);
+  mesh.element_grid = SurfaceGrid(mesh.elements, 0);
+  return mesh;
+}
 
 RadiosityMeshEstimate estimate_radiosity_mesh(const Scene& scene, const RadiosityMeshSettings& settings) {
   const MeshStart start = start_mesh(scene, settings);
@@ -581,12 +608,12 @@ RadiosityMesh build_radiosity_mesh(const Scene& scene, const RadiosityMeshSettin
     const uint32_t primitive = patch_primitives[p];
     const CornerTriangle& patch = patches[p];
     const auto patch_index = static_cast<uint32_t>(result.patches.size());
-    result.patches.push_back(make_surface(scene, patch, primitive));
+    result.patches.push_back(make_radiosity_surface(scene, patch, primitive));
     element_pieces.clear();
     bisect(patch, result.element_size, element_pieces);  // 000 §6.7.1: elements within patches
     for (const CornerTriangle& element : element_pieces) {
       result.elements_of_primitive[primitive].push_back(static_cast<uint32_t>(result.elements.size()));
-      result.elements.push_back(make_surface(scene, element, primitive));
+      result.elements.push_back(make_radiosity_surface(scene, element, primitive));
       result.patch_of_element.push_back(patch_index);
       result.element_object_corners.push_back(
           {element[0].object_position, element[1].object_position, element[2].object_position});

@@ -109,6 +109,41 @@ struct RadiosityMesh {
   std::vector<uint32_t> split_elements(const Scene& scene, const std::vector<bool>& split);
 };
 
+// A corner carried through subdivision: world and object positions and the uv, all interpolated
+// linearly along an edge (textures are looked up again where a surface is split).
+struct MeshCorner {
+  Vec3 position, object_position;
+  Vec2 uv;
+};
+using CornerTriangle = std::array<MeshCorner, 3>;
+
+MeshCorner midpoint(const MeshCorner& a, const MeshCorner& b);
+
+// A surface of the mesh from its corners: area, centroid, normal, and ρ, E of the material
+// evaluated at the centroid (000 eq. 6-7's ρ_i and E_i taken constant over the surface).
+RadiositySurface make_radiosity_surface(const Scene& scene, const CornerTriangle& triangle,
+                                        uint32_t primitive);
+
+// The scene's surfaces as radiosity sees them before any split: every primitive tessellated
+// (settings.segments; planes cut by the clip box) and a two-sided object's triangles again, wound
+// the other way; scene_size is the clip box's diagonal. Throws like build_radiosity_mesh for
+// bad settings or a scene without bounds.
+struct RadiosityInput {
+  double scene_size = 0;
+  std::vector<CornerTriangle> triangles;
+  std::vector<uint32_t> primitives;  // one per triangle
+};
+RadiosityInput radiosity_input(const Scene& scene, const RadiosityMeshSettings& settings);
+
+// A mesh from surfaces made elsewhere (hierarchical radiosity's input triangles and the leaves of
+// their quadtrees): patches[p]'s elements are elements[first[p]] … elements[first[p + 1] − 1]; the
+// lookup structures (elements_of_primitive, geometry, grid) are built. patch_size and element_size
+// are the longest patch and element edges.
+RadiosityMesh assemble_radiosity_mesh(std::vector<RadiositySurface> patches,
+                                      std::vector<RadiositySurface> elements, std::vector<uint32_t> first,
+                                      std::vector<std::array<Vec3, 3>> object_corners,
+                                      std::vector<std::array<Vec2, 3>> uvs, std::size_t primitive_count);
+
 // The fewest patches and elements build_radiosity_mesh can make with these settings (the
 // tessellated area over the largest triangle whose longest edge is the bound), found by
 // tessellating only: what memory checks read before the mesh is built. Throws like

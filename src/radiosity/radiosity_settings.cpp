@@ -28,6 +28,8 @@ RadiositySettings read_radiosity_settings(const JsonNode& node) {
   const double element_size = settings.element_size > 0 ? settings.element_size : settings.patch_size / 2;
   if (settings.min_element_size > 0 && element_size > 0 && settings.min_element_size > element_size)
     node.at("min_element_size").fail("min_element_size must not exceed element_size");
+  settings.refinement_tolerance =
+      node.number("refinement_tolerance", settings.refinement_tolerance, {1e-9, 1, false, false});
   settings.memory_limit_mib = node.number("memory_limit_mib", 0.0, Range::non_negative());
   settings.split_at_contacts = node.boolean("split_at_contacts", false);
   settings.location = node.location();

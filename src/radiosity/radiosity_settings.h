@@ -8,7 +8,9 @@
 
 namespace candela {
 
-enum class RadiositySolver { progressive, gauss_seidel, gaussian };
+// hierarchical: links between quadtree nodes and clusters refined by an oracle (SPEC §10.1,
+// radiosity/hierarchical_radiosity.h).
+enum class RadiositySolver { progressive, gauss_seidel, gaussian, hierarchical };
 // hemicube: 000 §6.4; ray_cast: Lambert's point-to-polygon form factor times the visible fraction
 // of ray_cast_samples² rays through the accelerator (radiosity/ray_cast_form_factors.h).
 enum class RadiosityFormFactors { hemicube, ray_cast };
@@ -40,6 +42,9 @@ struct RadiositySettings {
   // min_element_size.
   double subdivision_threshold = 0;
   double min_element_size = 0;  // 0: element_size / 8
+  // hierarchical: a link (or a leaf's direct light) is refined while the power it may be wrong by
+  // exceeds this fraction of the power the scene emits and reflects first.
+  double refinement_tolerance = 5e-5;
   // Cut surfaces where other objects meet them before meshing (the remedy for light leaks).
   bool split_at_contacts = false;
   // The memory the stored form factors may take (MiB); 0: half the machine's memory.
@@ -52,7 +57,8 @@ struct RadiositySettings {
 inline constexpr auto kRadiositySolverNames =
     enum_names<RadiositySolver>({{RadiositySolver::progressive, "progressive"},
                                  {RadiositySolver::gauss_seidel, "gauss-seidel"},
-                                 {RadiositySolver::gaussian, "gaussian"}});
+                                 {RadiositySolver::gaussian, "gaussian"},
+                                 {RadiositySolver::hierarchical, "hierarchical"}});
 inline constexpr auto kRadiosityFormFactorNames = enum_names<RadiosityFormFactors>(
     {{RadiosityFormFactors::hemicube, "hemicube"}, {RadiosityFormFactors::ray_cast, "ray-cast"}});
 inline constexpr auto kRadiosityDisplayNames =

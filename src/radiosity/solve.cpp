@@ -14,6 +14,7 @@
 #include "radiosity/first_shot.h"
 #include "radiosity/form_factor_memory.h"
 #include "radiosity/form_factor_rows.h"
+#include "radiosity/hierarchical_radiosity.h"
 #include "radiosity/solvers.h"
 #include "scene/scene.h"
 #include "util/cancellation.h"
@@ -87,6 +88,8 @@ ElementSolution shoot_progressively(
 
 RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings& settings,
                                      const RadiositySolveOptions& options) {
+  if (settings.solver == RadiositySolver::hierarchical)
+    return solve_hierarchical_radiosity(scene, settings, options);
   Cluster* cluster = options.cluster;
   RadiositySolveResult result;
   Stopwatch mesh_time;

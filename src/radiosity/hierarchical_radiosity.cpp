@@ -1,0 +1,727 @@
+#include "radiosity/hierarchical_radiosity.h"
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <span>
+#include <vector>
+
+#include "distributed/cluster.h"
+#include "math/constants.h"
+#include "math/pcg32.h"
+#include "math/spherical_harmonics.h"
+#include "radiosity/diagnostics.h"
+#include "radiosity/first_shot.h"
+#include "radiosity/form_factor_memory.h"
+#include "radiosity/radiosity_hierarchy.h"
+#include "radiosity/ray_cast_form_factors.h"
+#include "radiosity/solve.h"
+#include "radiosity/triangle_occluders.h"
+#include "scene/scene.h"
+#include "util/progress.h"
+#include "util/statistics.h"
+
+namespace candela {
+namespace {
+
+double max_channel(const Color& c) {
+  return std::max({c.r, c.g, c.b});
+}
+
+struct Link {
+  uint32_t receiver = 0, source = 0;
+  float factor = 0;       // K: irradiance at the receiver per unit radiosity (or intensity) of the source
+  float uncertainty = 0;  // ΔK, what the oracle weighs
+  std::array<float, 3> direction{};  // unit, from the receiver toward the source (links with a cluster)
+  uint8_t flags = 0;
+};
+constexpr uint8_t kPartialVisibility = 1, kUnseparated = 2, kDead = 4;
+
+enum class Split : uint8_t { none, receiver, source, both };
+
+constexpr int kVisibilityRays = 4;
+constexpr int kMaxRefinementRounds = 3;
+// A cluster's visibility rays start on a surface inside that faces the other end: this many draws
+// at most to find one.
+constexpr int kFacingDraws = 8;
+
+class HierarchicalSolver {
+ public:
+  HierarchicalSolver(const Scene& scene, const RadiositySettings& settings,
+                     const RadiositySolveOptions& options, RadiosityHierarchy& hierarchy,
+                     const Accelerator& occluders)
+      : scene_(scene), settings_(settings), options_(options), tree_(hierarchy), occluders_(occluders) {
+    const double element_size = settings.element_size > 0 ? settings.element_size
+                                : settings.patch_size > 0 ? settings.patch_size / 2
+                                                          : hierarchy.scene_size / 16;
+    min_edge_ = settings.min_element_size > 0 ? settings.min_element_size : element_size / 8;
+    offset_ = 1e-9 * hierarchy.scene_size;
+  }
+
+  RadiositySolveResult solve();
+
+ private:
+  bool stopped() const { return cancelled_anywhere(options_.cluster); }
+  bool can_split(uint32_t node) const { return tree_.nodes[node].is_cluster || tree_.edge(node) > min_edge_; }
+  uint32_t children_of(uint32_t node) {  // splits a surface leaf when it has to
+    if (tree_.nodes[node].child_count > 0) return tree_.nodes[node].first_child;
+    return tree_.split(scene_, node);
+  }
+
+  void compute_direct(std::span<const uint32_t> nodes);
+  void grow_state();
+  double direct_error(uint32_t node) const;
+  void split_for_direct_light();
+  bool evaluate(Link& link) const;
+  bool evaluate_surfaces(Link& link, Pcg32& random) const;
+  Split decide(const Link& link) const;
+  double power_error(const Link& link) const;
+  std::size_t refine(std::vector<uint32_t> candidates);
+  bool within_memory() const;
+  void sort_links();
+  void gather();
+  void push();
+  double update_leaves(double& largest);
+  void pull();
+  std::vector<double> row_sums();
+  bool visible(const Vec3& from, const Vec3& to) const;
+  Vec3 point_on(uint32_t node, int k, const Vec3& facing, Pcg32& random) const;
+  RadiositySolveResult result(const std::vector<double>& sums) const;
+
+  const Scene& scene_;
+  const RadiositySettings& settings_;
+  const RadiositySolveOptions& options_;
+  RadiosityHierarchy& tree_;
+  const Accelerator& occluders_;
+  double min_edge_ = 0, offset_ = 0, epsilon_ = 0;
+  bool first_round_ = true;
+  bool memory_stopped_ = false;
+
+  std::vector<Link> links_;
+  std::vector<uint32_t> link_start_;  // links_ sorted by receiver: the receivers' ranges
+  std::vector<uint32_t> receivers_;
+  std::vector<Color> radiosity_, gathered_, down_;
+  std::vector<ShColor> cluster_out_, cluster_in_, cluster_down_;
+  std::vector<Color> cluster_power_;
+  std::size_t links_made_ = 0, rays_ = 0;
+  double refine_seconds_ = 0, direct_seconds_ = 0, gather_seconds_ = 0;
+  std::size_t rounds_ = 0;
+};
+
+void HierarchicalSolver::grow_state() {
+  const std::size_t old = radiosity_.size();
+  radiosity_.resize(tree_.nodes.size());
+  gathered_.resize(tree_.nodes.size());
+  down_.resize(tree_.nodes.size());
+  // A new node starts from its parent's radiosity (its own emission and first shot before any
+  // solve), what the oracle weighs until the next solve.
+  for (std::size_t i = old; i < tree_.nodes.size(); ++i) {
+    const HierarchyNode& node = tree_.nodes[i];
+    if (node.is_cluster) continue;
+    const RadiositySurface& s = tree_.surface(static_cast<uint32_t>(i));
+    radiosity_[i] = first_round_ || node.parent == kNoNode || tree_.nodes[node.parent].is_cluster
+                        ? s.emission + s.first_shot
+                        : radiosity_[node.parent];
+  }
+  cluster_out_.resize(tree_.clusters.size());
+  cluster_in_.resize(tree_.clusters.size());
+  cluster_down_.resize(tree_.clusters.size());
+  cluster_power_.resize(tree_.clusters.size());
+}
+
+void HierarchicalSolver::compute_direct(std::span<const uint32_t> nodes) {
+  Stopwatch time;
+  const StratumJitter jitter{true, options_.seed};
+  tbb::parallel_for(std::size_t(0), nodes.size(), [&](std::size_t k) {
+    HierarchySurface& made = tree_.surfaces[tree_.nodes[nodes[k]].payload];
+    if (made.direct_done) return;
+    if (!scene_.lights.empty() || scene_.environment_light)
+      made.direct = direct_irradiance_samples(scene_, made.surface, jitter);
+    Color sum;
+    for (const Color& sample : made.direct) sum += sample;
+    made.surface.first_shot = made.surface.reflectance * sum * 0.25;
+    made.direct_done = true;
+  });
+  direct_seconds_ += time.seconds();
+}
+
+// The power by which the first shot of a leaf is uncertain: ρ A times the spread of its samples.
+double HierarchicalSolver::direct_error(uint32_t node) const {
+  const HierarchySurface& s = tree_.surfaces[tree_.nodes[node].payload];
+  Color low = s.direct[0], high = s.direct[0];
+  for (const Color& sample : s.direct) {
+    low = Color(std::min(low.r, sample.r), std::min(low.g, sample.g), std::min(low.b, sample.b));
+    high = Color(std::max(high.r, sample.r), std::max(high.g, sample.g), std::max(high.b, sample.b));
+  }
+  return s.surface.area * max_channel(s.surface.reflectance * (high - low));
+}
+
+void HierarchicalSolver::split_for_direct_light() {
+  std::vector<uint32_t> check;
+  for (uint32_t i = 0; i < tree_.nodes.size(); ++i)
+    if (!tree_.nodes[i].is_cluster && tree_.is_leaf(i)) check.push_back(i);
+  while (!check.empty() && !stopped()) {
+    compute_direct(check);
+    std::vector<uint32_t> next;
+    for (const uint32_t node : check) {
+      if (!tree_.is_leaf(node) || !can_split(node) || !(direct_error(node) > epsilon_)) continue;
+      const uint32_t first = children_of(node);
+      for (uint32_t c = first; c < first + 4; ++c) next.push_back(c);
+    }
+    compute_direct(next);
+    grow_state();
+    check = std::move(next);
+  }
+}
+
+bool HierarchicalSolver::visible(const Vec3& from, const Vec3& to) const {
+  const Vec3 between = to - from;
+  const double distance = length(between);
+  if (!(distance > 4 * offset_)) return true;
+  const Ray ray{from, between / distance, 1e-5 * distance + offset_, distance * (1 - 1e-5) - offset_};
+  return !occluders_.occluded(ray);
+}
+
+// A point of the node for visibility ray k: a surface's child centroid k (a receiver) or a point
+// drawn on it; a cluster's point on one of its input triangles that faces `facing` (when one of
+// kFacingDraws draws does).
+Vec3 HierarchicalSolver::point_on(uint32_t node, int k, const Vec3& facing, Pcg32& random) const {
+  const auto on_triangle = [&](const RadiositySurface& s) {
+    const double u = std::sqrt(random.next_double()), v = random.next_double();
+    return s.corners[0] * (1 - u) + s.corners[1] * (u * (1 - v)) + s.corners[2] * (u * v);
+  };
+  const HierarchyNode& n = tree_.nodes[node];
+  if (!n.is_cluster) {
+    if (k >= 0) return tree_.child_centroids(node)[static_cast<std::size_t>(k)];
+    return on_triangle(tree_.surface(node));
+  }
+  const HierarchyCluster& cluster = tree_.clusters[n.payload];
+  uint32_t chosen = 0;
+  for (int draw = 0; draw < kFacingDraws; ++draw) {
+    chosen = tree_.input_order[cluster.first_input + random.next_uint() % cluster.input_count];
+    if (dot(tree_.surfaces[chosen].surface.normal, facing) > 0) break;
+  }
+  return on_triangle(tree_.surfaces[chosen].surface);
+}
+
+bool HierarchicalSolver::evaluate_surfaces(Link& link, Pcg32& random) const {
+  const RadiositySurface& receiver = tree_.surface(link.receiver);
+  const RadiositySurface& source = tree_.surface(link.source);
+  // Nothing passes when the source lies wholly on or behind the receiver's plane, or the receiver
+  // on or behind the source's (surfaces are one-sided, 000 §6).
+  const double tolerance = offset_;
+  const auto in_front = [&](const RadiositySurface& of, const RadiositySurface& plane) {
+    return std::any_of(of.corners.begin(), of.corners.end(),
+                       [&](const Vec3& c) { return dot(c - plane.centroid, plane.normal) > tolerance; });
+  };
+  if (!in_front(source, receiver) || !in_front(receiver, source)) return false;
+  const std::array<Vec3, 4> points = tree_.child_centroids(link.receiver);
+  std::array<double, 4> factor{};
+  double sum = 0, low = kInfinity, high = 0;
+  for (std::size_t k = 0; k < 4; ++k) {
+    factor[k] = point_to_polygon_form_factor(points[k], receiver.normal, source.corners);
+    sum += factor[k];
+    low = std::min(low, factor[k]);
+    high = std::max(high, factor[k]);
+  }
+  if (!(sum > 0)) return false;
+  double seen = 0;
+  int visible_rays = 0;
+  for (std::size_t k = 0; k < 4; ++k) {
+    const bool v = visible(points[k], point_on(link.source, -1, Vec3(), random));
+    visible_rays += v ? 1 : 0;
+    if (v) seen += factor[k];
+  }
+  const double mean = sum / 4, visibility = seen / sum;
+  const bool partial = visible_rays < kVisibilityRays;
+  link.factor = 0;
+  link.uncertainty = static_cast<float>(mean);
+  link.flags = kPartialVisibility;
+  // Hidden from all four rays: nothing passes, unless the power it could carry makes four rays too
+  // few to say (then it is split like a partly visible link).
+  if (visible_rays == 0) return power_error(link) > epsilon_;
+  link.factor = static_cast<float>(mean * visibility);
+  link.uncertainty = static_cast<float>(partial ? std::max(high - low, mean) : high - low);
+  link.flags = partial ? kPartialVisibility : 0;
+  return true;
+}
+
+bool HierarchicalSolver::evaluate(Link& link) const {
+  const HierarchyNode& receiver = tree_.nodes[link.receiver];
+  const HierarchyNode& source = tree_.nodes[link.source];
+  Pcg32 random(options_.seed ^ 0x6a09e667f3bcc909ULL,
+               (static_cast<uint64_t>(link.receiver) << 32) | link.source);
+  link.flags = 0;
+  link.factor = link.uncertainty = 0;
+  if (!receiver.is_cluster && !source.is_cluster) return evaluate_surfaces(link, random);
+  const Vec3 between = source.centre - receiver.centre;
+  const double distance = length(between);
+  // The point-to-point kernel holds for nodes apart: closer ones are split before any transport.
+  if (!(distance > receiver.radius + source.radius)) {
+    link.flags = kUnseparated;
+    return true;
+  }
+  const Vec3 w = between / distance;
+  link.direction = {static_cast<float>(w.x), static_cast<float>(w.y), static_cast<float>(w.z)};
+  const double inverse_square = 1 / (distance * distance);
+  double factor = 0, bound = 0;
+  if (!receiver.is_cluster) {
+    const Vec3& n = tree_.surface(link.receiver).normal;
+    if (dot(between, n) < -source.radius) return false;  // the cluster wholly behind the receiver
+    factor = std::max(0.0, dot(n, w)) * inverse_square;
+    bound = inverse_square;
+  } else if (!source.is_cluster) {
+    const Vec3& n = tree_.surface(link.source).normal;
+    if (dot(-between, n) < -receiver.radius) return false;  // the cluster wholly behind the source
+    factor = source.area * std::max(0.0, -dot(n, w)) * inverse_square / kPi;
+    bound = source.area * inverse_square / kPi;
+  } else {
+    factor = bound = inverse_square;
+  }
+  int visible_rays = 0;
+  for (int k = 0; k < kVisibilityRays; ++k)
+    visible_rays += visible(point_on(link.receiver, receiver.is_cluster ? -1 : k, w, random),
+                            point_on(link.source, -1, -w, random))
+                        ? 1
+                        : 0;
+  const double visibility = static_cast<double>(visible_rays) / kVisibilityRays;
+  const bool partial = visible_rays > 0 && visible_rays < kVisibilityRays;
+  link.factor = static_cast<float>(factor * visibility);
+  // The bound whatever the rays said: one visibility for every surface inside a cluster is
+  // uncertain (a cluster may hold a lit box top and the floor hidden under it).
+  link.uncertainty = static_cast<float>(bound);
+  link.flags = partial ? kPartialVisibility : 0;
+  return true;
+}
+
+// The power by which the link's transport is uncertain: ρ_i A_i × the source's radiosity (or
+// intensity bound Σ B A / π) × ΔK.
+double HierarchicalSolver::power_error(const Link& link) const {
+  const HierarchyNode& receiver = tree_.nodes[link.receiver];
+  const HierarchyNode& source = tree_.nodes[link.source];
+  const double magnitude = source.is_cluster ? max_channel(cluster_power_[source.payload]) / kPi
+                                             : max_channel(radiosity_[link.source]);
+  return receiver.reflectance_max * receiver.area * magnitude * link.uncertainty;
+}
+
+Split HierarchicalSolver::decide(const Link& link) const {
+  const HierarchyNode& receiver = tree_.nodes[link.receiver];
+  const HierarchyNode& source = tree_.nodes[link.source];
+  if (link.receiver == link.source) return receiver.is_cluster ? Split::both : Split::none;
+  const bool receiver_can = can_split(link.receiver), source_can = can_split(link.source);
+  const auto larger = [&] {
+    if (receiver_can && (!source_can || receiver.radius >= source.radius)) return Split::receiver;
+    return source_can ? Split::source : Split::none;
+  };
+  if (link.flags & kUnseparated) return larger();
+  if (!(power_error(link) > epsilon_)) return Split::none;
+  if (!receiver.is_cluster && !source.is_cluster) {
+    // The closed form is exact over the source: splitting it helps only a partial visibility.
+    const bool partial = link.flags & kPartialVisibility;
+    if (partial && source_can && source.area > receiver.area) return Split::source;
+    if (receiver_can) return Split::receiver;
+    return partial && source_can ? Split::source : Split::none;
+  }
+  return larger();
+}
+
+bool HierarchicalSolver::within_memory() const {
+  const double bytes = static_cast<double>(tree_.memory_bytes() + links_.capacity() * sizeof(Link)) +
+                       static_cast<double>(radiosity_.capacity()) * 3 * sizeof(Color) +
+                       static_cast<double>(cluster_out_.capacity()) * (3 * sizeof(ShColor) + sizeof(Color));
+  return bytes < 0.9 * static_cast<double>(form_factor_memory_limit(settings_));
+}
+
+// Refines the candidate links, wave by wave: decisions in parallel, splits in link order, the new
+// links' factors in parallel (each from its own random stream). Returns the links split.
+std::size_t HierarchicalSolver::refine(std::vector<uint32_t> candidates) {
+  Stopwatch time;
+  std::size_t split_count = 0;
+  while (!candidates.empty() && !stopped()) {
+    if (!within_memory()) {
+      memory_stopped_ = true;
+      break;
+    }
+    std::vector<Split> decision(candidates.size());
+    tbb::parallel_for(std::size_t(0), candidates.size(),
+                      [&](std::size_t k) { decision[k] = decide(links_[candidates[k]]); });
+    std::vector<Link> fresh;
+    const std::size_t nodes_before = tree_.nodes.size();
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+      if (decision[k] == Split::none) continue;
+      ++split_count;
+      Link& old = links_[candidates[k]];
+      old.flags |= kDead;
+      const uint32_t receiver = old.receiver, source = old.source;
+      const auto each_child = [&](uint32_t node, auto&& make) {
+        const uint32_t first = children_of(node);
+        for (uint32_t c = first; c < first + tree_.nodes[node].child_count; ++c) make(c);
+      };
+      switch (decision[k]) {
+        case Split::receiver:
+          each_child(receiver, [&](uint32_t c) { fresh.push_back({c, source}); });
+          break;
+        case Split::source:
+          each_child(source, [&](uint32_t c) { fresh.push_back({receiver, c}); });
+          break;
+        case Split::both:
+          each_child(receiver, [&](uint32_t a) {
+            each_child(source, [&](uint32_t b) { fresh.push_back({a, b}); });
+          });
+          break;
+        case Split::none:
+          break;
+      }
+    }
+    std::vector<uint32_t> made;
+    for (auto i = static_cast<uint32_t>(nodes_before); i < tree_.nodes.size(); ++i) made.push_back(i);
+    compute_direct(made);
+    grow_state();
+    std::vector<uint8_t> keep(fresh.size());
+    tbb::parallel_for(std::size_t(0), fresh.size(),
+                      [&](std::size_t k) { keep[k] = evaluate(fresh[k]) ? 1 : 0; });
+    links_made_ += fresh.size();
+    rays_ += fresh.size() * kVisibilityRays;
+    candidates.clear();
+    for (std::size_t k = 0; k < fresh.size(); ++k) {
+      if (!keep[k]) continue;
+      candidates.push_back(static_cast<uint32_t>(links_.size()));
+      links_.push_back(fresh[k]);
+    }
+  }
+  std::erase_if(links_, [](const Link& link) { return (link.flags & kDead) != 0; });
+  sort_links();
+  refine_seconds_ += time.seconds();
+  return split_count;
+}
+
+void HierarchicalSolver::sort_links() {
+  std::sort(links_.begin(), links_.end(), [](const Link& a, const Link& b) {
+    return a.receiver < b.receiver || (a.receiver == b.receiver && a.source < b.source);
+  });
+  link_start_.clear();
+  receivers_.clear();
+  for (uint32_t k = 0; k < links_.size(); ++k)
+    if (k == 0 || links_[k].receiver != links_[k - 1].receiver) {
+      link_start_.push_back(k);
+      receivers_.push_back(links_[k].receiver);
+    }
+  link_start_.push_back(static_cast<uint32_t>(links_.size()));
+}
+
+void HierarchicalSolver::gather() {
+  Stopwatch time;
+  std::fill(gathered_.begin(), gathered_.end(), Color());
+  std::fill(cluster_in_.begin(), cluster_in_.end(), ShColor{});
+  tbb::parallel_for(std::size_t(0), receivers_.size(), [&](std::size_t r) {
+    const uint32_t receiver = receivers_[r];
+    const bool to_cluster = tree_.nodes[receiver].is_cluster;
+    Color irradiance;
+    ShColor incoming{};
+    for (uint32_t k = link_start_[r]; k < link_start_[r + 1]; ++k) {
+      const Link& link = links_[k];
+      const HierarchyNode& source = tree_.nodes[link.source];
+      const Vec3 w(link.direction[0], link.direction[1], link.direction[2]);
+      const Color from =
+          source.is_cluster ? sh_evaluate(cluster_out_[source.payload], -w) : radiosity_[link.source];
+      const Color arriving = from * static_cast<double>(link.factor);
+      if (to_cluster)
+        add_delta(incoming, w, arriving);
+      else
+        irradiance += arriving;
+    }
+    if (to_cluster)
+      cluster_in_[tree_.nodes[receiver].payload] = incoming;
+    else
+      gathered_[receiver] = irradiance;
+  });
+  gather_seconds_ += time.seconds();
+}
+
+// Parents before children: each surface's irradiance from its ancestors plus its own links; a
+// cluster's incoming radiance to a surface root by the root's cosine.
+void HierarchicalSolver::push() {
+  for (uint32_t i = 0; i < tree_.nodes.size(); ++i) {
+    const HierarchyNode& node = tree_.nodes[i];
+    const bool under_cluster = node.parent != kNoNode && tree_.nodes[node.parent].is_cluster;
+    if (node.is_cluster) {
+      ShColor total = cluster_in_[node.payload];
+      if (under_cluster) {
+        const ShColor& above = cluster_down_[tree_.nodes[node.parent].payload];
+        for (std::size_t k = 0; k < 9; ++k) total[k] += above[k];
+      }
+      cluster_down_[node.payload] = total;
+      continue;
+    }
+    Color above;
+    if (under_cluster)
+      above = sh_irradiance(cluster_down_[tree_.nodes[node.parent].payload], tree_.surface(i).normal);
+    else if (node.parent != kNoNode)
+      above = down_[node.parent];
+    down_[i] = above + gathered_[i];
+  }
+}
+
+// B = E + first shot + ρ E at the leaves; returns the largest change of any channel, and in
+// `largest` the largest reflected radiosity B − E (emitters, far brighter, would make any change
+// look small).
+double HierarchicalSolver::update_leaves(double& largest) {
+  double change = 0;
+  largest = 0;
+  for (uint32_t i = 0; i < tree_.nodes.size(); ++i) {
+    if (tree_.nodes[i].is_cluster || !tree_.is_leaf(i)) continue;
+    const RadiositySurface& s = tree_.surface(i);
+    const Color b = s.emission + s.first_shot + s.reflectance * down_[i];
+    change =
+        std::max(change, max_channel(Color(std::fabs(b.r - radiosity_[i].r), std::fabs(b.g - radiosity_[i].g),
+                                           std::fabs(b.b - radiosity_[i].b))));
+    largest = std::max(largest, max_channel(b - s.emission));
+    radiosity_[i] = b;
+  }
+  return change;
+}
+
+// Children before parents: a surface's B is its children's area-weighted mean; a cluster's
+// intensity Σ (B A / π) max(0, n·ω) over the surfaces under it, and its power Σ B A.
+void HierarchicalSolver::pull() {
+  for (uint32_t i = static_cast<uint32_t>(tree_.nodes.size()); i-- > 0;) {
+    const HierarchyNode& node = tree_.nodes[i];
+    if (node.is_cluster) {
+      ShColor out{};
+      Color power;
+      for (uint32_t c = node.first_child; c < node.first_child + node.child_count; ++c) {
+        const HierarchyNode& child = tree_.nodes[c];
+        if (child.is_cluster) {
+          for (std::size_t k = 0; k < 9; ++k) out[k] += cluster_out_[child.payload][k];
+          power += cluster_power_[child.payload];
+        } else {
+          add_clamped_cosine(out, tree_.surface(c).normal, radiosity_[c] * (child.area / kPi));
+          power += radiosity_[c] * child.area;
+        }
+      }
+      cluster_out_[node.payload] = out;
+      cluster_power_[node.payload] = power;
+      continue;
+    }
+    if (node.child_count == 0) continue;
+    Color sum;
+    for (uint32_t c = node.first_child; c < node.first_child + node.child_count; ++c)
+      sum += radiosity_[c] * tree_.nodes[c].area;
+    radiosity_[i] = sum / node.area;
+  }
+}
+
+// Each leaf's Σ F (the irradiance it would gather with B = 1 everywhere): 1 in a closed scene, ≈ 0
+// for a leaf that sees nothing.
+std::vector<double> HierarchicalSolver::row_sums() {
+  const std::vector<Color> saved = radiosity_;
+  for (uint32_t i = 0; i < tree_.nodes.size(); ++i)
+    if (!tree_.nodes[i].is_cluster && tree_.is_leaf(i)) radiosity_[i] = Color(1);
+  pull();
+  gather();
+  push();
+  std::vector<double> sums(tree_.nodes.size());
+  for (uint32_t i = 0; i < tree_.nodes.size(); ++i) sums[i] = down_[i].r;
+  radiosity_ = saved;
+  pull();
+  return sums;
+}
+
+RadiositySolveResult HierarchicalSolver::result(const std::vector<double>& sums) const {
+  std::vector<RadiositySurface> patches, elements;
+  std::vector<uint32_t> first{0};
+  std::vector<std::array<Vec3, 3>> object_corners;
+  std::vector<std::array<Vec2, 3>> uvs;
+  std::vector<Color> element_radiosity;
+  std::vector<uint8_t> hidden;
+  std::vector<uint32_t> stack;
+  for (const uint32_t root : tree_.root_of_input) {
+    RadiositySurface patch = tree_.surface(root);
+    Color first_shot;
+    stack.assign(1, root);
+    while (!stack.empty()) {
+      const uint32_t node = stack.back();
+      stack.pop_back();
+      const HierarchyNode& n = tree_.nodes[node];
+      if (n.child_count > 0) {
+        for (uint32_t c = n.first_child + n.child_count; c-- > n.first_child;) stack.push_back(c);
+        continue;
+      }
+      const HierarchySurface& leaf = tree_.surfaces[n.payload];
+      elements.push_back(leaf.surface);
+      object_corners.push_back(leaf.object_corners);
+      uvs.push_back(leaf.uvs);
+      element_radiosity.push_back(radiosity_[node]);
+      hidden.push_back(!sums.empty() && sums[node] < kHiddenRowSum ? 1 : 0);
+      first_shot += leaf.surface.first_shot * leaf.surface.area;
+    }
+    patch.first_shot = first_shot / patch.area;
+    patches.push_back(patch);
+    first.push_back(static_cast<uint32_t>(elements.size()));
+  }
+  RadiositySolveResult out;
+  out.mesh = assemble_radiosity_mesh(std::move(patches), std::move(elements), std::move(first),
+                                     std::move(object_corners), std::move(uvs), scene_.primitives.size());
+  out.element_radiosity = std::move(element_radiosity);
+  out.element_hidden = std::move(hidden);
+  return out;
+}
+
+RadiositySolveResult HierarchicalSolver::solve() {
+  Stopwatch solve_time;
+  grow_state();
+  // The power the scene emits and reflects first (before any split: each input triangle's own
+  // samples), which the tolerance is a fraction of.
+  std::vector<uint32_t> roots(tree_.root_of_input.begin(), tree_.root_of_input.end());
+  compute_direct(roots);
+  first_round_ = true;
+  grow_state();
+  double power = 0;
+  for (const uint32_t root : roots) {
+    const RadiositySurface& s = tree_.surface(root);
+    power += max_channel(s.emission + s.first_shot) * s.area;
+    radiosity_[root] = s.emission + s.first_shot;
+  }
+  epsilon_ = settings_.refinement_tolerance * power;
+  split_for_direct_light();
+  double largest = 0;
+  update_leaves(largest);  // B = E + first shot
+  pull();
+  links_.push_back({tree_.root(), tree_.root()});
+  const bool several_clusters = !tree_.clusters.empty();
+  if (!several_clusters) links_.clear();  // one triangle sees nothing of itself
+  std::size_t splits = refine(several_clusters ? std::vector<uint32_t>{0} : std::vector<uint32_t>{});
+  first_round_ = false;
+  ProgressReporter progress("radiosity", 1000, "per mille of convergence", options_.quiet);
+  std::size_t steps = 0;
+  bool converged = false;
+  double change_fraction = 0;
+  for (;;) {
+    ++rounds_;
+    // Jacobi over the links until no leaf changes by more than the threshold.
+    converged = false;
+    for (; steps < static_cast<std::size_t>(settings_.max_steps) && !stopped();) {
+      gather();
+      push();
+      const double change = update_leaves(largest);
+      pull();
+      ++steps;
+      change_fraction = largest > 0 ? change / largest : 0;
+      // Issue 24's convergence log: the solution after every iteration (one process).
+      if (options_.on_step && !(options_.cluster && options_.cluster->distributed())) {
+        RadiositySolveResult so_far = result({});
+        so_far.steps = steps;
+        options_.on_step(so_far);
+      }
+      progress.set_detail(fmt::format("change {:.3g}% after {} iterations, {} links", 100 * change_fraction,
+                                      steps, links_.size()));
+      progress.advance_to(
+          static_cast<uint64_t>(1000 * convergence_progress(change_fraction, settings_.threshold)));
+      if (change_fraction <= settings_.threshold) {
+        converged = true;
+        break;
+      }
+    }
+    if (!converged || rounds_ >= kMaxRefinementRounds || stopped() || memory_stopped_) break;
+    // Refine again with the radiosities solved (Hanrahan et al.: the oracle reads B).
+    std::vector<uint32_t> all(links_.size());
+    for (uint32_t k = 0; k < all.size(); ++k) all[k] = k;
+    const std::size_t before = tree_.nodes.size();
+    splits = refine(std::move(all));
+    split_for_direct_light();
+    if (splits == 0 && tree_.nodes.size() == before) break;
+  }
+  progress.finish();
+  const std::vector<double> sums = row_sums();
+  RadiositySolveResult out = result(sums);
+  out.steps = steps;
+  out.converged = converged;
+  out.unshot_fraction = 0;
+  out.form_factors = links_made_;
+  out.form_factor_rows = 0;
+  out.form_factor_bytes = links_.capacity() * sizeof(Link);
+  out.solve_seconds = solve_time.seconds();
+  if (options_.facts) {
+    std::size_t leaves = 0, max_depth = 0;
+    for (const HierarchyNode& node : tree_.nodes)
+      if (!node.is_cluster) {
+        leaves += node.child_count == 0 ? 1 : 0;
+        max_depth = std::max<std::size_t>(max_depth, node.depth);
+      }
+    std::vector<double> leaf_sums;
+    for (uint32_t i = 0; i < tree_.nodes.size(); ++i)
+      if (!tree_.nodes[i].is_cluster && tree_.is_leaf(i)) leaf_sums.push_back(sums[i]);
+    const double memory =
+        static_cast<double>(tree_.memory_bytes() + links_.capacity() * sizeof(Link)) / 1048576.0;
+    nlohmann::json& facts = *options_.facts;
+    facts = {{"solver", "hierarchical"},
+             {"input_triangles", tree_.root_of_input.size()},
+             {"patches", out.mesh.patches.size()},
+             {"elements", out.mesh.elements.size()},
+             {"leaves", leaves},
+             {"nodes", tree_.nodes.size()},
+             {"clusters", tree_.clusters.size()},
+             {"levels", max_depth + 1},
+             {"links", links_.size()},
+             {"links_evaluated", links_made_},
+             {"visibility_rays", rays_},
+             {"refinement_rounds", rounds_},
+             {"refinement_tolerance", settings_.refinement_tolerance},
+             {"min_element_size", min_edge_},
+             {"steps", steps},
+             {"converged", converged},
+             {"change_fraction", change_fraction},
+             {"memory_mib", memory},
+             {"refinement_stopped_by_memory", memory_stopped_},
+             {"solve_seconds", out.solve_seconds},
+             {"refine_seconds", refine_seconds_},
+             {"first_shot_seconds", direct_seconds_},
+             {"gather_seconds", gather_seconds_},
+             {"scene_lights", scene_.lights.size()},
+             {"row_sum", row_sum_facts(leaf_sums)}};
+    if (cancel_requested()) {
+      facts["interrupted"] = true;
+      facts["completed"] = fmt::format("{} iterations, change {:.3g}%", steps, 100 * change_fraction);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+RadiositySolveResult solve_hierarchical_radiosity(const Scene& scene, const RadiositySettings& settings,
+                                                  const RadiositySolveOptions& options) {
+  Stopwatch mesh_time;
+  RadiosityMeshSettings mesh_settings;
+  mesh_settings.segments = settings.segments;
+  const RadiosityInput input = radiosity_input(scene, mesh_settings);
+  // Refused before the hierarchy is built: its roots and clusters alone (links and leaves grow
+  // within the limit as they are refined, and refinement stops at it).
+  const double least = static_cast<double>(input.triangles.size()) *
+                       (2.0 * sizeof(HierarchyNode) + sizeof(HierarchySurface) + sizeof(HierarchyCluster) +
+                        3 * sizeof(ShColor) + 4 * sizeof(Color));
+  check_form_factor_memory(static_cast<uint64_t>(std::min(least, 1.8e19)), settings,
+                           fmt::format("the hierarchy of {} input triangles", input.triangles.size()),
+                           "lower radiosity.segments, or simplify the scene's meshes");
+  if (input.triangles.empty())
+    throw std::invalid_argument("radiosity mesh: the scene has no surface to mesh");
+  RadiosityHierarchy hierarchy(scene, input);
+  FormFactorGeometry geometry;
+  for (const CornerTriangle& triangle : input.triangles) {
+    const auto first = static_cast<uint32_t>(geometry.mesh.positions.size());
+    for (const MeshCorner& corner : triangle) geometry.mesh.positions.push_back(corner.position);
+    geometry.mesh.triangles.push_back({first, first + 1, first + 2});
+  }
+  const TriangleOccluders occluders(geometry.mesh);
+  const double mesh_seconds = mesh_time.seconds();
+  HierarchicalSolver solver(scene, settings, options, hierarchy, occluders.accelerator());
+  RadiositySolveResult result = solver.solve();
+  result.mesh_seconds = mesh_seconds;
+  if (options.facts) (*options.facts)["mesh_seconds"] = mesh_seconds;
+  return result;
+}
+
+}  // namespace candela
