@@ -91,9 +91,9 @@ RadiosityHierarchy::RadiosityHierarchy(const Scene& scene, const RadiosityInput&
     nodes[job.node].child_count = 2;
     const std::array<std::pair<uint32_t, uint32_t>, 2> halves{{{job.begin, middle}, {middle, job.end}}};
     for (uint32_t c = 0; c < 2; ++c) {
-      nodes[first + c].parent = job.node;
-      if (place(first + c, halves[c].first, halves[c].second))
-        pending.push_back({first + c, halves[c].first, halves[c].second});
+      const bool cluster = place(first + c, halves[c].first, halves[c].second);
+      nodes[first + c].parent = job.node;  // after place, which makes the node anew
+      if (cluster) pending.push_back({first + c, halves[c].first, halves[c].second});
     }
   }
   // A cluster's area and reflectance bound: its children's (children come after parents).

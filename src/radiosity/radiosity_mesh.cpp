@@ -346,20 +346,24 @@ uint32_t RadiosityMesh::element_at(uint32_t primitive, const Vec3& point, const 
       best_faces = faces;
     }
   };
-  // Near the point first: every element within one cell size of it overlaps the box of that
-  // half-width around it, so a nearest element found within that distance is the nearest of all.
+  // Near the point first: every element within `reach` of it overlaps the box of that half-width
+  // around it, so a nearest element found within that distance is the nearest of all. The reach
+  // grows from the smallest cell to the largest (the point lies on an element nearly always).
   if (!element_grid.empty()) {
-    const double reach = element_grid.cell_size();
-    Bounds3 around;
-    around.extend(point - Vec3(reach, reach, reach));
-    around.extend(point + Vec3(reach, reach, reach));
-    element_grid.for_each_near(around, consider);
-    if (best != UINT32_MAX && best_distance <= reach * reach) return best;
+    const double largest = element_grid.cell_size();
+    for (double reach = element_grid.smallest_cell_size();; reach = std::min(4 * reach, largest)) {
+      Bounds3 around;
+      around.extend(point - Vec3(reach, reach, reach));
+      around.extend(point + Vec3(reach, reach, reach));
+      element_grid.for_each_near(around, consider);
+      if (best != UINT32_MAX && best_distance <= reach * reach) return best;
+      if (reach >= largest) break;
+    }
     // Farther than a cell from the mesh's box: off the mesh (an unbounded plane beyond where
     // it was cut), not a point of any element.
     const Bounds3& mesh_box = element_grid.bounds();
     for (int axis = 0; axis < 3; ++axis)
-      if (point[axis] < mesh_box.lower[axis] - reach || point[axis] > mesh_box.upper[axis] + reach)
+      if (point[axis] < mesh_box.lower[axis] - largest || point[axis] > mesh_box.upper[axis] + largest)
         return UINT32_MAX;
   }
   for (const uint32_t e : elements_of_primitive[primitive]) consider(e);  // far from every element

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <nanoflann.hpp>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -29,6 +30,43 @@ bool strictly_inside_segment(const Vec3& point, const Vec3& a, const Vec3& b) {
   const Vec3 offset = point - (a + along * t);
   return dot(offset, offset) <= 1e-18 * length_squared;
 }
+
+// The vertices within a distance of a point (nanoflann's k-d tree, SPEC §16): what finds the
+// T-junction vertices on an edge without scanning every vertex of its object per edge (issue 52:
+// a 100,000-triangle mesh with open edges took 20 s).
+class VertexIndex {
+ public:
+  explicit VertexIndex(const std::vector<Vec3>& positions)
+      : positions_{positions}, tree_(3, positions_, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {
+    tree_.buildIndex();
+  }
+  // The vertices within `radius` of point (and a hair more), in increasing index order.
+  void within(const Vec3& point, double radius, std::vector<uint32_t>& out) const {
+    out.clear();
+    if (positions_.positions.empty()) return;
+    const double query[3] = {point.x, point.y, point.z};
+    std::vector<std::pair<uint32_t, double>> matches;
+    tree_.radiusSearch(query, radius * radius * (1 + 1e-9), matches, nanoflann::SearchParams(32, 0, false));
+    for (const auto& match : matches) out.push_back(match.first);
+    std::sort(out.begin(), out.end());
+  }
+
+ private:
+  struct Positions {
+    const std::vector<Vec3>& positions;
+    std::size_t kdtree_get_point_count() const { return positions.size(); }
+    double kdtree_get_pt(std::size_t index, std::size_t axis) const {
+      return positions[index][static_cast<int>(axis)];
+    }
+    template <typename Box>
+    bool kdtree_get_bbox(Box&) const {
+      return false;
+    }
+  };
+  Positions positions_;
+  nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Positions>, Positions, 3, uint32_t>
+      tree_;
+};
 
 Color clamped_at_zero(const Color& c) {
   return {std::max(c.r, 0.0), std::max(c.g, 0.0), std::max(c.b, 0.0)};
@@ -86,12 +124,8 @@ VertexRadiosity compute_vertex_radiosity(const std::vector<RadiositySurface>& el
 
   // Edges of one element only are boundary edges, unless they belong to a T-junction: an edge
   // with vertices of its surface strictly inside it, or a piece of such an edge.
-  std::vector<std::vector<uint32_t>> vertices_of_object;
-  for (uint32_t v = 0; v < vertex_count; ++v) {
-    if (result.object[v] >= vertices_of_object.size())
-      vertices_of_object.resize(result.object[v] + std::size_t{1});
-    vertices_of_object[result.object[v]].push_back(v);
-  }
+  const VertexIndex vertex_index(result.positions);
+  std::vector<uint32_t> near_edge;
   std::map<Edge, bool> is_boundary_edge;
   for (const auto& [edge, owners] : elements_of_edge)
     if (owners.size() == 1) is_boundary_edge[edge] = true;
@@ -99,8 +133,10 @@ VertexRadiosity compute_vertex_radiosity(const std::vector<RadiositySurface>& el
     const Vec3& a = result.positions[edge.first];
     const Vec3& b = result.positions[edge.second];
     std::vector<uint32_t> on_edge{edge.first, edge.second};
-    for (const uint32_t v : vertices_of_object[result.object[edge.first]])
-      if (strictly_inside_segment(result.positions[v], a, b)) on_edge.push_back(v);
+    vertex_index.within((a + b) * 0.5, 0.5 * length(b - a), near_edge);
+    for (const uint32_t v : near_edge)
+      if (result.object[v] == result.object[edge.first] && strictly_inside_segment(result.positions[v], a, b))
+        on_edge.push_back(v);
     if (on_edge.size() == 2) continue;
     boundary = false;
     for (std::size_t i = 2; i < on_edge.size(); ++i)
