@@ -126,6 +126,12 @@ VertexRadiosity compute_vertex_radiosity(const std::vector<RadiositySurface>& el
   // with vertices of its surface strictly inside it, or a piece of such an edge.
   const VertexIndex vertex_index(result.positions);
   std::vector<uint32_t> near_edge;
+  // A T-junction vertex on the edge a–b of a larger element, at a + t (b − a).
+  struct Junction {
+    uint32_t vertex, a, b;
+    double t, length_squared;
+  };
+  std::vector<Junction> junctions;
   std::map<Edge, bool> is_boundary_edge;
   for (const auto& [edge, owners] : elements_of_edge)
     if (owners.size() == 1) is_boundary_edge[edge] = true;
@@ -139,6 +145,12 @@ VertexRadiosity compute_vertex_radiosity(const std::vector<RadiositySurface>& el
         on_edge.push_back(v);
     if (on_edge.size() == 2) continue;
     boundary = false;
+    // Issue 52: without cracks, the T-junction vertices of this edge take the radiosity the
+    // element holding the whole edge interpolates there (set below, after every vertex's own).
+    for (std::size_t i = 2; i < on_edge.size(); ++i)
+      junctions.push_back({on_edge[i], edge.first, edge.second,
+                           dot(result.positions[on_edge[i]] - a, b - a) / dot(b - a, b - a),
+                           dot(b - a, b - a)});
     for (std::size_t i = 2; i < on_edge.size(); ++i)
       elements_of_vertex[on_edge[i]].push_back(elements_of_edge[edge].front());
     for (std::size_t i = 0; i < on_edge.size(); ++i)
@@ -188,6 +200,13 @@ VertexRadiosity compute_vertex_radiosity(const std::vector<RadiositySurface>& el
     }
   }
   for (Color& b : result.radiosity) b = clamped_at_zero(b);
+  // Gouraud without cracks (SPEC §10.1): a T-junction vertex gets the radiosity interpolated along
+  // the larger element's edge, which is what that element shows there; the longest edges first, so
+  // that a vertex on a shorter edge that is itself a junction reads its ends' final values.
+  std::stable_sort(junctions.begin(), junctions.end(),
+                   [](const Junction& x, const Junction& y) { return x.length_squared > y.length_squared; });
+  for (const Junction& j : junctions)
+    result.radiosity[j.vertex] = result.radiosity[j.a] * (1 - j.t) + result.radiosity[j.b] * j.t;
   return result;
 }
 
