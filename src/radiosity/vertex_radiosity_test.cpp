@@ -171,3 +171,44 @@ TEST(VertexRadiosity, HiddenElementsKeepTheirOwnVerticesAndLeaveTheOthersAlone) 
 
 }  // namespace
 }  // namespace candela
+
+namespace candela {
+namespace {
+
+// Issue 52: a T-junction vertex (the corner of two small elements inside the edge of a larger one)
+// takes the radiosity the larger element interpolates there, so Gouraud shading has no crack
+// along that edge. The left unit square is two elements; the right one four, whose corner (1, 0.5)
+// lies inside the left square's edge (1, 0)–(1, 1). Averaging the elements at that vertex alone
+// (the larger one among them) would give it another value than the left element shows there.
+TEST(VertexRadiosity, TJunctionVerticesLieOnTheLargerElementsInterpolation) {
+  const auto square = [](double x0, double y0, double size, uint32_t object, double value,
+                         std::vector<RadiositySurface>& elements, std::vector<Color>& radiosity) {
+    const Vec3 p00(x0, y0, 0), p10(x0 + size, y0, 0), p11(x0 + size, y0 + size, 0), p01(x0, y0 + size, 0);
+    for (const RadiositySurface& s : {triangle(p00, p10, p11, object), triangle(p00, p11, p01, object)}) {
+      elements.push_back(s);
+      radiosity.push_back(Color(value));
+    }
+  };
+  std::vector<RadiositySurface> elements;
+  std::vector<Color> radiosity;
+  square(0, 0, 1, 0, 1, elements, radiosity);
+  square(1, 0, 0.5, 0, 3, elements, radiosity);
+  square(1, 0.5, 0.5, 0, 5, elements, radiosity);
+  square(1.5, 0, 0.5, 0, 4, elements, radiosity);
+  square(1.5, 0.5, 0.5, 0, 6, elements, radiosity);
+  const VertexRadiosity vertices = compute_vertex_radiosity(elements, radiosity);
+  const auto vertex_at = [&](double x, double y) {
+    for (std::size_t v = 0; v < vertices.positions.size(); ++v)
+      if (vertices.positions[v].x == x && vertices.positions[v].y == y) return v;
+    ADD_FAILURE() << "no vertex at " << x << ", " << y;
+    return std::size_t{0};
+  };
+  const double bottom = vertices.radiosity[vertex_at(1, 0)].g, top = vertices.radiosity[vertex_at(1, 1)].g;
+  EXPECT_NE(bottom, top);
+  EXPECT_NEAR(vertices.radiosity[vertex_at(1, 0.5)].g, 0.5 * (bottom + top), 1e-12);
+  // A vertex inside an edge of the small ones is an ordinary interior vertex.
+  EXPECT_EQ(vertices.kind[vertex_at(1.5, 0.5)], VertexKind::interior);
+}
+
+}  // namespace
+}  // namespace candela
