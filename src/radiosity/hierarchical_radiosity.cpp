@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -61,8 +62,12 @@ class HierarchicalSolver {
  public:
   HierarchicalSolver(const Scene& scene, const RadiositySettings& settings,
                      const RadiositySolveOptions& options, RadiosityHierarchy& hierarchy,
-                     const Accelerator& occluders)
-      : scene_(scene), settings_(settings), options_(options), tree_(hierarchy), occluders_(occluders) {
+                     std::unique_ptr<TriangleOccluders> occluders)
+      : scene_(scene),
+        settings_(settings),
+        options_(options),
+        tree_(hierarchy),
+        occluders_(std::move(occluders)) {
     const double element_size = settings.element_size > 0 ? settings.element_size
                                 : settings.patch_size > 0 ? settings.patch_size / 2
                                                           : hierarchy.scene_size / 16;
@@ -82,7 +87,6 @@ class HierarchicalSolver {
 
   void compute_direct(std::span<const uint32_t> nodes);
   void grow_state();
-  double direct_error(uint32_t node) const;
   void split_for_direct_light();
   bool evaluate(Link& link) const;
   bool evaluate_surfaces(Link& link, Pcg32& random) const;
@@ -110,7 +114,7 @@ class HierarchicalSolver {
   const RadiositySettings& settings_;
   const RadiositySolveOptions& options_;
   RadiosityHierarchy& tree_;
-  const Accelerator& occluders_;
+  std::unique_ptr<TriangleOccluders> occluders_;  // released before the result is assembled
   double min_edge_ = 0, offset_ = 0, epsilon_ = 0;
   double relative_tolerance_ = 0;
   bool first_round_ = true;
@@ -158,25 +162,20 @@ void HierarchicalSolver::compute_direct(std::span<const uint32_t> nodes) {
   tbb::parallel_for(std::size_t(0), nodes.size(), [&](std::size_t k) {
     HierarchySurface& made = tree_.surfaces[tree_.nodes[nodes[k]].payload];
     if (made.direct_done) return;
+    std::array<Color, 4> direct{};
     if (!scene_.lights.empty() || scene_.environment_light)
-      made.direct = direct_irradiance_samples(scene_, made.surface, jitter);
-    Color sum;
-    for (const Color& sample : made.direct) sum += sample;
+      direct = direct_irradiance_samples(scene_, made.surface, jitter);
+    Color sum, low = direct[0], high = direct[0];
+    for (const Color& sample : direct) {
+      sum += sample;
+      low = Color(std::min(low.r, sample.r), std::min(low.g, sample.g), std::min(low.b, sample.b));
+      high = Color(std::max(high.r, sample.r), std::max(high.g, sample.g), std::max(high.b, sample.b));
+    }
     made.surface.first_shot = made.surface.reflectance * sum * 0.25;
+    made.direct_error = made.surface.area * max_channel(made.surface.reflectance * (high - low));
     made.direct_done = true;
   });
   direct_seconds_ += time.seconds();
-}
-
-// The power by which the first shot of a leaf is uncertain: ρ A times the spread of its samples.
-double HierarchicalSolver::direct_error(uint32_t node) const {
-  const HierarchySurface& s = tree_.surfaces[tree_.nodes[node].payload];
-  Color low = s.direct[0], high = s.direct[0];
-  for (const Color& sample : s.direct) {
-    low = Color(std::min(low.r, sample.r), std::min(low.g, sample.g), std::min(low.b, sample.b));
-    high = Color(std::max(high.r, sample.r), std::max(high.g, sample.g), std::max(high.b, sample.b));
-  }
-  return s.surface.area * max_channel(s.surface.reflectance * (high - low));
 }
 
 void HierarchicalSolver::split_for_direct_light() {
@@ -187,7 +186,9 @@ void HierarchicalSolver::split_for_direct_light() {
     compute_direct(check);
     std::vector<uint32_t> next;
     for (const uint32_t node : check) {
-      if (!tree_.is_leaf(node) || !can_split(node) || !(direct_error(node) > epsilon_)) continue;
+      if (!tree_.is_leaf(node) || !can_split(node) ||
+          !(tree_.surfaces[tree_.nodes[node].payload].direct_error > epsilon_))
+        continue;
       const uint32_t first = children_of(node);
       for (uint32_t c = first; c < first + 4; ++c) next.push_back(c);
     }
@@ -202,7 +203,7 @@ bool HierarchicalSolver::visible(const Vec3& from, const Vec3& to) const {
   const double distance = length(between);
   if (!(distance > 4 * offset_)) return true;
   const Ray ray{from, between / distance, 1e-5 * distance + offset_, distance * (1 - 1e-5) - offset_};
-  return !occluders_.occluded(ray);
+  return !occluders_->accelerator().occluded(ray);
 }
 
 // A point of the node for visibility ray k: a surface's child centroid k (a receiver) or a point
@@ -427,14 +428,18 @@ std::size_t HierarchicalSolver::refine(std::vector<uint32_t> candidates) {
                       [&](std::size_t k) { keep[k] = evaluate(fresh[k]) ? 1 : 0; });
     links_made_ += fresh.size();
     rays_ += fresh.size() * kVisibilityRays;
-    candidates.clear();
-    for (std::size_t k = 0; k < fresh.size(); ++k) {
-      if (!keep[k]) continue;
-      candidates.push_back(static_cast<uint32_t>(links_.size()));
-      links_.push_back(fresh[k]);
-    }
+    // The split links go now (a round makes several times the links it keeps); the new ones are
+    // the next wave's candidates, at the end.
+    std::erase_if(links_, [](const Link& link) { return (link.flags & kDead) != 0; });
+    const std::size_t kept_before = links_.size();
+    for (std::size_t k = 0; k < fresh.size(); ++k)
+      if (keep[k]) links_.push_back(fresh[k]);
+    candidates.resize(links_.size() - kept_before);
+    for (std::size_t k = 0; k < candidates.size(); ++k)
+      candidates[k] = static_cast<uint32_t>(kept_before + k);
   }
   std::erase_if(links_, [](const Link& link) { return (link.flags & kDead) != 0; });
+  links_.shrink_to_fit();
   sort_links();
   refine_seconds_ += time.seconds();
   return split_count;
@@ -713,13 +718,20 @@ RadiositySolveResult HierarchicalSolver::solve() {
   }
   progress.finish();
   const std::vector<double> sums = row_sums();
+  // What the result does not need goes before it is assembled (the peak of a million triangles).
+  const std::size_t link_count = links_.size(), link_bytes = links_.capacity() * sizeof(Link);
+  const double memory = static_cast<double>(tree_.memory_bytes() + link_bytes) / 1048576.0;
+  occluders_.reset();
+  for (auto* state : {&gathered_, &down_}) std::vector<CornerIrradiance>().swap(*state);
+  for (auto* state : {&cluster_out_, &cluster_in_, &cluster_down_}) std::vector<ShColor>().swap(*state);
+  std::vector<Link>().swap(links_);
   RadiositySolveResult out = result(sums);
   out.steps = steps;
   out.converged = converged;
   out.unshot_fraction = 0;
   out.form_factors = links_made_;
   out.form_factor_rows = 0;
-  out.form_factor_bytes = links_.capacity() * sizeof(Link);
+  out.form_factor_bytes = link_bytes;
   out.solve_seconds = solve_time.seconds();
   if (options_.facts) {
     std::size_t leaves = 0, max_depth = 0;
@@ -731,8 +743,6 @@ RadiositySolveResult HierarchicalSolver::solve() {
     std::vector<double> leaf_sums;
     for (uint32_t i = 0; i < tree_.nodes.size(); ++i)
       if (!tree_.nodes[i].is_cluster && tree_.is_leaf(i)) leaf_sums.push_back(sums[i]);
-    const double memory =
-        static_cast<double>(tree_.memory_bytes() + links_.capacity() * sizeof(Link)) / 1048576.0;
     nlohmann::json& facts = *options_.facts;
     facts = {{"solver", "hierarchical"},
              {"input_triangles", tree_.root_of_input.size()},
@@ -742,7 +752,7 @@ RadiositySolveResult HierarchicalSolver::solve() {
              {"nodes", tree_.nodes.size()},
              {"clusters", tree_.clusters.size()},
              {"levels", max_depth + 1},
-             {"links", links_.size()},
+             {"links", link_count},
              {"links_evaluated", links_made_},
              {"visibility_rays", rays_},
              {"refinement_rounds", rounds_},
@@ -755,6 +765,8 @@ RadiositySolveResult HierarchicalSolver::solve() {
              {"refinement_stopped_by_memory", memory_stopped_},
              {"solve_seconds", out.solve_seconds},
              {"refine_seconds", refine_seconds_},
+             {"form_factors_per_second",
+              refine_seconds_ > 0 ? static_cast<double>(links_made_) / refine_seconds_ : 0.0},
              {"first_shot_seconds", direct_seconds_},
              {"gather_seconds", gather_seconds_},
              {"scene_lights", scene_.lights.size()},
@@ -792,9 +804,10 @@ RadiositySolveResult solve_hierarchical_radiosity(const Scene& scene, const Radi
     for (const MeshCorner& corner : triangle) geometry.mesh.positions.push_back(corner.position);
     geometry.mesh.triangles.push_back({first, first + 1, first + 2});
   }
-  const TriangleOccluders occluders(geometry.mesh);
+  auto occluders = std::make_unique<TriangleOccluders>(geometry.mesh);
+  geometry = FormFactorGeometry();
   const double mesh_seconds = mesh_time.seconds();
-  HierarchicalSolver solver(scene, settings, options, hierarchy, occluders.accelerator());
+  HierarchicalSolver solver(scene, settings, options, hierarchy, std::move(occluders));
   RadiositySolveResult result = solver.solve();
   result.mesh_seconds = mesh_seconds;
   if (options.facts) (*options.facts)["mesh_seconds"] = mesh_seconds;

@@ -40,9 +40,11 @@ struct HierarchySurface {
   RadiositySurface surface;  // ρ, E at its centroid; first_shot = ρ × the mean of direct_samples
   std::array<Vec3, 3> object_corners;
   std::array<Vec2, 3> uvs;
-  uint32_t input = 0;             // the input triangle it is (part of)
-  std::array<Color, 4> direct{};  // the direct irradiance at the centroids of its four children
-  bool direct_done = false;       // direct and first_shot computed
+  uint32_t input = 0;  // the input triangle it is (part of)
+  // The power by which its first shot is uncertain: A × the largest channel of ρ × the spread of
+  // the direct irradiance at the centroids of its four children.
+  double direct_error = 0;
+  bool direct_done = false;  // direct_error and first_shot computed
 };
 
 struct HierarchyCluster {
