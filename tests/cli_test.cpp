@@ -1972,5 +1972,60 @@ TEST_F(Cli, ProbeSeedSeedsTheSolutionItProbes) {
   }
 }
 
+// Issue 52: hierarchical radiosity through the command line — statistics naming the hierarchy, an
+// export with one row per leaf, the convergence log one row per Jacobi iteration and the image,
+// bench --radiosity's links; checkpoints are the progressive solver's and are refused before work.
+TEST_F(Cli, HierarchicalRadiosityRendersExportsLogsAndBenches) {
+  std::string output;
+  const std::string render = "render '" CANDELA_SOURCE_DIR
+                             "/scenes/cornell-box.json' -q --set camera.width=16 --set camera.height=16 ";
+  ASSERT_EQ(run(render + "--method path --spp 16 -o reference.pfm", output), 0) << output;
+  ASSERT_EQ(
+      run(render + "--set 'radiosity.solver=\"hierarchical\"' --set radiosity.refinement_tolerance=1e-3 "
+                   "--stats h.json --export-solution h.csv --error-reference reference.pfm "
+                   "--error-log h-log.csv -o h.png",
+          output),
+      0)
+      << output;
+  std::ifstream stats_file(directory_ / "h.json");
+  const nlohmann::json facts = nlohmann::json::parse(stats_file)["radiosity"];
+  EXPECT_EQ(facts["solver"], "hierarchical");
+  EXPECT_EQ(facts["patches"], facts["input_triangles"]);
+  EXPECT_EQ(facts["elements"], facts["leaves"]);
+  EXPECT_GT(facts["links"].get<double>(), facts["leaves"].get<double>());
+  EXPECT_GT(facts["clusters"].get<double>(), 10);
+  EXPECT_TRUE(facts["converged"].get<bool>());
+  std::ifstream csv(directory_ / "h.csv");
+  std::string line;
+  std::size_t rows = 0;
+  while (std::getline(csv, line)) ++rows;
+  EXPECT_EQ(rows, facts["elements"].get<std::size_t>() + 1);  // and the header
+  const std::vector<LogRow> log = read_error_log(directory_ / "h-log.csv");
+  ASSERT_EQ(log.size(), facts["steps"].get<std::size_t>() + 1);
+  EXPECT_EQ(log.front().unit, "iterations");
+  EXPECT_EQ(log.front().work, 1u);
+  EXPECT_EQ(log.back().unit, "final");
+  EXPECT_LT(log.back().rmse, log.front().rmse);  // the first iteration holds the direct light only
+
+  EXPECT_EQ(run(render + "--set 'radiosity.solver=\"hierarchical\"' --checkpoint c.ckpt -o c.png", output),
+            2);
+  EXPECT_NE(output.find("checkpoints are for radiosity.solver \"progressive\""), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(directory_ / "c.png"));
+
+  ASSERT_EQ(run("bench --radiosity '" CANDELA_SOURCE_DIR
+                "/scenes/cornell-box.json' --set 'radiosity.solver=\"hierarchical\"' "
+                "--set radiosity.refinement_tolerance=1e-3 --threads 1 2 --json b.json -q",
+                output),
+            0)
+      << output;
+  EXPECT_NE(output.find("links"), std::string::npos) << output;
+  std::ifstream bench_file(directory_ / "b.json");
+  const nlohmann::json runs = nlohmann::json::parse(bench_file)["radiosity"]["runs"];
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(runs[0]["links"], runs[1]["links"]);  // the thread count changes nothing
+  EXPECT_EQ(runs[0]["steps"], runs[1]["steps"]);
+  EXPECT_GT(runs[0]["memory_mib"].get<double>(), 0);
+}
+
 }  // namespace
 }  // namespace candela

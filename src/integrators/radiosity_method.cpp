@@ -141,8 +141,11 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
     if (request.progress_every > 0) options.step_every = request.progress_every;
     const bool progressive = settings.solver == RadiositySolver::progressive;
     // progressive by value: it lives in this block, the function beyond it (ASan: use after scope).
-    options.on_step = [&, progressive](const RadiositySolveResult& so_far) {
-      request.on_progress({progressive ? "shots" : "sweeps", so_far.steps,
+    const bool hierarchical = settings.solver == RadiositySolver::hierarchical;
+    options.on_step = [&, progressive, hierarchical](const RadiositySolveResult& so_far) {
+      // Issue 52: hierarchical radiosity's steps are Jacobi iterations over its links.
+      const char* unit = progressive ? "shots" : hierarchical ? "iterations" : "sweeps";
+      request.on_progress({unit, so_far.steps,
                            progressive ? std::optional<double>(so_far.unshot_fraction) : std::nullopt, [&] {
                              const SolutionDisplay display(scene, so_far, settings.display,
                                                            request.antialiasing_for(scene), seed);
