@@ -518,6 +518,7 @@ RadiosityInput radiosity_input(const Scene& scene, const RadiosityMeshSettings& 
   input.scene_size = length(clip.diagonal());
   TessellationRequest request;
   request.max_segments = settings.segments;
+  request.chord_tolerance = settings.chord_fraction * input.scene_size;
   request.clip = clip;
   const TessellatedScene tessellated = tessellate_scene(scene, request);
   input.triangles.resize(tessellated.triangle_count());

@@ -26,7 +26,10 @@ namespace candela {
 class Scene;
 
 struct RadiosityMeshSettings {
-  int segments = 32;        // divisions of a full turn of a curved shape (≥ 3)
+  int segments = 32;  // divisions of a full turn of a curved shape (≥ 3)
+  // > 0 (issue 52): each curved shape gets the fewest segments, at most `segments`, whose chords
+  // stray at most this fraction of the scene size from its surface (raster/tessellated_scene.h).
+  double chord_fraction = 0;
   double patch_size = 0;    // the longest patch edge; 0: the scene size / 8
   double element_size = 0;  // the longest element edge; 0: patch_size / 2 (≤ patch_size)
   // Cut every surface along the lines where other objects meet it before meshing (the remedy

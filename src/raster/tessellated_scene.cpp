@@ -4,6 +4,7 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -39,8 +40,27 @@ bool world_plane(const Shape& shape, Vec3& point, Vec3& normal) {
   return false;
 }
 
-// Segments for a bounded shape: about one pixel per edge around its outline on screen.
+// The fewest segments a chord tolerance gives a curved shape: a sphere of six longitudes and three
+// latitudes (24 triangles).
+constexpr double kMinChordSegments = 6;
+
+// Segments for a bounded shape: by the chord tolerance when there is one, else about one pixel per
+// edge around its outline on screen.
 int segments_for(const Shape& shape, const TessellationRequest& request) {
+  if (request.chord_tolerance > 0) {
+    // Issue 52: the fewest segments whose chords stray at most the tolerance from a circle of the
+    // shape's radius (half its box's middle extent: a sphere's, a cylinder's or a disc's radius),
+    // sagitta r (1 − cos(π/N)) ≤ tolerance.
+    const Bounds3 box = shape.bounds();
+    if (!box.is_finite()) return request.max_segments;
+    std::array<double, 3> extent{box.diagonal().x, box.diagonal().y, box.diagonal().z};
+    std::sort(extent.begin(), extent.end());
+    const double radius = 0.5 * extent[1];
+    const double cap = std::max(request.max_segments, 3);
+    if (!(radius > request.chord_tolerance)) return static_cast<int>(std::min(kMinChordSegments, cap));
+    const double needed = std::ceil(kPi / std::acos(1 - request.chord_tolerance / radius));
+    return static_cast<int>(std::clamp(needed, std::min(kMinChordSegments, cap), cap));
+  }
   if (!request.has_view) return request.max_segments;
   const Bounds3 b = shape.bounds();
   if (!b.is_finite()) return request.max_segments;

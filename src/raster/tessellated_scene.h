@@ -34,6 +34,9 @@ struct TessellationRequest {
   // The most segments a full turn gets (TessellationSettings::segments). With a view (below),
   // a curved shape gets only as many as give edges of about one pixel on screen, at least 8.
   int max_segments = 32;
+  // > 0 (issue 52, radiosity): instead of the view, each curved shape gets the fewest segments
+  // (at least 6, at most max_segments) whose chords stray at most this far from its surface.
+  double chord_tolerance = 0;
   double crease_angle_degrees = 60;
   // Where unbounded shapes (planes) are cut.
   Bounds3 clip;
