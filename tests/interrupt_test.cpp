@@ -43,12 +43,14 @@ struct CancellationGuard {
 };
 
 // An emitting, reflecting sphere around the camera: every method sees something in every pixel.
-std::unique_ptr<Scene> furnace(const std::string& method, const std::string& extra = "") {
+std::unique_ptr<Scene> furnace(const std::string& method, const std::string& extra = "",
+                               const std::string& radiosity = R"({"patch_size": 1, "element_size": 1})") {
   return load_scene_text(R"({"format": "candela/1",
     "camera": {"eye": [0, 0, 0], "target": [0, 0, -1], "fov": 60, "width": 24, "height": 24},
     "render": {"method": ")" +
                              method + R"("}, )" + extra + R"(
-    "radiosity": {"patch_size": 1, "element_size": 1},
+    "radiosity": )" + radiosity +
+                             R"(,
     "meshless": {"spacing": 0.5, "grid": 12, "rounds": 2},
     "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 2, "material": {"kd": 0.5, "emission": 1}}]})",
                          "furnace.json", ".");
@@ -86,6 +88,32 @@ TEST(Interrupt, EveryMethodStopsWhenCancelledBeforeItStarts) {
     EXPECT_FALSE(normal.extra.contains("interrupted")) << method;
     EXPECT_FALSE(all_black(whole)) << method;
   }
+}
+
+// Issue 52: hierarchical radiosity, cancelled before it starts, neither refines nor iterates and
+// says it was interrupted; then, not cancelled, it solves (the sphere faces out, away from the
+// camera inside it: B = E, nothing is seen back).
+TEST(Interrupt, HierarchicalRadiosityStopsWhenCancelledBeforeItStarts) {
+  const CancellationGuard guard;
+  const auto scene = furnace("radiosity", "", R"({"solver": "hierarchical"})");
+  const auto renderer = create_method(*find_method("radiosity"), *scene);
+  Film film(scene->camera->width(), scene->camera->height());
+  RunStatistics statistics;
+  request_cancellation();
+  testing::render_into(*renderer, *scene, {{0, 0, film.width(), film.height()}, true}, film, statistics);
+  EXPECT_TRUE(statistics.extra.value("interrupted", false));
+  const auto& facts = statistics.extra["radiosity"];
+  EXPECT_EQ(facts["steps"], 0);
+  EXPECT_EQ(facts["links"], 1);  // the root cluster's own link, never split
+  EXPECT_FALSE(facts["converged"].get<bool>());
+  reset_cancellation();
+  Film whole(film.width(), film.height());
+  RunStatistics normal;
+  testing::render_into(*renderer, *scene, {{0, 0, whole.width(), whole.height()}, true}, whole, normal);
+  EXPECT_FALSE(normal.extra.contains("interrupted"));
+  EXPECT_TRUE(normal.extra["radiosity"]["converged"].get<bool>());
+  EXPECT_GT(normal.extra["radiosity"]["steps"].get<int>(), 0);
+  EXPECT_NEAR(whole.at(12, 12).g, 1, 1e-3);
 }
 
 // Cancelled in the middle of the tiles: the finished tiles keep their pixels, the others are black.
