@@ -172,29 +172,38 @@ void cut_at_contacts(const Scene& scene, std::vector<CornerTriangle>& triangles,
     for (const MeshCorner& corner : triangle) box.extend(corner.position);
     return box;
   };
-  // The cutters that may touch each triangle: boxes overlapping within the tolerance, found by
-  // walking the cutters sorted by their lowest x.
+  // The cutters that may touch each triangle: boxes overlapping within the tolerance, found
+  // through a grid of the cutters (issue 52: walking them sorted by their lowest x from the first
+  // took 16 s for the dragon's 100,000), taken in the order of their lowest x (the cuts' order).
   std::vector<Bounds3> cutter_boxes(cutters.size());
-  for (std::size_t c = 0; c < cutters.size(); ++c) cutter_boxes[c] = box_of(cutters[c]);
+  std::vector<RadiositySurface> cutter_surfaces(cutters.size());
+  for (std::size_t c = 0; c < cutters.size(); ++c) {
+    cutter_boxes[c] = box_of(cutters[c]);
+    for (int k = 0; k < 3; ++k) cutter_surfaces[c].corners[k] = cutters[c][k].position;
+  }
   std::vector<std::size_t> by_x(cutters.size());
   for (std::size_t c = 0; c < cutters.size(); ++c) by_x[c] = c;
   std::sort(by_x.begin(), by_x.end(),
             [&](std::size_t a, std::size_t b) { return cutter_boxes[a].lower.x < cutter_boxes[b].lower.x; });
+  std::vector<std::size_t> rank(cutters.size());
+  for (std::size_t i = 0; i < by_x.size(); ++i) rank[by_x[i]] = i;
+  const SurfaceGrid grid(cutter_surfaces, tolerance);
   std::vector<std::vector<std::size_t>> touching(count);
   for (std::size_t t = 0; t < count; ++t) {
     const Bounds3 box = box_of(triangles[t]);
     const uint32_t object = scene.primitives[primitives[t]].object;
-    for (std::size_t i = 0; i < by_x.size() && cutter_boxes[by_x[i]].lower.x <= box.upper.x + tolerance;
-         ++i) {
-      const std::size_t c = by_x[i];
+    std::vector<std::size_t>& list = touching[t];
+    grid.for_each_near(box, [&](uint32_t c) {
       const Bounds3& other = cutter_boxes[c];
-      if (other.upper.x < box.lower.x - tolerance || other.lower.y > box.upper.y + tolerance ||
-          box.lower.y > other.upper.y + tolerance || other.lower.z > box.upper.z + tolerance ||
-          box.lower.z > other.upper.z + tolerance)
-        continue;
-      if (scene.primitives[cutter_primitives[c]].object == object) continue;
-      touching[t].push_back(c);
-    }
+      if (other.upper.x < box.lower.x - tolerance || other.lower.x > box.upper.x + tolerance ||
+          other.lower.y > box.upper.y + tolerance || box.lower.y > other.upper.y + tolerance ||
+          other.lower.z > box.upper.z + tolerance || box.lower.z > other.upper.z + tolerance)
+        return;
+      if (scene.primitives[cutter_primitives[c]].object == object) return;
+      list.push_back(c);
+    });
+    std::sort(list.begin(), list.end(), [&](std::size_t a, std::size_t b) { return rank[a] < rank[b]; });
+    list.erase(std::unique(list.begin(), list.end()), list.end());
   }
   std::vector<CornerTriangle> result;
   std::vector<uint32_t> result_primitives;
@@ -538,6 +547,18 @@ RadiosityInput radiosity_input(const Scene& scene, const RadiosityMeshSettings& 
     input.primitives.push_back(input.primitives[t]);
   }
   return input;
+}
+
+RadiosityInput split_input_at_contacts(const Scene& scene, const RadiosityInput& input, double patch_size) {
+  RadiosityInput split;
+  split.scene_size = input.scene_size;
+  for (std::size_t t = 0; t < input.triangles.size(); ++t) {
+    bisect(input.triangles[t], patch_size, split.triangles);
+    split.primitives.resize(split.triangles.size(), input.primitives[t]);
+  }
+  cut_at_contacts(scene, split.triangles, split.primitives, input.triangles, input.primitives,
+                  1e-9 * input.scene_size);
+  return split;
 }
 
 RadiosityMesh assemble_radiosity_mesh(std::vector<RadiositySurface> patches,

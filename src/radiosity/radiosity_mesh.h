@@ -138,6 +138,11 @@ struct RadiosityInput {
 };
 RadiosityInput radiosity_input(const Scene& scene, const RadiosityMeshSettings& settings);
 
+// The remedy for light and shadow leaks (split_at_contacts) on radiosity_input's triangles: each is
+// bisected until no edge is longer than patch_size, then cut along the lines where other objects
+// meet it (as build_radiosity_mesh cuts its patches), so that no piece straddles a contact.
+RadiosityInput split_input_at_contacts(const Scene& scene, const RadiosityInput& input, double patch_size);
+
 // A mesh from surfaces made elsewhere (hierarchical radiosity's input triangles and the leaves of
 // their quadtrees): patches[p]'s elements are elements[first[p]] … elements[first[p + 1] − 1]; the
 // lookup structures (elements_of_primitive, geometry, grid) are built. patch_size and element_size
