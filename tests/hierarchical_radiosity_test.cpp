@@ -115,6 +115,23 @@ TEST(HierarchicalRadiosity, ParallelSquaresMatchHowell) {
   EXPECT_NEAR(object_means(solve(*scene, settings))[1] / 0.5 / parallel_rectangles(1, 1), 1, 0.005);
 }
 
+// Howell's point-to-sphere factor F = (r/h)² through the solver: a 0.2 × 0.2 receiver (ρ 0.5)
+// facing an emitting sphere (E = 1, radius 1, by chord error) at h = 1.5, 2 and 3; its mean B is ρF.
+// Measured 0.01 %, 0.70 %, −0.16 %: within 1 %, not yet the issue's 0.5 % (and at h = 5 the
+// clusters' harmonics put it 7.8 % high: docs/methods/radiosity.md, "Not yet").
+TEST(HierarchicalRadiosity, PointBeforeASphereWithinOnePercentOfHowell) {
+  for (const double h : {1.5, 2.0, 3.0}) {
+    const auto scene = scene_from(R"("radiosity": {"solver": "hierarchical"}, "shapes": [
+        {"type": "sphere", "center": [0, 0, )" +
+                                      std::to_string(h) +
+                                      R"(], "radius": 1, "material": {"kd": 0, "emission": 1}},
+        {"type": "quad", "corner": [-0.1, -0.1, 0], "edge_u": [0.2, 0, 0], "edge_v": [0, 0.2, 0], "material": {"kd": 0.5}}])",
+                                  kCamera);
+    const RadiositySettings settings = read_radiosity_settings(scene->plugin_settings.node("radiosity"));
+    EXPECT_NEAR(object_means(solve(*scene, settings))[1] / 0.5 / point_to_sphere(1, h), 1, 0.01) << "h " << h;
+  }
+}
+
 // A room with a lamp and a block.
 std::string lit_room(const std::string& radiosity) {
   return R"("radiosity": )" + radiosity + R"(, "shapes": [
