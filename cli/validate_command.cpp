@@ -23,6 +23,7 @@
 
 #include "commands.h"
 #include "list_option.h"
+#include "radiosity/radiosity_settings.h"
 #include "thread_limit.h"
 #include "validate/cie171_validation.h"
 #include "validate/form_factor_validation.h"
@@ -40,6 +41,7 @@ struct ValidateOptions {
   int threads = 0;
   std::vector<std::string> methods;
   std::vector<std::string> cases;
+  std::string radiosity_solver;
 };
 
 int run_validate(const ValidateOptions& options) {
@@ -53,6 +55,12 @@ int run_validate(const ValidateOptions& options) {
       throw BadArgument(fmt::format(
           "--methods: unknown method '{}' (expected local, path, radiosity or meshless)", method));
   if (!options.cases.empty() && options.name != "cie171") throw BadArgument("--cases is for cie171");
+  if (!options.radiosity_solver.empty()) {
+    if (options.name != "cie171") throw BadArgument("--radiosity-solver is for cie171");
+    if (!kRadiositySolverNames.value(options.radiosity_solver))
+      throw BadArgument(fmt::format("--radiosity-solver: unknown solver '{}' (expected {})",
+                                    options.radiosity_solver, kRadiositySolverNames.names()));
+  }
   const std::vector<std::string> numbers = cie171_case_numbers();
   for (const std::string& number : options.cases)
     if (std::find(numbers.begin(), numbers.end(), number) == numbers.end())
@@ -71,6 +79,7 @@ int run_validate(const ValidateOptions& options) {
     run.quick = options.quick;
     run.only_methods = options.methods;
     run.only_cases = options.cases;
+    if (!options.radiosity_solver.empty()) run.radiosity_solver = options.radiosity_solver;
     const nlohmann::json results =
         run_cie171_validation(options.out, run, options.quiet ? nullptr : &std::cout);
     const int failures = results["failures"].get<int>();
@@ -115,6 +124,9 @@ void add_validate_command(CLI::App& app, std::function<int()>& run) {
   add_list_option(command, "--cases", options->cases,
                   "cie171: only these cases, by number (5.2, 5.3, 5.4, 5.5, 5.6, 5.7, 5.8, 5.9, 5.10, 5.11, "
                   "5.12, 5.13; 5.11: each of its variants)");
+  command->add_option("--radiosity-solver", options->radiosity_solver,
+                      "cie171: the radiosity method's solver (default gauss-seidel; progressive, gaussian, "
+                      "hierarchical)");
   command->add_option("--threads,--nthreads", options->threads, "Worker threads (default: all cores)");
   command->callback([options, &run]() {
     run = [options]() { return run_reporting_bad_input([&] { return run_validate(*options); }); };

@@ -785,6 +785,22 @@ TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
   EXPECT_FALSE(fs::exists(directory_ / "c171c"));
   EXPECT_EQ(run("validate form-factors --quick --cases 5.2 --out ff3", output), 2) << output;
   EXPECT_NE(output.find("--cases is for cie171"), std::string::npos) << output;
+  // Issue 52: --radiosity-solver runs the radiosity cases with another solver; hierarchical passes.
+  ASSERT_EQ(run("validate cie171 --quick -q --methods radiosity --radiosity-solver hierarchical --cases "
+                "5.3,5.7,5.8 "
+                "--out c171h",
+                output),
+            0)
+      << output;
+  std::ifstream hierarchical(directory_ / "c171h" / "results.json");
+  const nlohmann::json results = nlohmann::json::parse(hierarchical);
+  EXPECT_EQ(results["radiosity_solver"], "hierarchical");
+  EXPECT_EQ(results["failures"], 0);
+  EXPECT_EQ(run("validate cie171 --quick --radiosity-solver bogus --out c171d", output), 2) << output;
+  EXPECT_NE(output.find("--radiosity-solver: unknown solver 'bogus'"), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(directory_ / "c171d"));
+  EXPECT_EQ(run("validate sphere-disc --quick --radiosity-solver hierarchical --out sd4", output), 2)
+      << output;
 }
 
 }  // namespace

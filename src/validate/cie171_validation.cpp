@@ -87,15 +87,16 @@ std::string shapes_json(const std::vector<Rectangle>& rectangles, const std::str
   return shapes;
 }
 
-// The scene text around a case's parts. Radiosity: Gauss–Seidel to a tight tolerance on patches
-// of 0.25 m and elements of 0.125 m (quick: 1 and 0.5), the documented mesh density; meshless:
+// The scene text around a case's parts. Radiosity: Gauss–Seidel (or run.radiosity_solver) to a
+// tight tolerance on patches of 0.25 m and elements of 0.125 m (quick: 1 and 0.5), the documented
+// mesh density; meshless:
 // sites 0.25 m apart (quick: 0.3) from the camera's view.
 std::string scene_json(const std::string& camera, const std::string& materials, const std::string& lights,
                        const std::string& shapes, const std::string& extra, const Cie171Run& run) {
   return fmt::format(R"({{"format": "candela/1",
   "camera": {{{}, "fov": 90, "width": 48, "height": 48}},
 {}
-  "radiosity": {{"solver": "gauss-seidel", "threshold": 1e-6, "max_steps": 100000, "patch_size": {}, "element_size": {}}},
+  "radiosity": {{"solver": "{}", "threshold": 1e-6, "max_steps": 100000, "patch_size": {}, "element_size": {}}},
   "meshless": {{"spacing": {}}},
   "path": {{"max_depth": 1000}},
   "materials": {{"black": {{"kd": 0}}{}}},
@@ -106,8 +107,8 @@ std::string scene_json(const std::string& camera, const std::string& materials, 
                      extra.empty() ? R"(
   "background": [0, 0, 0],)"
                                    : "",
-                     run.quick ? 1.0 : 0.25, run.quick ? 0.5 : 0.125, run.quick ? 0.3 : 0.25, materials,
-                     lights, extra, shapes);
+                     run.radiosity_solver, run.quick ? 1.0 : 0.25, run.quick ? 0.5 : 0.125,
+                     run.quick ? 0.3 : 0.25, materials, lights, extra, shapes);
 }
 
 std::vector<ProbePoint> grid(const Vec3& corner, const Vec3& u, const Vec3& v, int nu, int nv,
@@ -689,6 +690,7 @@ nlohmann::json run_cie171_validation(const std::string& out_dir, const Cie171Run
   std::string summary_csv = "case,title,method,compared,largest_relative_error,tolerance,passed,seconds\n";
   nlohmann::json results;
   results["quick"] = run.quick;
+  results["radiosity_solver"] = run.radiosity_solver;
   results["luminous_efficacy"] = kLuminousEfficacy;
   int failures = 0;
   for (const Cie171Case& test : cases) {

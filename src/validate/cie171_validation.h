@@ -83,6 +83,8 @@ struct Cie171Run {
   std::vector<std::string> only_methods;  // empty: every method of each case
   // Empty: every case; else the case numbers to run ("5.11": each of its variants).
   std::vector<std::string> only_cases;
+  // The radiosity method's solver (issue 52: "hierarchical" passes every case too).
+  std::string radiosity_solver = "gauss-seidel";
 };
 
 // The cases, with the files they need (the Lambertian IES file) written into out_dir.
