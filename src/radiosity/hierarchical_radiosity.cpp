@@ -305,25 +305,19 @@ bool HierarchicalSolver::evaluate(Link& link) const {
   const Vec3 w = between / distance;
   link.values = {static_cast<float>(w.x), static_cast<float>(w.y), static_cast<float>(w.z)};
   const double inverse_square = 1 / (distance * distance);
-  // The bound of 1/r² over every pair of points of the two nodes: what the point kernel may be
-  // wrong by grows as the nodes come close for their size (a sphere's cluster whose box centre
-  // lies inside the sphere, seen from a point near its surface, gave 18 % too little).
-  const double nearest = distance - receiver.radius - source.radius;
-  const double near_square = 1 / (nearest * nearest);
   double factor = 0, bound = 0;
   if (!receiver.is_cluster) {
     const Vec3& n = tree_.surface(link.receiver).normal;
     if (dot(between, n) < -source.radius) return false;  // the cluster wholly behind the receiver
     factor = std::max(0.0, dot(n, w)) * inverse_square;
-    bound = near_square;
+    bound = inverse_square;
   } else if (!source.is_cluster) {
     const Vec3& n = tree_.surface(link.source).normal;
     if (dot(-between, n) < -receiver.radius) return false;  // the cluster wholly behind the source
     factor = source.area * std::max(0.0, -dot(n, w)) * inverse_square / kPi;
-    bound = source.area * near_square / kPi;
+    bound = source.area * inverse_square / kPi;
   } else {
-    factor = inverse_square;
-    bound = near_square;
+    factor = bound = inverse_square;
   }
   int visible_rays = 0;
   for (int k = 0; k < kVisibilityRays; ++k)
