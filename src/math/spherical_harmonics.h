@@ -54,7 +54,7 @@ inline Color sh_evaluate(const ShColor& coefficients, const Vec3& d) {
   const ShBasis y = sh_basis(d);
   Color sum;
   for (std::size_t k = 0; k < 9; ++k) sum += coefficients[k] * y[k];
-  return Color(std::max(sum.r, 0.0), std::max(sum.g, 0.0), std::max(sum.b, 0.0));
+  return max(sum, Color());
 }
 
 // The irradiance at a surface facing n of the radiance the coefficients hold, clamped at 0.
@@ -62,7 +62,7 @@ inline Color sh_irradiance(const ShColor& radiance, const Vec3& n) {
   const ShBasis y = sh_basis(n);
   Color sum;
   for (std::size_t k = 0; k < 9; ++k) sum += radiance[k] * (kClampedCosineBands[k] * y[k]);
-  return Color(std::max(sum.r, 0.0), std::max(sum.g, 0.0), std::max(sum.b, 0.0));
+  return max(sum, Color());
 }
 
 }  // namespace candela

@@ -141,6 +141,13 @@ constexpr Color operator*(double s, const Color& c) {
   return c * s;
 }
 
+inline Color min(const Color& a, const Color& b) {
+  return {std::min(a.r, b.r), std::min(a.g, b.g), std::min(a.b, b.b)};
+}
+inline Color max(const Color& a, const Color& b) {
+  return {std::max(a.r, b.r), std::max(a.g, b.g), std::max(a.b, b.b)};
+}
+
 // Rec. 709 / sRGB luminance Y of a linear color.
 constexpr double luminance(const Color& c) {
   return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;

@@ -28,10 +28,6 @@
 namespace candela {
 namespace {
 
-double max_channel(const Color& c) {
-  return std::max({c.r, c.g, c.b});
-}
-
 struct Link {
   uint32_t receiver = 0, source = 0;
   float factor = 0;       // K: irradiance at the receiver per unit radiosity (or intensity) of the source
@@ -100,6 +96,7 @@ class HierarchicalSolver {
   bool evaluate_surfaces(Link& link, Pcg32& random) const;
   Split decide(const Link& link) const;
   double power_error(const Link& link) const;
+  double source_magnitude(const Link& link) const;
   double relative_error(const Link& link) const;
   std::size_t refine(std::vector<uint32_t> candidates);
   bool within_memory() const;
@@ -110,8 +107,7 @@ class HierarchicalSolver {
   void pull();
   // A surface's irradiance: the mean of its corners' (the linear function's mean), at least 0.
   Color leaf_irradiance(uint32_t node) const {
-    const Color mean = (down_[node][0] + down_[node][1] + down_[node][2]) * (1.0 / 3);
-    return Color(std::max(mean.r, 0.0), std::max(mean.g, 0.0), std::max(mean.b, 0.0));
+    return max((down_[node][0] + down_[node][1] + down_[node][2]) * (1.0 / 3), Color());
   }
   std::vector<double> row_sums();
   bool visible(const Vec3& from, const Vec3& to) const;
@@ -176,11 +172,11 @@ void HierarchicalSolver::compute_direct(std::span<const uint32_t> nodes) {
     Color sum, low = direct[0], high = direct[0];
     for (const Color& sample : direct) {
       sum += sample;
-      low = Color(std::min(low.r, sample.r), std::min(low.g, sample.g), std::min(low.b, sample.b));
-      high = Color(std::max(high.r, sample.r), std::max(high.g, sample.g), std::max(high.b, sample.b));
+      low = min(low, sample);
+      high = max(high, sample);
     }
     made.surface.first_shot = made.surface.reflectance * sum * 0.25;
-    made.direct_error = made.surface.area * max_channel(made.surface.reflectance * (high - low));
+    made.direct_error = made.surface.area * (made.surface.reflectance * (high - low)).max_component();
     made.direct_done = true;
   });
   direct_seconds_ += time.seconds();
@@ -190,8 +186,8 @@ void HierarchicalSolver::split_for_direct_light() {
   std::vector<uint32_t> check;
   for (uint32_t i = 0; i < tree_.nodes.size(); ++i)
     if (!tree_.nodes[i].is_cluster && tree_.is_leaf(i)) check.push_back(i);
+  compute_direct(check);
   while (!check.empty() && !stopped()) {
-    compute_direct(check);
     std::vector<uint32_t> next;
     for (const uint32_t node : check) {
       if (!tree_.is_leaf(node) || !can_split(node) ||
@@ -339,10 +335,15 @@ bool HierarchicalSolver::evaluate(Link& link) const {
 // intensity bound Σ B A / π) × ΔK.
 double HierarchicalSolver::power_error(const Link& link) const {
   const HierarchyNode& receiver = tree_.nodes[link.receiver];
+  return receiver.reflectance_max * receiver.area * source_magnitude(link) * link.uncertainty;
+}
+
+// What a link's factor multiplies at its source: a surface's radiosity, or the bound Σ B A / π of a
+// cluster's intensity (the largest channel).
+double HierarchicalSolver::source_magnitude(const Link& link) const {
   const HierarchyNode& source = tree_.nodes[link.source];
-  const double magnitude = source.is_cluster ? max_channel(cluster_power_[source.payload]) / kPi
-                                             : max_channel(radiosity_[link.source]);
-  return receiver.reflectance_max * receiver.area * magnitude * link.uncertainty;
+  return source.is_cluster ? cluster_power_[source.payload].max_component() / kPi
+                           : radiosity_[link.source].max_component();
 }
 
 // How uncertain a surface-to-surface link's factor is relative to itself. The power oracle alone
@@ -358,11 +359,9 @@ double HierarchicalSolver::relative_error(const Link& link) const {
   // A link with a cluster: the irradiance it may be wrong by, reflected, over the radiosity the
   // receiver shows (a small receiver before a large source would otherwise take all its light
   // through clusters, the power oracle finding its share too small to matter).
-  const double own = receiver.is_cluster ? max_channel(cluster_power_[receiver.payload]) / receiver.area
-                                         : max_channel(radiosity_[link.receiver]);
-  const double magnitude = source.is_cluster ? max_channel(cluster_power_[source.payload]) / kPi
-                                             : max_channel(radiosity_[link.source]);
-  const double error = receiver.reflectance_max * magnitude * link.uncertainty;
+  const double own = receiver.is_cluster ? cluster_power_[receiver.payload].max_component() / receiver.area
+                                         : radiosity_[link.receiver].max_component();
+  const double error = receiver.reflectance_max * source_magnitude(link) * link.uncertainty;
   return own > 0 ? error / own : (error > 0 ? kInfinity : 0);
 }
 
@@ -391,9 +390,10 @@ Split HierarchicalSolver::decide(const Link& link) const {
 }
 
 bool HierarchicalSolver::within_memory() const {
-  const double bytes = static_cast<double>(tree_.memory_bytes() + links_.capacity() * sizeof(Link)) +
-                       static_cast<double>(radiosity_.capacity()) * 3 * sizeof(Color) +
-                       static_cast<double>(cluster_out_.capacity()) * (3 * sizeof(ShColor) + sizeof(Color));
+  const double bytes =
+      static_cast<double>(tree_.memory_bytes() + links_.capacity() * sizeof(Link)) +
+      static_cast<double>(radiosity_.capacity()) * (sizeof(Color) + 2 * sizeof(CornerIrradiance)) +
+      static_cast<double>(cluster_out_.capacity()) * (3 * sizeof(ShColor) + sizeof(Color));
   return bytes < 0.9 * static_cast<double>(form_factor_memory_limit(settings_));
 }
 
@@ -567,10 +567,8 @@ double HierarchicalSolver::update_leaves(double& largest) {
     if (tree_.nodes[i].is_cluster || !tree_.is_leaf(i)) continue;
     const RadiositySurface& s = tree_.surface(i);
     const Color b = s.emission + s.first_shot + s.reflectance * leaf_irradiance(i);
-    change =
-        std::max(change, max_channel(Color(std::fabs(b.r - radiosity_[i].r), std::fabs(b.g - radiosity_[i].g),
-                                           std::fabs(b.b - radiosity_[i].b))));
-    largest = std::max(largest, max_channel(b - s.emission));
+    change = std::max(change, max(b - radiosity_[i], radiosity_[i] - b).max_component());
+    largest = std::max(largest, (b - s.emission).max_component());
     radiosity_[i] = b;
   }
   return change;
@@ -665,19 +663,13 @@ RadiositySolveResult HierarchicalSolver::result(const std::vector<double>& sums)
 
 RadiositySolveResult HierarchicalSolver::solve() {
   Stopwatch solve_time;
-  grow_state();
   // The power the scene emits and reflects first (before any split: each input triangle's own
-  // samples), which the tolerance is a fraction of.
-  std::vector<uint32_t> roots(tree_.root_of_input.begin(), tree_.root_of_input.end());
-  compute_direct(roots);
-  first_round_ = true;
+  // samples), which the tolerance is a fraction of; every node starts at B = E + first shot.
+  compute_direct(tree_.root_of_input);
   grow_state();
   double power = 0;
-  for (const uint32_t root : roots) {
-    const RadiositySurface& s = tree_.surface(root);
-    power += max_channel(s.emission + s.first_shot) * s.area;
-    radiosity_[root] = s.emission + s.first_shot;
-  }
+  for (const uint32_t root : tree_.root_of_input)
+    power += radiosity_[root].max_component() * tree_.nodes[root].area;
   epsilon_ = settings_.refinement_tolerance * power;
   relative_tolerance_ = std::min(kRelativeTolerancePerPowerTolerance * settings_.refinement_tolerance, 0.5);
   split_for_direct_light();
@@ -826,14 +818,14 @@ RadiositySolveResult solve_hierarchical_radiosity(const Scene& scene, const Radi
   if (input.triangles.empty())
     throw std::invalid_argument("radiosity mesh: the scene has no surface to mesh");
   RadiosityHierarchy hierarchy(scene, input);
-  FormFactorGeometry geometry;
+  TriangleMesh visible_surfaces;  // what visibility rays are traced against
   for (const CornerTriangle& triangle : input.triangles) {
-    const auto first = static_cast<uint32_t>(geometry.mesh.positions.size());
-    for (const MeshCorner& corner : triangle) geometry.mesh.positions.push_back(corner.position);
-    geometry.mesh.triangles.push_back({first, first + 1, first + 2});
+    const auto first = static_cast<uint32_t>(visible_surfaces.positions.size());
+    for (const MeshCorner& corner : triangle) visible_surfaces.positions.push_back(corner.position);
+    visible_surfaces.triangles.push_back({first, first + 1, first + 2});
   }
-  auto occluders = std::make_unique<TriangleOccluders>(geometry.mesh);
-  geometry = FormFactorGeometry();
+  auto occluders = std::make_unique<TriangleOccluders>(visible_surfaces);
+  visible_surfaces = TriangleMesh();
   const double mesh_seconds = mesh_time.seconds();
   HierarchicalSolver solver(scene, settings, options, hierarchy, std::move(occluders));
   RadiositySolveResult result = solver.solve();

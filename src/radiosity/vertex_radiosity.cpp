@@ -68,10 +68,6 @@ class VertexIndex {
       tree_;
 };
 
-Color clamped_at_zero(const Color& c) {
-  return {std::max(c.r, 0.0), std::max(c.g, 0.0), std::max(c.b, 0.0)};
-}
-
 }  // namespace
 
 VertexRadiosity compute_vertex_radiosity(const std::vector<RadiositySurface>& elements,
@@ -199,7 +195,7 @@ VertexRadiosity compute_vertex_radiosity(const std::vector<RadiositySurface>& el
           mean_of(elements_of_edge[make_edge(v, nearest)]) * 2.0 - result.radiosity[nearest];
     }
   }
-  for (Color& b : result.radiosity) b = clamped_at_zero(b);
+  for (Color& b : result.radiosity) b = max(b, Color());
   // Gouraud without cracks (SPEC §10.1): a T-junction vertex gets the radiosity interpolated along
   // the larger element's edge, which is what that element shows there; the longest edges first, so
   // that a vertex on a shorter edge that is itself a junction reads its ends' final values.
