@@ -84,6 +84,74 @@ ElementSolution shoot_progressively(
   return solution;
 }
 
+// Refused before the mesh is built (it can take gigabytes itself): the fewest patches and elements
+// these sizes can give, and what their form factors would take.
+void refuse_before_meshing(const Scene& scene, const RadiositySettings& settings,
+                           const RadiosityMeshSettings& mesh_settings, const std::string& fewer) {
+  const bool progressive = settings.solver == RadiositySolver::progressive;
+  const RadiosityMeshEstimate least = estimate_radiosity_mesh(scene, mesh_settings);
+  const double element_bytes = least.elements * least.patches * sizeof(float);
+  const double patch_bytes = progressive ? 0.0
+                                         : least.patches * least.patches * sizeof(double) *
+                                               (settings.solver == RadiositySolver::gaussian ? 3 : 1);
+  const double bytes = std::min(element_bytes + patch_bytes, 1.8e19);
+  check_form_factor_memory(
+      static_cast<uint64_t>(bytes), settings,
+      fmt::format("a mesh of at least {:.0f} patches and {:.0f} elements", least.patches, least.elements),
+      progressive ? fewer : "use radiosity.solver \"progressive\", or " + fewer);
+}
+
+// The seconds of the solve's phases that solve_facts reports beside the result's own.
+struct SolveSeconds {
+  double form_factors = 0, first_shot = 0;
+};
+
+// What the solve measured: the "radiosity" facts of render --stats without the display's. row_sums
+// are the rows the solver read (element rows for progressive, patch rows for the direct solvers,
+// which report their element rows too).
+nlohmann::json solve_facts(const Scene& scene, const RadiositySettings& settings,
+                           const RadiositySolveResult& result, const SolveSeconds& times,
+                           const Reciprocity& reciprocity, const std::vector<double>& row_sums,
+                           const std::vector<double>* element_row_sums, bool form_factors_complete) {
+  const bool progressive = settings.solver == RadiositySolver::progressive;
+  nlohmann::json out = {
+      {"solver", kRadiositySolverNames.name(settings.solver)},
+      {"form_factors", kRadiosityFormFactorNames.name(settings.form_factors)},
+      {"hemicube_resolution", settings.hemicube_resolution},
+      {"patches", result.mesh.patches.size()},
+      {"elements", result.mesh.elements.size()},
+      {"patch_size", result.mesh.patch_size},
+      {"element_size", result.mesh.element_size},
+      {"steps", result.steps},
+      {"converged", result.converged},
+      {"unshot_fraction", result.unshot_fraction},
+      {"subdivision_passes", result.subdivision_passes},
+      {"form_factor_rows", result.form_factor_rows},
+      {"form_factors_computed", result.form_factors},
+      {"form_factors_per_second",
+       times.form_factors > 0 ? static_cast<double>(result.form_factors) / times.form_factors : 0.0},
+      {"form_factor_memory_mib", static_cast<double>(result.form_factor_bytes) / 1048576.0},
+      {"mesh_seconds", result.mesh_seconds},
+      {"solve_seconds", result.solve_seconds},
+      {"form_factor_seconds", times.form_factors},
+      {"scene_lights", scene.lights.size()},
+      {"first_shot_seconds", times.first_shot}};
+  if (reciprocity.measured) {  // progressive: up to 2,048 patches
+    out["reciprocity_error"] = reciprocity.mean_error;
+    out["reciprocity_error_max"] = reciprocity.max_error;
+  }
+  out["row_sum"] = row_sum_facts(row_sums);
+  if (element_row_sums) out["element_row_sum"] = row_sum_facts(*element_row_sums);
+  if (cancel_requested()) {
+    out["interrupted"] = true;
+    out["completed"] =
+        !form_factors_complete ? std::string("form factors not finished")
+        : progressive ? fmt::format("{} shots, unshot {:.3g}%", result.steps, 100 * result.unshot_fraction)
+                      : fmt::format("{} sweeps", result.steps);
+  }
+  return out;
+}
+
 }  // namespace
 
 RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings& settings,
@@ -104,20 +172,7 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
   const auto stopped = [&] { return cancelled_anywhere(cluster); };
   const std::string fewer =
       "raise radiosity.patch_size or radiosity.element_size (fewer patches and elements)";
-  {
-    // Refused before the mesh is built (it can take gigabytes itself): the fewest patches and
-    // elements these sizes can give, and what their form factors would take.
-    const RadiosityMeshEstimate least = estimate_radiosity_mesh(scene, mesh_settings);
-    const double element_bytes = least.elements * least.patches * sizeof(float);
-    const double patch_bytes = progressive ? 0.0
-                                           : least.patches * least.patches * sizeof(double) *
-                                                 (settings.solver == RadiositySolver::gaussian ? 3 : 1);
-    const double bytes = std::min(element_bytes + patch_bytes, 1.8e19);
-    check_form_factor_memory(
-        static_cast<uint64_t>(bytes), settings,
-        fmt::format("a mesh of at least {:.0f} patches and {:.0f} elements", least.patches, least.elements),
-        progressive ? fewer : "use radiosity.solver \"progressive\", or " + fewer);
-  }
+  refuse_before_meshing(scene, settings, mesh_settings, fewer);
   result.mesh = build_radiosity_mesh(scene, mesh_settings);
   result.mesh_seconds = mesh_time.seconds();
   Stopwatch first_shot_time;
@@ -282,43 +337,10 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
                         (form_factor_rows - (progressive ? 0 : patch_count)) * patch_count;
   result.form_factor_bytes = element_rows_bytes(mesh.elements.size(), patch_count);
   result.solve_seconds = solve_time.seconds();
-  if (options.facts) {
-    nlohmann::json& out = *options.facts;
-    out = {{"solver", kRadiositySolverNames.name(settings.solver)},
-           {"form_factors", kRadiosityFormFactorNames.name(settings.form_factors)},
-           {"hemicube_resolution", settings.hemicube_resolution},
-           {"patches", patch_count},
-           {"elements", mesh.elements.size()},
-           {"patch_size", mesh.patch_size},
-           {"element_size", mesh.element_size},
-           {"steps", result.steps},
-           {"converged", result.converged},
-           {"unshot_fraction", result.unshot_fraction},
-           {"subdivision_passes", result.subdivision_passes},
-           {"form_factor_rows", result.form_factor_rows},
-           {"form_factors_computed", result.form_factors},
-           {"form_factors_per_second",
-            form_factor_seconds > 0 ? static_cast<double>(result.form_factors) / form_factor_seconds : 0.0},
-           {"form_factor_memory_mib", static_cast<double>(result.form_factor_bytes) / 1048576.0},
-           {"mesh_seconds", result.mesh_seconds},
-           {"solve_seconds", result.solve_seconds},
-           {"form_factor_seconds", form_factor_seconds},
-           {"scene_lights", scene.lights.size()},
-           {"first_shot_seconds", first_shot_seconds}};
-    if (reciprocity.measured) {  // progressive: up to 2,048 patches
-      out["reciprocity_error"] = reciprocity.mean_error;
-      out["reciprocity_error_max"] = reciprocity.max_error;
-    }
-    out["row_sum"] = row_sum_facts(progressive ? rows.sums : patch_sums);
-    if (!progressive) out["element_row_sum"] = row_sum_facts(rows.sums);
-    if (cancel_requested()) {
-      out["interrupted"] = true;
-      out["completed"] =
-          !form_factors_complete ? std::string("form factors not finished")
-          : progressive ? fmt::format("{} shots, unshot {:.3g}%", result.steps, 100 * result.unshot_fraction)
-                        : fmt::format("{} sweeps", result.steps);
-    }
-  }
+  if (options.facts)
+    *options.facts = solve_facts(scene, settings, result, {form_factor_seconds, first_shot_seconds},
+                                 reciprocity, progressive ? rows.sums : patch_sums,
+                                 progressive ? nullptr : &rows.sums, form_factors_complete);
   return result;
 }
 
