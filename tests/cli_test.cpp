@@ -1883,12 +1883,13 @@ TEST_F(Cli, MethodsThatWouldHoldMoreThanTheMemoryLimitAreRefusedBeforeAnyWork) {
   write("field.json", R"({"format": "candela/1",
     "camera": {"eye": [10, 3, 8], "target": [10, 0, 0], "width": 40, "height": 30},
     "lights": [{"type": "point", "position": [10, 5, 2], "intensity": 20}],
-    "meshless": {"spacing": 0.5, "grid": 8, "rounds": 1},
+    "meshless": {"spacing": 0.002, "grid": 8, "rounds": 1},
     "shapes": [)" + spheres +
                           R"({"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0]}]})");
   std::string output;
   // 20 spheres of 64 × 62 triangles (the effective areas' tessellation: 64 longitudes, 32 bands of
-  // which the two at the poles are single triangles); the plane lies outside the spheres' box.
+  // which the two at the poles are single triangles; chords within Δ/8 of a sphere of radius 0.25
+  // would take 70 a turn); the plane lies outside the spheres' box.
   EXPECT_EQ(run("render field.json -q --method meshless --set render.memory_limit_mib=60 -o out.png", output),
             2)
       << output;

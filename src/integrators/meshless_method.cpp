@@ -261,10 +261,9 @@ std::vector<MemoryPart> MeshlessMethod::memory_needed(const Scene& scene,
   if (settings_.effective_area == MeshlessAreas::integrated) {
     // The surfaces as integrate_effective_areas tessellates them (planes end where sites reach: a
     // few triangles whatever the box).
-    TessellationRequest request;
-    request.max_segments = kEffectiveAreaSegments;
-    request.clip = scene.bounds();
-    const std::size_t triangles = tessellated_triangle_count(scene, request);
+    const std::size_t triangles = tessellated_triangle_count(
+        scene, effective_area_tessellation(scene, site_spacing(scene, settings_.spacing) / 4,
+                                           kEffectiveAreaSegments));
     parts.push_back({fmt::format("the effective-area integration's {} triangles", triangles),
                      static_cast<uint64_t>(triangles) * kEffectiveAreaTriangleBytes,
                      "meshless.effective_area",

@@ -41,6 +41,12 @@ inline constexpr std::size_t kEffectiveAreaTriangleBytes = 3 * kTessellatedTrian
                                                            sizeof(std::vector<std::pair<uint32_t, double>>) +
                                                            16 + 4 * sizeof(std::pair<uint32_t, double>);
 
+// The tessellation the integration runs over, before its planes are cut around the sites: at most
+// `segments` per turn, and curved shapes by chord error — chords within half a cell of the surface,
+// the midpoint rule's own resolution (issue 52: the 10,584 small spheres of sphere-field-10584.json
+// were 42 M triangles at 64 segments each, and 24 GB).
+TessellationRequest effective_area_tessellation(const Scene& scene, double cell, int segments);
+
 std::vector<double> integrate_effective_areas(const Scene& scene, const MeshlessBasis& basis,
                                               const SiteSet& sites, double cell, int segments = 64,
                                               Cluster* cluster = nullptr, bool quiet = true);

@@ -78,6 +78,12 @@ void assign_radii(SiteSet& set, int neighbours) {
   });
 }
 
+double site_spacing(const Scene& scene, double spacing) {
+  if (spacing > 0) return spacing;
+  const Bounds3 bounds = scene.bounds();
+  return (bounds.empty() || !bounds.is_finite() ? 1.0 : std::max(length(bounds.diagonal()), 1e-300)) / 50;
+}
+
 SiteSet sample_sites(const Scene& scene, const SiteSamplingSettings& settings, ProgressReporter* progress) {
   if (settings.grid < 1) throw std::invalid_argument("site sampling: grid must be >= 1");
   if (settings.rounds < 0) throw std::invalid_argument("site sampling: rounds must be >= 0");
@@ -88,7 +94,7 @@ SiteSet sample_sites(const Scene& scene, const SiteSamplingSettings& settings, P
   const Bounds3 bounds = scene.bounds();
   const double scene_size =
       bounds.empty() || !bounds.is_finite() ? 1.0 : std::max(length(bounds.diagonal()), 1e-300);
-  set.spacing = settings.spacing > 0 ? settings.spacing : scene_size / 50;
+  set.spacing = site_spacing(scene, settings.spacing);
   if (set.spacing < 1e-7 * scene_size)
     throw std::invalid_argument(
         fmt::format("site sampling: the spacing {:g} is below 1e-7 of the scene's size {:g}; "
