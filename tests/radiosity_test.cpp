@@ -123,18 +123,18 @@ void expect_furnace(const std::string& radiosity) {
 
 TEST(RadiosityMethod, FurnaceProgressiveWithSubstructuring) {
   expect_furnace(
-      R"({"patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-4, "ambient": false})");
+      R"({"solver": "progressive", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-4, "ambient": false})");
 }
 
 TEST(RadiosityMethod, FurnaceProgressiveWithAmbient) {
   // Stopped early, the ambient term of 000 §6.6.2 stands in for what is left unshot: in a uniform
   // closed furnace it is nearly exact, so 5% unshot still shows E / (1 − ρ) everywhere...
   expect_furnace(
-      R"({"patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 0.05, "ambient": true})");
+      R"({"solver": "progressive", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 0.05, "ambient": true})");
   // ...which without it is far off.
   const auto scene = scene_from(
       furnace_scene(
-          R"({"patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 0.05, "ambient": false})"),
+          R"({"solver": "progressive", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 0.05, "ambient": false})"),
       kFurnaceCamera);
   const RadiositySolveResult result = solve_radiosity(*scene, true);
   double mean = 0;
@@ -155,7 +155,7 @@ TEST(RadiosityMethod, FurnaceGaussianElimination) {
 
 TEST(RadiosityMethod, FurnaceProgressiveWithRayCastFormFactors) {
   expect_furnace(
-      R"({"form_factors": "ray-cast", "ray_cast_samples": 3, "patch_size": 1, "element_size": 0.5, "threshold": 1e-4, "ambient": false})");
+      R"({"solver": "progressive", "form_factors": "ray-cast", "ray_cast_samples": 3, "patch_size": 1, "element_size": 0.5, "threshold": 1e-4, "ambient": false})");
 }
 
 TEST(RadiosityMethod, FurnaceGaussianWithRayCastFormFactors) {
@@ -168,7 +168,8 @@ TEST(RadiosityMethod, SettingsAreCheckedAndUnknownKeysRefused) {
     return scene_from(furnace_scene(radiosity), kFurnaceCamera);
   };
   EXPECT_EQ(radiosity_settings(*load("{}")).hemicube_resolution, 100);
-  EXPECT_EQ(radiosity_settings(*load("{}")).solver, RadiositySolver::progressive);
+  // Issue 52: hierarchical radiosity is the default solver.
+  EXPECT_EQ(radiosity_settings(*load("{}")).solver, RadiositySolver::hierarchical);
   EXPECT_EQ(radiosity_settings(*load(R"({"solver": "gaussian"})")).solver, RadiositySolver::gaussian);
   EXPECT_EQ(radiosity_settings(*load("{}")).form_factors, RadiosityFormFactors::hemicube);
   EXPECT_EQ(radiosity_settings(*load(R"({"form_factors": "ray-cast"})")).form_factors,
@@ -187,6 +188,18 @@ TEST(RadiosityMethod, SettingsAreCheckedAndUnknownKeysRefused) {
   EXPECT_THROW(load(R"({"hemicube_resolution": 2048})"), std::exception);  // 12 MiB per thread at most
   EXPECT_EQ(radiosity_settings(*load(R"({"hemicube_resolution": 1024})")).hemicube_resolution, 1024);
   EXPECT_THROW(load(R"({"subdivision_threshold": 1.5})"), std::exception);
+  // Adaptive subdivision is the classic solvers': with the hierarchical one, the default, it is
+  // refused naming the setting to change (it was ignored).
+  try {
+    load(R"({"subdivision_threshold": 0.1})");
+    ADD_FAILURE() << "subdivision_threshold with the hierarchical solver was not refused";
+  } catch (const std::exception& error) {
+    EXPECT_NE(std::string(error.what()).find("set radiosity.solver to \"progressive\""), std::string::npos)
+        << error.what();
+  }
+  EXPECT_EQ(radiosity_settings(*load(R"({"solver": "progressive", "subdivision_threshold": 0.1})"))
+                .subdivision_threshold,
+            0.1);
   EXPECT_THROW(load(R"({"element_size": 0.5, "min_element_size": 1})"), std::exception);
   EXPECT_THROW(load(R"({"memory_limit_mib": -1})"), std::exception);
   EXPECT_FALSE(radiosity_settings(*load("{}")).split_at_contacts);
@@ -217,22 +230,22 @@ TEST(RadiosityMethod, SolvesThatDoNotFitAreRefusedNamingTheSettings) {
   refused(R"({"solver": "gauss-seidel", "patch_size": 0.25, "element_size": 0.25, "memory_limit_mib": 1})",
           {"radiosity.solver", "radiosity.patch_size"});
   // Progressive keeps elements × patches floats: 3,072 × 768 × 4 bytes ≈ 9 MiB.
-  refused(R"({"patch_size": 0.25, "element_size": 0.125, "memory_limit_mib": 1})",
+  refused(R"({"solver": "progressive", "patch_size": 0.25, "element_size": 0.125, "memory_limit_mib": 1})",
           {"radiosity.patch_size", "radiosity.element_size"});
   // A mesh far too large is refused from the sizes alone, before it is built (it would take
   // gigabytes itself): 24 m² in elements of 1 mm.
-  refused(R"({"patch_size": 0.001, "element_size": 0.001})",
+  refused(R"({"solver": "progressive", "patch_size": 0.001, "element_size": 0.001})",
           {"radiosity.patch_size", "radiosity.element_size", "at least"});
   // A limit beyond 2⁶⁴ bytes is no limit (not a wrapped-around 0).
   const auto generous = scene_from(
       furnace_scene(
-          R"({"patch_size": 1, "element_size": 1, "memory_limit_mib": 2e13, "hemicube_resolution": 20, "threshold": 0.05})"),
+          R"({"solver": "progressive", "patch_size": 1, "element_size": 1, "memory_limit_mib": 2e13, "hemicube_resolution": 20, "threshold": 0.05})"),
       kFurnaceCamera);
   EXPECT_NO_THROW(solve_radiosity(*generous, true));
   // Within the limit the same scene solves.
   const auto scene = scene_from(
       furnace_scene(
-          R"({"patch_size": 0.5, "element_size": 0.5, "memory_limit_mib": 1, "hemicube_resolution": 20, "threshold": 0.05})"),
+          R"({"solver": "progressive", "patch_size": 0.5, "element_size": 0.5, "memory_limit_mib": 1, "hemicube_resolution": 20, "threshold": 0.05})"),
       kFurnaceCamera);
   EXPECT_NO_THROW(solve_radiosity(*scene, true));
 }
@@ -483,14 +496,14 @@ TEST(RadiosityDisplay, SettingDefaultsToRayTracedAndIsChecked) {
 // A constant field stays constant: every vertex of the furnace gets E / (1 − ρ) too.
 TEST(RadiosityDisplay, FurnaceGouraudShowsEOverOneMinusRhoEverywhere) {
   expect_furnace(
-      R"({"display": "gouraud", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-4, "ambient": false})");
+      R"({"solver": "progressive", "display": "gouraud", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-4, "ambient": false})");
   expect_furnace(
       R"({"display": "gouraud", "solver": "gaussian", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60})");
 }
 
 TEST(RadiosityDisplay, FurnaceRayTracedShowsEOverOneMinusRhoEverywhere) {
   expect_furnace(
-      R"({"display": "ray-traced", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-4, "ambient": false})");
+      R"({"solver": "progressive", "display": "ray-traced", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-4, "ambient": false})");
 }
 
 // The ray-traced view looks up the same vertex field the Gouraud display interpolates on screen:
@@ -522,7 +535,7 @@ TEST(RadiosityDisplay, RayTracedViewMatchesGouraud) {
 TEST(RadiosityDisplay, ElementsDisplayOutlinesEveryElement) {
   const auto scene = scene_from(
       furnace_scene(
-          R"({"display": "elements", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 40, "threshold": 1e-4, "ambient": false})"),
+          R"({"solver": "progressive", "display": "elements", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 40, "threshold": 1e-4, "ambient": false})"),
       R"({"eye": [1, 1, 1.9], "target": [1, 1, 0], "fov": 80, "width": 64, "height": 64})");
   EXPECT_EQ(radiosity_settings(*scene).display, RadiosityDisplay::elements);
   RunStatistics statistics;
@@ -544,7 +557,7 @@ TEST(RadiosityDisplay, ElementsDisplayOutlinesEveryElement) {
 
 TEST(RadiosityDisplay, FurnaceFlatShowsEOverOneMinusRhoEverywhere) {
   expect_furnace(
-      R"({"display": "flat", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-4, "ambient": false})");
+      R"({"solver": "progressive", "display": "flat", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 1e-4, "ambient": false})");
 }
 
 // The sum of squared differences between horizontally adjacent pixels in the image's bottom rows

@@ -167,7 +167,7 @@ TEST_F(ReportCli, WritesThePageTheJsonAndEveryImage) {
   ASSERT_EQ(units["path"].size(), 5u);  // 4 passes and the image
   EXPECT_EQ(units["path"][3].rfind("passes,4,", 0), 0u);
   EXPECT_GE(units["radiosity"].size(), 2u);
-  EXPECT_EQ(units["radiosity"][0].rfind("shots,", 0), 0u);
+  EXPECT_EQ(units["radiosity"][0].rfind("iterations,", 0), 0u);  // hierarchical: Jacobi iterations
   EXPECT_EQ(units["meshless"][0].rfind("iterations,1,", 0), 0u);
   EXPECT_EQ(units["path (equal time: whitted)"].back().rfind("final,", 0), 0u);
   const std::string chart = read(out / "convergence.svg");

@@ -580,6 +580,20 @@ Split HierarchicalSolver::decide(const Link& link) const {
     return source_can ? Split::source : Split::none;
   };
   if (link.flags & kUnseparated) return larger();
+  if (!receiver.is_cluster && !source.is_cluster && source.child_count > 0 && source_can) {
+    // The link moves the source's mean radiosity, which is wrong for a receiver that sees one part
+    // of the source more than the rest where the radiosity varies across it: the floor beside a
+    // wall lit from an opening above sees most of the wall's dark foot (the open room under a sky
+    // came out 4 % bright, its floor's reflected light 10 % too much from each wall). Split the
+    // source while the power that may be wrong by is above the tolerance.
+    Color low = radiosity_[source.first_child], high = low;
+    for (uint32_t c = source.first_child + 1; c < source.first_child + source.child_count; ++c) {
+      low = min(low, radiosity_[c]);
+      high = max(high, radiosity_[c]);
+    }
+    if (receiver.reflectance_max * receiver.area * link.factor * (high - low).max_component() > epsilon_)
+      return Split::source;
+  }
   const double power = power_error(link);
   const double gate = (receiver.is_cluster || source.is_cluster) ? kClusterGate : kRelativeGate;
   if (!(power > epsilon_) && !(power > gate * epsilon_ && relative_error(link) > relative_tolerance_))

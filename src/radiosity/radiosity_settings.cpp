@@ -23,6 +23,15 @@ RadiositySettings read_radiosity_settings(const JsonNode& node) {
   settings.ambient = node.boolean("ambient", true);
   settings.display = node.enumeration("display", settings.display, kRadiosityDisplayNames);
   settings.subdivision_threshold = node.number("subdivision_threshold", 0.0, Range::unit());
+  // Issue 52: hierarchical radiosity (the default) refines by its own oracle; a scene asking for the
+  // classic solvers' adaptive subdivision is told so rather than have it ignored.
+  if (settings.subdivision_threshold > 0 && settings.solver == RadiositySolver::hierarchical)
+    node.at("subdivision_threshold")
+        .fail(
+            "subdivision_threshold is adaptive subdivision for the classic solvers: set radiosity.solver to "
+            "\"progressive\", \"gauss-seidel\" or \"gaussian\" (the hierarchical solver, the default, "
+            "refines "
+            "by radiosity.refinement_tolerance)");
   settings.min_element_size = node.number("min_element_size", 0.0, Range::non_negative());
   // The element size the mesh will use when one is given (element_size, else patch_size / 2).
   const double element_size = settings.element_size > 0 ? settings.element_size : settings.patch_size / 2;

@@ -19,7 +19,7 @@ enum class RadiosityFormFactors { hemicube, ray_cast };
 enum class RadiosityDisplay { flat, gouraud, ray_traced, elements };
 
 struct RadiositySettings {
-  RadiositySolver solver = RadiositySolver::progressive;
+  RadiositySolver solver = RadiositySolver::hierarchical;
   RadiosityFormFactors form_factors = RadiosityFormFactors::hemicube;
   int hemicube_resolution = 100;  // even, ≥ 2 (000 §6.4)
   int ray_cast_samples = 4;       // per side of the source: 16 visibility rays per form factor
