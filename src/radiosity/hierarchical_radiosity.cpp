@@ -127,6 +127,11 @@ class HierarchicalSolver {
   void grow_state();
   void split_for_direct_light();
   bool evaluate(Link& link) const;
+  // The link's own random stream (its rays' jitter), whatever the thread or the order of links.
+  Pcg32 link_stream(const Link& link) const {
+    return Pcg32(options_.seed ^ 0x6a09e667f3bcc909ULL,
+                 (static_cast<uint64_t>(link.receiver) << 32) | link.source);
+  }
   void transport(Link& link) const;
   KernelMembers kernel_members(uint32_t node, uint32_t count, bool receiving) const;
   bool evaluate_surfaces(Link& link, Pcg32& random) const;
@@ -356,8 +361,7 @@ KernelMembers HierarchicalSolver::kernel_members(uint32_t node, uint32_t count, 
 bool HierarchicalSolver::evaluate(Link& link) const {
   const HierarchyNode& receiver = tree_.nodes[link.receiver];
   const HierarchyNode& source = tree_.nodes[link.source];
-  Pcg32 random(options_.seed ^ 0x6a09e667f3bcc909ULL,
-               (static_cast<uint64_t>(link.receiver) << 32) | link.source);
+  Pcg32 random = link_stream(link);
   link.flags = 0;
   link.factor = link.uncertainty = 0;
   if (!receiver.is_cluster && !source.is_cluster) return evaluate_surfaces(link, random);
@@ -412,8 +416,7 @@ bool HierarchicalSolver::evaluate(Link& link) const {
 void HierarchicalSolver::transport(Link& link) const {
   const HierarchyNode& receiver = tree_.nodes[link.receiver];
   const HierarchyNode& source = tree_.nodes[link.source];
-  Pcg32 random(options_.seed ^ 0x6a09e667f3bcc909ULL,
-               (static_cast<uint64_t>(link.receiver) << 32) | link.source);
+  Pcg32 random = link_stream(link);
   const Vec3 w(link.values[0], link.values[1], link.values[2]);
   const double distance = length(source.centre - receiver.centre);
   const KernelMembers receivers = kernel_members(link.receiver, kCorrectionReceivers, true),
