@@ -152,13 +152,13 @@ std::string square_receiver(double half) {
 
 // Howell's point-to-sphere factor F = (r/h)² through the solver, at default settings: a square
 // receiver (ρ 0.5) facing an emitting sphere (E = 1, radius 1, by chord error) at h = 1.5 … 5; its
-// mean B is ρ × the factor averaged over it. Measured with a 0.2 receiver −0.44, −0.28, −0.04,
+// mean B is ρ × the factor averaged over it. Measured with a 0.2 receiver −0.09, −0.28, −0.04,
 // +0.43 %; before the clusters' kernels were corrected (HierarchicalSolver::transport) +0.67,
 // +0.57, +0.35, +8.35 %.
 //
 // A 0.02 receiver, whose reflected power is 1/50,000 of the scene's and far below what the oracle
 // refines for, gets its light through large clusters of the sphere: within 2 % at h = 1.5 and 3
-// (measured −1.74, −1.69 %; before, −17.7 and +12.0 %); at h = 5 −8.6 % at the default tolerance
+// (measured −1.20, −1.69 %; before, −17.7 and +12.0 %); at h = 5 −8.6 % at the default tolerance
 // (+11.5 % before) and within 2 % at a tenth of it.
 TEST(HierarchicalRadiosity, PointBeforeASphereWithinHalfAPercentOfHowell) {
   for (const double h : {1.5, 2.0, 3.0, 5.0}) {

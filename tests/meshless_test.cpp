@@ -45,8 +45,8 @@ TEST(MeshlessMethod, FurnaceGivesEOverOneMinusRho) {
     // λ is the reflected light (issue 19: the sphere lights the sites by shadow rays as a surface
     // light, and its emission is drawn, never transferred): ρE/(1 − ρ) = 1; the image adds E.
     for (const Color& lambda : solution.transfer.lambda) EXPECT_NEAR(lambda.g, 1, 0.02) << basis;
-    // The effective areas of a partition of unity cover the sphere (002 eq. 5.4): its triangles
-    // (by chord error, 16 a turn here) weigh as the true sphere, 2.5 % larger (64 a turn: 0.2 %).
+    // The effective areas of a partition of unity cover the sphere (002 eq. 5.4): its triangles (by
+    // chord error, 16 a turn here) are area-true, the sphere's own area.
     EXPECT_NEAR(facts["effective_area_sum"].get<double>(), 16 * kPi, 1e-4 * 16 * kPi);
     RunStatistics statistics;
     const Film film = testing::render_scene(*scene, "meshless", 2, statistics);
@@ -58,8 +58,8 @@ TEST(MeshlessMethod, FurnaceGivesEOverOneMinusRho) {
 
 // Issue 52: the effective areas of many small spheres (000 §5.7.2's sphere field: 42 M triangles at
 // 64 segments a turn, refused at 40 GB) are integrated over chords within half a midpoint cell of
-// each sphere, a few dozen triangles each, which weigh as the spheres (the furnace above: the sum
-// within 0.01 % of the sphere's area).
+// each sphere, a few dozen triangles each, area-true (the furnace above: the sum within 0.01 % of the
+// sphere's area).
 TEST(MeshlessMethod, SmallSpheresAreIntegratedOverFewTrianglesThatWeighAsTheSpheres) {
   std::string shapes =
       R"({"type": "quad", "corner": [0, 0, 0], "edge_u": [5, 0, 0], "edge_v": [0, 0, -5], "material": {"kd": 0.5}})";

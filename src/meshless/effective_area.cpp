@@ -45,22 +45,10 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
   // than taking hours and gigabytes (each sub-triangle has about cell²/2 of area).
   constexpr double kMaxSamples = 4e6;
   double surface = 0;
-  std::vector<double> tessellated(scene.primitives.size(), 0.0);
-  for (std::size_t t = 0; t < triangles.triangle_count(); ++t) {
-    const double area =
-        0.5 * length(cross(triangles.corner_positions[3 * t + 1] - triangles.corner_positions[3 * t],
-                           triangles.corner_positions[3 * t + 2] - triangles.corner_positions[3 * t]));
-    surface += area;
-    tessellated[triangles.primitives[t]] += area;
-  }
+  for (std::size_t t = 0; t < triangles.triangle_count(); ++t)
+    surface += 0.5 * length(cross(triangles.corner_positions[3 * t + 1] - triangles.corner_positions[3 * t],
+                                  triangles.corner_positions[3 * t + 2] - triangles.corner_positions[3 * t]));
   cell = std::max(cell, std::sqrt(2 * surface / kMaxSamples));
-  // A curved shape's chords hold less area than the shape (a sphere of 6 segments a turn, 17 %
-  // less): its triangles weigh as the true surface, so that the areas still add up to it (eq. 5.4).
-  std::vector<double> area_scale(scene.primitives.size(), 1.0);
-  for (std::size_t p = 0; p < scene.primitives.size(); ++p) {
-    const double exact = scene.primitives[p].shape->area();
-    if (exact > 0 && std::isfinite(exact) && tessellated[p] > 0) area_scale[p] = exact / tessellated[p];
-  }
   // Per triangle in parallel, each thread summing into its own vector; the per-triangle sums are
   // added in triangle order afterwards, so the result does not depend on the thread count.
   std::vector<std::vector<std::pair<uint32_t, double>>> contributions(triangles.triangle_count());
@@ -79,7 +67,7 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
     // n × n similar sub-triangles (n² of them: n(n+1)/2 upright, n(n−1)/2 inverted), area/n² each.
     const double longest = std::max({length(b - a), length(c - b), length(a - c)});
     const int n = static_cast<int>(std::clamp(std::ceil(longest / cell), 1.0, 1e5));
-    const double weight = area * area_scale[triangles.primitives[t]] / (static_cast<double>(n) * n);
+    const double weight = area / (static_cast<double>(n) * n);
     const Vec3 du = (b - a) / n, dv = (c - a) / n;
     // Rows of sub-triangles in parallel too (a room's walls are a few large triangles), each row
     // into its own list, joined in order.

@@ -44,7 +44,8 @@ inline constexpr std::size_t kEffectiveAreaTriangleBytes = 3 * kTessellatedTrian
 // The tessellation the integration runs over, before its planes are cut around the sites: at most
 // `segments` per turn, and curved shapes by chord error — chords within half a cell of the surface,
 // the midpoint rule's own resolution (issue 52: the 10,584 small spheres of sphere-field-10584.json
-// were 42 M triangles at 64 segments each, and 24 GB).
+// were 42 M triangles at 64 segments each, and 24 GB). The tessellation is area-true
+// (geometry/tessellation.h), so a coarse one still has the shape's area (eq. 5.4).
 TessellationRequest effective_area_tessellation(const Scene& scene, double cell, int segments);
 
 std::vector<double> integrate_effective_areas(const Scene& scene, const MeshlessBasis& basis,

@@ -53,11 +53,11 @@ struct SiteSet {
   std::size_t camera_sites = 0;  // kept from the camera grid
 };
 
-// Samples the sites of a prepared scene seen through its camera; progress, when given, advances
-// once for the camera grid and once per round (1 + rounds in all). Throws std::invalid_argument
 // Δ for the scene: the spacing setting, or the scene's size / 50 when it is 0.
 double site_spacing(const Scene& scene, double spacing);
 
+// Samples the sites of a prepared scene seen through its camera; progress, when given, advances
+// once for the camera grid and once per round (1 + rounds in all). Throws std::invalid_argument
 // for bad settings (grid < 1, rounds < 0, negative spacing, neighbours < 1) or when more than
 // max_sites would be kept.
 SiteSet sample_sites(const Scene& scene, const SiteSamplingSettings& settings,

@@ -473,7 +473,7 @@ void HierarchicalSolver::transport(Link& link) const {
     exact = sent * received / (distance * distance);
   } else {
     for (uint32_t t = 0; t < sources.count; ++t) {
-      const double edge = kPointMemberEdge * longest_edge(*sources.member[t].surface);
+      const double edge = longest_edge(*sources.member[t].surface) / kPointMemberEdge;
       sending_weight[t] = edge * edge;  // (held here for the loop below)
     }
     for (uint32_t r = 0; r < receivers.count; ++r) {
