@@ -43,14 +43,15 @@ declare -A rank=(
 # Headers the build writes (configure steps), by the module whose folder they stand for.
 declare -A generated=([build_version.h]=cli)
 
-# The module of a path relative to the source folder: src/<module>/…, cli/…, python/…, tests/…
-# (test support), or nothing.
+# placed: the module of a path relative to the source folder — src/<module>/…, cli/…, python/…,
+# tests/… (test support) — or nothing (set in this shell: no subshell per include).
 module_of() {
+  placed=""
   case "$1" in
-    src/*/*) local rest=${1#src/}; echo "${rest%%/*}" ;;
-    cli/*) echo cli ;;
-    python/*) echo python ;;
-    tests/*) echo tests ;;
+    src/*/*) placed=${1#src/}; placed=${placed%%/*} ;;
+    cli/*) placed=cli ;;
+    python/*) placed=python ;;
+    tests/*) placed=tests ;;
   esac
 }
 
@@ -76,16 +77,22 @@ while IFS= read -r hit; do
   line=${rest%%:*}
   text=${rest#*:}
   relative=${file#"$source_dir"/}
-  module=$(module_of "$relative")
+  module_of "$relative"
+  module=$placed
   [[ -z "$module" || -z "${rank[$module]+set}" ]] && continue  # a module without a rank: listed above
-  header=$(sed -E 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"([^"]+)".*/\1/' <<<"$text")
+  if ! [[ "$text" =~ ^[[:space:]]*#[[:space:]]*include[[:space:]]*\"([^\"]+)\" ]]; then
+    fail "$relative:$line: $module has an #include the check cannot read: $text"
+    continue
+  fi
+  header=${BASH_REMATCH[1]}
   first=${header%%/*}
   target=""
   if [[ "$header" == */* && -n "${rank[$first]+set}" ]]; then
     target=$first
   elif [[ -f "$(dirname "$file")/$header" ]]; then
     resolved=$(realpath -m "$(dirname "$file")/$header")
-    target=$(module_of "${resolved#"$source_dir"/}")
+    module_of "${resolved#"$source_dir"/}"
+    target=$placed
   elif [[ -f "$source_dir/tests/$header" ]]; then
     target=tests
   elif [[ -n "${generated[$header]+set}" ]]; then

@@ -112,6 +112,11 @@ printf '#include "scratch_directory.h"\n' >"$scratch/tree/src/io/writer.cpp"
 expect 1 "a module's own code including a support header of tests/ fails" \
   'src/io/writer.cpp:1: io includes "scratch_directory.h", a support header of tests/, outside a unit test'
 
+make_tree
+printf '#include "math/vector.h\n' >"$scratch/tree/src/io/writer.cpp"
+expect 1 "an include the check cannot read fails" \
+  'src/io/writer.cpp:1: io has an #include the check cannot read'
+
 if ((failures > 0)); then
   echo "$failures failure(s)"
   exit 1
