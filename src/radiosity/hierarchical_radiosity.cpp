@@ -460,9 +460,8 @@ void HierarchicalSolver::transport(Link& link) const {
   std::array<double, kCorrectionReceivers> receiving_weight{};
   std::array<double, kCorrectionSources> sending_weight{};
   const bool far = receiver.radius + source.radius < kFarField * distance;
-  double exact = 0;
+  double exact = 0, sent = 0, received = 0;  // sent, received: the far ends' weights summed
   if (far) {
-    double sent = 0, received = 0;
     for (uint32_t t = 0; t < sources.count; ++t) {
       const KernelMember& from = sources.member[t];
       sent += sending_weight[t] = from.share * from.weight * std::max(0.0, -dot(from.surface->normal, w));
@@ -472,9 +471,10 @@ void HierarchicalSolver::transport(Link& link) const {
           receivers.member[r].share * std::max(0.0, dot(receivers.member[r].surface->normal, w));
     exact = sent * received / (distance * distance);
   } else {
+    std::array<double, kCorrectionSources> closed_form_within{};  // squared distances
     for (uint32_t t = 0; t < sources.count; ++t) {
       const double edge = longest_edge(*sources.member[t].surface) / kPointMemberEdge;
-      sending_weight[t] = edge * edge;  // (held here for the loop below)
+      closed_form_within[t] = edge * edge;
     }
     for (uint32_t r = 0; r < receivers.count; ++r) {
       const KernelMember& at = receivers.member[r];
@@ -487,7 +487,7 @@ void HierarchicalSolver::transport(Link& link) const {
         if (!(squared > 0)) continue;
         const double weight = at.share * from.share * from.weight;
         double value = 0;
-        if (sending_weight[t] > squared) {
+        if (closed_form_within[t] > squared) {
           if (dot(f.normal, between) > 0)  // per unit of the source's area
             value = weight * kPi * point_to_polygon_form_factor(a.centroid, a.normal, f.corners) / f.area;
         } else {
@@ -511,9 +511,6 @@ void HierarchicalSolver::transport(Link& link) const {
       if ((sum += weights[k]) > u * total) return k;
     return count - 1;
   };
-  double sent = 0, received = 0;
-  for (uint32_t t = 0; t < sources.count; ++t) sent += sending_weight[t];
-  for (uint32_t r = 0; r < receivers.count; ++r) received += receiving_weight[r];
   int visible_rays = 0;
   for (int k = 0; k < kVisibilityRays; ++k) {
     const double u = (k + random.next_double()) / kVisibilityRays;

@@ -152,6 +152,70 @@ nlohmann::json solve_facts(const Scene& scene, const RadiositySettings& settings
   return out;
 }
 
+// Every element's row to the patches, their memory checked first; adds the seconds to `seconds`.
+ElementRows element_rows(const RadiositySettings& settings, const RadiositySolveOptions& options,
+                         const RadiosityMesh& mesh, const std::string& fewer, double& seconds) {
+  const std::size_t elements = mesh.elements.size(), patches = mesh.patches.size();
+  check_form_factor_memory(element_rows_bytes(elements, patches), settings,
+                           fmt::format("the form factors of {} elements to {} patches", elements, patches),
+                           fewer);
+  ElementRows rows{std::make_shared<ElementToPatch>(static_cast<Eigen::Index>(elements),
+                                                    static_cast<Eigen::Index>(patches)),
+                   std::vector<double>(elements)};
+  Stopwatch form_factor_time;
+  fill_element_form_factor_rows(settings, options.seed, mesh, all_rows(elements), *rows.form_factors,
+                                rows.sums, options.cluster, options.quiet);
+  seconds += form_factor_time.seconds();
+  return rows;
+}
+
+// The direct solvers' patch system (Gauss-Seidel, or Gaussian elimination, 000 eq. 6-9): its
+// rows, their reciprocity and every patch's B (B = E + first shot where Ctrl-C came first).
+struct PatchSolution {
+  std::vector<double> sums;  // the patch rows' sums
+  Reciprocity reciprocity;
+  std::vector<Color> radiosity;
+  std::size_t steps = 0;
+  bool converged = true;
+  double form_factor_seconds = 0;
+};
+
+PatchSolution solve_patch_system(const RadiositySettings& settings, const RadiositySolveOptions& options,
+                                 const RadiosityMesh& mesh, const GaussSeidelCallback& on_sweep) {
+  PatchSolution out;
+  const std::size_t patch_count = mesh.patches.size();
+  out.sums.resize(patch_count);
+  Eigen::MatrixXd patch_rows(static_cast<Eigen::Index>(patch_count), static_cast<Eigen::Index>(patch_count));
+  Stopwatch form_factor_time;
+  fill_patch_form_factor_rows(settings, options.seed, mesh, patch_rows, out.sums, options.cluster,
+                              options.quiet);
+  out.form_factor_seconds = form_factor_time.seconds();
+  out.reciprocity = measure_reciprocity(mesh.patches, patch_rows);
+  if (cancelled_anywhere(options.cluster)) {  // Ctrl-C: not solved, B = E
+    for (const RadiositySurface& patch : mesh.patches)
+      out.radiosity.push_back(patch.emission + patch.first_shot);
+    out.converged = false;
+    return out;
+  }
+  const RadiositySystem patches = mesh.patch_system();
+  const FormFactorSource patch_source(std::move(patch_rows));
+  RadiositySolution solution;
+  if (settings.solver != RadiositySolver::gaussian) {
+    solution = solve_gauss_seidel(patches, patch_source, settings.threshold,
+                                  static_cast<std::size_t>(settings.max_steps), on_sweep);
+  } else {
+    try {
+      solution = solve_gaussian_elimination(patches, patch_source, form_factor_memory_limit(settings));
+    } catch (const SolverMemoryError& e) {  // the solver knows bytes, the settings their place
+      throw SolverMemoryError(settings.location, e.message(), e.required_bytes(), e.limit_bytes());
+    }
+  }
+  out.radiosity = solution.radiosity;
+  out.steps = solution.iterations;
+  out.converged = solution.converged;
+  return out;
+}
+
 }  // namespace
 
 RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings& settings,
@@ -184,11 +248,6 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
   const std::size_t patch_count = mesh.patches.size();
 
   // The patch system first (direct solvers), its memory checked before anything is computed.
-  std::vector<double> patch_sums;
-  Reciprocity reciprocity;
-  std::vector<Color> patch_radiosity;
-  std::size_t patch_steps = 0;
-  bool patch_converged = true;
   if (!progressive) {
     const uint64_t solver_bytes =
         settings.solver == RadiositySolver::gaussian ? gaussian_elimination_memory_bytes(patch_count) : 0;
@@ -202,18 +261,7 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
   // The element rows (before the patch solve: Gauss-Seidel's sweeps are displayed through them
   // for the convergence log), then solutions and adaptive subdivision (000 §6.7.2) until no
   // neighbours differ by more than the threshold.
-  check_form_factor_memory(
-      element_rows_bytes(mesh.elements.size(), patch_count), settings,
-      fmt::format("the form factors of {} elements to {} patches", mesh.elements.size(), patch_count), fewer);
-  ElementRows rows{std::make_shared<ElementToPatch>(static_cast<Eigen::Index>(mesh.elements.size()),
-                                                    static_cast<Eigen::Index>(patch_count)),
-                   std::vector<double>(mesh.elements.size())};
-  {
-    Stopwatch form_factor_time;
-    fill_element_form_factor_rows(settings, options.seed, mesh, all_rows(mesh.elements.size()),
-                                  *rows.form_factors, rows.sums, cluster, options.quiet);
-    form_factor_seconds += form_factor_time.seconds();
-  }
+  ElementRows rows = element_rows(settings, options, mesh, fewer, form_factor_seconds);
   // Elements whose rows sum to ≈ 0 see nothing: the display leaves them out.
   const auto mark_hidden_elements = [&] {
     result.element_hidden.resize(mesh.elements.size());
@@ -230,48 +278,18 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
     result.unshot_fraction = unshot_fraction;
     options.on_step(result);
   };
+  PatchSolution patch;
   if (!progressive) {
-    patch_sums.resize(patch_count);
-    Eigen::MatrixXd patch_rows(static_cast<Eigen::Index>(patch_count),
-                               static_cast<Eigen::Index>(patch_count));
-    {
-      Stopwatch form_factor_time;
-      fill_patch_form_factor_rows(settings, options.seed, mesh, patch_rows, patch_sums, cluster,
-                                  options.quiet);
-      form_factor_seconds += form_factor_time.seconds();
-    }
-    reciprocity = measure_reciprocity(mesh.patches, patch_rows);
-    if (stopped()) {  // Ctrl-C: not solved, B = E
-      for (const RadiositySurface& patch : mesh.patches)
-        patch_radiosity.push_back(patch.emission + patch.first_shot);
-      patch_converged = false;
-    } else {
-      const RadiositySystem patches = mesh.patch_system();
-      const FormFactorSource patch_source(std::move(patch_rows));
-      const auto solve = [&] {
-        if (settings.solver != RadiositySolver::gaussian) {
-          // The convergence log: each sweep's patch radiosities gathered to the elements.
-          GaussSeidelCallback on_sweep;
-          if (observed)
-            on_sweep = [&](std::size_t sweep, double, const std::vector<Color>& radiosity) {
-              report_step(gather_element_radiosities(mesh.element_system(),
-                                                     element_to_patch_source(rows.form_factors), radiosity),
-                          sweep, 0);
-            };
-          return solve_gauss_seidel(patches, patch_source, settings.threshold,
-                                    static_cast<std::size_t>(settings.max_steps), on_sweep);
-        }
-        try {
-          return solve_gaussian_elimination(patches, patch_source, form_factor_memory_limit(settings));
-        } catch (const SolverMemoryError& e) {  // the solver knows bytes, the settings their place
-          throw SolverMemoryError(settings.location, e.message(), e.required_bytes(), e.limit_bytes());
-        }
+    // The convergence log: each Gauss-Seidel sweep's patch radiosities gathered to the elements.
+    GaussSeidelCallback on_sweep;
+    if (observed)
+      on_sweep = [&](std::size_t sweep, double, const std::vector<Color>& radiosity) {
+        report_step(gather_element_radiosities(mesh.element_system(),
+                                               element_to_patch_source(rows.form_factors), radiosity),
+                    sweep, 0);
       };
-      const RadiositySolution solution = solve();
-      patch_radiosity = solution.radiosity;
-      patch_steps = solution.iterations;
-      patch_converged = solution.converged;
-    }
+    patch = solve_patch_system(settings, options, mesh, on_sweep);
+    form_factor_seconds += patch.form_factor_seconds;
   }
 
   // Ctrl-C before every row was computed: the rows not begun are zero.
@@ -294,10 +312,10 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
         report_step(solution.displayed, solution.steps, solution.unshot_fraction);  // the last shot
     } else {
       solution.radiosity = gather_element_radiosities(
-          mesh.element_system(), element_to_patch_source(rows.form_factors), patch_radiosity);
+          mesh.element_system(), element_to_patch_source(rows.form_factors), patch.radiosity);
       solution.displayed = solution.radiosity;
-      solution.steps = patch_steps;
-      solution.converged = patch_converged;
+      solution.steps = patch.steps;
+      solution.converged = patch.converged;
     }
     if (!(settings.subdivision_threshold > 0) || stopped()) break;
     const std::vector<bool> split = elements_to_split(mesh, solution.radiosity, rows.sums,
@@ -322,7 +340,7 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
 
   if (progressive && patch_count <= 2048) {  // P² doubles: 32 MiB at most
     // Reciprocity of the substructured patch form factors F_ij = Σ_{q∈i} A_q F_qj / A_i (000 eq. 6-19).
-    reciprocity = measure_reciprocity(
+    patch.reciprocity = measure_reciprocity(
         mesh.patches,
         patch_form_factors_from_elements(mesh.element_system(), element_to_patch_source(rows.form_factors))
             .to_dense());
@@ -339,7 +357,7 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
   result.solve_seconds = solve_time.seconds();
   if (options.facts)
     *options.facts = solve_facts(scene, settings, result, {form_factor_seconds, first_shot_seconds},
-                                 reciprocity, progressive ? rows.sums : patch_sums,
+                                 patch.reciprocity, progressive ? rows.sums : patch.sums,
                                  progressive ? nullptr : &rows.sums, form_factors_complete);
   return result;
 }
