@@ -21,7 +21,7 @@
 
 #include "camera/antialiasing.h"
 #include "integrators/method_registry.h"
-#include "integrators/path_checkpoint.h"
+#include "integrators/pass_checkpoint.h"
 #include "integrators/scene_loading.h"
 #include "io/image_reader.h"
 #include "render_support.h"
@@ -248,7 +248,7 @@ TEST(Interrupt, CtrlCWritesThePartialImageAndACheckpointThatResumes) {
   EXPECT_TRUE(statistics["interrupted"].get<bool>());
   const auto passes = statistics["path"]["spp"].get<uint64_t>();
   ASSERT_GT(passes, 0u);
-  EXPECT_EQ(unseal_path_checkpoint(read_checkpoint_file(checkpoint.string())).passes, passes);
+  EXPECT_EQ(unseal_pass_checkpoint("path", read_checkpoint_file(checkpoint.string())).passes, passes);
   const Film partial = read_pfm(output.string());
   EXPECT_EQ(partial.width(), 12);
   EXPECT_FALSE(all_black(partial));

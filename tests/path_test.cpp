@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "integrators/light_sampler.h"
-#include "integrators/path_checkpoint.h"
+#include "integrators/pass_checkpoint.h"
 #include "integrators/path_tracer.h"
 #include "integrators/scene_loading.h"
 #include "radiosity/configuration_factors.h"
@@ -362,12 +362,12 @@ TEST(PathTracer, ResumingACheckpointGivesTheUninterruptedImage) {
   EXPECT_FALSE(uninterrupted.checkpoint);
   const RenderResult first = render(3, true, std::nullopt);
   ASSERT_TRUE(first.checkpoint);
-  EXPECT_EQ(unseal_path_checkpoint({"first", *first.checkpoint}).passes, 3u);
+  EXPECT_EQ(unseal_pass_checkpoint("path", {"first", *first.checkpoint}).passes, 3u);
   const RenderResult resumed = render(7, true, *first.checkpoint);
   for (std::size_t i = 0; i < resumed.film.pixels().size(); ++i)
     ASSERT_EQ(resumed.film.pixels()[i], uninterrupted.film.pixels()[i]) << i;
   ASSERT_TRUE(resumed.checkpoint);
-  EXPECT_EQ(unseal_path_checkpoint({"resumed", *resumed.checkpoint}).passes, 7u);
+  EXPECT_EQ(unseal_pass_checkpoint("path", {"resumed", *resumed.checkpoint}).passes, 7u);
   EXPECT_EQ(resumed.statistics.extra["path"]["resumed_from_spp"], 3);
   // Another scene's state is refused, naming where it came from.
   try {
@@ -491,7 +491,7 @@ TEST(PathTracer, EverySamplerResumesIntoTheUninterruptedImage) {
     request.checkpoint = true;
     std::optional<Bytes> after_three;
     request.save_checkpoint = [&](const Bytes& sealed) {
-      if (unseal_path_checkpoint({"saved", sealed}).passes == 3) after_three = sealed;
+      if (unseal_pass_checkpoint("path", {"saved", sealed}).passes == 3) after_three = sealed;
     };
     const RenderResult uninterrupted = method->render(*scene, request);
     ASSERT_TRUE(after_three);
@@ -522,12 +522,12 @@ TEST(PathTracer, CheckpointsAreHandedOutEveryIntervalAndAtTheEnd) {
   request.checkpoint = true;
   std::vector<uint64_t> saved_passes;
   request.save_checkpoint = [&](const Bytes& sealed) {
-    saved_passes.push_back(unseal_path_checkpoint({"saved", sealed}).passes);
+    saved_passes.push_back(unseal_pass_checkpoint("path", {"saved", sealed}).passes);
   };
   const RenderResult result = method->render(*scene, request);
   EXPECT_EQ(saved_passes, (std::vector<uint64_t>{1, 2, 3}));
   ASSERT_TRUE(result.checkpoint);
-  EXPECT_EQ(unseal_path_checkpoint({"final", *result.checkpoint}).passes, 4u);
+  EXPECT_EQ(unseal_pass_checkpoint("path", {"final", *result.checkpoint}).passes, 4u);
   EXPECT_EQ(result.statistics.extra["path"]["checkpoints_written"],
             4);  // after passes 1, 2, 3 and at the end
 }
@@ -535,7 +535,7 @@ TEST(PathTracer, CheckpointsAreHandedOutEveryIntervalAndAtTheEnd) {
 TEST(PathCheckpoint, RoundTripsExactlyAndRefusesDamage) {
   const testing::ScratchDirectory directory("path-checkpoint");
   const std::string file = (directory.path() / "c.checkpoint").string();
-  PathCheckpoint written;
+  PassCheckpoint written;
   written.fingerprint = "scene 1";
   written.region = {2, 3, 4, 5};
   written.passes = 9;
@@ -543,8 +543,8 @@ TEST(PathCheckpoint, RoundTripsExactlyAndRefusesDamage) {
   written.rays.primary = 36;
   written.sums = {Color(0.1, 1e-300, 3), Color(1.0 / 3), Color(7, 8, 9), Color(-0.0, 2, 5e300)};
   written.weights = {9, 9.5, 1.0 / 7, 0};
-  write_checkpoint_file(file, seal_path_checkpoint(written));
-  const PathCheckpoint read = unseal_path_checkpoint(read_checkpoint_file(file));
+  write_checkpoint_file(file, seal_pass_checkpoint("path", written));
+  const PassCheckpoint read = unseal_pass_checkpoint("path", read_checkpoint_file(file));
   EXPECT_EQ(read.fingerprint, written.fingerprint);
   EXPECT_EQ(read.passes, 9u);
   EXPECT_EQ(read.rays.primary, 36u);
@@ -557,10 +557,14 @@ TEST(PathCheckpoint, RoundTripsExactlyAndRefusesDamage) {
     std::ifstream in(file, std::ios::binary);
     bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
+  // The format the path tracer has written since the filter weights: older files still resume.
+  EXPECT_EQ(bytes.rfind("CANDELA-PATH-CHECKPOINT 2\n", 0), 0u);
+  // Another pass method's checkpoint is not the path tracer's.
+  EXPECT_THROW((void)unseal_pass_checkpoint("toy", read_checkpoint_file(file)), InputError);
   const auto expect_refused = [&](const std::string& damaged, const std::string& why) {
     std::ofstream(file, std::ios::binary | std::ios::trunc) << damaged;
     try {
-      (void)unseal_path_checkpoint(read_checkpoint_file(file));
+      (void)unseal_pass_checkpoint("path", read_checkpoint_file(file));
       ADD_FAILURE() << why << " was accepted";
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find("c.checkpoint"), std::string::npos) << e.what();

@@ -17,7 +17,6 @@
 #include "distributed/task_farm.h"
 #include "integrators/distributed_tiles.h"
 #include "integrators/memory_estimate.h"
-#include "integrators/path_checkpoint.h"
 #include "math/constants.h"
 #include "sampling/independent_sampler.h"
 #include "sampling/multiple_importance.h"
@@ -368,429 +367,208 @@ Color path_irradiance(const Scene& scene, const PathSettings& settings, const Li
   return E;
 }
 
-std::vector<MemoryPart> PathMethod::memory_needed(const Scene&, const RenderRequest& request) const {
-  const PixelRect& region = request.region;
-  // A Color and a double a pixel for the sums and weights, again in a checkpoint; the image and a
-  // pass's (RenderResult, the pass image).
-  const uint64_t pixels = film_bytes(region, 1) / sizeof(Color);
-  return {image_memory_part("the image, a pass's, the running sums and weights and their checkpoint",
-                            film_bytes(region, 4) + 2 * pixels * sizeof(double))};
+namespace {
+
+// One render's passes of the path tracer: a sample of every pixel per pass, its point by aa.mode,
+// splatted with aa.filter into the pixels within its reach (pbrt-v4's film).
+class PathPasses final : public PixelPasses {
+ public:
+  PathPasses(const Scene& scene, const PathSettings& settings, const RenderRequest& request)
+      : scene_(scene),
+        settings_(settings),
+        region_(request.region),
+        seed_(request.seed_for(scene)),
+        aa_(request.antialiasing_for(scene)),
+        lights_(scene),
+        tile_(std::max(1, scene.render.tile_size)),
+        cells_(aa_.mode == AntialiasingMode::none ? 1 : aa_.n),
+        lattice_passes_(aa_.mode == AntialiasingMode::corners || aa_.mode == AntialiasingMode::adaptive),
+        prototype_(
+            create_sampler(settings.sampler, SamplerParameters{seed_, uint64_t(std::max(settings.spp, 0))})),
+        samplers_([this] { return prototype_->clone(); }),
+        filter_(create_pixel_filter(aa_.filter, aa_.filter_parameters)),
+        reach_(filter_reach(*filter_)),
+        image_{-region_.x0, -region_.y0, scene.camera->width() - region_.x0,
+               scene.camera->height() - region_.y0} {}
+
+  bool run_pass(uint64_t pass, const PixelBox& pixels, Color* sums, double* weights,
+                uint64_t& dropped) override;
+
+  RayCounts rays() const override {
+    RayCounts total;
+    for (const RayCounts& c : counts_) total += c;
+    return total;
+  }
+
+  void add_facts(nlohmann::json& facts) const override {
+    facts["max_depth"] = settings_.max_depth;
+    facts["roulette_depth"] = settings_.roulette_depth;
+    facts["sampler"] = settings_.sampler;
+    facts["emissive_primitives"] = lights_.emissive_primitive_count();
+    facts["scene_lights"] = scene_.lights.size();
+    facts["environment"] = lights_.has_environment();
+    if (lights_.empty())
+      facts["warning"] =
+          "nothing emits light (no lights, emissive surfaces or environment; the background lights "
+          "nothing): the image shows the background alone";
+  }
+
+ private:
+  PassSample sample_pixel(uint64_t pass, int i, int j, RayCounts& rays, uint64_t& dropped);
+  bool run_lattice_pass(uint64_t pass, const PixelBox& pixels, Color* sums, double* weights,
+                        uint64_t& dropped);
+
+  const Scene& scene_;
+  const PathSettings& settings_;
+  const PixelRect region_;
+  const uint64_t seed_;
+  const AntialiasingSettings& aa_;
+  const LightSampler lights_;
+  const int tile_;
+  // aa.mode "jittered" and "uniform": the n × n cells a pixel's passes take in turn.
+  const int cells_;
+  // aa.mode "corners" and "adaptive": each pass is the camera sampler's own lattice image.
+  const bool lattice_passes_;
+  // path.sampler draws each pixel's samples: one sampler per thread, restarted for every pixel and
+  // pass (its values depend on neither the thread nor the tile).
+  const std::unique_ptr<Sampler> prototype_;
+  tbb::enumerable_thread_specific<std::unique_ptr<Sampler>> samplers_;
+  tbb::enumerable_thread_specific<RayCounts> counts_;
+  const std::unique_ptr<PixelFilter> filter_;
+  const int reach_;
+  const PixelBox image_;  // the camera's image, in region coordinates
+};
+
+// A pass's sample of one pixel (i, j of the region; outside it too, for the filter's ring): a point
+// of its square and the path's radiance there (a non-finite one — an exploded weight — dropped as
+// zero, never allowed to poison the pixels). The point, by aa.mode: "none" uniform in the square;
+// "jittered" n × n the passes take the n² cells in turn (pass k the cell k mod n²), a random point
+// in each — stratified across passes; "uniform" the cells' centres in turn.
+PassSample PathPasses::sample_pixel(uint64_t pass, int i, int j, RayCounts& rays, uint64_t& dropped) {
+  const auto x = static_cast<uint32_t>(region_.x0 + i), y = static_cast<uint32_t>(region_.y0 + j);
+  Sampler& sampler = *samplers_.local();
+  sampler.start_pixel_sample(x, y, pass);
+  PassSample sample;
+  const Vec2 point = sampler.get_2d();
+  sample.dx = point.x;
+  sample.dy = point.y;
+  if (cells_ > 1) {
+    const auto cell = static_cast<int>(pass % uint64_t(cells_ * cells_));
+    const bool centred = aa_.mode == AntialiasingMode::uniform;
+    sample.dx = (cell % cells_ + (centred ? 0.5 : sample.dx)) / cells_;
+    sample.dy = (cell / cells_ + (centred ? 0.5 : sample.dy)) / cells_;
+  }
+  ++rays.primary;
+  sample.value = path_radiance(scene_, settings_, lights_,
+                               scene_.camera->generate_ray(x + sample.dx, y + sample.dy), sampler, rays);
+  if (!is_finite(sample.value)) {
+    sample.value = Color();
+    ++dropped;
+  }
+  return sample;
 }
 
-RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request) const {
-  RenderResult output(request.region);
-  Film& film = output.film;
-  RunStatistics& statistics = output.statistics;
-  const PixelRect region = request.region;
-  const int width = region.width(), height = region.height();
-  const PathSettings& settings = settings_;
-  // Issue 51: the render's seed and aa settings, which may not be the scene's.
-  const uint64_t seed = request.seed_for(scene);
-  const AntialiasingSettings& aa = request.antialiasing_for(scene);
-  // Everything besides the scene file that changes a sample: a checkpoint made with other values
-  // cannot be continued.
-  const std::string fingerprint = fmt::format(
-      "{}|path max_depth={} roulette_depth={} sampler={}{} seed={} image={}x{}", request.fingerprint,
-      settings.max_depth, settings.roulette_depth, settings.sampler,
-      find_sampler(settings.sampler)->needs_sample_count ? fmt::format("/{}", settings.spp) : std::string(),
-      seed, scene.camera->width(), scene.camera->height());
-
-  PathCheckpoint state;
-  state.fingerprint = fingerprint;
-  state.region = region;
-  state.sums.assign(std::size_t(width) * height, Color());
-  state.weights.assign(std::size_t(width) * height, 0.0);
-  Cluster* cluster = several_ranks(request);
-  // Only rank 0 reads the checkpoint (the others are given sums with each tile); a bad one stops
-  // every rank.
-  std::exception_ptr resume_error;
-  try {
-    if (request.resume && (!cluster || cluster->root())) {
-      PathCheckpoint resumed = unseal_path_checkpoint(*request.resume);
-      const SourceLocation where{request.resume->source, 0, 0, {}};
-      if (resumed.fingerprint != fingerprint)
-        throw InputError(where, "the checkpoint was made for another scene or other settings (" +
-                                    resumed.fingerprint + "), not this one (" + fingerprint + ")");
-      const PixelRect& r = resumed.region;
-      if (r.x0 != region.x0 || r.y0 != region.y0 || r.x1 != region.x1 || r.y1 != region.y1)
-        throw InputError(
-            where, fmt::format("the checkpoint covers pixels [{},{})×[{},{}), not [{},{})×[{},{})", r.x0,
-                               r.x1, r.y0, r.y1, region.x0, region.x1, region.y0, region.y1));
-      if (settings.spp > 0 && resumed.passes > uint64_t(settings.spp))
-        throw InputError(
-            where, fmt::format("the checkpoint already holds {} samples per pixel, more than path.spp = {}",
-                               resumed.passes, settings.spp));
-      state = std::move(resumed);
-    }
-  } catch (...) {
-    if (!cluster) throw;
-    resume_error = std::current_exception();
-  }
-  if (cluster) settle_root_outcome(*cluster, resume_error);
-  const uint64_t first_pass = state.passes;
-  const uint64_t last_pass = settings.spp > 0 ? uint64_t(settings.spp) : UINT64_MAX;
-  const bool timed = settings.time > 0;
-
-  const LightSampler lights(scene);
-
-  tbb::enumerable_thread_specific<RayCounts> counts;
-  const int tile = std::max(1, scene.render.tile_size);
-  const uint64_t progress_total =
-      settings.spp > 0 ? last_pass - first_pass : static_cast<uint64_t>(std::ceil(settings.time));
-  ProgressReporter progress("path", progress_total, settings.spp > 0 ? "passes" : "s",
-                            request.quiet || (cluster && !cluster->root()));
-  Stopwatch timer, since_checkpoint;
-  int checkpoints = 0;
-  uint64_t seconds_reported = 0;
-  const bool hands_out_checkpoints = request.checkpoint && (!cluster || cluster->root());
-  const auto sealed_state = [&] {
-    RayCounts rays = state.rays;
-    for (const RayCounts& c : counts) rays += c;
-    PathCheckpoint snapshot{
-        state.fingerprint, state.region, state.passes, state.seconds + timer.seconds(), rays, {}, {}};
-    snapshot.sums = state.sums;
-    snapshot.weights = state.weights;
-    ++checkpoints;
-    since_checkpoint = Stopwatch();
-    return seal_path_checkpoint(snapshot);
-  };
-  bool interrupted = false;
-  uint64_t dropped_across_ranks = 0;
-  // Between passes (rounds across ranks): a checkpoint when the interval is up and passes remain.
-  const auto save_if_due = [&] {
-    if (hands_out_checkpoints && request.save_checkpoint &&
-        since_checkpoint.seconds() >= settings.checkpoint_interval && state.passes < last_pass)
-      request.save_checkpoint(sealed_state());
-  };
-  // A pass's sample of one pixel (i, j of the region; outside it too, for the filter's ring): a
-  // point of its square and the path's radiance there (a non-finite one — an exploded weight —
-  // dropped as zero, never allowed to poison the pixels). The point, by aa.mode: "none" uniform in
-  // the square; "jittered" n × n the passes take the n² cells in turn (pass k the cell k mod n²),
-  // a random point in each — stratified across passes; "uniform" the cells' centres in turn.
-  const int cells = aa.mode == AntialiasingMode::none ? 1 : aa.n;
-  // path.sampler draws each pixel's samples: one sampler per thread, restarted for every pixel
-  // and pass (its values depend on neither the thread nor the tile).
-  const std::unique_ptr<Sampler> prototype =
-      create_sampler(settings.sampler, SamplerParameters{seed, uint64_t(std::max(settings.spp, 0))});
-  tbb::enumerable_thread_specific<std::unique_ptr<Sampler>> samplers([&] { return prototype->clone(); });
-  const auto sample_pixel = [&](uint64_t pass, int i, int j, RayCounts& rays, uint64_t& dropped) {
-    const auto x = static_cast<uint32_t>(region.x0 + i), y = static_cast<uint32_t>(region.y0 + j);
-    Sampler& sampler = *samplers.local();
-    sampler.start_pixel_sample(x, y, pass);
-    PassSample sample;
-    const Vec2 point = sampler.get_2d();
-    sample.dx = point.x;
-    sample.dy = point.y;
-    if (cells > 1) {
-      const auto cell = static_cast<int>(pass % uint64_t(cells * cells));
-      const bool centred = aa.mode == AntialiasingMode::uniform;
-      sample.dx = (cell % cells + (centred ? 0.5 : sample.dx)) / cells;
-      sample.dy = (cell / cells + (centred ? 0.5 : sample.dy)) / cells;
-    }
+// aa.mode "corners" and "adaptive": each pass is the camera sampler's own lattice image
+// (camera/antialiasing.h: corner rays shared with the neighbours, squares split where the contrast
+// of their corners exceeds aa.threshold, leaves splatted with aa.filter), its lattice jittered
+// afresh each pass when aa.jitter is set; a lattice point's path takes its random stream from the
+// point and the pass, so a tile and the whole image trace the same paths. The pixel is the mean of
+// its passes' images.
+bool PathPasses::run_lattice_pass(uint64_t pass, const PixelBox& pixels, Color* sums, double* weights,
+                                  uint64_t& dropped) {
+  const SamplingRegion at{region_.x0 + pixels.x0, region_.y0 + pixels.y0, scene_.camera->width(),
+                          scene_.camera->height()};
+  // The pixels' own samples count as dropped: those of the ring are some other tile's own.
+  const double x0 = at.x0, y0 = at.y0, x1 = at.x0 + pixels.width(), y1 = at.y0 + pixels.height();
+  std::atomic<uint64_t> dropped_now{0};
+  const RadianceFunction radiance = [&](double x, double y) {
+    Pcg32 rng = path_point_rng(seed_, pass, x, y);
+    RayCounts& rays = counts_.local();
     ++rays.primary;
-    sample.value = path_radiance(scene, settings, lights,
-                                 scene.camera->generate_ray(x + sample.dx, y + sample.dy), sampler, rays);
-    if (!is_finite(sample.value)) {
-      sample.value = Color();
-      ++dropped;
+    Color value = path_radiance(scene_, settings_, lights_, scene_.camera->generate_ray(x, y), rng, rays);
+    if (!is_finite(value)) {
+      value = Color();
+      if (x >= x0 && x < x1 && y >= y0 && y < y1) ++dropped_now;
     }
-    return sample;
+    return value;
   };
-  // aa.mode "corners" and "adaptive": each pass is the camera sampler's own lattice image
-  // (camera/antialiasing.h: corner rays shared with the neighbours, squares split where the
-  // contrast of their corners exceeds aa.threshold, leaves splatted with aa.filter), its lattice
-  // jittered afresh each pass when aa.jitter is set; a lattice point's path takes its random stream
-  // from the point and the pass, so a tile and the whole image trace the same paths. The pixel is
-  // the mean of its passes' images.
-  const bool lattice_passes = aa.mode == AntialiasingMode::corners || aa.mode == AntialiasingMode::adaptive;
-  const auto run_lattice_pass = [&](uint64_t pass, const PixelBox& pixels, Color* sums, double* weights,
-                                    uint64_t& dropped_here) {
-    const SamplingRegion at{region.x0 + pixels.x0, region.y0 + pixels.y0, scene.camera->width(),
-                            scene.camera->height()};
-    // The pixels' own samples count as dropped: those of the ring are some other tile's own.
-    const double x0 = at.x0, y0 = at.y0, x1 = at.x0 + pixels.width(), y1 = at.y0 + pixels.height();
-    std::atomic<uint64_t> dropped_now{0};
-    const RadianceFunction radiance = [&](double x, double y) {
-      Pcg32 rng = path_point_rng(seed, pass, x, y);
-      RayCounts& rays = counts.local();
-      ++rays.primary;
-      Color value = path_radiance(scene, settings, lights, scene.camera->generate_ray(x, y), rng, rays);
-      if (!is_finite(value)) {
-        value = Color();
-        if (x >= x0 && x < x1 && y >= y0 && y < y1) ++dropped_now;
-      }
-      return value;
-    };
-    Film image(pixels.width(), pixels.height());
-    sample_image(aa, mix64(seed ^ mix64(pass + 0x5851f42d4c957f2dULL)), at, tile, radiance, image);
-    if (cancel_requested()) return false;  // tiles of the pass may have been skipped
-    for (int j = 0; j < pixels.height(); ++j)
-      for (int i = 0; i < pixels.width(); ++i) {
-        const std::size_t q = std::size_t(j) * pixels.width() + i;
-        sums[q] += image.at(i, j);
-        weights[q] += 1;
-      }
-    dropped_here += dropped_now.load();
-    return true;
-  };
-  // Issue 19, one film: every sample is splatted with the scene's aa.filter into the pixels within
-  // its reach (pbrt-v4's film), gathered here per pixel in a fixed order, so the image does not
-  // depend on the threads or on the tiles. The pixels [x0, x1) × [y0, y1) of the region take their
-  // passes from the samples of the box grown by the reach (clipped to the image).
-  const std::unique_ptr<PixelFilter> filter = create_pixel_filter(aa.filter, aa.filter_parameters);
-  const int reach = filter_reach(*filter);
-  const PixelBox image{-region.x0, -region.y0, scene.camera->width() - region.x0,
-                       scene.camera->height() - region.y0};
-  const auto samples_box = [&](const PixelBox& pixels) { return pixels.grown(reach).clipped(image); };
-  // One pass of the pixels of `pixels` into sums and weights (pixels-sized), its samples taken
-  // into `samples` (samples_box(pixels)-sized); false when Ctrl-C cut the pass short.
-  const auto run_pass = [&](uint64_t pass, const PixelBox& pixels, std::vector<PassSample>& samples,
-                            Color* sums, double* weights, uint64_t& dropped_here) {
-    if (lattice_passes) return run_lattice_pass(pass, pixels, sums, weights, dropped_here);
-    const PixelBox box = samples_box(pixels);
-    samples.resize(std::size_t(box.width()) * box.height());
-    std::atomic<bool> cut_short{false};
-    std::atomic<uint64_t> dropped_now{0};
-    tbb::parallel_for(tbb::blocked_range2d<int>(box.y0, box.y1, tile, box.x0, box.x1, tile),
-                      [&](const tbb::blocked_range2d<int>& block) {
-                        if (cancel_requested()) {
-                          cut_short.store(true, std::memory_order_relaxed);
-                          return;
-                        }
-                        RayCounts& rays = counts.local();
-                        // Only the pixels' own samples count as dropped (a ring sample is some
-                        // other tile's own).
-                        uint64_t dropped_block = 0, ring = 0;
-                        for (int j = block.rows().begin(); j < block.rows().end(); ++j)
-                          for (int i = block.cols().begin(); i < block.cols().end(); ++i)
-                            samples[std::size_t(j - box.y0) * box.width() + (i - box.x0)] =
-                                sample_pixel(pass, i, j, rays, pixels.contains(i, j) ? dropped_block : ring);
-                        dropped_now += dropped_block;
-                      });
-    if (cut_short.load()) return false;
-    tbb::parallel_for(
-        tbb::blocked_range2d<int>(pixels.y0, pixels.y1, tile, pixels.x0, pixels.x1, tile),
-        [&](const tbb::blocked_range2d<int>& block) {
-          for (int qy = block.rows().begin(); qy < block.rows().end(); ++qy)
-            for (int qx = block.cols().begin(); qx < block.cols().end(); ++qx) {
-              const std::size_t q = std::size_t(qy - pixels.y0) * pixels.width() + (qx - pixels.x0);
-              for (int py = std::max(qy - reach, box.y0); py < std::min(qy + reach + 1, box.y1); ++py)
-                for (int px = std::max(qx - reach, box.x0); px < std::min(qx + reach + 1, box.x1); ++px) {
-                  const PassSample& sample = samples[std::size_t(py - box.y0) * box.width() + (px - box.x0)];
-                  const double w = filter->evaluate(sample.dx - 0.5 + (px - qx), sample.dy - 0.5 + (py - qy));
-                  if (w == 0) continue;
-                  sums[q] += sample.value * w;
-                  weights[q] += w;
-                }
-            }
-        });
-    dropped_here += dropped_now.load();
-    return true;
-  };
-  // Σ w·L / Σ w (with the box of half a pixel Σ w is the pass count, as before the film).
-  const auto film_of_passes = [&](Film& target) {
-    for (int j = 0; j < height; ++j)
-      for (int i = 0; i < width; ++i) {
-        const std::size_t k = std::size_t(j) * width + i;
-        target.at(i, j) = state.weights[k] > 1e-12 ? state.sums[k] * (1.0 / state.weights[k]) : Color();
-      }
-  };
-  const auto after_pass = [&](uint64_t passes_done) {
-    if (request.after_pass) request.after_pass(passes_done);
-    if (request.on_progress)
-      request.on_progress({"passes", passes_done, std::nullopt, [&] {
-                             Film image(width, height);
-                             film_of_passes(image);
-                             return image;
-                           }});
-    progress.set_detail(fmt::format("{} spp", passes_done));
-    if (settings.spp > 0) {
-      progress.advance();
-    } else {
-      const auto whole = static_cast<uint64_t>(timer.seconds());
-      if (whole > seconds_reported) {
-        progress.advance(std::min(whole, progress_total) - std::min(seconds_reported, progress_total));
-        seconds_reported = whole;
-      }
+  Film image(pixels.width(), pixels.height());
+  sample_image(aa_, mix64(seed_ ^ mix64(pass + 0x5851f42d4c957f2dULL)), at, tile_, radiance, image);
+  if (cancel_requested()) return false;  // tiles of the pass may have been skipped
+  for (int j = 0; j < pixels.height(); ++j)
+    for (int i = 0; i < pixels.width(); ++i) {
+      const std::size_t q = std::size_t(j) * pixels.width() + i;
+      sums[q] += image.at(i, j);
+      weights[q] += 1;
     }
-  };
-  nlohmann::json distributed;
-  if (cluster) {
-    // Across ranks (issue 11): rounds of passes; in a round every tile goes to some rank with its
-    // sums so far, which adds the round's passes pixel by pixel in pass order — the very
-    // additions one process makes — and sends the sums back. Rank 0 decides each round (how many
-    // passes, or stop: spp reached, time up, Ctrl-C), keeps the sums and hands out the checkpoints. A
-    // round cut short is dropped, so the sums always hold whole passes.
-    const std::vector<PixelRect> tiles = distributed_tiles({0, 0, width, height});
-    std::vector<uint64_t> tiles_by_rank(static_cast<std::size_t>(cluster->size()), 0);
-    uint64_t passes_per_round = 1, rounds = 0;
-    for (;;) {
-      // The plan of the next round, from rank 0: its first pass and pass count (0: stop).
-      ByteWriter plan_writer;
-      const bool cancelled = cancelled_anywhere(*cluster);  // Ctrl-C on any rank stops all
-      if (cluster->root()) {
-        uint64_t count = 0;
-        if (cancelled) {
-          interrupted = true;
-        } else if (state.passes < last_pass && !(timed && timer.seconds() >= settings.time)) {
-          count = std::min(passes_per_round, last_pass - state.passes);
-        }
-        plan_writer.put<uint64_t>(state.passes);
-        plan_writer.put<uint64_t>(count);
-      }
-      Bytes plan = plan_writer.take();
-      cluster->broadcast(plan);
-      ByteReader plan_reader(plan);
-      const auto round_first = plan_reader.get<uint64_t>(), round_count = plan_reader.get<uint64_t>();
-      if (round_count == 0) break;
-      Stopwatch round_time;
-      std::vector<Color> round_sums = cluster->root() ? state.sums : std::vector<Color>();
-      std::vector<double> round_weights = cluster->root() ? state.weights : std::vector<double>();
-      bool whole = true;
-      uint64_t round_dropped = 0;
-      TaskFarm farm;
-      farm.task_count = tiles.size();
-      farm.input = [&](std::size_t task) {
-        const PixelRect& t = tiles[task];
-        ByteWriter writer;
-        for (int j = t.y0; j < t.y1; ++j)
-          for (int i = t.x0; i < t.x1; ++i) {
-            writer.put(state.sums[std::size_t(j) * width + i]);
-            writer.put(state.weights[std::size_t(j) * width + i]);
-          }
-        return writer.take();
-      };
-      farm.work = [&](std::size_t task, std::span<const std::byte> input) {
-        const PixelRect& t = tiles[task];
-        const PixelBox pixels{t.x0, t.y0, t.x1, t.y1};
-        std::vector<Color> sums(std::size_t(t.width()) * t.height());
-        std::vector<double> weights(sums.size());
-        ByteReader reader(input);
-        for (std::size_t k = 0; k < sums.size(); ++k) {
-          sums[k] = reader.get<Color>();
-          weights[k] = reader.get<double>();
-        }
-        uint64_t tile_dropped = 0;
-        bool cut_short = false;
-        std::vector<PassSample> samples;
-        for (uint64_t pass = round_first; pass < round_first + round_count; ++pass) {
-          // The tile samples its ring too: a ring pixel's sample is a function of the pixel and the
-          // pass, the same as the tile that owns it takes, so the tiles join into one image.
-          if (cancel_requested() ||
-              !run_pass(pass, pixels, samples, sums.data(), weights.data(), tile_dropped)) {
-            cut_short = true;
-            break;
-          }
-        }
-        ByteWriter writer;
-        writer.put<uint8_t>(cut_short ? 0 : 1);
-        writer.put<uint64_t>(tile_dropped);
-        writer.put_array(sums);
-        writer.put_array(weights);
-        return writer.take();
-      };
-      farm.collect = [&](std::size_t task, Bytes result) {
-        const PixelRect& t = tiles[task];
-        ByteReader reader(result);
-        if (reader.get<uint8_t>() == 0) whole = false;
-        round_dropped += reader.get<uint64_t>();
-        const std::vector<Color> sums = reader.get_array<Color>();
-        const std::vector<double> weights = reader.get_array<double>();
-        for (int j = t.y0; j < t.y1; ++j)
-          for (int i = t.x0; i < t.x1; ++i) {
-            round_sums[std::size_t(j) * width + i] = sums[std::size_t(j - t.y0) * t.width() + (i - t.x0)];
-            round_weights[std::size_t(j) * width + i] =
-                weights[std::size_t(j - t.y0) * t.width() + (i - t.x0)];
-          }
-      };
-      farm.stop = [] { return cancel_requested(); };
-      const TaskFarmReport report = run_task_farm(*cluster, farm);
-      ++rounds;
-      if (!cluster->root()) continue;
-      for (std::size_t r = 0; r < report.tasks_by_rank.size(); ++r)
-        tiles_by_rank[r] += report.tasks_by_rank[r];
-      if (report.tasks_done < tiles.size() || !whole) {  // Ctrl-C during the round: dropped
-        interrupted = true;
-        continue;  // the next plan says stop
-      }
-      state.sums.swap(round_sums);
-      state.weights.swap(round_weights);
-      dropped_across_ranks += round_dropped;
-      for (uint64_t pass = 0; pass < round_count; ++pass) after_pass(++state.passes);
-      // Rounds of a second for every 200,000 pixels (1 to 30 s): each round sends every tile's
-      // sums out and back (48 bytes a pixel), which stays near 1 % of the round on 10 Gb/s;
-      // no longer than the time left or the checkpoint interval allow. The image does not
-      // depend on it.
-      const double per_pass = round_time.seconds() / double(round_count);
-      double budget = std::clamp(double(width) * height / 2e5, 1.0, 30.0);
-      if (timed) budget = std::min(budget, settings.time - timer.seconds());
-      if (request.checkpoint) budget = std::min(budget, settings.checkpoint_interval);
-      passes_per_round =
-          per_pass > 0 ? std::clamp<uint64_t>(static_cast<uint64_t>(budget / per_pass), 1, 256) : 256;
-      save_if_due();
-    }
-    distributed = distributed_facts(*cluster, tiles_by_rank, "tiles");
-    distributed["rounds"] = rounds;
-  } else {
-    // A pass's samples are all taken before any is added to the sums: a pass cut short by Ctrl-C
-    // is dropped, so the sums (and the checkpoint) always hold whole passes. Each sum takes its
-    // terms one by one in pass order, then sample order — the very additions a tile makes on
-    // another rank — so one process and several give the same bits with every filter.
-    const PixelBox pixels{0, 0, width, height};
-    std::vector<PassSample> samples;
-    uint64_t dropped_here = 0;
-    while (state.passes < last_pass) {
-      if (cancel_requested()) {
-        interrupted = true;
-        break;
-      }
-      if (!run_pass(state.passes, pixels, samples, state.sums.data(), state.weights.data(), dropped_here)) {
-        interrupted = true;  // some blocks were skipped: the pass is not whole
-        break;
-      }
-      after_pass(++state.passes);
-      if (timed && timer.seconds() >= settings.time) break;
-      save_if_due();
-    }
-    dropped_across_ranks += dropped_here;
-  }
-  progress.finish();
-  if (hands_out_checkpoints) output.checkpoint = sealed_state();  // a later run can go on from it
+  dropped += dropped_now.load();
+  return true;
+}
 
-  film_of_passes(film);
+// Every sample is splatted with the scene's aa.filter into the pixels within its reach (pbrt-v4's
+// film), gathered here per pixel in a fixed order, so the image depends neither on the threads nor
+// on the tiles. The pixels take their passes from the samples of the box grown by the reach
+// (clipped to the image): all of them are taken before any is added.
+bool PathPasses::run_pass(uint64_t pass, const PixelBox& pixels, Color* sums, double* weights,
+                          uint64_t& dropped) {
+  if (lattice_passes_) return run_lattice_pass(pass, pixels, sums, weights, dropped);
+  const PixelBox box = pixels.grown(reach_).clipped(image_);
+  std::vector<PassSample> samples(std::size_t(box.width()) * box.height());
+  std::atomic<bool> cut_short{false};
+  std::atomic<uint64_t> dropped_now{0};
+  tbb::parallel_for(tbb::blocked_range2d<int>(box.y0, box.y1, tile_, box.x0, box.x1, tile_),
+                    [&](const tbb::blocked_range2d<int>& block) {
+                      if (cancel_requested()) {
+                        cut_short.store(true, std::memory_order_relaxed);
+                        return;
+                      }
+                      RayCounts& rays = counts_.local();
+                      // Only the pixels' own samples count as dropped (a ring sample is some other
+                      // tile's own).
+                      uint64_t dropped_block = 0, ring = 0;
+                      for (int j = block.rows().begin(); j < block.rows().end(); ++j)
+                        for (int i = block.cols().begin(); i < block.cols().end(); ++i)
+                          samples[std::size_t(j - box.y0) * box.width() + (i - box.x0)] =
+                              sample_pixel(pass, i, j, rays, pixels.contains(i, j) ? dropped_block : ring);
+                      dropped_now += dropped_block;
+                    });
+  if (cut_short.load()) return false;
+  tbb::parallel_for(
+      tbb::blocked_range2d<int>(pixels.y0, pixels.y1, tile_, pixels.x0, pixels.x1, tile_),
+      [&](const tbb::blocked_range2d<int>& block) {
+        for (int qy = block.rows().begin(); qy < block.rows().end(); ++qy)
+          for (int qx = block.cols().begin(); qx < block.cols().end(); ++qx) {
+            const std::size_t q = std::size_t(qy - pixels.y0) * pixels.width() + (qx - pixels.x0);
+            for (int py = std::max(qy - reach_, box.y0); py < std::min(qy + reach_ + 1, box.y1); ++py)
+              for (int px = std::max(qx - reach_, box.x0); px < std::min(qx + reach_ + 1, box.x1); ++px) {
+                const PassSample& sample = samples[std::size_t(py - box.y0) * box.width() + (px - box.x0)];
+                const double w = filter_->evaluate(sample.dx - 0.5 + (px - qx), sample.dy - 0.5 + (py - qy));
+                if (w == 0) continue;
+                sums[q] += sample.value * w;
+                weights[q] += w;
+              }
+          }
+      });
+  dropped += dropped_now.load();
+  return true;
+}
 
-  RayCounts rays;
-  for (const RayCounts& c : counts) rays += c;
-  if (cluster) sum_across_ranks(*cluster, rays);
-  const uint64_t dropped = dropped_across_ranks;
-  statistics.rays += rays;
-  statistics.pixels += uint64_t(width) * height;
-  nlohmann::json facts = {{"spp", state.passes},
-                          {"passes_this_run", state.passes - first_pass},
-                          {"max_depth", settings.max_depth},
-                          {"roulette_depth", settings.roulette_depth},
-                          {"sampler", settings.sampler},
-                          {"emissive_primitives", lights.emissive_primitive_count()},
-                          {"scene_lights", scene.lights.size()},
-                          {"environment", lights.has_environment()},
-                          {"dropped_samples", dropped},
-                          {"checkpoints_written", checkpoints},
-                          {"seconds_all_runs", state.seconds + timer.seconds()}};
-  if (request.resume) facts["resumed_from_spp"] = first_pass;
-  if (cluster) statistics.extra["distributed"] = distributed;
-  if (interrupted) {  // Ctrl-C: the mean of the whole passes, which the checkpoint holds too
-    statistics.extra["interrupted"] = true;
-    statistics.extra["completed"] =
-        fmt::format("{} passes{}", state.passes - first_pass,
-                    first_pass > 0 ? fmt::format(" ({} in all)", state.passes) : "");
-  }
-  if (lights.empty())
-    facts["warning"] =
-        "nothing emits light (no lights, emissive surfaces or environment; the background lights nothing): "
-        "the "
-        "image shows the background alone";
-  statistics.extra["path"] = facts;
-  return output;
+}  // namespace
+
+std::string PathMethod::pass_fingerprint() const {
+  return fmt::format("max_depth={} roulette_depth={} sampler={}{}", settings_.max_depth,
+                     settings_.roulette_depth, settings_.sampler,
+                     find_sampler(settings_.sampler)->needs_sample_count ? fmt::format("/{}", settings_.spp)
+                                                                         : std::string());
+}
+
+RunLimits PathMethod::limits() const {
+  return {uint64_t(settings_.spp), "path.spp", settings_.time, settings_.checkpoint_interval};
+}
+
+std::unique_ptr<PixelPasses> PathMethod::start_passes(const Scene& scene,
+                                                      const RenderRequest& request) const {
+  return std::make_unique<PathPasses>(scene, settings_, request);
 }
 
 }  // namespace candela

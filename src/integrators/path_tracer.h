@@ -12,6 +12,7 @@
 
 #include "integrators/light_sampler.h"
 #include "integrators/method.h"
+#include "integrators/pass_method.h"
 #include "io/json_node.h"
 #include "math/pcg32.h"
 #include "sampling/sampler.h"
@@ -59,13 +60,17 @@ Pcg32 path_pixel_rng(uint64_t seed, uint64_t pass, uint32_t x, uint32_t y);
 // point's, independent of the thread, of the region and of which pixel asked first.
 Pcg32 path_point_rng(uint64_t seed, uint64_t pass, double x, double y);
 
-class PathMethod final : public Method {
+// The passes, their checkpoints and ranks are PassMethod's; the path tracer's own are the pass
+// over the pixels (PathPasses), path.spp and path.time, and the settings that shape a sample.
+class PathMethod final : public PassMethod {
  public:
   explicit PathMethod(const PathSettings& settings = {}) : settings_(settings) {}
   std::string_view name() const override { return "path"; }
-  RenderResult render(const Scene& scene, const RenderRequest& request) const override;
-  // Issue 51: the image, a pass's, the running sums and weights and their checkpoint.
-  std::vector<MemoryPart> memory_needed(const Scene& scene, const RenderRequest& request) const override;
+
+ protected:
+  std::string pass_fingerprint() const override;
+  RunLimits limits() const override;
+  std::unique_ptr<PixelPasses> start_passes(const Scene& scene, const RenderRequest& request) const override;
 
  private:
   PathSettings settings_;

@@ -9,6 +9,7 @@
 
 #include "distributed/cluster.h"
 #include "integrators/distributed_tiles.h"
+#include "integrators/progressive_run.h"
 #include "io/byte_stream.h"
 #include "radiosity/display.h"
 #include "radiosity/radiosity_checkpoint.h"
@@ -46,43 +47,6 @@ std::string checkpoint_fingerprint(const Scene& scene, const RadiositySettings& 
                      r.patch_size, r.element_size, r.segments, r.ambient, r.split_at_contacts, seed);
 }
 
-// The state to resume from: rank 0 alone reads the checkpoint (an InputError when it is another
-// scene's) and sends it to the others, so that every rank shoots the same way from the same state.
-RadiosityCheckpoint resumed_state(const RenderRequest& request, const std::string& fingerprint,
-                                  Cluster* cluster) {
-  const SourceLocation where{request.resume->source, 0, 0, {}};
-  const bool root = !cluster || cluster->root();
-  RadiosityCheckpoint resumed;
-  std::exception_ptr error;
-  try {
-    if (root) {
-      resumed = unseal_radiosity_checkpoint(*request.resume);
-      if (resumed.fingerprint != fingerprint)
-        throw InputError(where, "the checkpoint was made for another scene or other settings (" +
-                                    resumed.fingerprint + "), not this one (" + fingerprint + ")");
-    }
-  } catch (...) {
-    if (!cluster) throw;
-    error = std::current_exception();
-  }
-  if (!cluster) return resumed;
-  settle_root_outcome(*cluster, error);
-  ByteWriter writer;
-  if (root) {
-    writer.put<uint64_t>(resumed.steps);
-    writer.put_array(resumed.radiosity);
-    writer.put_array(resumed.unshot);
-  }
-  Bytes state = writer.take();
-  cluster->broadcast(state);
-  ByteReader reader(state);
-  resumed.fingerprint = fingerprint;
-  resumed.steps = reader.get<uint64_t>();
-  resumed.radiosity = reader.get_array<Color>();
-  resumed.unshot = reader.get_array<Color>();
-  return resumed;
-}
-
 }  // namespace
 
 RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet) {
@@ -114,28 +78,25 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
   reused = !checkpointing && !request.on_progress && cached_ && cached_key_ == key;
   if (reused) return cached_;
   auto solved = std::make_shared<Solved>();
-  ProgressiveCheckpointing run;
-  RadiosityCheckpoint resumed;
+  // The run's checkpoints (integrators/progressive_run.h): rank 0 reads the one resumed from and
+  // sends it to the others, so that every rank shoots the same way from the same state.
+  std::optional<ProgressiveRun> run;
+  ProgressiveCheckpointing checkpoints;
+  std::optional<RadiosityCheckpoint> resumed;
   if (checkpointing) {
     if (settings.solver != RadiositySolver::progressive || settings.subdivision_threshold > 0)
       throw InputError({scene.source, 0, 0, "radiosity.solver"},
                        "checkpoints are for radiosity.solver \"progressive\" without adaptive subdivision "
                        "(radiosity.subdivision_threshold 0)");
-    run.fingerprint = checkpoint_fingerprint(scene, settings, request);
-    if (request.checkpoint_interval > 0) run.interval = request.checkpoint_interval;
-    // Rank 0 alone hands out checkpoints.
-    run.hands_out = request.checkpoint && (!cluster || cluster->root());
-    run.save = request.save_checkpoint;
-    if (request.resume) {
-      resumed = resumed_state(request, run.fingerprint, cluster);
-      run.resume = &resumed;
-    }
+    run.emplace(request, checkpoint_fingerprint(scene, settings, request), RunLimits{});
+    resumed = run->resume<RadiosityCheckpoint>(unseal_radiosity_checkpoint, {}, true);
+    checkpoints = {&run->checkpoints(), run->fingerprint(), resumed ? &*resumed : nullptr};
   }
   RadiositySolveOptions options;
   options.seed = seed;
   options.quiet = request.quiet || (cluster && !cluster->root());
   options.facts = &solved->facts;
-  options.checkpointing = checkpointing ? &run : nullptr;
+  options.checkpointing = checkpointing ? &checkpoints : nullptr;
   options.cluster = cluster;
   if (request.on_progress) {  // issue 24: each step's solution displayed as render would
     if (request.progress_every > 0) options.step_every = request.progress_every;
@@ -158,13 +119,13 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
   try {
     solved->result = solve_radiosity(scene, settings, options);
   } catch (const std::invalid_argument& e) {
-    if (!run.resume) throw;
+    if (!resumed) throw;
     throw InputError({request.resume->source, 0, 0, {}}, e.what());
   }
   if (checkpointing) {
-    solved->facts["checkpoints_written"] = run.checkpoints_written;
-    solved->checkpoint = std::move(run.final_state);
-    if (run.resume) solved->facts["resumed_from_shots"] = resumed.steps;
+    solved->facts["checkpoints_written"] = run->checkpoints().written();
+    solved->checkpoint = run->checkpoints().take_final();
+    if (resumed) solved->facts["resumed_from_shots"] = resumed->steps;
     return solved;  // not kept: the next render may resume from elsewhere
   }
   if (solved->facts.contains("interrupted")) return solved;  // Ctrl-C: not a solution to keep

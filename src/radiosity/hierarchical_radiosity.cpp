@@ -23,6 +23,7 @@
 #include "radiosity/triangle_occluders.h"
 #include "sampling/warps.h"
 #include "scene/scene.h"
+#include "util/cancellation.h"
 #include "util/progress.h"
 #include "util/statistics.h"
 

@@ -48,11 +48,7 @@ ElementSolution shoot_progressively(
           state.unshot.size(), mesh.elements.size(), mesh.patches.size()));
     refinement.restore(state.radiosity, state.unshot, static_cast<std::size_t>(state.steps));
   }
-  Stopwatch since_checkpoint;
-  const bool hands_out = checkpointing && checkpointing->hands_out;  // (rank 0 alone hands them out)
   const auto sealed_state = [&] {
-    ++checkpointing->checkpoints_written;
-    since_checkpoint = Stopwatch();
     return seal_radiosity_checkpoint({checkpointing->fingerprint, refinement.steps(), refinement.radiosity(),
                                       refinement.unshot_radiosity()});
   };
@@ -60,8 +56,7 @@ ElementSolution shoot_progressively(
     const auto done = static_cast<uint64_t>(1000 * convergence_progress(fraction, settings.threshold));
     progress.set_detail(fmt::format("unshot {:.3g}% after {} steps", 100 * fraction, steps));
     progress.advance_to(done);
-    if (hands_out && checkpointing->save && since_checkpoint.seconds() >= checkpointing->interval)
-      checkpointing->save(sealed_state());
+    if (checkpointing) checkpointing->schedule->between_steps(sealed_state);
     if (observe) observe(refinement, steps, fraction);
   };
   // Ctrl-C: the solution so far (several ranks agree every 256 shots, so they shoot alike; a shot
@@ -74,7 +69,7 @@ ElementSolution shoot_progressively(
       refinement.run(settings.threshold, max_steps > refinement.steps() ? max_steps - refinement.steps() : 0,
                      on_step, cancelled);
   // The final state: a later run goes on from it (after Ctrl-C, or with a lower threshold).
-  if (hands_out) checkpointing->final_state = sealed_state();
+  if (checkpointing) checkpointing->schedule->finish(sealed_state);
   ElementSolution solution;
   solution.radiosity = refinement.radiosity();
   solution.displayed = refinement.display_radiosities(settings.ambient);

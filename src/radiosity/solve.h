@@ -21,6 +21,7 @@
 #include <optional>
 #include <string>
 
+#include "io/checkpoint_schedule.h"
 #include "radiosity/radiosity_checkpoint.h"
 #include "radiosity/radiosity_settings.h"
 #include "radiosity/radiosity_solve_result.h"
@@ -30,18 +31,13 @@ namespace candela {
 class Cluster;
 class Scene;
 
-// Checkpointing a progressive solution (issue 10): the state sealed (radiosity_checkpoint.h) and
-// handed to `save` every `interval` seconds while shots remain, and kept in final_state when the
-// shooting ends (converged, out of steps or interrupted); and the state it starts from instead of
-// B = E, ΔB = E.
+// Checkpointing a progressive solution: the state sealed (radiosity_checkpoint.h) and handed to
+// the run's schedule between shots and when the shooting ends (converged, out of steps or
+// interrupted); and the state it starts from instead of B = E, ΔB = E.
 struct ProgressiveCheckpointing {
-  bool hands_out = false;                              // false: no checkpoints (every rank but 0)
-  std::function<void(const Bytes& sealed)> save = {};  // empty: the final state alone
+  CheckpointSchedule* schedule = nullptr;  // never null: when the state is handed out
   std::string fingerprint;
-  double interval = 60;
   const RadiosityCheckpoint* resume = nullptr;
-  std::optional<Bytes> final_state = {};  // set by the solve when hands_out
-  int checkpoints_written = 0;            // counted by the solve, the final state included
 };
 
 struct RadiositySolveOptions {

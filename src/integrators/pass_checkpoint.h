@@ -1,13 +1,15 @@
-// The path tracer's progressive state as a checkpoint (SPEC §15: long runs checkpoint and resume):
-// the per-pixel sums of every pass so far (Σ w·L and Σ w of the reconstruction filter), exactly as
-// doubles, so that resuming and finishing
+// The state of a method rendered in passes (integrators/pass_method.h: the path tracer) as a
+// checkpoint (SPEC §15: long runs checkpoint and resume): the per-pixel sums of every pass so far
+// (Σ w·L and Σ w of the reconstruction filter), exactly as doubles, so that resuming and finishing
 // gives the image an uninterrupted run gives, bit for bit (each pixel's passes are added in pass
 // order either way). Sealed in the byte format of io/checkpoint_file.h (which the caller writes
-// to a file and reads back); unsealed with its size and checksum verified.
+// to a file and reads back) under a magic line naming the method ("CANDELA-PATH-CHECKPOINT 2");
+// unsealed with its size and checksum verified.
 #pragma once
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "integrators/method.h"
@@ -17,7 +19,7 @@
 
 namespace candela {
 
-struct PathCheckpoint {
+struct PassCheckpoint {
   // What the sums belong to: the scene, the camera and every setting that changes a sample.
   std::string fingerprint;
   PixelRect region;
@@ -28,9 +30,10 @@ struct PathCheckpoint {
   std::vector<double> weights;  // Σ w of the reconstruction filter (the pass count for the box)
 };
 
-Bytes seal_path_checkpoint(const PathCheckpoint& checkpoint);
-// Throws InputError naming the checkpoint's source when it is truncated, corrupt or not a path
-// tracer's checkpoint.
-PathCheckpoint unseal_path_checkpoint(const SealedCheckpoint& sealed);
+// `method`: the method's name, which the magic line spells ("path").
+Bytes seal_pass_checkpoint(std::string_view method, const PassCheckpoint& checkpoint);
+// Throws InputError naming the checkpoint's source when it is truncated, corrupt or not this
+// method's checkpoint.
+PassCheckpoint unseal_pass_checkpoint(std::string_view method, const SealedCheckpoint& sealed);
 
 }  // namespace candela

@@ -1,15 +1,24 @@
-#include "integrators/path_checkpoint.h"
+#include "integrators/pass_checkpoint.h"
 
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 
 namespace candela {
 
 namespace {
-constexpr char kMagic[] = "CANDELA-PATH-CHECKPOINT 2\n";  // 2: with the filter weights
+// Version 2: with the filter weights.
+std::string magic(std::string_view method) {
+  std::string name(method);
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::toupper(c); });
+  return fmt::format("CANDELA-{}-CHECKPOINT 2\n", name);
+}
 }  // namespace
 
-Bytes seal_path_checkpoint(const PathCheckpoint& checkpoint) {
-  CheckpointWriter out(kMagic);
+Bytes seal_pass_checkpoint(std::string_view method, const PassCheckpoint& checkpoint) {
+  CheckpointWriter out(magic(method));
   out.put_string(checkpoint.fingerprint);
   for (const int v : {checkpoint.region.x0, checkpoint.region.y0, checkpoint.region.x1, checkpoint.region.y1})
     out.put(static_cast<int32_t>(v));
@@ -23,9 +32,9 @@ Bytes seal_path_checkpoint(const PathCheckpoint& checkpoint) {
   return out.seal();
 }
 
-PathCheckpoint unseal_path_checkpoint(const SealedCheckpoint& sealed) {
-  CheckpointReader in(sealed, kMagic);
-  PathCheckpoint checkpoint;
+PassCheckpoint unseal_pass_checkpoint(std::string_view method, const SealedCheckpoint& sealed) {
+  CheckpointReader in(sealed, magic(method));
+  PassCheckpoint checkpoint;
   checkpoint.fingerprint = in.get_string();
   checkpoint.region.x0 = in.get<int32_t>();
   checkpoint.region.y0 = in.get<int32_t>();
