@@ -182,7 +182,7 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
   for (;; ++state.depth) {
     Intersection hit;
     if (!scene.intersect(state.ray, hit)) {
-      // Issue 19: the background colours what the camera sees (directly, or in mirrors and
+      // The background colours what the camera sees (directly, or in mirrors and
       // through glass) and lights nothing; an environment lights the scene too.
       if (!scene.environment && !state.specular) break;
       const Color background = scene.background_along(state.ray.direction);
@@ -384,7 +384,7 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
   const PixelRect region = request.region;
   const int width = region.width(), height = region.height();
   const PathSettings& settings = settings_;
-  // Issue 51: the render's seed and aa settings, which may not be the scene's.
+  // The render's seed and aa settings, which may not be the scene's.
   const uint64_t seed = request.seed_for(scene);
   const AntialiasingSettings& aa = request.antialiasing_for(scene);
   // Everything besides the scene file that changes a sample: a checkpoint made with other values
@@ -533,7 +533,7 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
     dropped_here += dropped_now.load();
     return true;
   };
-  // Issue 19, one film: every sample is splatted with the scene's aa.filter into the pixels within
+  // One film: every sample is splatted with the scene's aa.filter into the pixels within
   // its reach (pbrt-v4's film), gathered here per pixel in a fixed order, so the image does not
   // depend on the threads or on the tiles. The pixels [x0, x1) × [y0, y1) of the region take their
   // passes from the samples of the box grown by the reach (clipped to the image).
@@ -616,7 +616,7 @@ RenderResult PathMethod::render(const Scene& scene, const RenderRequest& request
   };
   nlohmann::json distributed;
   if (cluster) {
-    // Across ranks (issue 11): rounds of passes; in a round every tile goes to some rank with its
+    // Across ranks: rounds of passes; in a round every tile goes to some rank with its
     // sums so far, which adds the round's passes pixel by pixel in pass order — the very
     // additions one process makes — and sends the sums back. Rank 0 decides each round (how many
     // passes, or stop: spp reached, time up, Ctrl-C), keeps the sums and hands out the checkpoints. A

@@ -25,7 +25,7 @@ struct PathSettings {
   int max_depth = 0;                // bounces at most; 0: unlimited (Russian roulette ends every path)
   int roulette_depth = 3;           // Russian roulette from this bounce on
   double checkpoint_interval = 60;  // seconds between checkpoints (candela render --checkpoint)
-  std::string sampler = "sobol";    // sampling/sampler.h: independent, stratified, sobol (issue 22)
+  std::string sampler = "sobol";    // sampling/sampler.h: independent, stratified, sobol
 };
 // Ranges checked, unknown keys refused; spp 0 needs a time limit.
 PathSettings read_path_settings(const JsonNode& node);
@@ -64,7 +64,7 @@ class PathMethod final : public Method {
   explicit PathMethod(const PathSettings& settings = {}) : settings_(settings) {}
   std::string_view name() const override { return "path"; }
   RenderResult render(const Scene& scene, const RenderRequest& request) const override;
-  // Issue 51: the image, a pass's, the running sums and weights and their checkpoint.
+  // The image, a pass's, the running sums and weights and their checkpoint.
   std::vector<MemoryPart> memory_needed(const Scene& scene, const RenderRequest& request) const override;
 
  private:
