@@ -162,7 +162,7 @@ int finish_bench(const BenchReport& report, const BenchCommandOptions& options) 
   return write_json(report.to_json(), options);
 }
 
-// Issue 51: --json must not be one of the files the scene reads (its meshes, textures, luminaires).
+// --json must not be one of the files the scene reads (its meshes, textures, luminaires).
 void refuse_json_over_scene_files(const BenchCommandOptions& options, const Scene& scene) {
   if (!options.json_path.empty())
     refuse_outputs_over_inputs({{options.json_path, "--json"}}, scene.input_files);
@@ -191,7 +191,7 @@ std::vector<BenchMesh> raster_meshes(const BenchCommandOptions& options) {
                       "or pass the meshes)",
                       kDefaultModelDirectory));
   }
-  // Issue 51: the meshes found in the models folder are inputs too.
+  // The meshes found in the models folder are inputs too.
   if (!options.json_path.empty()) refuse_outputs_over_inputs({{options.json_path, "--json"}}, paths);
   for (const std::string& path : paths) {
     meshes.push_back(read_bench_obj(path));
@@ -317,7 +317,7 @@ int run_scene_solve_bench(const BenchCommandOptions& options, const std::string&
 }
 
 int run_radiosity_bench_command(const BenchCommandOptions& options) {
-  // Issue 52: hierarchical radiosity's links (0 for the other solvers) and its memory (nodes and
+  // Hierarchical radiosity's links (0 for the other solvers) and its memory (nodes and
   // links) in the form-factor column; its form factors are the links evaluated.
   const std::string header =
       fmt::format("{:>7} {:>8} {:>9} {:>9} {:>7} {:>10} {:>9} {:>9} {:>9} {:>13} {:>10} {:>9} {:>9}",
@@ -334,7 +334,7 @@ int run_radiosity_bench_command(const BenchCommandOptions& options) {
   });
 }
 
-// Issue 8: the meshless method's sites, transfer matrix (entries, density, memory, time) and
+// The meshless method's sites, transfer matrix (entries, density, memory, time) and
 // solution time, to see how they grow with the number of sites.
 int run_meshless_bench_command(const BenchCommandOptions& options) {
   const std::string header =
@@ -344,7 +344,7 @@ int run_meshless_bench_command(const BenchCommandOptions& options) {
   return run_scene_solve_bench(options, "meshless", header, [&](const Scene& scene, nlohmann::json& facts) {
     const MeshlessSolution solution =
         solve_meshless(scene, read_meshless_settings(scene.plugin_settings.node("meshless")), &facts);
-    // Issue 25: levels 1 and no links for the flat matrix; the hierarchy's levels and cluster links.
+    // Levels 1 and no links for the flat matrix; the hierarchy's levels and cluster links.
     return fmt::format(
         "{:>7} {:>6} {:>12} {:>10} {:>8.4f} {:>9.1f} {:>10.3f} {:>10.3f} {:>10.3f} {:>6} {:>9.3f}",
         solution.sites.sites.size(), facts.value("hierarchy_levels", 1), solution.matrix.entries(),
@@ -355,7 +355,7 @@ int run_meshless_bench_command(const BenchCommandOptions& options) {
 }
 
 int run_bench_command(const BenchCommandOptions& given) {
-  // Issue 51: --json is checked before any work, against the meshes and scene given (a scene's own
+  // --json is checked before any work, against the meshes and scene given (a scene's own
   // files again once it is loaded, refuse_json_over_scene_files).
   if (!given.json_path.empty()) {
     check_writable(given.json_path, "--json");
@@ -368,7 +368,7 @@ int run_bench_command(const BenchCommandOptions& given) {
   BenchCommandOptions options = given;
   if (!given.inputs.empty()) options.mesh_path = given.inputs.front();
   BenchOptions bench = bench_options(options);
-  // Issue 51: --dump's files are outputs too, checked against --json and the mesh.
+  // --dump's files are outputs too, checked against --json and the mesh.
   if (!options.dump_directory.empty()) {
     std::vector<OutputFile> outputs;
     if (!options.json_path.empty()) outputs.push_back({options.json_path, "--json"});

@@ -5,7 +5,7 @@
 // --json writes them as JSON; --diff writes a false-color picture of the per-pixel luminance
 // difference with its color bar beneath (io/false_color.h). PNG and other 8-bit files are
 // decoded from sRGB to linear first; EXR and PFM are compared as stored; --luminance compares
-// their luminances in cd/m² (efficacy × Y / π, issue 23). See docs/compare.md.
+// their luminances in cd/m² (efficacy × Y / π). See docs/compare.md.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -101,7 +101,7 @@ int run_compare(const CompareOptions& options) {
     check_writable(options.diff, "--diff");
   }
   if (!options.json.empty()) check_writable(options.json, "--json");
-  // Issue 51: neither output may be an image compared, the mask, or the other output.
+  // Neither output may be an image compared, the mask, or the other output.
   std::vector<OutputFile> outputs;
   if (!options.diff.empty()) outputs.push_back({options.diff, "--diff"});
   if (!options.json.empty()) outputs.push_back({options.json, "--json"});
@@ -109,7 +109,7 @@ int run_compare(const CompareOptions& options) {
 
   LinearImage image = read_image_argument(options.image, "A");
   LinearImage reference = read_image_argument(options.reference, "B (reference)");
-  // Issue 23: in luminance, cd/m² — efficacy × Y / π of a rendered value (π × the radiance), the one
+  // In luminance, cd/m² — efficacy × Y / π of a rendered value (π × the radiance), the one
   // conversion of shading/photometric_units.h — of linear images only.
   if (options.luminance) {
     check_efficacy(options.efficacy);

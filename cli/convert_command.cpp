@@ -1,5 +1,5 @@
 // candela convert IN OUT [--exposure STOPS] [--tone-map clamp|scale|normalize] [--linear]
-// Pictures from one format to another (issue 24, item 4): IN any format read_linear_image reads
+// Pictures from one format to another: IN any format read_linear_image reads
 // (PNG, JPG, … decoded from sRGB; EXR, PFM, HDR linear), OUT by its extension — .png (tone-mapped
 // 8-bit), .exr, .pfm or .hdr (linear) — as render writes them: the exposure multiplies every value
 // by 2^STOPS, and for a .png the out-of-range handling (SPEC §6: film.out_of_range) and the sRGB

@@ -20,7 +20,7 @@ void check_false_color_options(const std::vector<double>& scale, bool logarithmi
 }
 
 void check_efficacy(double efficacy) {
-  // Issue 51: 1e308 lm/W overflowed every lux value to inf. No light has more than 683 lm/W (the
+  // 1e308 lm/W overflowed every lux value to inf. No light has more than 683 lm/W (the
   // luminous efficacy of 555 nm light, where V(λ) = 1: the definition of the candela).
   if (!(std::isfinite(efficacy) && efficacy > 0 && efficacy <= kMaximumLuminousEfficacy))
     throw BadArgument(

@@ -1,6 +1,6 @@
 // candela falsecolor IMAGE -o out.png [--scale LO,HI] [--log] [--contours N] [--efficacy E]
 //                        [--exposure STOPS] [--json FILE]
-// Radiance's falsecolor for a rendered image (issue 23, item 4): each pixel's luminance in cd/m²,
+// Radiance's falsecolor for a rendered image: each pixel's luminance in cd/m²,
 // L = efficacy × Y / π (a rendered value is π × the radiance, in the scene's W/m²; Y the Rec. 709
 // luminance; 179 lm/W by default, the one conversion of shading/photometric_units.h), drawn in
 // false colour with its bar and unit ("cd/m²") beneath — the fixed range, log scale and

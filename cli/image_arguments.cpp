@@ -30,7 +30,7 @@ std::vector<uint8_t> read_mask_argument(const std::string& path, const std::stri
   const LinearImage mask = read_image_argument(path, option);
   check_image_size(mask.film, option, path, width, height, of_what);
   std::vector<uint8_t> included = mask_from_image(mask.film);
-  // Issue 51: a mask that leaves out every pixel measures nothing; refused before any work (an
+  // A mask that leaves out every pixel measures nothing; refused before any work (an
   // all-black --error-mask once ran the whole render, wrote the image, then failed).
   if (std::find(included.begin(), included.end(), uint8_t(1)) == included.end())
     throw BadArgument(fmt::format("{} {} excludes every pixel (none has luminance above {})", option, path,

@@ -1,4 +1,4 @@
-// One syntax for every option that takes several values (issue 24): comma-separated
+// One syntax for every option that takes several values: comma-separated
 // (--accel bvh,embree), separated by spaces (--accel bvh embree), or the option repeated
 // (--accel bvh --accel embree), in any mix.
 #pragma once

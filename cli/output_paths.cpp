@@ -24,7 +24,7 @@ void check_writable(const std::string& path, const char* option) {
     throw BadArgument(std::string(option) + " " + path + ": the folder " + parent.string() +
                       " is not writable");
   if (fs::is_directory(path, error)) throw BadArgument(std::string(option) + " " + path + " is a folder");
-  // Issue 21: the write itself is tried (its temporary file created and removed, the name's length
+  // The write itself is tried (its temporary file created and removed, the name's length
   // checked), so a name the folder cannot hold fails now, not after the render.
   if (const std::string problem = atomic_write_problem(path); !problem.empty())
     throw BadArgument(std::string(option) + " " + path + ": " + problem);
@@ -39,7 +39,7 @@ std::string file_identity(const std::string& path) {
     return fmt::format("inode {}:{}", static_cast<uint64_t>(status.st_dev),
                        static_cast<uint64_t>(status.st_ino));
   // Made absolute first: weakly_canonical leaves "out.png" relative (no part of it exists) but
-  // resolves "./out.png" (issue 51: the two were not seen to be one file).
+  // resolves "./out.png" (the two were not seen to be one file).
   std::error_code error;
   const std::filesystem::path absolute =
       std::filesystem::weakly_canonical(std::filesystem::absolute(path, error), error);

@@ -18,7 +18,7 @@ struct OutputFile {
   std::string option;  // "-o", "--stats", …
 };
 
-// Issue 21, data loss: throws BadArgument before any work when an output is one of the run's
+// No data loss: throws BadArgument before any work when an output is one of the run's
 // inputs (the same file, by device and inode, however the paths are spelled: the scene, a mesh, a
 // texture, a luminaire, the relight file, the checkpoint resumed from — render leaves that out when
 // --checkpoint names it: a run goes on writing the checkpoint it resumed), or when two outputs of the

@@ -4,7 +4,7 @@
 //   --grid-size NU,NV points at its cells' centres facing u × v, and --image FILE.png a
 //   false-color picture of the illuminance with its scale (--scale LO,HI, --log, --contours N as
 //   Radiance's falsecolor -s, -log, -cl). The summary and --json FILE give Emin, Eavg, Emax and
-//   the uniformities Emin/Eavg and Emin/Emax (issue 23, item 4).
+//   the uniformities Emin/Eavg and Emin/Emax.
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
@@ -80,7 +80,7 @@ int run_probe(ProbeOptions& options) {
     throw BadArgument(options.image_log ? "--log needs --image" : "--contours needs --image");
   check_false_color_options(options.image_scale, options.image_log, options.contours, "lux");
   if (!options.json.empty()) check_writable(options.json, "--json");
-  // Issue 51: no output may be the scene, the points file, a file the scene reads (checked again
+  // No output may be the scene, the points file, a file the scene reads (checked again
   // once it is loaded) or another output.
   std::vector<OutputFile> outputs{{options.output, "-o"}};
   if (!options.image.empty()) outputs.push_back({options.image, "--image"});
@@ -119,7 +119,7 @@ int run_probe(ProbeOptions& options) {
   settings.samples = options.samples;
   settings.seed = options.seed ? uint64_t(*options.seed) : scene->render.seed;
   settings.quiet = options.quiet;
-  // Issue 23: the daylight factor, the illuminance over what an unobstructed horizontal surface
+  // The daylight factor, the illuminance over what an unobstructed horizontal surface
   // receives from the sky (the environment), in per cent; a scene without a sky is refused before
   // anything is probed.
   double sky_lux = 0;
@@ -149,7 +149,7 @@ int run_probe(ProbeOptions& options) {
   std::vector<double> daylight_factor;
   if (options.daylight_factor)
     for (const double lux : illuminance) daylight_factor.push_back(100 * lux / sky_lux);
-  // Issue 51: nothing that is not finite is written (an efficacy of 1e308 once wrote a CSV of inf).
+  // Nothing that is not finite is written (an efficacy of 1e308 once wrote a CSV of inf).
   for (std::size_t i = 0; i < results.size(); ++i) {
     const ProbeResult& r = results[i];
     const double values[] = {

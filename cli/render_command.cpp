@@ -61,14 +61,14 @@ struct RenderOptions {
   std::string export_solution;
   std::string show_sites;
   std::string relight;
-  std::string relight_page;  // issue 25: the relighting page
+  std::string relight_page;  // the relighting page
   // The path tracer's progressive run (SPEC §12).
   std::optional<int> spp;
   std::optional<double> time;
   std::string checkpoint;
   std::optional<double> checkpoint_every;
   std::string resume;
-  // Issue 24: the convergence log against a reference.
+  // The convergence log against a reference.
   std::string error_reference, error_mask, error_log;
   std::optional<int> error_every;
 };
@@ -262,7 +262,7 @@ int report_interrupted_before(std::size_t skipped, const char* what) {
   return kInterruptedExitCode;
 }
 
-// Issue 21: an image with pixels that are not finite (or beyond a float for .exr/.pfm) comes from
+// An image with pixels that are not finite (or beyond a float for .exr/.pfm) comes from
 // legal values whose product overflowed: bad input — the scene's — refused before anything of the
 // image is written.
 void refuse_unwritable_image(const Film& film, const std::string& output, const Scene& scene) {
@@ -273,7 +273,7 @@ void refuse_unwritable_image(const Film& film, const std::string& output, const 
     throw InputError({scene.source, 0, 0, {}}, problem);
 }
 
-// Issue 21: the files a run of several images (views, relight frames) has written, so that a
+// The files a run of several images (views, relight frames) has written, so that a
 // failure in one image says which images are complete, what of the failing one was written and
 // what was not rendered — each file is whole (written atomically), but a set can be unfinished.
 struct WrittenImages {
@@ -366,7 +366,7 @@ struct RenderJob {
   nlohmann::json precomputation;              // --relight-page: the first render's meshless facts
 };
 
-// Issue 25: a relight frame's albedo edits — each named material's kd replaced by the frame's
+// A relight frame's albedo edits — each named material's kd replaced by the frame's
 // constant, and put back by undo() or at the latest when the frame's scope ends (an exception).
 class AlbedoEditsInPlace {
  public:
@@ -397,7 +397,7 @@ class AlbedoEditsInPlace {
   std::vector<std::pair<std::size_t, std::shared_ptr<const Texture>>> kept_;
 };
 
-// Issue 25: the relighting page's line for a frame just rendered (rank 0).
+// The relighting page's line for a frame just rendered (rank 0).
 RelightPageFrame relight_page_frame(const std::string& name, const std::string& image,
                                     const std::string& page,
                                     const std::vector<std::unique_ptr<Light>>& lights, const Color& ambient,
@@ -443,7 +443,7 @@ ConvergenceLog convergence_log_for(const RenderOptions& options, const MethodEnt
 }
 
 // Checks the options, loads the scene and makes the method; throws on bad input. Ranks other
-// than 0 (issue 11) check no outputs: only rank 0 writes.
+// than 0 check no outputs: only rank 0 writes.
 void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs) {
   if (options.output.empty()) options.output = default_output(options);
   ImageFormat format;
@@ -516,7 +516,7 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   if (logs_error && world_cluster().distributed())
     throw BadArgument("--error-log runs in one process (start it without mpirun)");
   // Rank 0 alone reads the checkpoint: it need not be on the other ranks' disks.
-  // Issue 51: a folder or a FIFO is named as what it is, not "no such file".
+  // A folder or a FIFO is named as what it is, not "no such file".
   if (!options.resume.empty() && writes_outputs) {
     std::error_code error;
     if (!std::filesystem::exists(options.resume, error))
@@ -531,7 +531,7 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   job.build_seconds = scene->accelerator_build_seconds();
   job.load_seconds = load_timer.seconds() - job.build_seconds;
   for (const auto& warning : scene->warnings) std::cerr << "candela: warning: " << warning << "\n";
-  // Issue 51: a frame's warnings as the scene's (a sun below the horizon rendered black unannounced).
+  // A frame's warnings as the scene's (a sun below the horizon rendered black unannounced).
   for (const LightSetup& frame : relight_frames)
     for (const auto& warning : frame.warnings)
       std::cerr << fmt::format("candela: warning: {}: frame {}: {}\n", options.relight, frame.name, warning);
@@ -611,7 +611,7 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
       if (views.size() == 1) throw;
       throw BadArgument(std::string(e.what()) + " (camera " + view.name + ")");
     }
-    {  // Issue 51: what the method would hold for this view, against render.memory_limit_mib.
+    {  // What the method would hold for this view, against render.memory_limit_mib.
       const CurrentCamera current(*scene, view);
       RenderRequest request;
       request.region = regions.back();
@@ -632,14 +632,14 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
       throw BadArgument("--error-log measures one image: one camera and no --relight");
     job.convergence = convergence_log_for(options, *entry, *scene, regions.front());
   }
-  // Issue 21: no output may be an input of the run, nor two outputs one file.
+  // No output may be an input of the run, nor two outputs one file.
   if (writes_outputs) {
     std::vector<std::string> inputs = scene->input_files;
     inputs.push_back(options.scene.scene_path);
     inputs.push_back(options.relight);
     inputs.push_back(options.error_reference);
     inputs.push_back(options.error_mask);
-    for (const LightSetup& frame : relight_frames)  // issue 51: the frames' luminaire files
+    for (const LightSetup& frame : relight_frames)  // the frames' luminaire files
       inputs.insert(inputs.end(), frame.input_files.begin(), frame.input_files.end());
     // Resuming from the checkpoint it goes on writing is how a run continues (read whole first).
     std::error_code error;
@@ -651,7 +651,7 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   job.fingerprint = can.checkpoints ? scene_fingerprint(options.scene, *scene) : std::string();
 }
 
-// Distributed runs (issue 11): every rank prepares the same job; then they agree, so that a rank
+// Distributed runs: every rank prepares the same job; then they agree, so that a rank
 // whose set-up failed does not leave the others waiting for it. An error on rank 0 is reported by
 // rank 0 alone (the others had the same input); an error only elsewhere is reported by that rank.
 void prepare_everywhere(RenderOptions& options, RenderJob& job, Cluster& cluster) {
@@ -831,7 +831,7 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
         return root ? report_interrupted_before(relight_frames.size() - f, "frame") : kInterruptedExitCode;
       std::swap(scene->lights, frame.lights);
       std::swap(scene->ambient, frame.ambient);
-      // Issue 25: the frame's albedo edits, undone when the frame ends however it ends (the
+      // The frame's albedo edits, undone when the frame ends however it ends (the
       // geometry and S are reused).
       AlbedoEditsInPlace edits(*scene, frame.albedo_edits);
       const CurrentCamera current(*scene, views.front());

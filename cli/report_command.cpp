@@ -42,7 +42,7 @@ struct ReportOptions {
   std::string error_mask;  // the convergence chart's pixels
   std::optional<int> spp;
   bool equal_time = false;
-  bool luminance = false;  // errors in cd/m² (issue 23)
+  bool luminance = false;  // errors in cd/m²
   int threads = 0;
   bool quiet = false;
 };
@@ -120,7 +120,7 @@ int run_report(ReportOptions& options) {
   if (!options.quiet)
     settings.log = [](const std::string& line) { std::cerr << "candela: report: " << line << "\n"; };
 
-  // Issue 21: no file the report writes may be an input of the run (a texture beside the scene in DIR).
+  // No file the report writes may be an input of the run (a texture beside the scene in DIR).
   std::vector<OutputFile> outputs;
   for (const std::string& name : cross_method_report_files(settings))
     outputs.push_back({(std::filesystem::path(options.output) / name).string(), "-o"});

@@ -1,4 +1,4 @@
-// The Python module `candela` (issue 24): scenes loaded with the command line's overrides, rendered
+// The Python module `candela`: scenes loaded with the command line's overrides, rendered
 // by any method into NumPy arrays, written, compared and probed — what a researcher's notebook
 // needs (Mitsuba 3's load_file / render). The arrays are what `candela render -o x.pfm` writes:
 // linear RGB after the scene's film.exposure, float32, H × W × 3, row 0 at the top.
@@ -7,7 +7,7 @@
 // ("file:line:column: json.path: what was expected") and its parts as attributes. A render runs
 // on a worker thread with the GIL released; the calling thread looks at Python's signals every
 // 50 ms, so Ctrl-C stops the method at its next coarse point (util/cancellation.h) and raises
-// KeyboardInterrupt once it has stopped. Issue 51: no function writes to a Scene, so several Python
+// KeyboardInterrupt once it has stopped. No function writes to a Scene, so several Python
 // threads may render (probe, solve) one Scene at once, each getting what the same call alone gives.
 #include <fmt/format.h>
 #include <pybind11/numpy.h>
@@ -71,7 +71,7 @@ int runs_in_progress = 0;
 
 // Runs work() on a worker thread while this (Python's) thread, without the GIL, looks at its
 // signals every 50 ms: on Ctrl-C the run is asked to stop (request_cancellation) and, once it has,
-// KeyboardInterrupt is raised instead of its result. Issue 51: the cancellation flag is one for the
+// KeyboardInterrupt is raised instead of its result. The cancellation flag is one for the
 // process, so with runs from several Python threads at once it is cleared only when none is in
 // progress (a run starting does not undo another's Ctrl-C), and a run it cut short raises
 // KeyboardInterrupt too rather than return a part of its image.
@@ -179,7 +179,7 @@ std::shared_ptr<Scene> load_file(const std::string& path, const py::kwargs& over
   return load_scene_file(path, overrides_from(overrides));
 }
 
-// Issue 51: the scene is only read — this render's seed and anti-aliasing samples go down in the
+// The scene is only read — this render's seed and anti-aliasing samples go down in the
 // RenderRequest — so that renders of one Scene from several Python threads (the GIL is released
 // while they run) are each what the same render alone gives, and the Scene stays as it was.
 py::array_t<float> render(const Scene& scene, std::optional<std::string> method_name, std::optional<int> spp,
@@ -215,7 +215,7 @@ py::array_t<float> render(const Scene& scene, std::optional<std::string> method_
   std::optional<tbb::global_control> thread_limit;
   if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   Film film = run_interruptibly<Film>([&] {
-    // Issue 51: refused before any work, as the CLI; without the GIL (it counts triangles).
+    // Refused before any work, as the CLI; without the GIL (it counts triangles).
     refuse_beyond_memory_limit(*method, scene, request);
     return std::move(method->render(scene, request).film);
   });
@@ -233,7 +233,7 @@ void write_image_file(const std::string& path, const DoubleArray& image) {
   write_image(film, path, display);
 }
 
-// Issue 51: a pixel no image file holds — not finite, or beyond the largest float (3.4e38), whose
+// A pixel no image file holds — not finite, or beyond the largest float (3.4e38), whose
 // square overflows the metrics' sums (±1e308) — is refused naming the array, the pixel and the
 // value, as `candela compare` refuses such a file (read_linear_image), rather than metrics of NaN
 // and a max error of −1. The first such pixel, row by row.
@@ -279,7 +279,7 @@ py::dict probe_points(const Scene& scene, const DoubleArray& points, const Doubl
   if (positions.size() != directions.size())
     throw py::value_error("points and normals: " + std::to_string(positions.size()) + " points but " +
                           std::to_string(directions.size()) + " normals");
-  // Issue 51: as `candela probe --points` reads its file (read_probe_points): every value finite
+  // As `candela probe --points` reads its file (read_probe_points): every value finite
   // (a NaN point gave zeros), and a normal any non-zero vector, normalised by direction_of (a huge
   // but finite one too).
   std::vector<ProbePoint> sensors;

@@ -211,7 +211,7 @@ TEST(AcceleratorProperty, EmptyScene) {
   expect_all_agree(scene, scene.rays(100, 4));
 }
 
-// Issue 21: primitives no ray can report stay out of every structure — zero-area triangles, and
+// Primitives no ray can report stay out of every structure — zero-area triangles, and
 // copies of a triangle (the same corners, in other meshes or objects) that lose every tie to the
 // first. 2,000 coincident copies made every ray meeting them test them all.
 TEST(AcceleratorProperty, DegenerateAndRepeatedTrianglesAreLeftOut) {

@@ -1,4 +1,4 @@
-// SPEC §17 and issue 19 §2: every image-producing method takes its pixels from the one camera
+// SPEC §17: every image-producing method takes its pixels from the one camera
 // sampling and reconstruction (camera/antialiasing.h) — every aa mode and pixel filter either
 // honoured, with the same bytes on one and two threads, or refused before any work with an error
 // naming the method and the setting.
@@ -159,7 +159,7 @@ bool same_bytes(const Film& a, const Film& b) {
          std::memcmp(a.pixels().data(), b.pixels().data(), a.pixels().size() * sizeof(Color)) == 0;
 }
 
-// Issue 51: a render's own seed and aa settings go down in the RenderRequest (candela.render(seed=,
+// A render's own seed and aa settings go down in the RenderRequest (candela.render(seed=,
 // spp=) in Python) rather than into the Scene: every method gives the image of the scene loaded
 // with them, byte for byte, and a method that keeps its solution between renders (radiosity,
 // meshless) does not reuse the one it made with the scene's seed.

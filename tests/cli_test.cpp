@@ -64,7 +64,7 @@ class Cli : public ::testing::Test {
   fs::path directory_;
 };
 
-// Issue 24, item 4: `candela --version` names the version, the commit and the optional parts; a
+// `candela --version` names the version, the commit and the optional parts; a
 // misspelled sub-command is refused with the nearest one and the list (exit 2).
 TEST_F(Cli, VersionAndUnknownCommands) {
   std::string output;
@@ -556,7 +556,7 @@ TEST_F(Cli, BenchRejectsBadArguments) {
 }
 
 TEST_F(Cli, BenchRadiositySolvesASceneAndReportsItsFacts) {
-  // Issue 7: the Cornell box on a coarse mesh, one run per thread count.
+  // The Cornell box on a coarse mesh, one run per thread count.
   std::string output;
   ASSERT_EQ(
       run("bench --radiosity '" CANDELA_SOURCE_DIR "/scenes/cornell-box.json' --set radiosity.patch_size=5 "
@@ -597,11 +597,11 @@ TEST_F(Cli, BenchRadiositySolvesASceneAndReportsItsFacts) {
   EXPECT_NE(output.find("instruction set (1 sse, 2 avx2, 3 avx512) 1"), std::string::npos) << output;
 }
 
-// Issue 21, "non-regular files": a FIFO given as an input blocked in open() forever, a device
+// Non-regular files: a FIFO given as an input blocked in open() forever, a device
 // (/dev/zero) was read until memory ran out, a directory read as "1:1 unexpected end of input".
 // Every whole-file reader now takes regular files only, says what the path is, and exits 2 at
 // once (each run under `timeout`: a hang fails the test instead of hanging it).
-// Issue 21, data loss: `--stats`, `-o`, `--checkpoint` naming the scene file or a texture it
+// Data loss: `--stats`, `-o`, `--checkpoint` naming the scene file or a texture it
 // reads overwrote that input and exited 0; two options naming one file overwrote each other.
 // Refused before any work, exit 2, the input untouched, nothing written.
 TEST_F(Cli, OutputsThatAreInputsOrEachOtherAreRefused) {
@@ -671,7 +671,7 @@ TEST_F(Cli, NonRegularInputFilesAreRefusedNotReadForever) {
   }
 }
 
-// Issue 21: 20,000 copies of one face (180 KB) made `candela bench` run for most of an hour
+// 20,000 copies of one face (180 KB) made `candela bench` run for most of an hour
 // (0.003 Mrays/s against 12.9 for one copy) and `render` on such meshes take 10–20 s at 32×24.
 TEST_F(Cli, CoincidentTrianglesBenchAndRenderInSeconds) {
   std::string obj = "v -1 -1 0\nv 1 -1 0\nv 0 1 0\n";
@@ -693,7 +693,7 @@ TEST_F(Cli, CoincidentTrianglesBenchAndRenderInSeconds) {
 }
 
 TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
-  // Issue 8 item 4 (SPEC §13), in its quick form (a smaller disc, a coarser reference).
+  // The sphere-disc validation (SPEC §13), in its quick form (a smaller disc, a coarser reference).
   std::string output;
   ASSERT_EQ(run("validate sphere-disc --quick -q --out sd", output), 0) << output;
   const fs::path out = directory_ / "sd";
@@ -714,7 +714,7 @@ TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
       EXPECT_TRUE(fs::exists(out / (name + ".png"))) << name;
       const nlohmann::json& entry = errors["bases"][basis][delta];
       ASSERT_TRUE(entry.is_object()) << name;
-      // Issue 20: the radial basis, normalised, converges like the others.
+      // The radial basis, normalised, converges like the others.
       EXPECT_FALSE(entry["diverged"].get<bool>()) << name;
       for (const char* key : {"rms", "max", "rms_relative", "max_relative"}) {
         ASSERT_TRUE(entry[key].is_number()) << name << " " << key;
@@ -722,7 +722,7 @@ TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
       }
       EXPECT_GT(entry["sites"].get<int>(), 0) << name;
     }
-  // Issue 25: the flat and the hierarchical transport, each with its precomputation time and error;
+  // The flat and the hierarchical transport, each with its precomputation time and error;
   // the same sites (the transport does not change the sampling), the hierarchy fewer entries.
   EXPECT_TRUE(fs::exists(out / "transport.csv"));
   const nlohmann::json& transport = errors["transport"];
@@ -743,7 +743,7 @@ TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
   EXPECT_EQ(run("validate no-such-case --out x", output), 2) << output;
   EXPECT_NE(output.find("known: sphere-disc, form-factors"), std::string::npos) << output;
   EXPECT_EQ(run("validate form-factors --quick --out file/sub", output), 2) << output;
-  // Issue 20: --threads, and the results (all but the times) do not depend on it.
+  // --threads, and the results (all but the times) do not depend on it.
   ASSERT_EQ(run("validate sphere-disc --quick -q --threads 1 --out sd1", output), 0) << output;
   std::ifstream one_thread_file(directory_ / "sd1" / "errors.json");
   nlohmann::json one_thread = nlohmann::json::parse(one_thread_file)["bases"], two_threads = errors["bases"];
@@ -753,7 +753,7 @@ TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
   EXPECT_EQ(one_thread, two_threads);
   EXPECT_EQ(run("validate sphere-disc --quick -q --threads -1 --out sd2", output), 2) << output;
   EXPECT_NE(output.find("--threads must be >= 0"), std::string::npos) << output;
-  // Issue 23: cie171's --methods knows the methods that probe; a bad one writes nothing.
+  // cie171's --methods knows the methods that probe; a bad one writes nothing.
   EXPECT_EQ(run("validate cie171 --quick --methods path,teleport --out c171", output), 2) << output;
   EXPECT_NE(output.find("--methods: unknown method 'teleport'"), std::string::npos) << output;
   EXPECT_FALSE(fs::exists(directory_ / "c171"));
@@ -785,7 +785,7 @@ TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
   EXPECT_FALSE(fs::exists(directory_ / "c171c"));
   EXPECT_EQ(run("validate form-factors --quick --cases 5.2 --out ff3", output), 2) << output;
   EXPECT_NE(output.find("--cases is for cie171"), std::string::npos) << output;
-  // Issue 52: --radiosity-solver runs the radiosity cases with another solver; hierarchical passes.
+  // --radiosity-solver runs the radiosity cases with another solver; hierarchical passes.
   ASSERT_EQ(run("validate cie171 --quick -q --methods radiosity --radiosity-solver hierarchical --cases "
                 "5.3,5.7,5.8 "
                 "--out c171h",
@@ -809,8 +809,8 @@ TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
 namespace candela {
 namespace {
 
-// Issue 9: "--checkpoint FILE ... and --resume FILE continuing to the same result as an
-// uninterrupted run (a test compares)" — byte for byte, through the command line.
+// --checkpoint FILE and --resume FILE continue to the same result as an
+// uninterrupted run — byte for byte, through the command line.
 TEST_F(Cli, PathResumeGivesTheUninterruptedImageByteForByte) {
   // The default scene's own anti-aliasing (Figure 49: adaptive, jittered lattice, Gaussian).
   const std::string size = "-q --method path --set camera.width=24 --set camera.height=18 ";
@@ -855,7 +855,7 @@ TEST_F(Cli, PathOptionsNeedThePathMethod) {
   EXPECT_NE(output.find("no such checkpoint"), std::string::npos) << output;
 }
 
-// Issue 19: an aa setting a method cannot do is an error naming both, exit status 2, nothing
+// An aa setting a method cannot do is an error naming both, exit status 2, nothing
 // written, and no work done (radiosity refuses before its solve).
 TEST_F(Cli, AnAntialiasingSettingAMethodCannotDoIsRefusedNamingBoth) {
   std::string output;
@@ -960,7 +960,7 @@ TEST_F(Cli, ProbeWritesIrradianceRadianceAndIlluminanceAtPoints) {
             "illuminance_lux,illuminance_error_lux");
   ASSERT_EQ(rows.size(), 2u);
   ASSERT_EQ(rows[0].size(), 14u);
-  // Issue 20: the standard error of the gathering, a small fraction of the value at 4,096 rays.
+  // The standard error of the gathering, a small fraction of the value at 4,096 rays.
   EXPECT_GT(rows[0][13], 0);
   EXPECT_LT(rows[0][13], 0.01 * rows[0][12]);
   EXPECT_NEAR(rows[0][6], 3 * 0.55411, 0.01 * 3 * 0.55411);
@@ -988,7 +988,7 @@ TEST_F(Cli, ProbeGridWritesAFalseColorImageOfTheIlluminance) {
   EXPECT_NE(output.find("illuminance scale: 0 to"), std::string::npos) << output;
 }
 
-// Issue 23, item 4: falsecolor turns a rendered linear image into luminance (cd/m²: 179 × Y / π
+// falsecolor turns a rendered linear image into luminance (cd/m²: 179 × Y / π
 // of a value that is π × the radiance), the film's exposure undone; an 8-bit image, a non-PNG
 // output and an output over the input are refused before anything is written; compare --luminance
 // speaks cd/m² as well.
@@ -1032,7 +1032,7 @@ TEST_F(Cli, FalsecolorShowsTheLuminanceOfARenderedImage) {
   EXPECT_NE(output.find("8-bit display image"), std::string::npos) << output;
 }
 
-// Issue 23, item 4: the work plane's Emin, Eavg, Emax and uniformities in the summary and the
+// The work plane's Emin, Eavg, Emax and uniformities in the summary and the
 // JSON (the CSV's own values), and the false-color scale options.
 TEST_F(Cli, ProbeGridReportsTheUniformitiesAndTheirJson) {
   write("lamp.json", kLampScene);
@@ -1084,7 +1084,7 @@ TEST_F(Cli, ProbeGridReportsTheUniformitiesAndTheirJson) {
   }
 }
 
-// Issue 23, item 3: the daylight factor under a CIE overcast sky — 100 % in the open, little
+// The daylight factor under a CIE overcast sky — 100 % in the open, little
 // under a wide roof (only the sky near the horizon reaches under it).
 TEST_F(Cli, ProbeGivesTheDaylightFactorUnderTheSky) {
   write("sky.json", R"({"format": "candela/1",
@@ -1165,8 +1165,8 @@ TEST_F(Cli, PathCheckpointNoticesAChangedMeshButNotTheAccelerator) {
 namespace candela {
 namespace {
 
-// Issue 10: "progressive radiosity checkpoints and resumes to the same result as an uninterrupted
-// run (a test compares)" — 40 shots, a checkpoint, then on to the scene's threshold.
+// Progressive radiosity checkpoints and resumes to the same result as an uninterrupted
+// run — 40 shots, a checkpoint, then on to the scene's threshold.
 TEST_F(Cli, RadiosityResumeGivesTheUninterruptedImageByteForByte) {
   const std::string scene = std::string(CANDELA_SOURCE_DIR) + "/scenes/cornell-box.json";
   const std::string common = "render '" + scene +
@@ -1196,7 +1196,7 @@ TEST_F(Cli, RadiosityResumeGivesTheUninterruptedImageByteForByte) {
   EXPECT_FALSE(fs::exists(directory_ / "g.pfm"));
 }
 
-// Issue 21: a legal long name (250 bytes) failed after the render, since ".tmp-PID-" + the name
+// A legal long name (250 bytes) failed after the render, since ".tmp-PID-" + the name
 // passed the file system's 255-byte limit; a name that cannot be written (an output name made too
 // long by a camera's name) must fail before the render.
 TEST_F(Cli, LongOutputNamesAreWrittenOrRefusedBeforeTheRender) {
@@ -1222,7 +1222,7 @@ TEST_F(Cli, LongOutputNamesAreWrittenOrRefusedBeforeTheRender) {
   EXPECT_TRUE(fs::exists(directory_ / ("out-" + camera + ".png")));
 }
 
-// Issue 21: with several views, a failure in one says which images are complete and what of the
+// With several views, a failure in one says which images are complete and what of the
 // failing one was written. The failure here: a file size limit (ulimit -f, SIGXFSZ ignored so the
 // write fails with EFBIG) that the first, small view's files fit and the second view's image does not.
 TEST_F(Cli, AFailureInOneOfSeveralViewsSaysWhatWasWritten) {
@@ -1254,7 +1254,7 @@ TEST_F(Cli, AFailureInOneOfSeveralViewsSaysWhatWasWritten) {
     EXPECT_NE(entry.path().filename().string().rfind(".tmp-", 0), 0u) << entry.path();
 }
 
-// Issue 21: legal values whose product overflows gave infinite pixels, written with exit 0: a light of
+// Legal values whose product overflows gave infinite pixels, written with exit 0: a light of
 // 1e16, a texture multiplier of 1e16 and film.exposure 64 (2^64 ≈ 1.8e19), each inside its range —
 // finite in double, beyond a float once exposed.
 TEST_F(Cli, AnImageWithPixelsThatAreNotFiniteIsRefusedAsBadInput) {
@@ -1276,7 +1276,7 @@ TEST_F(Cli, AnImageWithPixelsThatAreNotFiniteIsRefusedAsBadInput) {
   EXPECT_EQ(run("render bright.json -q -o out.png", output), 0) << output;  // a PNG holds it (white)
 }
 
-// Issue 21: a setting that asks for more memory than there is is bad input like any other bad
+// A setting that asks for more memory than there is is bad input like any other bad
 // value — exit 2 with the setting's location (it was exit 1, with no location).
 TEST_F(Cli, SettingsThatAskTooMuchMemoryAreBadInputWithTheirLocation) {
   std::string output;
@@ -1294,7 +1294,7 @@ TEST_F(Cli, SettingsThatAskTooMuchMemoryAreBadInputWithTheirLocation) {
   EXPECT_EQ(file_count(), 1);
 }
 
-// Issue 24, item 4: CLI11's parse errors carry Candela's prefix, name the sub-command and the
+// CLI11's parse errors carry Candela's prefix, name the sub-command and the
 // option, and a misspelled option gets the nearest one.
 TEST_F(Cli, ParseErrorsCarryThePrefixAndNameTheOption) {
   std::string output;
@@ -1313,7 +1313,7 @@ TEST_F(Cli, ParseErrorsCarryThePrefixAndNameTheOption) {
   EXPECT_EQ(file_count(), 0);
 }
 
-// Issue 24, item 4: every option that takes several values takes them comma-separated, separated
+// Every option that takes several values takes them comma-separated, separated
 // by spaces or repeated (bench --accel bvh,embree was refused as one unknown accelerator).
 TEST_F(Cli, EveryListTakesCommasSpacesOrRepeatedOptions) {
   std::string output;
@@ -1338,7 +1338,7 @@ TEST_F(Cli, EveryListTakesCommasSpacesOrRepeatedOptions) {
   EXPECT_NE(output.find("candela: error: bench: "), std::string::npos) << output;
 }
 
-// Issue 24, item 4: pbrt's spellings — --outfile, --nthreads, --pixelbounds x0,x1,y0,y1 and
+// pbrt's spellings — --outfile, --nthreads, --pixelbounds x0,x1,y0,y1 and
 // --cropwindow in fractions (pbrt-v4 rounds each edge up: ⌈20·0.22⌉ = 5) — render the pixels of
 // --crop, and those are the full image's pixels (y = 0 the top row).
 TEST_F(Cli, PbrtAliasesForOutputThreadsAndCropping) {
@@ -1371,7 +1371,7 @@ TEST_F(Cli, PbrtAliasesForOutputThreadsAndCropping) {
   EXPECT_FALSE(fs::exists(directory_ / "y.pfm"));
 }
 
-// Issue 24, item 4: --spp is every method's samples per pixel, not the path tracer's alone: n×n
+// --spp is every method's samples per pixel, not the path tracer's alone: n×n
 // anti-aliasing samples, jittered where the method can place them, on the regular grid where it
 // rasterizes — the very image the scene's aa settings give.
 TEST_F(Cli, SamplesPerPixelForEveryMethod) {
@@ -1418,7 +1418,7 @@ TEST_F(Cli, SamplesPerPixelForEveryMethod) {
   EXPECT_FALSE(fs::exists(directory_ / "bad.pfm"));
 }
 
-// Issue 24, item 4: -o out.hdr, and candela convert between PNG, EXR, PFM and HDR with the
+// -o out.hdr, and candela convert between PNG, EXR, PFM and HDR with the
 // exposure and the out-of-range modes of film.out_of_range — the same bytes render writes.
 TEST_F(Cli, ConvertBetweenFormatsWithExposureAndToneMapping) {
   std::string output;
@@ -1503,7 +1503,7 @@ std::vector<LogRow> read_error_log(const fs::path& path) {
   return rows;
 }
 
-// Issue 24, item 2: --error-log writes, for every step of a progressive method (path passes,
+// --error-log writes, for every step of a progressive method (path passes,
 // progressive radiosity every N shots with the unshot fraction, Gauss-Seidel sweeps, meshless
 // iterations) and for the image returned, the time and the RMSE and relMSE against the reference;
 // the last row is the written image's error.
@@ -1604,7 +1604,7 @@ TEST_F(Cli, ErrorLogsFollowEveryProgressiveMethodAgainstTheReference) {
   EXPECT_EQ(file_count(), files);
 }
 
-// Issue 25: relight frames through the hierarchical transport equal fresh solves with the same
+// Relight frames through the hierarchical transport equal fresh solves with the same
 // lights, and a frame's albedo edits (R = QS: the sites, areas and S reused, Q redone) equal a fresh
 // solve of the edited scene; an edit is undone after its frame; an unknown material is refused
 // before any work, naming the scene's materials.
@@ -1655,7 +1655,7 @@ TEST_F(Cli, RelightFramesAndAlbedoEditsEqualFreshSolves) {
 }  // namespace
 }  // namespace candela
 
-// Issue 51: reliability, round three.
+// Reliability: overflowing inputs, outputs that are inputs, checks before any work, the memory limit.
 namespace candela {
 namespace {
 
@@ -1961,7 +1961,7 @@ TEST_F(Cli, MethodsThatWouldHoldMoreThanTheMemoryLimitAreRefusedBeforeAnyWork) {
   EXPECT_EQ(file_count(), 1);
 }
 
-// Issue 51 (review): probe's --seed is the solution's too, as render.seed is (before, radiosity's and
+// probe's --seed is the solution's too, as render.seed is (before, radiosity's and
 // meshless's solutions and direct light kept render.seed: --seed 2 and --set render.seed=2 differed).
 TEST_F(Cli, ProbeSeedSeedsTheSolutionItProbes) {
   write("room.json", R"({"format": "candela/1",
@@ -1989,7 +1989,7 @@ TEST_F(Cli, ProbeSeedSeedsTheSolutionItProbes) {
   }
 }
 
-// Issue 52: hierarchical radiosity through the command line — statistics naming the hierarchy, an
+// Hierarchical radiosity through the command line — statistics naming the hierarchy, an
 // export with one row per leaf, the convergence log one row per Jacobi iteration and the image,
 // bench --radiosity's links; checkpoints are the progressive solver's and are refused before work.
 TEST_F(Cli, HierarchicalRadiosityRendersExportsLogsAndBenches) {

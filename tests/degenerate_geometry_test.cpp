@@ -1,4 +1,4 @@
-// Issue 10 item 3: degenerate geometry (SPEC §15). NaN and Inf coordinates, zero-area and sliver
+// Degenerate geometry (SPEC §15). NaN and Inf coordinates, zero-area and sliver
 // triangles, coincident surfaces, and scenes at 1e-6 and 1e6 scale are rendered by every method
 // without a crash and without a NaN or infinite pixel; what the loader skips it names in a
 // warning, and what it refuses it refuses with a located InputError. docs/reliability.md lists

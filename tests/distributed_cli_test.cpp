@@ -1,4 +1,4 @@
-// `mpirun -np 2 candela render` against one process, byte for byte (issue 11): the built-in
+// `mpirun -np 2 candela render` against one process, byte for byte: the built-in
 // scene, every distributed method, checkpoints across rank counts, and bad input under mpirun.
 // Built only with MPI (tests/CMakeLists.txt); every launch is bounded by `timeout`, so a hang fails.
 #include <gtest/gtest.h>
@@ -76,7 +76,7 @@ const std::string kCornellRadiosity =
     " --method radiosity --set radiosity.hemicube_resolution=40 --set radiosity.patch_size=4 "
     "--set radiosity.element_size=2";
 
-// The issue's test: the built-in scene (Whitted, 500 × 500, adaptive anti-aliasing with the
+// The built-in scene on two ranks (Whitted, 500 × 500, adaptive anti-aliasing with the
 // Gaussian of 000 Figure 49), PNG byte for byte.
 TEST_F(Distributed, BuiltInSceneOnTwoRanksIsByteIdentical) {
   expect_identical("default", "render -q", "png");
@@ -114,14 +114,14 @@ TEST_F(Distributed, PathTracedImageIsByteIdentical) {
   EXPECT_GE(json("path-2.json")["distributed"]["rounds"].get<int>(), 1);
 }
 
-// Issue 22: each sampler's values depend on the pixel and the pass only, not on the rank.
+// Each sampler's values depend on the pixel and the pass only, not on the rank.
 TEST_F(Distributed, PathTracedImagesOfEverySamplerAreByteIdentical) {
   for (const char* sampler : {"stratified", "sobol"})
     expect_identical(std::string("path-") + sampler,
                      "render " + kCornell + " --method path --spp 4 --set path.sampler=" + sampler);
 }
 
-// Issue 19: the path tracer's samples splatted with a wide filter across the tiles' borders (each
+// The path tracer's samples splatted with a wide filter across the tiles' borders (each
 // tile samples the ring of pixels its filter reaches) join into the single process's image.
 TEST_F(Distributed, PathTracedImageWithAGaussianFilterIsByteIdentical) {
   expect_identical(
@@ -197,7 +197,7 @@ TEST_F(Distributed, MeshlessTransferRowsAcrossRanksGiveTheSameImage) {
   EXPECT_EQ(json("m.json")["meshless"]["visibility_rays"], two["meshless"]["visibility_rays"]);
 }
 
-// Issue 25: the hierarchical transport across ranks — the sites' rows shared out, the links of the
+// The hierarchical transport across ranks — the sites' rows shared out, the links of the
 // hierarchy computed alike on every rank — gives the single process's image and matrix.
 TEST_F(Distributed, HierarchicalMeshlessTransportAcrossRanksGivesTheSameImage) {
   const std::string arguments = "render " + kCornell +

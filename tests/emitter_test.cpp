@@ -1,4 +1,4 @@
-// Issue 19, "one emitter model": three small closed-or-open diffuse rooms, each lit by one kind of
+// One emitter model: three small closed-or-open diffuse rooms, each lit by one kind of
 // emitter only — (a) a point light, (b) an emissive quad, (c) a constant sky seen through the open
 // top — rendered by radiosity, meshless (hybrid and global displays) and the path tracer: every
 // method's mean luminance within 3 % of the path tracer's (radiosity within 2 %), and the
@@ -110,7 +110,7 @@ INSTANTIATE_TEST_SUITE_P(Emitters, EveryMethodSeesTheEmitter, ::testing::Values(
                                                                 : "SkyThroughTheOpenTop");
                          });
 
-// The emissive surfaces and the environment are lights of the scene (issue 19): made by the
+// The emissive surfaces and the environment are lights of the scene: made by the
 // loader, one per emissive object, with the samples the scene asks for.
 TEST(Emitters, EmissiveObjectsAndTheEnvironmentBecomeLights) {
   const auto scene = load_scene_text(room(kSky, true), "room.json", ".", {"render.surface_light_samples=3"});
@@ -168,7 +168,7 @@ TEST(Emitters, ThePathTracerChoosesEmittersByPowerAndWeighsHitsByTheirDensity) {
 namespace candela {
 namespace {
 
-// Bad input (issue 19): an emitter a method cannot account for is an error naming both and where
+// Bad input: an emitter a method cannot account for is an error naming both and where
 // the emitter is, never a dark image. An emissive unbounded plane cannot be sampled for shadow
 // rays; the path tracer and radiosity (which meshes it within the scene's bounds) take it.
 TEST(Emitters, AnEmitterAMethodCannotSampleIsRefusedNamingBoth) {

@@ -1,4 +1,4 @@
-// Issue 9 item 2, the furnace: inside a closed diffuse enclosure of albedo ρ whose walls emit E,
+// The furnace: inside a closed diffuse enclosure of albedo ρ whose walls emit E,
 // every surface shows E/(1 − ρ) (SPEC §13) — the path tracer within 1 % by a Student's t-test,
 // and every other method that can render it (radiosity, meshless). Local, Whitted and the raster
 // method have no interreflection, so they cannot.
@@ -46,7 +46,7 @@ std::unique_ptr<Scene> cube_furnace(const std::string& method, const std::string
 }
 
 // Student's t-test of H0: the pixels' mean is `expected`, at the 0.1 % level (two-sided), plus the
-// issue's 1 % bound on the mean itself. Every pixel is an independent estimate (its own random
+// 1 % bound on the mean itself. Every pixel is an independent estimate (its own random
 // stream, or its own scrambling of the Sobol' points), n = 256 pixels: t_{0.9995, 255} = 3.34.
 // (At the 1 % level, 2.596, the three channels of the furnaces' tests raise a false alarm about one
 // time in ten; the Sobol' default sampler's cube gave t = 2.62 with a mean 0.3 % off.)
@@ -105,7 +105,7 @@ TEST(Furnace, RadiosityGivesEOverOneMinusRhoInACube) {
 }
 
 TEST(Furnace, MeshlessGivesEOverOneMinusRhoInASphere) {
-  // Issue 20: the radial basis too, now normalised (a partition of unity).
+  // The radial basis too, now normalised (a partition of unity).
   for (const std::string basis : {"normalized", "shepard", "radial"}) {
     const auto scene = sphere_furnace(
         "meshless", R"("meshless": {"basis": ")" + basis + R"(", "spacing": 0.3, "grid": 24, "rounds": 6},)");
@@ -117,7 +117,7 @@ TEST(Furnace, MeshlessGivesEOverOneMinusRhoInASphere) {
   }
 }
 
-// Issue 20 item 3: a closed box of six glowing walls, ρ = 0.5, 0.9 and 0.95, through every basis —
+// A closed box of six glowing walls, ρ = 0.5, 0.9 and 0.95, through every basis —
 // every pixel within 2 % of E/(1 − ρ). Before, the point-to-point form factors lost up to 9 % of
 // each row along the edges (rows summed to 0.91 there, 0.985 elsewhere) and the furnace came out
 // 13.4 % (normalized) and 8.9 % (Shepard) dark at ρ = 0.9; and the direct light of a site beside a
@@ -139,7 +139,7 @@ TEST(Furnace, MeshlessGivesEOverOneMinusRhoInACube) {
     }
 }
 
-// The rows of S in a closed box sum to 1 within 0.5 % (the issue's bound; by construction they do
+// The rows of S in a closed box sum to 1 within 0.5 % (by construction they do
 // to float rounding), for receivers at the edges and corners as much as in the middle of a wall.
 TEST(Furnace, MeshlessRowsOfAClosedBoxSumToOne) {
   const auto scene = load_scene_text(R"({"format": "candela/1",

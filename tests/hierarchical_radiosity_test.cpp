@@ -1,4 +1,4 @@
-// Tests of hierarchical radiosity with clustering (issue 52; radiosity/hierarchical_radiosity.h,
+// Tests of hierarchical radiosity with clustering (radiosity/hierarchical_radiosity.h,
 // radiosity/radiosity_hierarchy.h): the furnace, Howell's factors and reciprocity through the
 // solver, the oracle, the hierarchy's structure, determinism and the method around it.
 #include <gtest/gtest.h>

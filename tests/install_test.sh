@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `cmake --install` into a scratch prefix (issue 24, item 4): PREFIX/bin/candela runs and says its
+# `cmake --install` into a scratch prefix: PREFIX/bin/candela runs and says its
 # version; with a Python interpreter given, the module `candela` imports from
 # PREFIX/lib/python3/dist-packages (where Debian's python3 looks under /usr and /usr/local).
 # Usage: tests/install_test.sh BUILD_DIR [PYTHON]

@@ -1,4 +1,4 @@
-// Issue 10 item 4 (SPEC §15): "Ctrl-C writes what is done; never lose a finished result." Every
+// SPEC §15: "Ctrl-C writes what is done; never lose a finished result." Every
 // method stops early once cancellation is requested and says so in its statistics; `candela
 // render` writes the partial image, exits with 130, and the path tracer's checkpoint continues to
 // the same image as a run that was never interrupted.
@@ -90,7 +90,7 @@ TEST(Interrupt, EveryMethodStopsWhenCancelledBeforeItStarts) {
   }
 }
 
-// Issue 52: hierarchical radiosity, cancelled before it starts, neither refines nor iterates and
+// Hierarchical radiosity, cancelled before it starts, neither refines nor iterates and
 // says it was interrupted; then, not cancelled, it solves (the sphere faces out, away from the
 // camera inside it: B = E, nothing is seen back).
 TEST(Interrupt, HierarchicalRadiosityStopsWhenCancelledBeforeItStarts) {

@@ -87,7 +87,7 @@ TEST(MaterialFresnel, SceneKeysChooseTheModel) {
   }
 }
 
-// Issue 22: copper given by its F0 turned bluish at grazing incidence in the local model — its
+// Copper given by its F0 turned bluish at grazing incidence in the local model — its
 // derived real index had a Brewster dip (highlight [0.68, 0.55, 0.60]·DG at 87°). Now the
 // highlight keeps copper's order of channels at every angle and each channel only rises.
 TEST(MaterialFresnel, ACopperHighlightWhitensTowardGrazingIncidence) {

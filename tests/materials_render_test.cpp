@@ -1,4 +1,4 @@
-// Issue 5 end to end: materials, textures, environment maps, bump mapping and the see-through
+// End to end: materials, textures, environment maps, bump mapping and the see-through
 // transparency models inside whole renders (SPEC §7, 000 §4).
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -99,7 +99,7 @@ TEST(MaterialsRender, ConstantTransparencyBlendsFrontAndBehind) {
 }
 
 TEST(MaterialsRender, ThinSheetsPassTheirTransmittanceAtEachCrossingWithoutBending) {
-  // Issue 23: a thin sheet (a pane, kt its transmissivity) lets its transmittance T(θ)
+  // A thin sheet (a pane, kt its transmissivity) lets its transmittance T(θ)
   // (shading/fresnel.h) through each time a ray crosses it, and does not bend it. The floor is
   // seen through a thin box (two crossings at normal incidence) in the camera ray and in the
   // shadow ray: T(0°)⁴ of its unglazed value; a tilted pane, not bent, the floor's point ahead.
@@ -389,7 +389,7 @@ TEST_F(EnvironmentRender, SixRendersFromTheCentreAreACubeMapOfTheScene) {
   EXPECT_LT(mismatched, direct.width() * direct.height() / 10) << mismatched;
 }
 
-// Review findings on issue 5, each a test that failed before its fix.
+// Review findings on materials, textures and environment maps, each a test that failed before its fix.
 TEST_F(EnvironmentRender, ScalarImagesAreLinearColorImagesSrgb) {
   // An 8-bit PNG holding 128 everywhere: as kr it is the number 128/255, as kd it is sRGB.
   Film grey(2, 2);

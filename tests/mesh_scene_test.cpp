@@ -60,7 +60,7 @@ TEST(PlyImport, UnknownMeshExtensionIsRefused) {
   }
 }
 
-// Issue 21: an OBJ face repeated tens of thousands of times became as many coincident
+// An OBJ face repeated tens of thousands of times became as many coincident
 // triangles, and every ray that met them tested them all to keep the lowest index among equal
 // distances (render at 32×24 on 10⁶ copies: 10–20 s). Copies are merged at load, with a warning
 // that counts them; the reversed winding faces the other way and stays.

@@ -1,4 +1,4 @@
-// Issue 25: the hierarchical meshless basis (meshless/site_hierarchy.h) and the hierarchical
+// The hierarchical meshless basis (meshless/site_hierarchy.h) and the hierarchical
 // transport (meshless/transfer_matrix.h) of Lehtinen et al. 2008.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>

@@ -1,4 +1,4 @@
-// Issue 8 end to end: the meshless method (seed 002, SPEC §11) inside whole scenes.
+// End to end: the meshless method (seed 002, SPEC §11) inside whole scenes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -33,7 +33,7 @@ std::unique_ptr<Scene> furnace(const std::string& meshless) {
                          "furnace.json", ".");
 }
 
-// Issue 8: "a closed sphere (furnace) gives L = E/(1−ρ) within 2%" — in every coefficient and every
+// A closed sphere (furnace) gives L = E/(1−ρ) within 2 % — in every coefficient and every
 // pixel, for both partitions of unity.
 TEST(MeshlessMethod, FurnaceGivesEOverOneMinusRho) {
   for (const std::string basis : {"normalized", "shepard"}) {
@@ -42,7 +42,7 @@ TEST(MeshlessMethod, FurnaceGivesEOverOneMinusRho) {
     const MeshlessSolution solution = solve_meshless(*scene, meshless_settings(*scene), &facts);
     ASSERT_GT(solution.sites.sites.size(), 100u);
     EXPECT_TRUE(solution.transfer.converged);
-    // λ is the reflected light (issue 19: the sphere lights the sites by shadow rays as a surface
+    // λ is the reflected light (the sphere lights the sites by shadow rays as a surface
     // light, and its emission is drawn, never transferred): ρE/(1 − ρ) = 1; the image adds E.
     for (const Color& lambda : solution.transfer.lambda) EXPECT_NEAR(lambda.g, 1, 0.02) << basis;
     // The effective areas of a partition of unity cover the sphere (002 eq. 5.4): its triangles (by
@@ -56,7 +56,7 @@ TEST(MeshlessMethod, FurnaceGivesEOverOneMinusRho) {
   }
 }
 
-// Issue 52: the effective areas of many small spheres (000 §5.7.2's sphere field: 42 M triangles at
+// The effective areas of many small spheres (000 §5.7.2's sphere field: 42 M triangles at
 // 64 segments a turn, refused at 40 GB) are integrated over chords within half a midpoint cell of
 // each sphere, a few dozen triangles each, area-true (the furnace above: the sum within 0.01 % of the
 // sphere's area).
@@ -89,7 +89,7 @@ TEST(MeshlessMethod, SmallSpheresAreIntegratedOverFewTrianglesThatWeighAsTheSphe
   EXPECT_GE(facts["effective_area_sum"].get<double>(), 0.97 * surface);
 }
 
-// Issue 20 item 3, CIE 171:2006 test case 5.8: an isotropic point source of flux Φ at the centre of
+// CIE 171:2006 test case 5.8: an isotropic point source of flux Φ at the centre of
 // a closed 4 m cube of reflectance ρ. The power balance of any closed diffuse room of uniform ρ
 // (Sumpner; the integrating sphere's formula) gives the area mean of the interreflected
 // illuminance, E_ind = ρΦ/(A(1 − ρ)), A = 96 m² — in a cube not uniform (corners get less) but
@@ -157,7 +157,7 @@ TEST(MeshlessTransfer, DivergenceIsReportedNotConverged) {
 }
 
 // Inside a closed sphere every ray from a site hits the sphere where the basis is a partition of
-// unity: each row of S sums to 1 (issue 20: the near field is the integral itself and the far
+// unity: each row of S sums to 1 (the near field is the integral itself and the far
 // field is scaled to what the rays find of it), and the sites see each other and themselves.
 TEST(MeshlessTransfer, RowsOfAClosedSphereSumToOne) {
   const auto scene = furnace(R"({"spacing": 0.3, "grid": 24, "rounds": 6})");
@@ -295,7 +295,7 @@ TEST(MeshlessMethod, SettingsAreCheckedAndUnknownKeysRefused) {
   EXPECT_THROW(load(R"({"tolerance": 0})"), std::exception);
   EXPECT_THROW(load(R"({"spacng": 1})"), std::exception);
   // A spacing far too small for the scene is refused, not left to take hours and gigabytes.
-  // Issue 21: as bad input (exit 2) at the setting's place, not a failure without one (exit 1).
+  // As bad input (exit 2) at the setting's place, not a failure without one (exit 1).
   const auto tiny = load(R"({"spacing": 1e-9})");
   try {
     solve_meshless(*tiny, meshless_settings(*tiny));

@@ -1,4 +1,4 @@
-// Issue 9 item 1: the path-traced reference (SPEC §12) against analytic values, across thread
+// The path-traced reference (SPEC §12) against analytic values, across thread
 // counts, and through a checkpoint.
 #include <gtest/gtest.h>
 
@@ -61,7 +61,7 @@ Estimate irradiance(const Scene& scene, const Vec3& point, const Vec3& normal, i
 void expect_estimate(const Estimate& e, double expected, const std::string& label) {
   for (int c = 0; c < 3; ++c) {
     // Four standard errors (a false alarm once in 16,000 runs; the streams are fixed anyway)
-    // and the issue's 1 %.
+    // and a 1 % bound.
     EXPECT_NEAR(e.mean[c], expected, 4 * e.error[c] + 1e-12) << label;
     EXPECT_NEAR(e.mean[c], expected, 0.01 * expected) << label;
   }
@@ -127,7 +127,7 @@ TEST(PathTracer, UniformSkyGivesUnitIrradianceAndTheFloorItsAlbedo) {
   expect_estimate(floor, 0.5, "floor");
 }
 
-// Issue 23 (CIE 171 5.12/5.13's glazing): a thin pane (`"thin": true`, kt its transmissivity)
+// CIE 171 5.12/5.13's glazing: a thin pane (`"thin": true`, kt its transmissivity)
 // reflects R(θ) and lets T(θ) through without bending it (shading/fresnel.h). Under a uniform sky
 // of 1 over a black ground a point below a pane receives 2 ∫ T(c) c dc; below two panes, whose
 // light also bounces between them, 2 ∫ T² / (1 − R²) c dc — here two of CIE 171's 6 mm clear glass
@@ -167,7 +167,7 @@ TEST(PathTracer, ThinPanesPassTheirFresnelTransmittanceOfTheSky) {
   expect_estimate(irradiance(*two_panes, {0, 0, 0}, {0, 1, 0}, 16000), two, "two panes");
 }
 
-// Issue 22 item 2: emitters are chosen in proportion to their power. Eleven point lights at the
+// Emitters are chosen in proportion to their power. Eleven point lights at the
 // same distance and angle from a point — one of intensity 100, ten of 1 — give it irradiance in
 // proportion to their power, so choosing by power makes every estimate the exact sum (no noise),
 // where a uniform choice would give a relative standard deviation of 2.8 per sample.
@@ -194,7 +194,7 @@ TEST(PathTracer, ChoosingEmittersByPowerRemovesTheNoiseOfOneBrightAndManyDimLigh
   }
 }
 
-// Issue 19, one rule for every method: the background colours rays that leave the scene from the
+// One rule for every method: the background colours rays that leave the scene from the
 // camera (directly, in mirrors, through glass) and lights nothing. Under a white background the
 // same floor is black, while a mirror shows the background.
 TEST(PathTracer, TheBackgroundLightsNothingButIsSeenInMirrors) {
@@ -301,7 +301,7 @@ TEST(PathTracer, ImagesDoNotDependOnTheThreadCount) {
   }
 }
 
-// Issue 22: each sampler's image at 16 spp against a 1024-spp reference; the samplers that
+// Each sampler's image at 16 spp against a 1024-spp reference; the samplers that
 // stratify have less error, and all converge to the same image (no bias).
 TEST(PathTracer, StratifyingSamplersHaveLessErrorAndNoBias) {
   const Film reference = testing::render_scene(*small_box(1024, "sobol"), "path");
@@ -383,7 +383,7 @@ TEST(PathTracer, ResumingACheckpointGivesTheUninterruptedImage) {
   }
 }
 
-// Issue 19, one film: the path tracer's samples are splatted with the scene's filter (Σ w·L / Σ w
+// One film: the path tracer's samples are splatted with the scene's filter (Σ w·L / Σ w
 // across pixels); a checkpoint holds both sums, so resuming still gives the uninterrupted image,
 // and a crop's pixels are the whole image's (its ring of pixels is sampled too).
 TEST(PathTracer, FilteredPassesResumeAndCropToTheWholeImage) {
@@ -421,7 +421,7 @@ TEST(PathTracer, FilteredPassesResumeAndCropToTheWholeImage) {
       ASSERT_EQ(cropped.film.at(x - crop.x0, y - crop.y0), whole.film.at(x, y)) << x << ", " << y;
 }
 
-// Issue 19, aa for every method: "corners" and "adaptive" passes are the camera sampler's lattice
+// The aa settings for every method: "corners" and "adaptive" passes are the camera sampler's lattice
 // images (Figure 49's setting: adaptive, jittered lattice, Gaussian). The image does not depend on
 // the thread count, a crop's pixels are the whole image's, a resumed run gives the uninterrupted
 // image, and the passes converge to what jittered passes converge to.
@@ -478,7 +478,7 @@ TEST(PathTracer, LatticePassesAreDeterministicCropAndResumeAndConverge) {
   EXPECT_EQ(jittered_rays.rays.primary, uint64_t(64) * 12 * 10);
 }
 
-// Issue 22: with every sampler, a run stopped after 3 of 7 passes (the checkpoint handed out then)
+// With every sampler, a run stopped after 3 of 7 passes (the checkpoint handed out then)
 // resumes into the uninterrupted image, byte for byte; a stratified checkpoint made for another
 // spp is refused (its strata are the passes).
 TEST(PathTracer, EverySamplerResumesIntoTheUninterruptedImage) {
@@ -577,7 +577,7 @@ TEST(PathCheckpoint, RoundTripsExactlyAndRefusesDamage) {
   expect_refused("P6\n", "another file");
 }
 
-// Issue 21 ("path tracing without end"): inside a closed sphere of albedo exactly 1 lit by a point,
+// Path tracing with an end: inside a closed sphere of albedo exactly 1 lit by a point,
 // with `max_depth` 0 (no limit), every path survives Russian roulette with q = min(0.95, beta),
 // so roulette alone ends it after 20 bounces on average; with roulette held off until bounce
 // 1024 none escapes or dies, and the hard cap of 1024 bounces ends every one: exactly 1024

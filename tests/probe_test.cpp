@@ -1,4 +1,4 @@
-// Issue 9 item 4: `candela probe` — irradiance and radiance at sensor points by the path tracer,
+// `candela probe` — irradiance and radiance at sensor points by the path tracer,
 // classic radiosity and the meshless method, against Howell's point-to-rectangle form factor.
 #include "integrators/probe.h"
 
@@ -34,7 +34,7 @@ std::unique_ptr<Scene> lamp_scene(const std::string& sampler = "sobol") {
                          "lamp.json", ".");
 }
 
-// Issue 23, item 1: lights given in candela, lumens, lux and cd/m² give the illuminance
+// Lights given in candela, lumens, lux and cd/m² give the illuminance
 // photometry says, through the one efficacy (179 lm/W) that probe's lux also use.
 double lux_under(const std::string& light, const Vec3& normal = {0, 1, 0}, const char* method = "path") {
   const auto scene = load_scene_text(R"({"format": "candela/1",
@@ -104,7 +104,7 @@ TEST(Probe, EmissiveSurfacesGivenInCandelaPerSquareMetreGiveTheirLux) {
   EXPECT_GT(results[0].irradiance.r, results[0].irradiance.b);  // warm
 }
 
-// Issue 23, item 1: an emissive surface given in lumens sends them from each side, spread over
+// An emissive surface given in lumens sends them from each side, spread over
 // its area: 1,000 lm over the 2 × 2 m square is 250 lm/m², a luminance of 250/π cd/m² — and each
 // object of the material has its own area (a 1 × 1 m square of the same material: 1,000 lm/m²).
 // An object of the material with no bounded area is warned about.
@@ -130,7 +130,7 @@ TEST(Probe, EmissiveSurfacesGivenInLumensSpreadThemOverTheirArea) {
   EXPECT_NE(scene->warnings[0].find("lights nothing"), std::string::npos) << scene->warnings[0];
 }
 
-// Issue 23, item 2: an area luminaire — a Lambertian file (I = 1000 cd cos γ) over a 1 m square —
+// An area luminaire — a Lambertian file (I = 1000 cd cos γ) over a 1 m square —
 // is a Lambertian emitter of luminance I0/a² = 1000 cd/m²: 0.5 m below its centre E = π L F with F
 // four corner rectangles of 0.5 × 0.5 at 0.5 (the point luminaire would give I0/h² = 4000 lx, 2.1
 // times that), for the local model's strata, the path tracer's random points and radiosity's.
@@ -168,7 +168,7 @@ TEST(Probe, AreaLuminairesSpreadTheFilesDistributionOverTheirSize) {
   EXPECT_THROW(lux_below("local", R"(, "size": [1])"), InputError);
 }
 
-// Issue 23, item 2: a luminaire of an IES file, its nadir down and C0 along +x (so C90 is −z,
+// A luminaire of an IES file, its nadir down and C0 along +x (so C90 is −z,
 // LM-63's counter-clockwise seen from above): a quadrant-symmetric table of 100 cd in C0 and 50 cd
 // in C90 at γ = 45°; the sensors at γ = 45° in each plane receive I cos 45° / 8.
 TEST(Probe, LuminairesShineTheirFilesIntensityInEachPlane) {
@@ -213,7 +213,7 @@ TEST(Probe, LuminairesShineTheirFilesIntensityInEachPlane) {
   }
 }
 
-// Issue 23, item 3: the sun of NREL SPA's worked example (Golden, Colorado, 17 October 2003,
+// The sun of NREL SPA's worked example (Golden, Colorado, 17 October 2003,
 // 12:30:30 UT−7: elevation 39.888°, azimuth 194.340°) at 100,000 lx normal, north −z and east
 // +x: the lux on sensors facing up, south, west, north and east.
 TEST(Probe, TheSunShinesFromWhereTheAlmanacPutsIt) {
@@ -243,7 +243,7 @@ TEST(Probe, TheSunShinesFromWhereTheAlmanacPutsIt) {
   EXPECT_NE(warnings[0].find("the sun is below the horizon"), std::string::npos) << warnings[0];
 }
 
-// Issue 23, item 3: the sun as a disc. Under the straight edge of a black roof, in line with the
+// The sun as a disc. Under the straight edge of a black roof, in line with the
 // disc's centre, half the disc is hidden: half the light, for every method that probes (the local
 // model's and radiosity's 16 strata, the path tracer's random directions); a disc's radius of
 // angle beyond the edge either way, all or nothing. An angular diameter of 0 is the sharp shadow
@@ -281,7 +281,7 @@ TEST(Probe, TheSunsDiscCastsAPenumbraHalfLitUnderTheEdge) {
   }
 }
 
-// Issue 23, item 3: the CIE standard general sky lights an unobstructed horizontal sensor with
+// The CIE standard general sky lights an unobstructed horizontal sensor with
 // its diffuse_illuminance, and its luminances relative to the zenith are the standard's.
 TEST(Probe, CieSkiesGiveTheirHorizontalIlluminanceAndGradation) {
   EXPECT_NEAR(cie_sky_relative_luminance(1, 0, 0.3, 0.5), 1, 1e-12);
@@ -350,7 +350,7 @@ TEST(Probe, PhotometricLightsRefuseContradictions) {
   EXPECT_NE(error_of(R"({"type": "sun", "date": "2026-02-03", "time": "12h"})")
                 .find("lights[0].time: expected a local time"),
             std::string::npos);
-  // Issue 23's bad input: a date or time out of range, a place off the globe — located.
+  // The sun's bad input: a date or time out of range, a place off the globe — located.
   for (const auto& [light, expected] : std::vector<std::pair<std::string, std::string>>{
            {R"({"type": "sun", "date": "2026-13-01", "time": "12:00"})", "lights[0].date: expected a date"},
            {R"({"type": "sun", "date": "2200-06-21", "time": "12:00"})", "lights[0].date: expected a date"},
@@ -412,7 +412,7 @@ TEST(Probe, EveryMethodFindsTheIrradianceUnderAnEmittingSquare) {
       // Looking straight up at the lamp: its radiance E/π.
       EXPECT_NEAR(results[0].radiance[c], 3 / kPi, 1e-6 * 3) << method;
     }
-    // Issue 20: the standard error says how far off the estimate may be — within 4 of it, and
+    // The standard error says how far off the estimate may be — within 4 of it, and
     // small at 16,384 samples (the field's gathering's only: the lamp's exitance is exact there).
     EXPECT_GT(results[0].irradiance_error, 0) << method;
     EXPECT_LT(results[0].irradiance_error, 0.01 * expected) << method;
@@ -426,7 +426,7 @@ TEST(Probe, EveryMethodFindsTheIrradianceUnderAnEmittingSquare) {
   }
 }
 
-// Issue 19: every method accounts for every emitter — radiosity too (its first shot).
+// Every method accounts for every emitter — radiosity too (its first shot).
 TEST(Probe, PointLightsCountForEveryMethodThatCanBeProbed) {
   // A point light of intensity 2 (no attenuation) above a sensor facing up: irradiance 2·cos θ.
   const auto scene = load_scene_text(R"({"format": "candela/1",
@@ -447,7 +447,7 @@ TEST(Probe, PointLightsCountForEveryMethodThatCanBeProbed) {
   EXPECT_THROW(probe(*scene, points, settings), std::invalid_argument);
 }
 
-// Issue 23 (CIE 171 5.12/5.13): every method lights what lies behind a window pane by what the pane
+// CIE 171 5.12/5.13: every method lights what lies behind a window pane by what the pane
 // lets through (Scene::transmittance). The sun, 30° off the vertical, through a large horizontal
 // pane of CIE 171's clear glass (a thin sheet, shading/fresnel.h) above a 4 × 4 m floor: a sensor
 // under the pane facing up receives T(30°) cos 30° I from the local model, the path tracer, and
@@ -521,7 +521,7 @@ TEST(Probe, ReadsPointsAndNamesTheLineAndColumnOfBadOnes) {
   expect_error("# nothing\n", "pts.csv", "no points");
 }
 
-// Issue 21: a normal of (1e200, 1e200, 0) was refused as "must not be zero" (its length
+// A normal of (1e200, 1e200, 0) was refused as "must not be zero" (its length
 // overflows to infinity) and one of (1e-200, 0, 0) too (its squared length underflows to 0). Both
 // are directions: they are scaled by their largest component before normalising. Only (0, 0, 0)
 // is still refused.
@@ -549,12 +549,12 @@ TEST(Probe, GridPointsSitAtCellCentresFacingUCrossV) {
   EXPECT_EQ(points[3].normal.y, 1);  // (2,0,0) × (0,0,-1) = (0,2,0)
 }
 
-// Issue 20: the standard error falls as 1/√samples (16× the samples, a quarter of it), and the
+// The standard error falls as 1/√samples (16× the samples, a quarter of it), and the
 // errors of 64 independent estimates spread as the standard error says (their RMS deviation from
 // the exact value within 30 % of the mean standard error).
 // The estimated standard error is the spread of independent samples: with path.sampler
 // "independent" it matches the spread of 64 runs' answers and falls as 1/√samples. With the default
-// Sobol' points (issue 23: the probe's path samples are the sampler's, as the pixels') the answers
+// Sobol' points (the probe's path samples are the sampler's, as the pixels') the answers
 // spread far less than that estimate — it is an upper bound there (at 64 samples a seventh of it).
 TEST(Probe, TheStandardErrorFallsAsOneOverRootSamplesAndMatchesTheSpread) {
   const double expected = 3 * 4 * point_to_parallel_rectangle_corner(1, 1, 1);

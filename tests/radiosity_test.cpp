@@ -1,4 +1,4 @@
-// Issue 7 end to end: classic radiosity (000 §6, SPEC §10) — emissive materials and the
+// End to end: classic radiosity (000 §6, SPEC §10) — emissive materials and the
 // radiosity mesh inside whole scenes.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -168,7 +168,7 @@ TEST(RadiosityMethod, SettingsAreCheckedAndUnknownKeysRefused) {
     return scene_from(furnace_scene(radiosity), kFurnaceCamera);
   };
   EXPECT_EQ(radiosity_settings(*load("{}")).hemicube_resolution, 100);
-  // Issue 52: hierarchical radiosity is the default solver.
+  // Hierarchical radiosity is the default solver.
   EXPECT_EQ(radiosity_settings(*load("{}")).solver, RadiositySolver::hierarchical);
   EXPECT_EQ(radiosity_settings(*load(R"({"solver": "gaussian"})")).solver, RadiositySolver::gaussian);
   EXPECT_EQ(radiosity_settings(*load("{}")).form_factors, RadiosityFormFactors::hemicube);
@@ -207,8 +207,8 @@ TEST(RadiosityMethod, SettingsAreCheckedAndUnknownKeysRefused) {
   EXPECT_EQ(radiosity_settings(*load(R"({"display": "ray-traced"})")).display, RadiosityDisplay::ray_traced);
 }
 
-// Issue 7: "A full-matrix solve that would not fit in memory is refused with a message naming
-// the setting to change" — before any form factor is computed.
+// A full-matrix solve that would not fit in memory is refused with a message naming
+// the setting to change, before any form factor is computed.
 TEST(RadiosityMethod, SolvesThatDoNotFitAreRefusedNamingTheSettings) {
   const auto refused = [](const std::string& radiosity, const std::vector<std::string>& names) {
     const auto scene = scene_from(furnace_scene(radiosity), kFurnaceCamera);
@@ -219,7 +219,7 @@ TEST(RadiosityMethod, SolvesThatDoNotFitAreRefusedNamingTheSettings) {
       const std::string message = error.what();
       for (const std::string& name : names) EXPECT_NE(message.find(name), std::string::npos) << message;
       EXPECT_GT(error.required_bytes(), error.limit_bytes());
-      // Issue 21: bad input at the setting's place (the size the scene gives), exit 2.
+      // Bad input at the setting's place (the size the scene gives), exit 2.
       EXPECT_EQ(error.location().json_path.rfind("radiosity.", 0), 0u) << message;
       EXPECT_GT(error.location().line, 0) << message;
     }
@@ -436,7 +436,7 @@ TEST(RadiosityMethod, OneSolutionServesEveryView) {
   EXPECT_TRUE(other_statistics.extra["radiosity"]["solution_reused"].get<bool>());
 }
 
-// Issue 10 through the method (issue 18: a method writes no file): the progressive solve hands its
+// Checkpoints through the method (a method writes no file): the progressive solve hands its
 // state out, intermediate ones through save_checkpoint and the final one in the result, and goes on
 // from the final one to the uninterrupted image; a checkpoint never reuses a cached solution.
 TEST(RadiosityMethod, ProgressiveStateIsHandedOutAndResumedToTheUninterruptedImage) {

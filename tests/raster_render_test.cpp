@@ -1,4 +1,4 @@
-// The raster method (issue 6, SPEC §9, 000 §3) against the ray tracer and the seed's
+// The raster method (SPEC §9, 000 §3) against the ray tracer and the seed's
 // descriptions of flat, Gouraud, Phong and dot-product shading.
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -155,7 +155,7 @@ Comparison compare(const Film& a, const Film& b, const Color& background) {
   return result;
 }
 
-// Review findings on issue 6, each a test that failed before its fix.
+// Review findings on the raster method, each a test that failed before its fix.
 TEST(RasterRender, ShadowsMatchTheRayTracerWithoutSelfShadowing) {
   // A coarse sphere over a floor, shadows on: the sphere's own triangles lie inside it, yet it
   // must not shadow itself, and its shadow on the floor must be where ray casting puts it.
@@ -173,7 +173,7 @@ TEST(RasterRender, ShadowsMatchTheRayTracerWithoutSelfShadowing) {
   EXPECT_LT(c.mean, 0.02) << c.mean;  // self-shadowing made the lit half of the sphere ambient-only
 }
 
-// Issue 22: "dotproduct" shading cast every light's shadow from its centre, so an area light's
+// "dotproduct" shading cast every light's shadow from its centre, so an area light's
 // shadow had a hard edge where the ray tracer's has a penumbra. Now its samples, jittered per
 // point as the ray tracer's are, each test their own shadow ray.
 TEST(RasterRender, DotProductShadowsOfAnAreaLightHavePenumbrae) {

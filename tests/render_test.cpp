@@ -66,7 +66,7 @@ TEST(Render, SameImageBytesOnEveryAccelerator) {
   }
 }
 
-// Issue 26: bvh-fast leaves the exact contract, and this is what it costs an image — a mirror
+// bvh-fast leaves the exact contract, and this is what it costs an image — a mirror
 // sphere of 4,512 triangles over a checkerboard, its shadow and its reflections, with whitted:
 // the same image as the exact bvh's but in a few pixels (docs/accelerators.md has the figures).
 TEST(Render, BvhFastChangesFewPixels) {
@@ -173,7 +173,7 @@ TEST(Render, GoldenTwoMirrorsImage) {
   // tests/golden/two-mirrors-64x64.pfm: `candela render scenes/two-mirrors.json --set
   // camera.width=64 --set camera.height=64 -o tests/golden/two-mirrors-64x64.pfm`, checked by
   // eye against 000 Figure 49 when it was made, and made again when the scene got its marble
-  // floor and wooden frames (issue 5; the full-size render is docs/images/two-mirrors.png).
+  // floor and wooden frames (the full-size render is docs/images/two-mirrors.png).
   expect_matches_golden("two-mirrors");
 }
 

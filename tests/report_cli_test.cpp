@@ -128,7 +128,7 @@ TEST_F(ReportCli, WritesThePageTheJsonAndEveryImage) {
   for (const char* key : {"whitted", "radiosity", "meshless", "path", "path-equal-time-whitted",
                           "path-equal-time-radiosity", "path-equal-time-meshless"})
     EXPECT_TRUE(rmse.count(key)) << key;
-  // Whitted sees the lamp's direct light (issue 19) but none of what the walls pass on; 4 samples
+  // Whitted sees the lamp's direct light but none of what the walls pass on; 4 samples
   // of the path tracer only add noise.
   EXPECT_LT(rmse["path"], rmse["whitted"]);
   EXPECT_LT(rmse["path"], 0.75 * rmse["whitted"]);                  // about 0.62 with seed 0
@@ -154,7 +154,7 @@ TEST_F(ReportCli, WritesThePageTheJsonAndEveryImage) {
   }
   EXPECT_EQ(images, 2 + 2 * 7);  // the reference, each entry's image and difference, the chart
 
-  // Issue 24: every method's error against time — a row per step, the image's last — on one chart.
+  // Every method's error against time — a row per step, the image's last — on one chart.
   std::map<std::string, std::vector<std::string>> units;
   std::istringstream csv(read(out / "convergence.csv"));
   std::string line;
@@ -215,7 +215,7 @@ TEST_F(ReportCli, ReusesAReferenceImage) {
   const double a = first["methods"][0]["errors"]["rmse"], b = second["methods"][0]["errors"]["rmse"];
   EXPECT_NEAR(a, b, 1e-5 * a);
   EXPECT_TRUE(fs::is_regular_file(directory_ / "second" / "reference.png"));
-  // Issue 23: --luminance measures in cd/m², 179/π × each image's Rec. 709 luminance.
+  // --luminance measures in cd/m², 179/π × each image's Rec. 709 luminance.
   ASSERT_EQ(
       candela("report room.json --methods whitted --reference first/reference.exr --luminance -q -o lum",
               output),
@@ -253,7 +253,7 @@ TEST_F(ReportCli, RefusesBadArguments) {
   EXPECT_EQ(candela("report room.json --methods whitted --reference room.json -o out", output), 2);
 }
 
-// Issue 21: a report writes DIR/<method>.png and the rest; one of them may be a texture the scene
+// A report writes DIR/<method>.png and the rest; one of them may be a texture the scene
 // reads (or the scene, or the reference): refused before any work, the input untouched.
 TEST_F(ReportCli, RefusesToWriteOverItsInputs) {
   std::string output;
@@ -305,7 +305,7 @@ TEST_F(ReportCli, AFailingMethodWritesNoPage) {
   EXPECT_FALSE(fs::exists(directory_ / "again" / "report.json"));
 }
 
-// Issue 25, item 5: the relighting page — every frame written (the scene's own lights first), each
+// The relighting page — every frame written (the scene's own lights first), each
 // image loads in headless Chromium, page.html#2 opens at the third frame; refused without --relight
 // or with an image a browser cannot show.
 TEST_F(ReportCli, RelightPageShowsEveryFrameWithASlider) {

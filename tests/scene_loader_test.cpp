@@ -196,7 +196,7 @@ TEST(SceneLoader, BadValuesInMaterialsLightsAndTransforms) {
                "film.out_of_range", 4, 28, "expected one of: clamp, scale, normalize");
 }
 
-// Issue 21: directions read from the scene are normalised by direction_of (math/direction.h): a
+// Directions read from the scene are normalised by direction_of (math/direction.h): a
 // light direction, rotation axis or plane normal of components of 1e-200 (a squared length that
 // underflows to 0) was refused as "must be non-zero". They are directions; zero still is refused.
 TEST(SceneLoader, DirectionsOfTinyComponentsAreDirections) {
@@ -237,7 +237,7 @@ TEST(SceneLoader, OverridesReplaceSettingsByDottedPath) {
   EXPECT_EQ(scene->background, Color(0.1, 0.2, 0.3));
 }
 
-// Issue 18: an unknown top-level key made by --set (a misspelt method) was blamed on the scene
+// An unknown top-level key made by --set (a misspelt method) was blamed on the scene
 // file's opening brace; it names the assignment, as nested keys do.
 TEST(SceneLoader, UnknownTopLevelKeyFromAnOverrideNamesTheAssignment) {
   const InputError e = load_error(std::string(kHeader) + "\"shapes\": []}", {"whited.max_depth=1"});
@@ -247,7 +247,7 @@ TEST(SceneLoader, UnknownTopLevelKeyFromAnOverrideNamesTheAssignment) {
 }
 
 // Each method's and accelerator's object is read by its own registry entry, still at load time and
-// still with the file position (issue 18: the scene keeps the raw objects, not the structs).
+// still with the file position (the scene keeps the raw objects, not the structs).
 TEST(SceneLoader, PluginSettingsAreCheckedAtLoadTime) {
   expect_error(std::string(kHeader) + "  \"whitted\": {\"max_dept\": 3}\n}", "whitted.max_dept", 4, 27,
                "unknown key \"max_dept\"");
@@ -519,7 +519,7 @@ TEST(JsonDocument, RecordsWhereEveryValueStarts) {
   EXPECT_EQ(at("a[2].missing"), std::make_pair(4, 6));
 }
 
-// Issue 21: every step legal, their product not — 25 × "scale 1e16" overflowed to a black image with
+// Every step legal, their product not — 25 × "scale 1e16" overflowed to a black image with
 // bounds (0,0,0)–(0,0,0) and exit 0 (scale 0 alone was refused); 25 × 1e-16 underflowed. The
 // composed transform is held to the bounds of a single scene number (1e16, 1e-16 for a scale).
 TEST(SceneLoader, AComposedTransformThatOverflowsUnderflowsOrIsIllConditionedIsRefused) {

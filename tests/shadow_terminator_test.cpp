@@ -1,4 +1,4 @@
-// The shadow terminator on a smooth low-poly mesh (issue 22; Hanika 2021, "Hacking the shadow
+// The shadow terminator on a smooth low-poly mesh (Hanika 2021, "Hacking the shadow
 // terminator", Ray Tracing Gems II ch. 4): a coarse sphere with its true vertex normals, lit from
 // the side. Where a facet faces slightly away from the light but its interpolated normal faces
 // the light, the local model cut the light off at the facet (geometric N·L ≤ 0) and the path

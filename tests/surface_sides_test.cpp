@@ -1,4 +1,4 @@
-// Issue 20: the sides of a surface — "flip_normals" on any shape, seen by every method
+// The sides of a surface — "flip_normals" on any shape, seen by every method
 // (geometry/flipped_shape.h), and "two_sided" surfaces for classic radiosity, whose patches are
 // otherwise one-sided.
 #include <gtest/gtest.h>

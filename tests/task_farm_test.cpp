@@ -1,4 +1,4 @@
-// The task farm and the cluster's collectives (issue 11). The same binary runs as one process
+// The task farm and the cluster's collectives. The same binary runs as one process
 // (ctest distributed.one_process) and under `mpirun -np 3` (distributed.three_ranks): every rank
 // runs every test in the same order, so the collectives inside them line up.
 #include "distributed/task_farm.h"

@@ -1,4 +1,4 @@
-"""The Python module candela (issue 24): its arrays are the command line's PFM byte for byte, its
+"""The Python module candela: its arrays are the command line's PFM byte for byte, its
 errors carry the command line's file:line:column messages, Ctrl-C cancels a render, and compare,
 probe, write_image/read_image and the radiosity solution give what their commands give.
 
@@ -182,7 +182,7 @@ def test_probe_matches_an_emitting_square_and_the_solutions_have_their_mesh_and_
     assert np.allclose(sites["radiosity"], 0) and np.allclose(sites["direct"], 0)
 
 
-# Issue 51: render passes its seed and anti-aliasing samples down instead of setting them on the
+# render passes its seed and anti-aliasing samples down instead of setting them on the
 # Scene, so Python threads rendering one Scene at once (the GIL is released while they run) each get
 # the image the same render gives alone, and the Scene is as it was afterwards. Before, they took
 # each other's seed and aa.n, and the Scene kept one of them.
@@ -231,7 +231,7 @@ def test_threads_rendering_one_scene_get_the_images_of_the_same_renders_alone():
     assert not np.array_equal(alone[4], alone[5])
 
 
-# Issue 51: probe refuses what `candela probe --points` refuses — a point or a normal that is not
+# probe refuses what `candela probe --points` refuses — a point or a normal that is not
 # finite (it returned zeros) — naming the index; a huge but finite normal has its direction.
 def test_probe_refuses_points_and_normals_that_are_not_finite(tmp_path):
     scene = candela.load_file(CORNELL, **SMALL)
@@ -254,7 +254,7 @@ def test_probe_refuses_points_and_normals_that_are_not_finite(tmp_path):
     assert np.array_equal(plain["irradiance"], huge["irradiance"])
 
 
-# Issue 51: compare refuses a value no image file holds — NaN, ±inf, or beyond the float range
+# compare refuses a value no image file holds — NaN, ±inf, or beyond the float range
 # (±1e308, whose square overflows) — naming the array, the pixel and the value, rather than
 # returning NaN or None metrics and a max error of -1.
 @pytest.mark.parametrize("value", [float("nan"), float("inf"), -float("inf"), 1e308, -1e308])
@@ -276,7 +276,7 @@ def test_compare_refuses_values_that_are_not_finite_or_beyond_the_float_range(va
 
 
 def test_renders_and_probes_that_would_hold_more_than_the_memory_limit_raise_before_any_work():
-    """Issue 51, class 6: the command line's refusal, from Python too (render.memory_limit_mib)."""
+    """The command line's refusal, from Python too (render.memory_limit_mib)."""
     scene = candela.load_file(CORNELL, **{"camera.width": 4000, "camera.height": 3000,
                                           "render.memory_limit_mib": 100})
     for method in ("local", "raster", "path"):

@@ -38,7 +38,7 @@ inline bool closer_hit(double t, uint32_t primitive, double best_t, uint32_t bes
 }
 
 // The primitives an accelerator is built over, ascending: every one except those no ray can
-// report (issue 21), which every accelerator leaves out of its structure —
+// report, which every accelerator leaves out of its structure —
 // - a zero-area mesh triangle: it is never hit;
 // - a mesh triangle whose three corners are, bit for bit and in the same order, those of a
 //   lower-indexed mesh triangle (a copy in another object, say): its hit distance is the same

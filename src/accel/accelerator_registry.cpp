@@ -66,7 +66,7 @@ const std::array kAcceleratorEntries = {
                      [](const JsonNode& settings, BoundingVolumeKind) -> std::unique_ptr<Accelerator> {
                        return finished(settings, std::make_unique<Bvh>(read_bvh_settings(settings, true)));
                      }},
-    // Issue 26: the BVH with float Möller–Trumbore leaf tests, outside the exact contract.
+    // The BVH with float Möller–Trumbore leaf tests, outside the exact contract.
     AcceleratorEntry{"bvh-fast",
                      "the bvh with Embree-like float triangle tests: faster, not exact (hits differ from the "
                      "list's in float's last bits, edges are not watertight)",

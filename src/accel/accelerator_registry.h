@@ -20,7 +20,7 @@ struct AcceleratorEntry {
   // tests per scene object first (render.bounding_volume; the other structures bound primitives).
   std::unique_ptr<Accelerator> (*create)(const JsonNode& settings, BoundingVolumeKind object_volume);
   // Whether it keeps the contract of accel/accelerator.h (the list's hits, to the last bit);
-  // false only for bvh-fast, which trades it for speed (issue 26).
+  // false only for bvh-fast, which trades it for speed.
   bool exact = true;
 };
 

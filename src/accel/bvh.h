@@ -26,7 +26,7 @@
 // out. Rays outside the float test's proven range (huge or non-finite values, tiny direction
 // components) test every primitive instead.
 //
-// bvh-fast (BvhSettings::exact false, issue 26): the same tree, packets and traversal with Embree's
+// bvh-fast (BvhSettings::exact false): the same tree, packets and traversal with Embree's
 // kind of tests: a lane's hit is the float Möller–Trumbore test in the form of Embree's Triangle4,
 // on its packet's first vertex and edges (p[1], p[2] hold p1 − p0 and p2 − p0 in bvh-fast) and
 // their normal, kept beside the packets (PacketNormals, 48 bytes a packet; FloatMoller in bvh.cpp,

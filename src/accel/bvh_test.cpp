@@ -625,7 +625,7 @@ TEST(Bvh, TwoMeshesFillTheirOwnNormals) {
   EXPECT_GT(agreement.hits, 800);
 }
 
-// Issue 26: the traversal is compiled for SSE, AVX2 and AVX-512 and picked at run time; every
+// The traversal is compiled for SSE, AVX2 and AVX-512 and picked at run time; every
 // instruction set this CPU has gives the list's answers, on double vertices (kept beside the
 // packets) and on float vertices (the packets alone), with shapes mixed in.
 TEST(Bvh, EveryInstructionSetOfThisCpuGivesTheListsAnswers) {
@@ -815,7 +815,7 @@ TEST(BvhBuilder, BlockSizeCountsLeavesInPackets) {
   }
 }
 
-// Issue 26 item 5: primitives that share one centroid cannot be separated by any split (they are
+// Primitives that share one centroid cannot be separated by any split (they are
 // halved into overlapping leaves of at most 16); the build says how many, and warns past 256.
 TEST(Bvh, ManyPrimitivesWithOneCentroidAreCountedAndWarnedAbout) {
   // Distinct triangles whose boxes [-x, x] × [-y, y] × [-z, z] all have their centre at 0.
@@ -847,7 +847,7 @@ TEST(Bvh, ManyPrimitivesWithOneCentroidAreCountedAndWarnedAbout) {
   EXPECT_TRUE(plain.report().warnings.empty());
 }
 
-// bvh-fast (issue 26): float Möller–Trumbore leaves, outside the exact contract. Against the
+// bvh-fast: float Möller–Trumbore leaves, outside the exact contract. Against the
 // list: where both hit, the distance agrees to float's precision (any primitive: a neighbour
 // across an edge is at the same distance); the nearest primitive, hit or miss and occlusion agree
 // but for rays grazing an edge (a few in a thousand at most; none of these scenes' counts is

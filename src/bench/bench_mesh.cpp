@@ -128,7 +128,7 @@ BenchMesh parse_bench_obj(std::string_view text, const std::string& name) {
 }
 
 BenchMesh read_bench_obj(const std::string& path) {
-  // Issue 21: a regular file of at most 4 GiB (a FIFO blocked, a device was read without end).
+  // A regular file of at most 4 GiB (a FIFO blocked, a device was read without end).
   return parse_bench_obj(read_input_file(path, "the mesh file", kLargeInputLimit), path);
 }
 

@@ -6,7 +6,7 @@
 //   refer to any vertex of the file). A polygon v0..v(n-1) becomes the fan (v0, vk, vk+1),
 //   k = 1..n-2, in file order; triangle ids are the positions in TriangleMesh::triangles.
 //   Faces with an out-of-range index, or fewer than three corners, are skipped and counted; a
-//   face of more than kMaxBenchFaceCorners corners is refused (issue 21: the fan of a 10⁵-corner
+//   face of more than kMaxBenchFaceCorners corners is refused (the fan of a 10⁵-corner
 //   disc is 10⁵ slivers whose boxes all meet at its first corner, 0.007 Mrays/s in a BVH).
 //   Every other line is ignored.
 // - bench_sphere(N): the UV sphere of 4S(S-1) triangles, S = max(2, round(sqrt(N/4))).

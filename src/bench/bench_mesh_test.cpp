@@ -143,7 +143,7 @@ TEST(BenchMesh, BadInputIsAnInputErrorWithTheLine) {
   EXPECT_THROW(read_bench_obj("/nonexistent/mesh.obj"), InputError);
 }
 
-// Issue 21: a face of more corners than the limit is refused at its line (its fan made `candela
+// A face of more corners than the limit is refused at its line (its fan made `candela
 // bench` on a 10⁵-corner disc run for a minute at 0.007 Mrays/s); the limit itself is read.
 TEST(BenchMesh, AFaceOfMoreCornersThanTheLimitIsRefusedAtItsLine) {
   const auto polygon = [](std::size_t corners) {
@@ -177,7 +177,7 @@ TEST(BenchMesh, DegenerateTrianglesKeepTheirIds) {
   EXPECT_EQ(scene.triangle_id(0), 1u);
 }
 
-// Issue 21: 20,000 copies of one face made `candela bench` on a 180 KB file run for most of an
+// 20,000 copies of one face made `candela bench` on a 180 KB file run for most of an
 // hour (0.003 Mrays/s); the copies are merged into the first, which keeps its id.
 TEST(BenchMesh, DuplicateTrianglesAreMergedAndKeepTheFirstId) {
   std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";

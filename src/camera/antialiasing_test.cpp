@@ -355,7 +355,7 @@ TEST(Antialiasing, BoxOfHalfAPixelIsTheMeanOfEachPixelsOwnSamples) {
     for (int x = 0; x < kWidth; ++x) EXPECT_EQ(none.film.at(x, y), scene(x + 0.5, y + 0.5));
 }
 
-// Issue 19's test of a real reconstruction filter: a bright line one pixel wide (column 7) stays
+// A real reconstruction filter: a bright line one pixel wide (column 7) stays
 // in the columns its samples fall in under the box, and spreads by exactly the filter's reach
 // (the pixels whose centres lie within the radius of a sample) under wider filters.
 TEST(Antialiasing, AOnePixelLineWidensByTheFilterRadiusAndStaysPutUnderTheBox) {

@@ -1,4 +1,4 @@
-// The processes one run is split across (issue 11: MPI, not a home-made protocol): the ranks of
+// The processes one run is split across (MPI, not a home-made protocol): the ranks of
 // MPI_COMM_WORLD when Candela is built with MPI and started by an MPI launcher (mpirun), one
 // process otherwise — the same binary runs either way.
 //

@@ -1,4 +1,4 @@
-// Dynamic scheduling of independent tasks across the ranks (issue 11): rank 0 hands out task
+// Dynamic scheduling of independent tasks across the ranks: rank 0 hands out task
 // numbers in order, one at a time, to whichever rank asks — so a slow rank (a busy node, a tile
 // full of glass) takes fewer tasks instead of holding the others up — and renders tasks itself
 // between answering. Results come back to rank 0.

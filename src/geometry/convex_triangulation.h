@@ -1,4 +1,4 @@
-// Triangles of a convex polygon that a ray structure can separate (issue 21, "huge polygons"). A
+// Triangles of a convex polygon that a ray structure can separate, however many corners. A
 // fan from one corner makes every triangle a sliver that starts at that corner, so the boxes of
 // all of them overlap there and cover most of the polygon: a BVH over the fan of a 10⁵-corner
 // disc visits about half its 10⁵ leaves per ray (0.007 Mrays/s). Halving instead — one triangle

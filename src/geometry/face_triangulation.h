@@ -1,5 +1,5 @@
 // The triangles of one polygonal face of a mesh file (OBJ, PLY), shared by the readers so that a
-// face is filled the same way whichever file it comes from (issue 21, "huge polygons").
+// face is filled the same way whichever file it comes from, however many corners it has.
 // - three corners: the triangle;
 // - four: split along the shorter diagonal, in float, exactly as tinyobjloader's triangulation
 //   did (so OBJ quads keep their triangles);

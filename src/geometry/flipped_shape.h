@@ -1,4 +1,4 @@
-// A shape with its normals reversed (issue 20: the shapes' `"flip_normals": true`): the inside of
+// A shape with its normals reversed (the shapes' `"flip_normals": true`): the inside of
 // a sphere, a cylinder or any closed shape becomes its front — what classic radiosity's
 // one-sided patches need to model a room inside an analytic shape — and the side a dielectric
 // is entered from swaps (an air bubble in water is a flipped sphere of index 1/1.33's inverse,

@@ -1,4 +1,4 @@
-// Issue 20: a shape with its normals reversed ("flip_normals"), geometry/flipped_shape.h.
+// A shape with its normals reversed ("flip_normals"), geometry/flipped_shape.h.
 #include "geometry/flipped_shape.h"
 
 #include <gtest/gtest.h>

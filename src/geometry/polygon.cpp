@@ -15,7 +15,7 @@
 namespace candela {
 
 void Polygon::refuse_crossing_edges() const {
-  // Issue 20: a self-intersecting polygon (a pentagram drawn through its five points) has no one
+  // A self-intersecting polygon (a pentagram drawn through its five points) has no one
   // fill rule: the ray test's crossing count leaves its centre empty (even-odd) while ear
   // clipping — raster, radiosity, sampling — filled a different shape. Such a polygon is refused:
   // every polygon accepted is simple, and every method sees the same one.

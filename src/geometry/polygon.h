@@ -44,7 +44,7 @@ class Polygon final : public Shape {
   double nearest_t(const Ray& ray) const;
   // The Jordan test on the projection (000 Figure 42).
   bool contains_projected(double u, double v) const;
-  // Throws std::invalid_argument when two edges that share no vertex cross (issue 20).
+  // Throws std::invalid_argument when two edges that share no vertex cross.
   void refuse_crossing_edges() const;
   std::vector<Vec3> vertices_;
   std::vector<Vec2> projected_;  // the vertices on the (u_index_, v_index_) plane

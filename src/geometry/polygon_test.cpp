@@ -190,7 +190,7 @@ TEST(Polygon, RejectsBadArguments) {
   EXPECT_THROW(Polygon({{0, 0, 0}, {1, 0, 0}, {1, 1, 0.1}, {0, 1, 0}}),
                std::invalid_argument);  // not planar
   EXPECT_THROW(Polygon({{0, 0, 0}, {1, 0, 0}, {1, std::nan(""), 0}}), std::invalid_argument);
-  // Issue 20: self-intersecting (a bowtie, a pentagram through its five points) — no one fill rule
+  // Self-intersecting (a bowtie, a pentagram through its five points) — no one fill rule
   // (the ray test's even-odd count against ear clipping's filled shape): refused, naming the edges.
   try {
     const Polygon bowtie({{0, 0, 0}, {2, 1, 0}, {2, 0, 0}, {0, 1.5, 0}});  // lobes of unequal area

@@ -9,7 +9,7 @@
 //   before the seam, u = 0 after it): nothing wraps backwards and the mesh stays connected.
 // - Triangles are counter-clockwise about dpdu × dpdv, which every shape documents as its
 //   geometric normal side (outward for closed shapes, the declared side for flat ones).
-// - Area-true (issue 20): a curved surface's triangles cover the surface's own area. Vertices on
+// - Area-true: a curved surface's triangles cover the surface's own area. Vertices on
 //   the surface make an inscribed polyhedron with less area (a disc 2.55 % less at 16 segments, a
 //   sphere 3.2 %), so a radiosity emitter would send less power and every form factor toward it
 //   would be smaller; the curved shapes move their points away from the centre (the sphere, the

@@ -448,7 +448,7 @@ TEST(Tessellation, CurvedAreasAreTheSurfacesOwnAtEverySegmentCount) {
        },
        kPi * 3},
   };
-  // Issue 20: the tessellation's area is the surface's at every segment count (inscribed, a disc
+  // The tessellation's area is the surface's at every segment count (inscribed, a disc
   // lost 2.55 % at 16 segments and a sphere 3.2 %, converging only as 1/N²).
   for (const AreaCase& c : cases) {
     SCOPED_TRACE(c.name);

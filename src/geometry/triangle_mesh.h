@@ -181,8 +181,8 @@ std::vector<bool> repeated_triangles(const TriangleMesh& mesh);
 // given it receives the number of degenerate triangles left out (the loader warns about them).
 // When merged_duplicates is given, repeated triangles (repeated_triangles) are left out too and
 // counted there: tens of thousands of copies of one triangle, which a ray must all test to find
-// the lowest index among equal distances, made a 180 KB OBJ take most of an hour to bench
-// (issue 21); the first copy is kept and the triangle indices stay those of the mesh.
+// the lowest index among equal distances, made a 180 KB OBJ take most of an hour to bench;
+// the first copy is kept and the triangle indices stay those of the mesh.
 // Throws std::invalid_argument when mesh is null or invalid (see TriangleMesh::validate).
 std::vector<std::unique_ptr<Shape>> make_triangles(std::shared_ptr<const TriangleMesh> mesh,
                                                    std::size_t* skipped_degenerate = nullptr,

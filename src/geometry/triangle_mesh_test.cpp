@@ -557,7 +557,7 @@ TEST(TriangleMesh, MirroringTransformKeepsNormalsOutward) {
   expect_vec_near(nearest.geometric_normal, {1, 0, 0}, 1e-15);
 }
 
-// Issue 21: copies of a triangle (the same corners in the same cyclic order, through the same
+// Copies of a triangle (the same corners in the same cyclic order, through the same
 // or other vertices) are left out by make_triangles when asked, and counted; the reversed
 // winding and degenerate triangles are not copies.
 TEST(TriangleMesh, RepeatedTrianglesAreMergedIntoTheFirst) {

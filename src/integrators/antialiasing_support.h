@@ -32,12 +32,12 @@ std::string describe_refusal(std::string_view method, const AntialiasingRefusal&
 
 class Method;
 
-// pbrt's --spp N for a method without passes (candela render --spp, candela.render(spp=); issue
-// 24): n×n = N anti-aliasing samples per pixel. Sets settings.n; keeps settings.mode when it is
+// pbrt's --spp N for a method without passes (candela render --spp, candela.render(spp=)):
+// n×n = N anti-aliasing samples per pixel. Sets settings.n; keeps settings.mode when it is
 // "uniform" or "jittered", otherwise sets "uniform", which every method can do, and returns true:
 // the mode is then chosen by choose_jittered_where_possible once the method is made. Throws
 // std::invalid_argument when N is not a square in [1, 64²] ("whitted takes n×n samples per pixel
-// (aa.n); use 4 or 9"). Issue 51: on a value, so that a render may take its own settings
+// (aa.n); use 4 or 9"). On a value, so that a render may take its own settings
 // (RenderRequest::antialiasing) and leave the scene's alone.
 bool set_samples_per_pixel(AntialiasingSettings& settings, std::string_view method, int samples);
 // The same on the scene's own "aa" settings (candela render --spp).

@@ -100,7 +100,7 @@ Color local_illumination(const Scene& scene, const Intersection& hit, const Surf
   const double offset = scene.ray_offset(surface.position);
   // A smooth mesh's shadow rays leave from Hanika's lifted point (SurfaceHit::lifted_toward).
   const Vec3 shadow_origin = surface.lifted_toward(V) + geometric * offset;
-  // Issue 19: every emitter — the lights and the emissive surfaces — each sample of an area light
+  // Every emitter — the lights and the emissive surfaces — each sample of an area light
   // or an emissive surface jittered within its cell per shading point (no stepped penumbrae).
   const StratumJitter jitter{true, context.seed};
   for (std::size_t e = 0; e < scene.emitter_count(); ++e) {

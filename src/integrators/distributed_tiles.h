@@ -1,4 +1,4 @@
-// An image region rendered across the ranks of a cluster (issue 11): square tiles handed out
+// An image region rendered across the ranks of a cluster: square tiles handed out
 // dynamically (distributed/task_farm.h), each rendered whole by one rank with its threads, its
 // pixels sent to rank 0 bit for bit. A pixel's value depends only on the pixel (per-pixel random
 // streams, SPEC §6), so the gathered image is the single-process image.

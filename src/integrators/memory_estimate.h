@@ -1,5 +1,5 @@
-// What a render will hold, estimated before any work, and its refusal past the limit (issue 51,
-// SPEC §15: a valid scene must not exhaust the machine — meshless on the 10,584-sphere field grew
+// What a render will hold, estimated before any work, and its refusal past the limit
+// (SPEC §15: a valid scene must not exhaust the machine — meshless on the 10,584-sphere field grew
 // past 24 GB in two minutes). Each method says what it holds (Method::memory_needed); the limit is
 // render.memory_limit_mib, half the machine's memory by default (util/memory.h). Radiosity's
 // form factors keep their own, finer checks (radiosity/form_factor_memory.h).

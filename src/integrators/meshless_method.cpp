@@ -58,10 +58,10 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 // What a surface point reflects of the emitters directly: ρ Σ I·max(0, n·L)·V over every sample of
 // the lights, the emissive surfaces and the environment (opaque shadows), the samples of each
-// jittered in their cells as the local model's are. Issue 19: an emissive surface lights the
+// jittered in their cells as the local model's are. An emissive surface lights the
 // sites through these shadow rays, not through the sites that land on it, so a lamp's power no
 // longer depends on them; its own emission is drawn where the camera sees it, never transferred.
-// Issue 20: and through `rays` cosine-distributed rays from the site, weighed against the
+// Also through `rays` cosine-distributed rays from the site, weighed against the
 // surfaces' samples (scene/direct_irradiance.h) — a site beside a glowing wall got 0.25–27 times
 // its irradiance from the samples alone, 2 % low on average in a glowing box.
 Color direct_light(const Scene& scene, const SurfaceEmitterIndex& emitters, uint64_t seed, std::size_t site,
@@ -112,7 +112,7 @@ Film with_sites_drawn(const Scene& scene, const SiteSet& sites, const PixelRect&
 }
 
 // What a solution depends on besides the scene object: the meshless settings that shape the
-// geometry (not the display, the tolerance or the lights) and the seed — the render's (issue 51: a
+// geometry (not the display, the tolerance or the lights) and the seed — the render's (a
 // render with another seed than the scene's does not reuse the scene's sites).
 std::string geometry_key(const Scene& scene, const MeshlessSettings& m, uint64_t seed) {
   // The sites are sampled through the camera: another view samples its own.
@@ -171,7 +171,7 @@ namespace {
 constexpr int kEffectiveAreaSegments = 64;
 
 // The most transfer entries S may keep: Eigen's 32-bit index, and render.memory_limit_mib (half
-// the machine's memory by default; issue 51) at 16 bytes an entry while S is built (a row's
+// the machine's memory by default) at 16 bytes an entry while S is built (a row's
 // (index, value) pairs, then the compressed copy) — past it the build stops and is refused naming
 // meshless.spacing (SPEC §15).
 std::size_t transfer_entry_limit(const Scene& scene) {
@@ -221,7 +221,7 @@ std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const Meshl
                                                 kEffectiveAreaSegments, cluster, quiet);
   geometry->area_seconds = seconds_since(start);
   if (stop()) return nullptr;
-  // Issue 19: the longest phase shows its rows (rank 0, for every rank).
+  // The longest phase shows its rows (rank 0, for every rank).
   ProgressReporter progress("transfer matrix", sites.sites.size(), "sites",
                             quiet || (cluster && !cluster->root()));
   TransferSettings transfer;
@@ -276,7 +276,7 @@ std::vector<MemoryPart> MeshlessMethod::memory_needed(const Scene& scene,
 
 namespace {
 
-// Issue 51: a solution without an image (solve_meshless: bench --meshless, Python's
+// A solution without an image (solve_meshless: bench --meshless, Python's
 // meshless_solution; make_meshless_field: probe) is held to render.memory_limit_mib before any work,
 // as a render is (Method::memory_needed; the render's own check is its caller's, per view).
 void refuse_solution_beyond_memory_limit(const Scene& scene, const MeshlessSettings& settings) {
@@ -298,7 +298,7 @@ MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& sett
   MeshlessLighting lighting;
   lighting.eta.resize(sites.sites.size());
   const SurfaceEmitterIndex emitters(scene);
-  // Issue 25 (albedo edits, R = QS): Q as the scene's materials have it now — a relight frame may
+  // Albedo edits (R = QS): Q as the scene's materials have it now — a relight frame may
   // give a material another kd; a constant kd is read afresh, a textured one is as it was where
   // the site was sampled. S does not depend on it.
   std::vector<Color> albedo = sites.albedo;
@@ -379,7 +379,7 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
   // other light set-ups: --relight); the direct light and the iteration are redone every time.
   bool reused = false;
   Cluster* cluster = several_ranks(request);
-  // Issue 51: the render's seed and aa settings, which may not be the scene's.
+  // The render's seed and aa settings, which may not be the scene's.
   const uint64_t seed = request.seed_for(scene);
   const AntialiasingSettings& antialiasing = request.antialiasing_for(scene);
   const std::shared_ptr<const MeshlessGeometry> geometry =
@@ -450,7 +450,7 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
     camera_rays.fetch_add(sampled.traced, std::memory_order_relaxed);
   };
   MeshlessIterationCallback on_iteration;
-  if (request.on_progress)  // issue 24: each iteration's λ displayed as render would
+  if (request.on_progress)  // each iteration's λ displayed as render would
     on_iteration = [&](std::size_t iteration, const std::vector<Color>& eta,
                        const std::vector<Color>& lambda) {
       request.on_progress({"iterations", iteration, std::nullopt, [&] {
@@ -469,8 +469,8 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
   camera_rays = 0;  // the final display's alone
   const auto start = std::chrono::steady_clock::now();
   draw_across_ranks(request.cluster, region, draw, film,
-                    statistics);  // issue 11: every rank holds the same λ
-  // Rank 0 holds the whole image (issue 11), and its result is the one written.
+                    statistics);  // every rank holds the same λ
+  // Rank 0 holds the whole image, and its result is the one written.
   if (request.sites_image && (!cluster || cluster->root()))
     output.sites_image = with_sites_drawn(scene, geometry->sites, region, film);
   const auto pixel_count = static_cast<uint64_t>(region.width()) * region.height();

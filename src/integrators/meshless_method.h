@@ -48,7 +48,7 @@ inline constexpr auto kMeshlessAreaNames =
     enum_names<MeshlessAreas>({{MeshlessAreas::integrated, "integrated"}, {MeshlessAreas::thesis, "thesis"}});
 
 // The transfer: the thesis's flat matrix, every far element on its own (n² entries at worst), or
-// the hierarchical transport of Lehtinen et al. 2008 (issue 25: links between nodes of the site
+// the hierarchical transport of Lehtinen et al. 2008 (links between nodes of the site
 // hierarchy, O(n log n) entries at worst; meshless/site_hierarchy.h, meshless/transfer_matrix.h).
 enum class MeshlessTransport { flat, hierarchical };
 inline constexpr auto kMeshlessTransportNames = enum_names<MeshlessTransport>(
@@ -72,7 +72,7 @@ struct MeshlessSettings {
   double near_field = 2;  // the near field: elements closer than this many of their radii
   MeshlessTransport transport = MeshlessTransport::flat;
   double cluster_angle = 0.15;  // hierarchical: two nodes are linked while extent/distance < this
-  // Issue 21: where a refusal of the sites or the transfer matrix (too many, too much memory)
+  // Where a refusal of the sites or the transfer matrix (too many, too much memory)
   // points — the spacing when the scene gives it, else the "meshless" object.
   SourceLocation location;
 };
@@ -97,10 +97,10 @@ struct MeshlessLighting {
   double seconds = 0;  // direct light and iteration
 };
 
-// Issue 51: seed is the render's (RenderRequest::seed_for), which need not be the scene's.
+// seed is the render's (RenderRequest::seed_for), which need not be the scene's.
 std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene,
                                                           const MeshlessSettings& settings, uint64_t seed);
-// Called after every iteration of λ with η and λ then (issue 24: the convergence log).
+// Called after every iteration of λ with η and λ then (the convergence log).
 using MeshlessIterationCallback = std::function<void(std::size_t iteration, const std::vector<Color>& eta,
                                                      const std::vector<Color>& lambda)>;
 
@@ -119,7 +119,7 @@ struct MeshlessSolution {
 };
 
 // Samples, builds and solves with the scene's render.seed; fills facts for --stats when given.
-// Throws InputError before any work past render.memory_limit_mib (issue 51).
+// Throws InputError before any work past render.memory_limit_mib.
 MeshlessSolution solve_meshless(const Scene& scene, const MeshlessSettings& settings,
                                 nlohmann::json* facts = nullptr);
 

@@ -32,7 +32,7 @@ struct PixelRect {
   int height() const { return y1 - y0; }
 };
 
-// Issue 24: one step of a progressive method's way to its image (candela render --error-log,
+// One step of a progressive method's way to its image (candela render --error-log,
 // candela report's error-against-time chart).
 struct ProgressStep {
   std::string_view unit;                  // "passes", "shots", "sweeps", "iterations"
@@ -67,18 +67,18 @@ struct RenderRequest {
   // Called after every whole pass of a progressive method with the passes done so far (the
   // path tracer): where a caller (a test) may ask the run to stop after exactly N passes.
   std::function<void(uint64_t passes)> after_pass = {};
-  // Issue 24: when set, a progressive method reports its steps — the path tracer after every pass,
+  // When set, a progressive method reports its steps — the path tracer after every pass,
   // progressive radiosity after every `progress_every` shots, Gauss-Seidel after every sweep,
   // meshless after every iteration of λ — in one process (not across ranks). The time the caller
   // spends in it (making and measuring the image) is the caller's to account for. A method that
   // keeps its solution between renders (radiosity, meshless) solves afresh when it is set.
   std::function<void(const ProgressStep& step)> on_progress = {};
   uint64_t progress_every = 0;  // progressive radiosity: shots between steps; 0: 50
-  // The ranks to split the work across (issue 11, docs/distributed.md); null or one rank: this
+  // The ranks to split the work across (docs/distributed.md); null or one rank: this
   // process alone. Every rank calls render with the same scene and request; rank 0's result
   // holds the image and the checkpoints. Statistics are totals over the ranks.
   Cluster* cluster = nullptr;
-  // Issue 51: this render's seed and anti-aliasing settings where they are not the scene's
+  // This render's seed and anti-aliasing settings where they are not the scene's
   // (candela.render(seed=, spp=) in Python). A method reads them through seed_for and
   // antialiasing_for, never from scene.render.seed or scene.antialiasing on its render path, so
   // that a render with other values leaves the Scene as it was and renders of one Scene with
@@ -102,7 +102,7 @@ struct RenderResult {
   std::optional<Bytes> checkpoint;  // the final state, sealed (RenderRequest::checkpoint; rank 0)
 };
 
-// Issue 51 (SPEC §15): a part of what a render will hold beyond the loaded scene, estimated before
+// SPEC §15: a part of what a render will hold beyond the loaded scene, estimated before
 // any work, and the setting that makes it smaller.
 struct MemoryPart {
   std::string what;  // "the image", "the effective-area integration's 42,600,000 triangles"
@@ -120,7 +120,7 @@ class Method {
   // the others throw std::logic_error.
   virtual RayTree pixel_ray_tree(const Scene& scene, int x, int y, Color& radiance) const;
   // Why the method cannot honour the "aa" settings `antialiasing` for the scene — its own or a
-  // render's (RenderRequest::antialiasing_for; issue 51) — none when it can; by default it can:
+  // render's (RenderRequest::antialiasing_for) — none when it can; by default it can:
   // the path tracer and the ray tracers take every mode and filter.
   virtual std::optional<AntialiasingRefusal> antialiasing_refusal(
       const Scene& scene, const AntialiasingSettings& antialiasing) const {
@@ -131,7 +131,7 @@ class Method {
   // Throws the InputError of a scene the method cannot render with its settings (an emitter its
   // shading cannot take), so that create_method refuses it before any work; render checks again.
   virtual void refuse_scene(const Scene& scene) const { (void)scene; }
-  // Issue 51: what rendering the request (its region empty: the solution alone, as probe needs
+  // What rendering the request (its region empty: the solution alone, as probe needs
   // it) will hold, part by part; by default the image (integrators/memory_estimate.h).
   virtual std::vector<MemoryPart> memory_needed(const Scene& scene, const RenderRequest& request) const;
 };

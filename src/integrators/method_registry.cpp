@@ -133,7 +133,7 @@ std::unique_ptr<Method> made_from_settings(const MethodEntry& entry, const Scene
   return entry.create(root.at(entry.name));
 }
 
-// Issue 19: an emitter a method cannot account for is an error naming both, never a dark image.
+// An emitter a method cannot account for is an error naming both, never a dark image.
 void refuse_unsampled_emitters(const MethodEntry& entry, const Scene& scene) {
   if (!entry.capabilities.samples_emissive_surfaces || scene.unsampled_emitters.empty()) return;
   std::string able;  // the methods that take such a surface

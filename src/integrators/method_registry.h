@@ -35,7 +35,7 @@ struct MethodCapabilities {
 struct MethodEntry {
   std::string_view name;  // also the key of its settings object in the scene file
   std::string_view description;
-  // How it accounts for each kind of emitter (issue 19; docs/scene-format.md, "Emitters").
+  // How it accounts for each kind of emitter (docs/scene-format.md, "Emitters").
   std::string_view emitters;
   MethodCapabilities capabilities;
   // Reads the settings object (ranges checked, unknown keys refused: InputError) and makes the method.
@@ -59,7 +59,7 @@ nlohmann::json emitter_facts(const Scene& scene, const MethodEntry& entry);
 // by one of its emitters, or refuses the scene otherwise (Method::refuse_scene), before any work.
 std::unique_ptr<Method> create_method(const MethodEntry& entry, const Scene& scene,
                                       const std::vector<std::string>& overrides = {});
-// The same, the "aa" settings checked being a render's own (RenderRequest::antialiasing; issue 51)
+// The same, the "aa" settings checked being a render's own (RenderRequest::antialiasing)
 // rather than the scene's.
 std::unique_ptr<Method> create_method(const MethodEntry& entry, const Scene& scene,
                                       const std::vector<std::string>& overrides,

@@ -181,7 +181,7 @@ Color continue_path(const Scene& scene, const PathSettings& settings, const Ligh
   for (;; ++state.depth) {
     Intersection hit;
     if (!scene.intersect(state.ray, hit)) {
-      // Issue 19: the background colours what the camera sees (directly, or in mirrors and
+      // The background colours what the camera sees (directly, or in mirrors and
       // through glass) and lights nothing; an environment lights the scene too.
       if (!scene.environment && !state.specular) break;
       const Color background = scene.background_along(state.ray.direction);

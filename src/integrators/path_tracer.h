@@ -26,7 +26,7 @@ struct PathSettings {
   int max_depth = 0;                // bounces at most; 0: unlimited (Russian roulette ends every path)
   int roulette_depth = 3;           // Russian roulette from this bounce on
   double checkpoint_interval = 60;  // seconds between checkpoints (candela render --checkpoint)
-  std::string sampler = "sobol";    // sampling/sampler.h: independent, stratified, sobol (issue 22)
+  std::string sampler = "sobol";    // sampling/sampler.h: independent, stratified, sobol
 };
 // Ranges checked, unknown keys refused; spp 0 needs a time limit.
 PathSettings read_path_settings(const JsonNode& node);

@@ -93,7 +93,7 @@ Vec3 sensor_origin(const Scene& scene, const ProbePoint& point) {
 }
 
 // Sample s of point `index` from the scene's path.sampler (Sobol' by default: the first light
-// sample and the first bounce stratified over the point's samples, issue 23's daylight openings
+// sample and the first bounce stratified over the point's samples, so daylight openings
 // converge as the image's pixels do), the point's number standing for the pixel, and seeded apart
 // from the image's pixels (kProbeSeed).
 ProbeResult probe_path(const Scene& scene, const PathSettings& path, const LightSampler& lights,
@@ -202,7 +202,7 @@ ProbeResult probe_field(const Scene& scene, const SolutionField& field, const Li
   return {irradiance, radiance, standard_error(luminance_sum, luminance_squares, n)};
 }
 
-// The local model's answer (issue 23, item 5: CIE 171's direct cases): the irradiance straight from
+// The local model's answer (CIE 171's direct cases): the irradiance straight from
 // every emitter — lights, emissive surfaces (their jittered samples) and the environment — with
 // opaque shadows, scene/direct_irradiance.h's sum; no interreflection. Deterministic: no samples.
 ProbeResult probe_local(const Scene& scene, const ProbePoint& point, const ProbeSettings& settings,
@@ -282,7 +282,7 @@ std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>
 }
 
 std::vector<ProbePoint> read_probe_points(const std::string& path) {
-  // Issue 21: a regular file of bounded size only.
+  // A regular file of bounded size only.
   std::istringstream in(read_input_file(path, "the points file"));
   std::vector<ProbePoint> points;
   std::string line;

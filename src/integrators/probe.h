@@ -1,4 +1,4 @@
-// `candela probe` (SPEC "Product surface", issue 9 item 4): irradiance and radiance at given points
+// `candela probe` (SPEC "Product surface"): irradiance and radiance at given points
 // and normals, by the path tracer, classic radiosity, the meshless method or the local model —
 // Radiance's rtrace -I for lighting designers' sensor points and work planes.
 //
@@ -46,7 +46,7 @@ struct IlluminanceStatistics {
 IlluminanceStatistics illuminance_statistics(const std::vector<double>& illuminance);
 
 // The irradiance (W/m²) an unobstructed horizontal surface facing up (+y) receives from the
-// scene's environment — a daylight factor's denominator (issue 23, item 3: interior illuminance /
+// scene's environment — a daylight factor's denominator (interior illuminance /
 // unobstructed horizontal sky illuminance) — by 512 × 512 stratified cosine-distributed
 // directions; black without an environment.
 Color unobstructed_sky_irradiance(const Scene& scene);
@@ -55,7 +55,7 @@ struct ProbeResult {
   Color irradiance;  // W/m²
   Color radiance;    // W/(m²·sr)
   // The estimated standard error (1σ) of the irradiance's luminance, W/m²: the spread of the
-  // samples' luminances over √samples (issue 20: 256 samples give 2–4 % noise; this says how many
+  // samples' luminances over √samples (256 samples give 2–4 % noise; this says how many
   // to ask for). The radiosity and meshless solutions' own errors are not in it, only their
   // gathering's.
   double irradiance_error = 0;

@@ -26,7 +26,7 @@ RadiositySettings settings_of(const Scene& scene) {
 }
 
 // What a solution depends on besides the scene object: its radiosity settings (all but the
-// display) and the seed of the ray-cast form factors — the render's (issue 51: a render with
+// display) and the seed of the ray-cast form factors — the render's (a render with
 // another seed than the scene's does not reuse the scene's solution).
 std::string solution_key(const Scene& scene, const RadiositySettings& r, uint64_t seed) {
   return fmt::format("{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}|{}", scene.unique_id,
@@ -98,13 +98,13 @@ std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(con
   options.facts = &solved->facts;
   options.checkpointing = checkpointing ? &checkpoints : nullptr;
   options.cluster = cluster;
-  if (request.on_progress) {  // issue 24: each step's solution displayed as render would
+  if (request.on_progress) {  // each step's solution displayed as render would
     if (request.progress_every > 0) options.step_every = request.progress_every;
     const bool progressive = settings.solver == RadiositySolver::progressive;
     // progressive by value: it lives in this block, the function beyond it (ASan: use after scope).
     const bool hierarchical = settings.solver == RadiositySolver::hierarchical;
     options.on_step = [&, progressive, hierarchical](const RadiositySolveResult& so_far) {
-      // Issue 52: hierarchical radiosity's steps are Jacobi iterations over its links.
+      // Hierarchical radiosity's steps are Jacobi iterations over its links.
       const char* unit = progressive ? "shots" : hierarchical ? "iterations" : "sweeps";
       request.on_progress({unit, so_far.steps,
                            progressive ? std::optional<double>(so_far.unshot_fraction) : std::nullopt, [&] {
@@ -143,7 +143,8 @@ std::optional<AntialiasingRefusal> RadiosityMethod::antialiasing_refusal(
   return refusal;
 }
 
-// Issue 51: it exited 1 with "the radiosity mesh: the scene has zero size", no location.
+// A scene without a bounded shape is bad input, located at its "shapes" (it exited 1 with "the
+// radiosity mesh: the scene has zero size", no location).
 void RadiosityMethod::refuse_scene(const Scene& scene) const {
   const Bounds3& bounds = scene.bounds();
   if (bounds.empty() || !(length(bounds.diagonal()) > 0))
@@ -155,7 +156,7 @@ void RadiosityMethod::refuse_scene(const Scene& scene) const {
 }
 
 RenderResult RadiosityMethod::render(const Scene& scene, const RenderRequest& request) const {
-  // Issue 51: the render's aa settings and seed, which may not be the scene's.
+  // The render's aa settings and seed, which may not be the scene's.
   const AntialiasingSettings& antialiasing = request.antialiasing_for(scene);
   refuse_unsupported_antialiasing(*this, scene, antialiasing);  // before the solve
   RenderResult output(request.region);
@@ -177,7 +178,7 @@ RenderResult RadiosityMethod::render(const Scene& scene, const RenderRequest& re
   Stopwatch display_time;
   const SolutionDisplay display(scene, solution, settings.display, antialiasing, request.seed_for(scene));
   std::atomic<uint64_t> samples{0};
-  // Issue 11: every rank holds the same solution.
+  // Every rank holds the same solution.
   draw_across_ranks(
       request.cluster, region,
       [&](const PixelRect& area, Film& target) {

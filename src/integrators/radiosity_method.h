@@ -59,7 +59,7 @@ RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet);
 // The same, with what the solve measured written to *facts when not null (the "radiosity" facts
 // of render --stats without the display's: steps, form_factors_per_second, row_sum, ...).
 RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet, nlohmann::json* facts);
-// The same with another seed than render.seed (a probe's, issue 51).
+// The same with another seed than render.seed (a probe's).
 RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet, nlohmann::json* facts, uint64_t seed);
 
 // One solution serves every view: render() keeps the last scene's solution (recognised by

@@ -48,7 +48,7 @@ constexpr int kSurfaceVaryings = 8;  // position, object position, uv
 constexpr int kPerLight = 4;         // dot-product mode: N·L and the specular color
 
 // Everything the shading of one scene needs, shared by all tiles.
-// Issue 19: "dotproduct" interpolates N·L toward one point per light, so it cannot take the sky
+// "dotproduct" interpolates N·L toward one point per light, so it cannot take the sky
 // (no one direction) nor more lights than the rasterizer's varyings hold.
 void refuse_dot_product_scene(const RasterSettings& settings, const Scene& scene) {
   if (settings.shading != RasterShading::dot_product) return;
@@ -267,7 +267,7 @@ class RasterShader {
       const double reach = std::isfinite(sample.distance) ? sample.distance - 2 * offset : kInfinity;
       return shadow_transmittance(scene_, origin, sample.direction, reach, context, -1);
     }
-    const StratumJitter jitter{true, context.seed};  // issue 51: the render's seed
+    const StratumJitter jitter{true, context.seed};  // the render's seed
     Color reached, total;
     for (int index = 0; index < light.sample_count(); ++index) {
       LightSample sample;
@@ -328,7 +328,7 @@ TessellationRequest tessellation_for_view(const Scene& scene, const SampleGrid& 
 
 }  // namespace
 
-// Issue 51: the image, the samples of the grid (colour and depth) and the view's triangles with
+// The image, the samples of the grid (colour and depth) and the view's triangles with
 // their per-corner clip positions and varyings.
 std::vector<MemoryPart> RasterMethod::memory_needed(const Scene& scene, const RenderRequest& request) const {
   std::vector<MemoryPart> parts = Method::memory_needed(scene, request);
@@ -359,7 +359,7 @@ std::optional<AntialiasingRefusal> RasterMethod::antialiasing_refusal(
 }
 
 RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& request) const {
-  // Issue 51: the render's aa settings and seed, which may not be the scene's.
+  // The render's aa settings and seed, which may not be the scene's.
   const AntialiasingSettings& antialiasing = request.antialiasing_for(scene);
   const uint64_t seed = request.seed_for(scene);
   refuse_unsupported_antialiasing(*this, scene, antialiasing);

@@ -21,7 +21,7 @@ RenderResult RayTracingMethod::render(const Scene& scene, const RenderRequest& r
   RunStatistics& statistics = output.statistics;
   const PixelRect region = request.region;
   const int tile = scene.render.tile_size;
-  // Issue 51: the render's seed and aa settings, which may not be the scene's.
+  // The render's seed and aa settings, which may not be the scene's.
   const uint64_t seed = request.seed_for(scene);
   const AntialiasingSettings& antialiasing = request.antialiasing_for(scene);
   Cluster* cluster = several_ranks(request);
@@ -53,7 +53,7 @@ RenderResult RayTracingMethod::render(const Scene& scene, const RenderRequest& r
   std::atomic<int64_t> tiles_done{0};
   bool interrupted = false;
   if (cluster) {
-    // Across ranks (issue 11): larger tiles, each sampled like a region of its own — every
+    // Across ranks: larger tiles, each sampled like a region of its own — every
     // sample point's value is a function of the point, so the tiles join into the same image —
     // with the per-pixel counts (--aa-map, --stats) sent along with the pixels.
     const std::size_t pixel_count = std::size_t(region.width()) * region.height();

@@ -15,7 +15,7 @@ struct TraceContext {
   RayCounts counts;
   Pcg32 rng;
   RayTree* tree = nullptr;  // set only when a pixel's ray tree is being printed
-  // Issue 51: the render's seed (RenderRequest::seed_for), which jitters the lights' samples
+  // The render's seed (RenderRequest::seed_for), which jitters the lights' samples
   // (local_illumination), so that a render with its own seed leaves the scene's alone.
   uint64_t seed = 0;
 };

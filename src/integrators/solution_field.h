@@ -22,7 +22,7 @@ class SolutionField {
 };
 
 // The solution of the scene's "radiosity" object, solved now (quiet: no progress bar). `seed`: the
-// solve's and the direct light's (the probe's own; issue 51: it was render.seed whatever the probe's).
+// solve's and the direct light's (the probe's own; it was render.seed whatever the probe's).
 std::unique_ptr<SolutionField> make_radiosity_field(const Scene& scene, bool quiet, uint64_t seed);
 // The meshless solution of scene.meshless (its sites are sampled from the scene's camera: points
 // the camera never sees may have no site near them), with `seed` as the radiosity field's; refused

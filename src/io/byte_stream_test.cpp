@@ -151,7 +151,7 @@ TEST(CheckpointFile, RoundTripsAndRefusesEveryDamage) {
   write_fields(extra);
   EXPECT_EQ(checkpoint_error(path), "the checkpoint has bytes this version does not know");
 
-  // Issue 21: a valid checksum over sums that are NaN or infinite resumed into a NaN image.
+  // A valid checksum over sums that are NaN or infinite resumed into a NaN image.
   for (const double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL}) {
     CheckpointWriter not_finite("TEST-CHECKPOINT 1\n");
     not_finite.put_string("fingerprint");

@@ -91,7 +91,7 @@ std::vector<T> CheckpointReader::get_array(const char* counted) {
   }
 }
 
-// Issue 21: a checksum proves the bytes are the ones written, not that they are sound: a sum that is
+// A checksum proves the bytes are the ones written, not that they are sound: a sum that is
 // NaN or infinite (a damaged run, or a file sealed by hand) would resume into a NaN image.
 std::vector<Color> CheckpointReader::get_colors() {
   std::vector<Color> colors = get_array<Color>("color");

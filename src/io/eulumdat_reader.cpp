@@ -43,7 +43,7 @@ class LineReader {
     double value = 0;
     if (!parse_finite_number(token, value))
       fail(fmt::format("\"{}\" is not a number (expected {})", std::string(row), what));
-    // Issue 51: the scene file's limit on every number, so that no product of them overflows.
+    // The scene file's limit on every number, so that no product of them overflows.
     if (std::fabs(value) > kMaxSceneMagnitude)
       fail(fmt::format("{}: magnitude above {:g} is not supported (found {:g})", what, kMaxSceneMagnitude,
                        value));
@@ -187,7 +187,7 @@ Photometry parse_eulumdat(std::string_view text, const std::string& file) {
       const double value = lines.number(
           fmt::format("the intensity at C{}°, γ {}° (cd/klm)", result.horizontal[p], result.vertical[g]));
       if (value < 0) lines.fail(fmt::format("intensities cannot be negative ({})", value));
-      // Issue 51: two large legal numbers made every intensity infinite (and 0 × inf NaN).
+      // Two large legal numbers made every intensity infinite (and 0 × inf NaN).
       if (value * scale > kMaxSceneMagnitude)
         lines.fail(fmt::format(
             "the intensity {:g} cd/klm × the lamp flux {:g} lm / 1000 × the conversion factor {:g} is {:g} "

@@ -1,4 +1,4 @@
-// EULUMDAT (.ldt) photometric files (issue 23, item 2), the European luminaire format: one value
+// EULUMDAT (.ldt) photometric files, the European luminaire format: one value
 // per line —
 //    1 company, 2 Ityp (type indicator), 3 Isym (symmetry 0–4), 4 Mc (C-planes in 360°), 5 Dc,
 //    6 Ng (intensities per plane), 7 Dg, 8 measurement report, 9 luminaire name, 10 luminaire

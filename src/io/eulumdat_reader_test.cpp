@@ -122,7 +122,7 @@ TEST(Eulumdat, BadFilesNameTheLineAndWhatWasExpected) {
       << eulumdat_error(bad);
 }
 
-// Issue 51: flux / 1000 × the conversion factor of two large legal numbers made every intensity
+// Flux / 1000 × the conversion factor of two large legal numbers made every intensity
 // inf; every number is held to 1e16 and each scaled intensity too, at its line.
 TEST(Eulumdat, IntensitiesThatWouldOverflowAreRefusedWhereTheyAreRead) {
   const std::string products = ldt_file(1, 24, {0, 90}, {0, 1000}, 1e16, 1e12);

@@ -148,7 +148,7 @@ TEST(FalseColor, RefusesBadArguments) {
   EXPECT_EQ(tiny.height(), 1 + color_bar_height(1));
 }
 
-// Issue 24: the bar's labels are DejaVu Sans, whole or not at all (smaller when the low label is
+// The bar's labels are DejaVu Sans, whole or not at all (smaller when the low label is
 // wider than the picture, left out below 5 pixels), and a quantity gets a caption line with the
 // unit: "illuminance (lx)", the labels then bare numbers.
 TEST(FalseColor, LabelsAreWholeOrAbsentAndTheCaptionNamesTheQuantityAndUnit) {

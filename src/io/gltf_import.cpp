@@ -105,8 +105,8 @@ class GltfReader {
   }
 
   // tinygltf reads an optional size that is not a non-negative integer (-4, 1.5, 1e30, "8") as its
-  // default 0 without a word: an accessor at byteOffset -4 read its buffer from the start (issue
-  // 21). Such a value is refused by its JSON path. (Required sizes, byteLength and count, tinygltf
+  // default 0 without a word: an accessor at byteOffset -4 read its buffer from the start.
+  // Such a value is refused by its JSON path. (Required sizes, byteLength and count, tinygltf
   // refuses itself.)
   void check_optional_sizes() const {
     static constexpr std::array<std::pair<const char*, const char*>, 3> kSizes = {
@@ -469,7 +469,7 @@ ObjImport import_gltf(const std::string& path, const SourceLocation& referenced_
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(ignore_image, nullptr);
-  // Issue 21: the file and its external buffers are read only when they are regular files of at
+  // The file and its external buffers are read only when they are regular files of at
   // most 4 GiB (a FIFO buffer blocked in open(), /dev/zero was read until memory ran out).
   tinygltf::FsCallbacks callbacks{};
   // tinygltf's own FileExists opens the file, which blocks on a FIFO: stat it instead.

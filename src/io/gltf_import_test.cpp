@@ -68,7 +68,7 @@ TEST(GltfImport, ExternalBufferAndNodeTransform) {
   EXPECT_DOUBLE_EQ(bounds.upper.z, 5.0);
 }
 
-// Issue 21: an external buffer that is a FIFO blocked in open() forever, /dev/zero was read until
+// An external buffer that is a FIFO blocked in open() forever, /dev/zero was read until
 // memory ran out; both are refused, naming the buffer and what it is. (A hang here would hang the
 // test: the check is made before any open.)
 TEST(GltfImport, ANonRegularExternalBufferIsRefused) {
@@ -140,7 +140,7 @@ std::string edited_square(const std::string& from, const std::string& to,
   return json;
 }
 
-// Issue 21: tinygltf reads an optional byteOffset or byteStride that is not a non-negative
+// tinygltf reads an optional byteOffset or byteStride that is not a non-negative
 // integer as 0 without a word (an accessor at byteOffset -4 read its buffer from the start), and
 // sizes past the end were refused only as "lies outside its buffer". Each is now refused by its
 // JSON path, with the numbers that do not fit.
@@ -193,7 +193,7 @@ TEST(GltfImport, BadByteOffsetsLengthsAndStridesAreRefusedByTheirJsonPath) {
                "accessors[0].byteOffset: must be a non-negative integer (found -4)");
 }
 
-// Issue 21: a node matrix holding 1e300 was refused as "matrix is singular"; what is wrong is the
+// A node matrix holding 1e300 was refused as "matrix is singular"; what is wrong is the
 // size of its numbers, or of the transform composed down the node tree. A quaternion of tiny
 // components (its norm underflows to 0) was left unnormalised, a near-zero matrix that rotated
 // nothing; the zero quaternion is refused.

@@ -38,7 +38,7 @@ class NumberReader {
                        fmt::format("\"{}\" is not a number (expected {})", std::string(token), what));
     last_line_ = line;
     last_column_ = column;
-    // Issue 51: the scene file's limit on every number, so that no product of them overflows.
+    // The scene file's limit on every number, so that no product of them overflows.
     if (std::fabs(value) > kMaxSceneMagnitude)
       fail(fmt::format("{}: magnitude above {:g} is not supported (found {:g})", what, kMaxSceneMagnitude,
                        value));
@@ -206,7 +206,7 @@ Photometry parse_ies(std::string_view text, const std::string& file) {
       const double value = numbers.number(fmt::format(
           "the candela value at vertical angle {}°, horizontal {}°", ies.vertical[v], ies.horizontal[h]));
       if (value < 0) numbers.fail(fmt::format("candela values cannot be negative ({})", value));
-      // Issue 51: two large legal numbers made every intensity infinite (and 0 × inf NaN).
+      // Two large legal numbers made every intensity infinite (and 0 × inf NaN).
       if (value * scale > kMaxSceneMagnitude)
         numbers.fail(fmt::format(
             "the candela value {:g} × the candela multiplier {:g} × the ballast factor {:g} is {:g} cd, "

@@ -1,4 +1,4 @@
-// IES LM-63 photometric files (issue 23, item 2): a luminaire's luminous intensity distribution
+// IES LM-63 photometric files: a luminaire's luminous intensity distribution
 // as the lighting industry publishes it, read in the 1986 (no first line), 1991 ("IESNA91"),
 // 1995 ("IESNA:LM-63-1995") and 2002 ("IESNA:LM-63-2002") formats.
 //

@@ -135,7 +135,7 @@ TEST(Ies, BadFilesNameTheLineColumnAndWhatWasExpected) {
   EXPECT_NE(ies_error("TILT=NONE\n1 -1 1 2 1 4 2 0 0 0\n").find("photometric type"), std::string::npos);
 }
 
-// Issue 51: a candela multiplier × ballast factor of two large legal-looking numbers made every
+// A candela multiplier × ballast factor of two large legal-looking numbers made every
 // intensity inf (NaN where a value was 0); every number is held to the scene file's 1e16, and each
 // scaled value too, at its line and column.
 TEST(Ies, IntensitiesThatWouldOverflowAreRefusedWhereTheyAreRead) {

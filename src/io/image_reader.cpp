@@ -532,7 +532,7 @@ RgbImage checked_values(const std::filesystem::path& path, RgbImage image, doubl
 RgbImage read_image(const std::filesystem::path& path, ColorEncoding encoding, double max_magnitude) {
   std::error_code error;
   if (!std::filesystem::exists(path, error)) fail(path, "no such file");
-  // Issue 21: a regular file only (a FIFO blocked, a device was read without end), at most 4 GiB.
+  // A regular file only (a FIFO blocked, a device was read without end), at most 4 GiB.
   const std::string problem = input_file_problem(path.string(), "it", kLargeInputLimit);
   if (!problem.empty()) fail(path, problem);
   const std::string extension = lower_case_extension(path);

@@ -422,7 +422,7 @@ std::vector<unsigned char> gradient_rgb_8x8() {
   return rgb;
 }
 
-// Issue 21 (valgrind: a conditional jump on an uninitialised value in stb_image; UBSan: signed
+// Found by valgrind and UBSan (a conditional jump on an uninitialised value in stb_image; signed
 // overflow at stb_image.h:2197): a JPEG whose frame gives a component quantisation table 2, which
 // no DQT segment defines, was decoded by stb_image 2.27 with whatever memory its table held. It
 // is refused before stb decodes it, naming the file, the component and the table.

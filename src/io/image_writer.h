@@ -16,7 +16,7 @@ inline constexpr const char* kImageExtensions = ".png, .exr, .pfm or .hdr";
 
 // False for an extension we cannot write.
 bool image_format_for_path(const std::string& path, ImageFormat& format);
-// Issue 21: what makes the image unwritable, or "": a pixel that is not finite (a light, emission
+// What makes the image unwritable, or "": a pixel that is not finite (a light, emission
 // or texture value so large that the arithmetic overflowed), or — for .exr and .pfm, which store
 // single-precision floats (and .hdr, whose exponent reaches as far) — a pixel larger than the largest
 // float once film.exposure is applied.

@@ -1,4 +1,4 @@
-// The check every written image passes (issue 21: no non-finite pixels from legal values).
+// The check every written image passes (no non-finite pixels from legal values).
 #include "io/image_writer.h"
 
 #include <gtest/gtest.h>
@@ -48,7 +48,7 @@ TEST(ImageWriter, PixelsThatAreNotFiniteOrBeyondAFloatAreNamedAndNotWritten) {
   EXPECT_TRUE(std::filesystem::is_empty(scratch.path()));  // nothing, not even a temporary
 }
 
-// Issue 24: -o out.hdr and candela convert write Radiance RGBE. Values whose mantissas fit 8 bits
+// -o out.hdr and candela convert write Radiance RGBE. Values whose mantissas fit 8 bits
 // come back exactly; the others within RGBE's step (2^e / 256, at most 1/128 of the largest channel);
 // negative values, which RGBE cannot hold, as 0; the top row of the film is the file's first.
 TEST(ImageWriter, RadianceHdrKeepsLinearValuesWithinItsEightBitMantissas) {

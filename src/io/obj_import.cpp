@@ -187,7 +187,7 @@ ObjScan scan_obj(std::string_view text) {
 }
 
 // tinyobjloader opens the files of mtllib itself, and blocked in open() on a FIFO or read
-// /dev/zero until memory ran out (issue 21): each is read here, as a regular file of bounded
+// /dev/zero until memory ran out: each is read here, as a regular file of bounded
 // size, and handed over as text. A missing file stays a warning, as before; any other problem
 // is kept to be thrown once tinyobjloader returns.
 class BoundedMaterialReader final : public tinyobj::MaterialReader {
@@ -241,7 +241,7 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
   };
 
   require_mesh_file(path, "OBJ", referenced_from);
-  // Issue 21: read as a regular file of bounded size (the OBJ and each MTL file).
+  // Read as a regular file of bounded size (the OBJ and each MTL file).
   std::string text;
   try {
     text = read_input_file(path, "OBJ file " + quoted(path), kLargeInputLimit);

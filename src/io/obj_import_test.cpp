@@ -288,7 +288,7 @@ TEST(ObjImport, OutOfRangeIndexIsAnError) {
   EXPECT_NE(import_error(relative).find("out of range"), std::string::npos);
 }
 
-// Issue 21: tinyobjloader reads an index with atoi, which saturates: 99999999999999999999
+// tinyobjloader reads an index with atoi, which saturates: 99999999999999999999
 // became -1, "the last vertex", and the face loaded without a word.
 TEST(ObjImport, IndexBeyondTheIntegerRangeIsALocatedError) {
   const TempDir dir;
@@ -333,7 +333,7 @@ double total_area(const TriangleMesh& mesh) {
   return area;
 }
 
-// Issue 21: tinyobjloader's ear clipping is quadratic: a convex face of 10⁵ corners took 36 s.
+// tinyobjloader's ear clipping is quadratic: a convex face of 10⁵ corners took 36 s.
 TEST(ObjImport, AHugeConvexFaceIsHalvedInLinearTime) {
   const TempDir dir;
   constexpr int kCorners = 100000;
@@ -392,7 +392,7 @@ TEST(ObjImport, NonConvexFacesAreEarClippedUpToTheLimit) {
   EXPECT_NE(message.find(std::to_string(kMaxNonConvexFaceCorners)), std::string::npos) << message;
 }
 
-// Issue 21: tinyobjloader opened the MTL files itself: a FIFO blocked in open() forever, and
+// tinyobjloader opened the MTL files itself: a FIFO blocked in open() forever, and
 // /dev/zero was read until memory ran out. Each is refused, naming the file and the problem.
 TEST(ObjImport, MtlFilesMustBeRegularFilesOfBoundedSize) {
   const TempDir dir;

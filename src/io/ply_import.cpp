@@ -452,7 +452,7 @@ class PlyReader {
             triangles_.push_back({polygon[0], polygon[k], polygon[k + 1]});
           continue;
         }
-        // Issue 21: a large face is halved or ear-clipped as an OBJ face is, not fanned into
+        // A large face is halved or ear-clipped as an OBJ face is, not fanned into
         // slivers that all overlap at its first corner.
         face_positions.clear();
         for (const std::uint32_t index : polygon) face_positions.push_back(positions_[index]);

@@ -169,7 +169,7 @@ TEST(PlyImport, BadIndexGivesTheLine) {
   EXPECT_NE(message.find("vertex 3"), std::string::npos) << message;
 }
 
-// Issue 21: a large face is triangulated as an OBJ face is (geometry/face_triangulation.h): a
+// A large face is triangulated as an OBJ face is (geometry/face_triangulation.h): a
 // convex one halved (not fanned: every triangle's box would reach corner 0), a non-convex one of
 // more than kMaxNonConvexFaceCorners corners refused with the face's number and line.
 TEST(PlyImport, LargeFacesAreTriangulatedAsObjFacesAndRefusedPastTheLimit) {

@@ -1,4 +1,4 @@
-// A radiosity solution's elements as CSV (issue 7, SPEC §10), for a spreadsheet: one header line
+// A radiosity solution's elements as CSV (SPEC §10), for a spreadsheet: one header line
 // then one line per element (id = element index), the columns in this order:
 //   id,patch,area,cx,cy,cz,nx,ny,nz,e_r,e_g,e_b,rho_r,rho_g,rho_b,b_r,b_g,b_b
 // (c = centroid, n = unit normal, e = emitted exitance E, rho = reflectance ρ, b = displayed

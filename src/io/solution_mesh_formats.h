@@ -1,4 +1,4 @@
-// A radiosity solution's element mesh with vertex colors (issue 7, SPEC §10) as PLY and glTF
+// A radiosity solution's element mesh with vertex colors (SPEC §10) as PLY and glTF
 // 2.0, so that a solution can be inspected in MeshLab or Blender: the vertices with their
 // radiosity as color, one triangle per element. Plain data in, so that io/ needs nothing of
 // radiosity/ (radiosity/solution_export.h computes the vertex radiosities and converts).

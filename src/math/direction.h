@@ -1,4 +1,4 @@
-// Input directions and normals to unit vectors, safely (issue 21): the one way a direction read
+// Input directions and normals to unit vectors, safely: the one way a direction read
 // from a file (a probe normal, a light's direction, a rotation axis, a plane's normal) is
 // normalised.
 #pragma once

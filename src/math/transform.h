@@ -37,7 +37,7 @@ class Transform {
   Eigen::Matrix4d inverse_;
 };
 
-// Issue 21: the largest condition number (largest over smallest singular value of the linear part)
+// The largest condition number (largest over smallest singular value of the linear part)
 // a transform may have: beyond it, an object is so much thinner in one direction than in another
 // that double precision no longer resolves it (10^12 leaves about four of its sixteen digits).
 inline constexpr double kMaxTransformCondition = 1e12;

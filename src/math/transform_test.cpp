@@ -40,7 +40,7 @@ TEST(Transform, RejectsSingularAndProjectiveMatrices) {
   EXPECT_THROW(Transform::rotate(10, {0, 0, 0}), std::invalid_argument);
 }
 
-// Issue 21: entries of 1e300 were called "matrix is singular" (the product of the column lengths
+// Entries of 1e300 were called "matrix is singular" (the product of the column lengths
 // overflowed), and so were scales of 1e-150 (it underflowed). Neither is singular; columns that
 // are dependent, however large or small, still are.
 TEST(Transform, SingularityDoesNotDependOnTheMatrixScale) {

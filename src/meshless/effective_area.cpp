@@ -52,7 +52,7 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
   // Per triangle in parallel, each thread summing into its own vector; the per-triangle sums are
   // added in triangle order afterwards, so the result does not depend on the thread count.
   std::vector<std::vector<std::pair<uint32_t, double>>> contributions(triangles.triangle_count());
-  // Issue 19: seconds on a large scene; rank 0 counts every rank's triangles.
+  // Seconds on a large scene; rank 0 counts every rank's triangles.
   ProgressReporter progress("effective areas", triangles.triangle_count(), "triangles",
                             quiet || (cluster && !cluster->root()));
   const auto integrate_triangle = [&](std::size_t t) {
@@ -127,7 +127,7 @@ std::vector<double> integrate_effective_areas(const Scene& scene, const Meshless
   if (!cluster || !cluster->distributed()) {
     tbb::parallel_for(std::size_t(0), triangles.triangle_count(), integrate_triangle);
   } else {
-    // Across ranks (issue 11): a task per triangle, its per-site sums sent to every rank, which
+    // Across ranks: a task per triangle, its per-site sums sent to every rank, which
     // adds them up in triangle order as one process does.
     const auto triangle_bytes = [&](std::size_t t) {
       std::vector<uint32_t> ids;

@@ -32,7 +32,7 @@ class Scene;
 // std::invalid_argument unless cell > 0 and segments ≥ 3. With a cluster of several ranks the
 // triangles are shared out among them; every rank gets the same areas as one process. Unless
 // quiet, a progress bar counts the triangles.
-// Issue 51: what integrate_effective_areas holds at its peak per triangle of the tessellated scene,
+// What integrate_effective_areas holds at its peak per triangle of the tessellated scene,
 // for the method's memory estimate: the triangle three times (its arrays grow by doubling, and a
 // reallocation holds the old and the new array), and its per-site sums (four entries and the
 // allocation's own header). Measured: 800 spheres of scenes/sphere-field-10584.json, 3,174,400
@@ -43,7 +43,7 @@ inline constexpr std::size_t kEffectiveAreaTriangleBytes = 3 * kTessellatedTrian
 
 // The tessellation the integration runs over, before its planes are cut around the sites: at most
 // `segments` per turn, and curved shapes by chord error — chords within half a cell of the surface,
-// the midpoint rule's own resolution (issue 52: the 10,584 small spheres of sphere-field-10584.json
+// the midpoint rule's own resolution (the 10,584 small spheres of sphere-field-10584.json
 // were 42 M triangles at 64 segments each, and 24 GB). The tessellation is area-true
 // (geometry/tessellation.h), so a coarse one still has the shape's area (eq. 5.4).
 TessellationRequest effective_area_tessellation(const Scene& scene, double cell, int segments);

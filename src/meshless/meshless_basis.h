@@ -9,7 +9,7 @@
 //               cubic K(d/r_i), support r_i, stands in for the same Gaussian (eq. 4.8, Figure 4.4);
 //               with r_0 = r_i the Gaussians sum to about 2(m + 1) = 22 and every image comes out
 //               twenty times too bright (measured: sphere-over-disc RMS error 1,500 %).
-//               Why normalised (issue 20): the thesis's Ψ_i are neither interpolating nor a
+//               Why normalised: the thesis's Ψ_i are neither interpolating nor a
 //               partition of unity — Σ Ψ ≈ 1.4 where m = 10 sites are evenly spread, which made
 //               a furnace 43–46 % too bright and the iteration diverge on sphere-over-disc — and
 //               its collocation λ ← η + QSλ holds only for a partition of unity. Divided by their
@@ -68,7 +68,7 @@ class MeshlessBasis {
   double shepard_power_;
   // The Euclidean search: sites in classes of similar radius (each within 30 % of its class's
   // largest), each class searched as far as its largest support reaches — one search as far as
-  // the widest support would gather several times the candidates a point has elements (issue 25:
+  // the widest support would gather several times the candidates a point has elements (once,
   // 40 % of a 100,000-site precomputation went to candidates outside their supports).
   struct RadiusClass {
     double reach = 0;               // the class's largest radius

@@ -67,7 +67,7 @@ TEST(SiteRadii, AreTheSiteDistanceOfTheMthNearestNeighbour) {
 }
 
 // 002 eq. 5.4: for a partition of unity the effective areas add up to the surface's area; eq. 5.5
-// approximates them (the issue asks for 10 %).
+// approximates them (to 10 % here).
 TEST(SiteRadii, EffectiveAreasSumToTheSurfaceArea) {
   double plane = 0, sphere = 0;
   for (const double a : plane_sites(80, 5).effective_area) plane += a;
@@ -100,7 +100,7 @@ TEST(MeshlessBasis, PartitionsOfUnitySumToOneAtRandomSites) {
   }
 }
 
-// Issue 20: the radial basis is normalised — a partition of unity like the other two — where
+// The radial basis is normalised — a partition of unity like the other two — where
 // the thesis's Gaussians sum to about 1.4 on evenly spread sites (which made a furnace 43–46 %
 // too bright); both kernels.
 TEST(MeshlessBasis, RadialBasisIsAPartitionOfUnity) {

@@ -1,4 +1,4 @@
-// The hierarchical meshless basis (issue 25; Lehtinen, Zwicker, Turquin, Kontkanen, Durand, Sillion
+// The hierarchical meshless basis (Lehtinen, Zwicker, Turquin, Kontkanen, Durand, Sillion
 // and Aila, "A Meshless Hierarchical Representation for Light Transport", SIGGRAPH 2008, §4 — the
 // paper seed 002 follows in its flat form).
 //

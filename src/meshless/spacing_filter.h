@@ -1,6 +1,6 @@
 // Keeps sites at least Δ apart (site distance, site.h) in the order they are offered — the pruning
 // of the site sampling (seed 002 §4.2.6) and the Poisson-disc thinning of each level of the site
-// hierarchy (issue 25). A hash grid of cells Δ wide holds the kept ones, and since
+// hierarchy. A hash grid of cells Δ wide holds the kept ones, and since
 // ||p, q|| ≥ |ṗ − q̇| only the 27 cells around a candidate can hold one closer than Δ.
 #pragma once
 

@@ -100,7 +100,7 @@ struct Link {
   }
 };
 
-// The hierarchy's nodes as senders (issue 25): per node its sites' total effective area, their
+// The hierarchy's nodes as senders: per node its sites' total effective area, their
 // area-weighted centroid and Σ A·normal, how far its sites lie from the centroid, the farthest any
 // of them counts a receiver as near (near_field × its radius), and up to four of its children's
 // sites (the largest) for the visibility oracle.
@@ -217,7 +217,7 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
     for (std::size_t member = 0; member < hierarchy->level_sites(top).size(); ++member)
       roots.push_back(hierarchy->node(top, member));
   }
-  // Issue 25: the links of the hierarchical transport, refining pairs of nodes from every pair of
+  // The links of the hierarchical transport, refining pairs of nodes from every pair of
   // top-level nodes down (hierarchical radiosity's refinement, Hanrahan, Salzman and Aupperle 1991):
   // a pair is linked while both nodes are small for their distance (cluster_angle), their normals
   // agree, no site of the sender is a near element of a site of the receiver, and up to four shadow
@@ -460,7 +460,7 @@ TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& site_s
       if (progress) progress->advance();
     });
   } else {
-    // Across ranks (issue 11): chunks of receivers handed out dynamically, every rank ends with
+    // Across ranks: chunks of receivers handed out dynamically, every rank ends with
     // every row (each rank iterates λ with the whole S), each row exactly as one process has it.
     const std::size_t chunk = std::clamp<std::size_t>(n / (std::size_t(cluster->size()) * 16), 1, 256);
     const std::size_t tasks = (n + chunk - 1) / chunk;

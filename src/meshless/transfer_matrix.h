@@ -6,7 +6,7 @@
 // which for a partition of unity adds up, over k, to the share of p_j's hemisphere that sees the
 // elements' surfaces: 1 in a closed room (000 eq. 6-6). The thesis takes the kernel at the centre,
 // S_jk ≈ F(p_k, p_j) A_k (eq. 5.2) with A_k the element's effective area; that is good far away
-// and wrong close by (issue 20: rows of a closed box summed to 0.91 along its edges and 0.985–0.99
+// and wrong close by (rows of a closed box summed to 0.91 along its edges and 0.985–0.99
 // elsewhere, a furnace at ρ = 0.9 came out 13 % dark, and a row could pass 1 across a corner,
 // where eq. 5.2 grows without bound). So each row is made of two parts:
 //   - the near field, the elements with |ṗ_k − ṗ_j| < near_field · r_k (and the receiver's own):
@@ -19,7 +19,7 @@
 // A row then sums to the rays' share that hit covered surface, which is 1 in a closed room
 // whatever the spacing; the rays are seeded per receiver, so S does not depend on threads or ranks.
 //
-// Hierarchical transport (issue 25; Lehtinen et al. 2008, after hierarchical radiosity, Hanrahan,
+// Hierarchical transport (Lehtinen et al. 2008, after hierarchical radiosity, Hanrahan,
 // Salzman and Aupperle 1991): given a site hierarchy (meshless/site_hierarchy.h), the far field is
 // carried by links between nodes of the hierarchy — a node standing for its subtree of sites with
 // their total effective area, area-weighted centroid and mean normal and, as a sender, their
@@ -108,7 +108,7 @@ struct TransferMatrix {
 // Rows in parallel, each by one thread into its own place: the result does not depend on the
 // thread count. settings.max_entries refuses (std::invalid_argument naming the spacing) before
 // more would be kept. With a cluster of several ranks the rows are computed across them and every
-// rank gets all of S, the same as one process computes (issue 11). progress, when given, is
+// rank gets all of S, the same as one process computes. progress, when given, is
 // advanced once per row (rank 0 counts every rank's rows). Throws std::invalid_argument for
 // mismatched sizes, gather_rays < 1 or near_field < 0.
 TransferMatrix compute_transfer_matrix(const Scene& scene, const SiteSet& sites, const MeshlessBasis& basis,
@@ -125,7 +125,7 @@ struct TransferSolution {
   double final_change = 0;  // the last iteration's largest change over the largest λ
 };
 
-// Called after every iteration (1-based) with λ then (issue 24: the convergence log).
+// Called after every iteration (1-based) with λ then (the convergence log).
 using TransferIterationCallback =
     std::function<void(std::size_t iteration, const std::vector<Color>& lambda)>;
 

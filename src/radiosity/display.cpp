@@ -97,7 +97,7 @@ SolutionDisplay::SolutionDisplay(const Scene& scene, const RadiositySolveResult&
     }
     bounds_on_screen_[q] = screen_bounds(triangles_[q][0].clip, triangles_[q][1].clip, triangles_[q][2].clip,
                                          grid_width, grid_height);
-    // A two-sided surface's element seen from behind: its twin is drawn there (issue 20). Its
+    // A two-sided surface's element seen from behind: its twin is drawn there. Its
     // winding on screen says which side faces the eye (counter-clockwise, y up: the front).
     if (elements[q].two_sided && bounds_on_screen_[q].in_front) {
       const auto ndc = [&](int k) {

@@ -36,9 +36,9 @@ class Scene;
 class SolutionDisplay {
  public:
   // Prepares the view once: the vertex radiosities (gouraud, ray-traced) and, for gouraud, the
-  // elements projected (tiles across ranks, issue 11, do not redo it). The scene and the solution
+  // elements projected (tiles across ranks do not redo it). The scene and the solution
   // must outlive the display. The samples are placed by `antialiasing` with `seed`: the render's,
-  // which need not be the scene's (issue 51: RenderRequest::seed, antialiasing).
+  // which need not be the scene's (RenderRequest::seed, antialiasing).
   SolutionDisplay(const Scene& scene, const RadiositySolveResult& solution, RadiosityDisplay display,
                   const AntialiasingSettings& antialiasing, uint64_t seed);
 

@@ -1,4 +1,4 @@
-// Radiosity's first shot from the scene's lights (issue 19): point, spot, directional and area
+// Radiosity's first shot from the scene's lights: point, spot, directional and area
 // lights, and the environment (the sky seen through openings), are not surfaces the hemicube can
 // see, so they shoot before the solve — each element's
 // direct light, by shadow rays from four points of it (the centroids of its midpoint

@@ -1,7 +1,7 @@
 // The memory the radiosity solve's stored form factors may take (setting
 // radiosity.memory_limit_mib, SPEC §10): what the element rows and the full patch matrix need, and
-// the refusal, before anything is allocated, of a solve that would need more (issue 7: "refused
-// with a message naming the setting to change").
+// the refusal, before anything is allocated, of a solve that would need more (refused
+// with a message naming the setting to change).
 #pragma once
 
 #include <cstddef>

@@ -42,7 +42,7 @@ void compute_form_factor_rows(const Accelerator* occluders, const RadiositySetti
   if (settings.form_factors == RadiosityFormFactors::hemicube) {
     const auto table = std::make_shared<const DeltaFormFactors>(settings.hemicube_resolution);
     tbb::enumerable_thread_specific<std::unique_ptr<HemicubeFormFactors>> hemicubes;
-    // Issue 20: an emitter that covers few cells of the hemicube aliases — a small lamp's light
+    // An emitter that covers few cells of the hemicube aliases — a small lamp's light
     // on the walls came out 2–10 % off at resolution 100. Its factor is taken instead as the
     // ray-cast one (the exact unoccluded point-to-polygon factor times the visible fraction of its
     // samples) wherever the unoccluded factor is worth fewer than kSmallOnHemicube cells of the
@@ -116,10 +116,10 @@ void fill_form_factor_rows(const RadiositySettings& settings, uint64_t seed,
                            Cluster* cluster, bool quiet) {
   using Scalar = typename Matrix::Scalar;
   std::vector<double> sums(rows.size());
-  // Issue 19: the rows take half a minute on large meshes; rank 0 shows them (every rank's rows
+  // The rows take half a minute on large meshes; rank 0 shows them (every rank's rows
   // come back to it).
   ProgressReporter progress("form factors", rows.size(), "rows", quiet || (cluster && !cluster->root()));
-  // Issue 20: ray-cast visibility is decided against the targets themselves — the surfaces
+  // Ray-cast visibility is decided against the targets themselves — the surfaces
   // radiosity models, which the hemicube draws too — not the scene's analytic shapes: the elements
   // of a tessellated sphere or cylinder lie inside the analytic surface, which would block every
   // ray they send.

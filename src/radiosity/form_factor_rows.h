@@ -5,7 +5,7 @@
 //             fraction of ray_cast_samples² rays that reach it (radiosity/ray_cast_form_factors.h).
 // The rows are computed in parallel, each by one thread into its own place (ray casting with a
 // random stream per row index), so the result does not depend on the thread count. With several
-// ranks (issue 11) the rows go out in chunks (dynamic scheduling) and every rank ends with every
+// ranks the rows go out in chunks (dynamic scheduling) and every rank ends with every
 // row, converted to the matrix's scalar where it was computed: the same values as one process,
 // so every rank's solve — and its solution — is that of one process. Ctrl-C leaves the rows not
 // begun zero. Unless quiet, a progress bar counts the rows (rank 0's, for all ranks).
@@ -37,7 +37,7 @@ std::vector<uint32_t> all_rows(std::size_t count);
 
 // The patch rows F_ij of the direct solvers (i, j patches; F_ii not computed, 0) into rows
 // (patches × patches), and their sums into sums (one per patch). seed: the ray-cast streams.
-// Visibility is the patches' own: the hemicube draws them, ray casting tests them (issue 20).
+// Visibility is the patches' own: the hemicube draws them, ray casting tests them.
 void fill_patch_form_factor_rows(const RadiositySettings& settings, uint64_t seed, const RadiosityMesh& mesh,
                                  Eigen::MatrixXd& rows, std::vector<double>& sums, Cluster* cluster,
                                  bool quiet = true);

@@ -74,7 +74,7 @@ TEST(RadiosityFormFactorRows, RayCastRowsOfAClosedCubeSumToOne) {
   expect_closed_rows(RadiosityFormFactors::ray_cast);
 }
 
-// Issue 20, items 1 and 4: a small isotropic sphere source at the centre of a closed cube — CIE
+// A small isotropic sphere source at the centre of a closed cube — CIE
 // 171:2006 case 5.8's geometry — delivers its whole flux to the walls through the element rows the
 // solvers gather with: Σ_q A_q Σ_j F_qj E_j = Σ_j A_j E_j. Before: 1.02–1.03× by hemicube (the
 // sphere covers a few cells of each wall element's hemicube) and 0.01 % by ray cast (the analytic

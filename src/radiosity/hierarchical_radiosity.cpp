@@ -928,7 +928,7 @@ RadiositySolveResult HierarchicalSolver::solve() {
       pull();
       ++steps;
       change_fraction = largest > 0 ? change / largest : 0;
-      // Issue 24's convergence log: the solution after every iteration (one process).
+      // The convergence log: the solution after every iteration (one process).
       if (options_.on_step && !(options_.cluster && options_.cluster->distributed())) {
         RadiositySolveResult so_far = result({});
         so_far.steps = steps;
@@ -1027,7 +1027,7 @@ RadiositySolveResult solve_hierarchical_radiosity(const Scene& scene, const Radi
                                                   const RadiositySolveOptions& options) {
   Stopwatch mesh_time;
   RadiosityMeshSettings mesh_settings;
-  // Curved shapes by chord error (SPEC §10.1, issue 52): a small far sphere gets a few dozen
+  // Curved shapes by chord error (SPEC §10.1): a small far sphere gets a few dozen
   // triangles, a large near one up to kChordSegmentsPerSegment × segments.
   mesh_settings.segments = kChordSegmentsPerSegment * settings.segments;
   mesh_settings.chord_fraction = kChordFraction;

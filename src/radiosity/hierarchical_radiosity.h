@@ -1,4 +1,4 @@
-// Hierarchical radiosity with clustering (SPEC §10.1; issue 52): radiosity.solver "hierarchical".
+// Hierarchical radiosity with clustering (SPEC §10.1): radiosity.solver "hierarchical".
 //
 // Links j → i between nodes of the hierarchy (radiosity_hierarchy.h) at any level carry the
 // factor by which the source's radiosity (a surface) or intensity (a cluster) becomes irradiance

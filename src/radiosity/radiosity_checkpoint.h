@@ -1,5 +1,5 @@
-// Progressive radiosity's state as a checkpoint (issue 10: "progressive radiosity checkpoints and resumes
-// to the same result as an uninterrupted run"): the element radiosities B and the patches' unshot
+// Progressive radiosity's state as a checkpoint (it resumes
+// to the same result as an uninterrupted run): the element radiosities B and the patches' unshot
 // radiosities ΔB after some number of shots. The mesh and the form factors are not stored: they
 // follow from the scene and its settings and are computed again on resume (the fingerprint ties
 // the state to them); the shots then continue from exactly this state, so the result is the

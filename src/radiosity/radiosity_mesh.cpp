@@ -15,7 +15,7 @@
 namespace candela {
 namespace {
 
-// The most elements a mesh may have (issue 7's scale is 10⁴; 2²⁴ leaves room and still fits).
+// The most elements a mesh may have (classic radiosity's scale is 10⁴; 2²⁴ leaves room and still fits).
 constexpr uint64_t kMaxElements = uint64_t{1} << 24;
 
 // 000 §6.7.1: patches (and elements) by binary subdivision. Longest-edge bisection: the
@@ -173,7 +173,7 @@ void cut_at_contacts(const Scene& scene, std::vector<CornerTriangle>& triangles,
     return box;
   };
   // The cutters that may touch each triangle: boxes overlapping within the tolerance, found
-  // through a grid of the cutters (issue 52: walking them sorted by their lowest x from the first
+  // through a grid of the cutters (walking them sorted by their lowest x from the first
   // took 16 s for the dragon's 100,000), taken in the order of their lowest x (the cuts' order).
   std::vector<Bounds3> cutter_boxes(cutters.size());
   std::vector<RadiositySurface> cutter_surfaces(cutters.size());
@@ -537,7 +537,7 @@ RadiosityInput radiosity_input(const Scene& scene, const RadiosityMeshSettings& 
       input.triangles[t][k] = {tessellated.corner_positions[3 * t + k],
                                tessellated.corner_object_positions[3 * t + k],
                                tessellated.corner_uvs[3 * t + k]};
-  // Issue 20: a two-sided object's triangles again, wound the other way (its back side).
+  // A two-sided object's triangles again, wound the other way (its back side).
   const std::size_t one_sided = input.triangles.size();
   for (std::size_t t = 0; t < one_sided; ++t) {
     if (!scene.objects[tessellated.objects[t]].two_sided) continue;

@@ -27,7 +27,7 @@ class Scene;
 
 struct RadiosityMeshSettings {
   int segments = 32;  // divisions of a full turn of a curved shape (≥ 3)
-  // > 0 (issue 52): each curved shape gets the fewest segments, at most `segments`, whose chords
+  // > 0: each curved shape gets the fewest segments, at most `segments`, whose chords
   // stray at most this fraction of the scene size from its surface (raster/tessellated_scene.h).
   double chord_fraction = 0;
   double patch_size = 0;    // the longest patch edge; 0: the scene size / 8

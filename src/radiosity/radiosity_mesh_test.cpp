@@ -78,7 +78,7 @@ TEST(RadiosityMesh, DefaultSizesFollowTheSceneSize) {
   expect_consistent(mesh);
 }
 
-// Issue 20: the tessellation is area-true, so the mesh's area is the sphere's own 4πr² (it was
+// The tessellation is area-true, so the mesh's area is the sphere's own 4πr² (it was
 // the inscribed polyhedron's, 0.97 of it at 12 segments).
 TEST(RadiosityMesh, SphereAreaIsTheTessellatedAreaAndTheSpheresOwn) {
   const auto scene = scene_with(R"([{"type": "sphere", "center": [1, 0, 0], "radius": 2}])");

@@ -17,13 +17,13 @@ RadiositySettings read_radiosity_settings(const JsonNode& node) {
   if (settings.patch_size > 0 && settings.element_size > settings.patch_size)
     node.at("element_size").fail("element_size must not exceed patch_size");
   settings.segments = node.integer("segments", 16, {3, 4096, false, false});
-  // 0: no threshold, max_steps shots or sweeps (issue 20: the docs said [0, 1), the code refused 0).
+  // 0: no threshold, max_steps shots or sweeps (the docs said [0, 1), the code refused 0).
   settings.threshold = node.number("threshold", 0.001, Range::unit());
   settings.max_steps = node.integer("max_steps", 100000, {1, 1 << 30, false, false});
   settings.ambient = node.boolean("ambient", true);
   settings.display = node.enumeration("display", settings.display, kRadiosityDisplayNames);
   settings.subdivision_threshold = node.number("subdivision_threshold", 0.0, Range::unit());
-  // Issue 52: hierarchical radiosity (the default) refines by its own oracle; a scene asking for the
+  // Hierarchical radiosity (the default) refines by its own oracle; a scene asking for the
   // classic solvers' adaptive subdivision is told so rather than have it ignored.
   if (settings.subdivision_threshold > 0 && settings.solver == RadiositySolver::hierarchical)
     node.at("subdivision_threshold")

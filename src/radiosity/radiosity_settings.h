@@ -26,7 +26,7 @@ struct RadiositySettings {
   double patch_size = 0;          // the longest patch edge; 0: the scene size / 8
   double element_size = 0;        // the longest element edge; 0: patch_size / 2
   // Tessellation of curved shapes: divisions of a full turn (area-true, geometry/tessellation.h);
-  // 32 keeps a sphere's form factors within 0.25 % of Howell's from any side (issue 20).
+  // 32 keeps a sphere's form factors within 0.25 % of Howell's from any side.
   int segments = 32;
   // progressive: stop when the unshot flux is this fraction of the emitted flux (000 §6.6);
   // gauss-seidel: stop when a sweep changes no radiosity by more than this fraction of max B.
@@ -49,7 +49,7 @@ struct RadiositySettings {
   bool split_at_contacts = false;
   // The memory the stored form factors may take (MiB); 0: half the machine's memory.
   double memory_limit_mib = 0;
-  // Issue 21: where a refusal for memory points — the size key that sets the mesh when the scene
+  // Where a refusal for memory points — the size key that sets the mesh when the scene
   // gives one (min_element_size, element_size, patch_size), else the "radiosity" object.
   SourceLocation location;
 };

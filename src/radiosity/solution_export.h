@@ -1,4 +1,4 @@
-// Exports of a radiosity solution (issue 7, SPEC §10): one row per element to CSV, and the
+// Exports of a radiosity solution (SPEC §10): one row per element to CSV, and the
 // element mesh with vertex colors (the vertex radiosities of radiosity/vertex_radiosity.h) to
 // PLY and glTF 2.0, so that a solution can be inspected in a spreadsheet, MeshLab or Blender.
 // The formats are io/'s (io/solution_csv.h: the columns; io/solution_mesh_formats.h: the

@@ -263,7 +263,7 @@ RadiositySolveResult solve_radiosity(const Scene& scene, const RadiositySettings
     for (std::size_t q = 0; q < mesh.elements.size(); ++q)
       result.element_hidden[q] = rows.sums[q] < kHiddenRowSum;
   };
-  // Issue 24: the solution so far handed to options.on_step, every step_every shots or every sweep.
+  // The solution so far handed to options.on_step, every step_every shots or every sweep.
   const bool observed = options.on_step && !(cluster && cluster->distributed());
   const std::size_t step_every = std::max<std::size_t>(options.step_every, 1);
   const auto report_step = [&](std::vector<Color> displayed, std::size_t steps, double unshot_fraction) {

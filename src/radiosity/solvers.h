@@ -53,8 +53,8 @@ double radiosity_residual(const RadiositySystem& system, const FormFactorSource&
 // ---- Gaussian elimination (000 eq. 6-9) ----------------------------------------------------
 
 // Thrown when the full-matrix solver would need more memory than allowed. The message names the
-// settings that fix it: radiosity.solver (use "progressive") and radiosity.patch_size. Issue 21:
-// a setting that asks too much is bad input — an InputError (exit 2) at the setting's location.
+// settings that fix it: radiosity.solver (use "progressive") and radiosity.patch_size. A
+// setting that asks too much is bad input — an InputError (exit 2) at the setting's location.
 class SolverMemoryError : public InputError {
  public:
   SolverMemoryError(const SourceLocation& location, const std::string& message, uint64_t required_bytes,
@@ -149,7 +149,7 @@ class ProgressiveRefinement {
   const std::vector<Color>& radiosity() const { return radiosity_; }      // B per receiver
   const std::vector<Color>& unshot_radiosity() const { return unshot_; }  // ΔB per patch
 
-  // Continues from a saved state (a checkpoint: issue 10) instead of B = ΔB = E: B per receiver,
+  // Continues from a saved state (a checkpoint) instead of B = ΔB = E: B per receiver,
   // ΔB per patch and the steps that led there. Throws std::invalid_argument, naming both sizes,
   // when the state does not fit.
   void restore(std::vector<Color> radiosity, std::vector<Color> unshot, std::size_t steps);

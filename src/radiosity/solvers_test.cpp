@@ -486,7 +486,7 @@ TEST(RadiositySolverGaussianElimination, RefusesBeyondTheMemoryLimitNamingTheSet
     EXPECT_EQ(error.limit_bytes(), uint64_t{1} << 20);
   }
   EXPECT_EQ(calls, 0u);  // refused before computing a single row
-  // Issue 21: a setting that asks too much is bad input (an InputError, exit 2), no longer invalid_argument.
+  // A setting that asks too much is bad input (an InputError, exit 2), no longer invalid_argument.
   EXPECT_THROW(solve_gaussian_elimination(system, rows, uint64_t{1} << 20), InputError);
   EXPECT_GE(gaussian_elimination_memory_bytes(n), 2 * n * n * sizeof(double));
   EXPECT_GT(gaussian_elimination_memory_bytes(2 * n), 3 * gaussian_elimination_memory_bytes(n));
@@ -890,7 +890,7 @@ TEST(RadiositySolverProgressiveElements, AmbientWeighsElementReflectancesByArea)
 }
 
 TEST(RadiositySolverProgressiveElements, RestoredStateContinuesBitForBit) {
-  // Issue 10: a checkpoint's state (B per element, ΔB per patch, the steps) continues to exactly
+  // A checkpoint's state (B per element, ΔB per patch, the steps) continues to exactly
   // the uninterrupted run.
   const SubstructuredSystem sub = random_substructured_system(10, 4, 59);
   ProgressiveRefinement uninterrupted(sub.patches, sub.elements, sub.rows);

@@ -1,5 +1,5 @@
 // A triangle mesh as occluders: a BVH over its triangles, what radiosity's visibility rays are
-// traced against (issue 20: the surfaces radiosity models, not the scene's analytic shapes, whose
+// traced against (the surfaces radiosity models, not the scene's analytic shapes, whose
 // true surface a tessellated sphere's triangles lie inside).
 #pragma once
 

@@ -32,8 +32,8 @@ bool strictly_inside_segment(const Vec3& point, const Vec3& a, const Vec3& b) {
 }
 
 // The vertices within a distance of a point (nanoflann's k-d tree, SPEC §16): what finds the
-// T-junction vertices on an edge without scanning every vertex of its object per edge (issue 52:
-// a 100,000-triangle mesh with open edges took 20 s).
+// T-junction vertices on an edge without scanning every vertex of its object per edge (which
+// took 20 s on a 100,000-triangle mesh with open edges).
 class VertexIndex {
  public:
   explicit VertexIndex(const std::vector<Vec3>& positions)
@@ -141,7 +141,7 @@ VertexRadiosity compute_vertex_radiosity(const std::vector<RadiositySurface>& el
         on_edge.push_back(v);
     if (on_edge.size() == 2) continue;
     boundary = false;
-    // Issue 52: without cracks, the T-junction vertices of this edge take the radiosity the
+    // Without cracks, the T-junction vertices of this edge take the radiosity the
     // element holding the whole edge interpolates there (set below, after every vertex's own).
     for (std::size_t i = 2; i < on_edge.size(); ++i)
       junctions.push_back({on_edge[i], edge.first, edge.second,

@@ -25,7 +25,7 @@
 // (the seed's Figure 58b: "there seems to be no general formula") gets the mean of its adjacent
 // elements. Every result is clamped at 0 per channel.
 //
-// No cracks (issue 52, SPEC §10.1): where the corner of smaller elements lies inside the edge of a
+// No cracks (SPEC §10.1): where the corner of smaller elements lies inside the edge of a
 // larger one (a T-junction of the bisection or of hierarchical radiosity's quadtrees), that vertex
 // takes the radiosity the larger element interpolates there, (1 − t) B_a + t B_b along its edge
 // a–b, so the Gouraud field is continuous across levels.

@@ -175,7 +175,7 @@ TEST(VertexRadiosity, HiddenElementsKeepTheirOwnVerticesAndLeaveTheOthersAlone) 
 namespace candela {
 namespace {
 
-// Issue 52: a T-junction vertex (the corner of two small elements inside the edge of a larger one)
+// A T-junction vertex (the corner of two small elements inside the edge of a larger one)
 // takes the radiosity the larger element interpolates there, so Gouraud shading has no crack
 // along that edge. The left unit square is two elements; the right one four, whose corner (1, 0.5)
 // lies inside the left square's edge (1, 0)–(1, 1). Averaging the elements at that vertex alone

@@ -48,7 +48,7 @@ constexpr double kMinChordSegments = 6;
 // edge around its outline on screen.
 int segments_for(const Shape& shape, const TessellationRequest& request) {
   if (request.chord_tolerance > 0) {
-    // Issue 52: the fewest segments whose chords stray at most the tolerance from a circle of the
+    // The fewest segments whose chords stray at most the tolerance from a circle of the
     // shape's radius (half its box's middle extent: a sphere's, a cylinder's or a disc's radius),
     // sagitta r (1 − cos(π/N)) ≤ tolerance.
     const Bounds3 box = shape.bounds();

@@ -34,7 +34,7 @@ struct TessellationRequest {
   // The most segments a full turn gets (TessellationSettings::segments). With a view (below),
   // a curved shape gets only as many as give edges of about one pixel on screen, at least 8.
   int max_segments = 32;
-  // > 0 (issue 52, radiosity): instead of the view, each curved shape gets the fewest segments
+  // > 0 (radiosity): instead of the view, each curved shape gets the fewest segments
   // (at least 6, at most max_segments) whose chords stray at most this far from its surface.
   double chord_tolerance = 0;
   double crease_angle_degrees = 60;
@@ -53,7 +53,7 @@ struct TessellationRequest {
 // so flat and Gouraud shading have vertices where the light changes.
 TessellatedScene tessellate_scene(const Scene& scene, const TessellationRequest& request);
 
-// Issue 51: the number of triangles tessellate_scene gives for the request, counted a primitive at
+// The number of triangles tessellate_scene gives for the request, counted a primitive at
 // a time without holding them: what a method's memory estimate needs before it tessellates.
 std::size_t tessellated_triangle_count(const Scene& scene, const TessellationRequest& request);
 

@@ -1,4 +1,4 @@
-// Sample streams of the path tracer (issue 22; pbrt-v4's base/sampler.h is the model), found by
+// Sample streams of the path tracer (pbrt-v4's base/sampler.h is the model), found by
 // name in a registry: `independent` (PCG32 numbers, the path tracer's stream before samplers),
 // `stratified` (each dimension jittered in strata that the passes of a pixel take in a shuffled
 // order) and `sobol` (Sobol' points, Owen-scrambled by hashing, Burley 2020).

@@ -1,4 +1,4 @@
-// Issue 22 item 1: the samplers against their definitions (the Sobol' digits, nets and strata),
+// The samplers against their definitions (the Sobol' digits, nets and strata),
 // uniformity (χ² of 2D projections, within a sample and across its dimensions), the error on a
 // smooth integrand falling faster than N^-1/2 for the low-discrepancy sampler, and determinism.
 #include "sampling/sampler.h"

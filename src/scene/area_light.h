@@ -1,5 +1,5 @@
-// A rectangular Lambertian area light (issue 8: direct light "by shadow rays (point, directional
-// and area lights)"): the parallelogram corner + s·edge_u + t·edge_v, s, t ∈ [0, 1], emitting
+// A rectangular Lambertian area light (direct light by shadow rays, as from point and directional
+// lights): the parallelogram corner + s·edge_u + t·edge_v, s, t ∈ [0, 1], emitting
 // exitance E (the same unit as a material's `emission`) from its front side (edge_u × edge_v), or
 // from both sides.
 //

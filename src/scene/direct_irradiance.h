@@ -3,7 +3,7 @@
 // opaque lies between, the thin sheets' transmittance otherwise: Scene::transmittance) — the
 // irradiance, in the units in which a diffuse surface of reflectance ρ reflects ρ times it. One
 // implementation for the methods that light diffuse points from the lights: meshless η (seed 002
-// §4.3, the hybrid method's direct part) and radiosity's first shot (issue 19: point, spot,
+// §4.3, the hybrid method's direct part) and radiosity's first shot (point, spot,
 // directional and area lights light each element, the approach of Lightscape and of Radiance's
 // direct component). The local model's own loop (integrators/direct_lighting.h) adds transparent
 // shadows and the specular term.

@@ -8,7 +8,7 @@
 namespace candela {
 
 // A source at infinity (000 §2.3): the same direction and intensity everywhere — or, given an
-// angular diameter (the sun's 0.53°, issue 23 item 3), the same intensity spread evenly over a
+// angular diameter (the sun's 0.53°), the same intensity spread evenly over a
 // disc of directions of that size about it: soft shadows, penumbrae as wide as the disc. The disc
 // is sampled uniformly in solid angle (samples × samples strata for the methods that take a light's
 // fixed samples; one random direction for the path tracer); no ray can hit it.

@@ -1,4 +1,4 @@
-// The environment as a light (issue 19): the radiance arriving from infinitely far away
+// The environment as a light: the radiance arriving from infinitely far away
 // (shading/environment.h: a constant sky, a cube or an equirectangular map) lights every
 // method's diffuse points through shadow rays that reach nothing — the local model, the
 // rasterizer, radiosity's first shot (the sky seen through openings) and meshless η — as it lights

@@ -157,7 +157,7 @@ std::unique_ptr<Environment> make_equirectangular(const JsonNode& node, const Lo
   }
 }
 
-// Issue 23, item 3: the CIE standard general sky (shading/cie_sky.h) of "sky_type" (1–15, default
+// The CIE standard general sky (shading/cie_sky.h) of "sky_type" (1–15, default
 // 1, the overcast sky), its sun placed as the sun light places it (scene/solar_settings.h, or
 // "sun_elevation" and "sun_azimuth"), scaled so that an unobstructed horizontal surface receives
 // "diffuse_illuminance" lux from it (default 10,000), of "color" or "temperature" (default white);

@@ -55,7 +55,7 @@ Transform read_transform(const JsonNode& node) {
     for (std::size_t i = 0; i < node.size(); ++i)
       transform = read_transform_step(node.element(i)) * transform;  // listed order
   }
-  // Issue 21: each step is legal, but their product may not be (25 x "scale 1e16" overflows).
+  // Each step is legal, but their product may not be (25 x "scale 1e16" overflows).
   if (const std::string problem = transform_problem(transform); !problem.empty()) node.fail(problem);
   return transform;
 }

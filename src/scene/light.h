@@ -1,4 +1,4 @@
-// Emitters (SPEC §7, issue 19): one interface for the scene file's lights (point, spot,
+// Emitters (SPEC §7): one interface for the scene file's lights (point, spot,
 // directional, area) and for emissive surfaces (surface_light.h), which the local model, the
 // rasterizer, radiosity's first shot and meshless η all read the same way. Ambient light is not
 // an emitter: it is the local model's constant term, a scene-wide color.

@@ -179,7 +179,7 @@ std::unique_ptr<Light> make_area(const JsonNode& node, Color&, const LoadContext
   return std::make_unique<AreaLight>(corner, edge_u, edge_v, exitance, samples, two_sided);
 }
 
-// Issue 23, item 3: the sun as a directional light from a place, a date and a time (Michalsky's
+// The sun as a directional light from a place, a date and a time (Michalsky's
 // algorithm, shading/solar_position.h): "latitude" (° north), "longitude" (° east), "date"
 // ("YYYY-MM-DD"), "time" (local "HH:MM[:SS]"), "timezone" (hours ahead of UT), "north" (the
 // scene's north, default −z; y is up and east is north × up: +x for the default), and its
@@ -243,7 +243,7 @@ std::unique_ptr<Light> make_luminaire(const JsonNode& node, Color&, const LoadCo
     if (!(flux > 0)) file.fail("\"" + name + "\" emits nothing: it cannot be scaled to a luminous_flux");
     scale = node.number("luminous_flux", 0, Range::non_negative()) / flux;
   }
-  // Issue 51: the file's peak times the scale is held to the limit a point light's intensity has
+  // The file's peak times the scale is held to the limit a point light's intensity has
   // (a tiny table scaled to a large flux overflowed to an infinite intensity).
   const double peak = photometry->candela.empty()
                           ? 0.0

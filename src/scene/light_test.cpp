@@ -86,7 +86,7 @@ double flux_through_sphere(const Light& light, double radius, bool from_outside)
   return radius * radius * integrate_over_sphere(irradiance, 300, 600);
 }
 
-// Issue 19, one emitter model: Light::power is the power each light sends — measured here as what
+// One emitter model: Light::power is the power each light sends — measured here as what
 // crosses a sphere around it, from the lights' own illumination — the measure the path tracer
 // chooses lights by (for the lights that fall off slower than 1/d², what reaches the sphere of the
 // scene's radius).

@@ -1,4 +1,4 @@
-// A luminaire of measured photometry (issue 23, item 2): a point source whose intensity in each
+// A luminaire of measured photometry: a point source whose intensity in each
 // direction is a photometric file's (IES LM-63 or EULUMDAT, io/photometry.h), placed in the scene
 // by its position, the direction of its nadir (the photometric axis, γ = 0: where a downlight
 // points) and the direction of its C0 plane; C grows counter-clockwise seen from above, looking

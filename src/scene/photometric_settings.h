@@ -1,4 +1,4 @@
-// How a scene file gives an amount of light in photometric units (issue 23, item 1; the
+// How a scene file gives an amount of light in photometric units (the
 // conversion is shading/photometric_units.h): which one of a plugin's alternative amount keys
 // it uses, and the colour of a photometric amount.
 #pragma once

@@ -37,7 +37,7 @@ struct RenderSettings {
   int tile_size = 16;
   int surface_light_samples = 4;      // per side: an emissive surface's samples² shadow rays
   int environment_light_samples = 4;  // per side: the environment's samples² shadow rays
-  // Issue 51: what a method may hold before it is refused (MiB; 0: half the machine's memory),
+  // What a method may hold before it is refused (MiB; 0: half the machine's memory),
   // and where the scene sets it (empty when it does not).
   double memory_limit_mib = 0;
   SourceLocation memory_limit_location;
@@ -49,7 +49,7 @@ struct SceneObject {
   std::string type;
   uint32_t first_primitive = 0;
   uint32_t primitive_count = 0;
-  // Issue 20, the shape's "two_sided": classic radiosity meshes both sides (each gathers and
+  // The shape's "two_sided": classic radiosity meshes both sides (each gathers and
   // shoots on its own side); the other methods are two-sided already.
   bool two_sided = false;
 };
@@ -64,7 +64,7 @@ struct NamedCamera {
 class Environment;
 
 // An emissive object whose surface cannot be sampled (an unbounded plane): the methods that light
-// emissive surfaces by shadow rays refuse the scene, naming it (issue 19).
+// emissive surfaces by shadow rays refuse the scene, naming it.
 struct UnsampledEmitter {
   std::string name;  // the object's
   std::string type;  // its shape type
@@ -148,7 +148,7 @@ class Scene {
   // background color.
   Color background_along(const Vec3& direction) const;
   // What arrives from outside the scene along a direction as light: the environment's radiance,
-  // black without one (the background lights nothing, issue 19).
+  // black without one (the background lights nothing).
   Color sky_along(const Vec3& direction) const;
 
   const Material& material_of(const Intersection& hit) const {

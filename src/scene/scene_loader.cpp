@@ -265,7 +265,7 @@ class SceneReader {
       const uint32_t material = material_for(node);
       Transform transform;
       if (const auto transform_node = node.get("transform")) transform = read_transform(*transform_node);
-      // Issue 20: any shape's normals turned the other way (geometry/flipped_shape.h).
+      // Any shape's normals turned the other way (geometry/flipped_shape.h).
       const bool flip_normals = node.boolean("flip_normals", false);
       object.two_sided = node.boolean("two_sided", false);
       ShapeBuild build = entry->create(node, transform, context_);
@@ -287,7 +287,7 @@ class SceneReader {
     }
   }
 
-  // Issue 23: a material given in lumens ("emission_luminous_flux") becomes, for each object that
+  // A material given in lumens ("emission_luminous_flux") becomes, for each object that
   // uses it, a copy emitting Φ / A (A the object's area of that material) from each side; an
   // object of no area there (an unbounded plane) emits nothing, with a warning.
   void spread_luminous_flux() {
@@ -316,7 +316,7 @@ class SceneReader {
     }
   }
 
-  // Issue 19: every emissive object is a light for the methods that aim shadow rays at emitters
+  // Every emissive object is a light for the methods that aim shadow rays at emitters
   // (one per object and emissive material). A surface that cannot be sampled (an unbounded
   // plane) lights the scene only where rays happen to hit it (the path tracer's BSDF rays,
   // radiosity's form factors): the methods that need its samples refuse it.
@@ -373,7 +373,7 @@ std::unique_ptr<Scene> read_scene_text(const std::string& text, const std::strin
 
 std::unique_ptr<Scene> read_scene_file(const std::string& path, const std::vector<std::string>& overrides,
                                        std::span<const SettingsSection> plugin_sections) {
-  // Issue 21: a regular file of bounded size only (a FIFO blocked, /dev/zero exhausted memory).
+  // A regular file of bounded size only (a FIFO blocked, /dev/zero exhausted memory).
   const std::string text = read_input_file(path, "the scene file");
   const std::string directory = std::filesystem::path(path).parent_path().string();
   return read_scene_text(text, path, directory.empty() ? "." : directory, overrides, plugin_sections);

@@ -25,7 +25,7 @@ std::unique_ptr<Scene> read_scene_text(const std::string& text, const std::strin
 // Light set-ups for relighting (candela render --relight FILE): a JSON object
 // {"frames": [{"name": "noon", "ambient": 0.1, "lights": [... as a scene's "lights" ...],
 //              "materials": {"red": {"kd": [0.2, 0.6, 0.2]}}}, ...]}.
-// Names (default frameN) are unique and made of letters, digits, '_' and '-'. "materials" (issue 25:
+// Names (default frameN) are unique and made of letters, digits, '_' and '-'. "materials" (the
 // albedo edits) gives named materials of the scene another diffuse reflectance kd for the frame;
 // the names are checked against the scene when the frame is rendered (find_albedo_edit_targets).
 // Throws InputError with file, line, column and JSON path.
@@ -39,7 +39,7 @@ struct LightSetup {
   std::vector<std::unique_ptr<Light>> lights;
   Color ambient;
   std::vector<AlbedoEdit> albedo_edits;
-  // Issue 51: the files the frame's lights read (luminaires), inputs no output may overwrite, and
+  // The files the frame's lights read (luminaires), inputs no output may overwrite, and
   // what its lights warn of (a sun below the horizon), as a scene's.
   std::vector<std::string> input_files;
   std::vector<std::string> warnings;

@@ -218,7 +218,7 @@ ShapeBuild make_mesh(const JsonNode& node, const Transform& transform, LoadConte
   if (skipped > 0)
     context.warnings->push_back(
         fmt::format("{}: {}: skipped {} degenerate triangle(s)", node.location().describe(), path, skipped));
-  // Issue 21: copies of one triangle are one surface; each copy cost every ray that met it a test.
+  // Copies of one triangle are one surface; each copy cost every ray that met it a test.
   if (merged > 0)
     context.warnings->push_back(
         fmt::format("{}: {}: merged {} duplicate triangle(s) (the same corners as an "

@@ -16,8 +16,8 @@ namespace {
 // outside; beyond 1900–2100 a date is refused rather than placed wrongly.
 constexpr int kFirstYear = 1900, kLastYear = 2100;
 
-// The number of the `count` digits at text[at...]; -1 unless they are all digits (issue 51:
-// sscanf's %d took signs, blanks and anything after the last field: "2026-+6-21", "12:00 tomorrow").
+// The number of the `count` digits at text[at...]; -1 unless they are all digits
+// (sscanf's %d took signs, blanks and anything after the last field: "2026-+6-21", "12:00 tomorrow").
 int digits_at(const std::string& text, std::size_t at, std::size_t count) {
   if (at + count > text.size()) return -1;
   int value = 0;

@@ -1,4 +1,4 @@
-// Where a scene file puts the sun (issue 23, item 3; the sun light and the CIE sky read it):
+// Where a scene file puts the sun (the sun light and the CIE sky read it):
 // "latitude" (° north), "longitude" (° east), "date" ("YYYY-MM-DD"), "time" (local
 // "HH:MM[:SS]") and "timezone" (hours ahead of UT), by Michalsky's algorithm
 // (shading/solar_position.h); or, for the sky, without a date, "sun_elevation" and "sun_azimuth"

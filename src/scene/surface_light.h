@@ -1,4 +1,4 @@
-// An emissive surface as a light (issue 19: "emissive surfaces of any shape"): the primitives of
+// An emissive surface of any shape as a light: the primitives of
 // one scene object whose material has `emission`, as the local model, the rasterizer and meshless
 // η see them — shadow rays to points sampled on the surface — while the path tracer finds the
 // same surfaces by their material (integrators/light_sampler.h) and radiosity meshes them as

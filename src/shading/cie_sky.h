@@ -1,4 +1,4 @@
-// The CIE standard general sky (ISO 15469:2004 / CIE S 011/E:2003; issue 23, item 3): fifteen
+// The CIE standard general sky (ISO 15469:2004 / CIE S 011/E:2003): fifteen
 // relative luminance distributions from the heavily overcast to the cloudless sky, each the
 // product of a gradation function of the zenith angle Z and a scattering indicatrix of the
 // angular distance χ to the sun:

@@ -79,7 +79,7 @@ struct Material {
   // Emitted exitance E per channel (≥ 0): the self-luminous surfaces of classic radiosity
   // (000 eq. 6-7's E_i); the local model adds it as seen, independent of the lights.
   Color emission;
-  // Issue 23: "emission_luminous_flux" — lumens each object of this material sends from each side,
+  // "emission_luminous_flux" — lumens each object of this material sends from each side,
   // spread evenly over its surfaces of it (0: emission as given). The scene loader turns it into
   // each object's `emission` (Φ / its area, by the one efficacy), of this colour (unit luminance).
   double emission_flux = 0;

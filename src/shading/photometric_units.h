@@ -1,4 +1,4 @@
-// Photometric units (issue 23, item 1): how an amount of light given in lumens, candela, lux or
+// Photometric units: how an amount of light given in lumens, candela, lux or
 // candela per square metre becomes the renderer's radiometric RGB, and a colour given as a
 // colour temperature.
 //

@@ -1,4 +1,4 @@
-// Where the sun is (issue 23, item 3): the Astronomical Almanac's approximate algorithm as
+// Where the sun is: the Astronomical Almanac's approximate algorithm as
 // Michalsky published it (Solar Energy 40:227, 1988; ±0.01° from 1950 to 2050), with the azimuth
 // by atan2 (Michalsky's arcsine needed Spencer's 1989 quadrant correction) and his refraction
 // correction near the horizon.

@@ -156,7 +156,7 @@ std::string load_error(const std::string& file) {
   return "";
 }
 
-// Issue 21: a PFM texel of 3e38 (finite) made infinite pixels once multiplied by a light and
+// A PFM texel of 3e38 (finite) made infinite pixels once multiplied by a light and
 // written as float. Texels above TextureImage::kMaxValue, and NaN or infinite ones, are refused
 // naming the file and the first bad texel; the limit itself loads, and read_image without a
 // limit (`candela compare` reads renders through it) still reads the large value.

@@ -1,7 +1,7 @@
 // Outputs are written to a temporary file beside the target and renamed into place, so a
 // failure never leaves a half-written file (SPEC §15).
 //
-// Issue 21: the temporary's name always fits the file system's 255-byte limit, whatever the
+// The temporary's name always fits the file system's 255-byte limit, whatever the
 // target's length: ".tmp-PID-HASH.EXT" (HASH: 16 hex digits of the target's file name, EXT: the
 // target's extension when it is short, since some writers choose the format by it). A process
 // killed while writing (SIGKILL, power loss) leaves its temporary behind; the next write of the same

@@ -1,4 +1,4 @@
-// Atomic writes (SPEC §15) and their temporaries (issue 21: names that fit, stale ones cleaned).
+// Atomic writes (SPEC §15) and their temporaries (names that fit, stale ones cleaned).
 #include "util/atomic_file.h"
 
 #include <gtest/gtest.h>
@@ -35,7 +35,7 @@ pid_t ended_process_id() {
 }
 
 TEST(AtomicFile, ATargetNameOfTheFullLengthIsWritten) {
-  // Before issue 21 the temporary was ".tmp-PID-" + the name: 250 bytes became 264, past the
+  // The temporary was once ".tmp-PID-" + the name: 250 bytes became 264, past the
   // file system's 255, and the write failed after the work.
   ScratchDirectory scratch("candela-atomic");
   const fs::path target = scratch.path() / (std::string(250, 'a') + ".png");

@@ -1,5 +1,5 @@
 // The known word nearest a misspelled one, for "unknown command 'rendr' (did you mean render?)"
-// (issue 24): the Levenshtein distance (insertions, deletions, substitutions, each 1).
+// by the Levenshtein distance (insertions, deletions, substitutions, each 1).
 #pragma once
 
 #include <cstddef>

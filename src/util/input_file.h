@@ -1,4 +1,4 @@
-// Reading an input file whole, safely (issue 21, "non-regular files"): only a regular file is
+// Reading an input file whole, safely: only a regular file is
 // opened — a FIFO would block in open() forever, a device such as /dev/zero would be read until
 // memory ran out, a directory reads as nothing — and only up to a size limit known before the
 // content is read. Every refusal is an InputError naming the path and what is wrong with it.

@@ -9,7 +9,7 @@ namespace candela {
 // MemTotal of /proc/meminfo in bytes; 0 when it cannot be read.
 uint64_t physical_memory_bytes();
 
-// The memory a run may hold (issue 51; radiosity.memory_limit_mib, render.memory_limit_mib):
+// The memory a run may hold (radiosity.memory_limit_mib, render.memory_limit_mib):
 // limit_mib mebibytes when it is above 0, else half the machine's memory (8 GiB when that cannot
 // be read). Saturates at 2⁶⁴ − 1 bytes.
 uint64_t memory_limit_bytes(double limit_mib);

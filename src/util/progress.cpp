@@ -9,7 +9,7 @@
 namespace candela {
 
 double convergence_progress(double remaining_fraction, double threshold) {
-  // Issue 20: a threshold of 0 (radiosity runs until nothing is left to shoot or max_steps) is
+  // A threshold of 0 (radiosity runs until nothing is left to shoot or max_steps) is
   // measured against 10⁻¹⁵, about what double precision resolves of a total, not left at 0.
   if (!(threshold > 0)) threshold = 1e-15;
   if (remaining_fraction <= threshold || threshold >= 1) return 1.0;

@@ -34,7 +34,7 @@ TEST(Progress, PlainLinesWhenNotATerminal) {
 }
 
 TEST(Progress, DetailFollowsTheCount) {
-  // The radiosity solver shows its unshot fraction this way (issue 7).
+  // The radiosity solver shows its unshot fraction this way.
   std::FILE* file = std::tmpfile();
   {
     ProgressReporter progress("radiosity", 10, "per mille", false, file);
@@ -59,7 +59,7 @@ TEST(Progress, ConvergenceProgressIsLogarithmic) {
   EXPECT_NEAR(convergence_progress(0.01, 0.001), 2.0 / 3, 1e-12);
   EXPECT_DOUBLE_EQ(convergence_progress(0.001, 0.001), 1.0);
   EXPECT_DOUBLE_EQ(convergence_progress(0.0, 0.001), 1.0);
-  // Issue 20: threshold 0 left the bar at 0 all the way; it is measured against 10⁻¹⁵.
+  // Threshold 0 left the bar at 0 all the way; it is measured against 10⁻¹⁵.
   EXPECT_NEAR(convergence_progress(1e-6, 0.0), 0.4, 1e-12);
   EXPECT_DOUBLE_EQ(convergence_progress(0.0, 0.0), 1.0);
   EXPECT_DOUBLE_EQ(convergence_progress(1.0, 0.0), 0.0);

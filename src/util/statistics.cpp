@@ -57,7 +57,7 @@ std::string RunStatistics::summary() const {
     total += seconds;
   }
   text += fmt::format("  {:<16} {:>10.3f} s\n", "total", total);
-  // Issue 19: no "0 rays, 0.00 Mrays/s" for a method that traced none (a rasterized display).
+  // No "0 rays, 0.00 Mrays/s" for a method that traced none (a rasterized display).
   if (rays.total() == 0) {
     text += "  rays: none traced\n";
   } else {

@@ -5,7 +5,7 @@
 namespace candela {
 namespace {
 
-// Issue 19: a method that traced no ray in the phase (a rasterized display) is not summarised as
+// A method that traced no ray in the phase (a rasterized display) is not summarised as
 // "0 rays, 0.00 Mrays/s"; one that did gets its rate.
 TEST(RunStatistics, SummarySaysNoRaysRatherThanZeroMraysPerSecond) {
   RunStatistics rasterized;
@@ -20,7 +20,7 @@ TEST(RunStatistics, SummarySaysNoRaysRatherThanZeroMraysPerSecond) {
   traced.rays.shadow = 1'000'000;
   const std::string rate = traced.summary();
   EXPECT_NE(rate.find("(4000000 total, 2.00 Mrays/s)"), std::string::npos) << rate;
-  // A slow render keeps its digits (issue 19: 8 bunnies by the list read "0.00 Mrays/s").
+  // A slow render keeps its digits (8 bunnies by the list read "0.00 Mrays/s").
   RunStatistics slow;
   slow.add_phase("render", 10.8);
   slow.rays.primary = 20'000;

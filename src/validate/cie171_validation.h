@@ -1,4 +1,4 @@
-// `candela validate cie171` (issue 23, item 5; docs/validation/cie171.md): the analytical test
+// `candela validate cie171` (docs/validation/cie171.md): the analytical test
 // cases of CIE 171:2006 ("Test cases to assess the accuracy of lighting computer programs",
 // section 5) that candela/1 can express, each built as a scene from its geometry, probed by every
 // method that can answer it (integrators/probe.h: path, radiosity, meshless; the direct cases by
@@ -36,7 +36,7 @@
 //
 // What is expressed is Candela's reading of each case (dimensions, points, sources are chosen here
 // and listed on the docs page); the report's own tables were not at hand, so no printed value is
-// compared. Targets (the issue's): 1 % at every point for path, 2 % for radiosity; meshless and
+// compared. Targets: 1 % at every point for path, 2 % for radiosity; meshless and
 // local are held to 2 %. A point whose reference is 0 (outside the sun patch) is measured
 // against the case's largest reference.
 #pragma once
@@ -83,7 +83,7 @@ struct Cie171Run {
   std::vector<std::string> only_methods;  // empty: every method of each case
   // Empty: every case; else the case numbers to run ("5.11": each of its variants).
   std::vector<std::string> only_cases;
-  // The radiosity method's solver (issue 52: "hierarchical" passes every case too).
+  // The radiosity method's solver ("hierarchical" passes every case too).
   std::string radiosity_solver = "gauss-seidel";
 };
 

@@ -1,4 +1,4 @@
-// Issue 23, item 5: the CIE 171:2006 analytical cases (validate/cie171_validation.h,
+// The CIE 171:2006 analytical cases (validate/cie171_validation.h,
 // docs/validation/cie171.md) — their references against closed forms worked out by hand, and the
 // methods that are exact on the direct cases held to them in the quick run.
 #include "validate/cie171_validation.h"

@@ -1,4 +1,4 @@
-// Issue 24: error against time for several methods on one log-log chart, as SVG — crisp at any
+// Error against time for several methods on one log-log chart, as SVG — crisp at any
 // size, its text set by the viewer's fonts (DejaVu Sans first). candela report puts it on its
 // page; docs/validation.md shows the Cornell box's.
 #pragma once

@@ -1,4 +1,4 @@
-// The error-against-time chart (issue 24): log-log axes over whole decades, a polyline per method
+// The error-against-time chart: log-log axes over whole decades, a polyline per method
 // with steps, a marker for a method of one point, text escaped.
 #include "validate/convergence_chart.h"
 

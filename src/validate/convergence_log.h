@@ -1,4 +1,4 @@
-// Issue 24: a render's error against a reference image as it goes — the error-against-time data
+// A render's error against a reference image as it goes — the error-against-time data
 // researchers compare methods by (pbrt-v4's --mse-reference-image does it for its path tracer).
 // Every step a progressive method reports (RenderRequest::on_progress: the path tracer's passes,
 // progressive radiosity's shots, Gauss-Seidel's sweeps, meshless iterations) becomes a row with

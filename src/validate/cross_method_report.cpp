@@ -278,7 +278,7 @@ std::vector<std::pair<std::string, std::string>> key_facts(const std::string& me
   } else {
     take(statistics, "antialiasing", "aa");
   }
-  // Issue 19: which of the scene's emitters the method accounted for (every one, each its own way).
+  // Which of the scene's emitters the method accounted for (every one, each its own way).
   if (statistics.contains("emitters") && statistics.at("emitters").is_object())
     facts.emplace_back("emitters", emitters_text(statistics.at("emitters")));
   if (statistics.contains("rays") && statistics.at("rays").contains("total")) {
@@ -314,7 +314,7 @@ CrossMethodReport run_cross_method_report(Scene& scene, const CrossMethodOptions
   const SettingsGuard guard(scene);
   const uint64_t seed = scene.render.seed;
   const fs::path directory(options.output_directory);
-  // Issue 51: every method the report renders is held to render.memory_limit_mib before the first
+  // Every method the report renders is held to render.memory_limit_mib before the first
   // renders and writes anything.
   RenderRequest whole_image;
   whole_image.region = {0, 0, width, height};
@@ -571,7 +571,7 @@ std::string cross_method_html(const CrossMethodReport& report) {
             "up)."
           : "");
 
-  // Issue 24: error against time, every method on one chart.
+  // Error against time, every method on one chart.
   html +=
       "<h2>Error against time</h2>\n<p><img src=\"convergence.svg\" alt=\"RMSE against time, log-log, one "
       "curve per method\"></p>\n<p class=\"note\">Each method's RMSE (linear RGB) against the reference at "

@@ -55,10 +55,10 @@ struct CrossMethodOptions {
   std::string scene_text;              // the scene file's text (its method objects are shown)
   std::vector<std::string> overrides;  // --set key=value, shown on the page
   int threads = 0;                     // worker threads the run may use
-  // Issue 23: > 0 measures the errors in luminance, cd/m² (validate/image_comparison.h's
+  // > 0 measures the errors in luminance, cd/m² (validate/image_comparison.h's
   // luminance_film at this efficacy, lm/W); 0: on the linear RGB the methods render.
   double luminance_efficacy = 0;
-  // Issue 24: the pixels the convergence chart measures (image_comparison.h's mask: the scene's
+  // The pixels the convergence chart measures (image_comparison.h's mask: the scene's
   // width·height bytes, row by row from the top); empty: every pixel.
   std::vector<uint8_t> convergence_mask;
   // Told one line per step ("rendering radiosity"); may be empty.
@@ -76,7 +76,7 @@ struct CrossMethodEntry {
   std::vector<std::pair<std::string, std::string>> facts;  // a few key facts, name → value
   ImageComparison errors;  // against the reference (not set for the reference itself)
   Film image{0, 0};
-  // Issue 24: the error (linear RGB) against the reference at each step of the method and at its
+  // The error (linear RGB) against the reference at each step of the method and at its
   // image (validate/convergence_log.h); empty for the reference. `seconds` leaves out the log's
   // own time (making and measuring the step images).
   std::vector<ConvergenceRow> convergence;
@@ -103,7 +103,7 @@ struct CrossMethodReport {
   std::string date;  // UTC, ISO 8601
 };
 
-// Issue 24: each method's error (RMSE, linear RGB) against the reference as it converged, from its
+// Each method's error (RMSE, linear RGB) against the reference as it converged, from its
 // convergence log — every method on one log-log chart, the equal-time path runs as hollow markers —
 // DIR/convergence.svg, with its data in DIR/convergence.csv.
 std::string convergence_chart(const CrossMethodReport& report);
@@ -121,7 +121,7 @@ const char* page_load_check_script();
 
 // The names of every file a run with these options may write in its directory (index.html,
 // report.json, reference.*, each entry's .png, .exr and -diff.png): what must not be one of its
-// inputs (issue 21).
+// inputs.
 std::vector<std::string> cross_method_report_files(const CrossMethodOptions& options);
 // A few facts from a method's statistics: spp for path, patches and elements for radiosity, sites
 // for meshless, rays for the ray tracers ...

@@ -222,7 +222,7 @@ nlohmann::json run_form_factor_validation(const std::string& out_dir, const Form
       panel.y_max = 0;
       panel.x_tick = 0.3;
       panel.y_tick = 1;
-      // Issue 24: each panel named by its case, both axes named, every curve in the legend.
+      // Each panel named by its case, both axes named, every curve in the legend.
       panel.title = cases[c].name;
       panel.x_label = "log10 (patch size / scene size)";
       panel.y_label = "log10 |relative error|";

@@ -1,4 +1,4 @@
-// The form-factor and furnace validation of issue 20 (SPEC §13; docs/validation/form-factors.md):
+// The form-factor and furnace validation (SPEC §13; docs/validation/form-factors.md):
 //
 //   * Howell's closed forms (radiosity/configuration_factors.h) through the radiosity method's own
 //     mesh and form-factor rows — parallel rectangles (C-11), perpendicular rectangles with a
@@ -31,7 +31,7 @@ struct HowellCase {
   double expected = 0;    // F from it to the other
 };
 
-// The six cases of the issue, each in a scene of unit size (distances and radii of about 1).
+// The six cases, each in a scene of unit size (distances and radii of about 1).
 std::vector<HowellCase> howell_cases();
 
 // F from the case's `from` object to the other by the radiosity method's mesh and patch rows

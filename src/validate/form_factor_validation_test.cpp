@@ -1,4 +1,4 @@
-// Issue 20: Howell's closed forms through the radiosity method's own mesh and rows, the furnace
+// Howell's closed forms through the radiosity method's own mesh and rows, the furnace
 // through every method (validate/form_factor_validation.h, docs/validation/form-factors.md).
 #include "validate/form_factor_validation.h"
 
@@ -15,7 +15,7 @@ std::string method_name(RadiosityFormFactors method) {
 }
 
 // At the default settings (32 segments, patches of the scene's size / 8, hemicube resolution 100)
-// every case within 0.5 %, hemicube and ray cast. Before issue 20 the inscribed tessellation of 16
+// every case within 0.5 %, hemicube and ray cast. Once, the inscribed tessellation of 16
 // segments gave −2.5 % (point to sphere) and −3 % (sphere to disc), and ray casting 0 (the analytic
 // sphere blocked every ray from its own elements); area-true at 16 segments, +1.0 % (the sphere's
 // 16-gon silhouette seen along its pole is larger than the mean projected area).
@@ -44,7 +44,7 @@ TEST(FormFactorValidation, RefiningReducesTheFlatCasesErrors) {
   }
 }
 
-// Issue 20, item 1: a cylinder receiver got 18 % of the hemicube's value by ray casting (its
+// A cylinder receiver got 18 % of the hemicube's value by ray casting (its
 // elements' rays blocked by the analytic cylinder); the two now agree. No closed form for a
 // sphere to a parallel cylinder's side: the cross-check, within 1 %.
 TEST(FormFactorValidation, HemicubeAndRayCastAgreeOnACylinderReceiver) {

@@ -68,7 +68,7 @@ enum class DifferenceMetric {
 std::vector<double> difference_values(const Film& image, const Film& reference, DifferenceMetric metric,
                                       const std::vector<uint8_t>* mask = nullptr);
 
-// Issue 23: a rendered image as its luminance in cd/m², grey: efficacy × Y / π per pixel (a
+// A rendered image as its luminance in cd/m², grey: efficacy × Y / π per pixel (a
 // rendered value is π × the radiance; Y Rec. 709; the efficacy of shading/photometric_units.h by
 // default) — what compare --luminance and report --luminance measure.
 Film luminance_film(const Film& image, double efficacy);

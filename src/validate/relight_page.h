@@ -1,4 +1,4 @@
-// Issue 25, item 5: the relighting page — `candela render SCENE --method meshless --relight
+// The relighting page — `candela render SCENE --method meshless --relight
 // FRAMES.json -o out.png --relight-page page.html` writes one HTML page with every frame (the
 // scene's own lights first), a slider over them, each frame's lighting time and iterations, and
 // what was precomputed once. Self-contained but for the frames' PNGs, which it names relative to

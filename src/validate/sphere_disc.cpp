@@ -432,7 +432,7 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
   write_text_atomically(
       out / "reference_sphere.csv",
       csv("alpha_deg,direct,total", alpha_degrees, {&reference.sphere_direct, &reference.sphere_total}));
-  // Issue 24: every panel titled, both axes named, every curve named in the legend.
+  // Every panel titled, both axes named, every curve named in the legend.
   const PlotPanel disc_axes{{},
                             0,
                             scene.disc_radius,
@@ -575,7 +575,7 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
   }
   result["least_rms"] = best;
 
-  // Issue 25: the flat and the hierarchical transport (normalized basis) at several spacings, each
+  // The flat and the hierarchical transport (normalized basis) at several spacings, each
   // with its precomputation time: which is more accurate for the same time.
   {
     std::string table = "transport,spacing,sites,entries,precompute_seconds,rms,rms_relative\n";

@@ -90,7 +90,7 @@ class ReferenceSolution {
 struct FeSettings {
   BasisKind basis = BasisKind::normalized;
   double spacing = 3;              // Δ
-  std::string transport = "flat";  // issue 25: or "hierarchical" (meshless.transport)
+  std::string transport = "flat";  // or "hierarchical" (meshless.transport)
   int grid = 256;                  // camera rays per side (an orthographic camera over the disc, from above)
   int rounds = 8;                  // rounds of secondary rays
   int azimuths = 100;              // points per ring for the azimuth mean
@@ -127,7 +127,7 @@ CurveErrors curve_errors(const std::vector<double>& disc_fe, const std::vector<d
 // (n = m = k = 4× — its values at the reference's nodes show that the reference has converged),
 // and the FE solutions for the three bases at Δ = 3 and Δ = 1, written to directory:
 // reference_disc.csv, reference_sphere.csv, fe_<basis>_delta<Δ>_disc.csv / _sphere.csv,
-// errors.json and PNG plots; and (issue 25) the normalized basis's flat and hierarchical transport at
+// errors.json and PNG plots; and the normalized basis's flat and hierarchical transport at
 // several spacings, each with its precomputation seconds and RMS error (transport.csv, errors.json's
 // "transport": the hierarchical one's error at equal precomputation time). quick (for tests): a disc of
 // radius 15, n = m = k = 30, a 64² camera grid. Every file is written atomically; progress lines go to log

@@ -1,4 +1,4 @@
-// The sphere-over-disc validation of seed 002 chapter 7 (SPEC §13, issue 8).
+// The sphere-over-disc validation of seed 002 chapter 7 (SPEC §13).
 #include "validate/sphere_disc.h"
 
 #include <gtest/gtest.h>
@@ -100,7 +100,7 @@ TEST(SphereDisc, CurveErrors) {
   EXPECT_THROW(curve_errors({1}, {1, 2}, {}, {}), std::invalid_argument);
 }
 
-// Issue 8: "the sphere-disc error falls from Δ = 3 to Δ = 1 for every basis" — on a disc of radius
+// The sphere-disc error falls from Δ = 3 to Δ = 1 for every basis — on a disc of radius
 // 15 instead of 40 (a seventh of the area, so of the sites and the time; the light, sphere and
 // spacings as in the thesis). Every basis, the radial one included.
 TEST(SphereDisc, FiniteElementErrorFallsWithDensity) {
