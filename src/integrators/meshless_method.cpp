@@ -15,6 +15,7 @@
 #include "integrators/solution_field.h"
 #include "meshless/effective_area.h"
 #include "meshless/meshless_basis.h"
+#include "meshless/meshless_display.h"
 #include "scene/direct_irradiance.h"
 #include "scene/light.h"
 #include "scene/scene.h"
@@ -25,53 +26,7 @@
 
 namespace candela {
 
-MeshlessSettings read_meshless_settings(const JsonNode& node) {
-  MeshlessSettings settings;
-  node.expect_object();
-  settings.basis = node.enumeration("basis", settings.basis, kBasisNames);
-  settings.kernel = node.enumeration("kernel", settings.kernel, kRadialKernelNames);
-  settings.spacing = node.number("spacing", settings.spacing, Range::non_negative());
-  settings.neighbours = node.integer("neighbours", settings.neighbours, {1, 1000, false, false});
-  settings.grid = node.integer("grid", settings.grid, {1, 4096, false, false});
-  settings.rounds = node.integer("rounds", settings.rounds, {0, 1000, false, false});
-  settings.effective_area = node.enumeration("effective_area", settings.effective_area, kMeshlessAreaNames);
-  settings.tolerance = node.number("tolerance", settings.tolerance, {0, 1, true, false});
-  settings.max_iterations =
-      node.integer("max_iterations", settings.max_iterations, {1, 1 << 20, false, false});
-  settings.display = node.enumeration("display", settings.display, kMeshlessDisplayNames);
-  settings.shepard_power = node.number("shepard_power", settings.shepard_power, {0, 16, false, false});
-  settings.max_sites = node.integer("max_sites", settings.max_sites, {1, 1 << 22, false, false});
-  settings.gather_rays = node.integer("gather_rays", settings.gather_rays, {1, 1 << 20, false, false});
-  settings.near_field = node.number("near_field", settings.near_field, {0, 100, false, false});
-  settings.transport = node.enumeration("transport", settings.transport, kMeshlessTransportNames);
-  settings.cluster_angle = node.number("cluster_angle", settings.cluster_angle, {0, 10, false, false});
-  settings.location = node.get("spacing") ? node.at("spacing").location() : node.location();
-  node.finish();
-  return settings;
-}
-
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// What a surface point reflects of the emitters directly: ρ Σ I·max(0, n·L)·V over every sample of
-// the lights, the emissive surfaces and the environment (opaque shadows), the samples of each
-// jittered in their cells as the local model's are. An emissive surface lights the
-// sites through these shadow rays, not through the sites that land on it, so a lamp's power no
-// longer depends on them; its own emission is drawn where the camera sees it, never transferred.
-// Also through `rays` cosine-distributed rays from the site, weighed against the
-// surfaces' samples (scene/direct_irradiance.h) — a site beside a glowing wall got 0.25–27 times
-// its irradiance from the samples alone, 2 % low on average in a glowing box.
-Color direct_light(const Scene& scene, const SurfaceEmitterIndex& emitters, uint64_t seed, std::size_t site,
-                   int rays, const Vec3& point, const Vec3& normal, const Color& albedo) {
-  if (albedo.is_black()) return Color();
-  const StratumJitter jitter{true, seed};
-  Pcg32 random(seed ^ 0x6D6573686C657373ull, site);
-  const HemisphereRays hemisphere{emitters, rays, random};
-  return albedo * direct_irradiance(scene, point, normal, EmitterSet::everything, jitter, &hemisphere);
-}
 
 // Seed 002 Figure 4.7: the image with every site the eye can see drawn as a red dot (3 × 3
 // pixels, 1 × 1 below 256 pixels wide), as bright as the brightest pixel so that it survives any
@@ -126,129 +81,6 @@ std::string geometry_key(const Scene& scene, const MeshlessSettings& m, uint64_t
                      eye.z, gaze.x, gaze.y, gaze.z, camera.width(), camera.height());
 }
 
-// The number of sites on each level of the hierarchy, finest first (one level without one).
-std::vector<std::size_t> level_sizes(const MeshlessGeometry& geometry) {
-  if (!geometry.hierarchy) return {geometry.sites.sites.size()};
-  std::vector<std::size_t> sizes;
-  for (std::size_t l = 0; l < geometry.hierarchy->level_count(); ++l)
-    sizes.push_back(geometry.hierarchy->level_sites(l).size());
-  return sizes;
-}
-
-nlohmann::json geometry_facts(const MeshlessSettings& settings, const MeshlessGeometry& geometry) {
-  double area_sum = 0;
-  for (const double a : geometry.areas) area_sum += a;
-  return {{"basis", kBasisNames.name(settings.basis)},
-          {"sites", geometry.sites.sites.size()},
-          {"camera_sites", geometry.sites.camera_sites},
-          {"spacing", geometry.sites.spacing},
-          {"neighbours", settings.neighbours},
-          {"effective_area", kMeshlessAreaNames.name(settings.effective_area)},
-          {"effective_area_sum", area_sum},
-          {"transport", kMeshlessTransportNames.name(settings.transport)},
-          {"hierarchy_levels", geometry.hierarchy ? geometry.hierarchy->level_count() : 1},
-          {"hierarchy_nodes",
-           geometry.hierarchy ? geometry.hierarchy->node_count() : geometry.sites.sites.size()},
-          {"hierarchy_level_sites", level_sizes(geometry)},
-          {"hierarchy_seconds", geometry.hierarchy_seconds},
-          {"cluster_links", geometry.matrix.cluster_links},
-          {"transfer_entries", geometry.matrix.entries()},
-          {"transfer_density", geometry.matrix.density()},
-          {"transfer_memory_mib", static_cast<double>(geometry.matrix.bytes()) / 1048576.0},
-          {"transfer_seconds", geometry.matrix.seconds},
-          {"visibility_rays", geometry.matrix.visibility_rays},
-          {"gather_rays", geometry.matrix.gather_rays},
-          {"far_field_scale", geometry.matrix.far_field_scale},
-          {"sampling_seconds", geometry.sampling_seconds},
-          {"area_seconds", geometry.area_seconds}};
-}
-
-}  // namespace
-
-namespace {
-
-// Divisions of a full turn of the curved shapes the effective areas are integrated over.
-constexpr int kEffectiveAreaSegments = 64;
-
-// The most transfer entries S may keep: Eigen's 32-bit index, and render.memory_limit_mib (half
-// the machine's memory by default) at 16 bytes an entry while S is built (a row's
-// (index, value) pairs, then the compressed copy) — past it the build stops and is refused naming
-// meshless.spacing (SPEC §15).
-std::size_t transfer_entry_limit(const Scene& scene) {
-  const std::size_t index_limit = std::size_t{INT32_MAX} - 1;
-  return std::min<std::size_t>(
-      index_limit, static_cast<std::size_t>(memory_limit_bytes(scene.render.memory_limit_mib) / 16));
-}
-
-// build_meshless_geometry; when cancellable, null once Ctrl-C arrives between its phases
-// (sampling, areas, transfer matrix).
-std::shared_ptr<MeshlessGeometry> build_geometry(const Scene& scene, const MeshlessSettings& settings,
-                                                 uint64_t seed, bool cancellable, bool quiet,
-                                                 Cluster* cluster = nullptr) {
-  // Every rank stops at the same phase (a collective when distributed).
-  const auto stop = [&] { return cancellable && cancelled_anywhere(cluster); };
-  auto geometry = std::make_shared<MeshlessGeometry>();
-  auto start = std::chrono::steady_clock::now();
-  SiteSamplingSettings sampling;
-  sampling.grid = settings.grid;
-  sampling.rounds = settings.rounds;
-  sampling.spacing = settings.spacing;
-  sampling.neighbours = settings.neighbours;
-  sampling.seed = seed;
-  sampling.max_sites = static_cast<std::size_t>(settings.max_sites);
-  {
-    ProgressReporter progress("sites", 1 + static_cast<uint64_t>(settings.rounds), "rounds",
-                              quiet || (cluster && !cluster->root()));
-    try {
-      geometry->sites = sample_sites(scene, sampling, &progress);
-    } catch (const std::invalid_argument& e) {  // too many sites for the settings: bad input
-      throw InputError(settings.location, e.what());
-    }
-    progress.finish();
-  }
-  geometry->sampling_seconds = seconds_since(start);
-  if (stop()) return nullptr;
-  const SiteSet& sites = geometry->sites;
-
-  start = std::chrono::steady_clock::now();
-  // The basis refers to the geometry's own sites and radii, which stay where they are: the
-  // geometry is held by a pointer and never moved.
-  geometry->basis = std::make_unique<MeshlessBasis>(sites.sites, sites.radius, settings.basis,
-                                                    settings.kernel, settings.shepard_power);
-  geometry->areas = sites.effective_area;  // the thesis's πh²/(m + 1)
-  if (settings.effective_area == MeshlessAreas::integrated)
-    geometry->areas = integrate_effective_areas(scene, *geometry->basis, sites, sites.spacing / 4,
-                                                kEffectiveAreaSegments, cluster, quiet);
-  geometry->area_seconds = seconds_since(start);
-  if (stop()) return nullptr;
-  // The longest phase shows its rows (rank 0, for every rank).
-  ProgressReporter progress("transfer matrix", sites.sites.size(), "sites",
-                            quiet || (cluster && !cluster->root()));
-  TransferSettings transfer;
-  transfer.gather_rays = settings.gather_rays;
-  transfer.near_field = settings.near_field;
-  transfer.seed = seed;
-  transfer.max_entries = transfer_entry_limit(scene);
-  transfer.cluster_angle = settings.cluster_angle;
-  if (settings.transport == MeshlessTransport::hierarchical) {
-    start = std::chrono::steady_clock::now();
-    try {
-      geometry->hierarchy = std::make_unique<SiteHierarchy>(sites, settings.neighbours);
-    } catch (const std::invalid_argument& e) {  // settings the sites cannot be thinned with: bad input
-      throw InputError(settings.location, e.what());
-    }
-    geometry->hierarchy_seconds = seconds_since(start);
-  }
-  try {
-    geometry->matrix = compute_transfer_matrix(scene, sites, *geometry->basis, geometry->areas, transfer,
-                                               cluster, &progress, geometry->hierarchy.get());
-  } catch (const std::invalid_argument& e) {  // more entries than memory holds: bad input
-    throw InputError(settings.location, e.what());
-  }
-  progress.finish();
-  return geometry;
-}
-
 }  // namespace
 
 std::vector<MemoryPart> MeshlessMethod::memory_needed(const Scene& scene,
@@ -285,67 +117,14 @@ void refuse_solution_beyond_memory_limit(const Scene& scene, const MeshlessSetti
 
 }  // namespace
 
-std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene,
-                                                          const MeshlessSettings& settings, uint64_t seed) {
-  return build_geometry(scene, settings, seed, false, true);
-}
-
-MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& settings,
-                                const MeshlessGeometry& geometry, uint64_t seed, bool quiet,
-                                const MeshlessIterationCallback& on_iteration) {
-  const SiteSet& sites = geometry.sites;
-  const auto start = std::chrono::steady_clock::now();
-  MeshlessLighting lighting;
-  lighting.eta.resize(sites.sites.size());
-  const SurfaceEmitterIndex emitters(scene);
-  // Albedo edits (R = QS): Q as the scene's materials have it now — a relight frame may
-  // give a material another kd; a constant kd is read afresh, a textured one is as it was where
-  // the site was sampled. S does not depend on it.
-  std::vector<Color> albedo = sites.albedo;
-  tbb::parallel_for(std::size_t(0), sites.sites.size(), [&](std::size_t i) {
-    const Material& material = scene.materials[scene.primitives[sites.primitive[i]].material];
-    if (material.kd && material.kd->is_constant()) {
-      SurfaceProperties properties;
-      properties.kd = material.kd->evaluate(SurfaceHit{});
-      albedo[i] = properties.diffuse_albedo();
-    }
-    lighting.eta[i] = direct_light(scene, emitters, seed, i, settings.gather_rays, sites.sites[i].position,
-                                   sites.sites[i].normal, albedo[i]);
-  });
-  ProgressReporter progress("meshless solve", 1000, "per mille of convergence", quiet);
-  TransferIterationCallback each_iteration;
-  if (on_iteration)
-    each_iteration = [&](std::size_t iteration, const std::vector<Color>& lambda) {
-      on_iteration(iteration, lighting.eta, lambda);
-    };
-  lighting.transfer =
-      solve_transfer(geometry.matrix, albedo, lighting.eta, settings.tolerance,
-                     static_cast<std::size_t>(settings.max_iterations), &progress, each_iteration);
-  progress.finish();
-  lighting.seconds = seconds_since(start);
-  return lighting;
-}
-
-namespace {
-
-void add_lighting_facts(const MeshlessLighting& lighting, nlohmann::json& facts) {
-  facts["iterations"] = lighting.transfer.iterations;
-  facts["converged"] = lighting.transfer.converged;
-  facts["diverged"] = lighting.transfer.diverged;
-  facts["final_change"] = lighting.transfer.final_change;
-  facts["lighting_seconds"] = lighting.seconds;  // direct light and the iteration: a relit frame's cost
-}
-
-}  // namespace
-
 MeshlessSolution solve_meshless(const Scene& scene, const MeshlessSettings& settings, nlohmann::json* facts) {
   refuse_solution_beyond_memory_limit(scene, settings);
   const std::shared_ptr<MeshlessGeometry> geometry =
       build_meshless_geometry(scene, settings, scene.render.seed);
   MeshlessLighting lighting = light_meshless(scene, settings, *geometry, scene.render.seed);
   if (facts) {
-    *facts = geometry_facts(settings, *geometry);
-    add_lighting_facts(lighting, *facts);
+    *facts = meshless_geometry_facts(settings, *geometry);
+    add_meshless_lighting_facts(lighting, *facts);
   }
   MeshlessSolution solution;
   solution.sites = geometry->sites;
@@ -364,7 +143,7 @@ std::shared_ptr<const MeshlessGeometry> MeshlessMethod::geometry_for(const Scene
   reused = cached_ && cached_key_ == key;
   if (reused) return cached_;
   std::shared_ptr<const MeshlessGeometry> geometry =
-      build_geometry(scene, settings_, seed, true, quiet, cluster);
+      build_meshless_geometry(scene, settings_, seed, true, quiet, cluster);
   if (!geometry) return nullptr;  // Ctrl-C: nothing kept
   cached_ = std::move(geometry);
   cached_key_ = key;
@@ -405,41 +184,8 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
   const SurfaceEmitterIndex emitters(scene);
   // The radiance of the display along the camera ray through image point (x, y).
   const RadianceFunction radiance = [&](double x, double y) {
-    thread_local std::vector<std::pair<uint32_t, double>> weights;
-    const Ray ray = camera.generate_ray(x, y);
-    Intersection hit;
-    Color color = scene.background_along(ray.direction);
-    if (!scene.intersect(ray, hit)) return color;
-    const Site p{hit.surface.position, face_forward(hit.surface.geometric_normal, -ray.direction)};
-    basis.evaluate(p, weights);
-    Color global, direct;
-    for (const auto& [i, phi] : weights) {
-      global += (*solution.lambda)[i] * phi;
-      direct += (*solution.eta)[i] * phi;
-    }
-    // An emitter is drawn with its own emission (λ and η hold only reflected light).
-    const Material& material = scene.material_of(hit);
-    switch (settings.display) {
-      case MeshlessDisplay::global:
-        color = material.emission + global;
-        break;
-      case MeshlessDisplay::direct:
-        color = material.emission + direct;
-        break;
-      case MeshlessDisplay::indirect:
-        color = global - direct;
-        break;
-      case MeshlessDisplay::hybrid: {
-        const Color albedo = material.at(hit.surface).diffuse_albedo();
-        // Per pixel the light's samples alone, as the local model draws direct light.
-        color = material.emission + direct_light(scene, emitters, seed, 0, 0, p.position, p.normal, albedo) +
-                (global - direct);
-        break;
-      }
-    }
-    if (weights.empty() && settings.display != MeshlessDisplay::hybrid)
-      color = scene.background_along(ray.direction);
-    return color;
+    return meshless_display_radiance(scene, settings, basis, *solution.eta, *solution.lambda, emitters, seed,
+                                     camera.generate_ray(x, y));
   };
   // The pixels of area into target (area-sized), through the scene's aa sampling and filter.
   std::atomic<uint64_t> camera_rays{0};
@@ -462,12 +208,12 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
     };
   const MeshlessLighting lighting = light_meshless(
       scene, settings_, *geometry, seed, request.quiet || (cluster && !cluster->root()), on_iteration);
-  nlohmann::json facts = geometry_facts(settings_, *geometry);
-  add_lighting_facts(lighting, facts);
+  nlohmann::json facts = meshless_geometry_facts(settings_, *geometry);
+  add_meshless_lighting_facts(lighting, facts);
   facts["geometry_reused"] = reused;
   solution = {&lighting.eta, &lighting.transfer.lambda};
   camera_rays = 0;  // the final display's alone
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch display_time;
   draw_across_ranks(request.cluster, region, draw, film,
                     statistics);  // every rank holds the same λ
   // Rank 0 holds the whole image, and its result is the one written.
@@ -479,7 +225,7 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
   if (cluster) sum_across_ranks(*cluster, primary);  // every rank traced its own tiles
   statistics.rays.primary += primary.primary;
   statistics.pixels += pixel_count;
-  facts["display_seconds"] = seconds_since(start);
+  facts["display_seconds"] = display_time.seconds();
   statistics.extra["meshless"] = std::move(facts);
   if (cancel_requested()) {  // Ctrl-C during the lighting or the display: λ exists and is shown whole
     statistics.extra["interrupted"] = true;
