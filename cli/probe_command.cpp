@@ -34,7 +34,7 @@ namespace {
 
 struct ProbeOptions {
   SceneOptions scene;
-  std::string method = "path";
+  std::string method = std::string(kReferenceMethod);
   std::string points_path;
   std::vector<double> grid;
   std::vector<int> grid_size{20, 20};

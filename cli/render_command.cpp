@@ -75,10 +75,9 @@ struct RenderOptions {
 
 // What ties a checkpoint (path tracing, progressive radiosity) to this run: the scene file's
 // bytes, the bytes of every file it referenced (meshes, textures, maps) and the --set overrides,
-// except those that only say how long to go on (path.spp, path.time, path.checkpoint_interval,
-// radiosity.threshold, radiosity.max_steps, radiosity.memory_limit_mib may change between a run
-// and its continuation) or how to find the hits (render.accelerator: every accelerator gives the
-// same hits).
+// except those that only say how long to go on (each method's run-length keys, which may change
+// between a run and its continuation: MethodEntry::run_length_keys) or how to find the hits
+// (render.accelerator: every accelerator gives the same hits).
 std::string scene_fingerprint(const SceneOptions& options, const Scene& scene) {
   // The files were read (and checked) by the loader; read again here the same safe way.
   const auto file_text = [](const std::string& path) {
@@ -90,11 +89,7 @@ std::string scene_fingerprint(const SceneOptions& options, const Scene& scene) {
     referenced += fmt::format("{:016x}", fnv1a_64(file_text(file)));
   std::string overrides;
   for (const std::string& o : options.overrides) {
-    const bool irrelevant =
-        o.rfind("path.spp=", 0) == 0 || o.rfind("path.time=", 0) == 0 ||
-        o.rfind("path.checkpoint_interval=", 0) == 0 || o.rfind("render.accelerator=", 0) == 0 ||
-        o.rfind("radiosity.threshold=", 0) == 0 || o.rfind("radiosity.max_steps=", 0) == 0 ||
-        o.rfind("radiosity.memory_limit_mib=", 0) == 0;
+    const bool irrelevant = o.rfind("render.accelerator=", 0) == 0 || overrides_run_length(o);
     if (!irrelevant) overrides += o + "\n";
   }
   return fmt::format("scene {:016x} files {:016x} overrides {:016x}", fnv1a_64(text), fnv1a_64(referenced),
@@ -401,7 +396,7 @@ class AlbedoEditsInPlace {
 RelightPageFrame relight_page_frame(const std::string& name, const std::string& image,
                                     const std::string& page,
                                     const std::vector<std::unique_ptr<Light>>& lights, const Color& ambient,
-                                    const RunStatistics& statistics, double seconds) {
+                                    const std::optional<RelightingCost>& cost, double seconds) {
   RelightPageFrame frame;
   frame.name = name;
   const std::filesystem::path folder = std::filesystem::absolute(page).parent_path();
@@ -412,10 +407,9 @@ RelightPageFrame relight_page_frame(const std::string& name, const std::string& 
     frame.lights += (frame.lights.empty() ? "" : ", ") + fmt::format("{} {}", count, kind);
   if (!ambient.is_black()) frame.lights += frame.lights.empty() ? "ambient" : " and ambient";
   if (frame.lights.empty()) frame.lights = "emissive surfaces only";
-  const auto found = statistics.extra.find("meshless");
-  if (found != statistics.extra.end()) {
-    frame.lighting_seconds = found->value("lighting_seconds", 0.0);
-    frame.iterations = found->value("iterations", 0);
+  if (cost) {
+    frame.lighting_seconds = cost->lighting_seconds;
+    frame.iterations = static_cast<int>(cost->iterations);
   }
   frame.frame_seconds = seconds;
   return frame;
@@ -488,22 +482,15 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
 
   if (!options.accelerator.empty())
     options.scene.overrides.push_back("render.accelerator=" + options.accelerator);
-  if (options.spp) {
-    if (*options.spp < 1 || *options.spp > (1 << 24)) throw BadArgument("--spp must be in [1, 16777216]");
-    options.scene.overrides.push_back("path.spp=" + std::to_string(*options.spp));
-  }
-  if (options.time) {
-    if (!(*options.time > 0) || !std::isfinite(*options.time))
-      throw BadArgument("--time must be a number of seconds > 0");
-    options.scene.overrides.push_back(fmt::format("path.time={}", *options.time));
-    // Only the time limits the run unless --spp says otherwise.
-    if (!options.spp) options.scene.overrides.push_back("path.spp=0");
-  }
-  if (options.checkpoint_every) {
-    if (!(*options.checkpoint_every > 0))
-      throw BadArgument("--checkpoint-every must be a number of seconds > 0");
-    options.scene.overrides.push_back(fmt::format("path.checkpoint_interval={}", *options.checkpoint_every));
-  }
+  if (options.spp && (*options.spp < 1 || *options.spp > (1 << 24)))
+    throw BadArgument("--spp must be in [1, 16777216]");
+  if (options.time && (!(*options.time > 0) || !std::isfinite(*options.time)))
+    throw BadArgument("--time must be a number of seconds > 0");
+  if (options.checkpoint_every && !(*options.checkpoint_every > 0))
+    throw BadArgument("--checkpoint-every must be a number of seconds > 0");
+  // The methods that take them say which of their settings the run limits set (the registry).
+  for (std::string& assignment : run_limit_overrides({options.spp, options.time, options.checkpoint_every}))
+    options.scene.overrides.push_back(std::move(assignment));
   if (!options.checkpoint.empty()) check_writable(options.checkpoint, "--checkpoint");
   const bool logs_error = !options.error_log.empty();
   if (logs_error != !options.error_reference.empty())
@@ -807,9 +794,10 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
       statistics.extra["ranks"] = cluster.size();
       if (!options.relight_page.empty())
         job.page_frames.push_back(relight_page_frame("scene", output, options.relight_page, scene->lights,
-                                                     scene->ambient, statistics, view_timer.seconds()));
+                                                     scene->ambient, result.relighting,
+                                                     view_timer.seconds()));
       if (!options.relight_page.empty())
-        job.precomputation = statistics.extra.value("meshless", nlohmann::json());
+        job.precomputation = statistics.extra.value(std::string(method->name()), nlohmann::json());
       if (!stats_path.empty()) write_statistics(statistics, stats_path);
       written.finish(output + " (camera " + view.name + ")");
       if (interrupted())
@@ -863,14 +851,14 @@ int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster)
       if (!options.quiet)
         std::cerr << fmt::format("candela: relit frame {} in {:.3f} s (lighting {:.3f} s), wrote {}\n",
                                  frame.name, frame_timer.seconds(),
-                                 statistics.extra[std::string(method->name())].value("lighting_seconds", 0.0),
-                                 output);
+                                 result.relighting ? result.relighting->lighting_seconds : 0.0, output);
       if (!options.stats_path.empty())
         write_statistics(statistics, path_with_suffix(options.stats_path, frame.name));
       if (!options.relight_page.empty()) {
         // The frame's lights are back in `frame`.
         job.page_frames.push_back(relight_page_frame(frame.name, output, options.relight_page, frame.lights,
-                                                     frame.ambient, statistics, frame_timer.seconds()));
+                                                     frame.ambient, result.relighting,
+                                                     frame_timer.seconds()));
       }
       written.finish(output + " (frame " + frame.name + ")");
       if (interrupted()) return report_interrupted(statistics, output, relight_frames.size() - f - 1);

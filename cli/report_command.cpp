@@ -35,7 +35,7 @@ namespace {
 
 struct ReportOptions {
   SceneOptions scene;
-  std::vector<std::string> methods{"whitted", "radiosity", "meshless", "path"};
+  std::vector<std::string> methods = default_comparison_methods();
   std::string output;
   int reference_spp = 1024;
   std::string reference;

@@ -22,6 +22,8 @@
 #include <vector>
 
 #include "commands.h"
+#include "integrators/method_registry.h"
+#include "integrators/probe.h"
 #include "list_option.h"
 #include "radiosity/radiosity_settings.h"
 #include "thread_limit.h"
@@ -51,9 +53,9 @@ int run_validate(const ValidateOptions& options) {
   if (!options.methods.empty() && options.name != "cie171")
     throw BadArgument("--methods is for cie171 (sphere-disc and form-factors run their own methods)");
   for (const std::string& method : options.methods)
-    if (method != "local" && method != "path" && method != "radiosity" && method != "meshless")
-      throw BadArgument(fmt::format(
-          "--methods: unknown method '{}' (expected local, path, radiosity or meshless)", method));
+    if (const MethodEntry* entry = find_method(method); !entry || !entry->capabilities.probe)
+      throw BadArgument(fmt::format("--methods: unknown method '{}' (expected {}: CIE 171 probes)", method,
+                                    probe_method_names()));
   if (!options.cases.empty() && options.name != "cie171") throw BadArgument("--cases is for cie171");
   if (!options.radiosity_solver.empty()) {
     if (options.name != "cie171") throw BadArgument("--radiosity-solver is for cie171");

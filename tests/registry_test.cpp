@@ -8,6 +8,7 @@
 
 #include "accel/accelerator_registry.h"
 #include "integrators/method_registry.h"
+#include "integrators/probe.h"
 #include "integrators/scene_loading.h"
 #include "io/image_writer.h"
 #include "scene/camera_registry.h"
@@ -109,6 +110,30 @@ TEST_F(RegistryTest, EveryMethodAndAccelerator) {
     const auto accelerator = create_default_accelerator(entry);
     EXPECT_EQ(accelerator->name(), entry.name);
   }
+}
+
+// A method answers for itself: whatever its capabilities promise, it gives (probe), and the keys
+// that say only how far it runs are its own, so no caller spells them.
+TEST_F(RegistryTest, MethodsAnswerForThemselves) {
+  const auto scene =
+      load_default_scene({"aa.mode=none", "aa.filter=box", "camera.width=8", "camera.height=6"});
+  ProbeSettings settings;
+  settings.samples = 1;
+  for (const MethodEntry& entry : method_entries()) {
+    if (entry.capabilities.probe) continue;  // those solve now: probe_test.cpp probes each
+    EXPECT_EQ(create_method(entry, *scene)->point_probe(*scene, settings), nullptr) << entry.name;
+  }
+  EXPECT_TRUE(find_method(kReferenceMethod)->capabilities.probe);
+  EXPECT_TRUE(overrides_run_length("path.spp=16"));
+  EXPECT_TRUE(overrides_run_length("path.checkpoint_interval=5"));
+  EXPECT_TRUE(overrides_run_length("radiosity.threshold=1e-4"));
+  EXPECT_FALSE(overrides_run_length("path.sampler=independent"));  // changes every sample
+  EXPECT_FALSE(overrides_run_length("path.spp2=16"));
+  EXPECT_FALSE(overrides_run_length("radiosity.solver=progressive"));
+  EXPECT_FALSE(overrides_run_length("whitted.spp=16"));
+  EXPECT_EQ(run_limit_overrides({16, std::nullopt, std::nullopt}), (std::vector<std::string>{"path.spp=16"}));
+  EXPECT_EQ(run_limit_overrides({std::nullopt, 2.5, 10.0}),
+            (std::vector<std::string>{"path.time=2.5", "path.spp=0", "path.checkpoint_interval=10"}));
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "integrators/local.h"
 
+#include "integrators/probe.h"
 #include "integrators/whitted.h"
 
 namespace candela {
@@ -10,6 +11,12 @@ LocalSettings read_local_settings(const JsonNode& node) {
   settings.shadows = node.boolean("shadows", settings.shadows);
   node.finish();
   return settings;
+}
+
+// The direct light at the sensor, every emitter's samples with opaque shadows (probe.h).
+std::unique_ptr<PointProbe> LocalMethod::point_probe(const Scene& scene,
+                                                     const ProbeSettings& settings) const {
+  return make_local_probe(scene, settings);
 }
 
 Color LocalMethod::trace_primary(const Scene& scene, const Ray& ray, TraceContext& context) const {

@@ -20,6 +20,7 @@ class LocalMethod final : public RayTracingMethod {
   explicit LocalMethod(const LocalSettings& settings = {}) : settings_(settings) {}
   std::string_view name() const override { return "local"; }
   Color trace_primary(const Scene& scene, const Ray& ray, TraceContext& context) const override;
+  std::unique_ptr<PointProbe> point_probe(const Scene& scene, const ProbeSettings& settings) const override;
 
  private:
   LocalSettings settings_;

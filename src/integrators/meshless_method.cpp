@@ -12,6 +12,7 @@
 #include "distributed/cluster.h"
 #include "integrators/distributed_tiles.h"
 #include "integrators/memory_estimate.h"
+#include "integrators/probe.h"
 #include "integrators/solution_field.h"
 #include "meshless/effective_area.h"
 #include "meshless/meshless_basis.h"
@@ -82,6 +83,11 @@ std::string geometry_key(const Scene& scene, const MeshlessSettings& m, uint64_t
 }
 
 }  // namespace
+
+std::unique_ptr<PointProbe> MeshlessMethod::point_probe(const Scene& scene,
+                                                        const ProbeSettings& settings) const {
+  return make_field_probe(scene, make_meshless_field(scene, settings_, settings.seed), settings);
+}
 
 std::vector<MemoryPart> MeshlessMethod::memory_needed(const Scene& scene,
                                                       const RenderRequest& request) const {
@@ -211,6 +217,7 @@ RenderResult MeshlessMethod::render(const Scene& scene, const RenderRequest& req
   nlohmann::json facts = meshless_geometry_facts(settings_, *geometry);
   add_meshless_lighting_facts(lighting, facts);
   facts["geometry_reused"] = reused;
+  output.relighting = RelightingCost{lighting.seconds, lighting.transfer.iterations};
   solution = {&lighting.eta, &lighting.transfer.lambda};
   camera_rays = 0;  // the final display's alone
   const Stopwatch display_time;
@@ -265,8 +272,8 @@ class MeshlessField final : public SolutionField {
 
 }  // namespace
 
-std::unique_ptr<SolutionField> make_meshless_field(const Scene& scene, uint64_t seed) {
-  const MeshlessSettings settings = read_meshless_settings(scene.plugin_settings.node("meshless"));
+std::unique_ptr<SolutionField> make_meshless_field(const Scene& scene, const MeshlessSettings& settings,
+                                                   uint64_t seed) {
   refuse_solution_beyond_memory_limit(scene, settings);
   std::shared_ptr<const MeshlessGeometry> geometry = build_meshless_geometry(scene, settings, seed);
   MeshlessLighting lighting = light_meshless(scene, settings, *geometry, seed);

@@ -38,6 +38,8 @@ class MeshlessMethod final : public Method {
   RenderResult render(const Scene& scene, const RenderRequest& request) const override;
   // The image, the sites and, with integrated effective areas, the tessellated surfaces.
   std::vector<MemoryPart> memory_needed(const Scene& scene, const RenderRequest& request) const override;
+  // The global display's field, gathered over the hemisphere (integrators/probe.h).
+  std::unique_ptr<PointProbe> point_probe(const Scene& scene, const ProbeSettings& settings) const override;
 
  private:
   std::shared_ptr<const MeshlessGeometry> geometry_for(const Scene& scene, uint64_t seed, bool& reused,

@@ -23,6 +23,8 @@
 namespace candela {
 
 class Cluster;
+class PointProbe;
+struct ProbeSettings;
 struct RadiositySolveResult;
 
 // The pixels to render: [x0, x1) × [y0, y1) of the camera's image.
@@ -91,6 +93,13 @@ struct RenderRequest {
   }
 };
 
+// What the light-dependent part of a render cost, for methods whose capabilities say relighting
+// (the meshless method's direct light and iteration): a relit frame's cost on the relighting page.
+struct RelightingCost {
+  double lighting_seconds = 0;
+  uint64_t iterations = 0;
+};
+
 // What a render gives: the image of the request's region, what the run measured, and the extras
 // the method's capabilities promise. The caller decides what to write (candela render).
 struct RenderResult {
@@ -99,7 +108,8 @@ struct RenderResult {
   RunStatistics statistics;
   std::optional<Film> sites_image;                       // when requested (RenderRequest::sites_image)
   std::shared_ptr<const RadiositySolveResult> solution;  // a view-independent solution (radiosity)
-  std::optional<Bytes> checkpoint;  // the final state, sealed (RenderRequest::checkpoint; rank 0)
+  std::optional<Bytes> checkpoint;           // the final state, sealed (RenderRequest::checkpoint; rank 0)
+  std::optional<RelightingCost> relighting;  // what the lighting cost, when the method relights
 };
 
 // SPEC §15: a part of what a render will hold beyond the loaded scene, estimated before
@@ -134,6 +144,10 @@ class Method {
   // What rendering the request (its region empty: the solution alone, as probe needs
   // it) will hold, part by part; by default the image (integrators/memory_estimate.h).
   virtual std::vector<MemoryPart> memory_needed(const Scene& scene, const RenderRequest& request) const;
+  // What `candela probe` asks of the method (integrators/probe.h): irradiance and radiance at
+  // sensor points by its own model, its solution made now when it has one; null when it cannot
+  // (its capabilities do not say probe).
+  virtual std::unique_ptr<PointProbe> point_probe(const Scene& scene, const ProbeSettings& settings) const;
 };
 
 // Throws the InputError of method.antialiasing_refusal(scene, antialiasing), naming the method,

@@ -1,5 +1,7 @@
 #include "integrators/method_registry.h"
 
+#include <fmt/format.h>
+
 #include <array>
 #include <string>
 
@@ -64,6 +66,25 @@ MethodCapabilities path() {
   return capabilities;
 }
 
+// The path tracer's passes and time limit: --spp N passes, --time T seconds (passes without limit
+// unless --spp says otherwise), --checkpoint-every its checkpoint interval.
+constexpr std::array<std::string_view, 3> kPathRunLength = {"spp", "time", "checkpoint_interval"};
+std::vector<std::string> path_run_limits(const RunLimitOptions& limits) {
+  std::vector<std::string> overrides;
+  if (limits.spp) overrides.push_back(fmt::format("spp={}", *limits.spp));
+  if (limits.time) {
+    overrides.push_back(fmt::format("time={}", *limits.time));
+    if (!limits.spp) overrides.push_back("spp=0");
+  }
+  if (limits.checkpoint_every)
+    overrides.push_back(fmt::format("checkpoint_interval={}", *limits.checkpoint_every));
+  return overrides;
+}
+
+// Progressive radiosity goes on from a checkpoint to a lower threshold or more steps.
+constexpr std::array<std::string_view, 3> kRadiosityRunLength = {"threshold", "max_steps",
+                                                                 "memory_limit_mib"};
+
 constexpr std::string_view kShadowRays =
     "shadow rays to every light, to jittered points of each emissive surface and to the environment";
 
@@ -91,7 +112,8 @@ const std::array kMethodEntries = {
         radiosity(),
         [](const JsonNode& settings) -> std::unique_ptr<Method> {
           return std::make_unique<RadiosityMethod>(read_radiosity_settings(settings));
-        }},
+        },
+        kRadiosityRunLength},
     MethodEntry{"meshless",
                 "meshless finite-element radiosity: sites, radial / normalized / Shepard bases (002)",
                 "every emitter lights η by shadow rays from the sites, the emissive surfaces also by the "
@@ -106,7 +128,8 @@ const std::array kMethodEntries = {
         "next-event estimation and BSDF rays with MIS, for every emitter", path(),
         [](const JsonNode& settings) -> std::unique_ptr<Method> {
           return std::make_unique<PathMethod>(read_path_settings(settings));
-        }},
+        },
+        kPathRunLength, path_run_limits},
 };
 
 // kMethodEntries as loader sections: each method's object checked by making the method from it.
@@ -160,6 +183,29 @@ const MethodEntry* find_method(std::string_view name) {
 
 std::string method_names() {
   return entry_names<MethodEntry>(kMethodEntries);
+}
+
+std::vector<std::string> default_comparison_methods() {
+  return {"whitted", "radiosity", "meshless", std::string(kReferenceMethod)};
+}
+
+bool overrides_run_length(std::string_view assignment) {
+  for (const MethodEntry& entry : kMethodEntries)
+    for (const std::string_view key : entry.run_length_keys)
+      if (assignment.size() > entry.name.size() + key.size() + 1 && assignment.starts_with(entry.name) &&
+          assignment[entry.name.size()] == '.' && assignment.substr(entry.name.size() + 1).starts_with(key) &&
+          assignment[entry.name.size() + 1 + key.size()] == '=')
+        return true;
+  return false;
+}
+
+std::vector<std::string> run_limit_overrides(const RunLimitOptions& limits) {
+  std::vector<std::string> overrides;
+  for (const MethodEntry& entry : kMethodEntries)
+    if (entry.run_limit_overrides)
+      for (const std::string& assignment : entry.run_limit_overrides(limits))
+        overrides.push_back(std::string(entry.name) + "." + assignment);
+  return overrides;
 }
 
 std::vector<std::string_view> method_names_with(bool MethodCapabilities::*capability) {

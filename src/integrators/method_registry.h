@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -32,6 +33,13 @@ struct MethodCapabilities {
   bool samples_emissive_surfaces = false;
 };
 
+// The command line's run limits (candela render --spp, --time, --checkpoint-every).
+struct RunLimitOptions {
+  std::optional<int> spp;
+  std::optional<double> time;
+  std::optional<double> checkpoint_every;
+};
+
 struct MethodEntry {
   std::string_view name;  // also the key of its settings object in the scene file
   std::string_view description;
@@ -40,13 +48,33 @@ struct MethodEntry {
   MethodCapabilities capabilities;
   // Reads the settings object (ranges checked, unknown keys refused: InputError) and makes the method.
   std::unique_ptr<Method> (*create)(const JsonNode& settings);
+  // The keys of its settings object that say only how far to run (path.spp, radiosity.threshold):
+  // a checkpoint made with other values still resumes, so a caller's fingerprint leaves them out.
+  std::span<const std::string_view> run_length_keys = {};
+  // Its settings for the command line's run limits, as keys within its object ("spp=16"); null:
+  // it takes none of them.
+  std::vector<std::string> (*run_limit_overrides)(const RunLimitOptions& limits) = nullptr;
 };
+
+// The reference the other methods are measured against (SPEC §12: the path tracer): candela
+// probe's default, candela report's reference.
+inline constexpr std::string_view kReferenceMethod = "path";
+
+// The methods candela report compares by default: one of each family (recursive ray tracing, the
+// two diffuse solutions) and the reference.
+std::vector<std::string> default_comparison_methods();
 
 std::span<const MethodEntry> method_entries();
 const MethodEntry* find_method(std::string_view name);
 // The methods whose capabilities have `capability`, in registry order.
 std::vector<std::string_view> method_names_with(bool MethodCapabilities::*capability);
 std::string method_names();  // "local, whitted"
+
+// Whether an override ("path.spp=16") sets a key that says only how far its method runs.
+bool overrides_run_length(std::string_view assignment);
+// The overrides ("path.spp=16") the command line's run limits make, for every method that takes
+// them.
+std::vector<std::string> run_limit_overrides(const RunLimitOptions& limits);
 
 // What a render by this method lit the scene with: the scene's emitters by kind (lights by type,
 // the emissive objects by name, the environment) and how the method accounts for them — in

@@ -17,6 +17,7 @@
 #include "distributed/task_farm.h"
 #include "integrators/distributed_tiles.h"
 #include "integrators/memory_estimate.h"
+#include "integrators/probe.h"
 #include "math/constants.h"
 #include "sampling/independent_sampler.h"
 #include "sampling/multiple_importance.h"
@@ -564,6 +565,10 @@ std::string PathMethod::pass_fingerprint() const {
 
 RunLimits PathMethod::limits() const {
   return {uint64_t(settings_.spp), "path.spp", settings_.time, settings_.checkpoint_interval};
+}
+
+std::unique_ptr<PointProbe> PathMethod::point_probe(const Scene& scene, const ProbeSettings& settings) const {
+  return make_path_probe(scene, settings_, settings);
 }
 
 std::unique_ptr<PixelPasses> PathMethod::start_passes(const Scene& scene,

@@ -66,6 +66,7 @@ class PathMethod final : public PassMethod {
  public:
   explicit PathMethod(const PathSettings& settings = {}) : settings_(settings) {}
   std::string_view name() const override { return "path"; }
+  std::unique_ptr<PointProbe> point_probe(const Scene& scene, const ProbeSettings& settings) const override;
 
  protected:
   std::string pass_fingerprint() const override;

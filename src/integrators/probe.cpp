@@ -231,52 +231,113 @@ std::string probe_method_names() {
   return names;
 }
 
+namespace {
+
+// The path tracer's answer: path.sampler's samples, one sampler per thread.
+class PathProbe final : public PointProbe {
+ public:
+  PathProbe(const Scene& scene, const PathSettings& path, const ProbeSettings& settings)
+      : scene_(scene),
+        path_(path),
+        settings_(settings),
+        lights_(scene),
+        prototype_(create_sampler(path.sampler,
+                                  SamplerParameters{settings.seed ^ kProbeSeed, uint64_t(settings.samples)})),
+        samplers_([this] { return prototype_->clone(); }) {}
+  ProbeResult probe(const ProbePoint& point, std::size_t index, RayCounts& rays) const override {
+    return probe_path(scene_, path_, lights_, point, index, settings_, *samplers_.local(), rays);
+  }
+
+ private:
+  const Scene& scene_;
+  const PathSettings path_;
+  const ProbeSettings settings_;
+  const LightSampler lights_;
+  const std::unique_ptr<Sampler> prototype_;
+  mutable tbb::enumerable_thread_specific<std::unique_ptr<Sampler>> samplers_;
+};
+
+class LocalProbe final : public PointProbe {
+ public:
+  LocalProbe(const Scene& scene, const ProbeSettings& settings) : scene_(scene), settings_(settings) {}
+  ProbeResult probe(const ProbePoint& point, std::size_t, RayCounts& rays) const override {
+    return probe_local(scene_, point, settings_, rays);
+  }
+
+ private:
+  const Scene& scene_;
+  const ProbeSettings settings_;
+};
+
+// A view-independent solution's answer, gathered over the hemisphere (probe_field).
+class FieldProbe final : public PointProbe {
+ public:
+  FieldProbe(const Scene& scene, std::unique_ptr<SolutionField> field, const ProbeSettings& settings)
+      : scene_(scene), field_(std::move(field)), settings_(settings), lights_(scene) {}
+  ProbeResult probe(const ProbePoint& point, std::size_t index, RayCounts& rays) const override {
+    return probe_field(scene_, *field_, lights_, point, index, settings_, uncovered_.local(), rays);
+  }
+  void add_facts(nlohmann::json& facts) const override {
+    uint64_t missing = 0;
+    for (const uint64_t m : uncovered_) missing += m;
+    facts["rays_without_solution"] = missing;
+  }
+
+ private:
+  const Scene& scene_;
+  const std::unique_ptr<SolutionField> field_;
+  const ProbeSettings settings_;
+  const LightSampler lights_;
+  mutable tbb::enumerable_thread_specific<uint64_t> uncovered_;
+};
+
+}  // namespace
+
+std::unique_ptr<PointProbe> make_path_probe(const Scene& scene, const PathSettings& path,
+                                            const ProbeSettings& settings) {
+  return std::make_unique<PathProbe>(scene, path, settings);
+}
+
+std::unique_ptr<PointProbe> make_local_probe(const Scene& scene, const ProbeSettings& settings) {
+  return std::make_unique<LocalProbe>(scene, settings);
+}
+
+std::unique_ptr<PointProbe> make_field_probe(const Scene& scene, std::unique_ptr<SolutionField> field,
+                                             const ProbeSettings& settings) {
+  return std::make_unique<FieldProbe>(scene, std::move(field), settings);
+}
+
+std::unique_ptr<PointProbe> Method::point_probe(const Scene&, const ProbeSettings&) const {
+  return nullptr;
+}
+
 std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>& points,
                                const ProbeSettings& settings, nlohmann::json* facts) {
   if (settings.samples < 1) throw std::invalid_argument("probe: samples must be >= 1");
-  std::unique_ptr<SolutionField> field;
-  const LightSampler lights(scene);
-  // The path tracer's depth limits: its object of the scene file.
-  const PathSettings path = read_path_settings(scene.plugin_settings.node("path"));
-  if (settings.method == "radiosity") {
-    field = make_radiosity_field(scene, settings.quiet, settings.seed);
-  } else if (settings.method == "meshless") {
-    field = make_meshless_field(scene, settings.seed);
-  } else if (settings.method != "path" && settings.method != "local") {
+  // The method answers for itself, with its own settings as its reader reads them.
+  const MethodEntry* entry = find_method(settings.method);
+  const std::unique_ptr<Method> method =
+      entry && entry->capabilities.probe ? entry->create(scene.plugin_settings.node(entry->name)) : nullptr;
+  const std::unique_ptr<PointProbe> prober = method ? method->point_probe(scene, settings) : nullptr;
+  if (!prober)
     throw std::invalid_argument("probe: method \"" + settings.method +
                                 "\" cannot be probed (expected one of: " + probe_method_names() + ")");
-  }
   std::vector<ProbeResult> results(points.size());
   tbb::enumerable_thread_specific<RayCounts> counts;
-  // The path tracer's samples: path.sampler, one per thread.
-  const std::unique_ptr<Sampler> prototype =
-      settings.method == "path" ? create_sampler(path.sampler, SamplerParameters{settings.seed ^ kProbeSeed,
-                                                                                 uint64_t(settings.samples)})
-                                : nullptr;
-  tbb::enumerable_thread_specific<std::unique_ptr<Sampler>> samplers([&] { return prototype->clone(); });
-  tbb::enumerable_thread_specific<uint64_t> uncovered;
   ProgressReporter progress("probe", points.size(), "points", settings.quiet);
   tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t i) {
-    if (field)
-      results[i] =
-          probe_field(scene, *field, lights, points[i], i, settings, uncovered.local(), counts.local());
-    else if (settings.method == "local")
-      results[i] = probe_local(scene, points[i], settings, counts.local());
-    else
-      results[i] = probe_path(scene, path, lights, points[i], i, settings, *samplers.local(), counts.local());
+    results[i] = prober->probe(points[i], i, counts.local());
     progress.advance();
   });
   progress.finish();
   if (facts) {
     RayCounts rays;
     for (const RayCounts& c : counts) rays += c;
-    uint64_t missing = 0;
-    for (const uint64_t m : uncovered) missing += m;
     (*facts)["method"] = settings.method;
     (*facts)["points"] = points.size();
     (*facts)["samples"] = settings.samples;
     (*facts)["rays"] = rays.total();
-    if (field) (*facts)["rays_without_solution"] = missing;
+    prober->add_facts(*facts);
   }
   return results;
 }

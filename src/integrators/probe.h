@@ -24,10 +24,15 @@
 #include <string>
 #include <vector>
 
+#include "integrators/method_registry.h"
+#include "integrators/solution_field.h"
 #include "scene/scene.h"
 #include "shading/photometric_units.h"
+#include "util/statistics.h"
 
 namespace candela {
+
+struct PathSettings;
 
 struct ProbePoint {
   Vec3 position;
@@ -62,18 +67,38 @@ struct ProbeResult {
 };
 
 struct ProbeSettings {
-  std::string method = "path";  // path, radiosity, meshless or local
-  int samples = 256;            // estimates per point (path) or hemisphere rays (the others)
+  std::string method = std::string(kReferenceMethod);  // one whose capabilities say probe
+  int samples = 256;  // estimates per point (path) or hemisphere rays (the others)
   uint64_t seed = 0;
   bool quiet = true;
 };
+
+// What a method offers `candela probe` (Method::point_probe): the irradiance and radiance at
+// sensor points by its own model. Thread-safe.
+class PointProbe {
+ public:
+  virtual ~PointProbe() = default;
+  // Point `index` of those probed (its random streams are the index's).
+  virtual ProbeResult probe(const ProbePoint& point, std::size_t index, RayCounts& rays) const = 0;
+  // What the probe measured besides the rays (the field's rays that found no solution).
+  virtual void add_facts(nlohmann::json& facts) const { (void)facts; }
+};
+
+// The answers above, for the methods to offer: the path tracer's whole paths with its settings;
+// the local model's direct light; a view-independent solution gathered over the hemisphere.
+std::unique_ptr<PointProbe> make_path_probe(const Scene& scene, const PathSettings& path,
+                                            const ProbeSettings& settings);
+std::unique_ptr<PointProbe> make_local_probe(const Scene& scene, const ProbeSettings& settings);
+std::unique_ptr<PointProbe> make_field_probe(const Scene& scene, std::unique_ptr<SolutionField> field,
+                                             const ProbeSettings& settings);
 
 // The methods probe() answers for.
 // "local, radiosity, meshless, path": the methods whose capabilities say probe.
 std::string probe_method_names();
 
-// Throws std::invalid_argument for another method. Fills facts (when not null) with what the
-// solution measured and how many rays found no solution (off the radiosity mesh, no site near).
+// By the point probe the method offers (Method::point_probe), made from its settings object of the
+// scene; throws std::invalid_argument for a method that offers none. Fills facts (when not null) with what
+// the solution measured and how many rays found no solution (off the radiosity mesh, no site near).
 std::vector<ProbeResult> probe(const Scene& scene, const std::vector<ProbePoint>& points,
                                const ProbeSettings& settings, nlohmann::json* facts = nullptr);
 

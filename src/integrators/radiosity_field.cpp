@@ -5,6 +5,7 @@
 #include "integrators/radiosity_method.h"
 #include "integrators/solution_field.h"
 #include "radiosity/display.h"
+#include "radiosity/solve.h"
 #include "radiosity/vertex_radiosity.h"
 #include "scene/direct_irradiance.h"
 
@@ -45,8 +46,12 @@ class RadiosityField final : public SolutionField {
 
 }  // namespace
 
-std::unique_ptr<SolutionField> make_radiosity_field(const Scene& scene, bool quiet, uint64_t seed) {
-  return std::make_unique<RadiosityField>(scene, solve_radiosity(scene, quiet, nullptr, seed), seed);
+std::unique_ptr<SolutionField> make_radiosity_field(const Scene& scene, const RadiositySettings& settings,
+                                                    bool quiet, uint64_t seed) {
+  RadiositySolveOptions options;
+  options.seed = seed;
+  options.quiet = quiet;
+  return std::make_unique<RadiosityField>(scene, solve_radiosity(scene, settings, options), seed);
 }
 
 }  // namespace candela

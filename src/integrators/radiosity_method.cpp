@@ -9,7 +9,9 @@
 
 #include "distributed/cluster.h"
 #include "integrators/distributed_tiles.h"
+#include "integrators/probe.h"
 #include "integrators/progressive_run.h"
+#include "integrators/solution_field.h"
 #include "io/byte_stream.h"
 #include "radiosity/display.h"
 #include "radiosity/radiosity_checkpoint.h"
@@ -153,6 +155,12 @@ void RadiosityMethod::refuse_scene(const Scene& scene) const {
         "radiosity meshes the surfaces within the bounded shapes' box (planes are cut there, and "
         "patch_size defaults to an eighth of its size): this scene has no bounded shape of any "
         "size, only unbounded planes");
+}
+
+std::unique_ptr<PointProbe> RadiosityMethod::point_probe(const Scene& scene,
+                                                         const ProbeSettings& settings) const {
+  return make_field_probe(scene, make_radiosity_field(scene, settings_, settings.quiet, settings.seed),
+                          settings);
 }
 
 RenderResult RadiosityMethod::render(const Scene& scene, const RenderRequest& request) const {

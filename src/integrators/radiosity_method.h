@@ -76,6 +76,8 @@ class RadiosityMethod final : public Method {
       const Scene& scene, const AntialiasingSettings& antialiasing) const override;
   // A scene with no bounded shape of any size (only planes): nothing to mesh within.
   void refuse_scene(const Scene& scene) const override;
+  // The ray-traced display's field, solved now, gathered over the hemisphere (integrators/probe.h).
+  std::unique_ptr<PointProbe> point_probe(const Scene& scene, const ProbeSettings& settings) const override;
 
  private:
   struct Solved {

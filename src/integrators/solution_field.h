@@ -9,6 +9,9 @@
 
 namespace candela {
 
+struct MeshlessSettings;
+struct RadiositySettings;
+
 class SolutionField {
  public:
   virtual ~SolutionField() = default;
@@ -21,12 +24,14 @@ class SolutionField {
   virtual Color direct_irradiance(const Vec3& point, const Vec3& normal) const = 0;
 };
 
-// The solution of the scene's "radiosity" object, solved now (quiet: no progress bar). `seed`: the
-// solve's and the direct light's (the probe's own; it was render.seed whatever the probe's).
-std::unique_ptr<SolutionField> make_radiosity_field(const Scene& scene, bool quiet, uint64_t seed);
-// The meshless solution of scene.meshless (its sites are sampled from the scene's camera: points
+// The radiosity solution with these settings, solved now (quiet: no progress bar). `seed`: the
+// solve's and the direct light's (the probe's own, not render.seed).
+std::unique_ptr<SolutionField> make_radiosity_field(const Scene& scene, const RadiositySettings& settings,
+                                                    bool quiet, uint64_t seed);
+// The meshless solution with these settings (its sites are sampled from the scene's camera: points
 // the camera never sees may have no site near them), with `seed` as the radiosity field's; refused
 // (InputError) before any work past render.memory_limit_mib.
-std::unique_ptr<SolutionField> make_meshless_field(const Scene& scene, uint64_t seed);
+std::unique_ptr<SolutionField> make_meshless_field(const Scene& scene, const MeshlessSettings& settings,
+                                                   uint64_t seed);
 
 }  // namespace candela
