@@ -3,6 +3,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "scene/light_samples.h"
 #include "shading/local_model.h"
 #include "shading/material_bsdf.h"
 
@@ -106,22 +107,20 @@ Color local_illumination(const Scene& scene, const Intersection& hit, const Surf
   for (std::size_t e = 0; e < scene.emitter_count(); ++e) {
     const Light& light = scene.emitter(e);
     // Each of the light's samples (one, or an area light's samples²) with its own shadow ray.
-    for (int index = 0; index < light.sample_count(); ++index) {
-      LightSample sample;
-      if (!illuminate_cell(light, surface.position, e, index, jitter, sample)) continue;
-      // 001's I_lum: only where N·L > 0; a light behind the surface itself casts no light on it —
-      // behind the facet, unless the facet stands for a smooth surface whose shading normal faces
-      // the light: then the shadow ray from the lifted point decides (no stepped terminator).
-      if (dot(N, sample.direction) <= 0) continue;
-      if (dot(geometric, sample.direction) <= 0 && !(surface.interpolated_normal && shadows)) continue;
-      Color s(1);
-      if (shadows) {
-        const double reach = std::isfinite(sample.distance) ? sample.distance - 2 * offset : kInfinity;
-        s = shadow_transmittance(scene, shadow_origin, sample.direction, reach, context, tree_parent);
-        if (s.is_black()) continue;
-      }
-      result += direct_term(material, at, N, V, sample.direction, sample.intensity * s);
-    }
+    for_each_light_sample(
+        light, e, surface.position, offset, jitter, [&](const LightSample& sample, double reach) {
+          // 001's I_lum: only where N·L > 0; a light behind the surface itself casts no light on it —
+          // behind the facet, unless the facet stands for a smooth surface whose shading normal faces
+          // the light: then the shadow ray from the lifted point decides (no stepped terminator).
+          if (dot(N, sample.direction) <= 0) return;
+          if (dot(geometric, sample.direction) <= 0 && !(surface.interpolated_normal && shadows)) return;
+          Color s(1);
+          if (shadows) {
+            s = shadow_transmittance(scene, shadow_origin, sample.direction, reach, context, tree_parent);
+            if (s.is_black()) return;
+          }
+          result += direct_term(material, at, N, V, sample.direction, sample.intensity * s);
+        });
   }
   return result;
 }

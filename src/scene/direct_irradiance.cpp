@@ -5,6 +5,7 @@
 #include "math/constants.h"
 #include "sampling/multiple_importance.h"
 #include "sampling/warps.h"
+#include "scene/light_samples.h"
 #include "scene/scene.h"
 #include "scene/surface_emitter_index.h"
 
@@ -25,24 +26,15 @@ Color direct_irradiance(const Scene& scene, const Vec3& point, const Vec3& norma
     if (emitters == EmitterSet::lights && e >= scene.lights.size()) break;
     const Light& light = scene.emitter(e);
     const double sample_count = light.sample_count();
-    for (int index = 0; index < light.sample_count(); ++index) {  // an area light's samples²
-      LightSample sample;
-      if (!illuminate_cell(light, point, e, index, jitter, sample)) continue;
+    for_each_light_sample(light, e, point, offset, jitter, [&](const LightSample& sample, double reach) {
       const double cosine = dot(normal, sample.direction);
-      if (!(cosine > 0)) continue;
-      Ray shadow;
-      shadow.origin = origin;
-      shadow.direction = sample.direction;
-      // Short of the light by the offset at both ends, as the local model: an emissive quad drawn
-      // where an area light is must not shadow it, nor an emissive surface itself.
-      shadow.t_max = std::isinf(sample.distance) ? kInfinity : sample.distance - 2 * offset;
-      if (!(shadow.t_max > 0)) continue;
-      const Color through = scene.transmittance(shadow);  // window panes let some through
-      if (through.is_black()) continue;
+      if (!(cosine > 0) || !(reach > 0)) return;
+      const Color through = scene.transmittance({origin, sample.direction, 0.0, reach});  // window panes
+      if (through.is_black()) return;
       const double weight =
           weighed && surface ? power_heuristic(sample_count * sample.pdf, ray_count * cosine * kInvPi) : 1.0;
       sum += sample.intensity * through * (cosine * weight);
-    }
+    });
   }
   if (!weighed) return sum;
   Vec3 b1, b2;
