@@ -135,7 +135,7 @@ TEST(Interrupt, SampleImageKeepsTheFinishedTiles) {
 }
 
 // Cancelled while passes run (here: asked after exactly the third pass, through the request's
-// after_pass hook, so the test is the same on every machine and under sanitizers): the run stops
+// on_progress hook, so the test is the same on every machine and under sanitizers): the run stops
 // before the next pass, says it was interrupted, and the image is the mean of the whole passes,
 // bit for bit the image of a run asked for that many.
 TEST(Interrupt, PathTracerKeepsTheMeanOfWholePasses) {
@@ -143,8 +143,8 @@ TEST(Interrupt, PathTracerKeepsTheMeanOfWholePasses) {
   const auto scene = furnace("path", R"("path": {"spp": 1000000},)");
   const auto renderer = create_method(*find_method("path"), *scene);
   RenderRequest request{{0, 0, 24, 24}, true};
-  request.after_pass = [](uint64_t passes) {
-    if (passes == 3) request_cancellation();
+  request.on_progress = [](const ProgressStep& step) {
+    if (step.work == 3) request_cancellation();
   };
   const RenderResult interrupted = renderer->render(*scene, request);
   reset_cancellation();

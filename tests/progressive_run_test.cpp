@@ -147,8 +147,8 @@ TEST_F(ProgressiveRunTest, CheckpointsResumeToTheUninterruptedImage) {
 TEST_F(ProgressiveRunTest, CtrlCKeepsTheWholePassesAndTheirCheckpoint) {
   RenderRequest r = request();
   r.checkpoint = true;
-  r.after_pass = [](uint64_t passes) {
-    if (passes == 4) request_cancellation();  // rank 0 alone: the others learn it from the plan
+  r.on_progress = [](const ProgressStep& step) {
+    if (step.work == 4) request_cancellation();  // rank 0 alone: the others learn it from the plan
   };
   const RenderResult result = ToyMethod(1, 1000).render(*scene, r);
   reset_cancellation();

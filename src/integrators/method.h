@@ -66,10 +66,8 @@ struct RenderRequest {
   // Seconds between checkpoints; 0: the method's default (path.checkpoint_interval; 60 for
   // progressive radiosity).
   double checkpoint_interval = 0;
-  // Called after every whole pass of a progressive method with the passes done so far (the
-  // path tracer): where a caller (a test) may ask the run to stop after exactly N passes.
-  std::function<void(uint64_t passes)> after_pass = {};
-  // When set, a progressive method reports its steps — the path tracer after every pass,
+  // When set, a progressive method reports its steps — the path tracer after every whole pass (where
+  // a caller, a test, may ask the run to stop after exactly N passes),
   // progressive radiosity after every `progress_every` shots, Gauss-Seidel after every sweep,
   // meshless after every iteration of λ — in one process (not across ranks). The time the caller
   // spends in it (making and measuring the image) is the caller's to account for. A method that

@@ -37,7 +37,6 @@ void ProgressiveRun::start(uint64_t first_step, std::string_view label, std::str
 
 void ProgressiveRun::step_done(uint64_t steps, const std::function<Film()>& image,
                                std::optional<double> unshot, std::string detail) {
-  if (request_.after_pass) request_.after_pass(steps);
   if (request_.on_progress) request_.on_progress({unit_, steps, unshot, image});
   progress_->set_detail(detail.empty() ? fmt::format("{} {}", steps, count_name_) : std::move(detail));
   if (limits_.steps > 0) {

@@ -2,7 +2,7 @@
 // pbrt-v4's ImageTileIntegrator, which drives, from the integrator that traces): the checkpoint
 // to resume from (read by rank 0 alone and checked against the fingerprint of the scene and the
 // settings that shape the work), the checkpoints handed out while it runs and at its end, the
-// progress line, the request's per-step callbacks (the error log, a test's stop) and the facts
+// progress line, the request's per-step callback (the error log, a test's stop) and the facts
 // every progressive run reports. The path tracer's passes (integrators/pass_method.h) and
 // progressive radiosity's shots (integrators/radiosity_method.cpp) both run through it.
 #pragma once
@@ -59,7 +59,7 @@ class ProgressiveRun {
   // count_name: the steps of all runs in the facts and the progress line ("spp").
   void start(uint64_t first_step, std::string_view label, std::string_view unit, std::string_view count_name);
   // After each whole step, with the steps done so far in all runs (one process, or rank 0 after a
-  // round): the progress line, the request's after_pass and on_progress (`image`: the image of
+  // round): the progress line, the request's on_progress (`image`: the image of
   // the state reached; unshot: what progressive radiosity has left).
   void step_done(uint64_t steps, const std::function<Film()>& image,
                  std::optional<double> unshot = std::nullopt, std::string detail = {});
