@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <span>
 #include <sstream>
 #include <string_view>
 #include <system_error>
@@ -223,103 +224,110 @@ class BoundedMaterialReader final : public tinyobj::MaterialReader {
   std::string problem_;
 };
 
-}  // namespace
+// The OBJ file being imported, for its errors: each is located where the scene refers to it.
+struct ObjSource {
+  const std::string& path;
+  const SourceLocation& referenced_from;
 
-void require_mesh_file(const std::string& path, const std::string& format,
-                       const SourceLocation& referenced_from) {
-  std::error_code ec;
-  const std::filesystem::file_status status = std::filesystem::status(path, ec);
-  if (ec || !std::filesystem::exists(status))
-    throw InputError(referenced_from, format + " file " + quoted(path) + " not found");
-  if (!std::filesystem::is_regular_file(status))
-    throw InputError(referenced_from, format + " file " + quoted(path) + " is not a regular file");
-}
+  InputError fail(const std::string& message) const { return InputError(referenced_from, message); }
+};
 
-ObjImport import_obj(const std::string& path, const SourceLocation& referenced_from) {
-  const auto fail = [&](const std::string& message) -> InputError {
-    return InputError(referenced_from, message);
-  };
-
-  require_mesh_file(path, "OBJ", referenced_from);
-  // Read as a regular file of bounded size (the OBJ and each MTL file).
+// The OBJ file's text, read as a regular file of bounded size (as each MTL file is, by
+// BoundedMaterialReader).
+std::string read_obj_text(const ObjSource& source) {
   std::string text;
   try {
-    text = read_input_file(path, "OBJ file " + quoted(path), kLargeInputLimit);
+    text = read_input_file(source.path, "OBJ file " + quoted(source.path), kLargeInputLimit);
   } catch (const InputError& e) {
-    throw fail(e.message());
+    throw source.fail(e.message());
   }
-  const ObjScan scan = scan_obj(text);
-  if (!scan.problem.empty()) throw fail("OBJ file " + quoted(path) + " " + scan.problem);
+  return text;
+}
 
-  std::string directory = std::filesystem::path(path).parent_path().string();
-  if (directory.empty()) directory = ".";
-  BoundedMaterialReader material_reader(directory);
+// What tinyobjloader read, and its errors one per line.
+struct ParsedObj {
+  std::string directory;  // the OBJ file's: its MTL files and textures are looked up there
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
-  std::string warning_text, error_text;
+  std::string warning_text;
+  std::vector<std::string> errors;
+};
+
+// tinyobjloader's reading of text, with the MTL files through BoundedMaterialReader; what it cannot
+// read is thrown, with the line when its message names one.
+ParsedObj parse_obj(const ObjSource& source, std::string text) {
+  const std::string& path = source.path;
+  ParsedObj obj;
+  obj.directory = std::filesystem::path(path).parent_path().string();
+  if (obj.directory.empty()) obj.directory = ".";
+  BoundedMaterialReader material_reader(obj.directory);
+  std::string error_text;
   std::istringstream stream(text);
   text = {};
-  // Polygons are triangulated below (triangulate_face), not by tinyobjloader.
-  const bool parsed =
-      tinyobj::LoadObj(&attrib, &shapes, &materials, &warning_text, &error_text, &stream, &material_reader,
-                       /*triangulate=*/false, /*default_vcols_fallback=*/false);
+  // Polygons are triangulated by gather_triangles (triangulate_face), not by tinyobjloader.
+  const bool parsed = tinyobj::LoadObj(&obj.attrib, &obj.shapes, &obj.materials, &obj.warning_text,
+                                       &error_text, &stream, &material_reader,
+                                       /*triangulate=*/false, /*default_vcols_fallback=*/false);
   if (!material_reader.problem().empty())
-    throw fail("OBJ file " + quoted(path) + ": " + material_reader.problem());
-  const std::vector<std::string> errors = split_lines(error_text);
+    throw source.fail("OBJ file " + quoted(path) + ": " + material_reader.problem());
+  obj.errors = split_lines(error_text);
   if (!parsed) {
-    const std::string message = errors.empty() ? "unknown error" : join(errors);
+    const std::string message = obj.errors.empty() ? "unknown error" : join(obj.errors);
     const int line = line_number_in(message);
     std::string where = "OBJ file " + quoted(path);
     if (line > 0) where += " line " + std::to_string(line);
-    throw fail("cannot read " + where + ": " + message);
+    throw source.fail("cannot read " + where + ": " + message);
   }
+  return obj;
+}
 
-  ObjImport result;
-  const std::string prefix = path + ": ";
-  // tinyobjloader only warns about out-of-range indices; the faces are checked one by one
-  // below, with better messages, so this is the fallback.
+// tinyobjloader's warnings and errors into warnings, each prefixed and once (a missing material
+// repeats); returns whether one of them was about an index out of range. tinyobjloader only
+// warns about out-of-range indices; the faces are checked one by one (check_face_indices), with
+// better messages, so this is the fallback.
+bool collect_warnings(const ParsedObj& obj, const std::string& prefix, std::vector<std::string>& warnings) {
   bool index_out_of_range = false;
-  std::vector<std::string> warnings = split_lines(warning_text);
-  warnings.insert(warnings.end(), errors.begin(), errors.end());
-  for (const std::string& line : warnings) {
+  std::vector<std::string> lines = split_lines(obj.warning_text);
+  lines.insert(lines.end(), obj.errors.begin(), obj.errors.end());
+  for (const std::string& line : lines) {
     if (line.find("out of bounds") != std::string::npos ||
         line.find("invalid vertex index") != std::string::npos) {
       index_out_of_range = true;
       continue;
     }
-    const std::string warning = prefix + line;  // once each: a missing material repeats
-    if (std::find(result.warnings.begin(), result.warnings.end(), warning) == result.warnings.end())
-      result.warnings.push_back(warning);
+    const std::string warning = prefix + line;
+    if (std::find(warnings.begin(), warnings.end(), warning) == warnings.end()) warnings.push_back(warning);
   }
+  return index_out_of_range;
+}
 
-  auto mesh = std::make_shared<TriangleMesh>();
-
+void read_positions(const ObjSource& source, const tinyobj::attrib_t& attrib, TriangleMesh& mesh) {
+  const std::string& path = source.path;
   const std::size_t vertex_count = attrib.vertices.size() / 3;
-  mesh->positions.reserve(vertex_count);
+  mesh.positions.reserve(vertex_count);
   for (std::size_t i = 0; i < vertex_count; ++i) {
     const Vec3 p{static_cast<double>(attrib.vertices[3 * i]), static_cast<double>(attrib.vertices[3 * i + 1]),
                  static_cast<double>(attrib.vertices[3 * i + 2])};
     if (!is_finite(p))
-      throw fail("OBJ file " + quoted(path) + ": vertex " + std::to_string(i + 1) +
-                 " has a non-finite coordinate");
+      throw source.fail("OBJ file " + quoted(path) + ": vertex " + std::to_string(i + 1) +
+                        " has a non-finite coordinate");
     // The scene file's limit (io/json_node.cpp): beyond it squared distances lose all
     // precision and ray offsets stop working.
     const double magnitude = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
     static_assert(kMaxSceneMagnitude == 1e16, "the message below names it");
     if (magnitude > kMaxSceneMagnitude)
-      throw fail("OBJ file " + quoted(path) + ": vertex " + std::to_string(i + 1) +
-                 ": magnitude above 1e16 is not supported (found " + fmt::format("{}", magnitude) + ")");
-    mesh->positions.push_back(p);
+      throw source.fail("OBJ file " + quoted(path) + ": vertex " + std::to_string(i + 1) +
+                        ": magnitude above 1e16 is not supported (found " + fmt::format("{}", magnitude) +
+                        ")");
+    mesh.positions.push_back(p);
   }
-  const std::size_t normal_count = attrib.normals.size() / 3;
-  const std::size_t texcoord_count = attrib.texcoords.size() / 2;
+}
 
-  // Gather the triangles with their attribute indices; check every index.
-  std::vector<std::array<tinyobj::index_t, 3>> corners;
-  std::size_t face_number = 0;
-  // The pre-scan saw the same faces in the same order (their counts agree with tinyobjloader's
-  // 8-bit ones, and the corners add up): it gives each face's line and its true corner count.
+// Whether the pre-scan saw the same faces in the same order (their counts agree with
+// tinyobjloader's 8-bit ones, and the corners add up): then it gives each face's line and its
+// true corner count.
+bool scan_matches(const ObjScan& scan, const std::vector<tinyobj::shape_t>& shapes) {
   std::size_t face_total = 0, index_total = 0, scan_total = 0;
   for (const tinyobj::shape_t& shape : shapes) {
     face_total += shape.mesh.num_face_vertices.size();
@@ -334,10 +342,53 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
     lines_known = scan.face_corners[face] % 256 == shapes[shape].mesh.num_face_vertices[in_shape];
     scan_total += scan.face_corners[face];
   }
-  lines_known = lines_known && scan_total == index_total;
+  return lines_known && scan_total == index_total;
+}
+
+// Every index of a face's corners refers to a vertex, normal or texture coordinate of the file;
+// describe_face() names the face in the error.
+template <typename DescribeFace>
+void check_face_indices(const ObjSource& source, const tinyobj::attrib_t& attrib,
+                        std::span<const tinyobj::index_t> indices, const DescribeFace& describe_face) {
+  const std::size_t vertex_count = attrib.vertices.size() / 3;
+  const std::size_t normal_count = attrib.normals.size() / 3;
+  const std::size_t texcoord_count = attrib.texcoords.size() / 2;
+  for (const tinyobj::index_t& index : indices) {
+    if (index.vertex_index < 0 || static_cast<std::size_t>(index.vertex_index) >= vertex_count)
+      throw source.fail(describe_face() + " refers to vertex " +
+                        std::to_string(static_cast<long long>(index.vertex_index) + 1) +
+                        " but the file has " + std::to_string(vertex_count) +
+                        " vertices (face index out of range)");
+    if (index.normal_index != -1 &&
+        (index.normal_index < 0 || static_cast<std::size_t>(index.normal_index) >= normal_count))
+      throw source.fail(describe_face() + " refers to normal " +
+                        std::to_string(static_cast<long long>(index.normal_index) + 1) +
+                        " but the file has " + std::to_string(normal_count) +
+                        " normals (face index out of range)");
+    if (index.texcoord_index != -1 &&
+        (index.texcoord_index < 0 || static_cast<std::size_t>(index.texcoord_index) >= texcoord_count))
+      throw source.fail(describe_face() + " refers to texture coordinate " +
+                        std::to_string(static_cast<long long>(index.texcoord_index) + 1) +
+                        " but the file has " + std::to_string(texcoord_count) +
+                        " texture coordinates (face index out of range)");
+  }
+}
+
+using TriangleCorners = std::array<tinyobj::index_t, 3>;
+
+// Gather the triangles with their attribute indices; check every index. Each face is triangulated
+// (triangulate_face) over the mesh's positions; each triangle's material goes to triangle_material.
+std::vector<TriangleCorners> gather_triangles(const ObjSource& source, const ParsedObj& obj,
+                                              const ObjScan& scan, const TriangleMesh& mesh,
+                                              std::vector<int>& triangle_material) {
+  const std::string& path = source.path;
+  std::vector<TriangleCorners> corners;
+  std::size_t face_number = 0;
+  // The pre-scan gives each face's line and its true corner count when it saw the same faces.
+  const bool lines_known = scan_matches(scan, obj.shapes);
   std::vector<Vec3> face_positions;
   std::vector<std::array<uint32_t, 3>> face_triangles;
-  for (const tinyobj::shape_t& shape : shapes) {
+  for (const tinyobj::shape_t& shape : obj.shapes) {
     const tinyobj::mesh_t& shape_mesh = shape.mesh;
     std::size_t offset = 0;
     for (std::size_t face = 0; face < shape_mesh.num_face_vertices.size(); ++face) {
@@ -345,163 +396,205 @@ ObjImport import_obj(const std::string& path, const SourceLocation& referenced_f
       const std::size_t count =
           lines_known ? scan.face_corners[face_number - 1] : shape_mesh.num_face_vertices[face];
       if (offset + count > shape_mesh.indices.size())
-        throw fail("OBJ file " + quoted(path) + ": inconsistent face data");
+        throw source.fail("OBJ file " + quoted(path) + ": inconsistent face data");
       const auto describe_face = [&] {
         return "OBJ file " + quoted(path) +
                (lines_known ? " line " + std::to_string(scan.face_lines[face_number - 1]) : std::string()) +
                ": face " + std::to_string(face_number) +
                (shape.name.empty() ? std::string() : " (object '" + shape.name + "')");
       };
-      for (std::size_t k = 0; k < count; ++k) {
-        const tinyobj::index_t& index = shape_mesh.indices[offset + k];
-        if (index.vertex_index < 0 || static_cast<std::size_t>(index.vertex_index) >= vertex_count)
-          throw fail(describe_face() + " refers to vertex " +
-                     std::to_string(static_cast<long long>(index.vertex_index) + 1) + " but the file has " +
-                     std::to_string(vertex_count) + " vertices (face index out of range)");
-        if (index.normal_index != -1 &&
-            (index.normal_index < 0 || static_cast<std::size_t>(index.normal_index) >= normal_count))
-          throw fail(describe_face() + " refers to normal " +
-                     std::to_string(static_cast<long long>(index.normal_index) + 1) + " but the file has " +
-                     std::to_string(normal_count) + " normals (face index out of range)");
-        if (index.texcoord_index != -1 &&
-            (index.texcoord_index < 0 || static_cast<std::size_t>(index.texcoord_index) >= texcoord_count))
-          throw fail(describe_face() + " refers to texture coordinate " +
-                     std::to_string(static_cast<long long>(index.texcoord_index) + 1) + " but the file has " +
-                     std::to_string(texcoord_count) + " texture coordinates (face index out of range)");
-      }
+      check_face_indices(source, obj.attrib,
+                         std::span<const tinyobj::index_t>(shape_mesh.indices).subspan(offset, count),
+                         describe_face);
       int material = face < shape_mesh.material_ids.size() ? shape_mesh.material_ids[face] : -1;
-      if (material < 0 || static_cast<std::size_t>(material) >= materials.size()) material = -1;
+      if (material < 0 || static_cast<std::size_t>(material) >= obj.materials.size()) material = -1;
       face_positions.clear();
       for (std::size_t k = 0; k < count; ++k)
         face_positions.push_back(
-            mesh->positions[static_cast<std::size_t>(shape_mesh.indices[offset + k].vertex_index)]);
+            mesh.positions[static_cast<std::size_t>(shape_mesh.indices[offset + k].vertex_index)]);
       if (const std::string problem = triangulate_face(face_positions, face_triangles); !problem.empty())
-        throw fail(describe_face() + " is " + problem);
+        throw source.fail(describe_face() + " is " + problem);
       for (const auto& [a, b, c] : face_triangles) {
         corners.push_back(
             {shape_mesh.indices[offset + a], shape_mesh.indices[offset + b], shape_mesh.indices[offset + c]});
-        result.triangle_material.push_back(material);
+        triangle_material.push_back(material);
       }
       offset += count;
     }
   }
-  if (index_out_of_range)
-    throw fail("OBJ file " + quoted(path) +
-               ": a face refers to a vertex, normal or texture coordinate that does not exist "
-               "(face index out of range)");
-  if (corners.empty()) throw fail("OBJ file " + quoted(path) + " has no triangles");
+  return corners;
+}
 
-  mesh->triangles.reserve(corners.size());
+// Which of the triangles' corners have a normal, and which a texture coordinate.
+struct CornerAttributes {
   bool all_normals = true;
   bool any_normals = false;
   bool all_uvs = true;
   bool any_uvs = false;
+};
+
+CornerAttributes add_triangles(const std::vector<TriangleCorners>& corners, TriangleMesh& mesh) {
+  CornerAttributes present;
+  mesh.triangles.reserve(corners.size());
   for (const auto& triangle : corners) {
-    mesh->triangles.push_back({static_cast<uint32_t>(triangle[0].vertex_index),
-                               static_cast<uint32_t>(triangle[1].vertex_index),
-                               static_cast<uint32_t>(triangle[2].vertex_index)});
+    mesh.triangles.push_back({static_cast<uint32_t>(triangle[0].vertex_index),
+                              static_cast<uint32_t>(triangle[1].vertex_index),
+                              static_cast<uint32_t>(triangle[2].vertex_index)});
     for (const tinyobj::index_t& index : triangle) {
-      any_normals = any_normals || index.normal_index >= 0;
-      all_normals = all_normals && index.normal_index >= 0;
-      any_uvs = any_uvs || index.texcoord_index >= 0;
-      all_uvs = all_uvs && index.texcoord_index >= 0;
+      present.any_normals = present.any_normals || index.normal_index >= 0;
+      present.all_normals = present.all_normals && index.normal_index >= 0;
+      present.any_uvs = present.any_uvs || index.texcoord_index >= 0;
+      present.all_uvs = present.all_uvs && index.texcoord_index >= 0;
     }
   }
+  return present;
+}
 
-  if (all_normals) {
-    std::size_t replaced = 0;
-    mesh->corner_normals.reserve(corners.size());
-    for (std::size_t t = 0; t < corners.size(); ++t) {
-      std::array<Vec3, 3> normals;
-      for (int k = 0; k < 3; ++k) {
-        const auto n = static_cast<std::size_t>(corners[t][k].normal_index);
-        const Vec3 value{static_cast<double>(attrib.normals[3 * n]),
-                         static_cast<double>(attrib.normals[3 * n + 1]),
-                         static_cast<double>(attrib.normals[3 * n + 2])};
-        if (!is_finite(value))
-          throw fail("OBJ file " + quoted(path) + ": normal " + std::to_string(n + 1) +
-                     " has a non-finite coordinate");
-        const double len = length(value);
-        if (len > 0 && std::isfinite(len)) {
-          normals[k] = value / len;
-        } else {
-          const Vec3 face = mesh->face_cross(t);
-          normals[k] = length_squared(face) > 0 ? normalize(face) : Vec3{};
-          ++replaced;
-        }
+// Every corner's normal, unit length; a zero-length one replaced by the face normal (with a warning).
+void add_corner_normals(const ObjSource& source, const tinyobj::attrib_t& attrib,
+                        const std::vector<TriangleCorners>& corners, const std::string& prefix,
+                        TriangleMesh& mesh, std::vector<std::string>& warnings) {
+  std::size_t replaced = 0;
+  mesh.corner_normals.reserve(corners.size());
+  for (std::size_t t = 0; t < corners.size(); ++t) {
+    std::array<Vec3, 3> normals;
+    for (int k = 0; k < 3; ++k) {
+      const auto n = static_cast<std::size_t>(corners[t][k].normal_index);
+      const Vec3 value{static_cast<double>(attrib.normals[3 * n]),
+                       static_cast<double>(attrib.normals[3 * n + 1]),
+                       static_cast<double>(attrib.normals[3 * n + 2])};
+      if (!is_finite(value))
+        throw source.fail("OBJ file " + quoted(source.path) + ": normal " + std::to_string(n + 1) +
+                          " has a non-finite coordinate");
+      const double len = length(value);
+      if (len > 0 && std::isfinite(len)) {
+        normals[k] = value / len;
+      } else {
+        const Vec3 face = mesh.face_cross(t);
+        normals[k] = length_squared(face) > 0 ? normalize(face) : Vec3{};
+        ++replaced;
       }
-      mesh->corner_normals.push_back(normals);
     }
-    if (replaced > 0)
-      result.warnings.push_back(prefix + std::to_string(replaced) +
-                                " zero-length vertex normal(s) replaced by the face normal");
-  } else if (any_normals) {
+    mesh.corner_normals.push_back(normals);
+  }
+  if (replaced > 0)
+    warnings.push_back(prefix + std::to_string(replaced) +
+                       " zero-length vertex normal(s) replaced by the face normal");
+}
+
+// Every corner's texture coordinate; a triangle without them all gets the default per-triangle uvs.
+void add_corner_uvs(const ObjSource& source, const tinyobj::attrib_t& attrib,
+                    const std::vector<TriangleCorners>& corners, TriangleMesh& mesh) {
+  constexpr std::array<Vec2, 3> kDefault{Vec2{0, 0}, Vec2{1, 0}, Vec2{1, 1}};
+  mesh.corner_uvs.reserve(corners.size());
+  for (const auto& triangle : corners) {
+    std::array<Vec2, 3> uvs = kDefault;
+    const bool has_all = std::all_of(triangle.begin(), triangle.end(),
+                                     [](const tinyobj::index_t& i) { return i.texcoord_index >= 0; });
+    if (has_all) {
+      for (int k = 0; k < 3; ++k) {
+        const auto n = static_cast<std::size_t>(triangle[k].texcoord_index);
+        uvs[k] = {static_cast<double>(attrib.texcoords[2 * n]),
+                  static_cast<double>(attrib.texcoords[2 * n + 1])};
+        if (!std::isfinite(uvs[k].x) || !std::isfinite(uvs[k].y))
+          throw source.fail("OBJ file " + quoted(source.path) + ": texture coordinate " +
+                            std::to_string(n + 1) + " is not finite");
+      }
+    }
+    mesh.corner_uvs.push_back(uvs);
+  }
+}
+
+// An MTL material as the scene's materials take it, its texture resolved against directory.
+ImportedMaterial import_material(const ObjSource& source, const tinyobj::material_t& material_source,
+                                 const std::string& directory) {
+  const std::string& path = source.path;
+  ImportedMaterial material;
+  material.name = material_source.name;
+  material.ka = to_color(material_source.ambient);
+  material.kd = to_color(material_source.diffuse);
+  material.ke = to_color(material_source.emission);
+  material.ks = to_color(material_source.specular).average();
+  material.shininess = static_cast<double>(material_source.shininess);
+  material.kt = std::clamp(1.0 - static_cast<double>(material_source.dissolve), 0.0, 1.0);
+  material.ior = static_cast<double>(material_source.ior);
+  if (!material_source.diffuse_texname.empty()) {
+    const std::filesystem::path texture(material_source.diffuse_texname);
+    material.diffuse_texture =
+        texture.is_absolute() ? texture.string() : (std::filesystem::path(directory) / texture).string();
+  }
+  if (!finite_color(material.ka) || !finite_color(material.kd) || !finite_color(material.ke) ||
+      !std::isfinite(material.ks) || !std::isfinite(material.shininess) || !std::isfinite(material.ior) ||
+      std::isnan(material.kt))
+    throw source.fail("OBJ file " + quoted(path) + ": material '" + material_source.name +
+                      "' has a non-finite value");
+  // The ranges a scene file's materials must respect (scene/material_registry.cpp).
+  const auto non_negative = [](const Color& c) { return c.r >= 0 && c.g >= 0 && c.b >= 0; };
+  std::string problem;
+  if (!non_negative(material.ka) || !non_negative(material.kd) || !non_negative(material.ke)) {
+    problem = "Ka, Kd and Ke must be >= 0";
+  } else if (material.ks < 0) {
+    problem = "Ks must be >= 0";
+  } else if (material.shininess < 0) {
+    problem = "Ns must be >= 0";
+  } else if (!(material.ior > 0)) {
+    problem = "Ni must be > 0";
+  }
+  if (!problem.empty())
+    throw source.fail("OBJ file " + quoted(path) + ": material '" + material_source.name + "': " + problem);
+  return material;
+}
+
+}  // namespace
+
+void require_mesh_file(const std::string& path, const std::string& format,
+                       const SourceLocation& referenced_from) {
+  std::error_code ec;
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status))
+    throw InputError(referenced_from, format + " file " + quoted(path) + " not found");
+  if (!std::filesystem::is_regular_file(status))
+    throw InputError(referenced_from, format + " file " + quoted(path) + " is not a regular file");
+}
+
+ObjImport import_obj(const std::string& path, const SourceLocation& referenced_from) {
+  require_mesh_file(path, "OBJ", referenced_from);
+  const ObjSource source{path, referenced_from};
+  std::string text = read_obj_text(source);
+  const ObjScan scan = scan_obj(text);
+  if (!scan.problem.empty()) throw source.fail("OBJ file " + quoted(path) + " " + scan.problem);
+  const ParsedObj obj = parse_obj(source, std::move(text));
+
+  ObjImport result;
+  const std::string prefix = path + ": ";
+  const bool index_out_of_range = collect_warnings(obj, prefix, result.warnings);
+  auto mesh = std::make_shared<TriangleMesh>();
+  read_positions(source, obj.attrib, *mesh);
+  const std::vector<TriangleCorners> corners =
+      gather_triangles(source, obj, scan, *mesh, result.triangle_material);
+  if (index_out_of_range)
+    throw source.fail("OBJ file " + quoted(path) +
+                      ": a face refers to a vertex, normal or texture coordinate that does not exist "
+                      "(face index out of range)");
+  if (corners.empty()) throw source.fail("OBJ file " + quoted(path) + " has no triangles");
+
+  const CornerAttributes present = add_triangles(corners, *mesh);
+  if (present.all_normals) {
+    add_corner_normals(source, obj.attrib, corners, prefix, *mesh, result.warnings);
+  } else if (present.any_normals) {
     result.warnings.push_back(prefix +
                               "some faces have vertex normals and some do not; using flat "
                               "normals for the whole mesh");
   }
-
-  if (any_uvs) {
-    if (!all_uvs)
+  if (present.any_uvs) {
+    if (!present.all_uvs)
       result.warnings.push_back(prefix +
                                 "some faces have texture coordinates and some do not; the "
                                 "others get the default per-triangle uvs");
-    constexpr std::array<Vec2, 3> kDefault{Vec2{0, 0}, Vec2{1, 0}, Vec2{1, 1}};
-    mesh->corner_uvs.reserve(corners.size());
-    for (const auto& triangle : corners) {
-      std::array<Vec2, 3> uvs = kDefault;
-      const bool has_all = std::all_of(triangle.begin(), triangle.end(),
-                                       [](const tinyobj::index_t& i) { return i.texcoord_index >= 0; });
-      if (has_all) {
-        for (int k = 0; k < 3; ++k) {
-          const auto n = static_cast<std::size_t>(triangle[k].texcoord_index);
-          uvs[k] = {static_cast<double>(attrib.texcoords[2 * n]),
-                    static_cast<double>(attrib.texcoords[2 * n + 1])};
-          if (!std::isfinite(uvs[k].x) || !std::isfinite(uvs[k].y))
-            throw fail("OBJ file " + quoted(path) + ": texture coordinate " + std::to_string(n + 1) +
-                       " is not finite");
-        }
-      }
-      mesh->corner_uvs.push_back(uvs);
-    }
+    add_corner_uvs(source, obj.attrib, corners, *mesh);
   }
-
-  for (const tinyobj::material_t& source : materials) {
-    ImportedMaterial material;
-    material.name = source.name;
-    material.ka = to_color(source.ambient);
-    material.kd = to_color(source.diffuse);
-    material.ke = to_color(source.emission);
-    material.ks = to_color(source.specular).average();
-    material.shininess = static_cast<double>(source.shininess);
-    material.kt = std::clamp(1.0 - static_cast<double>(source.dissolve), 0.0, 1.0);
-    material.ior = static_cast<double>(source.ior);
-    if (!source.diffuse_texname.empty()) {
-      const std::filesystem::path texture(source.diffuse_texname);
-      material.diffuse_texture =
-          texture.is_absolute() ? texture.string() : (std::filesystem::path(directory) / texture).string();
-    }
-    if (!finite_color(material.ka) || !finite_color(material.kd) || !finite_color(material.ke) ||
-        !std::isfinite(material.ks) || !std::isfinite(material.shininess) || !std::isfinite(material.ior) ||
-        std::isnan(material.kt))
-      throw fail("OBJ file " + quoted(path) + ": material '" + source.name + "' has a non-finite value");
-    // The ranges a scene file's materials must respect (scene/material_registry.cpp).
-    const auto non_negative = [](const Color& c) { return c.r >= 0 && c.g >= 0 && c.b >= 0; };
-    std::string problem;
-    if (!non_negative(material.ka) || !non_negative(material.kd) || !non_negative(material.ke)) {
-      problem = "Ka, Kd and Ke must be >= 0";
-    } else if (material.ks < 0) {
-      problem = "Ks must be >= 0";
-    } else if (material.shininess < 0) {
-      problem = "Ns must be >= 0";
-    } else if (!(material.ior > 0)) {
-      problem = "Ni must be > 0";
-    }
-    if (!problem.empty())
-      throw fail("OBJ file " + quoted(path) + ": material '" + source.name + "': " + problem);
-    result.materials.push_back(std::move(material));
-  }
-
+  for (const tinyobj::material_t& material_source : obj.materials)
+    result.materials.push_back(import_material(source, material_source, obj.directory));
   result.mesh = std::move(mesh);
   return result;
 }

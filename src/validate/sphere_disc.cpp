@@ -349,56 +349,60 @@ std::vector<double> degrees(const std::vector<double>& radians) {
   return out;
 }
 
-}  // namespace
+const BasisKind kComparedBases[] = {BasisKind::radial, BasisKind::normalized, BasisKind::shepard};
+const double kComparedSpacings[] = {3, 1};
 
-nlohmann::json run_sphere_disc_validation(const std::string& directory, const SphereDiscRun& run,
-                                          std::ostream* log) {
-  namespace fs = std::filesystem;
-  const fs::path out(directory);
-  std::error_code error;
-  fs::create_directories(out, error);
-  if (error || !fs::is_directory(out)) throw std::runtime_error("cannot create the directory " + directory);
-  auto say = [&](const std::string& line) {
+// What the steps of the validation share: the run's options, the folder its files go to, where its
+// progress lines go, the scene with its reference solution, and the axes of every plot.
+struct SphereDiscReport {
+  SphereDiscReport(const SphereDiscRun& run, const std::filesystem::path& out, std::ostream* log,
+                   const SphereDiscScene& scene, const ReferenceSolution& reference)
+      : run(run),
+        out(out),
+        log(log),
+        scene(scene),
+        reference(reference),
+        alpha_degrees(degrees(reference.alpha)),
+        // Every panel titled, both axes named, every curve named in the legend.
+        disc_axes{{},
+                  0,
+                  scene.disc_radius,
+                  0,
+                  0,
+                  5,
+                  0,
+                  "disc: radiosity along a radius",
+                  "distance u from the disc's centre",
+                  "radiosity B"},
+        sphere_axes{{},
+                    -90,
+                    90,
+                    0,
+                    0,
+                    30,
+                    0,
+                    "sphere: radiosity along a meridian",
+                    "angle α from the equator (degrees; 90: top)",
+                    "radiosity B"} {}
+
+  const SphereDiscRun& run;
+  const std::filesystem::path& out;
+  std::ostream* log;
+  const SphereDiscScene& scene;
+  const ReferenceSolution& reference;
+  const std::vector<double> alpha_degrees;
+  const PlotPanel disc_axes, sphere_axes;
+
+  void say(const std::string& line) const {
     if (log) *log << line << std::endl;
-  };
-  SphereDiscScene scene;
-  ReferenceSettings settings;
-  if (run.quick) {  // a disc of radius 15 (a seventh of the sites), a coarser reference
-    scene.disc_radius = 15;
-    settings.disc_rings = settings.sphere_rings = settings.azimuths = 30;
   }
-  auto start = std::chrono::steady_clock::now();
-  const ReferenceSolution reference(scene, settings);
-  const double reference_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  say(fmt::format("reference: n = m = k = {}, {} iterations, last change {:.3g}, {:.2f} s",
-                  settings.disc_rings, settings.iterations, reference.last_change, reference_seconds));
 
-  nlohmann::json result;
-  result["quick"] = run.quick;
-  result["scene"] = {{"sphere_radius", scene.sphere_radius},
-                     {"disc_radius", scene.disc_radius},
-                     {"height", scene.height},
-                     {"sphere_albedo", scene.sphere_albedo},
-                     {"disc_albedo", scene.disc_albedo},
-                     {"light", scene.light},
-                     {"units", "radiosity (exitance) B; radiance is B/pi"}};
-  double reference_largest = 0;
-  for (const double v : reference.disc_total) reference_largest = std::max(reference_largest, v);
-  for (const double v : reference.sphere_total) reference_largest = std::max(reference_largest, v);
-  result["reference"] = {{"n", settings.disc_rings},
-                         {"m", settings.sphere_rings},
-                         {"k", settings.azimuths},
-                         {"iterations", settings.iterations},
-                         {"last_change", reference.last_change},
-                         {"average_direct", settings.average_direct},
-                         {"largest_total", reference_largest},
-                         {"seconds", reference_seconds}};
-  if (run.refine) {
-    // The refined reference evaluated at this one's nodes (Nyström): how far from converged it is.
+  // The refined reference evaluated at this one's nodes (Nyström): how far from converged it is.
+  nlohmann::json refine_reference() const {
+    const ReferenceSettings& settings = reference.settings();
     ReferenceSettings fine = settings;
     fine.disc_rings = fine.sphere_rings = fine.azimuths = 4 * settings.disc_rings;
-    start = std::chrono::steady_clock::now();
+    const auto start = std::chrono::steady_clock::now();
     const ReferenceSolution refined(scene, fine);
     std::vector<double> disc_fine(reference.u.size()), sphere_fine(reference.alpha.size());
     tbb::parallel_for(std::size_t(0), reference.u.size(),
@@ -415,45 +419,23 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
     const CurveErrors thesis_difference =
         curve_errors(thesis.disc_total, disc_fine, thesis.sphere_total, sphere_fine);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    result["reference"]["refinement"] = {{"n", fine.disc_rings},
-                                         {"difference", to_json(difference)},
-                                         {"pointwise_direct_difference", to_json(thesis_difference)},
-                                         {"seconds", seconds}};
     say(
         fmt::format("refined reference n = m = k = {}: largest difference {:.3g} ({:.3g} % of the largest), "
                     "{:.3g} % with the thesis's pointwise direct term; {:.1f} s",
                     fine.disc_rings, difference.max, 100 * difference.max_relative,
                     100 * thesis_difference.max_relative, seconds));
+    return {{"n", fine.disc_rings},
+            {"difference", to_json(difference)},
+            {"pointwise_direct_difference", to_json(thesis_difference)},
+            {"seconds", seconds}};
   }
 
-  const std::vector<double> alpha_degrees = degrees(reference.alpha);
-  write_text_atomically(out / "reference_disc.csv",
-                        csv("u,direct,total", reference.u, {&reference.disc_direct, &reference.disc_total}));
-  write_text_atomically(
-      out / "reference_sphere.csv",
-      csv("alpha_deg,direct,total", alpha_degrees, {&reference.sphere_direct, &reference.sphere_total}));
-  // Every panel titled, both axes named, every curve named in the legend.
-  const PlotPanel disc_axes{{},
-                            0,
-                            scene.disc_radius,
-                            0,
-                            0,
-                            5,
-                            0,
-                            "disc: radiosity along a radius",
-                            "distance u from the disc's centre",
-                            "radiosity B"};
-  const PlotPanel sphere_axes{{},
-                              -90,
-                              90,
-                              0,
-                              0,
-                              30,
-                              0,
-                              "sphere: radiosity along a meridian",
-                              "angle α from the equator (degrees; 90: top)",
-                              "radiosity B"};
-  {
+  void write_reference() const {
+    write_text_atomically(out / "reference_disc.csv", csv("u,direct,total", reference.u,
+                                                          {&reference.disc_direct, &reference.disc_total}));
+    write_text_atomically(
+        out / "reference_sphere.csv",
+        csv("alpha_deg,direct,total", alpha_degrees, {&reference.sphere_direct, &reference.sphere_total}));
     PlotPanel disc = disc_axes, sphere = sphere_axes;
     disc.curves = {
         {reference.u, reference.disc_direct, kReferenceDirect, 2, false, false, "reference, direct"},
@@ -464,7 +446,7 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
   }
 
   // One FE solve's settings; quick: a coarser camera grid and fewer azimuths.
-  const auto fe_settings = [&](BasisKind kind, double spacing, const std::string& transport) {
+  FeSettings fe_settings(BasisKind kind, double spacing, const std::string& transport) const {
     FeSettings fe;
     fe.basis = kind;
     fe.spacing = spacing;
@@ -474,110 +456,131 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
       fe.azimuths = 16;
     }
     return fe;
-  };
-  nlohmann::json bases = nlohmann::json::object();
-  const BasisKind kinds[] = {BasisKind::radial, BasisKind::normalized, BasisKind::shepard};
-  const double spacings[] = {3, 1};
-  std::map<double, std::vector<std::pair<BasisKind, FeCurves>>> by_spacing;
-  for (const BasisKind kind : kinds) {
-    for (const double spacing : spacings) {
-      const FeCurves curves =
-          solve_fe(scene, fe_settings(kind, spacing, "flat"), reference.u, reference.alpha);
-      const std::string name = fmt::format("fe_{}_delta{}", std::string(kBasisNames.name(kind)), spacing);
-      write_text_atomically(out / (name + "_disc.csv"),
-                            csv("u,direct,total,total_meridian", reference.u,
-                                {&curves.disc_direct_mean, &curves.disc_mean, &curves.disc_meridian}));
-      write_text_atomically(out / (name + "_sphere.csv"),
-                            csv("alpha_deg,direct,total,total_meridian", alpha_degrees,
-                                {&curves.sphere_direct_mean, &curves.sphere_mean, &curves.sphere_meridian}));
-      const CurveErrors mean =
-          curve_errors(curves.disc_mean, reference.disc_total, curves.sphere_mean, reference.sphere_total);
-      const CurveErrors meridian = curve_errors(curves.disc_meridian, reference.disc_total,
-                                                curves.sphere_meridian, reference.sphere_total);
-      const CurveErrors direct = curve_errors(curves.disc_direct_mean, reference.disc_direct,
-                                              curves.sphere_direct_mean, reference.sphere_direct);
-      // The indirect light alone (total − direct): smooth, no shadow edge to interpolate.
-      std::vector<double> fe_disc_indirect, ref_disc_indirect, fe_sphere_indirect, ref_sphere_indirect;
-      for (std::size_t j = 0; j < reference.u.size(); ++j) {
-        fe_disc_indirect.push_back(curves.disc_mean[j] - curves.disc_direct_mean[j]);
-        ref_disc_indirect.push_back(reference.disc_total[j] - reference.disc_direct[j]);
-      }
-      for (std::size_t i = 0; i < reference.alpha.size(); ++i) {
-        fe_sphere_indirect.push_back(curves.sphere_mean[i] - curves.sphere_direct_mean[i]);
-        ref_sphere_indirect.push_back(reference.sphere_total[i] - reference.sphere_direct[i]);
-      }
-      const CurveErrors indirect =
-          curve_errors(fe_disc_indirect, ref_disc_indirect, fe_sphere_indirect, ref_sphere_indirect);
-      nlohmann::json entry = to_json(mean);
-      entry["spacing"] = spacing;
-      entry["meridian"] = to_json(meridian);
-      entry["direct"] = to_json(direct);
-      entry["indirect"] = to_json(indirect);
-      entry["sites"] = curves.sites;
-      entry["disc_sites"] = curves.disc_sites;
-      entry["sphere_sites"] = curves.sphere_sites;
-      entry["uncovered_points"] = curves.uncovered;
-      entry["converged"] = curves.converged;         // as solve_transfer reports it
-      entry["diverged"] = !std::isfinite(mean.rms);  // JSON has no infinity: the errors are then null
-      entry["seconds"] = curves.seconds;
-      bases[std::string(kBasisNames.name(kind))][fmt::format("delta{}", spacing)] = entry;
-      say(fmt::format(
-          "{:<10} delta {}: {:>5} sites, RMS {:.4g} ({:.3g} %), max {:.4g} ({:.3g} %), indirect "
-          "RMS {:.4g}; {:.1f} s",
-          std::string(kBasisNames.name(kind)), spacing, curves.sites, mean.rms, 100 * mean.rms_relative,
-          mean.max, 100 * mean.max_relative, indirect.rms, curves.seconds));
-
-      const Color color = basis_color(kind);
-      const std::string basis(kBasisNames.name(kind));
-      PlotPanel disc = disc_axes, sphere = sphere_axes;
-      disc.title += fmt::format(", {} basis, Δ = {}", basis, spacing);
-      sphere.title += fmt::format(", Δ = {}", spacing);
-      disc.curves = {
-          {reference.u, reference.disc_direct, kReferenceDirect, 2, false, false, "reference, direct"},
-          {reference.u, reference.disc_total, kReferenceTotal, 2, false, false, "reference, total"},
-          {reference.u, curves.disc_direct_mean, lighter(color), 2, true, false, basis + ", direct"},
-          {reference.u, curves.disc_mean, color, 3, false, false, basis + ", total (azimuth mean)"},
-          {reference.u, curves.disc_meridian, color, 1, false, false, basis + ", total (one meridian)"}};
-      sphere.curves = {{alpha_degrees, reference.sphere_direct, kReferenceDirect, 2, false, false, {}},
-                       {alpha_degrees, reference.sphere_total, kReferenceTotal, 2, false, false, {}},
-                       {alpha_degrees, curves.sphere_direct_mean, lighter(color), 2, true, false, {}},
-                       {alpha_degrees, curves.sphere_mean, color, 3, false, false, {}},
-                       {alpha_degrees, curves.sphere_meridian, color, 1, false, false, {}}};
-      write_plot(out / (name + ".png"), {disc, sphere});
-      by_spacing[spacing].emplace_back(kind, curves);
-    }
   }
-  result["bases"] = bases;
-  nlohmann::json best = nlohmann::json::object();
-  for (const double spacing : spacings) {
-    const std::string key = fmt::format("delta{}", spacing);
-    std::string winner;
-    double least = 0;
-    for (const BasisKind kind : kinds) {
-      const nlohmann::json& rms = bases[std::string(kBasisNames.name(kind))][key]["rms"];
-      if (!rms.is_number() || !std::isfinite(rms.get<double>())) continue;
-      if (winner.empty() || rms.get<double>() < least)
-        winner = std::string(kBasisNames.name(kind)), least = rms.get<double>();
+
+  // The three bases at each spacing (flat transport) against the reference: result's "bases", and
+  // per spacing the one of least RMS error, "least_rms".
+  void compare_bases(nlohmann::json& result) const {
+    nlohmann::json bases = nlohmann::json::object();
+    std::map<double, std::vector<std::pair<BasisKind, FeCurves>>> by_spacing;
+    for (const BasisKind kind : kComparedBases) {
+      for (const double spacing : kComparedSpacings) {
+        const FeCurves curves =
+            solve_fe(scene, fe_settings(kind, spacing, "flat"), reference.u, reference.alpha);
+        bases[std::string(kBasisNames.name(kind))][fmt::format("delta{}", spacing)] =
+            compare_basis(kind, spacing, curves);
+        by_spacing[spacing].emplace_back(kind, curves);
+      }
     }
-    best[key] = winner;
-    // All three bases against the reference's total.
+    result["bases"] = bases;
+    nlohmann::json best = nlohmann::json::object();
+    for (const double spacing : kComparedSpacings) {
+      const std::string key = fmt::format("delta{}", spacing);
+      std::string winner;
+      double least = 0;
+      for (const BasisKind kind : kComparedBases) {
+        const nlohmann::json& rms = bases[std::string(kBasisNames.name(kind))][key]["rms"];
+        if (!rms.is_number() || !std::isfinite(rms.get<double>())) continue;
+        if (winner.empty() || rms.get<double>() < least)
+          winner = std::string(kBasisNames.name(kind)), least = rms.get<double>();
+      }
+      best[key] = winner;
+      plot_bases_together(spacing, key, by_spacing[spacing]);
+    }
+    result["least_rms"] = best;
+  }
+
+  // One basis at one spacing: its curves written, its errors against the reference (returned as
+  // its entry of "bases"), its line of the log and its plot.
+  nlohmann::json compare_basis(BasisKind kind, double spacing, const FeCurves& curves) const {
+    const std::string name = fmt::format("fe_{}_delta{}", std::string(kBasisNames.name(kind)), spacing);
+    write_text_atomically(out / (name + "_disc.csv"),
+                          csv("u,direct,total,total_meridian", reference.u,
+                              {&curves.disc_direct_mean, &curves.disc_mean, &curves.disc_meridian}));
+    write_text_atomically(out / (name + "_sphere.csv"),
+                          csv("alpha_deg,direct,total,total_meridian", alpha_degrees,
+                              {&curves.sphere_direct_mean, &curves.sphere_mean, &curves.sphere_meridian}));
+    const CurveErrors mean =
+        curve_errors(curves.disc_mean, reference.disc_total, curves.sphere_mean, reference.sphere_total);
+    const CurveErrors meridian = curve_errors(curves.disc_meridian, reference.disc_total,
+                                              curves.sphere_meridian, reference.sphere_total);
+    const CurveErrors direct = curve_errors(curves.disc_direct_mean, reference.disc_direct,
+                                            curves.sphere_direct_mean, reference.sphere_direct);
+    const CurveErrors indirect = indirect_errors(curves);
+    nlohmann::json entry = to_json(mean);
+    entry["spacing"] = spacing;
+    entry["meridian"] = to_json(meridian);
+    entry["direct"] = to_json(direct);
+    entry["indirect"] = to_json(indirect);
+    entry["sites"] = curves.sites;
+    entry["disc_sites"] = curves.disc_sites;
+    entry["sphere_sites"] = curves.sphere_sites;
+    entry["uncovered_points"] = curves.uncovered;
+    entry["converged"] = curves.converged;         // as solve_transfer reports it
+    entry["diverged"] = !std::isfinite(mean.rms);  // JSON has no infinity: the errors are then null
+    entry["seconds"] = curves.seconds;
+    say(fmt::format(
+        "{:<10} delta {}: {:>5} sites, RMS {:.4g} ({:.3g} %), max {:.4g} ({:.3g} %), indirect "
+        "RMS {:.4g}; {:.1f} s",
+        std::string(kBasisNames.name(kind)), spacing, curves.sites, mean.rms, 100 * mean.rms_relative,
+        mean.max, 100 * mean.max_relative, indirect.rms, curves.seconds));
+    plot_basis(kind, spacing, curves, name);
+    return entry;
+  }
+
+  // The indirect light alone (total − direct): smooth, no shadow edge to interpolate.
+  CurveErrors indirect_errors(const FeCurves& curves) const {
+    std::vector<double> fe_disc_indirect, ref_disc_indirect, fe_sphere_indirect, ref_sphere_indirect;
+    for (std::size_t j = 0; j < reference.u.size(); ++j) {
+      fe_disc_indirect.push_back(curves.disc_mean[j] - curves.disc_direct_mean[j]);
+      ref_disc_indirect.push_back(reference.disc_total[j] - reference.disc_direct[j]);
+    }
+    for (std::size_t i = 0; i < reference.alpha.size(); ++i) {
+      fe_sphere_indirect.push_back(curves.sphere_mean[i] - curves.sphere_direct_mean[i]);
+      ref_sphere_indirect.push_back(reference.sphere_total[i] - reference.sphere_direct[i]);
+    }
+    return curve_errors(fe_disc_indirect, ref_disc_indirect, fe_sphere_indirect, ref_sphere_indirect);
+  }
+
+  void plot_basis(BasisKind kind, double spacing, const FeCurves& curves, const std::string& name) const {
+    const Color color = basis_color(kind);
+    const std::string basis(kBasisNames.name(kind));
+    PlotPanel disc = disc_axes, sphere = sphere_axes;
+    disc.title += fmt::format(", {} basis, Δ = {}", basis, spacing);
+    sphere.title += fmt::format(", Δ = {}", spacing);
+    disc.curves = {
+        {reference.u, reference.disc_direct, kReferenceDirect, 2, false, false, "reference, direct"},
+        {reference.u, reference.disc_total, kReferenceTotal, 2, false, false, "reference, total"},
+        {reference.u, curves.disc_direct_mean, lighter(color), 2, true, false, basis + ", direct"},
+        {reference.u, curves.disc_mean, color, 3, false, false, basis + ", total (azimuth mean)"},
+        {reference.u, curves.disc_meridian, color, 1, false, false, basis + ", total (one meridian)"}};
+    sphere.curves = {{alpha_degrees, reference.sphere_direct, kReferenceDirect, 2, false, false, {}},
+                     {alpha_degrees, reference.sphere_total, kReferenceTotal, 2, false, false, {}},
+                     {alpha_degrees, curves.sphere_direct_mean, lighter(color), 2, true, false, {}},
+                     {alpha_degrees, curves.sphere_mean, color, 3, false, false, {}},
+                     {alpha_degrees, curves.sphere_meridian, color, 1, false, false, {}}};
+    write_plot(out / (name + ".png"), {disc, sphere});
+  }
+
+  // All three bases against the reference's total.
+  void plot_bases_together(double spacing, const std::string& key,
+                           const std::vector<std::pair<BasisKind, FeCurves>>& solved) const {
     PlotPanel disc = disc_axes, sphere = sphere_axes;
     disc.title = fmt::format("disc, Δ = {}: each basis's total", spacing);
     sphere.title = fmt::format("sphere, Δ = {}", spacing);
     disc.curves = {{reference.u, reference.disc_total, kReferenceTotal, 2, false, false, "reference, total"}};
     sphere.curves = {{alpha_degrees, reference.sphere_total, kReferenceTotal, 2, false, false, {}}};
-    for (const auto& [kind, curves] : by_spacing[spacing]) {
+    for (const auto& [kind, curves] : solved) {
       disc.curves.push_back({reference.u, curves.disc_mean, basis_color(kind), 2, false, false,
                              std::string(kBasisNames.name(kind))});
       sphere.curves.push_back({alpha_degrees, curves.sphere_mean, basis_color(kind), 2, false, false, {}});
     }
     write_plot(out / fmt::format("compare_{}.png", key), {disc, sphere});
   }
-  result["least_rms"] = best;
 
   // The flat and the hierarchical transport (normalized basis) at several spacings, each
   // with its precomputation time: which is more accurate for the same time.
-  {
+  nlohmann::json compare_transports() const {
     std::string table = "transport,spacing,sites,entries,precompute_seconds,rms,rms_relative\n";
     nlohmann::json runs = nlohmann::json::array();
     const std::vector<std::pair<std::string, std::vector<double>>> plan =
@@ -606,8 +609,57 @@ nlohmann::json run_sphere_disc_validation(const std::string& directory, const Sp
             100 * mean.rms_relative));
       }
     write_text_atomically(out / "transport.csv", table);
-    result["transport"] = runs;
+    return runs;
   }
+};
+
+}  // namespace
+
+nlohmann::json run_sphere_disc_validation(const std::string& directory, const SphereDiscRun& run,
+                                          std::ostream* log) {
+  namespace fs = std::filesystem;
+  const fs::path out(directory);
+  std::error_code error;
+  fs::create_directories(out, error);
+  if (error || !fs::is_directory(out)) throw std::runtime_error("cannot create the directory " + directory);
+  SphereDiscScene scene;
+  ReferenceSettings settings;
+  if (run.quick) {  // a disc of radius 15 (a seventh of the sites), a coarser reference
+    scene.disc_radius = 15;
+    settings.disc_rings = settings.sphere_rings = settings.azimuths = 30;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const ReferenceSolution reference(scene, settings);
+  const double reference_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const SphereDiscReport report(run, out, log, scene, reference);
+  report.say(fmt::format("reference: n = m = k = {}, {} iterations, last change {:.3g}, {:.2f} s",
+                         settings.disc_rings, settings.iterations, reference.last_change, reference_seconds));
+
+  nlohmann::json result;
+  result["quick"] = run.quick;
+  result["scene"] = {{"sphere_radius", scene.sphere_radius},
+                     {"disc_radius", scene.disc_radius},
+                     {"height", scene.height},
+                     {"sphere_albedo", scene.sphere_albedo},
+                     {"disc_albedo", scene.disc_albedo},
+                     {"light", scene.light},
+                     {"units", "radiosity (exitance) B; radiance is B/pi"}};
+  double reference_largest = 0;
+  for (const double v : reference.disc_total) reference_largest = std::max(reference_largest, v);
+  for (const double v : reference.sphere_total) reference_largest = std::max(reference_largest, v);
+  result["reference"] = {{"n", settings.disc_rings},
+                         {"m", settings.sphere_rings},
+                         {"k", settings.azimuths},
+                         {"iterations", settings.iterations},
+                         {"last_change", reference.last_change},
+                         {"average_direct", settings.average_direct},
+                         {"largest_total", reference_largest},
+                         {"seconds", reference_seconds}};
+  if (run.refine) result["reference"]["refinement"] = report.refine_reference();
+  report.write_reference();
+  report.compare_bases(result);
+  result["transport"] = report.compare_transports();
   result["error_definition"] =
       "FE azimuth mean (or meridian) minus reference total at the reference's n disc nodes and m sphere "
       "nodes "
