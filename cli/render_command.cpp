@@ -436,50 +436,60 @@ ConvergenceLog convergence_log_for(const RenderOptions& options, const MethodEnt
                         std::move(mask));
 }
 
-// Checks the options, loads the scene and makes the method; throws on bad input. Ranks other
-// than 0 check no outputs: only rank 0 writes.
-void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs) {
+// Every file the run writes: each checked writable as it is named (on the rank that writes), and
+// all of them checked against the run's inputs once the scene is loaded.
+class RunOutputs {
+ public:
+  explicit RunOutputs(bool writes_outputs) : writes_outputs_(writes_outputs) {}
+  void check_writable(const std::string& path, const char* option) {
+    if (writes_outputs_) cli::check_writable(path, option);
+    files_.push_back({path, option});
+  }
+  bool written_here() const { return writes_outputs_; }
+  const std::vector<OutputFile>& files() const { return files_; }
+
+ private:
+  bool writes_outputs_;
+  std::vector<OutputFile> files_;
+};
+
+// -o (named after the scene when not given), --seed and the files written besides the image: each
+// format known, each file writable. Returns the format of -o.
+ImageFormat check_output_options(RenderOptions& options, RunOutputs& outputs) {
   if (options.output.empty()) options.output = default_output(options);
   ImageFormat format;
   if (!image_format_for_path(options.output, format))
     throw BadArgument("-o " + options.output + ": unsupported extension (expected " + kImageExtensions + ")");
   if (options.seed && (*options.seed < 0 || *options.seed > (int64_t(1) << 53)))
     throw BadArgument("--seed must be in [0, 2^53]");
-  // Fail before the work, not after it: every output must be writable.
-  std::vector<OutputFile> outputs;  // every file the run writes, checked against its inputs below
-  const auto check_writable = [&](const std::string& path, const char* option) {
-    if (writes_outputs) cli::check_writable(path, option);
-    outputs.push_back({path, option});
-  };
-  check_writable(options.output, "-o");
-  if (!options.stats_path.empty()) check_writable(options.stats_path, "--stats");
+  outputs.check_writable(options.output, "-o");
+  if (!options.stats_path.empty()) outputs.check_writable(options.stats_path, "--stats");
   if (!options.aa_map_path.empty()) {
     ImageFormat map_format;
     if (!image_format_for_path(options.aa_map_path, map_format) || map_format != ImageFormat::png)
       throw BadArgument("--aa-map " + options.aa_map_path + ": expected a .png file");
-    check_writable(options.aa_map_path, "--aa-map");
+    outputs.check_writable(options.aa_map_path, "--aa-map");
   }
   if (!options.show_sites.empty()) {
     ImageFormat sites_format;
     if (!image_format_for_path(options.show_sites, sites_format))
       throw BadArgument("--show-sites " + options.show_sites + ": unsupported extension (expected " +
                         kImageExtensions + ")");
-    check_writable(options.show_sites, "--show-sites");
+    outputs.check_writable(options.show_sites, "--show-sites");
   }
   if (!options.export_solution.empty()) {
     SolutionFormat solution_format;
     if (!solution_format_for_path(options.export_solution, solution_format))
       throw BadArgument("--export-solution " + options.export_solution +
                         ": unsupported extension (expected .csv, .ply or .gltf)");
-    check_writable(options.export_solution, "--export-solution");
+    outputs.check_writable(options.export_solution, "--export-solution");
   }
-  // 002 §5.3: light set-ups rendered from one geometry; read (and refused) before anything else.
-  std::vector<LightSetup>& relight_frames = job.relight_frames;
-  if (!options.relight.empty()) relight_frames = load_light_setups(options.relight);
-  limit_threads(options.threads, job.thread_limit);  // lives as long as the job
-  job.threads =
-      static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+  return format;
+}
 
+// How long the run goes on (--spp, --time, --checkpoint-every: settings of the methods that take
+// them), --accel, --checkpoint, the convergence log's options and the checkpoint to resume.
+void check_run_options(RenderOptions& options, RunOutputs& outputs) {
   if (!options.accelerator.empty())
     options.scene.overrides.push_back("render.accelerator=" + options.accelerator);
   if (options.spp && (*options.spp < 1 || *options.spp > (1 << 24)))
@@ -491,7 +501,7 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   // The methods that take them say which of their settings the run limits set (the registry).
   for (std::string& assignment : run_limit_overrides({options.spp, options.time, options.checkpoint_every}))
     options.scene.overrides.push_back(std::move(assignment));
-  if (!options.checkpoint.empty()) check_writable(options.checkpoint, "--checkpoint");
+  if (!options.checkpoint.empty()) outputs.check_writable(options.checkpoint, "--checkpoint");
   const bool logs_error = !options.error_log.empty();
   if (logs_error != !options.error_reference.empty())
     throw BadArgument(
@@ -499,12 +509,12 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
   if (!logs_error && (!options.error_mask.empty() || options.error_every))
     throw BadArgument("--error-mask and --error-every need --error-log and --error-reference");
   if (options.error_every && *options.error_every < 1) throw BadArgument("--error-every must be at least 1");
-  if (logs_error) check_writable(options.error_log, "--error-log");
+  if (logs_error) outputs.check_writable(options.error_log, "--error-log");
   if (logs_error && world_cluster().distributed())
     throw BadArgument("--error-log runs in one process (start it without mpirun)");
   // Rank 0 alone reads the checkpoint: it need not be on the other ranks' disks.
   // A folder or a FIFO is named as what it is, not "no such file".
-  if (!options.resume.empty() && writes_outputs) {
+  if (!options.resume.empty() && outputs.written_here()) {
     std::error_code error;
     if (!std::filesystem::exists(options.resume, error))
       throw BadArgument("--resume " + options.resume + ": no such checkpoint file");
@@ -512,41 +522,51 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
         !problem.empty())
       throw BadArgument("--resume " + options.resume + ": " + problem);
   }
+}
+
+// Loads the scene (printing its warnings and the relight frames'), with --method and --seed in
+// place, and finds its method.
+void load_scene_and_method(const RenderOptions& options, RenderJob& job) {
   Stopwatch load_timer;
   job.scene = options.scene.load();
-  const std::unique_ptr<Scene>& scene = job.scene;
-  job.build_seconds = scene->accelerator_build_seconds();
+  Scene& scene = *job.scene;
+  job.build_seconds = scene.accelerator_build_seconds();
   job.load_seconds = load_timer.seconds() - job.build_seconds;
-  for (const auto& warning : scene->warnings) std::cerr << "candela: warning: " << warning << "\n";
+  for (const auto& warning : scene.warnings) std::cerr << "candela: warning: " << warning << "\n";
   // A frame's warnings as the scene's (a sun below the horizon rendered black unannounced).
-  for (const LightSetup& frame : relight_frames)
+  for (const LightSetup& frame : job.relight_frames)
     for (const auto& warning : frame.warnings)
       std::cerr << fmt::format("candela: warning: {}: frame {}: {}\n", options.relight, frame.name, warning);
   if (!options.method.empty()) {
-    scene->render.method = options.method;
-    scene->render.method_location = {"--method", 0, 0, {}};
+    scene.render.method = options.method;
+    scene.render.method_location = {"--method", 0, 0, {}};
   }
-  if (options.seed) scene->render.seed = static_cast<uint64_t>(*options.seed);
-  job.entry = find_method(scene->render.method);
-  const MethodEntry* entry = job.entry;
-  if (!entry) {
-    SourceLocation where = scene->render.method_location;
-    if (where.file.empty()) where = {scene->source, 0, 0, "render.method"};
+  if (options.seed) scene.render.seed = static_cast<uint64_t>(*options.seed);
+  job.entry = find_method(scene.render.method);
+  if (!job.entry) {
+    SourceLocation where = scene.render.method_location;
+    if (where.file.empty()) where = {scene.source, 0, 0, "render.method"};
     throw InputError(
-        where, "unknown method \"" + scene->render.method + "\" (expected one of: " + method_names() + ")");
+        where, "unknown method \"" + scene.render.method + "\" (expected one of: " + method_names() + ")");
   }
-  // An output the method cannot give would be silently missing: refused before any work.
-  const MethodCapabilities& can = entry->capabilities;
+}
+
+// An output the method cannot give would be silently missing: refused before any work. Also sets
+// --spp as the anti-aliasing samples of a method without passes; returns true when their mode is
+// left to choose_jittered_where_possible once the method is made.
+bool check_options_against_method(const RenderOptions& options, RenderJob& job) {
+  const MethodEntry& entry = *job.entry;
+  const MethodCapabilities& can = entry.capabilities;
   if (!options.export_solution.empty() && !can.solution)
-    refuse_option("--export-solution needs", &MethodCapabilities::solution, *entry);
+    refuse_option("--export-solution needs", &MethodCapabilities::solution, entry);
   if (!options.show_sites.empty() && !can.sites_image)
-    refuse_option("--show-sites needs", &MethodCapabilities::sites_image, *entry);
+    refuse_option("--show-sites needs", &MethodCapabilities::sites_image, entry);
   if (options.time && !can.progressive_passes)
-    refuse_option("--time needs", &MethodCapabilities::progressive_passes, *entry);
+    refuse_option("--time needs", &MethodCapabilities::progressive_passes, entry);
   // --spp for the other methods: their anti-aliasing samples (pbrt's --spp).
   bool choose_mode = false;
   if (options.spp && !can.progressive_passes) try {
-      choose_mode = set_samples_per_pixel(*scene, entry->name, *options.spp);
+      choose_mode = set_samples_per_pixel(*job.scene, entry.name, *options.spp);
     } catch (const std::invalid_argument& e) {
       throw BadArgument(std::string("--spp ") + e.what());
     }
@@ -554,88 +574,122 @@ void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs)
       !options.checkpoint.empty() || options.checkpoint_every || !options.resume.empty();
   if (checkpoint_options && !can.checkpoints)
     refuse_option("--checkpoint, --checkpoint-every and --resume need", &MethodCapabilities::checkpoints,
-                  *entry);
-  if (!relight_frames.empty() && !can.relighting)
-    refuse_option("--relight needs", &MethodCapabilities::relighting, *entry);
-  job.views = select_views(options.cameras, *scene);
-  const std::vector<View>& views = job.views;
-  if (!options.resume.empty() && views.size() != 1)
-    throw BadArgument("--resume continues one camera's image, not " + std::to_string(views.size()));
-  if (!relight_frames.empty() && views.size() != 1)
-    throw BadArgument("--relight renders one camera, not " + std::to_string(views.size()));
+                  entry);
+  if (!job.relight_frames.empty() && !can.relighting)
+    refuse_option("--relight needs", &MethodCapabilities::relighting, entry);
+  return choose_mode;
+}
+
+// --relight-page, and each relight frame's materials and files, before any work.
+void check_relight_outputs(const RenderOptions& options, const RenderJob& job, ImageFormat format,
+                           RunOutputs& outputs) {
   if (!options.relight_page.empty()) {
-    if (relight_frames.empty()) throw BadArgument("--relight-page needs --relight");
+    if (job.relight_frames.empty()) throw BadArgument("--relight-page needs --relight");
     if (format != ImageFormat::png)
       throw BadArgument("--relight-page shows the frames in a browser: -o must name a .png, not " +
                         options.output);
     if (std::filesystem::path(options.relight_page).extension() != ".html")
       throw BadArgument("--relight-page " + options.relight_page + ": expected a .html file");
-    check_writable(options.relight_page, "--relight-page");
+    outputs.check_writable(options.relight_page, "--relight-page");
   }
-  for (const LightSetup& frame : relight_frames) {
-    find_albedo_edit_targets(*scene, frame.albedo_edits);  // every material named, before any work
-    check_writable(path_with_suffix(options.output, frame.name), "-o");
+  for (const LightSetup& frame : job.relight_frames) {
+    find_albedo_edit_targets(*job.scene, frame.albedo_edits);  // every material named, before any work
+    outputs.check_writable(path_with_suffix(options.output, frame.name), "-o");
     if (!options.stats_path.empty())
-      check_writable(path_with_suffix(options.stats_path, frame.name), "--stats");
+      outputs.check_writable(path_with_suffix(options.stats_path, frame.name), "--stats");
   }
-  // One method object renders every view, so what it keeps between renders (a radiosity
-  // solution) is computed once.
-  job.method = create_method(*entry, *scene);
-  if (choose_mode) choose_jittered_where_possible(*scene, *job.method);
-  if (!options.aa_map_path.empty() && !can.samples_per_pixel)
-    refuse_option("--aa-map needs", &MethodCapabilities::samples_per_pixel, *entry);
-  if (!options.pixel.empty()) {  // printed instead of rendering: checked here, printed by the caller
-    if (!can.ray_trees) refuse_option("--pixel needs", &MethodCapabilities::ray_trees, *entry);
-    return;
-  }
+}
 
-  // Every view's region and outputs are checked before the first image is rendered.
-  std::vector<PixelRect>& regions = job.regions;
+// Every view's region and outputs are checked before the first image is rendered.
+void check_views(const RenderOptions& options, RenderJob& job, RunOutputs& outputs) {
+  const std::vector<View>& views = job.views;
+  Scene& scene = *job.scene;
   for (const View& view : views) {
     try {
-      regions.push_back(region_of(options, view.camera(*scene)));
+      job.regions.push_back(region_of(options, view.camera(scene)));
     } catch (const BadArgument& e) {
       if (views.size() == 1) throw;
       throw BadArgument(std::string(e.what()) + " (camera " + view.name + ")");
     }
     {  // What the method would hold for this view, against render.memory_limit_mib.
-      const CurrentCamera current(*scene, view);
+      const CurrentCamera current(scene, view);
       RenderRequest request;
-      request.region = regions.back();
-      refuse_beyond_memory_limit(*job.method, *scene, request);
+      request.region = job.regions.back();
+      refuse_beyond_memory_limit(*job.method, scene, request);
     }
-    check_writable(path_for_view(options.output, view, views.size()), "-o");
+    outputs.check_writable(path_for_view(options.output, view, views.size()), "-o");
     if (!options.stats_path.empty())
-      check_writable(path_for_view(options.stats_path, view, views.size()), "--stats");
+      outputs.check_writable(path_for_view(options.stats_path, view, views.size()), "--stats");
     if (!options.aa_map_path.empty())
-      check_writable(path_for_view(options.aa_map_path, view, views.size()), "--aa-map");
+      outputs.check_writable(path_for_view(options.aa_map_path, view, views.size()), "--aa-map");
     if (!options.show_sites.empty())
-      check_writable(path_for_view(options.show_sites, view, views.size()), "--show-sites");
+      outputs.check_writable(path_for_view(options.show_sites, view, views.size()), "--show-sites");
     if (!options.checkpoint.empty())
-      check_writable(path_for_view(options.checkpoint, view, views.size()), "--checkpoint");
+      outputs.check_writable(path_for_view(options.checkpoint, view, views.size()), "--checkpoint");
   }
-  if (logs_error) {
-    if (views.size() != 1 || !relight_frames.empty())
+}
+
+// Every file the run reads: the scene and the files it references, --relight and its frames'
+// luminaire files, the convergence log's reference and mask, and the checkpoint resumed.
+std::vector<std::string> run_inputs(const RenderOptions& options, const RenderJob& job) {
+  std::vector<std::string> inputs = job.scene->input_files;
+  inputs.push_back(options.scene.scene_path);
+  inputs.push_back(options.relight);
+  inputs.push_back(options.error_reference);
+  inputs.push_back(options.error_mask);
+  for (const LightSetup& frame : job.relight_frames)  // the frames' luminaire files
+    inputs.insert(inputs.end(), frame.input_files.begin(), frame.input_files.end());
+  // Resuming from the checkpoint it goes on writing is how a run continues (read whole first).
+  std::error_code error;
+  if (!options.resume.empty() && !(options.resume == options.checkpoint ||
+                                   std::filesystem::equivalent(options.resume, options.checkpoint, error)))
+    inputs.push_back(options.resume);
+  return inputs;
+}
+
+// Checks the options, loads the scene and makes the method; throws on bad input. Ranks other
+// than 0 check no outputs: only rank 0 writes.
+void prepare_render(RenderOptions& options, RenderJob& job, bool writes_outputs) {
+  // Fail before the work, not after it: every output must be writable.
+  RunOutputs outputs(writes_outputs);
+  const ImageFormat format = check_output_options(options, outputs);
+  // 002 §5.3: light set-ups rendered from one geometry; read (and refused) before anything else.
+  if (!options.relight.empty()) job.relight_frames = load_light_setups(options.relight);
+  limit_threads(options.threads, job.thread_limit);  // lives as long as the job
+  job.threads =
+      static_cast<int>(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+
+  check_run_options(options, outputs);
+  load_scene_and_method(options, job);
+  const bool choose_mode = check_options_against_method(options, job);
+  job.views = select_views(options.cameras, *job.scene);
+  if (!options.resume.empty() && job.views.size() != 1)
+    throw BadArgument("--resume continues one camera's image, not " + std::to_string(job.views.size()));
+  if (!job.relight_frames.empty() && job.views.size() != 1)
+    throw BadArgument("--relight renders one camera, not " + std::to_string(job.views.size()));
+  check_relight_outputs(options, job, format, outputs);
+  // One method object renders every view, so what it keeps between renders (a radiosity
+  // solution) is computed once.
+  const MethodEntry& entry = *job.entry;
+  job.method = create_method(entry, *job.scene);
+  if (choose_mode) choose_jittered_where_possible(*job.scene, *job.method);
+  const MethodCapabilities& can = entry.capabilities;
+  if (!options.aa_map_path.empty() && !can.samples_per_pixel)
+    refuse_option("--aa-map needs", &MethodCapabilities::samples_per_pixel, entry);
+  if (!options.pixel.empty()) {  // printed instead of rendering: checked here, printed by the caller
+    if (!can.ray_trees) refuse_option("--pixel needs", &MethodCapabilities::ray_trees, entry);
+    return;
+  }
+
+  check_views(options, job, outputs);
+  if (!options.error_log.empty()) {
+    if (job.views.size() != 1 || !job.relight_frames.empty())
       throw BadArgument("--error-log measures one image: one camera and no --relight");
-    job.convergence = convergence_log_for(options, *entry, *scene, regions.front());
+    job.convergence = convergence_log_for(options, entry, *job.scene, job.regions.front());
   }
   // No output may be an input of the run, nor two outputs one file.
-  if (writes_outputs) {
-    std::vector<std::string> inputs = scene->input_files;
-    inputs.push_back(options.scene.scene_path);
-    inputs.push_back(options.relight);
-    inputs.push_back(options.error_reference);
-    inputs.push_back(options.error_mask);
-    for (const LightSetup& frame : relight_frames)  // the frames' luminaire files
-      inputs.insert(inputs.end(), frame.input_files.begin(), frame.input_files.end());
-    // Resuming from the checkpoint it goes on writing is how a run continues (read whole first).
-    std::error_code error;
-    if (!options.resume.empty() && !(options.resume == options.checkpoint ||
-                                     std::filesystem::equivalent(options.resume, options.checkpoint, error)))
-      inputs.push_back(options.resume);
-    refuse_outputs_over_inputs(outputs, inputs);
-  }
-  job.fingerprint = can.checkpoints ? scene_fingerprint(options.scene, *scene) : std::string();
+  if (writes_outputs) refuse_outputs_over_inputs(outputs.files(), run_inputs(options, job));
+  job.fingerprint = can.checkpoints ? scene_fingerprint(options.scene, *job.scene) : std::string();
 }
 
 // Distributed runs: every rank prepares the same job; then they agree, so that a rank
@@ -667,230 +721,306 @@ void prepare_everywhere(RenderOptions& options, RenderJob& job, Cluster& cluster
   throw PeerFailure(2);
 }
 
+// Rank 0, after the last frame: the relighting page, with the precomputation the first render
+// reported (its meshless facts) and every frame written.
+void write_relight_page(const RenderOptions& options, const RenderJob& job) {
+  const nlohmann::json& m = job.precomputation;
+  RelightPage page;
+  page.title = "Relighting " + job.scene->source + " (meshless radiosity)";
+  page.facts = {
+      {"sites", fmt::format("{}", m.value("sites", 0))},
+      {"transport", fmt::format("{} ({} levels)", m.value("transport", std::string("flat")),
+                                m.value("hierarchy_levels", 1))},
+      {"entries of S", fmt::format("{} ({} cluster links, {:.1f} MiB)", m.value("transfer_entries", 0),
+                                   m.value("cluster_links", 0), m.value("transfer_memory_mib", 0.0))},
+      {"precomputation (s)",
+       fmt::format("{:.2f}: sites {:.2f}, effective areas {:.2f}, hierarchy {:.2f}, S {:.2f}",
+                   m.value("sampling_seconds", 0.0) + m.value("area_seconds", 0.0) +
+                       m.value("hierarchy_seconds", 0.0) + m.value("transfer_seconds", 0.0),
+                   m.value("sampling_seconds", 0.0), m.value("area_seconds", 0.0),
+                   m.value("hierarchy_seconds", 0.0), m.value("transfer_seconds", 0.0))},
+      {"frames", fmt::format("{}", job.page_frames.size())}};
+  page.frames = job.page_frames;
+  write_text_atomically(options.relight_page, relight_page_html(page));
+  if (!options.quiet)
+    std::cerr << fmt::format("candela: wrote {} ({} frames)\n", options.relight_page, page.frames.size());
+}
+
+// Renders a prepared job's images one at a time, the views and then the relight frames: every rank
+// renders each image, rank 0 writes its files and notes them in `written`. Each image's step returns
+// the exit status when the run ends with it (interrupted), nothing when the next image follows.
+class ImageRenderer {
+ public:
+  ImageRenderer(const RenderOptions& options, RenderJob& job, Cluster& cluster, WrittenImages& written)
+      : options_(options),
+        job_(job),
+        scene_(*job.scene),
+        method_(*job.method),
+        cluster_(cluster),
+        root_(cluster.root()),
+        written_(written) {}
+
+  std::optional<int> render_view(std::size_t v);
+  std::optional<int> render_frame(std::size_t f);
+
+ private:
+  // With several ranks they stop together: Ctrl-C on any of them counts (a collective).
+  bool interrupted() const { return cancelled_anywhere(cluster_); }
+  RenderRequest view_request(const View& view, const PixelRect& region, const std::string& checkpoint_path);
+  void write_view_files(const View& view, std::size_t v, const RenderResult& result,
+                        const std::string& output, const std::string& checkpoint_path,
+                        RunStatistics& statistics);
+  void write_convergence_log(const Film& film, RunStatistics& statistics);
+  void describe_view(const View& view, const std::string& output, const Film& film,
+                     RunStatistics& statistics) const;
+  std::string write_frame(const LightSetup& frame, const RenderResult& result, const Stopwatch& frame_timer,
+                          RunStatistics& statistics);
+
+  const RenderOptions& options_;
+  RenderJob& job_;
+  Scene& scene_;
+  const Method& method_;
+  Cluster& cluster_;
+  const bool root_;
+  WrittenImages& written_;
+};
+
+std::optional<int> ImageRenderer::render_view(std::size_t v) {
+  const std::vector<View>& views = job_.views;
+  const View& view = views[v];
+  if (interrupted())
+    return root_ ? report_interrupted_before(views.size() - v, "view") : kInterruptedExitCode;
+  const std::string output = path_for_view(options_.output, view, views.size());
+  const std::string stats_path = path_for_view(options_.stats_path, view, views.size());
+  const CurrentCamera current(scene_, view);
+  const std::string checkpoint_path =
+      options_.checkpoint.empty() ? std::string() : path_for_view(options_.checkpoint, view, views.size());
+  const RenderRequest request = view_request(view, job_.regions[v], checkpoint_path);
+  RunStatistics statistics;
+  // Loading and building are done once, before the first view: they count in its statistics
+  // alone, so the views' total_seconds add up to the run's.
+  if (v == 0) {
+    statistics.add_phase("load", job_.load_seconds);
+    statistics.add_phase("build", job_.build_seconds);
+  }
+  const Stopwatch view_timer;
+  const RenderResult result = timed_render(method_, scene_, request, job_.threads, statistics);
+  // A method's warning about its result (the path tracer: nothing emits light).
+  const auto& method_facts = statistics.extra[std::string(method_.name())];
+  if (root_ && method_facts.is_object() && method_facts.contains("warning"))
+    std::cerr << "candela: warning: " << method_facts["warning"].get<std::string>() << "\n";
+  if (!root_) {  // rank 0 holds the image and writes everything
+    if (interrupted()) return kInterruptedExitCode;
+    return std::nullopt;
+  }
+
+  write_view_files(view, v, result, output, checkpoint_path, statistics);
+  describe_view(view, output, result.film, statistics);
+  if (!options_.relight_page.empty())
+    job_.page_frames.push_back(relight_page_frame("scene", output, options_.relight_page, scene_.lights,
+                                                  scene_.ambient, result.relighting, view_timer.seconds()));
+  if (!options_.relight_page.empty())
+    job_.precomputation = statistics.extra.value(std::string(method_.name()), nlohmann::json());
+  if (!stats_path.empty()) write_statistics(statistics, stats_path);
+  written_.finish(output + " (camera " + view.name + ")");
+  if (interrupted())
+    return report_interrupted(statistics, output, views.size() - v - 1 + job_.relight_frames.size());
+  return std::nullopt;
+}
+
+RenderRequest ImageRenderer::view_request(const View& view, const PixelRect& region,
+                                          const std::string& checkpoint_path) {
+  RenderRequest request;
+  request.region = region;
+  request.quiet = options_.quiet;
+  request.sites_image = !options_.show_sites.empty();
+  // The method hands out its checkpoints; rank 0 writes them and alone reads the one resumed.
+  request.checkpoint = !checkpoint_path.empty();
+  if (request.checkpoint && root_)
+    request.save_checkpoint = [checkpoint_path](const Bytes& sealed) {
+      write_checkpoint_file(checkpoint_path, sealed);
+    };
+  if (!options_.resume.empty())
+    request.resume = root_ ? read_checkpoint_file(options_.resume) : SealedCheckpoint{options_.resume, {}};
+  // A view-independent solution (radiosity) is the same for every view; an image is not.
+  const std::string& fingerprint = job_.fingerprint;
+  request.fingerprint =
+      job_.entry->capabilities.solution ? fingerprint : fingerprint + " camera " + view.name;
+  if (options_.checkpoint_every) request.checkpoint_interval = *options_.checkpoint_every;
+  request.cluster = &cluster_;
+  if (job_.convergence) {
+    job_.convergence->start();
+    request.on_progress = job_.convergence->observer();
+    if (options_.error_every) request.progress_every = static_cast<uint64_t>(*options_.error_every);
+  }
+  return request;
+}
+
+// Rank 0: the view's image and every file the method gave with it, each noted in `written_` once
+// written and named in the statistics.
+void ImageRenderer::write_view_files(const View& view, std::size_t v, const RenderResult& result,
+                                     const std::string& output, const std::string& checkpoint_path,
+                                     RunStatistics& statistics) {
+  const Film& film = result.film;
+  const std::size_t view_count = job_.views.size();
+  refuse_unwritable_image(film, output, scene_);
+  Stopwatch write_timer;
+  if (result.checkpoint) {
+    write_checkpoint_file(checkpoint_path, *result.checkpoint);
+    written_.wrote(checkpoint_path);
+    statistics.extra["checkpoint"] = checkpoint_path;
+  }
+  write_image(film, output, scene_.display);
+  written_.wrote(output);
+  if (job_.convergence) write_convergence_log(film, statistics);
+  const std::string aa_map_path = path_for_view(options_.aa_map_path, view, view_count);
+  if (!aa_map_path.empty()) {
+    write_aa_map(statistics, film.width(), film.height(), aa_map_path);
+    written_.wrote(aa_map_path);
+  }
+  nlohmann::json& method_facts_out = statistics.extra[std::string(method_.name())];
+  if (result.sites_image) {
+    const std::string sites_path = path_for_view(options_.show_sites, view, view_count);
+    write_image(*result.sites_image, sites_path, scene_.display);
+    written_.wrote(sites_path);
+    method_facts_out["sites_image"] = sites_path;
+  }
+  // The solution is the same for every view: written once, with the first.
+  if (v == 0 && !options_.export_solution.empty() && result.solution) {
+    export_solution(*result.solution, options_.export_solution, scene_.display);
+    written_.wrote(options_.export_solution);
+    method_facts_out["exported_to"] = options_.export_solution;
+  }
+  statistics.add_phase("write", write_timer.seconds());
+}
+
+// --error-log: the final image's row ends the log, which is written whole.
+void ImageRenderer::write_convergence_log(const Film& film, RunStatistics& statistics) {
+  ConvergenceLog& convergence = *job_.convergence;
+  convergence.finish(film);
+  write_text_atomically(options_.error_log, convergence_csv(convergence.rows()));
+  written_.wrote(options_.error_log);
+  const ConvergenceRow& last = convergence.rows().back();
+  statistics.extra["error_log"] = {{"file", options_.error_log},
+                                   {"rows", convergence.rows().size()},
+                                   {"final_rmse", last.rmse},
+                                   {"final_relative_mse", last.relative_mse},
+                                   {"log_seconds", convergence.overhead_seconds()}};
+}
+
+// The view's facts in its statistics, and its summary printed (without --quiet).
+void ImageRenderer::describe_view(const View& view, const std::string& output, const Film& film,
+                                  RunStatistics& statistics) const {
+  statistics.extra["scene"] = scene_.source;
+  statistics.extra["camera"] = view.name;
+  statistics.extra["method"] = std::string(method_.name());
+  statistics.extra["emitters"] = emitter_facts(scene_, *job_.entry);
+  statistics.extra["output"] = output;
+  statistics.extra["image"] = {{"width", film.width()}, {"height", film.height()}};
+  statistics.extra["primitives"] = scene_.primitives.size();
+  statistics.extra["accelerator"] = std::string(scene_.accelerator().name());
+  statistics.extra["seed"] = scene_.render.seed;
+  if (!options_.quiet)
+    std::cerr << fmt::format("candela: wrote {} ({}x{}, {}{})\n", output, film.width(), film.height(),
+                             method_.name(), job_.views.size() > 1 ? ", camera " + view.name : std::string())
+              << statistics.summary();
+  statistics.extra["ranks"] = cluster_.size();
+}
+
+std::optional<int> ImageRenderer::render_frame(std::size_t f) {
+  std::vector<LightSetup>& frames = job_.relight_frames;
+  LightSetup& frame = frames[f];
+  if (interrupted())
+    return root_ ? report_interrupted_before(frames.size() - f, "frame") : kInterruptedExitCode;
+  std::swap(scene_.lights, frame.lights);
+  std::swap(scene_.ambient, frame.ambient);
+  // The frame's albedo edits, undone when the frame ends however it ends (the
+  // geometry and S are reused).
+  AlbedoEditsInPlace edits(scene_, frame.albedo_edits);
+  const CurrentCamera current(scene_, job_.views.front());
+  RenderRequest request;
+  request.region = job_.regions.front();
+  request.quiet = options_.quiet;
+  request.cluster = &cluster_;
+  Stopwatch frame_timer;
+  RunStatistics statistics;
+  const RenderResult result = timed_render(method_, scene_, request, job_.threads, statistics);
+  edits.undo();
+  std::swap(scene_.lights, frame.lights);
+  std::swap(scene_.ambient, frame.ambient);
+  if (!root_) {
+    if (interrupted()) return kInterruptedExitCode;
+    return std::nullopt;
+  }
+  const std::string output = write_frame(frame, result, frame_timer, statistics);
+  written_.finish(output + " (frame " + frame.name + ")");
+  if (interrupted()) return report_interrupted(statistics, output, frames.size() - f - 1);
+  return std::nullopt;
+}
+
+// Rank 0: the frame's image, its statistics and its line of the relighting page. Returns the image's
+// path.
+std::string ImageRenderer::write_frame(const LightSetup& frame, const RenderResult& result,
+                                       const Stopwatch& frame_timer, RunStatistics& statistics) {
+  const Film& film = result.film;
+  const std::string output = path_with_suffix(options_.output, frame.name);
+  refuse_unwritable_image(film, output, scene_);
+  Stopwatch write_timer;
+  write_image(film, output, scene_.display);
+  written_.wrote(output);
+  statistics.add_phase("write", write_timer.seconds());
+  statistics.extra["scene"] = scene_.source;
+  statistics.extra["relight_frame"] = frame.name;
+  statistics.extra["method"] = std::string(method_.name());
+  statistics.extra["output"] = output;
+  if (!options_.quiet)
+    std::cerr << fmt::format("candela: relit frame {} in {:.3f} s (lighting {:.3f} s), wrote {}\n",
+                             frame.name, frame_timer.seconds(),
+                             result.relighting ? result.relighting->lighting_seconds : 0.0, output);
+  if (!options_.stats_path.empty())
+    write_statistics(statistics, path_with_suffix(options_.stats_path, frame.name));
+  if (!options_.relight_page.empty()) {
+    // The frame's lights are back in `frame`.
+    job_.page_frames.push_back(relight_page_frame(frame.name, output, options_.relight_page, frame.lights,
+                                                  frame.ambient, result.relighting, frame_timer.seconds()));
+  }
+  return output;
+}
+
 // Renders every view and relight frame of a prepared job; rank 0 writes. Returns the exit status.
 int render_views(const RenderOptions& options, RenderJob& job, Cluster& cluster) {
-  Scene* scene = job.scene.get();
-  const MethodEntry* entry = job.entry;
-  const std::vector<View>& views = job.views;
-  const Method* method = job.method.get();
-  const std::vector<PixelRect>& regions = job.regions;
-  const std::string& fingerprint = job.fingerprint;
-  const int threads = job.threads;
-  std::vector<LightSetup>& relight_frames = job.relight_frames;
-  const double load_seconds = job.load_seconds, build_seconds = job.build_seconds;
-
   // SPEC §15: from here on Ctrl-C (or SIGTERM) stops the method early; what it finished is written
   // as usual, the views and frames after it are skipped, and the exit status is 130. A second
   // Ctrl-C ends the process at once.
   install_interrupt_handler();
-  // With several ranks they stop together: Ctrl-C on any of them counts (a collective).
-  const auto interrupted = [&] { return cancelled_anywhere(cluster); };
   const bool root = cluster.root();
+  const std::size_t view_count = job.views.size(), frame_count = job.relight_frames.size();
   WrittenImages written;
-  for (std::size_t v = 0; v < views.size(); ++v) {
-    const View& view = views[v];
+  ImageRenderer renderer(options, job, cluster, written);
+  for (std::size_t v = 0; v < view_count; ++v) {
     try {
-      if (interrupted())
-        return root ? report_interrupted_before(views.size() - v, "view") : kInterruptedExitCode;
-      const std::string output = path_for_view(options.output, view, views.size());
-      const std::string stats_path = path_for_view(options.stats_path, view, views.size());
-      const std::string aa_map_path = path_for_view(options.aa_map_path, view, views.size());
-      const CurrentCamera current(*scene, view);
-      const PixelRect region = regions[v];
-      RenderRequest request;
-      request.region = region;
-      request.quiet = options.quiet;
-      request.sites_image = !options.show_sites.empty();
-      // The method hands out its checkpoints; rank 0 writes them and alone reads the one resumed.
-      const std::string checkpoint_path =
-          options.checkpoint.empty() ? std::string() : path_for_view(options.checkpoint, view, views.size());
-      request.checkpoint = !checkpoint_path.empty();
-      if (request.checkpoint && root)
-        request.save_checkpoint = [&](const Bytes& sealed) {
-          write_checkpoint_file(checkpoint_path, sealed);
-        };
-      if (!options.resume.empty())
-        request.resume = root ? read_checkpoint_file(options.resume) : SealedCheckpoint{options.resume, {}};
-      // A view-independent solution (radiosity) is the same for every view; an image is not.
-      request.fingerprint = entry->capabilities.solution ? fingerprint : fingerprint + " camera " + view.name;
-      if (options.checkpoint_every) request.checkpoint_interval = *options.checkpoint_every;
-      request.cluster = &cluster;
-      if (job.convergence) {
-        job.convergence->start();
-        request.on_progress = job.convergence->observer();
-        if (options.error_every) request.progress_every = static_cast<uint64_t>(*options.error_every);
-      }
-      RunStatistics statistics;
-      // Loading and building are done once, before the first view: they count in its statistics
-      // alone, so the views' total_seconds add up to the run's.
-      if (v == 0) {
-        statistics.add_phase("load", load_seconds);
-        statistics.add_phase("build", build_seconds);
-      }
-      const Stopwatch view_timer;
-      const RenderResult result = timed_render(*method, *scene, request, threads, statistics);
-      const Film& film = result.film;
-      // A method's warning about its result (the path tracer: nothing emits light).
-      const auto& method_facts = statistics.extra[std::string(method->name())];
-      if (root && method_facts.is_object() && method_facts.contains("warning"))
-        std::cerr << "candela: warning: " << method_facts["warning"].get<std::string>() << "\n";
-      if (!root) {  // rank 0 holds the image and writes everything
-        if (interrupted()) return kInterruptedExitCode;
-        continue;
-      }
-
-      refuse_unwritable_image(film, output, *scene);
-      Stopwatch write_timer;
-      if (result.checkpoint) {
-        write_checkpoint_file(checkpoint_path, *result.checkpoint);
-        written.wrote(checkpoint_path);
-        statistics.extra["checkpoint"] = checkpoint_path;
-      }
-      write_image(film, output, scene->display);
-      written.wrote(output);
-      if (job.convergence) {
-        job.convergence->finish(film);
-        write_text_atomically(options.error_log, convergence_csv(job.convergence->rows()));
-        written.wrote(options.error_log);
-        const ConvergenceRow& last = job.convergence->rows().back();
-        statistics.extra["error_log"] = {{"file", options.error_log},
-                                         {"rows", job.convergence->rows().size()},
-                                         {"final_rmse", last.rmse},
-                                         {"final_relative_mse", last.relative_mse},
-                                         {"log_seconds", job.convergence->overhead_seconds()}};
-      }
-      if (!aa_map_path.empty()) {
-        write_aa_map(statistics, film.width(), film.height(), aa_map_path);
-        written.wrote(aa_map_path);
-      }
-      nlohmann::json& method_facts_out = statistics.extra[std::string(method->name())];
-      if (result.sites_image) {
-        const std::string sites_path = path_for_view(options.show_sites, view, views.size());
-        write_image(*result.sites_image, sites_path, scene->display);
-        written.wrote(sites_path);
-        method_facts_out["sites_image"] = sites_path;
-      }
-      // The solution is the same for every view: written once, with the first.
-      if (v == 0 && !options.export_solution.empty() && result.solution) {
-        export_solution(*result.solution, options.export_solution, scene->display);
-        written.wrote(options.export_solution);
-        method_facts_out["exported_to"] = options.export_solution;
-      }
-      statistics.add_phase("write", write_timer.seconds());
-
-      statistics.extra["scene"] = scene->source;
-      statistics.extra["camera"] = view.name;
-      statistics.extra["method"] = std::string(method->name());
-      statistics.extra["emitters"] = emitter_facts(*scene, *entry);
-      statistics.extra["output"] = output;
-      statistics.extra["image"] = {{"width", film.width()}, {"height", film.height()}};
-      statistics.extra["primitives"] = scene->primitives.size();
-      statistics.extra["accelerator"] = std::string(scene->accelerator().name());
-      statistics.extra["seed"] = scene->render.seed;
-      if (!options.quiet)
-        std::cerr << fmt::format("candela: wrote {} ({}x{}, {}{})\n", output, film.width(), film.height(),
-                                 method->name(), views.size() > 1 ? ", camera " + view.name : std::string())
-                  << statistics.summary();
-      statistics.extra["ranks"] = cluster.size();
-      if (!options.relight_page.empty())
-        job.page_frames.push_back(relight_page_frame("scene", output, options.relight_page, scene->lights,
-                                                     scene->ambient, result.relighting,
-                                                     view_timer.seconds()));
-      if (!options.relight_page.empty())
-        job.precomputation = statistics.extra.value(std::string(method->name()), nlohmann::json());
-      if (!stats_path.empty()) write_statistics(statistics, stats_path);
-      written.finish(output + " (camera " + view.name + ")");
-      if (interrupted())
-        return report_interrupted(statistics, output, views.size() - v - 1 + relight_frames.size());
+      if (const std::optional<int> status = renderer.render_view(v)) return *status;
     } catch (...) {
       if (root)
-        written.report_failure("camera " + view.name, views.size() - v - 1 + relight_frames.size(),
-                               views.size() + relight_frames.size());
+        written.report_failure("camera " + job.views[v].name, view_count - v - 1 + frame_count,
+                               view_count + frame_count);
       throw;
     }
   }
 
   // Relighting: each frame's lights in place of the scene's, the same method object, so the
   // meshless geometry (sites, areas, transfer matrix) is reused and only η and λ are redone.
-  for (std::size_t f = 0; f < relight_frames.size(); ++f) {
-    LightSetup& frame = relight_frames[f];
+  for (std::size_t f = 0; f < frame_count; ++f) {
     try {
-      if (interrupted())
-        return root ? report_interrupted_before(relight_frames.size() - f, "frame") : kInterruptedExitCode;
-      std::swap(scene->lights, frame.lights);
-      std::swap(scene->ambient, frame.ambient);
-      // The frame's albedo edits, undone when the frame ends however it ends (the
-      // geometry and S are reused).
-      AlbedoEditsInPlace edits(*scene, frame.albedo_edits);
-      const CurrentCamera current(*scene, views.front());
-      RenderRequest request;
-      request.region = regions.front();
-      request.quiet = options.quiet;
-      request.cluster = &cluster;
-      Stopwatch frame_timer;
-      RunStatistics statistics;
-      const RenderResult result = timed_render(*method, *scene, request, threads, statistics);
-      const Film& film = result.film;
-      edits.undo();
-      std::swap(scene->lights, frame.lights);
-      std::swap(scene->ambient, frame.ambient);
-      if (!root) {
-        if (interrupted()) return kInterruptedExitCode;
-        continue;
-      }
-      const std::string output = path_with_suffix(options.output, frame.name);
-      refuse_unwritable_image(film, output, *scene);
-      Stopwatch write_timer;
-      write_image(film, output, scene->display);
-      written.wrote(output);
-      statistics.add_phase("write", write_timer.seconds());
-      statistics.extra["scene"] = scene->source;
-      statistics.extra["relight_frame"] = frame.name;
-      statistics.extra["method"] = std::string(method->name());
-      statistics.extra["output"] = output;
-      if (!options.quiet)
-        std::cerr << fmt::format("candela: relit frame {} in {:.3f} s (lighting {:.3f} s), wrote {}\n",
-                                 frame.name, frame_timer.seconds(),
-                                 result.relighting ? result.relighting->lighting_seconds : 0.0, output);
-      if (!options.stats_path.empty())
-        write_statistics(statistics, path_with_suffix(options.stats_path, frame.name));
-      if (!options.relight_page.empty()) {
-        // The frame's lights are back in `frame`.
-        job.page_frames.push_back(relight_page_frame(frame.name, output, options.relight_page, frame.lights,
-                                                     frame.ambient, result.relighting,
-                                                     frame_timer.seconds()));
-      }
-      written.finish(output + " (frame " + frame.name + ")");
-      if (interrupted()) return report_interrupted(statistics, output, relight_frames.size() - f - 1);
+      if (const std::optional<int> status = renderer.render_frame(f)) return *status;
     } catch (...) {
       if (root)
-        written.report_failure("frame " + frame.name, relight_frames.size() - f - 1,
-                               views.size() + relight_frames.size());
+        written.report_failure("frame " + job.relight_frames[f].name, frame_count - f - 1,
+                               view_count + frame_count);
       throw;
     }
   }
-  if (root && !options.relight_page.empty()) {
-    const nlohmann::json& m = job.precomputation;
-    RelightPage page;
-    page.title = "Relighting " + scene->source + " (meshless radiosity)";
-    page.facts = {
-        {"sites", fmt::format("{}", m.value("sites", 0))},
-        {"transport", fmt::format("{} ({} levels)", m.value("transport", std::string("flat")),
-                                  m.value("hierarchy_levels", 1))},
-        {"entries of S", fmt::format("{} ({} cluster links, {:.1f} MiB)", m.value("transfer_entries", 0),
-                                     m.value("cluster_links", 0), m.value("transfer_memory_mib", 0.0))},
-        {"precomputation (s)",
-         fmt::format("{:.2f}: sites {:.2f}, effective areas {:.2f}, hierarchy {:.2f}, S {:.2f}",
-                     m.value("sampling_seconds", 0.0) + m.value("area_seconds", 0.0) +
-                         m.value("hierarchy_seconds", 0.0) + m.value("transfer_seconds", 0.0),
-                     m.value("sampling_seconds", 0.0), m.value("area_seconds", 0.0),
-                     m.value("hierarchy_seconds", 0.0), m.value("transfer_seconds", 0.0))},
-        {"frames", fmt::format("{}", job.page_frames.size())}};
-    page.frames = job.page_frames;
-    write_text_atomically(options.relight_page, relight_page_html(page));
-    if (!options.quiet)
-      std::cerr << fmt::format("candela: wrote {} ({} frames)\n", options.relight_page, page.frames.size());
-  }
+  if (root && !options.relight_page.empty()) write_relight_page(options, job);
   return 0;
 }
 
