@@ -32,7 +32,7 @@ else
   trap 'rm -rf "$out"' EXIT
 fi
 options=("$@")
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/.." || exit 2
 source scripts/scene-matrix.sh
 mkdir -p "$out"
 

@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Sourced, not run: every scene of scenes/ by every method, each render's output and exit status
 # kept — the matrix that scripts/image-regression.sh (images to compare between builds) and
 # scripts/render-every-scene.sh (every pair must render) walk. Run from the repository root.
@@ -20,6 +21,7 @@ scene_stem() {
 # record_render CANDELA OUT_DIR NAME SCENE OPTIONS...: `CANDELA render SCENE -o OUT_DIR/NAME.pfm
 # --quiet OPTIONS`, its output into OUT_DIR/NAME.log and its exit status into OUT_DIR/NAME.status.
 # The caller's array render_prefix (e.g. a timeout command) goes in front, when set.
+# shellcheck disable=SC2154  # render_prefix is the caller's, and may be unset
 record_render() {
   local candela="$1" out="$2" name="$3" scene="$4"
   shift 4

@@ -163,6 +163,7 @@ PassesResult accumulate_passes(const AntialiasingSettings& settings, uint64_t se
   const auto drawn = [&](int pass, const std::vector<uint8_t>& wanted, std::vector<Color>& values) {
     if (cancel_requested()) return false;  // Ctrl-C: no pass begun after it
     draw(pass, schedule.offset(pass), box, wanted, values);
+    if (cancel_requested()) return false;  // and the pass it cut short (tiles missing) not splatted
     result.samples += static_cast<uint64_t>(std::count(wanted.begin(), wanted.end(), uint8_t(1)));
     ++result.passes;
     return true;

@@ -95,7 +95,8 @@ uint64_t accumulation_bytes(const AntialiasingSettings& settings, const PixelBox
 // Fills film — the pixels [region.x0, + film.width()) × [region.y0, + film.height()) of the
 // image — from the passes of `settings` (drawn_in_passes), drawn over the pixels
 // pixels_drawn_in_passes gives. After Ctrl-C (util/cancellation.h) no further pass
-// is begun and the film holds the passes drawn. Throws std::invalid_argument for an unknown filter.
+// is begun and the film holds the passes drawn whole (the one it cut short is left out). Throws
+// std::invalid_argument for an unknown filter.
 PassesResult accumulate_passes(const AntialiasingSettings& settings, uint64_t seed,
                                const SamplingRegion& region, const PassDrawing& draw, Film& film);
 
