@@ -1,6 +1,6 @@
 // Jittered samples for the views that draw a whole image at a time (the rasterizer: the raster
 // method, radiosity's gouraud display), by the accumulation buffer (Haeberli & Akeley 1990, "The
-// accumulation buffer: hardware support for high-quality rendering", SIGGRAPH '90, §4.1): the
+// accumulation buffer: hardware support for high-quality rendering", SIGGRAPH '90): the
 // image is drawn several times, each pass with the projection moved by a sub-pixel offset so that
 // every pixel is sampled at (x + dx, y + dy) instead of its centre, and the passes' samples are
 // splatted with the scene's filter into one film (camera/splat_film.h), as the ray tracers'
