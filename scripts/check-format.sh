@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Fails, naming each file and line, when a C++ file of the repository differs from what
-# .clang-format gives (issue 18: the conventions check themselves). Fix with:
+# .clang-format gives (the conventions check themselves). Fix with:
 #   clang-format -i $(git ls-files '*.cpp' '*.h')
 set -euo pipefail
 cd "$(dirname "$0")/.."

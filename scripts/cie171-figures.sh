@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The figures and table of docs/validation/cie171.md (issue 23, item 5): `candela validate cie171`
+# The figures and table of docs/validation/cie171.md: `candela validate cie171`
 # in full into docs/images/validation/cie171/ (cie171.csv, summary.csv, results.json, each case's
 # scene, points and plot), then table.md — the pass/fail table the page quotes — from summary.csv.
 # Usage: scripts/cie171-figures.sh [candela-binary]   (about 40 minutes on 2 cores)

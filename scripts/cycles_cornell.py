@@ -1,5 +1,5 @@
 # The Cornell box of scenes/cornell-box.json in Blender's Cycles, for scripts/path-vs-cycles.sh
-# (issue 22; docs/benchmarks.md "Path tracing against Cycles"). Run by Blender, never by Candela
+# (docs/benchmarks.md "Path tracing against Cycles"). Run by Blender, never by Candela
 # or its CI:
 #   blender -b --factory-startup -P scripts/cycles_cornell.py -- SCENE.json SIZE SPP THREADS OUT.exr
 # Same quads, boxes, camera and albedos; Lambertian (Diffuse BSDF, roughness 0) surfaces; the lamp

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The figures and tables of docs/validation/form-factors.md (issue 20): `candela validate
+# The figures and tables of docs/validation/form-factors.md: `candela validate
 # form-factors` into docs/images/validation/form-factors/ (form_factors.csv, furnace.csv,
 # results.json, convergence_flat.png, convergence_curved.png), then tables.md — the Markdown
 # tables the page quotes — from the CSVs.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 24: the README's gallery (the Cornell box by all six methods, with their times and errors),
+# The README's gallery (the Cornell box by all six methods, with their times and errors),
 # docs/validation.md's error-against-time chart and the screenshot of the HTML report — all from one
 # `candela report` run, so that the pictures, the times and the chart are the same run's.
 #   scripts/gallery-figures.sh            # 256×256, reference 4096 spp, path 1024 spp (~6 min, 2 cores)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Hierarchical radiosity's scaling (issue 52, docs/benchmarks.md "Hierarchical radiosity"): the
+# Hierarchical radiosity's scaling (docs/benchmarks.md "Hierarchical radiosity"): the
 # Cornell box of scenes/cornell-box.json with one mesh standing in it — UV spheres of about 10k,
 # 100k and 1M triangles, the 100,000-triangle dragon and the 268,686-triangle Igea of
 # ../shared/models — solved by radiosity.solver "hierarchical" through `candela bench --radiosity`;

@@ -9,23 +9,16 @@ set -uo pipefail
 candela="$1"
 out="$2"
 cd "$(dirname "$0")/.."
+source scripts/scene-matrix.sh
 mkdir -p "$out"
 size=(--set camera.width=40 --set camera.height=30)
+render_prefix=(timeout -k 5 120)
 render() {  # NAME SCENE ARGS...
   local name="$1" scene="$2"
   shift 2
-  timeout -k 5 120 "$candela" render "$scene" -o "$out/$name.pfm" --quiet --threads 2 "${size[@]}" "$@" \
-    >"$out/$name.log" 2>&1
-  echo "$?" >"$out/$name.status"
+  record_render "$candela" "$out" "$name" "$scene" --threads 2 "${size[@]}" "$@"
 }
-for scene in $(find scenes -name '*.json' | sort); do
-  stem=$(echo "${scene#scenes/}" | tr '/' '_')
-  stem="${stem%.json}"
-  for method in local whitted raster radiosity meshless; do
-    render "$stem.$method" "$scene" --method "$method"
-  done
-  render "$stem.path" "$scene" --method path --spp 4
-done
+for_every_scene_and_method render 4
 scene=scenes/cornell-box.json
 for solver in gauss-seidel gaussian; do
   render "variant.radiosity-$solver" $scene --method radiosity --set radiosity.solver=$solver

@@ -11,7 +11,7 @@ packages=(
   libtinygltf-dev  # glTF 2.0 mesh import (src/io/gltf_import.cpp)
   fonts-dejavu-core  # the plots' and false-colour legends' text (src/io/text.h, through stb_truetype)
   clang-format  # .ci/run checks every C++ file against .clang-format (scripts/check-format.sh)
-  # The Python module (python/, issue 24) for Debian's /usr/bin/python3, and its tests (pytest):
+  # The Python module (python/) for Debian's /usr/bin/python3, and its tests (pytest):
   pybind11-dev python3-dev python3-numpy python3-pytest
   chromium  # needed by the report test (tests/report_cli_test.cpp opens the HTML report headless); Debian 12 package
 )

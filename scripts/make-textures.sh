@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The texture and environment assets of scenes/textures/ (issue 5; docs/materials.md):
+# The texture and environment assets of scenes/textures/ (docs/materials.md):
 #   tiles.png           stone floor tiles with grout (256×256, repeats seamlessly)
 #   random-squares.png  000 Figure 21: randomly colored squares, for the sphere mapping
 #   uv-grid.png         a grid whose hue follows u and brightness v, for showing mappings

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Texture and environment assets for scenes/ (issue 5), with the standard library only.
+"""Texture and environment assets for scenes/, with the standard library only.
 
   make_textures.py images DIR          tiles.png, random-squares.png, uv-grid.png, sky.exr
   make_textures.py png IN.pfm OUT.png  a render (linear floats) as an 8-bit sRGB PNG

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The pictures of docs/materials.md (issue 5: materials, textures, environment and bump mapping,
+# The pictures of docs/materials.md (materials, textures, environment and bump mapping,
 # transparency): every scene of scenes/figures/ into docs/images/materials/NAME.png, and
 # scenes/materials-gallery.json into docs/images/materials-gallery.png. Prints each render time.
 # The textures they use are made by scripts/make-textures.sh.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The pictures of the rooms section of docs/methods/meshless.md (issue 8, seed 002 ch. 6): the
+# The pictures of the rooms section of docs/methods/meshless.md (seed 002 ch. 6): the
 # thesis's scenes A–D (scenes/meshless/room-{a,b,c,d}.json) solved by `--method meshless`.
 #   room-X-{radial,normalized,shepard}.png   the global illumination with each basis (002 Figures
 #                                            6.2–6.5)

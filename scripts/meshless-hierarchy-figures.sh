@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The tables of docs/methods/meshless-hierarchy.md (issue 25), from the Cornell box and room A:
+# The tables of docs/methods/meshless-hierarchy.md, from the Cornell box and room A:
 #   1. scaling: `candela bench --meshless` with the hierarchical transport at about 5k, 20k and
 #      80k sites (and 100k on the Cornell box), the entries' fitted exponent, time and peak memory;
 #   2. accuracy at equal precomputation time: the flat and the hierarchical transport at several

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The office-with-a-window figures of docs/lighting-design.md (issue 23): scenes/office-daylight.json
+# The office-with-a-window figures of docs/lighting-design.md: scenes/office-daylight.json
 # rendered by path and radiosity, and its work plane (0.8 m up, 0.25 m in from the walls, 50 × 70
 # points) probed by radiosity with the downlights on (lux) and off (the daylight factor), with the
 # false-colour images and the JSON summaries (the CSVs to /tmp), and the radiosity render's

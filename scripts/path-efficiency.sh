@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Noise per second of the path tracer's samplers (issue 22; docs/benchmarks.md "Path tracing:
+# Noise per second of the path tracer's samplers (docs/benchmarks.md "Path tracing:
 # samplers"): the Cornell box of scenes/cornell-box.json at SIZE² (256), box filter, no adaptive
 # sampling, with each path.sampler at SPP (64) samples per pixel and at the time the independent
 # sampler took for them, against a REFERENCE_SPP (8192) Sobol' reference. Prints seconds, passes,
@@ -7,9 +7,9 @@
 # `candela compare --mask`), MSE relative to the independent sampler's, and efficiency
 # 1 / (seconds × MSE) relative to it. Render seconds are the medians of REPEATS (3) runs.
 #
-# BASELINE=path/to/candela (a build of an earlier commit, e.g. 28e7633, the path tracer when
-# issue 22 was filed) adds its path tracer, in the same rotation, as "baseline-SPP", and Sobol' at
-# the baseline's time as "sobol-baseline-time": the issue's targets are against that one.
+# BASELINE=path/to/candela (a build of an earlier commit, e.g. 28e7633, the path tracer before its
+# samplers) adds its path tracer, in the same rotation, as "baseline-SPP", and Sobol' at the
+# baseline's time as "sobol-baseline-time": the targets in docs/benchmarks.md are against that one.
 #
 #   scripts/path-efficiency.sh                 # about 20 minutes on 2 cores (the reference: most)
 #   REFERENCE_SPP=2048 SIZE=128 scripts/path-efficiency.sh

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Candela's path tracer against Blender's Cycles on the same Cornell box (issue 22;
-# docs/benchmarks.md "Path tracing against Cycles"). Needs Blender (Debian's `blender`, 3.4) on
+# Candela's path tracer against Blender's Cycles on the same Cornell box (docs/benchmarks.md
+# "Path tracing against Cycles"). Needs Blender (Debian's `blender`, 3.4) on
 # the machine running it — never a dependency of Candela or its CI — and the reference and lamp
 # mask that scripts/path-efficiency.sh leaves in WORK (run it first with the same WORK and SIZE).
 #

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The pictures of docs/methods/radiosity.md (issue 7, 000 §6.8): scenes/cornell-box.json solved by
+# The pictures of docs/methods/radiosity.md (000 §6.8): scenes/cornell-box.json solved by
 # progressive refinement with the hemicube.
 #   progressive-N.png, progressive-N-ambient.png   after N = 1, 2, 20, 100 shots, without and with
 #                                                  the ambient term (000 Figures 63 and 64), and

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The pictures of docs/methods/raster.md (issue 6, 000 §3): scenes/figures/raster-shading.json
+# The pictures of docs/methods/raster.md (000 §3): scenes/figures/raster-shading.json
 # with flat, Gouraud, Phong and dot-product shading, and the same scene ray cast for
 # comparison (the exact surfaces). Usage: scripts/raster-figures.sh [candela-binary] [output-directory]
 set -euo pipefail

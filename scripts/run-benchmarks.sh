@@ -28,15 +28,15 @@ run sphere_1M --sphere 1000000 --accel "${accels[@]}"
 # 000 §5.7.2: 10,584 objects, the list against the accelerators (fewer rays: the list is slow).
 run sphere_field_10584 scenes/sphere-field-10584.json --accel list bvh grid octree embree-exact \
   --width 128 --height 128 --rays 16384
-# Issue 6: the scanline rasterizer on every model (one thread, its own framing; see benchmarks.md).
+# The scanline rasterizer on every model (one thread, its own framing; see benchmarks.md).
 echo "bench: raster" >&2
 "$candela" bench --raster "$models"/*.obj --json "$out/raster.json" > "$out/raster.txt"
-# Issue 7: radiosity at scale, the Cornell box meshed to 11,771 elements (3,346 patches), solved
+# Radiosity at scale, the Cornell box meshed to 11,771 elements (3,346 patches), solved
 # progressively to 0.1% unshot with 1 and 2 threads (see benchmarks.md, "Radiosity").
 echo "bench: radiosity" >&2
 "$candela" bench --radiosity scenes/cornell-box.json --set radiosity.patch_size=1 \
   --set radiosity.element_size=0.6 --threads 1 2 -q --json "$out/radiosity.json" > "$out/radiosity.txt"
-# Issue 8: the meshless method on the Cornell box at three spacings (about 4,600, 10,200 and
+# The meshless method on the Cornell box at three spacings (about 4,600, 10,200 and
 # 21,000 sites; see benchmarks.md, "Meshless"): time and memory as the sites grow.
 for spacing in 0.27 0.18 0.12; do
   echo "bench: meshless, spacing $spacing" >&2

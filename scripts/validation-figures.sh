@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The cross-method validation of docs/validation.md (SPEC §13, issue 9 item 6): the diffuse Cornell
+# The cross-method validation of docs/validation.md (SPEC §13): the diffuse Cornell
 # box (scenes/cornell-box.json, 256 × 256) by classic radiosity (hemicube and ray-cast form
 # factors), meshless radiosity (each basis), Whitted and the path tracer, every image measured
 # against a high-sample path-traced reference; plus the path tracer at equal time to each method;

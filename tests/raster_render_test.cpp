@@ -4,6 +4,7 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <cstdio>
 #include <set>
 #include <tuple>
 
@@ -122,15 +123,122 @@ TEST(RasterRender, EveryModeEqualsTheRayTracerOnALitPlane) {
 
 TEST(RasterRender, SameBytesWhateverTheThreadCount) {
   for (const char* shading : {"flat", "gouraud", "phong", "dotproduct"}) {
-    // The default scene's adaptive anti-aliasing and Gaussian, its lattice not jittered: the
-    // rasterizer draws the whole corner lattice.
-    const auto scene = load_default_scene({"camera.width=64", "camera.height=48", "aa.jitter=false",
-                                           std::string("raster.shading=\"") + shading + "\""});
-    const Film one = testing::render_scene(*scene, "raster", 1);
-    const Film two = testing::render_scene(*scene, "raster", 2);
-    ASSERT_EQ(one.pixels().size(), two.pixels().size());
-    for (std::size_t i = 0; i < one.pixels().size(); ++i)
-      ASSERT_TRUE(one.pixels()[i] == two.pixels()[i]) << shading << " " << i;
+    // The default scene's adaptive anti-aliasing and Gaussian: its lattice not jittered (the
+    // rasterizer draws the whole corner lattice), jittered as the scene has it (passes), and the
+    // jittered mode.
+    for (const char* sampling : {"aa.jitter=false", "aa.jitter=true", "aa.mode=\"jittered\""}) {
+      const auto scene = load_default_scene({"camera.width=64", "camera.height=48", sampling,
+                                             std::string("raster.shading=\"") + shading + "\""});
+      const Film one = testing::render_scene(*scene, "raster", 1);
+      const Film two = testing::render_scene(*scene, "raster", 2);
+      ASSERT_EQ(one.pixels().size(), two.pixels().size());
+      for (std::size_t i = 0; i < one.pixels().size(); ++i)
+        ASSERT_TRUE(one.pixels()[i] == two.pixels()[i]) << shading << " " << sampling << " " << i;
+    }
+  }
+}
+
+// The jittered modes in passes of the accumulation buffer (camera/accumulation_buffer.h).
+// An image of edges: a checkered floor and two boxes against the sky, all planar (the raster's
+// triangles are the ray tracer's surfaces), lit by a directional light without shadows.
+const char* kEdgesScene = R"(
+  "camera": {"eye": [0.4, 1.6, 4], "target": [0, 0.3, 0], "fov": 45, "width": 48, "height": 36},
+  "background": [0.2, 0.3, 0.8], "ambient": 0.15,
+  "lights": [{"type": "directional", "direction": [-0.4, -1, -0.6], "intensity": 0.9}],
+  "materials": {
+    "floor": {"kd": {"type": "checker2d", "even": [0.9, 0.9, 0.85], "odd": [0.05, 0.05, 0.1], "mapping": {"type": "uv", "scale": 6}}},
+    "red": {"kd": [0.8, 0.15, 0.1]}, "white": {"kd": 0.9}},
+  "shapes": [
+    {"type": "quad", "corner": [-3, 0, 3], "edge_u": [6, 0, 0], "edge_v": [0, 0, -6], "material": "floor"},
+    {"type": "box", "min": [-1.1, 0, -0.6], "max": [-0.3, 0.9, 0.2], "material": "red"},
+    {"type": "box", "min": [0.3, 0, -1.2], "max": [0.9, 1.4, -0.6], "material": "white"}],
+  "local": {"shadows": false})";
+
+// The root-mean-square difference of two images over every channel of every pixel.
+double rms_difference(const Film& a, const Film& b) {
+  double total = 0;
+  for (std::size_t i = 0; i < a.pixels().size(); ++i)
+    for (int c = 0; c < 3; ++c) total += std::pow(a.pixels()[i][c] - b.pixels()[i][c], 2);
+  return std::sqrt(total / (3.0 * a.pixels().size()));
+}
+
+// The raster and the ray-traced local model share their shading: with the same jittered settings
+// each estimates the same filtered image, and they lie as close to a 16 × 16 reference, and to
+// each other, as two estimates of it may (the raster's pass offsets serve every pixel, the ray
+// tracer's points are drawn per pixel: the same error, not the same bytes).
+TEST(RasterRender, JitteredPassesMatchTheRayTracedLocalModel) {
+  for (const char* filter : {"box", "gaussian"}) {
+    const std::string with_filter = std::string("aa.filter=\"") + filter + "\"";
+    const auto reference = raster_scene(kEdgesScene, {"aa.mode=\"uniform\"", "aa.n=16", with_filter});
+    const Film exact = testing::render_scene(*reference, "local");
+    const auto scene = raster_scene(kEdgesScene, {"aa.mode=\"jittered\"", "aa.n=4", with_filter});
+    const Film raster = testing::render_scene(*scene, "raster");
+    const Film traced = testing::render_scene(*scene, "local");
+    const double raster_error = rms_difference(raster, exact), traced_error = rms_difference(traced, exact);
+    std::printf("  %s: RMS against 16 × 16: raster %.4f, local %.4f; between them %.4f\n", filter,
+                raster_error, traced_error, rms_difference(raster, traced));
+    EXPECT_LT(raster_error, 0.02) << filter;
+    EXPECT_LT(raster_error, 2 * traced_error) << filter;
+    EXPECT_LT(rms_difference(raster, traced), 0.03) << filter;
+  }
+}
+
+// Jittered passes, and adaptive with jitter, bring the raster's edges near a 16 × 16 reference of
+// its own: far nearer than one sample a pixel; adaptive (4 passes, 64 where the contrast test
+// asks) nearer than 16 jittered passes, with under half the samples of 8 × 8 everywhere.
+TEST(RasterRender, JitteredPassesAntiAliasTheEdges) {
+  const Film exact =
+      testing::render_scene(*raster_scene(kEdgesScene, {"aa.mode=\"uniform\"", "aa.n=16"}), "raster");
+  const double aliased = rms_difference(testing::render_scene(*raster_scene(kEdgesScene), "raster"), exact);
+  const double jittered = rms_difference(
+      testing::render_scene(*raster_scene(kEdgesScene, {"aa.mode=\"jittered\"", "aa.n=4"}), "raster"), exact);
+  RunStatistics statistics;
+  const Film adaptive_film = testing::render_scene(
+      *raster_scene(kEdgesScene, {"aa.mode=\"adaptive\"", "aa.max_level=3", "aa.jitter=true"}), "raster", 2,
+      statistics);
+  const double adaptive = rms_difference(adaptive_film, exact);
+  const nlohmann::json& passes = statistics.extra["raster"]["accumulation"];
+  std::printf("  RMS against 16 × 16: one sample %.4f, jittered 4 × 4 %.4f, adaptive L = 3 %.4f (%s)\n",
+              aliased, jittered, adaptive, passes.dump().c_str());
+  EXPECT_LT(jittered, 0.35 * aliased);
+  EXPECT_LT(adaptive, jittered);
+  const auto pixels = uint64_t(48 * 36);
+  EXPECT_EQ(passes["passes"].get<int>(), 64);
+  EXPECT_GT(passes["refined_pixels"].get<uint64_t>(), pixels / 10);
+  EXPECT_LT(passes["refined_pixels"].get<uint64_t>(), pixels / 2);
+  EXPECT_LT(passes["samples"].get<uint64_t>(), 32 * pixels);
+}
+
+// A region of the image (--crop, a distributed tile) has the whole image's pixels, bit for bit,
+// under a filter wider than a pixel: each pass's offset is the image's, and the region samples
+// the ring of pixels its filter reaches.
+TEST(RasterRender, JitteredPassesGiveARegionTheWholeImagesPixels) {
+  for (const char* sampling : {"aa.jitter=true", "aa.mode=\"jittered\""}) {
+    const auto scene = load_default_scene({"camera.width=40", "camera.height=30", sampling});
+    const Film whole = testing::render_scene(*scene, "raster");
+    const auto method = create_method(*find_method("raster"), *scene);
+    RenderRequest request;
+    request.region = {13, 7, 29, 22};
+    request.quiet = true;
+    const Film part = method->render(*scene, request).film;
+    for (int y = 0; y < part.height(); ++y)
+      for (int x = 0; x < part.width(); ++x)
+        ASSERT_TRUE(part.at(x, y) == whole.at(x + 13, y + 7)) << sampling << " " << x << "," << y;
+  }
+}
+
+// The scenes the raster once refused (Figures 49 and 50: adaptive with jitter).
+TEST(RasterRender, TheSeedsJitteredScenesRender) {
+  for (const char* name : {"two-mirrors.json", "two-mirrors-marble.json", "glass-globe.json"}) {
+    const auto scene = load_scene_file(std::string(CANDELA_SOURCE_DIR) + "/scenes/" + name,
+                                       {"camera.width=24", "camera.height=18"});
+    ASSERT_TRUE(scene->antialiasing.jitter) << name;
+    RunStatistics statistics;
+    const Film film = testing::render_scene(*scene, "raster", 2, statistics);
+    double brightest = 0;
+    for (const Color& c : film.pixels()) brightest = std::max({brightest, c.r, c.g, c.b});
+    EXPECT_GT(brightest, 0.1) << name;
+    EXPECT_GE(statistics.extra["raster"]["accumulation"]["passes"].get<int>(), 4) << name;
   }
 }
 

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <memory>
 
+#include "camera/contrast.h"
 #include "math/pcg32.h"
 #include "util/cancellation.h"
 #include "util/hash.h"
@@ -41,20 +42,6 @@ struct Lattice {
     y += v / double(scale);
   }
 };
-
-double channel_contrast(double a, double b, double c, double d) {
-  const double high = std::max({a, b, c, d});
-  const double low = std::min({a, b, c, d});
-  const double sum = high + low;
-  return sum > 0 ? (high - low) / sum : 0.0;
-}
-
-bool exceeds(const Color& threshold, const Color& c00, const Color& c10, const Color& c01, const Color& c11) {
-  for (int channel = 0; channel < 3; ++channel)
-    if (channel_contrast(c00[channel], c10[channel], c01[channel], c11[channel]) > threshold[channel])
-      return true;
-  return false;
-}
 
 // A pixel's samples, handed to emit(dx, dy, a, value): offset (dx, dy) in [0, 1)² within the
 // pixel, own weight a (1 for a point sample, the area for a leaf square).
@@ -153,7 +140,7 @@ class LatticeSampler {
 
   void square(const Leaf& leaf, int64_t ix, int64_t iy, int64_t size, int level, const Color& c00,
               const Color& c10, const Color& c01, const Color& c11, std::vector<uint64_t>& used) {
-    if (level >= max_level_ || !exceeds(threshold_, c00, c10, c01, c11)) {
+    if (level >= max_level_ || !contrast_exceeds(threshold_, c00, c10, c01, c11)) {
       // The leaf at its (unjittered) centre, weighted by its area: exact binary fractions.
       const double s = double(lattice_.scale);
       const double dx = (double(ix - leaf.pixel_x) + double(size) / 2) / s;

@@ -7,11 +7,11 @@
 #include <cmath>
 #include <cstring>
 #include <mutex>
-#include <numbers>
 #include <set>
 #include <string>
 #include <utility>
 
+#include "half_plane.h"
 #include "math/pcg32.h"
 
 namespace candela {
@@ -19,38 +19,7 @@ namespace {
 
 constexpr int kWidth = 16, kHeight = 12;
 
-// White where n·(p − p0) > 0, black elsewhere: a straight edge through p0 at `degrees`.
-struct HalfPlane {
-  double nx, ny, d;
-  explicit HalfPlane(double degrees) {
-    const double a = degrees * std::numbers::pi / 180;
-    nx = -std::sin(a);
-    ny = std::cos(a);
-    d = nx * (kWidth / 2.0 + 0.31) + ny * (kHeight / 2.0 + 0.17);
-  }
-  double side(double x, double y) const { return nx * x + ny * y - d; }
-  Color operator()(double x, double y) const { return Color(side(x, y) > 0 ? 1.0 : 0.0); }
-  // The exact white area of pixel (px, py): the unit square clipped by the half-plane.
-  double covered(int px, int py) const {
-    std::vector<std::pair<double, double>> polygon{{px, py}, {px + 1, py}, {px + 1, py + 1}, {px, py + 1}};
-    std::vector<std::pair<double, double>> clipped;
-    for (std::size_t i = 0; i < polygon.size(); ++i) {
-      const auto a = polygon[i], b = polygon[(i + 1) % polygon.size()];
-      const double sa = side(a.first, a.second), sb = side(b.first, b.second);
-      if (sa > 0) clipped.push_back(a);
-      if ((sa > 0) != (sb > 0)) {
-        const double t = sa / (sa - sb);
-        clipped.emplace_back(a.first + t * (b.first - a.first), a.second + t * (b.second - a.second));
-      }
-    }
-    double area = 0;
-    for (std::size_t i = 0; i < clipped.size(); ++i) {
-      const auto a = clipped[i], b = clipped[(i + 1) % clipped.size()];
-      area += a.first * b.second - b.first * a.second;
-    }
-    return std::fabs(area) / 2;
-  }
-};
+using testing::HalfPlane;
 
 struct Render {
   Film film{kWidth, kHeight};
@@ -114,7 +83,7 @@ TEST(Antialiasing, ModeNamesRoundTrip) {
 }
 
 TEST(Antialiasing, NoneTracesThePixelCentres) {
-  const Render r = render(with_mode(AntialiasingMode::none), HalfPlane(30));
+  const Render r = render(with_mode(AntialiasingMode::none), HalfPlane(30, kWidth, kHeight));
   EXPECT_EQ(r.result.traced, uint64_t(kWidth * kHeight));
   for (const auto& [x, y] : r.points) {
     EXPECT_EQ(x - std::floor(x), 0.5);
@@ -123,7 +92,7 @@ TEST(Antialiasing, NoneTracesThePixelCentres) {
 }
 
 TEST(Antialiasing, CornersCostsOneRayPerLatticePoint) {
-  const Render r = render(with_mode(AntialiasingMode::corners), HalfPlane(30));
+  const Render r = render(with_mode(AntialiasingMode::corners), HalfPlane(30, kWidth, kHeight));
   EXPECT_EQ(r.result.traced, uint64_t((kWidth + 1) * (kHeight + 1)));
   EXPECT_EQ(r.points.size(), std::size_t((kWidth + 1) * (kHeight + 1)));
   EXPECT_EQ(unique_points(r.points), r.points.size());
@@ -136,7 +105,7 @@ TEST(Antialiasing, AdaptiveNeverTracesAPointTwice) {
     AntialiasingSettings settings = with_mode(AntialiasingMode::adaptive);
     settings.max_level = 3;
     settings.jitter = jitter;
-    const Render r = render(settings, HalfPlane(30), 3);
+    const Render r = render(settings, HalfPlane(30, kWidth, kHeight), 3);
     EXPECT_EQ(r.result.traced, r.points.size());
     EXPECT_EQ(unique_points(r.points), r.points.size()) << "jitter " << jitter;
     EXPECT_EQ(sum(r.result.traced_per_pixel), r.result.traced);
@@ -171,7 +140,7 @@ double worst_error(const Film& film, const HalfPlane& edge) {
 
 TEST(Antialiasing, HalfPlaneEdgeErrorShrinksWithN) {
   for (const double degrees : {10.0, 30.0, 45.0, 80.0}) {
-    const HalfPlane edge(degrees);
+    const HalfPlane edge(degrees, kWidth, kHeight);
     for (const AntialiasingMode mode : {AntialiasingMode::uniform, AntialiasingMode::jittered}) {
       for (const int n : {1, 2, 4, 8}) {
         const Render r = render(with_mode(mode, n), edge);
@@ -194,7 +163,7 @@ TEST(Antialiasing, HalfPlaneEdgeErrorShrinksWithN) {
 TEST(Antialiasing, AdaptiveMatchesTheDenseLatticeOnEdgePixelsWithFewerRays) {
   constexpr int kLevel = 3, kScale = 1 << kLevel;
   for (const double degrees : {10.0, 30.0, 45.0, 80.0}) {
-    const HalfPlane edge(degrees);
+    const HalfPlane edge(degrees, kWidth, kHeight);
     AntialiasingSettings settings = with_mode(AntialiasingMode::adaptive);
     settings.max_level = kLevel;
     const Render adaptive = render(settings, edge);
@@ -455,7 +424,7 @@ TEST(Antialiasing, AdaptiveSamplesAreReconstructedWithTheFilter) {
   // Before, aa.filter was ignored by adaptive: now a wider filter changes the image.
   AntialiasingSettings settings = with_mode(AntialiasingMode::adaptive);
   settings.max_level = 3;
-  const HalfPlane edge(30);
+  const HalfPlane edge(30, kWidth, kHeight);
   const Render boxed = render(settings, edge);
   settings.filter = "gaussian";
   const Render smooth = render(settings, edge);
@@ -470,7 +439,7 @@ TEST(Antialiasing, ACroppedRegionKeepsThePixelValues) {
   AntialiasingSettings settings = with_mode(AntialiasingMode::adaptive);
   settings.max_level = 3;
   settings.jitter = true;
-  const HalfPlane edge(30);
+  const HalfPlane edge(30, kWidth, kHeight);
   const Render full = render(settings, edge);
   Film part(5, 4);
   const RadianceFunction radiance = [&](double x, double y) { return edge(x, y); };

@@ -7,8 +7,8 @@
 //   corners   the pixel corners, and adaptive the lattice of spacing 2^-max_level pixel with
 //             its borders (sample i at x = i / scale): the rasterized view has every lattice
 //             point, and adaptive picks those its subdivision asks for.
-// Jittered points and jittered lattices lie off every grid: no grid (a rasterizing view refuses
-// them).
+// Jittered points and jittered lattices lie off every grid: no grid (a rasterizing view draws them
+// in passes, camera/accumulation_buffer.h).
 #pragma once
 
 #include <cmath>

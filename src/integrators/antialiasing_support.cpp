@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "camera/accumulation_buffer.h"
 #include "camera/sample_grid.h"
 #include "integrators/method.h"
 #include "scene/scene.h"
@@ -13,10 +14,6 @@
 namespace candela {
 
 namespace {
-
-std::string quoted_mode(AntialiasingMode mode) {
-  return fmt::format("\"{}\"", kAntialiasingModeNames.name(mode));
-}
 
 // The most grid samples a rasterized view keeps (24 bytes each: 3 GiB).
 constexpr int64_t kMaxGridSamples = int64_t(1) << 27;
@@ -40,21 +37,12 @@ std::optional<AntialiasingRefusal> grid_size_refusal(const AntialiasingSettings&
 
 std::optional<AntialiasingRefusal> sample_grid_refusal(const AntialiasingSettings& settings,
                                                        const Scene& scene) {
-  const std::optional<SampleGrid> grid = sample_grid(settings);
-  if (!grid) {
-    const std::string reason =
-        "it rasterizes at the points of a regular grid and jittered points lie off it; use aa.mode "
-        "\"none\", \"uniform\" (the image at n× resolution), or \"corners\" or \"adaptive\" without "
-        "aa.jitter";
-    if (settings.mode == AntialiasingMode::jittered)
-      return AntialiasingRefusal{"aa.mode", quoted_mode(settings.mode), reason};
-    return AntialiasingRefusal{"aa.jitter", "true",
-                               fmt::format("with aa.mode {}: {}", quoted_mode(settings.mode), reason)};
-  }
-  if (auto refusal = grid_size_refusal(settings, *grid, *scene.camera, "")) return refusal;
+  // Jittered samples are drawn in passes of the image's own size (camera/accumulation_buffer.h).
+  if (drawn_in_passes(settings)) return std::nullopt;
+  const SampleGrid grid = *sample_grid(settings);
+  if (auto refusal = grid_size_refusal(settings, grid, *scene.camera, "")) return refusal;
   for (const NamedCamera& named : scene.cameras)
-    if (auto refusal =
-            grid_size_refusal(settings, *grid, *named.camera, " for camera \"" + named.name + "\""))
+    if (auto refusal = grid_size_refusal(settings, grid, *named.camera, " for camera \"" + named.name + "\""))
       return refusal;
   return std::nullopt;
 }
@@ -86,7 +74,8 @@ bool set_samples_per_pixel(Scene& scene, std::string_view method, int samples) {
 void choose_jittered_where_possible(AntialiasingSettings& settings, const Scene& scene,
                                     const Method& method) {
   settings.mode = AntialiasingMode::jittered;
-  if (method.antialiasing_refusal(scene, settings)) settings.mode = AntialiasingMode::uniform;
+  if (method.rasterizes() || method.antialiasing_refusal(scene, settings))
+    settings.mode = AntialiasingMode::uniform;
 }
 
 void choose_jittered_where_possible(Scene& scene, const Method& method) {

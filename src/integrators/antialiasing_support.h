@@ -21,9 +21,10 @@ struct AntialiasingRefusal {
   std::string reason;  // why, and what the method can do instead
 };
 
-// The refusal of a view that rasterizes (camera/sample_grid.h): jittered samples, a jittered
-// lattice, and a grid too large to hold (aa.n, aa.max_level) for the scene's camera or any of its
-// named cameras (the views of candela render --camera).
+// The refusal of a view that rasterizes (camera/sample_grid.h): a grid too large to hold (aa.n,
+// aa.max_level) for the scene's camera or any of its named cameras (the views of candela render
+// --camera). Jittered samples and jittered lattices it draws in passes of the image's own size
+// (camera/accumulation_buffer.h): none.
 std::optional<AntialiasingRefusal> sample_grid_refusal(const AntialiasingSettings& settings,
                                                        const Scene& scene);
 
@@ -42,8 +43,9 @@ class Method;
 bool set_samples_per_pixel(AntialiasingSettings& settings, std::string_view method, int samples);
 // The same on the scene's own "aa" settings (candela render --spp).
 bool set_samples_per_pixel(Scene& scene, std::string_view method, int samples);
-// settings.mode "jittered" when the method can place jittered samples in the scene, "uniform"
-// when it rasterizes on a grid.
+// settings.mode "jittered" when the method traces a ray through each sample, "uniform" when it
+// rasterizes (Method::rasterizes: its n× grid in one drawing rather than n² passes) or cannot
+// place jittered samples.
 void choose_jittered_where_possible(AntialiasingSettings& settings, const Scene& scene, const Method& method);
 // The same on the scene's own "aa" settings.
 void choose_jittered_where_possible(Scene& scene, const Method& method);

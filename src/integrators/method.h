@@ -136,6 +136,10 @@ class Method {
     (void)antialiasing;
     return std::nullopt;
   }
+  // Whether the method draws its image with the rasterizer (raster; radiosity's gouraud display):
+  // candela render --spp N then gives it aa.mode "uniform", its n× grid drawn at once, rather
+  // than the n² passes of "jittered" (choose_jittered_where_possible).
+  virtual bool rasterizes() const { return false; }
   // Throws the InputError of a scene the method cannot render with its settings (an emitter its
   // shading cannot take), so that create_method refuses it before any work; render checks again.
   virtual void refuse_scene(const Scene& scene) const { (void)scene; }

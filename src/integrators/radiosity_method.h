@@ -70,10 +70,11 @@ class RadiosityMethod final : public Method {
   explicit RadiosityMethod(const RadiositySettings& settings = {}) : settings_(settings) {}
   std::string_view name() const override { return "radiosity"; }
   RenderResult render(const Scene& scene, const RenderRequest& request) const override;
-  // flat, ray-traced, elements: every aa mode and filter; gouraud: the modes whose samples lie on
-  // a grid (camera/sample_grid.h).
+  // Every aa mode and filter; gouraud, which rasterizes (the jittered modes in passes,
+  // camera/accumulation_buffer.h), refuses a grid too large to hold (camera/sample_grid.h).
   std::optional<AntialiasingRefusal> antialiasing_refusal(
       const Scene& scene, const AntialiasingSettings& antialiasing) const override;
+  bool rasterizes() const override { return settings_.display == RadiosityDisplay::gouraud; }
   // A scene with no bounded shape of any size (only planes): nothing to mesh within.
   void refuse_scene(const Scene& scene) const override;
   // The ray-traced display's field, solved now, gathered over the hemisphere (integrators/probe.h).

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "camera/accumulation_buffer.h"
 #include "camera/antialiasing.h"
 #include "camera/sample_grid.h"
 #include "integrators/direct_lighting.h"
@@ -333,10 +334,21 @@ TessellationRequest tessellation_for_view(const Scene& scene, const SampleGrid& 
 std::vector<MemoryPart> RasterMethod::memory_needed(const Scene& scene, const RenderRequest& request) const {
   std::vector<MemoryPart> parts = Method::memory_needed(scene, request);
   const PixelRect& region = request.region;
-  const std::optional<SampleGrid> grid = sample_grid(request.antialiasing_for(scene));
+  const AntialiasingSettings& antialiasing = request.antialiasing_for(scene);
+  std::optional<SampleGrid> grid = sample_grid(antialiasing);
+  if (drawn_in_passes(antialiasing)) {
+    // The image itself, drawn once per pass.
+    grid = SampleGrid{};
+    const SamplingRegion sampling{region.x0, region.y0, scene.camera->width(), scene.camera->height()};
+    const PixelBox pixels = pixels_drawn_in_passes(antialiasing, sampling, region.width(), region.height());
+    parts.push_back(
+        image_memory_part("the passes' samples and sums", accumulation_bytes(antialiasing, pixels)));
+  }
   if (!grid) return parts;  // refused as it is rendered
-  const uint64_t samples = static_cast<uint64_t>(grid->end(region.width())) * grid->end(region.height());
-  parts.push_back({"the samples", samples * (sizeof(Color) + sizeof(double)), "aa.n", "lower it"});
+  if (!drawn_in_passes(antialiasing)) {
+    const uint64_t samples = static_cast<uint64_t>(grid->end(region.width())) * grid->end(region.height());
+    parts.push_back({"the samples", samples * (sizeof(Color) + sizeof(double)), "aa.n", "lower it"});
+  }
   const std::size_t triangles =
       tessellated_triangle_count(scene, tessellation_for_view(scene, *grid, settings_));
   // The tessellation three times at its peak (its arrays grow by doubling), then clip positions and
@@ -370,14 +382,20 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
   const Camera& camera = *scene.camera;
   // The scene is drawn at the points of the aa mode's sample grid (camera/sample_grid.h), over
   // every pixel sample_image asks about, and sample_image reconstructs the pixels from them.
-  const SampleGrid grid = *sample_grid(antialiasing);
+  // Jittered samples lie off every grid: the image is drawn at its own size once per pass, its
+  // projection moved by the pass's sub-pixel offset, and the passes are splatted into the film
+  // (camera/accumulation_buffer.h).
+  const bool in_passes = drawn_in_passes(antialiasing);
+  const SampleGrid grid = in_passes ? SampleGrid{} : *sample_grid(antialiasing);
   const int grid_width = static_cast<int>(grid.end(camera.width()));
   const int grid_height = static_cast<int>(grid.end(camera.height()));
   const SamplingRegion sampling{region.x0, region.y0, camera.width(), camera.height()};
-  const PixelBox pixels = sampled_pixels(antialiasing, sampling, region.width(), region.height());
+  const PixelBox pixels =
+      in_passes ? pixels_drawn_in_passes(antialiasing, sampling, region.width(), region.height())
+                : sampled_pixels(antialiasing, sampling, region.width(), region.height());
   const PixelBox samples_box{static_cast<int>(grid.first(pixels.x0)), static_cast<int>(grid.first(pixels.y0)),
                              static_cast<int>(grid.end(pixels.x1)), static_cast<int>(grid.end(pixels.y1))};
-  Film samples(samples_box.width(), samples_box.height());
+  Film samples(in_passes ? 0 : samples_box.width(), in_passes ? 0 : samples_box.height());
   Stopwatch tessellation_time;
   const TessellationRequest tessellation = tessellation_for_view(scene, grid, settings_);
   const Eigen::Matrix4d& clip_from_world = tessellation.clip_from_world;
@@ -413,8 +431,12 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
   // Tiles of the grid samples, aligned on the grid's own tiles of 32 (a scanline started inside a
   // span agrees with a whole-image draw only to rounding, so every region starts its spans where
   // the whole image does), each with the triangles whose screen bounds reach it (a triangle with
-  // a vertex behind the eye plane may reach anywhere once clipped: every tile gets it).
+  // a vertex behind the eye plane may reach anywhere once clipped: every tile gets it). A pass
+  // moves the image by less than a pixel: drawn in passes, a triangle is binned by its bounds
+  // grown by a pixel, and kept unless it lies that far outside the frustum's sides.
   const int tile = 32;
+  const int margin = in_passes ? 1 : 0;
+  const double side_x = 1.0 + 2.0 * margin / grid_width, side_y = 1.0 + 2.0 * margin / grid_height;
   const int first_tx = samples_box.x0 / tile, first_ty = samples_box.y0 / tile;
   const int tiles_x = (samples_box.x1 - 1) / tile - first_tx + 1;
   const int tiles_y = (samples_box.y1 - 1) / tile - first_ty + 1;
@@ -424,15 +446,17 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
     int outside_all = 0x3F;
     for (int k = 0; k < 3; ++k) {
       const Eigen::Vector4d& c = clip_positions[3 * t + k];
-      const int outside = (c.x() < -c.w()) | (c.x() > c.w()) << 1 | (c.y() < -c.w()) << 2 |
-                          (c.y() > c.w()) << 3 | (c.z() < -c.w()) << 4 | (c.z() > c.w()) << 5;
+      const int outside = (c.x() < -side_x * c.w()) | (c.x() > side_x * c.w()) << 1 |
+                          (c.y() < -side_y * c.w()) << 2 | (c.y() > side_y * c.w()) << 3 |
+                          (c.z() < -c.w()) << 4 | (c.z() > c.w()) << 5;
       outside_all &= outside;
     }
     if (outside_all != 0) continue;
     int tx0 = 0, ty0 = 0, tx1 = tiles_x - 1, ty1 = tiles_y - 1;
-    const auto [lower_x, upper_x, lower_y, upper_y, in_front] = screen_bounds(
+    auto [lower_x, upper_x, lower_y, upper_y, in_front] = screen_bounds(
         clip_positions[3 * t], clip_positions[3 * t + 1], clip_positions[3 * t + 2], grid_width, grid_height);
     if (in_front) {
+      lower_x -= margin, upper_x += margin, lower_y -= margin, upper_y += margin;
       if (!(upper_x >= samples_box.x0 && lower_x <= samples_box.x1 && upper_y >= samples_box.y0 &&
             lower_y <= samples_box.y1))
         continue;
@@ -447,32 +471,51 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
       for (int tx = tx0; tx <= tx1; ++tx)
         bins[std::size_t(ty) * tiles_x + tx].push_back(static_cast<uint32_t>(t));
   }
-  ProgressReporter progress("raster", static_cast<uint64_t>(tiles_x) * tiles_y, "tiles", request.quiet);
   tbb::enumerable_thread_specific<RasterStatistics> tile_statistics;
   std::atomic<int> tiles_done{0};
-  tbb::parallel_for(0, tiles_x * tiles_y, [&](int index) {
+  // Draws tile `index` into out (samples_box-sized, row by row): on the grid (no offset), or one
+  // pass's samples of the pixels `wanted` (samples_box-sized; a tile with none is skipped).
+  const auto draw_tile = [&](int index, const PassOffset* offset, const std::vector<uint8_t>* wanted,
+                             Color* out) {
     if (cancel_requested()) return;  // Ctrl-C: the tiles not begun stay black
-    const int x0 = std::max(samples_box.x0, (first_tx + index % tiles_x) * tile);
+    // The tile's spans start at its aligned left edge, where the whole image's do, also when the
+    // region's samples begin inside it (rows are evaluated directly: any first row will do).
+    const int span_x0 = (first_tx + index % tiles_x) * tile;
+    const int x0 = std::max(samples_box.x0, span_x0);
     const int y0 = std::max(samples_box.y0, (first_ty + index / tiles_x) * tile);
     const int x1 = std::min((first_tx + index % tiles_x + 1) * tile, samples_box.x1);
     const int y1 = std::min((first_ty + index / tiles_x + 1) * tile, samples_box.y1);
-    const int w = x1 - x0;
-    Rasterizer rasterizer(grid_width, grid_height, x0, y0, x1, y1);  // cleared
+    const auto out_index = [&](int x, int y) {
+      return std::size_t(y - samples_box.y0) * samples_box.width() + (x - samples_box.x0);
+    };
+    const auto is_wanted = [&](int x, int y) { return !wanted || (*wanted)[out_index(x, y)] != 0; };
+    bool any_wanted = false;
+    for (int y = y0; y < y1 && !any_wanted; ++y)
+      for (int x = x0; x < x1 && !any_wanted; ++x) any_wanted = is_wanted(x, y);
+    if (!any_wanted) return;
+    const double shift_x = offset ? offset->ndc_shift_x(grid_width) : 0.0;
+    const double shift_y = offset ? offset->ndc_shift_y(grid_height) : 0.0;
+    const int w = x1 - span_x0;
+    Rasterizer rasterizer(grid_width, grid_height, span_x0, y0, x1, y1);  // cleared
     TileBuffers buffers;
     buffers.triangle.assign(std::size_t(w) * (y1 - y0), UINT32_MAX);
     buffers.varyings.assign(buffers.triangle.size() * stride, 0.0);
     std::array<RasterVertex, 3> corners;
-    for (const uint32_t id : bins[index]) {
+    for (const uint32_t id : bins[std::size_t(index)]) {
       const std::size_t t = id;
       for (int k = 0; k < 3; ++k) {
         corners[k].clip = clip_positions[3 * t + k];
+        if (offset) {
+          corners[k].clip.x() += corners[k].clip.w() * shift_x;
+          corners[k].clip.y() += corners[k].clip.w() * shift_y;
+        }
         if (varying_count > 0)
           std::copy_n(corner_varyings.data() + (3 * t + k) * stride, varying_count,
                       corners[k].varyings.begin());
       }
       rasterizer.draw_triangle(
           corners[0], corners[1], corners[2], varying_count, [&](const Fragment& fragment) {
-            const std::size_t pixel = std::size_t(fragment.y - y0) * w + (fragment.x - x0);
+            const std::size_t pixel = std::size_t(fragment.y - y0) * w + (fragment.x - span_x0);
             buffers.triangle[pixel] = id;
             std::copy_n(fragment.varyings, varying_count, buffers.varyings.begin() + pixel * stride);
             return true;
@@ -481,32 +524,62 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
     TraceContext& context = contexts.local();
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
-        const std::size_t pixel = std::size_t(y - y0) * w + (x - x0);
+        if (!is_wanted(x, y)) continue;
+        const std::size_t pixel = std::size_t(y - y0) * w + (x - span_x0);
         const uint32_t t = buffers.triangle[pixel];
-        samples.at(x - samples_box.x0, y - samples_box.y0) =
-            t == UINT32_MAX
-                ? scene.background_along(camera.generate_ray(grid.position(x), grid.position(y)).direction)
-                : shader.shade(t, buffers.varyings.data() + pixel * stride,
-                               flat_colors.empty() ? Color() : flat_colors[t], context);
+        const double image_x = offset ? x + offset->dx : grid.position(x);
+        const double image_y = offset ? y + offset->dy : grid.position(y);
+        out[out_index(x, y)] = t == UINT32_MAX
+                                   ? scene.background_along(camera.generate_ray(image_x, image_y).direction)
+                                   : shader.shade(t, buffers.varyings.data() + pixel * stride,
+                                                  flat_colors.empty() ? Color() : flat_colors[t], context);
       }
     RasterStatistics& total = tile_statistics.local();
     const RasterStatistics& own = rasterizer.statistics();
     total.fragments += own.fragments;
     total.written += own.written;
     tiles_done.fetch_add(1, std::memory_order_relaxed);
-    progress.advance();
-  });
-  progress.finish();
-  // The pixels from the grid's samples, reconstructed with the scene's filter.
-  const RadianceFunction sample_at = [&](double x, double y) {
-    const auto i = std::clamp<int64_t>(grid.index(x) - samples_box.x0, 0, samples.width() - 1);
-    const auto j = std::clamp<int64_t>(grid.index(y) - samples_box.y0, 0, samples.height() - 1);
-    return samples.at(static_cast<int>(i), static_cast<int>(j));
   };
-  sample_image(antialiasing, seed, sampling, scene.render.tile_size, sample_at, film);
-  if (cancel_requested()) {
-    statistics.extra["interrupted"] = true;
-    statistics.extra["completed"] = fmt::format("{} of {} tiles", tiles_done.load(), tiles_x * tiles_y);
+  nlohmann::json passes_facts;
+  if (in_passes) {
+    ProgressReporter progress("raster", static_cast<uint64_t>(PassSchedule(antialiasing, seed).passes()),
+                              "passes", request.quiet);
+    const PassDrawing draw_pass = [&](int, const PassOffset& offset, const PixelBox& box,
+                                      const std::vector<uint8_t>& wanted, std::vector<Color>& values) {
+      if (box.x0 != samples_box.x0 || box.y0 != samples_box.y0 || box.x1 != samples_box.x1 ||
+          box.y1 != samples_box.y1)
+        throw std::logic_error("raster: a pass asked for other pixels than the view was binned for");
+      tbb::parallel_for(0, tiles_x * tiles_y,
+                        [&](int index) { draw_tile(index, &offset, &wanted, values.data()); });
+      progress.advance();
+    };
+    const PassesResult passes = accumulate_passes(antialiasing, seed, sampling, draw_pass, film);
+    progress.finish();
+    passes_facts = {
+        {"passes", passes.passes}, {"refined_pixels", passes.refined_pixels}, {"samples", passes.samples}};
+    if (cancel_requested()) {
+      statistics.extra["interrupted"] = true;
+      statistics.extra["completed"] = fmt::format("{} of {} passes", passes.passes, passes.most_passes);
+    }
+  } else {
+    ProgressReporter progress("raster", static_cast<uint64_t>(tiles_x) * tiles_y, "tiles", request.quiet);
+    tbb::parallel_for(0, tiles_x * tiles_y, [&](int index) {
+      draw_tile(index, nullptr, nullptr,
+                samples.width() > 0 && samples.height() > 0 ? &samples.at(0, 0) : nullptr);
+      progress.advance();
+    });
+    progress.finish();
+    // The pixels from the grid's samples, reconstructed with the scene's filter.
+    const RadianceFunction sample_at = [&](double x, double y) {
+      const auto i = std::clamp<int64_t>(grid.index(x) - samples_box.x0, 0, samples.width() - 1);
+      const auto j = std::clamp<int64_t>(grid.index(y) - samples_box.y0, 0, samples.height() - 1);
+      return samples.at(static_cast<int>(i), static_cast<int>(j));
+    };
+    sample_image(antialiasing, seed, sampling, scene.render.tile_size, sample_at, film);
+    if (cancel_requested()) {
+      statistics.extra["interrupted"] = true;
+      statistics.extra["completed"] = fmt::format("{} of {} tiles", tiles_done.load(), tiles_x * tiles_y);
+    }
   }
   const double raster_seconds = raster_time.seconds();
   RayCounts shadow_rays;
@@ -526,6 +599,7 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
                                 {"triangles", triangle_count},
                                 {"fragments", fragments},
                                 {"depth_writes", written}};
+  if (in_passes) statistics.extra["raster"]["accumulation"] = passes_facts;
   return output;
 }
 

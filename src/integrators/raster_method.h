@@ -20,7 +20,9 @@
 // the pixel centres (none), the image at n× (uniform), the corner lattice of spacing
 // 2^-max_level (corners, adaptive: every lattice point is drawn, adaptive reads those its
 // subdivision asks for) — and sample_image reconstructs the pixels from them with the scene's
-// filter, as it does the ray tracers' samples. Jittered samples lie off any grid: refused.
+// filter, as it does the ray tracers' samples. Jittered samples lie off any grid: the image is
+// drawn once per pass with its projection moved by the pass's sub-pixel offset, and the passes
+// are splatted into the film (the accumulation buffer, camera/accumulation_buffer.h).
 // Not drawn here: reflection, refraction, the see-through blend, bump mapping (ray tracing's).
 #pragma once
 
@@ -50,9 +52,11 @@ class RasterMethod final : public Method {
  public:
   explicit RasterMethod(const RasterSettings& settings = {}) : settings_(settings) {}
   std::string_view name() const override { return "raster"; }
+  bool rasterizes() const override { return true; }
   RenderResult render(const Scene& scene, const RenderRequest& request) const override;
-  // The aa modes whose samples lie on a grid (camera/sample_grid.h): none, uniform, and corners
-  // and adaptive without jitter; every filter.
+  // Every aa mode and filter: the modes whose samples lie on a grid (camera/sample_grid.h) drawn
+  // on it, the jittered ones in passes (camera/accumulation_buffer.h); refused only a grid too
+  // large to hold.
   std::optional<AntialiasingRefusal> antialiasing_refusal(
       const Scene& scene, const AntialiasingSettings& antialiasing) const override;
   // "dotproduct" shading and the environment, or more lights than it interpolates.

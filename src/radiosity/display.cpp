@@ -64,10 +64,9 @@ SolutionDisplay::SolutionDisplay(const Scene& scene, const RadiositySolveResult&
   vertices_ =
       compute_vertex_radiosity(solution.mesh.elements, solution.element_radiosity, solution.element_hidden);
   if (display != RadiosityDisplay::gouraud) return;
-  // The method refuses the aa settings without a grid before any work (sample_grid_refusal).
-  const std::optional<SampleGrid> grid = sample_grid(antialiasing_);
-  if (!grid) throw std::logic_error("the gouraud display needs aa settings whose samples lie on a grid");
-  grid_ = *grid;
+  // Jittered samples lie off every grid: the image's own pixels, drawn once per pass.
+  in_passes_ = drawn_in_passes(antialiasing_);
+  grid_ = in_passes_ ? SampleGrid{} : *sample_grid(antialiasing_);
   // 000 §6.5: the elements drawn as triangles through the scanline rasterizer with their vertex
   // radiosities as colors, interpolated perspective-correctly (Gouraud). Projected once, here;
   // draw fills any region from them.
@@ -119,11 +118,22 @@ uint64_t SolutionDisplay::draw(int x0, int y0, Film& film) const {
     const RadianceFunction radiance = [&](double x, double y) { return ray_cast(x, y); };
     return sample_image(aa, seed_, at, scene_.render.tile_size, radiance, film).traced;
   }
+  if (in_passes_) {
+    // Every sample of a pass is drawn (the rasterizer's interpolation is all its cost).
+    const PassDrawing draw_pass = [&](int, const PassOffset& offset, const PixelBox& box,
+                                      const std::vector<uint8_t>&, std::vector<Color>& values) {
+      Film samples(box.width(), box.height());
+      draw_rasterized(box.x0, box.y0, &offset, samples);
+      for (int y = 0; y < box.height(); ++y)
+        for (int x = 0; x < box.width(); ++x) values[std::size_t(y) * box.width() + x] = samples.at(x, y);
+    };
+    return accumulate_passes(aa, seed_, at, draw_pass, film).samples;
+  }
   // The grid samples of every pixel sample_image asks about, rasterized first.
   const PixelBox pixels = sampled_pixels(aa, at, film.width(), film.height());
   const int64_t gx0 = grid_.first(pixels.x0), gy0 = grid_.first(pixels.y0);
   Film samples(static_cast<int>(grid_.end(pixels.x1) - gx0), static_cast<int>(grid_.end(pixels.y1) - gy0));
-  draw_rasterized(gx0, gy0, samples);
+  draw_rasterized(gx0, gy0, nullptr, samples);
   const RadianceFunction radiance = [&](double x, double y) {
     const auto i = std::clamp<int64_t>(grid_.index(x) - gx0, 0, samples.width() - 1);
     const auto j = std::clamp<int64_t>(grid_.index(y) - gy0, 0, samples.height() - 1);
@@ -135,7 +145,8 @@ uint64_t SolutionDisplay::draw(int x0, int y0, Film& film) const {
 // Tiles of 32 × 32 grid samples, each drawn by one thread from the same inputs with its own depth
 // buffer, so the image does not depend on the thread count; samples no element covers show the
 // background.
-void SolutionDisplay::draw_rasterized(int64_t gx0, int64_t gy0, Film& samples) const {
+void SolutionDisplay::draw_rasterized(int64_t gx0, int64_t gy0, const PassOffset* offset,
+                                      Film& samples) const {
   const Camera& camera = *scene_.camera;
   const int grid_width = static_cast<int>(grid_.end(camera.width()));
   const int grid_height = static_cast<int>(grid_.end(camera.height()));
@@ -145,36 +156,59 @@ void SolutionDisplay::draw_rasterized(int64_t gx0, int64_t gy0, Film& samples) c
   // inside a span agrees with a whole-image draw only to rounding, so every region starts its
   // spans where the whole image does.
   const int tile = 32;
+  // A pass moves the image by less than a pixel: an element is drawn in the tiles its bounds
+  // reach grown by a pixel.
+  const int margin = offset ? 1 : 0;
   const int first_x = x0 / tile, first_y = y0 / tile;
   const int tiles_x = (region_x1 - 1) / tile - first_x + 1, tiles_y = (region_y1 - 1) / tile - first_y + 1;
   tbb::parallel_for(0, tiles_x * tiles_y, [&](int index) {
-    const int tile_x0 = std::max(x0, (first_x + index % tiles_x) * tile);
+    // The spans start at the tile's aligned left edge also when the region begins inside it.
+    const int span_x0 = (first_x + index % tiles_x) * tile;
+    const int tile_x0 = std::max(x0, span_x0);
     const int tile_y0 = std::max(y0, (first_y + index / tiles_x) * tile);
     const int tile_x1 = std::min((first_x + index % tiles_x + 1) * tile, region_x1);
     const int tile_y1 = std::min((first_y + index / tiles_x + 1) * tile, region_y1);
-    const int w = tile_x1 - tile_x0;
-    Rasterizer rasterizer(grid_width, grid_height, tile_x0, tile_y0, tile_x1, tile_y1);  // cleared
+    const int w = tile_x1 - span_x0;
+    Rasterizer rasterizer(grid_width, grid_height, span_x0, tile_y0, tile_x1, tile_y1);  // cleared
     std::vector<Color> colors(std::size_t(w) * (tile_y1 - tile_y0));
     std::vector<bool> covered(colors.size(), false);
     for (std::size_t q = 0; q < triangles_.size(); ++q) {
       const ScreenBounds& box = bounds_on_screen_[q];
-      if (box.upper_x < tile_x0 || box.lower_x > tile_x1 || box.upper_y < tile_y0 || box.lower_y > tile_y1)
+      if (box.upper_x < box.lower_x) continue;  // never drawn (a two-sided element's back)
+      if (box.upper_x + margin < tile_x0 || box.lower_x - margin > tile_x1 ||
+          box.upper_y + margin < tile_y0 || box.lower_y - margin > tile_y1)
         continue;  // misses the tile
-      rasterizer.draw_triangle(
-          triangles_[q][0], triangles_[q][1], triangles_[q][2], 3, [&](const Fragment& fragment) {
-            const std::size_t pixel = std::size_t(fragment.y - tile_y0) * w + (fragment.x - tile_x0);
-            colors[pixel] = {fragment.varyings[0], fragment.varyings[1], fragment.varyings[2]};
-            covered[pixel] = true;
-            return true;
-          });
+      const auto draw = [&](const RasterVertex& a, const RasterVertex& b, const RasterVertex& c) {
+        rasterizer.draw_triangle(a, b, c, 3, [&](const Fragment& fragment) {
+          const std::size_t pixel = std::size_t(fragment.y - tile_y0) * w + (fragment.x - span_x0);
+          colors[pixel] = {fragment.varyings[0], fragment.varyings[1], fragment.varyings[2]};
+          covered[pixel] = true;
+          return true;
+        });
+      };
+      if (!offset) {
+        draw(triangles_[q][0], triangles_[q][1], triangles_[q][2]);
+        continue;
+      }
+      // The pass's projection: the corners moved in clip space (their colours, three varyings, kept).
+      std::array<RasterVertex, 3> moved;
+      for (std::size_t k = 0; k < 3; ++k) {
+        const RasterVertex& corner = triangles_[q][k];
+        moved[k].clip = corner.clip;
+        moved[k].clip.x() += corner.clip.w() * offset->ndc_shift_x(grid_width);
+        moved[k].clip.y() += corner.clip.w() * offset->ndc_shift_y(grid_height);
+        std::copy_n(corner.varyings.begin(), 3, moved[k].varyings.begin());
+      }
+      draw(moved[0], moved[1], moved[2]);
     }
     for (int y = tile_y0; y < tile_y1; ++y)
       for (int x = tile_x0; x < tile_x1; ++x) {
-        const std::size_t pixel = std::size_t(y - tile_y0) * w + (x - tile_x0);
+        const std::size_t pixel = std::size_t(y - tile_y0) * w + (x - span_x0);
+        const double image_x = offset ? x + offset->dx : grid_.position(x);
+        const double image_y = offset ? y + offset->dy : grid_.position(y);
         samples.at(x - x0, y - y0) =
             covered[pixel] ? colors[pixel]
-                           : scene_.background_along(
-                                 camera.generate_ray(grid_.position(x), grid_.position(y)).direction);
+                           : scene_.background_along(camera.generate_ray(image_x, image_y).direction);
       }
   });
 }

@@ -7,7 +7,8 @@
 //   gouraud     the vertex radiosities of radiosity/vertex_radiosity.h; the elements drawn as
 //               triangles by the scanline rasterizer in 32 × 32 tiles, colors interpolated
 //               perspective-correctly, at the points of the aa mode's sample grid
-//               (camera/sample_grid.h: no jitter).
+//               (camera/sample_grid.h), or for jittered samples once per pass at the image's
+//               own size with the pass's sub-pixel offset (camera/accumulation_buffer.h).
 //   ray-traced  a ray through each sample point; at its hit, the vertex radiosities of the
 //               element hit interpolated at the point (the Gouraud field without its screen-space
 //               interpolation).
@@ -21,6 +22,7 @@
 #include <vector>
 
 #include "accel/accelerator.h"
+#include "camera/accumulation_buffer.h"
 #include "camera/antialiasing.h"
 #include "camera/film.h"
 #include "camera/sample_grid.h"
@@ -50,8 +52,9 @@ class SolutionDisplay {
   bool casts_primary_rays() const { return display_ != RadiosityDisplay::gouraud; }
 
  private:
-  // The grid samples [gx0, gx0 + samples.width()) × [gy0, …) into samples.
-  void draw_rasterized(int64_t gx0, int64_t gy0, Film& samples) const;
+  // The grid samples [gx0, gx0 + samples.width()) × [gy0, …) into samples; with an offset (the
+  // grid the image's own pixels), each pixel's sample at (x + offset.dx, y + offset.dy).
+  void draw_rasterized(int64_t gx0, int64_t gy0, const PassOffset* offset, Film& samples) const;
   // The display along the camera ray through image point (x, y).
   Color ray_cast(double x, double y) const;
 
@@ -60,7 +63,8 @@ class SolutionDisplay {
   RadiosityDisplay display_;
   AntialiasingSettings antialiasing_;
   uint64_t seed_;
-  SampleGrid grid_;           // gouraud
+  bool in_passes_ = false;    // gouraud: jittered samples, drawn in passes
+  SampleGrid grid_;           // gouraud: the aa mode's grid, or in passes the image's pixels
   VertexRadiosity vertices_;  // gouraud, ray-traced
   // gouraud: every element's triangle in clip space (the grid's: camera/sample_grid.h), and its
   // bounds on the grid (unbounded when a corner is behind the near plane).
