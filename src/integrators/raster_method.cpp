@@ -18,6 +18,7 @@
 #include "integrators/memory_estimate.h"
 #include "raster/rasterizer.h"
 #include "raster/tessellated_scene.h"
+#include "scene/light_samples.h"
 #include "shading/cook_torrance.h"
 #include "shading/local_model.h"
 #include "shading/optics.h"
@@ -262,24 +263,20 @@ class RasterShader {
   Color visible_fraction(const Light& light, std::size_t e, const Vec3& p, const Vec3& normal, double offset,
                          TraceContext& context) const {
     const Vec3 origin = p + normal * offset;
-    if (light.sample_count() == 1) {
+    if (light.sample_count() == 1) {  // the point the dot product was taken toward
       LightSample sample;
       if (!light.illuminate(p, sample)) return {};
-      const double reach = std::isfinite(sample.distance) ? sample.distance - 2 * offset : kInfinity;
-      return shadow_transmittance(scene_, origin, sample.direction, reach, context, -1);
+      return shadow_transmittance(scene_, origin, sample.direction, shadow_reach(sample, offset), context,
+                                  -1);
     }
     const StratumJitter jitter{true, context.seed};  // the render's seed
     Color reached, total;
-    for (int index = 0; index < light.sample_count(); ++index) {
-      LightSample sample;
-      if (!illuminate_cell(light, p, e, index, jitter, sample)) continue;
+    for_each_light_sample(light, e, p, offset, jitter, [&](const LightSample& sample, double reach) {
       total += sample.intensity;
-      if (dot(normal, sample.direction) <= 0)
-        continue;  // behind the face: this part of the light is not seen
-      const double reach = std::isfinite(sample.distance) ? sample.distance - 2 * offset : kInfinity;
+      if (dot(normal, sample.direction) <= 0) return;  // behind the face: this part of the light is not seen
       reached +=
           sample.intensity * shadow_transmittance(scene_, origin, sample.direction, reach, context, -1);
-    }
+    });
     Color fraction;
     for (int c = 0; c < 3; ++c) fraction[c] = total[c] > 0 ? reached[c] / total[c] : 0;
     return fraction;
@@ -370,6 +367,145 @@ std::optional<AntialiasingRefusal> RasterMethod::antialiasing_refusal(
   return sample_grid_refusal(antialiasing, scene);
 }
 
+namespace {
+
+// The side of the tiles a view is drawn in: the grid's own tiles, whatever the region.
+constexpr int kRasterTile = 32;
+
+// Tiles of the grid samples, aligned on the grid's own tiles of kRasterTile (a scanline started
+// inside a span agrees with a whole-image draw only to rounding, so every region starts its spans
+// where the whole image does), each with the triangles whose screen bounds reach it (a triangle
+// with a vertex behind the eye plane may reach anywhere once clipped: every tile gets it). A pass
+// moves the image by less than a pixel: drawn in passes (margin 1), a triangle is binned by its
+// bounds grown by a pixel, and kept unless it lies that far outside the frustum's sides.
+std::vector<std::vector<uint32_t>> bin_triangles(const std::vector<Eigen::Vector4d>& clip_positions,
+                                                 const PixelBox& samples_box, int margin, int grid_width,
+                                                 int grid_height) {
+  const int tile = kRasterTile;
+  const std::size_t triangle_count = clip_positions.size() / 3;
+  const double side_x = 1.0 + 2.0 * margin / grid_width, side_y = 1.0 + 2.0 * margin / grid_height;
+  const int first_tx = samples_box.x0 / tile, first_ty = samples_box.y0 / tile;
+  const int tiles_x = (samples_box.x1 - 1) / tile - first_tx + 1;
+  const int tiles_y = (samples_box.y1 - 1) / tile - first_ty + 1;
+  std::vector<std::vector<uint32_t>> bins(std::size_t(tiles_x) * tiles_y);
+  for (std::size_t t = 0; t < triangle_count; ++t) {
+    // Outside one of the six clip planes with all three corners: in no tile.
+    int outside_all = 0x3F;
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector4d& c = clip_positions[3 * t + k];
+      const int outside = (c.x() < -side_x * c.w()) | (c.x() > side_x * c.w()) << 1 |
+                          (c.y() < -side_y * c.w()) << 2 | (c.y() > side_y * c.w()) << 3 |
+                          (c.z() < -c.w()) << 4 | (c.z() > c.w()) << 5;
+      outside_all &= outside;
+    }
+    if (outside_all != 0) continue;
+    int tx0 = 0, ty0 = 0, tx1 = tiles_x - 1, ty1 = tiles_y - 1;
+    auto [lower_x, upper_x, lower_y, upper_y, in_front] = screen_bounds(
+        clip_positions[3 * t], clip_positions[3 * t + 1], clip_positions[3 * t + 2], grid_width, grid_height);
+    if (in_front) {
+      lower_x -= margin, upper_x += margin, lower_y -= margin, upper_y += margin;
+      if (!(upper_x >= samples_box.x0 && lower_x <= samples_box.x1 && upper_y >= samples_box.y0 &&
+            lower_y <= samples_box.y1))
+        continue;
+      const auto tile_of = [&](double v, int first, int count) {
+        return std::clamp(static_cast<int>(std::floor(std::clamp(v, -1e9, 1e9) / tile)) - first, 0,
+                          count - 1);
+      };
+      tx0 = tile_of(lower_x, first_tx, tiles_x), tx1 = tile_of(upper_x, first_tx, tiles_x);
+      ty0 = tile_of(lower_y, first_ty, tiles_y), ty1 = tile_of(upper_y, first_ty, tiles_y);
+    }
+    for (int ty = ty0; ty <= ty1; ++ty)
+      for (int tx = tx0; tx <= tx1; ++tx)
+        bins[std::size_t(ty) * tiles_x + tx].push_back(static_cast<uint32_t>(t));
+  }
+  return bins;
+}
+
+// A view's triangles, transformed once and binned by tile (bin_triangles), and what drawing its
+// tiles needs.
+struct ViewTiles {
+  const Scene& scene;
+  const SampleGrid& grid;
+  const RasterShader& shader;
+  const std::vector<Eigen::Vector4d>& clip_positions;
+  const std::vector<double>& corner_varyings;  // varying_count per corner, `stride` apart
+  const std::vector<Color>& flat_colors;       // per triangle, for flat shading
+  const std::vector<std::vector<uint32_t>>& bins;
+  PixelBox samples_box;
+  int grid_width, grid_height, varying_count;
+  std::size_t stride;
+  int first_tx, first_ty, tiles_x;
+
+  // Draws tile `index` into out (samples_box-sized, row by row): on the grid (no offset), or one
+  // pass's samples of the pixels `wanted` (samples_box-sized); false for a tile with none of them.
+  bool draw_tile(int index, const PassOffset* offset, const std::vector<uint8_t>* wanted, Color* out,
+                 TraceContext& context, RasterStatistics& statistics) const {
+    const int tile = kRasterTile;
+    const Camera& camera = *scene.camera;
+    // The tile's spans start at its aligned left edge, where the whole image's do, also when the
+    // region's samples begin inside it (rows are evaluated directly: any first row will do).
+    const int span_x0 = (first_tx + index % tiles_x) * tile;
+    const int x0 = std::max(samples_box.x0, span_x0);
+    const int y0 = std::max(samples_box.y0, (first_ty + index / tiles_x) * tile);
+    const int x1 = std::min((first_tx + index % tiles_x + 1) * tile, samples_box.x1);
+    const int y1 = std::min((first_ty + index / tiles_x + 1) * tile, samples_box.y1);
+    const auto out_index = [&](int x, int y) {
+      return std::size_t(y - samples_box.y0) * samples_box.width() + (x - samples_box.x0);
+    };
+    const auto is_wanted = [&](int x, int y) { return !wanted || (*wanted)[out_index(x, y)] != 0; };
+    bool any_wanted = false;
+    for (int y = y0; y < y1 && !any_wanted; ++y)
+      for (int x = x0; x < x1 && !any_wanted; ++x) any_wanted = is_wanted(x, y);
+    if (!any_wanted) return false;
+    const double shift_x = offset ? offset->ndc_shift_x(grid_width) : 0.0;
+    const double shift_y = offset ? offset->ndc_shift_y(grid_height) : 0.0;
+    const int w = x1 - span_x0;
+    Rasterizer rasterizer(grid_width, grid_height, span_x0, y0, x1, y1);  // cleared
+    TileBuffers buffers;
+    buffers.triangle.assign(std::size_t(w) * (y1 - y0), UINT32_MAX);
+    buffers.varyings.assign(buffers.triangle.size() * stride, 0.0);
+    std::array<RasterVertex, 3> corners;
+    for (const uint32_t id : bins[std::size_t(index)]) {
+      const std::size_t t = id;
+      for (int k = 0; k < 3; ++k) {
+        corners[k].clip = clip_positions[3 * t + k];
+        if (offset) {
+          corners[k].clip.x() += corners[k].clip.w() * shift_x;
+          corners[k].clip.y() += corners[k].clip.w() * shift_y;
+        }
+        if (varying_count > 0)
+          std::copy_n(corner_varyings.data() + (3 * t + k) * stride, varying_count,
+                      corners[k].varyings.begin());
+      }
+      rasterizer.draw_triangle(
+          corners[0], corners[1], corners[2], varying_count, [&](const Fragment& fragment) {
+            const std::size_t pixel = std::size_t(fragment.y - y0) * w + (fragment.x - span_x0);
+            buffers.triangle[pixel] = id;
+            std::copy_n(fragment.varyings, varying_count, buffers.varyings.begin() + pixel * stride);
+            return true;
+          });
+    }
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        if (!is_wanted(x, y)) continue;
+        const std::size_t pixel = std::size_t(y - y0) * w + (x - span_x0);
+        const uint32_t t = buffers.triangle[pixel];
+        const double image_x = offset ? x + offset->dx : grid.position(x);
+        const double image_y = offset ? y + offset->dy : grid.position(y);
+        out[out_index(x, y)] = t == UINT32_MAX
+                                   ? scene.background_along(camera.generate_ray(image_x, image_y).direction)
+                                   : shader.shade(t, buffers.varyings.data() + pixel * stride,
+                                                  flat_colors.empty() ? Color() : flat_colors[t], context);
+      }
+    const RasterStatistics& own = rasterizer.statistics();
+    statistics.fragments += own.fragments;
+    statistics.written += own.written;
+    return true;
+  }
+};
+
+}  // namespace
+
 RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& request) const {
   // The render's aa settings and seed, which may not be the scene's.
   const AntialiasingSettings& antialiasing = request.antialiasing_for(scene);
@@ -434,111 +570,23 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
   // a vertex behind the eye plane may reach anywhere once clipped: every tile gets it). A pass
   // moves the image by less than a pixel: drawn in passes, a triangle is binned by its bounds
   // grown by a pixel, and kept unless it lies that far outside the frustum's sides.
-  const int tile = 32;
+  const int tile = kRasterTile;
   const int margin = in_passes ? 1 : 0;
-  const double side_x = 1.0 + 2.0 * margin / grid_width, side_y = 1.0 + 2.0 * margin / grid_height;
   const int first_tx = samples_box.x0 / tile, first_ty = samples_box.y0 / tile;
   const int tiles_x = (samples_box.x1 - 1) / tile - first_tx + 1;
   const int tiles_y = (samples_box.y1 - 1) / tile - first_ty + 1;
-  std::vector<std::vector<uint32_t>> bins(std::size_t(tiles_x) * tiles_y);
-  for (std::size_t t = 0; t < triangle_count; ++t) {
-    // Outside one of the six clip planes with all three corners: in no tile.
-    int outside_all = 0x3F;
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector4d& c = clip_positions[3 * t + k];
-      const int outside = (c.x() < -side_x * c.w()) | (c.x() > side_x * c.w()) << 1 |
-                          (c.y() < -side_y * c.w()) << 2 | (c.y() > side_y * c.w()) << 3 |
-                          (c.z() < -c.w()) << 4 | (c.z() > c.w()) << 5;
-      outside_all &= outside;
-    }
-    if (outside_all != 0) continue;
-    int tx0 = 0, ty0 = 0, tx1 = tiles_x - 1, ty1 = tiles_y - 1;
-    auto [lower_x, upper_x, lower_y, upper_y, in_front] = screen_bounds(
-        clip_positions[3 * t], clip_positions[3 * t + 1], clip_positions[3 * t + 2], grid_width, grid_height);
-    if (in_front) {
-      lower_x -= margin, upper_x += margin, lower_y -= margin, upper_y += margin;
-      if (!(upper_x >= samples_box.x0 && lower_x <= samples_box.x1 && upper_y >= samples_box.y0 &&
-            lower_y <= samples_box.y1))
-        continue;
-      const auto tile_of = [&](double v, int first, int count) {
-        return std::clamp(static_cast<int>(std::floor(std::clamp(v, -1e9, 1e9) / tile)) - first, 0,
-                          count - 1);
-      };
-      tx0 = tile_of(lower_x, first_tx, tiles_x), tx1 = tile_of(upper_x, first_tx, tiles_x);
-      ty0 = tile_of(lower_y, first_ty, tiles_y), ty1 = tile_of(upper_y, first_ty, tiles_y);
-    }
-    for (int ty = ty0; ty <= ty1; ++ty)
-      for (int tx = tx0; tx <= tx1; ++tx)
-        bins[std::size_t(ty) * tiles_x + tx].push_back(static_cast<uint32_t>(t));
-  }
+  const std::vector<std::vector<uint32_t>> bins =
+      bin_triangles(clip_positions, samples_box, margin, grid_width, grid_height);
   tbb::enumerable_thread_specific<RasterStatistics> tile_statistics;
   std::atomic<int> tiles_done{0};
-  // Draws tile `index` into out (samples_box-sized, row by row): on the grid (no offset), or one
-  // pass's samples of the pixels `wanted` (samples_box-sized; a tile with none is skipped).
+  const ViewTiles view{scene,         grid,   shader,      clip_positions, corner_varyings,
+                       flat_colors,   bins,   samples_box, grid_width,     grid_height,
+                       varying_count, stride, first_tx,    first_ty,       tiles_x};
   const auto draw_tile = [&](int index, const PassOffset* offset, const std::vector<uint8_t>* wanted,
                              Color* out) {
     if (cancel_requested()) return;  // Ctrl-C: the tiles not begun stay black
-    // The tile's spans start at its aligned left edge, where the whole image's do, also when the
-    // region's samples begin inside it (rows are evaluated directly: any first row will do).
-    const int span_x0 = (first_tx + index % tiles_x) * tile;
-    const int x0 = std::max(samples_box.x0, span_x0);
-    const int y0 = std::max(samples_box.y0, (first_ty + index / tiles_x) * tile);
-    const int x1 = std::min((first_tx + index % tiles_x + 1) * tile, samples_box.x1);
-    const int y1 = std::min((first_ty + index / tiles_x + 1) * tile, samples_box.y1);
-    const auto out_index = [&](int x, int y) {
-      return std::size_t(y - samples_box.y0) * samples_box.width() + (x - samples_box.x0);
-    };
-    const auto is_wanted = [&](int x, int y) { return !wanted || (*wanted)[out_index(x, y)] != 0; };
-    bool any_wanted = false;
-    for (int y = y0; y < y1 && !any_wanted; ++y)
-      for (int x = x0; x < x1 && !any_wanted; ++x) any_wanted = is_wanted(x, y);
-    if (!any_wanted) return;
-    const double shift_x = offset ? offset->ndc_shift_x(grid_width) : 0.0;
-    const double shift_y = offset ? offset->ndc_shift_y(grid_height) : 0.0;
-    const int w = x1 - span_x0;
-    Rasterizer rasterizer(grid_width, grid_height, span_x0, y0, x1, y1);  // cleared
-    TileBuffers buffers;
-    buffers.triangle.assign(std::size_t(w) * (y1 - y0), UINT32_MAX);
-    buffers.varyings.assign(buffers.triangle.size() * stride, 0.0);
-    std::array<RasterVertex, 3> corners;
-    for (const uint32_t id : bins[std::size_t(index)]) {
-      const std::size_t t = id;
-      for (int k = 0; k < 3; ++k) {
-        corners[k].clip = clip_positions[3 * t + k];
-        if (offset) {
-          corners[k].clip.x() += corners[k].clip.w() * shift_x;
-          corners[k].clip.y() += corners[k].clip.w() * shift_y;
-        }
-        if (varying_count > 0)
-          std::copy_n(corner_varyings.data() + (3 * t + k) * stride, varying_count,
-                      corners[k].varyings.begin());
-      }
-      rasterizer.draw_triangle(
-          corners[0], corners[1], corners[2], varying_count, [&](const Fragment& fragment) {
-            const std::size_t pixel = std::size_t(fragment.y - y0) * w + (fragment.x - span_x0);
-            buffers.triangle[pixel] = id;
-            std::copy_n(fragment.varyings, varying_count, buffers.varyings.begin() + pixel * stride);
-            return true;
-          });
-    }
-    TraceContext& context = contexts.local();
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) {
-        if (!is_wanted(x, y)) continue;
-        const std::size_t pixel = std::size_t(y - y0) * w + (x - span_x0);
-        const uint32_t t = buffers.triangle[pixel];
-        const double image_x = offset ? x + offset->dx : grid.position(x);
-        const double image_y = offset ? y + offset->dy : grid.position(y);
-        out[out_index(x, y)] = t == UINT32_MAX
-                                   ? scene.background_along(camera.generate_ray(image_x, image_y).direction)
-                                   : shader.shade(t, buffers.varyings.data() + pixel * stride,
-                                                  flat_colors.empty() ? Color() : flat_colors[t], context);
-      }
-    RasterStatistics& total = tile_statistics.local();
-    const RasterStatistics& own = rasterizer.statistics();
-    total.fragments += own.fragments;
-    total.written += own.written;
-    tiles_done.fetch_add(1, std::memory_order_relaxed);
+    if (view.draw_tile(index, offset, wanted, out, contexts.local(), tile_statistics.local()))
+      tiles_done.fetch_add(1, std::memory_order_relaxed);
   };
   nlohmann::json passes_facts;
   if (in_passes) {
@@ -581,24 +629,23 @@ RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& reque
       statistics.extra["completed"] = fmt::format("{} of {} tiles", tiles_done.load(), tiles_x * tiles_y);
     }
   }
-  const double raster_seconds = raster_time.seconds();
   RayCounts shadow_rays;
   for (const TraceContext& context : contexts) shadow_rays += context.counts;
   statistics.rays += shadow_rays;
   statistics.pixels += static_cast<uint64_t>(region.width()) * region.height();
-  uint64_t fragments = 0, written = 0;
+  RasterStatistics drawn;
   for (const RasterStatistics& s : tile_statistics) {
-    fragments += s.fragments;
-    written += s.written;
+    drawn.fragments += s.fragments;
+    drawn.written += s.written;
   }
   // Sub-phases of "render", kept out of the phase list so the total is not counted twice.
   statistics.extra["raster"] = {{"shading", kRasterShadingNames.name(settings_.shading)},
                                 {"segments", settings_.segments},
                                 {"tessellate_seconds", tessellation_seconds},
-                                {"rasterize_and_shade_seconds", raster_seconds},
+                                {"rasterize_and_shade_seconds", raster_time.seconds()},
                                 {"triangles", triangle_count},
-                                {"fragments", fragments},
-                                {"depth_writes", written}};
+                                {"fragments", drawn.fragments},
+                                {"depth_writes", drawn.written}};
   if (in_passes) statistics.extra["raster"]["accumulation"] = passes_facts;
   return output;
 }
