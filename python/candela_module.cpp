@@ -352,8 +352,9 @@ py::dict radiosity_solution(const Scene& scene, int threads) {
 // η_i (the direct part), the effective area A_i and the object it lies on.
 py::dict meshless_solution(const Scene& scene, int threads) {
   if (threads < 0) throw py::value_error("threads must be >= 0 (0: all cores)");
-  create_method(*find_method("meshless"), scene);  // refuses what the method cannot do, as render
-  const MeshlessSettings settings = read_meshless_settings(scene.plugin_settings.node("meshless"));
+  // Made as render makes it (refusing what it cannot do), its settings read by its own reader.
+  const std::unique_ptr<Method> method = create_method(*find_method("meshless"), scene);
+  const MeshlessSettings& settings = static_cast<const MeshlessMethod&>(*method).settings();
   std::optional<tbb::global_control> thread_limit;
   if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   const MeshlessSolution solution =
@@ -454,8 +455,8 @@ PYBIND11_MODULE(candela, module) {
              "'radiosity': (n, 3) λ, 'direct': (n, 3) η, 'area': (n,) effective areas, 'object': (n,) "
              "uint32, 'iterations', 'converged'}.");
   module.def("probe", &probe_points, py::arg("scene"), py::arg("points"), py::arg("normals"), py::kw_only(),
-             py::arg("method") = "path", py::arg("samples") = 256, py::arg("seed") = py::none(),
-             py::arg("threads") = 0,
+             py::arg("method") = std::string(kReferenceMethod), py::arg("samples") = 256,
+             py::arg("seed") = py::none(), py::arg("threads") = 0,
              "Irradiance (n, 3), radiance (n, 3) and the irradiance's standard error (n) at sensor points "
              "(n, 3) facing normals (n, 3), as `candela probe`. A point or normal that is not finite, or a "
              "zero normal, raises ValueError naming its index.");

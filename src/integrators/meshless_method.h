@@ -35,6 +35,7 @@ class MeshlessMethod final : public Method {
  public:
   explicit MeshlessMethod(const MeshlessSettings& settings = {}) : settings_(settings) {}
   std::string_view name() const override { return "meshless"; }
+  const MeshlessSettings& settings() const { return settings_; }
   RenderResult render(const Scene& scene, const RenderRequest& request) const override;
   // The image, the sites and, with integrated effective areas, the tessellated surfaces.
   std::vector<MemoryPart> memory_needed(const Scene& scene, const RenderRequest& request) const override;
