@@ -1,11 +1,9 @@
 #include "integrators/meshless_method.h"
 
 #include <fmt/format.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 
 #include "camera/antialiasing.h"
@@ -18,12 +16,9 @@
 #include "meshless/meshless_basis.h"
 #include "meshless/meshless_display.h"
 #include "scene/direct_irradiance.h"
-#include "scene/light.h"
 #include "scene/scene.h"
 #include "scene/surface_emitter_index.h"
 #include "util/cancellation.h"
-#include "util/memory.h"
-#include "util/progress.h"
 
 namespace candela {
 

@@ -205,7 +205,6 @@ RenderResult PassMethod::render(const Scene& scene, const RenderRequest& request
     snapshot.rays += passes->rays();
     return seal_pass_checkpoint(name(), snapshot);
   };
-  const uint64_t last_pass = run.limits().steps > 0 ? run.limits().steps : UINT64_MAX;
   bool interrupted = false;
   uint64_t dropped = 0;
   if (run.cluster()) {
@@ -222,7 +221,7 @@ RenderResult PassMethod::render(const Scene& scene, const RenderRequest& request
         break;
       }
       run.step_done(++state.passes, image);
-      if (run.more_steps(state.passes) && state.passes < last_pass) run.checkpoints().between_steps(seal);
+      if (run.more_steps(state.passes)) run.checkpoints().between_steps(seal);
     }
   }
   run.finish_progress();

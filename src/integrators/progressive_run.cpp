@@ -35,10 +35,9 @@ void ProgressiveRun::start(uint64_t first_step, std::string_view label, std::str
   timer_ = Stopwatch();
 }
 
-void ProgressiveRun::step_done(uint64_t steps, const std::function<Film()>& image,
-                               std::optional<double> unshot, std::string detail) {
-  if (request_.on_progress) request_.on_progress({unit_, steps, unshot, image});
-  progress_->set_detail(detail.empty() ? fmt::format("{} {}", steps, count_name_) : std::move(detail));
+void ProgressiveRun::step_done(uint64_t steps, const std::function<Film()>& image) {
+  if (request_.on_progress) request_.on_progress({unit_, steps, std::nullopt, image});
+  progress_->set_detail(fmt::format("{} {}", steps, count_name_));
   if (limits_.steps > 0) {
     progress_->advance();
   } else {

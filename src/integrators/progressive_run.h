@@ -59,10 +59,9 @@ class ProgressiveRun {
   // count_name: the steps of all runs in the facts and the progress line ("spp").
   void start(uint64_t first_step, std::string_view label, std::string_view unit, std::string_view count_name);
   // After each whole step, with the steps done so far in all runs (one process, or rank 0 after a
-  // round): the progress line, the request's on_progress (`image`: the image of
-  // the state reached; unshot: what progressive radiosity has left).
-  void step_done(uint64_t steps, const std::function<Film()>& image,
-                 std::optional<double> unshot = std::nullopt, std::string detail = {});
+  // round): the progress line and the request's on_progress (`image`: the image of the state
+  // reached).
+  void step_done(uint64_t steps, const std::function<Film()>& image);
   // Whether another step may start after `steps`: the step limit and the time limit.
   bool more_steps(uint64_t steps) const;
   double seconds() const { return timer_.seconds(); }

@@ -3,7 +3,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "distributed/cluster.h"
@@ -15,13 +14,10 @@
 #include "util/cancellation.h"
 #include "util/memory.h"
 #include "util/progress.h"
+#include "util/statistics.h"
 
 namespace candela {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // The number of sites on each level of the hierarchy, finest first (one level without one).
 std::vector<std::size_t> level_sizes(const MeshlessGeometry& geometry) {
@@ -68,7 +64,7 @@ std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene,
   // Every rank stops at the same phase (a collective when distributed).
   const auto stop = [&] { return cancellable && cancelled_anywhere(cluster); };
   auto geometry = std::make_shared<MeshlessGeometry>();
-  auto start = std::chrono::steady_clock::now();
+  Stopwatch phase;
   SiteSamplingSettings sampling;
   sampling.grid = settings.grid;
   sampling.rounds = settings.rounds;
@@ -86,11 +82,11 @@ std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene,
     }
     progress.finish();
   }
-  geometry->sampling_seconds = seconds_since(start);
+  geometry->sampling_seconds = phase.seconds();
   if (stop()) return nullptr;
   const SiteSet& sites = geometry->sites;
 
-  start = std::chrono::steady_clock::now();
+  phase = Stopwatch();
   // The basis refers to the geometry's own sites and radii, which stay where they are: the
   // geometry is held by a pointer and never moved.
   geometry->basis = std::make_unique<MeshlessBasis>(sites.sites, sites.radius, settings.basis,
@@ -99,7 +95,7 @@ std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene,
   if (settings.effective_area == MeshlessAreas::integrated)
     geometry->areas = integrate_effective_areas(scene, *geometry->basis, sites, sites.spacing / 4,
                                                 kEffectiveAreaSegments, cluster, quiet);
-  geometry->area_seconds = seconds_since(start);
+  geometry->area_seconds = phase.seconds();
   if (stop()) return nullptr;
   // The longest phase shows its rows (rank 0, for every rank).
   ProgressReporter progress("transfer matrix", sites.sites.size(), "sites",
@@ -111,13 +107,13 @@ std::shared_ptr<MeshlessGeometry> build_meshless_geometry(const Scene& scene,
   transfer.max_entries = transfer_entry_limit(scene);
   transfer.cluster_angle = settings.cluster_angle;
   if (settings.transport == MeshlessTransport::hierarchical) {
-    start = std::chrono::steady_clock::now();
+    phase = Stopwatch();
     try {
       geometry->hierarchy = std::make_unique<SiteHierarchy>(sites, settings.neighbours);
     } catch (const std::invalid_argument& e) {  // settings the sites cannot be thinned with: bad input
       throw InputError(settings.location, e.what());
     }
-    geometry->hierarchy_seconds = seconds_since(start);
+    geometry->hierarchy_seconds = phase.seconds();
   }
   try {
     geometry->matrix = compute_transfer_matrix(scene, sites, *geometry->basis, geometry->areas, transfer,
@@ -133,7 +129,7 @@ MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& sett
                                 const MeshlessGeometry& geometry, uint64_t seed, bool quiet,
                                 const MeshlessIterationCallback& on_iteration) {
   const SiteSet& sites = geometry.sites;
-  const auto start = std::chrono::steady_clock::now();
+  const Stopwatch phase;
   MeshlessLighting lighting;
   lighting.eta.resize(sites.sites.size());
   const SurfaceEmitterIndex emitters(scene);
@@ -161,7 +157,7 @@ MeshlessLighting light_meshless(const Scene& scene, const MeshlessSettings& sett
       solve_transfer(geometry.matrix, albedo, lighting.eta, settings.tolerance,
                      static_cast<std::size_t>(settings.max_iterations), &progress, each_iteration);
   progress.finish();
-  lighting.seconds = seconds_since(start);
+  lighting.seconds = phase.seconds();
   return lighting;
 }
 
