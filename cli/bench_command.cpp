@@ -3,16 +3,15 @@
 //               [--width W] [--height H] [--rays N] [--repeat R] [--min-time S] [--dump DIR] [--quiet]
 // candela bench --raster [MESH.obj ...] [--sphere N] [--terrain N] [--width W] [--height H] [--fov DEG]
 //               [--repeat R] [--min-time S] [--json FILE] [--quiet]
-// candela bench --radiosity [SCENE.json] [--set key=value]... [--threads N...] [--json FILE] [--quiet]
-// candela bench --meshless [SCENE.json] [--set key=value]... [--threads N...] [--json FILE] [--quiet]
+// candela bench --solve METHOD [SCENE.json] [--set key=value]... [--threads N...] [--json FILE] [--quiet]
 // Reproducible ray-set throughput (SPEC §14) with the ray sets and checksums of
 // shared/BENCH-RAYS.md. "embree" is Embree's own triangle test (the reference speed).
 // --raster measures the scanline rasterizer instead (bench/raster_bench.h): every mesh given,
 // or every .obj of ../shared/models (from the current directory) when none is.
-// --radiosity meshes and solves a scene's radiosity (integrators/radiosity_method.h) once per
-// thread count (default: one run with every core) and reports the solve's facts: patches,
-// elements, steps, unshot fraction, form factors computed and per second, their memory, and the
-// process's peak resident memory; SCENE defaults to the built-in default scene, as for render.
+// --solve makes a method's view-independent solution of a scene (Method::solve_alone) once per
+// thread count (default: one run with every core) and reports the
+// method's facts — a table of the columns it chooses, all of them in the JSON — and the process's
+// peak resident memory; SCENE defaults to the built-in default scene, as for render.
 #include <fmt/format.h>
 #include <tbb/global_control.h>
 
@@ -29,8 +28,7 @@
 #include "bench/bench_runner.h"
 #include "bench/raster_bench.h"
 #include "commands.h"
-#include "integrators/meshless_method.h"
-#include "integrators/radiosity_method.h"
+#include "integrators/method_registry.h"
 #include "integrators/scene_loading.h"
 #include "list_option.h"
 #include "output_paths.h"
@@ -61,8 +59,7 @@ struct BenchCommandOptions {
   std::string dump_directory;
   bool quiet = false;
   bool raster = false;
-  bool radiosity = false;
-  bool meshless = false;
+  std::string solve_method;            // --solve METHOD
   std::vector<std::string> overrides;  // --set key=value (scene files)
   // Whether the option was on the command line (the raster bench has its own defaults).
   bool width_given = false, height_given = false, min_time_given = false;
@@ -247,7 +244,7 @@ int run_raster_bench_command(const BenchCommandOptions& options) {
   return write_json({{"raster", reports}}, options);
 }
 
-// The machine, for the JSON of --radiosity: the CPU's model name (Linux) and hardware threads.
+// The machine, for the JSON of --solve: the CPU's model name (Linux) and hardware threads.
 nlohmann::json machine_facts() {
   std::string model = "unknown";
   std::ifstream cpuinfo("/proc/cpuinfo");
@@ -260,22 +257,42 @@ nlohmann::json machine_facts() {
   return {{"cpu", model}, {"hardware_threads", std::thread::hardware_concurrency()}};
 }
 
-// --radiosity and --meshless: solve one scene file once per thread count, a table row and the
-// solver's facts per run. run_one(scene, facts) solves and returns the table row's cells.
-int run_scene_solve_bench(const BenchCommandOptions& options, const std::string& mode,
-                          const std::string& header,
-                          const std::function<std::string(const Scene&, nlohmann::json&)>& run_one) {
-  if (options.raster || (options.radiosity && options.meshless))
-    throw BadArgument("give one of --raster, --radiosity and --meshless");
+// The method --solve names, made from the scene's settings as render makes it (refusing what it
+// cannot do before any work).
+std::unique_ptr<Method> solving_method(const std::string& name, const Scene& scene) {
+  const MethodEntry* entry = find_method(name);
+  if (!entry || !entry->capabilities.standalone_solution)
+    throw BadArgument(
+        fmt::format("--solve: '{}' has no view-independent solution to measure (expected one of {})", name,
+                    fmt::join(method_names_with(&MethodCapabilities::standalone_solution), ", ")));
+  return create_method(*entry, scene);
+}
+
+// The table of --solve: the thread count, the method's columns and the peak memory, each as wide
+// as its heading or its first value.
+std::string solve_table_line(const std::vector<std::pair<std::string, std::string>>& cells,
+                             std::vector<std::size_t>& widths) {
+  if (widths.empty())
+    for (const auto& [heading, value] : cells) widths.push_back(std::max(heading.size(), value.size()));
+  std::string line;
+  for (std::size_t i = 0; i < cells.size(); ++i)
+    line += fmt::format("{}{:>{}}", i == 0 ? "" : " ", cells[i].second, widths[i]);
+  return line;
+}
+
+// --solve: solve one scene file once per thread count, a table row and the method's facts per run.
+int run_solve_bench_command(const BenchCommandOptions& options) {
+  const std::string& name = options.solve_method;
+  if (options.raster) throw BadArgument("give one of --raster and --solve");
   if (!options.accelerators.empty() || !options.eye.empty() || !options.lookat.empty() ||
       !options.light.empty() || options.rays != 0 || !options.dump_directory.empty() || options.sphere ||
       options.terrain || options.width_given || options.height_given || options.min_time_given ||
       options.fov_given || options.repeat_given || options.seed_given)
-    throw BadArgument("--" + mode + " takes SCENE, --set, --threads, --json and --quiet only");
-  if (options.inputs.size() > 1) throw BadArgument("--" + mode + " takes at most one SCENE");
+    throw BadArgument("--solve takes METHOD, SCENE, --set, --threads, --json and --quiet only");
+  if (options.inputs.size() > 1) throw BadArgument("--solve takes at most one SCENE");
   const std::string scene_path = options.inputs.empty() ? std::string() : options.inputs.front();
   if (!scene_path.empty() && !is_scene_file(scene_path))
-    throw BadArgument("--" + mode + " measures a scene file (.json), not " + scene_path);
+    throw BadArgument("--solve measures a scene file (.json), not " + scene_path);
   std::vector<int> thread_counts;
   for (const int threads : options.threads) {
     if (threads < 1 || threads > 1024) throw BadArgument("--threads values must lie in [1, 1024]");
@@ -290,68 +307,40 @@ int run_scene_solve_bench(const BenchCommandOptions& options, const std::string&
                                                           : load_scene_file(scene_path, options.overrides);
   refuse_json_over_scene_files(options, *scene);
   for (const auto& warning : scene->warnings) std::cerr << "candela: warning: " << warning << "\n";
+  const std::unique_ptr<Method> method = solving_method(name, *scene);
   nlohmann::json runs = nlohmann::json::array();
-  std::cout << fmt::format("scene: {}\n", scene_path.empty() ? "(built-in default)" : scene_path) << header
-            << "\n";
+  std::cout << fmt::format("scene: {}\n", scene_path.empty() ? "(built-in default)" : scene_path);
+  std::vector<std::size_t> widths;
   for (const int threads : thread_counts) {
-    if (!options.quiet) std::cerr << fmt::format("candela: bench: {}, {} thread(s)\n", mode, threads);
+    if (!options.quiet) std::cerr << fmt::format("candela: bench: {}, {} thread(s)\n", name, threads);
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                                     static_cast<std::size_t>(threads));
-    nlohmann::json facts;
     Stopwatch total;
-    const std::string row = run_one(*scene, facts);
+    StandaloneSolution solution = method->solve_alone(*scene, options.quiet);
+    nlohmann::json& facts = solution.facts;
     facts["total_seconds"] = total.seconds();
     facts["threads"] = threads;
     // The process's peak so far: with several thread counts, the largest run's up to this one.
     const double peak_mib = static_cast<double>(peak_memory_bytes()) / 1048576.0;
     facts["peak_memory_mib"] = peak_mib;
-    std::cout << fmt::format("{:>7} {} {:>9.1f}\n", threads, row, peak_mib);
+    std::vector<std::pair<std::string, std::string>> cells{{"threads", std::to_string(threads)}};
+    cells.insert(cells.end(), solution.columns.begin(), solution.columns.end());
+    cells.emplace_back("peak MiB", fmt::format("{:.1f}", peak_mib));
+    if (widths.empty()) {
+      std::vector<std::pair<std::string, std::string>> headings;
+      for (const auto& [heading, value] : cells) headings.emplace_back(heading, heading);
+      solve_table_line(cells, widths);
+      std::cout << solve_table_line(headings, widths) << "\n";
+    }
+    std::cout << solve_table_line(cells, widths) << "\n";
     runs.push_back(std::move(facts));
   }
-  return write_json({{mode,
+  return write_json({{name,
                       {{"scene", scene_path.empty() ? "(built-in default)" : scene_path},
                        {"overrides", options.overrides},
                        {"machine", machine_facts()},
                        {"runs", runs}}}},
                     options);
-}
-
-int run_radiosity_bench_command(const BenchCommandOptions& options) {
-  // Hierarchical radiosity's links (0 for the other solvers) and its memory (nodes and
-  // links) in the form-factor column; its form factors are the links evaluated.
-  const std::string header =
-      fmt::format("{:>7} {:>8} {:>9} {:>9} {:>7} {:>10} {:>9} {:>9} {:>9} {:>13} {:>10} {:>9} {:>9}",
-                  "threads", "patches", "elements", "links", "steps", "unshot", "converged", "mesh s",
-                  "solve s", "form factors", "FF/s", "FF MiB", "peak MiB");
-  return run_scene_solve_bench(options, "radiosity", header, [&](const Scene& scene, nlohmann::json& facts) {
-    const RadiositySolveResult result = solve_radiosity(scene, options.quiet, &facts);
-    const double memory_mib = facts.value("memory_mib", result.form_factor_bytes / 1048576.0);
-    return fmt::format("{:>8} {:>9} {:>9} {:>7} {:>9.4f}% {:>9} {:>9.3f} {:>9.3f} {:>13} {:>10.4g} {:>9.1f}",
-                       result.mesh.patches.size(), result.mesh.elements.size(), facts.value("links", 0),
-                       result.steps, 100 * result.unshot_fraction, result.converged ? "yes" : "no",
-                       result.mesh_seconds, result.solve_seconds, result.form_factors,
-                       facts.value("form_factors_per_second", 0.0), memory_mib);
-  });
-}
-
-// The meshless method's sites, transfer matrix (entries, density, memory, time) and
-// solution time, to see how they grow with the number of sites.
-int run_meshless_bench_command(const BenchCommandOptions& options) {
-  const std::string header =
-      fmt::format("{:>7} {:>7} {:>6} {:>12} {:>10} {:>8} {:>9} {:>10} {:>10} {:>10} {:>6} {:>9} {:>9}",
-                  "threads", "sites", "levels", "entries", "links", "density", "S MiB", "sample s", "areas s",
-                  "S s", "iters", "solve s", "peak MiB");
-  return run_scene_solve_bench(options, "meshless", header, [&](const Scene& scene, nlohmann::json& facts) {
-    const MeshlessSolution solution =
-        solve_meshless(scene, read_meshless_settings(scene.plugin_settings.node("meshless")), &facts);
-    // Levels 1 and no links for the flat matrix; the hierarchy's levels and cluster links.
-    return fmt::format(
-        "{:>7} {:>6} {:>12} {:>10} {:>8.4f} {:>9.1f} {:>10.3f} {:>10.3f} {:>10.3f} {:>6} {:>9.3f}",
-        solution.sites.sites.size(), facts.value("hierarchy_levels", 1), solution.matrix.entries(),
-        solution.matrix.cluster_links, solution.matrix.density(), solution.matrix.bytes() / 1048576.0,
-        facts.value("sampling_seconds", 0.0), facts.value("area_seconds", 0.0), solution.matrix.seconds,
-        solution.transfer.iterations, facts.value("lighting_seconds", 0.0));
-  });
 }
 
 int run_bench_command(const BenchCommandOptions& given) {
@@ -361,8 +350,7 @@ int run_bench_command(const BenchCommandOptions& given) {
     check_writable(given.json_path, "--json");
     refuse_outputs_over_inputs({{given.json_path, "--json"}}, given.inputs);
   }
-  if (given.radiosity) return run_radiosity_bench_command(given);
-  if (given.meshless) return run_meshless_bench_command(given);
+  if (!given.solve_method.empty()) return run_solve_bench_command(given);
   if (given.raster) return run_raster_bench_command(given);
   if (given.inputs.size() > 1) throw BadArgument("give exactly one of MESH, --sphere N or --terrain N");
   BenchCommandOptions options = given;
@@ -423,19 +411,20 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
   command->add_flag(
       "--raster", options->raster,
       "Measure the scanline rasterizer (item buffer, depth, Gouraud, Phong passes) instead of rays");
-  command->add_flag(
-      "--meshless", options->meshless,
-      "Sample, build and solve a scene's meshless radiosity (SCENE, default: the built-in scene) once per "
-      "--threads count; sites, transfer entries, density, memory and times");
-  command->add_flag(
-      "--radiosity", options->radiosity,
-      "Mesh and solve a scene's radiosity (SCENE, default: the built-in scene) once per --threads "
-      "value and report steps, form factors per second and memory");
+  command->add_option(
+      "--solve", options->solve_method,
+      "Make METHOD's view-independent solution of SCENE (default: the built-in scene) once per "
+      "--threads count and report its facts, times and memory (methods: " +
+          [] {
+            const auto names = method_names_with(&MethodCapabilities::standalone_solution);
+            return fmt::format("{}", fmt::join(names, ", "));
+          }() +
+          ")");
   // One key=value per --set, as for render.
   command
       ->add_option("--set", options->overrides,
-                   "--radiosity, --meshless: override a scene setting, e.g. radiosity.patch_size=1; rays: an "
-                   "accelerator's setting, e.g. bvh.isa=sse")
+                   "--solve: override a scene setting (KEY=VALUE, as for render); rays: an accelerator's "
+                   "setting, e.g. bvh.isa=sse")
       ->expected(1)
       ->allow_extra_args(false)
       ->take_all();
@@ -445,7 +434,7 @@ void add_bench_command(CLI::App& app, std::function<int()>& run) {
                   "Accelerators (default: every registered one); embree = Embree's own triangle test, "
                   "embree-exact = Embree with Candela's tests");
   add_list_option(command, "--threads,--nthreads", options->threads,
-                  "Thread counts to run (default: 1 2; --radiosity: every core)");
+                  "Thread counts to run (default: 1 2; --solve: every core)");
   command->add_option("--json", options->json_path, "Write the results as JSON");
   command->add_option("--seed", options->seed, "Seed of the incoherent rays (default 1)");
   add_list_option(command, "--eye", options->eye, "Camera position X,Y,Z (default: from the bounds)", 3);

@@ -25,7 +25,6 @@
 #include "integrators/method_registry.h"
 #include "integrators/probe.h"
 #include "list_option.h"
-#include "radiosity/radiosity_settings.h"
 #include "thread_limit.h"
 #include "validate/cie171_validation.h"
 #include "validate/form_factor_validation.h"
@@ -43,7 +42,7 @@ struct ValidateOptions {
   int threads = 0;
   std::vector<std::string> methods;
   std::vector<std::string> cases;
-  std::string radiosity_solver;
+  std::vector<std::string> overrides;  // --set key=value (cie171's scenes)
 };
 
 int run_validate(const ValidateOptions& options) {
@@ -57,17 +56,18 @@ int run_validate(const ValidateOptions& options) {
       throw BadArgument(fmt::format("--methods: unknown method '{}' (expected {}: CIE 171 probes)", method,
                                     probe_method_names()));
   if (!options.cases.empty() && options.name != "cie171") throw BadArgument("--cases is for cie171");
-  if (!options.radiosity_solver.empty()) {
-    if (options.name != "cie171") throw BadArgument("--radiosity-solver is for cie171");
-    if (!kRadiositySolverNames.value(options.radiosity_solver))
-      throw BadArgument(fmt::format("--radiosity-solver: unknown solver '{}' (expected {})",
-                                    options.radiosity_solver, kRadiositySolverNames.names()));
-  }
+  if (!options.overrides.empty() && options.name != "cie171")
+    throw BadArgument("--set is for cie171 (sphere-disc and form-factors build their own scenes)");
   const std::vector<std::string> numbers = cie171_case_numbers();
   for (const std::string& number : options.cases)
     if (std::find(numbers.begin(), numbers.end(), number) == numbers.end())
       throw BadArgument(
           fmt::format("--cases: unknown case '{}' (expected one of {})", number, fmt::join(numbers, ", ")));
+  if (options.name == "cie171") {
+    Cie171Run settings_only;
+    settings_only.overrides = options.overrides;
+    check_cie171_overrides(settings_only);
+  }
   std::optional<tbb::global_control> thread_limit;
   limit_threads(options.threads, thread_limit);
   namespace fs = std::filesystem;
@@ -81,7 +81,7 @@ int run_validate(const ValidateOptions& options) {
     run.quick = options.quick;
     run.only_methods = options.methods;
     run.only_cases = options.cases;
-    if (!options.radiosity_solver.empty()) run.radiosity_solver = options.radiosity_solver;
+    run.overrides = options.overrides;
     const nlohmann::json results =
         run_cie171_validation(options.out, run, options.quiet ? nullptr : &std::cout);
     const int failures = results["failures"].get<int>();
@@ -126,9 +126,14 @@ void add_validate_command(CLI::App& app, std::function<int()>& run) {
   add_list_option(command, "--cases", options->cases,
                   "cie171: only these cases, by number (5.2, 5.3, 5.4, 5.5, 5.6, 5.7, 5.8, 5.9, 5.10, 5.11, "
                   "5.12, 5.13; 5.11: each of its variants)");
-  command->add_option("--radiosity-solver", options->radiosity_solver,
-                      "cie171: the radiosity method's solver (default gauss-seidel; progressive, gaussian, "
-                      "hierarchical)");
+  // One key=value per --set, as for render.
+  command
+      ->add_option("--set", options->overrides,
+                   "cie171: override a setting of every case's scene (KEY=VALUE, as for render), e.g. "
+                   "another solver for a method")
+      ->expected(1)
+      ->allow_extra_args(false)
+      ->take_all();
   command->add_option("--threads,--nthreads", options->threads, "Worker threads (default: all cores)");
   command->callback([options, &run]() {
     run = [options]() { return run_reporting_bad_input([&] { return run_validate(*options); }); };

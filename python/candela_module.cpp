@@ -31,14 +31,12 @@
 #include "camera/tone_map.h"
 #include "integrators/antialiasing_support.h"
 #include "integrators/memory_estimate.h"
-#include "integrators/meshless_method.h"
 #include "integrators/method_registry.h"
 #include "integrators/probe.h"
 #include "integrators/scene_loading.h"
 #include "io/image_reader.h"
 #include "io/image_writer.h"
 #include "math/direction.h"
-#include "radiosity/solution_export.h"
 #include "util/cancellation.h"
 #include "util/error.h"
 #include "validate/image_comparison.h"
@@ -317,69 +315,37 @@ py::dict probe_points(const Scene& scene, const DoubleArray& points, const Doubl
   return out;
 }
 
-// Classic radiosity's solution of the scene (its "radiosity" settings): the element mesh's vertices
-// (n, 3), triangles (m, 3) and each vertex's radiosity B (n, 3), as --export-solution's PLY holds
-// them. The image is not rendered (one pixel is).
-py::dict radiosity_solution(const Scene& scene, int threads) {
+// A method's view-independent solution of the scene (Method::solve_alone), made from the scene's
+// settings as render makes the method: its arrays by name — one column flat, indices as uint32 —
+// and under "facts" what the solve measured (the method's facts of render --stats).
+py::dict solution(const Scene& scene, const std::string& method_name, int threads) {
+  const MethodEntry* entry = find_method(method_name);
+  if (!entry || !entry->capabilities.standalone_solution)
+    throw py::value_error(
+        fmt::format("method '{}' has no view-independent solution (expected one of: {})", method_name,
+                    fmt::join(method_names_with(&MethodCapabilities::standalone_solution), ", ")));
   if (threads < 0) throw py::value_error("threads must be >= 0 (0: all cores)");
-  const std::unique_ptr<Method> method = create_method(*find_method("radiosity"), scene);
-  RenderRequest request;
-  request.region = {0, 0, 1, 1};
-  request.quiet = true;
+  const std::unique_ptr<Method> method = create_method(*entry, scene);
   std::optional<tbb::global_control> thread_limit;
   if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-  const auto solution = run_interruptibly<std::shared_ptr<const RadiositySolveResult>>(
-      [&] { return method->render(scene, request).solution; });
-  if (!solution) throw std::runtime_error("the radiosity method gave no solution");
-  const SolutionMesh mesh = solution_mesh(*solution);
-  py::array_t<double> vertices({py::ssize_t(mesh.positions.size()), py::ssize_t(3)});
-  auto v = vertices.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i)
-    for (int c = 0; c < 3; ++c) v(py::ssize_t(i), c) = mesh.positions[i][c];
-  py::array_t<uint32_t> faces({py::ssize_t(mesh.triangles.size()), py::ssize_t(3)});
-  auto f = faces.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-    for (int c = 0; c < 3; ++c) f(py::ssize_t(i), c) = mesh.triangles[i][std::size_t(c)];
+  const StandaloneSolution solved =
+      run_interruptibly<StandaloneSolution>([&] { return method->solve_alone(scene, true); });
   py::dict out;
-  out["vertices"] = vertices;
-  out["faces"] = faces;
-  out["radiosity"] = rows_of(mesh.radiosity);
-  return out;
-}
-
-// The meshless solution (seed 002): its sites — points with normals on the surfaces — and at each
-// the coefficients the display interpolates with the basis: λ_i (reflected radiosity, η included),
-// η_i (the direct part), the effective area A_i and the object it lies on.
-py::dict meshless_solution(const Scene& scene, int threads) {
-  if (threads < 0) throw py::value_error("threads must be >= 0 (0: all cores)");
-  // Made as render makes it (refusing what it cannot do), its settings read by its own reader.
-  const std::unique_ptr<Method> method = create_method(*find_method("meshless"), scene);
-  const MeshlessSettings& settings = static_cast<const MeshlessMethod&>(*method).settings();
-  std::optional<tbb::global_control> thread_limit;
-  if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
-  const MeshlessSolution solution =
-      run_interruptibly<MeshlessSolution>([&] { return solve_meshless(scene, settings); });
-  const std::vector<Site>& sites = solution.sites.sites;
-  std::vector<Color> positions, normals;
-  for (const Site& site : sites) {
-    positions.push_back(Color(site.position.x, site.position.y, site.position.z));
-    normals.push_back(Color(site.normal.x, site.normal.y, site.normal.z));
+  for (const StandaloneSolution::Array& array : solved.arrays) {
+    std::vector<py::ssize_t> shape{py::ssize_t(array.rows())};
+    if (array.columns > 1) shape.push_back(py::ssize_t(array.columns));
+    if (array.indices) {
+      py::array_t<uint32_t> values(shape);
+      uint32_t* data = values.mutable_data();
+      for (std::size_t i = 0; i < array.values.size(); ++i) data[i] = static_cast<uint32_t>(array.values[i]);
+      out[py::str(array.name)] = values;
+    } else {
+      py::array_t<double> values(shape);
+      std::copy(array.values.begin(), array.values.end(), values.mutable_data());
+      out[py::str(array.name)] = values;
+    }
   }
-  py::array_t<uint32_t> objects(py::ssize_t(sites.size()));
-  py::array_t<double> areas(py::ssize_t(sites.size()));
-  for (std::size_t i = 0; i < sites.size(); ++i) {
-    objects.mutable_at(py::ssize_t(i)) = solution.sites.object[i];
-    areas.mutable_at(py::ssize_t(i)) = solution.areas[i];
-  }
-  py::dict out;
-  out["positions"] = rows_of(positions);
-  out["normals"] = rows_of(normals);
-  out["radiosity"] = rows_of(solution.transfer.lambda);
-  out["direct"] = rows_of(solution.eta);
-  out["area"] = areas;
-  out["object"] = objects;
-  out["iterations"] = solution.transfer.iterations;
-  out["converged"] = solution.transfer.converged;
+  out["facts"] = py::module_::import("json").attr("loads")(solved.facts.dump());
   return out;
 }
 
@@ -390,7 +356,7 @@ PYBIND11_MODULE(candela, module) {
   using namespace candela;
   module.doc() =
       "Candela's renderer from Python: load_file, render (NumPy arrays, linear RGB), write_image, "
-      "read_image, compare, probe, radiosity_solution, meshless_solution.\n\n"
+      "read_image, compare, probe, solution.\n\n"
       "Thread safety: no function changes a Scene (render's method, spp and seed are that render's "
       "alone), and the GIL is released while one runs, so several Python threads may render, probe or "
       "solve one Scene at once; each result equals the same call made alone.";
@@ -446,14 +412,12 @@ PYBIND11_MODULE(candela, module) {
              "The metrics of `candela compare` (rmse, relative_mse, psnr, ...) as a dict; mask: a boolean "
              "(height, width) array of the pixels that count. A value that is not finite or beyond the "
              "float range (3.4e38) raises ValueError naming the array, the pixel and the value.");
-  module.def(
-      "radiosity_solution", &radiosity_solution, py::arg("scene"), py::kw_only(), py::arg("threads") = 0,
-      "Classic radiosity's solution: {'vertices': (n, 3), 'faces': (m, 3) uint32, 'radiosity': (n, 3)}, "
-      "the element mesh with each vertex's radiosity B, as --export-solution writes it.");
-  module.def("meshless_solution", &meshless_solution, py::arg("scene"), py::kw_only(), py::arg("threads") = 0,
-             "Meshless radiosity's solution at its sites: {'positions': (n, 3), 'normals': (n, 3), "
-             "'radiosity': (n, 3) λ, 'direct': (n, 3) η, 'area': (n,) effective areas, 'object': (n,) "
-             "uint32, 'iterations', 'converged'}.");
+  module.def("solution", &solution, py::arg("scene"), py::arg("method"), py::kw_only(),
+             py::arg("threads") = 0,
+             "A method's view-independent solution of the scene, made from its settings: its arrays by name "
+             "((n,) or (n, 3); indices uint32; docs/python.md lists each method's) and 'facts' (what the "
+             "solve measured, as render --stats). A method without one raises ValueError naming those "
+             "with one.");
   module.def("probe", &probe_points, py::arg("scene"), py::arg("points"), py::arg("normals"), py::kw_only(),
              py::arg("method") = std::string(kReferenceMethod), py::arg("samples") = 256,
              py::arg("seed") = py::none(), py::arg("threads") = 0,

@@ -2,7 +2,7 @@
 # Hierarchical radiosity's scaling (docs/benchmarks.md "Hierarchical radiosity"): the
 # Cornell box of scenes/cornell-box.json with one mesh standing in it — UV spheres of about 10k,
 # 100k and 1M triangles, the 100,000-triangle dragon and the 268,686-triangle Igea of
-# ../shared/models — solved by radiosity.solver "hierarchical" through `candela bench --radiosity`;
+# ../shared/models — solved by radiosity.solver "hierarchical" through `candela bench --solve radiosity`;
 # prints input triangles, links, leaves, solve seconds and peak memory per scene, then the
 # exponents of links and of time against input triangles fitted by least squares on the logs.
 # SIZES="10000 100000" leaves the million out; THREADS (default 2).
@@ -58,7 +58,7 @@ place "$work/dragon.json" "$models/dragon_100k.obj" \
 place "$work/igea.json" "$models/igea.obj" '[{"scale": 2.5}, {"translate": [5, 2.2, 6]}]'
 scenes+=(dragon igea)
 for name in "${scenes[@]}"; do
-  "$candela" bench --radiosity "$work/$name.json" --set radiosity.solver=hierarchical \
+  "$candela" bench --solve radiosity "$work/$name.json" --set radiosity.solver=hierarchical \
     --threads "${THREADS:-2}" --json "$work/$name.bench.json" -q > /dev/null 2> "$work/$name.log"
 done
 python3 - "$work" "${scenes[@]}" <<'PYTHON'

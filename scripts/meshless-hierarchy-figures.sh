@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The tables of docs/methods/meshless-hierarchy.md, from the Cornell box and room A:
-#   1. scaling: `candela bench --meshless` with the hierarchical transport at about 5k, 20k and
+#   1. scaling: `candela bench --solve meshless` with the hierarchical transport at about 5k, 20k and
 #      80k sites (and 100k on the Cornell box), the entries' fitted exponent, time and peak memory;
 #   2. accuracy at equal precomputation time: the flat and the hierarchical transport at several
 #      spacings, each image's RMSE against the path-traced reference of scripts/validation-figures.sh
@@ -26,7 +26,7 @@ mask="$work/no-lamp-mask.png"
 echo "scene,spacing,sites,levels,entries,links,s_mib,sampling_s,areas_s,hierarchy_s,transfer_s,precompute_s,peak_mib" > "$out/scaling.csv"
 scale() {
   local scene=$1 spacing=$2 grid=$3 angle=$4
-  "$candela" bench --meshless "$scene" --quiet --json "$work/bench.json" --set meshless.transport=hierarchical \
+  "$candela" bench --solve meshless "$scene" --quiet --json "$work/bench.json" --set meshless.transport=hierarchical \
     --set meshless.cluster_angle="$angle" --set meshless.spacing="$spacing" --set meshless.grid="$grid" \
     --set meshless.rounds=6 --set meshless.max_sites=400000 > /dev/null
   python3 - "$work/bench.json" "$scene" "$spacing" "$angle" >> "$out/scaling.csv" <<'PY'

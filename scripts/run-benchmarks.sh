@@ -34,12 +34,12 @@ echo "bench: raster" >&2
 # Radiosity at scale, the Cornell box meshed to 11,771 elements (3,346 patches), solved
 # progressively to 0.1% unshot with 1 and 2 threads (see benchmarks.md, "Radiosity").
 echo "bench: radiosity" >&2
-"$candela" bench --radiosity scenes/cornell-box.json --set radiosity.patch_size=1 \
+"$candela" bench --solve radiosity scenes/cornell-box.json --set radiosity.patch_size=1 \
   --set radiosity.element_size=0.6 --threads 1 2 -q --json "$out/radiosity.json" > "$out/radiosity.txt"
 # The meshless method on the Cornell box at three spacings (about 4,600, 10,200 and
 # 21,000 sites; see benchmarks.md, "Meshless"): time and memory as the sites grow.
 for spacing in 0.27 0.18 0.12; do
   echo "bench: meshless, spacing $spacing" >&2
-  "$candela" bench --meshless scenes/cornell-box.json --set meshless.spacing=$spacing --set meshless.grid=128 \
+  "$candela" bench --solve meshless scenes/cornell-box.json --set meshless.spacing=$spacing --set meshless.grid=128 \
     --set meshless.rounds=6 --threads 2 -q --json "$out/meshless-$spacing.json" > "$out/meshless-$spacing.txt"
 done

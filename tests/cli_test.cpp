@@ -558,12 +558,12 @@ TEST_F(Cli, BenchRejectsBadArguments) {
 TEST_F(Cli, BenchRadiositySolvesASceneAndReportsItsFacts) {
   // The Cornell box on a coarse mesh, one run per thread count.
   std::string output;
-  ASSERT_EQ(
-      run("bench --radiosity '" CANDELA_SOURCE_DIR "/scenes/cornell-box.json' --set radiosity.patch_size=5 "
-          "--set radiosity.element_size=2.5 --set radiosity.hemicube_resolution=20 --threads 1 2 "
-          "--json r.json -q",
-          output),
-      0)
+  ASSERT_EQ(run("bench --solve radiosity '" CANDELA_SOURCE_DIR
+                "/scenes/cornell-box.json' --set radiosity.patch_size=5 "
+                "--set radiosity.element_size=2.5 --set radiosity.hemicube_resolution=20 --threads 1 2 "
+                "--json r.json -q",
+                output),
+            0)
       << output;
   EXPECT_NE(output.find("elements"), std::string::npos) << output;  // the table
   std::ifstream json_file(directory_ / "r.json");
@@ -588,8 +588,15 @@ TEST_F(Cli, BenchRadiositySolvesASceneAndReportsItsFacts) {
   EXPECT_EQ(json["runs"][0]["steps"], json["runs"][1]["steps"]);
   EXPECT_EQ(json["runs"][0]["unshot_fraction"], json["runs"][1]["unshot_fraction"]);
   // The ray-set options do not apply; a ray bench's --set names an accelerator's setting.
-  EXPECT_EQ(run("bench --radiosity --accel bvh -q", output), 2) << output;
-  EXPECT_EQ(run("bench --radiosity --raster -q", output), 2) << output;
+  EXPECT_EQ(run("bench --solve radiosity --accel bvh -q", output), 2) << output;
+  EXPECT_EQ(run("bench --solve radiosity --raster -q", output), 2) << output;
+  // Only a method with a view-independent solution is solved alone.
+  EXPECT_EQ(run("bench --solve whitted -q", output), 2) << output;
+  EXPECT_NE(output.find("'whitted' has no view-independent solution to measure (expected one of radiosity, "
+                        "meshless)"),
+            std::string::npos)
+      << output;
+  EXPECT_EQ(run("bench --solve bogus -q", output), 2) << output;
   EXPECT_EQ(run("bench --sphere 100 --set radiosity.patch_size=5 -q", output), 2) << output;
   EXPECT_NE(output.find("no accelerator named radiosity"), std::string::npos) << output;
   EXPECT_EQ(run("bench --sphere 100 --accel bvh --threads 1 --repeat 1 --set bvh.isa=sse -q", output), 0)
@@ -785,8 +792,8 @@ TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
   EXPECT_FALSE(fs::exists(directory_ / "c171c"));
   EXPECT_EQ(run("validate form-factors --quick --cases 5.2 --out ff3", output), 2) << output;
   EXPECT_NE(output.find("--cases is for cie171"), std::string::npos) << output;
-  // --radiosity-solver runs the radiosity cases with another solver; hierarchical passes.
-  ASSERT_EQ(run("validate cie171 --quick -q --methods radiosity --radiosity-solver hierarchical --cases "
+  // --set changes every case's scene: another radiosity solver; hierarchical passes.
+  ASSERT_EQ(run("validate cie171 --quick -q --methods radiosity --set radiosity.solver=hierarchical --cases "
                 "5.3,5.7,5.8 "
                 "--out c171h",
                 output),
@@ -794,13 +801,15 @@ TEST_F(Cli, ValidateSphereDiscWritesCsvPlotsAndErrors) {
       << output;
   std::ifstream hierarchical(directory_ / "c171h" / "results.json");
   const nlohmann::json results = nlohmann::json::parse(hierarchical);
-  EXPECT_EQ(results["radiosity_solver"], "hierarchical");
+  EXPECT_EQ(results["overrides"], nlohmann::json::array({"radiosity.solver=hierarchical"}));
   EXPECT_EQ(results["failures"], 0);
-  EXPECT_EQ(run("validate cie171 --quick --radiosity-solver bogus --out c171d", output), 2) << output;
-  EXPECT_NE(output.find("--radiosity-solver: unknown solver 'bogus'"), std::string::npos) << output;
+  EXPECT_EQ(run("validate cie171 --quick --set radiosity.solver=bogus --out c171d", output), 2) << output;
+  EXPECT_NE(output.find("radiosity.solver"), std::string::npos) << output;
+  EXPECT_NE(output.find("bogus"), std::string::npos) << output;
   EXPECT_FALSE(fs::exists(directory_ / "c171d"));
-  EXPECT_EQ(run("validate sphere-disc --quick --radiosity-solver hierarchical --out sd4", output), 2)
+  EXPECT_EQ(run("validate sphere-disc --quick --set radiosity.solver=hierarchical --out sd4", output), 2)
       << output;
+  EXPECT_NE(output.find("--set is for cie171"), std::string::npos) << output;
 }
 
 }  // namespace
@@ -1920,8 +1929,9 @@ TEST_F(Cli, MethodsThatWouldHoldMoreThanTheMemoryLimitAreRefusedBeforeAnyWork) {
             0)
       << output;
   fs::remove(directory_ / "out.png");
-  // bench --meshless and report (before the reference and every method render and write).
-  EXPECT_EQ(run("bench --meshless field.json --quiet --set render.memory_limit_mib=60", output), 2) << output;
+  // bench --solve meshless and report (before the reference and every method render and write).
+  EXPECT_EQ(run("bench --solve meshless field.json --quiet --set render.memory_limit_mib=60", output), 2)
+      << output;
   EXPECT_NE(output.find("meshless would hold"), std::string::npos) << output;
   EXPECT_EQ(run("report field.json -q -o rep --methods local,meshless --reference-spp 1 --set "
                 "render.memory_limit_mib=60",
@@ -1997,7 +2007,7 @@ TEST_F(Cli, ProbeSeedSeedsTheSolutionItProbes) {
 
 // Hierarchical radiosity through the command line — statistics naming the hierarchy, an
 // export with one row per leaf, the convergence log one row per Jacobi iteration and the image,
-// bench --radiosity's links; checkpoints are the progressive solver's and are refused before work.
+// bench --solve radiosity's links; checkpoints are the progressive solver's and are refused before work.
 TEST_F(Cli, HierarchicalRadiosityRendersExportsLogsAndBenches) {
   std::string output;
   const std::string render = "render '" CANDELA_SOURCE_DIR
@@ -2035,7 +2045,7 @@ TEST_F(Cli, HierarchicalRadiosityRendersExportsLogsAndBenches) {
   EXPECT_NE(output.find("checkpoints are for radiosity.solver \"progressive\""), std::string::npos) << output;
   EXPECT_FALSE(fs::exists(directory_ / "c.png"));
 
-  ASSERT_EQ(run("bench --radiosity '" CANDELA_SOURCE_DIR
+  ASSERT_EQ(run("bench --solve radiosity '" CANDELA_SOURCE_DIR
                 "/scenes/cornell-box.json' --set 'radiosity.solver=\"hierarchical\"' "
                 "--set radiosity.refinement_tolerance=1e-3 --threads 1 2 --json b.json -q",
                 output),

@@ -16,6 +16,7 @@
 #include "integrators/scene_loading.h"
 #include "integrators/whitted.h"
 #include "radiosity/radiosity_checkpoint.h"
+#include "radiosity/solve.h"
 #include "radiosity/solvers.h"
 #include "render_support.h"
 #include "scene_text.h"
@@ -26,6 +27,15 @@ namespace {
 // The scene's "radiosity" object as the method reads it.
 RadiositySettings radiosity_settings(const Scene& scene) {
   return read_radiosity_settings(scene.plugin_settings.node("radiosity"));
+}
+
+// The solution a render of the scene solves: its own radiosity settings and seed.
+RadiositySolveResult solve_scene(const Scene& scene, nlohmann::json* facts = nullptr) {
+  RadiositySolveOptions options;
+  options.seed = scene.render.seed;
+  options.quiet = true;
+  options.facts = facts;
+  return solve_radiosity(scene, radiosity_settings(scene), options);
 }
 
 using testing::kCentreCamera;
@@ -94,7 +104,7 @@ const char* kFurnaceCamera =
 // element's B = E / (1 − ρ) = 2.5, whatever the form factors, as long as every row sums to 1.
 void expect_furnace(const std::string& radiosity) {
   const auto scene = scene_from(furnace_scene(radiosity), kFurnaceCamera);
-  const RadiositySolveResult result = solve_radiosity(*scene, true);
+  const RadiositySolveResult result = solve_scene(*scene);
   ASSERT_FALSE(result.mesh.elements.empty());
   EXPECT_GT(result.mesh.elements.size(), result.mesh.patches.size());
   for (const Color& b : result.element_radiosity) {
@@ -136,7 +146,7 @@ TEST(RadiosityMethod, FurnaceProgressiveWithAmbient) {
       furnace_scene(
           R"({"solver": "progressive", "patch_size": 1, "element_size": 0.5, "hemicube_resolution": 60, "threshold": 0.05, "ambient": false})"),
       kFurnaceCamera);
-  const RadiositySolveResult result = solve_radiosity(*scene, true);
+  const RadiositySolveResult result = solve_scene(*scene);
   double mean = 0;
   for (const Color& b : result.element_radiosity)
     mean += b.g / static_cast<double>(result.element_radiosity.size());
@@ -213,7 +223,7 @@ TEST(RadiosityMethod, SolvesThatDoNotFitAreRefusedNamingTheSettings) {
   const auto refused = [](const std::string& radiosity, const std::vector<std::string>& names) {
     const auto scene = scene_from(furnace_scene(radiosity), kFurnaceCamera);
     try {
-      solve_radiosity(*scene, true);
+      solve_scene(*scene);
       ADD_FAILURE() << "not refused: " << radiosity;
     } catch (const SolverMemoryError& error) {
       const std::string message = error.what();
@@ -241,13 +251,13 @@ TEST(RadiosityMethod, SolvesThatDoNotFitAreRefusedNamingTheSettings) {
       furnace_scene(
           R"({"solver": "progressive", "patch_size": 1, "element_size": 1, "memory_limit_mib": 2e13, "hemicube_resolution": 20, "threshold": 0.05})"),
       kFurnaceCamera);
-  EXPECT_NO_THROW(solve_radiosity(*generous, true));
+  EXPECT_NO_THROW(solve_scene(*generous));
   // Within the limit the same scene solves.
   const auto scene = scene_from(
       furnace_scene(
           R"({"solver": "progressive", "patch_size": 0.5, "element_size": 0.5, "memory_limit_mib": 1, "hemicube_resolution": 20, "threshold": 0.05})"),
       kFurnaceCamera);
-  EXPECT_NO_THROW(solve_radiosity(*scene, true));
+  EXPECT_NO_THROW(solve_scene(*scene));
 }
 
 Film render_cornell_box(const Scene& scene, int threads, RunStatistics& statistics) {
@@ -279,7 +289,7 @@ TEST(RadiosityMethod, CornellBoxConvergesAndDoesNotDependOnThreads) {
       EXPECT_EQ(a.at(x, y).b, b.at(x, y).b);
     }
   // Color bleeding (000 §6.8): the floor near the red wall is redder than near the blue wall.
-  const RadiositySolveResult result = solve_radiosity(*scene, true);
+  const RadiositySolveResult result = solve_scene(*scene);
   Color near_red, near_blue;
   for (std::size_t q = 0; q < result.mesh.elements.size(); ++q) {
     const auto& element = result.mesh.elements[q];
@@ -301,7 +311,7 @@ TEST(RadiosityMethod, FirstShotDeliversNoMoreThanTheShooterSent) {
   const auto scene =
       cornell_box({"radiosity.hemicube_resolution=60", "radiosity.element_size=2", "radiosity.max_steps=1",
                    "radiosity.ambient=false", "camera.width=8", "camera.height=8"});
-  const RadiositySolveResult result = solve_radiosity(*scene, true);
+  const RadiositySolveResult result = solve_scene(*scene);
   ASSERT_EQ(result.steps, 1u);
   double shooter_flux = 0, arrived = 0;
   for (const RadiositySurface& patch : result.mesh.patches)
@@ -330,8 +340,8 @@ TEST(RadiosityMethod, AdaptiveSubdivisionRefinesUntilNoNeighboursDifferTooMuch) 
                                     "radiosity.hemicube_resolution=40", "radiosity.threshold=0.01",
                                     "radiosity.ambient=false", "camera.width=8", "camera.height=8"});
   nlohmann::json facts;
-  const RadiositySolveResult refined = solve_radiosity(*scene, true, &facts);
-  const RadiositySolveResult plain = solve_radiosity(*uniform, true);
+  const RadiositySolveResult refined = solve_scene(*scene, &facts);
+  const RadiositySolveResult plain = solve_scene(*uniform);
   // Row sums describe the final elements, not the rows they replaced.
   EXPECT_EQ(facts["row_sum"]["rows"].get<std::size_t>() + facts["row_sum"]["hidden_rows"].get<std::size_t>(),
             refined.mesh.elements.size());
@@ -387,7 +397,7 @@ TEST(RadiosityMethod, SplittingAtContactsRemovesTheShadowLeakAroundTheBoxes) {
                                     "radiosity.ambient=false",
                                     std::string("radiosity.split_at_contacts=") + (split ? "true" : "false"),
                                     "camera.width=8", "camera.height=8"});
-    const RadiositySolveResult result = solve_radiosity(*scene, true);
+    const RadiositySolveResult result = solve_scene(*scene);
     std::size_t black = 0;
     for (std::size_t q = 0; q < result.mesh.elements.size(); ++q) {
       const RadiositySurface& element = result.mesh.elements[q];

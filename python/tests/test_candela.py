@@ -164,7 +164,7 @@ def test_probe_matches_an_emitting_square_and_the_solutions_have_their_mesh_and_
         assert result["irradiance_standard_error"].shape == (1,)
     with pytest.raises(ValueError, match="normals"):
         candela.probe(scene, [[0, 0, 0]], [[0, 0, 0]])
-    solution = candela.radiosity_solution(scene)
+    solution = candela.solution(scene, "radiosity")
     vertices, faces, radiosity = solution["vertices"], solution["faces"], solution["radiosity"]
     assert vertices.shape[1] == 3 and faces.shape[1] == 3 and radiosity.shape == vertices.shape
     assert faces.max() < len(vertices)
@@ -172,14 +172,18 @@ def test_probe_matches_an_emitting_square_and_the_solutions_have_their_mesh_and_
     assert np.allclose(radiosity, 3) and np.allclose(vertices[:, 1], 1)
     # The meshless solution at its sites: on the square, their effective areas summing to its 4 m²;
     # alone, it receives nothing, so λ (reflected light) and η (its direct part) are 0.
-    sites = candela.meshless_solution(scene)
+    sites = candela.solution(scene, "meshless")
     count = len(sites["area"])
     assert count > 100 and sites["positions"].shape == (count, 3) and sites["normals"].shape == (count, 3)
     assert sites["radiosity"].shape == (count, 3) and sites["direct"].shape == (count, 3)
     assert np.allclose(sites["positions"][:, 1], 1) and np.allclose(np.abs(sites["normals"][:, 1]), 1)
     assert sites["area"].sum() == pytest.approx(4, rel=1e-9)
-    assert np.all(sites["object"] == 0) and sites["converged"]
+    assert sites["object"].dtype == np.uint32 and np.all(sites["object"] == 0) and sites["facts"]["converged"]
     assert np.allclose(sites["radiosity"], 0) and np.allclose(sites["direct"], 0)
+    # The solve's facts come along; a method with no view-independent solution is refused by name.
+    assert solution["facts"]["elements"] == len(faces)
+    with pytest.raises(ValueError, match="'path' has no view-independent solution .*radiosity, meshless"):
+        candela.solution(scene, "path")
 
 
 # render passes its seed and anti-aliasing samples down instead of setting them on the

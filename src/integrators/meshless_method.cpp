@@ -109,8 +109,8 @@ std::vector<MemoryPart> MeshlessMethod::memory_needed(const Scene& scene,
 
 namespace {
 
-// A solution without an image (solve_meshless: bench --meshless, Python's
-// meshless_solution; make_meshless_field: probe) is held to render.memory_limit_mib before any work,
+// A solution without an image (solve_meshless: solve_alone for bench --solve and Python's
+// candela.solution; make_meshless_field: probe) is held to render.memory_limit_mib before any work,
 // as a render is (Method::memory_needed; the render's own check is its caller's, per view).
 void refuse_solution_beyond_memory_limit(const Scene& scene, const MeshlessSettings& settings) {
   refuse_beyond_memory_limit(MeshlessMethod(settings), scene, RenderRequest{});
@@ -134,6 +134,38 @@ MeshlessSolution solve_meshless(const Scene& scene, const MeshlessSettings& sett
   solution.eta = std::move(lighting.eta);
   solution.transfer = std::move(lighting.transfer);
   return solution;
+}
+
+StandaloneSolution MeshlessMethod::solve_alone(const Scene& scene, bool) const {
+  StandaloneSolution out;
+  const MeshlessSolution solution = solve_meshless(scene, settings_, &out.facts);
+  // The sites, and at each the coefficients the display interpolates with the basis: λ (the
+  // reflected radiosity, η included), η (its direct part), the effective area and the object.
+  std::vector<Vec3> positions, normals;
+  for (const Site& site : solution.sites.sites) {
+    positions.push_back(site.position);
+    normals.push_back(site.normal);
+  }
+  out.add("positions", positions);
+  out.add("normals", normals);
+  out.add("radiosity", solution.transfer.lambda);
+  out.add("direct", solution.eta);
+  out.add("area", solution.areas);
+  out.add("object", solution.sites.object, true);
+  // Levels 1 and no links for the flat matrix; the hierarchy's levels and cluster links.
+  const TransferMatrix& matrix = solution.matrix;
+  out.columns = {{"sites", fmt::format("{}", solution.sites.sites.size())},
+                 {"levels", fmt::format("{}", out.facts.value("hierarchy_levels", 1))},
+                 {"entries", fmt::format("{}", matrix.entries())},
+                 {"links", fmt::format("{}", matrix.cluster_links)},
+                 {"density", fmt::format("{:.4f}", matrix.density())},
+                 {"S MiB", fmt::format("{:.1f}", matrix.bytes() / 1048576.0)},
+                 {"sample s", fmt::format("{:.3f}", out.facts.value("sampling_seconds", 0.0))},
+                 {"areas s", fmt::format("{:.3f}", out.facts.value("area_seconds", 0.0))},
+                 {"S s", fmt::format("{:.3f}", matrix.seconds)},
+                 {"iters", fmt::format("{}", solution.transfer.iterations)},
+                 {"solve s", fmt::format("{:.3f}", out.facts.value("lighting_seconds", 0.0))}};
+  return out;
 }
 
 std::shared_ptr<const MeshlessGeometry> MeshlessMethod::geometry_for(const Scene& scene, uint64_t seed,

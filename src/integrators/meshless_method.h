@@ -41,6 +41,8 @@ class MeshlessMethod final : public Method {
   std::vector<MemoryPart> memory_needed(const Scene& scene, const RenderRequest& request) const override;
   // The global display's field, gathered over the hemisphere (integrators/probe.h).
   std::unique_ptr<PointProbe> point_probe(const Scene& scene, const ProbeSettings& settings) const override;
+  // The sites (positions, normals) with their λ, η, effective areas and objects, and the facts.
+  StandaloneSolution solve_alone(const Scene& scene, bool quiet) const override;
 
  private:
   std::shared_ptr<const MeshlessGeometry> geometry_for(const Scene& scene, uint64_t seed, bool& reused,

@@ -7,10 +7,13 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "camera/film.h"
@@ -110,6 +113,38 @@ struct RenderResult {
   std::optional<RelightingCost> relighting;  // what the lighting cost, when the method relights
 };
 
+// A method's view-independent solution made on its own, without an image (Method::solve_alone:
+// candela bench --solve, candela.solution in Python).
+struct StandaloneSolution {
+  // One array of the solution, row by row: a solution mesh's "vertices" (columns 3), the meshless
+  // sites' effective "area" (columns 1).
+  struct Array {
+    std::string name;
+    std::size_t columns = 1;
+    bool indices = false;  // vertex or object indices (uint32 in Python); exact in a double
+    std::vector<double> values;
+    std::size_t rows() const { return columns == 0 ? 0 : values.size() / columns; }
+  };
+  // Adds the array `name` of rows: numbers (one column), or points, colours and index triples
+  // (three).
+  template <class Row>
+  void add(std::string name, const std::vector<Row>& rows, bool indices = false) {
+    Array array{std::move(name), std::is_arithmetic_v<Row> ? 1u : 3u, indices, {}};
+    array.values.reserve(rows.size() * array.columns);
+    for (const Row& row : rows) {
+      if constexpr (std::is_arithmetic_v<Row>)
+        array.values.push_back(static_cast<double>(row));
+      else
+        for (int c = 0; c < 3; ++c) array.values.push_back(static_cast<double>(row[c]));
+    }
+    arrays.push_back(std::move(array));
+  }
+  std::vector<Array> arrays;
+  nlohmann::json facts;  // what the solve measured: the method's facts of render --stats
+  // The facts worth a column of candela bench --solve's table, in order: heading and value as shown.
+  std::vector<std::pair<std::string, std::string>> columns;
+};
+
 // SPEC §15: a part of what a render will hold beyond the loaded scene, estimated before
 // any work, and the setting that makes it smaller.
 struct MemoryPart {
@@ -150,6 +185,9 @@ class Method {
   // sensor points by its own model, its solution made now when it has one; null when it cannot
   // (its capabilities do not say probe).
   virtual std::unique_ptr<PointProbe> point_probe(const Scene& scene, const ProbeSettings& settings) const;
+  // Its view-independent solution, made now with the scene's seed (quiet: no progress bar), for
+  // methods whose capabilities say standalone_solution; the others throw std::logic_error.
+  virtual StandaloneSolution solve_alone(const Scene& scene, bool quiet) const;
 };
 
 // Throws the InputError of method.antialiasing_refusal(scene, antialiasing), naming the method,
@@ -161,6 +199,10 @@ void refuse_unsupported_antialiasing(const Method& method, const Scene& scene);
 
 inline RayTree Method::pixel_ray_tree(const Scene&, int, int, Color&) const {
   throw std::logic_error(std::string(name()) + " traces no ray trees");
+}
+
+inline StandaloneSolution Method::solve_alone(const Scene&, bool) const {
+  throw std::logic_error(std::string(name()) + " has no view-independent solution");
 }
 
 }  // namespace candela

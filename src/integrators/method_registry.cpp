@@ -46,6 +46,7 @@ MethodCapabilities radiosity() {
   capabilities.solution = true;
   capabilities.checkpoints = true;
   capabilities.probe = true;  // integrators/probe.h
+  capabilities.standalone_solution = true;
   return capabilities;
 }
 
@@ -55,6 +56,7 @@ MethodCapabilities meshless() {
   capabilities.relighting = true;
   capabilities.samples_emissive_surfaces = true;
   capabilities.probe = true;  // integrators/probe.h
+  capabilities.standalone_solution = true;
   return capabilities;
 }
 

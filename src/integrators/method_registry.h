@@ -20,14 +20,15 @@ namespace candela {
 
 // What a method gives besides its image, and which run options it takes.
 struct MethodCapabilities {
-  bool ray_trees = false;           // the ray tree of one pixel (RayTracingMethod::pixel_ray_tree)
-  bool samples_per_pixel = false;   // how many samples each pixel used (RunStatistics::samples_per_pixel)
-  bool solution = false;            // a view-independent solution mesh (RenderResult::solution)
-  bool sites_image = false;         // the image with its sites drawn (RenderResult::sites_image)
-  bool relighting = false;          // other light set-ups from the same geometry, cheaply
-  bool progressive_passes = false;  // samples per pixel and a time limit (path.spp, path.time)
-  bool checkpoints = false;         // checkpoint and resume (RenderRequest::checkpoint, resume)
-  bool probe = false;               // irradiance at sensor points (integrators/probe.h)
+  bool ray_trees = false;            // the ray tree of one pixel (RayTracingMethod::pixel_ray_tree)
+  bool samples_per_pixel = false;    // how many samples each pixel used (RunStatistics::samples_per_pixel)
+  bool solution = false;             // a view-independent solution mesh (RenderResult::solution)
+  bool sites_image = false;          // the image with its sites drawn (RenderResult::sites_image)
+  bool relighting = false;           // other light set-ups from the same geometry, cheaply
+  bool progressive_passes = false;   // samples per pixel and a time limit (path.spp, path.time)
+  bool checkpoints = false;          // checkpoint and resume (RenderRequest::checkpoint, resume)
+  bool probe = false;                // irradiance at sensor points (integrators/probe.h)
+  bool standalone_solution = false;  // its solution without an image (Method::solve_alone)
   // Lights emissive surfaces by shadow rays to points sampled on them (scene/surface_light.h):
   // refuses a scene with an emissive surface that cannot be sampled (Scene::unsampled_emitters).
   bool samples_emissive_surfaces = false;

@@ -15,17 +15,13 @@
 #include "io/byte_stream.h"
 #include "radiosity/display.h"
 #include "radiosity/radiosity_checkpoint.h"
+#include "radiosity/solution_export.h"
 #include "radiosity/solve.h"
 #include "util/error.h"
 #include "util/statistics.h"
 
 namespace candela {
 namespace {
-
-// A scene's "radiosity" object, for the callers that solve without a method object (bench).
-RadiositySettings settings_of(const Scene& scene) {
-  return read_radiosity_settings(scene.plugin_settings.node("radiosity"));
-}
 
 // What a solution depends on besides the scene object: its radiosity settings (all but the
 // display) and the seed of the ray-cast form factors — the render's (a render with
@@ -51,20 +47,33 @@ std::string checkpoint_fingerprint(const Scene& scene, const RadiositySettings& 
 
 }  // namespace
 
-RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet) {
-  return solve_radiosity(scene, quiet, nullptr);
-}
-
-RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet, nlohmann::json* facts) {
-  return solve_radiosity(scene, quiet, facts, scene.render.seed);
-}
-
-RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet, nlohmann::json* facts, uint64_t seed) {
+StandaloneSolution RadiosityMethod::solve_alone(const Scene& scene, bool quiet) const {
+  StandaloneSolution out;
   RadiositySolveOptions options;
-  options.seed = seed;
+  options.seed = scene.render.seed;
   options.quiet = quiet;
-  options.facts = facts;
-  return solve_radiosity(scene, settings_of(scene), options);
+  options.facts = &out.facts;
+  const RadiositySolveResult result = solve_radiosity(scene, settings_, options);
+  // The element mesh as --export-solution's PLY holds it: B at each vertex.
+  const SolutionMesh mesh = solution_mesh(result);
+  out.add("vertices", mesh.positions);
+  out.add("faces", mesh.triangles, true);
+  out.add("radiosity", mesh.radiosity);
+  // Hierarchical radiosity's links (0 for the other solvers); its memory (nodes and links) in the
+  // form factors' column, its form factors the links evaluated.
+  const double memory_mib = out.facts.value("memory_mib", result.form_factor_bytes / 1048576.0);
+  out.columns = {{"patches", fmt::format("{}", result.mesh.patches.size())},
+                 {"elements", fmt::format("{}", result.mesh.elements.size())},
+                 {"links", fmt::format("{}", out.facts.value("links", 0))},
+                 {"steps", fmt::format("{}", result.steps)},
+                 {"unshot", fmt::format("{:.4f}%", 100 * result.unshot_fraction)},
+                 {"converged", result.converged ? "yes" : "no"},
+                 {"mesh s", fmt::format("{:.3f}", result.mesh_seconds)},
+                 {"solve s", fmt::format("{:.3f}", result.solve_seconds)},
+                 {"form factors", fmt::format("{}", result.form_factors)},
+                 {"FF/s", fmt::format("{:.4g}", out.facts.value("form_factors_per_second", 0.0))},
+                 {"FF MiB", fmt::format("{:.1f}", memory_mib)}};
+  return out;
 }
 
 std::shared_ptr<const RadiosityMethod::Solved> RadiosityMethod::solution_for(const Scene& scene,

@@ -54,14 +54,6 @@
 
 namespace candela {
 
-// Meshes and solves the scene with the scene's "radiosity" object (quiet: no progress bar).
-RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet);
-// The same, with what the solve measured written to *facts when not null (the "radiosity" facts
-// of render --stats without the display's: steps, form_factors_per_second, row_sum, ...).
-RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet, nlohmann::json* facts);
-// The same with another seed than render.seed (a probe's).
-RadiositySolveResult solve_radiosity(const Scene& scene, bool quiet, nlohmann::json* facts, uint64_t seed);
-
 // One solution serves every view: render() keeps the last scene's solution (recognised by
 // Scene::unique_id and the radiosity settings and the render's seed, RenderRequest::seed_for) and reuses it
 // when called again for the same scene with another camera.
@@ -79,6 +71,8 @@ class RadiosityMethod final : public Method {
   void refuse_scene(const Scene& scene) const override;
   // The ray-traced display's field, solved now, gathered over the hemisphere (integrators/probe.h).
   std::unique_ptr<PointProbe> point_probe(const Scene& scene, const ProbeSettings& settings) const override;
+  // The element mesh (vertices, faces, each vertex's radiosity B) and the solve's facts.
+  StandaloneSolution solve_alone(const Scene& scene, bool quiet) const override;
 
  private:
   struct Solved {

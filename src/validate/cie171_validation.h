@@ -83,9 +83,14 @@ struct Cie171Run {
   std::vector<std::string> only_methods;  // empty: every method of each case
   // Empty: every case; else the case numbers to run ("5.11": each of its variants).
   std::vector<std::string> only_cases;
-  // The radiosity method's solver ("hierarchical" passes every case too).
-  std::string radiosity_solver = "gauss-seidel";
+  // Settings of every case's scene, as render's --set ("radiosity.solver=hierarchical": the
+  // hierarchical solver passes every case too, as Gauss-Seidel, the cases' own, does).
+  std::vector<std::string> overrides;
 };
+
+// Throws the InputError of an override the cases' scenes refuse (an unknown key, a value out of
+// range), before any case is built or written.
+void check_cie171_overrides(const Cie171Run& run);
 
 // The cases, with the files they need (the Lambertian IES file) written into out_dir.
 std::vector<Cie171Case> cie171_cases(const std::string& out_dir, const Cie171Run& run);
