@@ -109,6 +109,22 @@ TEST_F(Distributed, LocalAndAdaptiveWhittedWithTheirSampleMaps) {
   EXPECT_EQ(bytes("map1.png"), bytes("map2.png"));
 }
 
+// The rasterizer draws the tiles handed to its rank (each rank makes the view's triangles): the
+// built-in scene's adaptive jittered passes, a grid of samples through a Gaussian filter, and
+// Gouraud's vertex intensities. Before, every rank drew the whole image and no tile was shared.
+TEST_F(Distributed, RasterTilesAcrossRanksAreByteIdentical) {
+  expect_identical("raster-passes",
+                   "render -q --method raster --set camera.width=150 --set camera.height=110");
+  const nlohmann::json stats = json("raster-passes-2.json");
+  const auto& by_rank = stats["distributed"]["tiles_by_rank"];
+  EXPECT_EQ(by_rank[0].get<int>() + by_rank[1].get<int>(), 6);  // 3 × 2 tiles of 64 pixels
+  EXPECT_GT(stats["raster"]["accumulation"]["refined_pixels"].get<int>(), 0);
+  expect_identical("raster-grid",
+                   "render " + kCornell +
+                       " --method raster --set aa.mode=uniform --set aa.n=2 --set aa.filter=gaussian "
+                       "--set raster.shading=gouraud");
+}
+
 TEST_F(Distributed, PathTracedImageIsByteIdentical) {
   expect_identical("path", "render " + kCornell + " --method path --spp 6");
   EXPECT_GE(json("path-2.json")["distributed"]["rounds"].get<int>(), 1);

@@ -15,6 +15,7 @@
 #include "camera/antialiasing.h"
 #include "camera/sample_grid.h"
 #include "integrators/direct_lighting.h"
+#include "integrators/distributed_tiles.h"
 #include "integrators/memory_estimate.h"
 #include "raster/rasterizer.h"
 #include "raster/tessellated_scene.h"
@@ -504,149 +505,199 @@ struct ViewTiles {
   }
 };
 
+// The view of a render, made once for any region of its image: the scene tessellated for the
+// camera, each triangle's corners in clip space with their varyings (Gouraud's vertex intensities)
+// and flat colours. draw(area) then draws a region of the image — the whole image on one process,
+// a tile at a time across ranks — with what it drew added up for the statistics.
+class RasterView {
+ public:
+  RasterView(const Scene& scene, const RasterSettings& settings, const AntialiasingSettings& antialiasing,
+             uint64_t seed)
+      : scene_(scene),
+        antialiasing_(antialiasing),
+        seed_(seed),
+        in_passes_(drawn_in_passes(antialiasing)),
+        grid_(in_passes_ ? SampleGrid{} : *sample_grid(antialiasing)),
+        grid_width_(static_cast<int>(grid_.end(scene.camera->width()))),
+        grid_height_(static_cast<int>(grid_.end(scene.camera->height()))),
+        tessellation_(tessellation_for_view(scene, grid_, settings)),
+        triangles_(tessellate_scene(scene, tessellation_)),
+        tessellation_seconds_(tessellation_time_.seconds()),
+        shader_(scene, triangles_, settings),
+        varying_count_(shader_.varying_count()),
+        stride_(static_cast<std::size_t>(std::max(varying_count_, 1))),
+        contexts_([seed] {
+          TraceContext context;
+          context.seed = seed;
+          return context;
+        }) {
+    // Per-vertex work once: clip coordinates and varyings, packed (varying_count per corner).
+    const std::size_t count = triangles_.triangle_count();
+    clip_positions_.resize(3 * count);
+    corner_varyings_.resize(varying_count_ > 0 ? 3 * count * stride_ : 0);
+    flat_colors_.resize(settings.shading == RasterShading::flat ? count : 0);
+    tbb::parallel_for(std::size_t(0), count, [&](std::size_t t) {
+      TraceContext& context = contexts_.local();
+      for (int k = 0; k < 3; ++k) {
+        const Vec3& p = triangles_.corner_positions[3 * t + k];
+        clip_positions_[3 * t + k] = tessellation_.clip_from_world * Eigen::Vector4d(p.x, p.y, p.z, 1);
+        if (varying_count_ > 0)
+          shader_.corner_varyings(static_cast<uint32_t>(t), k, &corner_varyings_[(3 * t + k) * stride_],
+                                  context);
+      }
+      if (!flat_colors_.empty()) flat_colors_[t] = shader_.flat(static_cast<uint32_t>(t), context);
+    });
+  }
+
+  // Draws `area` of the image into target (area-sized): the grid's samples of its pixels (and the
+  // ring its filter reaches) reconstructed with the scene's filter, or the jittered passes
+  // splatted (camera/accumulation_buffer.h). Spans start where the whole image's do, so any
+  // region gives the whole image's pixels.
+  void draw(const PixelRect& area, Film& target, bool quiet) {
+    const Camera& camera = *scene_.camera;
+    const SamplingRegion sampling{area.x0, area.y0, camera.width(), camera.height()};
+    const PixelBox pixels = in_passes_
+                                ? pixels_drawn_in_passes(antialiasing_, sampling, area.width(), area.height())
+                                : sampled_pixels(antialiasing_, sampling, area.width(), area.height());
+    const PixelBox samples_box{
+        static_cast<int>(grid_.first(pixels.x0)), static_cast<int>(grid_.first(pixels.y0)),
+        static_cast<int>(grid_.end(pixels.x1)), static_cast<int>(grid_.end(pixels.y1))};
+    const int tile = kRasterTile;
+    const int first_tx = samples_box.x0 / tile, first_ty = samples_box.y0 / tile;
+    const int tiles_x = (samples_box.x1 - 1) / tile - first_tx + 1;
+    const int tiles_y = (samples_box.y1 - 1) / tile - first_ty + 1;
+    const std::vector<std::vector<uint32_t>> bins =
+        bin_triangles(clip_positions_, samples_box, in_passes_ ? 1 : 0, grid_width_, grid_height_);
+    const ViewTiles view{scene_,         grid_,   shader_,     clip_positions_, corner_varyings_,
+                         flat_colors_,   bins,    samples_box, grid_width_,     grid_height_,
+                         varying_count_, stride_, first_tx,    first_ty,        tiles_x};
+    const auto draw_tile = [&](int index, const PassOffset* offset, const std::vector<uint8_t>* wanted,
+                               Color* out) {
+      if (cancel_requested()) return;  // Ctrl-C: the tiles not begun stay black
+      if (view.draw_tile(index, offset, wanted, out, contexts_.local(), tile_statistics_.local()))
+        tiles_done_.fetch_add(1, std::memory_order_relaxed);
+    };
+    if (in_passes_) {
+      ProgressReporter progress("raster", static_cast<uint64_t>(PassSchedule(antialiasing_, seed_).passes()),
+                                "passes", quiet);
+      const PassDrawing draw_pass = [&](int, const PassOffset& offset, const PixelBox& box,
+                                        const std::vector<uint8_t>& wanted, std::vector<Color>& values) {
+        if (box.x0 != samples_box.x0 || box.y0 != samples_box.y0 || box.x1 != samples_box.x1 ||
+            box.y1 != samples_box.y1)
+          throw std::logic_error("raster: a pass asked for other pixels than the view was binned for");
+        tbb::parallel_for(0, tiles_x * tiles_y,
+                          [&](int index) { draw_tile(index, &offset, &wanted, values.data()); });
+        progress.advance();
+      };
+      const PassesResult drawn = accumulate_passes(antialiasing_, seed_, sampling, draw_pass, target);
+      progress.finish();
+      passes_.passes = std::max(passes_.passes, drawn.passes);
+      passes_.most_passes = drawn.most_passes;
+      passes_.samples += drawn.samples;
+      passes_.refined_pixels += drawn.refined_pixels;
+    } else {
+      Film samples(samples_box.width(), samples_box.height());
+      ProgressReporter progress("raster", static_cast<uint64_t>(tiles_x) * tiles_y, "tiles", quiet);
+      tbb::parallel_for(0, tiles_x * tiles_y, [&](int index) {
+        draw_tile(index, nullptr, nullptr,
+                  samples.width() > 0 && samples.height() > 0 ? &samples.at(0, 0) : nullptr);
+        progress.advance();
+      });
+      progress.finish();
+      // The pixels from the grid's samples, reconstructed with the scene's filter.
+      const RadianceFunction sample_at = [&](double x, double y) {
+        const auto i = std::clamp<int64_t>(grid_.index(x) - samples_box.x0, 0, samples.width() - 1);
+        const auto j = std::clamp<int64_t>(grid_.index(y) - samples_box.y0, 0, samples.height() - 1);
+        return samples.at(static_cast<int>(i), static_cast<int>(j));
+      };
+      sample_image(antialiasing_, seed_, sampling, scene_.render.tile_size, sample_at, target);
+    }
+    tiles_total_ += static_cast<uint64_t>(tiles_x) * tiles_y;
+  }
+
+  // What the draws so far did: "N of M tiles" or "N of M passes".
+  std::string completed() const {
+    return in_passes_ ? fmt::format("{} of {} passes", passes_.passes, passes_.most_passes)
+                      : fmt::format("{} of {} tiles", tiles_done_.load(), tiles_total_);
+  }
+  // Counts of this process, summed over the ranks when a cluster is given (a collective).
+  RayCounts shadow_rays(Cluster* cluster) const {
+    RayCounts total;
+    for (const TraceContext& context : contexts_) total += context.counts;
+    if (cluster) sum_across_ranks(*cluster, total);
+    return total;
+  }
+  nlohmann::json facts(const RasterSettings& settings, Cluster* cluster) const {
+    std::vector<uint64_t> counts{0, 0, passes_.samples, passes_.refined_pixels};
+    for (const RasterStatistics& s : tile_statistics_) {
+      counts[0] += s.fragments;
+      counts[1] += s.written;
+    }
+    if (cluster) cluster->sum(counts);
+    // Sub-phases of "render", kept out of the phase list so the total is not counted twice.
+    nlohmann::json facts = {{"shading", kRasterShadingNames.name(settings.shading)},
+                            {"segments", settings.segments},
+                            {"tessellate_seconds", tessellation_seconds_},
+                            {"rasterize_and_shade_seconds", raster_time_.seconds()},
+                            {"triangles", triangles_.triangle_count()},
+                            {"fragments", counts[0]},
+                            {"depth_writes", counts[1]}};
+    if (in_passes_)
+      facts["accumulation"] = {
+          {"passes", passes_.passes}, {"refined_pixels", counts[3]}, {"samples", counts[2]}};
+    return facts;
+  }
+
+ private:
+  const Scene& scene_;
+  const AntialiasingSettings& antialiasing_;
+  uint64_t seed_;
+  bool in_passes_;
+  // The scene is drawn at the points of the aa mode's sample grid (camera/sample_grid.h); jittered
+  // samples lie off every grid: then the image is drawn at its own size once per pass, its
+  // projection moved by the pass's sub-pixel offset.
+  SampleGrid grid_;
+  int grid_width_, grid_height_;
+  Stopwatch tessellation_time_;
+  TessellationRequest tessellation_;
+  TessellatedScene triangles_;
+  double tessellation_seconds_;
+  Stopwatch raster_time_;  // from the tessellation's end: the per-vertex work and the draws
+  RasterShader shader_;
+  int varying_count_;
+  std::size_t stride_;
+  std::vector<Eigen::Vector4d> clip_positions_;
+  std::vector<double> corner_varyings_;
+  std::vector<Color> flat_colors_;
+  tbb::enumerable_thread_specific<TraceContext> contexts_;
+  tbb::enumerable_thread_specific<RasterStatistics> tile_statistics_;
+  std::atomic<uint64_t> tiles_done_{0};
+  uint64_t tiles_total_ = 0;
+  PassesResult passes_;
+};
+
 }  // namespace
 
 RenderResult RasterMethod::render(const Scene& scene, const RenderRequest& request) const {
   // The render's aa settings and seed, which may not be the scene's.
   const AntialiasingSettings& antialiasing = request.antialiasing_for(scene);
-  const uint64_t seed = request.seed_for(scene);
   refuse_unsupported_antialiasing(*this, scene, antialiasing);
   RenderResult output(request.region);
-  Film& film = output.film;
   RunStatistics& statistics = output.statistics;
-  const PixelRect region = request.region;
-  const Camera& camera = *scene.camera;
-  // The scene is drawn at the points of the aa mode's sample grid (camera/sample_grid.h), over
-  // every pixel sample_image asks about, and sample_image reconstructs the pixels from them.
-  // Jittered samples lie off every grid: the image is drawn at its own size once per pass, its
-  // projection moved by the pass's sub-pixel offset, and the passes are splatted into the film
-  // (camera/accumulation_buffer.h).
-  const bool in_passes = drawn_in_passes(antialiasing);
-  const SampleGrid grid = in_passes ? SampleGrid{} : *sample_grid(antialiasing);
-  const int grid_width = static_cast<int>(grid.end(camera.width()));
-  const int grid_height = static_cast<int>(grid.end(camera.height()));
-  const SamplingRegion sampling{region.x0, region.y0, camera.width(), camera.height()};
-  const PixelBox pixels =
-      in_passes ? pixels_drawn_in_passes(antialiasing, sampling, region.width(), region.height())
-                : sampled_pixels(antialiasing, sampling, region.width(), region.height());
-  const PixelBox samples_box{static_cast<int>(grid.first(pixels.x0)), static_cast<int>(grid.first(pixels.y0)),
-                             static_cast<int>(grid.end(pixels.x1)), static_cast<int>(grid.end(pixels.y1))};
-  Film samples(in_passes ? 0 : samples_box.width(), in_passes ? 0 : samples_box.height());
-  Stopwatch tessellation_time;
-  const TessellationRequest tessellation = tessellation_for_view(scene, grid, settings_);
-  const Eigen::Matrix4d& clip_from_world = tessellation.clip_from_world;
-  const TessellatedScene triangles = tessellate_scene(scene, tessellation);
-  const double tessellation_seconds = tessellation_time.seconds();
-
-  Stopwatch raster_time;
-  const RasterShader shader(scene, triangles, settings_);
-  const int varying_count = shader.varying_count();
-  const std::size_t triangle_count = triangles.triangle_count();
-  // Per-vertex work once: clip coordinates and varyings (Gouraud's vertex intensities), the
-  // varyings packed (varying_count per corner).
-  const std::size_t stride = static_cast<std::size_t>(std::max(varying_count, 1));
-  std::vector<Eigen::Vector4d> clip_positions(3 * triangle_count);
-  std::vector<double> corner_varyings(varying_count > 0 ? 3 * triangle_count * stride : 0);
-  std::vector<Color> flat_colors(settings_.shading == RasterShading::flat ? triangle_count : 0);
-  tbb::enumerable_thread_specific<TraceContext> contexts([seed] {
-    TraceContext context;
-    context.seed = seed;
-    return context;
-  });
-  tbb::parallel_for(std::size_t(0), triangle_count, [&](std::size_t t) {
-    TraceContext& context = contexts.local();
-    for (int k = 0; k < 3; ++k) {
-      const Vec3& p = triangles.corner_positions[3 * t + k];
-      clip_positions[3 * t + k] = clip_from_world * Eigen::Vector4d(p.x, p.y, p.z, 1);
-      if (varying_count > 0)
-        shader.corner_varyings(static_cast<uint32_t>(t), k, &corner_varyings[(3 * t + k) * stride], context);
-    }
-    if (!flat_colors.empty()) flat_colors[t] = shader.flat(static_cast<uint32_t>(t), context);
-  });
-
-  // Tiles of the grid samples, aligned on the grid's own tiles of 32 (a scanline started inside a
-  // span agrees with a whole-image draw only to rounding, so every region starts its spans where
-  // the whole image does), each with the triangles whose screen bounds reach it (a triangle with
-  // a vertex behind the eye plane may reach anywhere once clipped: every tile gets it). A pass
-  // moves the image by less than a pixel: drawn in passes, a triangle is binned by its bounds
-  // grown by a pixel, and kept unless it lies that far outside the frustum's sides.
-  const int tile = kRasterTile;
-  const int margin = in_passes ? 1 : 0;
-  const int first_tx = samples_box.x0 / tile, first_ty = samples_box.y0 / tile;
-  const int tiles_x = (samples_box.x1 - 1) / tile - first_tx + 1;
-  const int tiles_y = (samples_box.y1 - 1) / tile - first_ty + 1;
-  const std::vector<std::vector<uint32_t>> bins =
-      bin_triangles(clip_positions, samples_box, margin, grid_width, grid_height);
-  tbb::enumerable_thread_specific<RasterStatistics> tile_statistics;
-  std::atomic<int> tiles_done{0};
-  const ViewTiles view{scene,         grid,   shader,      clip_positions, corner_varyings,
-                       flat_colors,   bins,   samples_box, grid_width,     grid_height,
-                       varying_count, stride, first_tx,    first_ty,       tiles_x};
-  const auto draw_tile = [&](int index, const PassOffset* offset, const std::vector<uint8_t>* wanted,
-                             Color* out) {
-    if (cancel_requested()) return;  // Ctrl-C: the tiles not begun stay black
-    if (view.draw_tile(index, offset, wanted, out, contexts.local(), tile_statistics.local()))
-      tiles_done.fetch_add(1, std::memory_order_relaxed);
-  };
-  nlohmann::json passes_facts;
-  if (in_passes) {
-    ProgressReporter progress("raster", static_cast<uint64_t>(PassSchedule(antialiasing, seed).passes()),
-                              "passes", request.quiet);
-    const PassDrawing draw_pass = [&](int, const PassOffset& offset, const PixelBox& box,
-                                      const std::vector<uint8_t>& wanted, std::vector<Color>& values) {
-      if (box.x0 != samples_box.x0 || box.y0 != samples_box.y0 || box.x1 != samples_box.x1 ||
-          box.y1 != samples_box.y1)
-        throw std::logic_error("raster: a pass asked for other pixels than the view was binned for");
-      tbb::parallel_for(0, tiles_x * tiles_y,
-                        [&](int index) { draw_tile(index, &offset, &wanted, values.data()); });
-      progress.advance();
-    };
-    const PassesResult passes = accumulate_passes(antialiasing, seed, sampling, draw_pass, film);
-    progress.finish();
-    passes_facts = {
-        {"passes", passes.passes}, {"refined_pixels", passes.refined_pixels}, {"samples", passes.samples}};
-    if (cancel_requested()) {
-      statistics.extra["interrupted"] = true;
-      statistics.extra["completed"] = fmt::format("{} of {} passes", passes.passes, passes.most_passes);
-    }
-  } else {
-    ProgressReporter progress("raster", static_cast<uint64_t>(tiles_x) * tiles_y, "tiles", request.quiet);
-    tbb::parallel_for(0, tiles_x * tiles_y, [&](int index) {
-      draw_tile(index, nullptr, nullptr,
-                samples.width() > 0 && samples.height() > 0 ? &samples.at(0, 0) : nullptr);
-      progress.advance();
-    });
-    progress.finish();
-    // The pixels from the grid's samples, reconstructed with the scene's filter.
-    const RadianceFunction sample_at = [&](double x, double y) {
-      const auto i = std::clamp<int64_t>(grid.index(x) - samples_box.x0, 0, samples.width() - 1);
-      const auto j = std::clamp<int64_t>(grid.index(y) - samples_box.y0, 0, samples.height() - 1);
-      return samples.at(static_cast<int>(i), static_cast<int>(j));
-    };
-    sample_image(antialiasing, seed, sampling, scene.render.tile_size, sample_at, film);
-    if (cancel_requested()) {
-      statistics.extra["interrupted"] = true;
-      statistics.extra["completed"] = fmt::format("{} of {} tiles", tiles_done.load(), tiles_x * tiles_y);
-    }
+  Cluster* cluster = several_ranks(request);
+  RasterView view(scene, settings_, antialiasing, request.seed_for(scene));
+  // Across ranks every rank makes the view and draws the tiles handed to it.
+  draw_across_ranks(
+      cluster, request.region,
+      [&](const PixelRect& area, Film& target) { view.draw(area, target, request.quiet || cluster); },
+      output.film, statistics);
+  if (cancel_requested()) {
+    statistics.extra["interrupted"] = true;
+    statistics.extra["completed"] = view.completed();
   }
-  RayCounts shadow_rays;
-  for (const TraceContext& context : contexts) shadow_rays += context.counts;
-  statistics.rays += shadow_rays;
-  statistics.pixels += static_cast<uint64_t>(region.width()) * region.height();
-  RasterStatistics drawn;
-  for (const RasterStatistics& s : tile_statistics) {
-    drawn.fragments += s.fragments;
-    drawn.written += s.written;
-  }
-  // Sub-phases of "render", kept out of the phase list so the total is not counted twice.
-  statistics.extra["raster"] = {{"shading", kRasterShadingNames.name(settings_.shading)},
-                                {"segments", settings_.segments},
-                                {"tessellate_seconds", tessellation_seconds},
-                                {"rasterize_and_shade_seconds", raster_time.seconds()},
-                                {"triangles", triangle_count},
-                                {"fragments", drawn.fragments},
-                                {"depth_writes", drawn.written}};
-  if (in_passes) statistics.extra["raster"]["accumulation"] = passes_facts;
+  statistics.rays += view.shadow_rays(cluster);
+  statistics.pixels += static_cast<uint64_t>(request.region.width()) * request.region.height();
+  statistics.extra["raster"] = view.facts(settings_, cluster);
   return output;
 }
 
