@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <sys/stat.h>
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -19,18 +20,7 @@
 #include <utility>
 #include <vector>
 
-// tinygltf's implementation lives here. Images are never decoded (the project's stb_image is
-// compiled in texture_image.cpp, and glTF materials are not imported): no stb, no external
-// image files, and a loader callback that keeps nothing.
-#define TINYGLTF_IMPLEMENTATION
-#define TINYGLTF_NO_STB_IMAGE
-#define TINYGLTF_NO_STB_IMAGE_WRITE
-#define TINYGLTF_NO_EXTERNAL_IMAGE
-#include <tiny_gltf.h>
-
-#include <Eigen/Dense>
-#include <nlohmann/json.hpp>
-
+#include "io/gltf_file.h"
 #include "math/constants.h"
 #include "math/transform.h"
 #include "util/input_file.h"
@@ -38,25 +28,6 @@
 namespace candela {
 
 namespace {
-
-bool ignore_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*,
-                  int, void*) {
-  return true;
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::size_t start = 0;
-  while (start < text.size()) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string::npos) end = text.size();
-    std::string line = text.substr(start, end - start);
-    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.pop_back();
-    if (!line.empty()) lines.push_back(line);
-    start = end + 1;
-  }
-  return lines;
-}
 
 // A checked window onto an accessor's elements.
 struct AccessorData {
@@ -66,33 +37,17 @@ struct AccessorData {
   int component_type = 0;
 };
 
-// The JSON of a .glb: its first chunk (tinygltf has checked the header and the chunk sizes).
-std::string_view glb_json_chunk(const std::string& bytes) {
-  const auto u32_at = [&](std::size_t at) {
-    std::uint32_t value = 0;
-    for (std::size_t k = 0; k < 4; ++k)
-      value |= std::uint32_t(static_cast<unsigned char>(bytes[at + k])) << (8 * k);
-    return value;
-  };
-  if (bytes.size() < 20) return {};
-  const std::size_t length = u32_at(12);
-  return length <= bytes.size() - 20 ? std::string_view(bytes).substr(20, length) : std::string_view();
-}
-
-// Every number of a scene file, an OBJ vertex and a glTF node's transform or position is limited
-// to kMaxSceneMagnitude (math/constants.h): beyond it squared distances lose all precision.
+// Every number of an OBJ vertex and a glTF position is limited to kMaxSceneMagnitude
+// (math/constants.h): beyond it squared distances lose all precision.
 constexpr double kMaxMagnitude = kMaxSceneMagnitude;
 static_assert(kMaxMagnitude == 1e16, "the messages below name it");
 
 class GltfReader {
  public:
-  GltfReader(const std::string& path, const SourceLocation& referenced_from, tinygltf::Model model,
-             const nlohmann::json& json)
-      : path_(path), referenced_from_(referenced_from), model_(std::move(model)), json_(json) {}
+  explicit GltfReader(const GltfFile& file) : file_(file), path_(file.path), model_(file.model) {}
 
-  ObjImport read() {
-    check_optional_sizes();
-    place_scene();
+  ObjImport read(int scene) {
+    place_scene(gltf_scene_index(file_, scene));
     if (parts_.empty() || triangle_count_ == 0) fail("has no triangles (mode TRIANGLES)");
     return merge();
   }
@@ -100,121 +55,19 @@ class GltfReader {
   std::vector<std::string> warnings;
 
  private:
-  [[noreturn]] void fail(const std::string& message) const {
-    throw InputError(referenced_from_, fmt::format("glTF file '{}' {}", path_, message));
-  }
-
-  // tinygltf reads an optional size that is not a non-negative integer (-4, 1.5, 1e30, "8") as its
-  // default 0 without a word: an accessor at byteOffset -4 read its buffer from the start.
-  // Such a value is refused by its JSON path. (Required sizes, byteLength and count, tinygltf
-  // refuses itself.)
-  void check_optional_sizes() const {
-    static constexpr std::array<std::pair<const char*, const char*>, 3> kSizes = {
-        {{"accessors", "byteOffset"}, {"bufferViews", "byteOffset"}, {"bufferViews", "byteStride"}}};
-    for (const auto& [array, key] : kSizes) {
-      const auto objects = json_.find(array);
-      if (objects == json_.end() || !objects->is_array()) continue;
-      for (std::size_t i = 0; i < objects->size(); ++i) {
-        const nlohmann::json& object = (*objects)[i];
-        if (!object.is_object()) continue;
-        const auto value = object.find(key);
-        if (value == object.end() || value->is_number_unsigned()) continue;
-        std::string found = value->dump();
-        if (found.size() > 40) found = found.substr(0, 40) + "...";
-        fail(fmt::format("{}[{}].{}: must be a non-negative integer (found {})", array, i, key, found));
-      }
-    }
-  }
+  [[noreturn]] void fail(const std::string& message) const { file_.fail(message); }
 
   // --- node tree ----------------------------------------------------------------------------
 
-  // The numbers of a node's matrix, translation, rotation and scale must be finite and at most
-  // kMaxMagnitude: larger ones overflowed when composed and were then called a singular matrix.
-  void check_node_numbers(const tinygltf::Node& node, int index) const {
-    const std::array<std::pair<const char*, const std::vector<double>*>, 4> fields = {
-        {{"matrix", &node.matrix},
-         {"translation", &node.translation},
-         {"rotation", &node.rotation},
-         {"scale", &node.scale}}};
-    for (const auto& [name, values] : fields)
-      for (std::size_t k = 0; k < values->size(); ++k) {
-        const double value = (*values)[k];
-        if (!std::isfinite(value)) fail(fmt::format("nodes[{}].{}[{}]: must be finite", index, name, k));
-        if (std::fabs(value) > kMaxMagnitude)
-          fail(fmt::format("nodes[{}].{}[{}]: magnitude above 1e16 is not supported (found {})", index, name,
-                           k, value));
-      }
-    const auto& r = node.rotation;
-    if (r.size() == 4 && r[0] == 0 && r[1] == 0 && r[2] == 0 && r[3] == 0)
-      fail(fmt::format("nodes[{}].rotation: the zero quaternion [0, 0, 0, 0] is not a rotation", index));
-  }
-
-  static Eigen::Matrix4d local_matrix(const tinygltf::Node& node) {
-    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
-    if (node.matrix.size() == 16) {
-      for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r) m(r, c) = node.matrix[static_cast<std::size_t>(c * 4 + r)];
-      return m;
-    }
-    Eigen::Matrix4d t = Eigen::Matrix4d::Identity();
-    if (node.translation.size() == 3)
-      for (int k = 0; k < 3; ++k) t(k, 3) = node.translation[static_cast<std::size_t>(k)];
-    Eigen::Matrix4d r = Eigen::Matrix4d::Identity();
-    if (node.rotation.size() == 4) {
-      Eigen::Quaterniond q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
-      // Components so small that their squares underflow (1e-200) still name a rotation: scale
-      // them up first (check_node_numbers refused the zero quaternion; 1e16 cannot overflow).
-      if (!(q.coeffs().squaredNorm() >= std::numeric_limits<double>::min()))
-        q.coeffs() /= q.coeffs().cwiseAbs().maxCoeff();
-      q.normalize();
-      r.topLeftCorner<3, 3>() = q.toRotationMatrix();
-    }
-    Eigen::Matrix4d s = Eigen::Matrix4d::Identity();
-    if (node.scale.size() == 3)
-      for (int k = 0; k < 3; ++k) s(k, k) = node.scale[static_cast<std::size_t>(k)];
-    return t * r * s;
-  }
-
-  void place_scene() {
-    if (model_.scenes.empty()) {
+  void place_scene(int scene) {
+    if (scene < 0) {
       for (std::size_t m = 0; m < model_.meshes.size(); ++m)
         add_mesh(static_cast<int>(m), Eigen::Matrix4d::Identity(), -1);
       return;
     }
-    const int scene = model_.defaultScene >= 0 ? model_.defaultScene : 0;
-    if (scene >= static_cast<int>(model_.scenes.size()))
-      fail(fmt::format("names scene {}, which does not exist", scene));
-    // Depth-first over an explicit stack (a chain of nodes as deep as the file is long must not
-    // overflow the call stack); a node reached twice (a cycle, or two parents) is refused.
-    std::vector<bool> visited(model_.nodes.size(), false);
-    std::vector<std::pair<int, Eigen::Matrix4d>> stack;
-    for (const int root : model_.scenes[static_cast<std::size_t>(scene)].nodes)
-      stack.emplace_back(root, Eigen::Matrix4d::Identity());
-    while (!stack.empty()) {
-      const auto [index, parent] = stack.back();
-      stack.pop_back();
-      if (index < 0 || index >= static_cast<int>(model_.nodes.size()))
-        fail(fmt::format("refers to node {}, which does not exist", index));
-      if (visited[static_cast<std::size_t>(index)])
-        fail(fmt::format("reaches node {} twice (the nodes are not a tree)", index));
-      visited[static_cast<std::size_t>(index)] = true;
-      const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(index)];
-      check_node_numbers(node, index);
-      const Eigen::Matrix4d world = parent * local_matrix(node);
-      // Each node's numbers are at most 1e16, but a chain of them multiplies: name the node
-      // where the composed transform leaves the supported range.
-      if (!world.allFinite())
-        fail(
-            fmt::format("nodes[{}]: the transform composed from the scene's root down to this node overflows "
-                        "(is not finite)",
-                        index));
-      if (const double largest = world.cwiseAbs().maxCoeff(); largest > kMaxMagnitude)
-        fail(fmt::format(
-            "nodes[{}]: the transform composed from the scene's root down to this node has an entry "
-            "of magnitude {}, above the supported 1e16",
-            index, largest));
-      if (node.mesh >= 0) add_mesh(node.mesh, world, index);
-      for (const int child : node.children) stack.emplace_back(child, world);
+    for (const GltfNodePlacement& placed : gltf_scene_nodes(file_, scene)) {
+      const int mesh = model_.nodes[static_cast<std::size_t>(placed.node)].mesh;
+      if (mesh >= 0) add_mesh(mesh, placed.world, placed.node);
     }
   }
 
@@ -318,6 +171,7 @@ class GltfReader {
         accessor(position_index, TINYGLTF_TYPE_VEC3, {TINYGLTF_COMPONENT_TYPE_FLOAT}, name + " POSITION");
     if (positions.count > std::numeric_limits<std::uint32_t>::max()) fail(name + " has too many vertices");
     Part part;
+    part.material = primitive.material;
     part.mesh.positions.reserve(positions.count);
     for (std::size_t i = 0; i < positions.count; ++i) {
       const Vec3 p{float_at(positions, i, 0), float_at(positions, i, 1), float_at(positions, i, 2)};
@@ -428,6 +282,8 @@ class GltfReader {
       mesh.positions.insert(mesh.positions.end(), part.mesh.positions.begin(), part.mesh.positions.end());
       for (const auto& t : part.mesh.triangles)
         mesh.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+      result.triangle_file_material.insert(result.triangle_file_material.end(), part.mesh.triangles.size(),
+                                           part.material);
       if (all_normals)
         mesh.corner_normals.insert(mesh.corner_normals.end(), part.mesh.corner_normals.begin(),
                                    part.mesh.corner_normals.end());
@@ -448,12 +304,12 @@ class GltfReader {
   struct Part {
     TriangleMesh mesh;
     bool has_normals = false;
+    int material = -1;  // the primitive's material in the file
   };
 
+  const GltfFile& file_;
   const std::string& path_;
-  const SourceLocation& referenced_from_;
-  tinygltf::Model model_;
-  const nlohmann::json& json_;  // the file's JSON, for what tinygltf does not keep
+  const tinygltf::Model& model_;
   std::vector<Part> parts_;
   std::size_t triangle_count_ = 0;
   std::size_t replaced_normals_ = 0;
@@ -461,69 +317,12 @@ class GltfReader {
 
 }  // namespace
 
-ObjImport import_gltf(const std::string& path, const SourceLocation& referenced_from) {
+ObjImport import_gltf(const std::string& path, const SourceLocation& referenced_from, int scene) {
   require_mesh_file(path, "glTF", referenced_from);
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-
-  tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(ignore_image, nullptr);
-  // The file and its external buffers are read only when they are regular files of at
-  // most 4 GiB (a FIFO buffer blocked in open(), /dev/zero was read until memory ran out).
-  tinygltf::FsCallbacks callbacks{};
-  // tinygltf's own FileExists opens the file, which blocks on a FIFO: stat it instead.
-  callbacks.FileExists = [](const std::string& file, void*) {
-    struct stat status {};
-    return ::stat(file.c_str(), &status) == 0;
-  };
-  callbacks.ExpandFilePath = tinygltf::ExpandFilePath;
-  callbacks.WriteWholeFile = tinygltf::WriteWholeFile;
-  callbacks.ReadWholeFile = [](std::vector<unsigned char>* out, std::string* err, const std::string& file,
-                               void* user_data) {
-    const std::string problem = input_file_problem(file, "'" + file + "'", kLargeInputLimit);
-    if (!problem.empty()) {
-      if (err) *err += problem + "\n";
-      return false;
-    }
-    return tinygltf::ReadWholeFile(out, err, file, user_data);
-  };
-  callbacks.user_data = nullptr;
-  loader.SetFsCallbacks(callbacks);
-  // The file is read here, once, so that its JSON can be checked where tinygltf is silent.
-  std::string bytes;
-  try {
-    bytes = read_input_file(path, "the glTF file", std::numeric_limits<unsigned int>::max());
-  } catch (const InputError& e) {
-    throw InputError(referenced_from, "cannot read glTF file '" + path + "': " + e.message());
-  }
-  const bool binary = extension == ".glb";
-  tinygltf::Model model;
-  std::string error, warning;
-  bool loaded = false;
-  try {
-    const std::string base_dir = tinygltf::GetBaseDir(path);
-    const auto size = static_cast<unsigned int>(bytes.size());
-    loaded = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning,
-                                                  reinterpret_cast<const unsigned char*>(bytes.data()), size,
-                                                  base_dir)
-                    : loader.LoadASCIIFromString(&model, &error, &warning, bytes.data(), size, base_dir);
-  } catch (const std::exception& e) {  // the JSON library may throw on malformed input
-    error = e.what();
-    loaded = false;
-  }
-  if (!loaded) {
-    const auto lines = lines_of(error);
-    std::string text;
-    for (const auto& line : lines) text += (text.empty() ? "" : "; ") + line;
-    throw InputError(referenced_from,
-                     "cannot read glTF file '" + path + "': " + (text.empty() ? "unknown error" : text));
-  }
-  const std::string_view json_text = binary ? glb_json_chunk(bytes) : std::string_view(bytes);
-  const nlohmann::json json = nlohmann::json::parse(json_text.begin(), json_text.end(), nullptr, false);
-  GltfReader reader(path, referenced_from, std::move(model), json);
-  for (const auto& line : lines_of(warning)) reader.warnings.push_back(path + ": " + line);
-  return reader.read();
+  const GltfFile file = read_gltf_file(path, referenced_from);
+  GltfReader reader(file);
+  reader.warnings = file.warnings;
+  return reader.read(scene);
 }
 
 }  // namespace candela

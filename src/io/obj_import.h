@@ -54,7 +54,10 @@ struct ObjImport {
   std::shared_ptr<TriangleMesh> mesh;       // positions as in the file (object space)
   std::vector<int> triangle_material;       // per triangle: index into materials, -1 = none
   std::vector<ImportedMaterial> materials;  // every material of the .mtl file(s), in order
-  std::vector<std::string> warnings;        // each prefixed with the OBJ path
+  // glTF: each triangle's material index in the file (-1: none), which a scene names by
+  // position (the mesh entry's "file_materials"); empty for OBJ and PLY.
+  std::vector<int> triangle_file_material;
+  std::vector<std::string> warnings;  // each prefixed with the OBJ path
 };
 
 // Reads path (taken as given: the caller resolves it against the scene's directory); the .mtl

@@ -82,7 +82,7 @@ bool any_contains(const std::vector<std::string>& lines, const std::string& need
   return false;
 }
 
-const char* const kCube = R"(# unit cube [0,1]^3, quads counter-clockwise from outside
+const char* const kCubeObj = R"(# unit cube [0,1]^3, quads counter-clockwise from outside
 v 0 0 0
 v 1 0 0
 v 1 1 0
@@ -101,7 +101,7 @@ f 4 1 5 8
 
 TEST(ObjImport, CubeCountsAndGeometry) {
   const TempDir dir;
-  const ObjImport result = import_obj(dir.write("cube.obj", kCube), scene_location());
+  const ObjImport result = import_obj(dir.write("cube.obj", kCubeObj), scene_location());
   ASSERT_TRUE(result.mesh);
   EXPECT_EQ(result.mesh->positions.size(), 8u);
   EXPECT_EQ(result.mesh->triangles.size(), 12u);

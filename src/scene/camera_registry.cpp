@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <cmath>
 
 #include "camera/orthographic_camera.h"
 #include "camera/perspective_camera.h"
+#include "math/constants.h"
 #include "util/registry.h"
 
 namespace candela {
@@ -25,8 +27,15 @@ std::unique_ptr<Camera> make_perspective(const JsonNode& node, int width, int he
   const Vec3 eye = node.vec3("eye", {0, 0, 5});
   const Vec3 target = node.vec3("target", {0, 0, 0});
   const Vec3 up = node.vec3("up", {0, 1, 0});
-  // 2θ, the horizontal field of view (000 §5.2).
-  const double fov = node.number("fov", 60.0, {0, 180, true, true});
+  // 2θ, the horizontal field of view (000 §5.2); or the vertical one (a glTF camera's yfov), the
+  // horizontal then following from the image's aspect, so that a resized image keeps its height's view.
+  if (node.has("fov") && node.has("vertical_fov"))
+    node.at("vertical_fov").fail("give one of fov (horizontal) and vertical_fov, not both");
+  double fov = node.number("fov", 60.0, {0, 180, true, true});
+  if (node.has("vertical_fov")) {
+    const double vertical = node.number("vertical_fov", {0, 180, true, true});
+    fov = 2 * std::atan(std::tan(vertical * kPi / 360) * width / height) * 180 / kPi;
+  }
   return checked(node,
                  [&] { return std::make_unique<PerspectiveCamera>(eye, target, up, fov, width, height); });
 }
@@ -57,7 +66,8 @@ std::unique_ptr<Camera> make_orthographic(const JsonNode& node, int width, int h
 
 const std::array kCameraEntries = {
     CameraEntry{
-        "perspective", "eye, target, up, horizontal field of view fov in degrees (000 §5.2)",
+        "perspective",
+        "eye, target, up, horizontal field of view fov (or vertical_fov) in degrees (000 §5.2)",
         R"({"type": "perspective", "eye": [0, 1, 5], "target": [0, 1, 0], "up": [0, 1, 0], "fov": 60, "width": 320, "height": 240})",
         make_perspective},
     CameraEntry{

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -14,6 +15,7 @@
 #include "camera/pixel_filter.h"
 #include "geometry/flipped_shape.h"
 #include "geometry/transformed_shape.h"
+#include "io/gltf_scene.h"
 #include "io/json_node.h"
 #include "scene/camera_registry.h"
 #include "scene/environment_registry.h"
@@ -64,6 +66,7 @@ class SceneReader {
     scene_ = scene.get();
     context_.materials = &scene->materials;
     context_.warnings = &scene->warnings;
+    context_.named_materials = &named_materials_;
     context_.input_files = &scene->input_files;
     root_.expect_object();
     const JsonNode format = root_.at("format");
@@ -231,18 +234,7 @@ class SceneReader {
   uint32_t material_for(const JsonNode& shape) {
     const auto node = shape.get("material");
     if (!node) return 0;
-    if (node->json().is_string()) {
-      const std::string name = node->as_string();
-      const auto found = named_materials_.find(name);
-      if (found == named_materials_.end()) {
-        std::string known;
-        for (const auto& [key, index] : named_materials_) known += (known.empty() ? "" : ", ") + key;
-        node->fail(
-            "unknown material \"" + name + "\"" +
-            (known.empty() ? std::string(" (no materials are defined)") : " (defined: " + known + ")"));
-      }
-      return found->second;
-    }
+    if (node->json().is_string()) return context_.named_material(*node);
     Material material = read_material(*node, context_);
     material.name = node->path();
     return context_.add_material(std::move(material));
@@ -371,12 +363,54 @@ std::unique_ptr<Scene> read_scene_text(const std::string& text, const std::strin
   return load_document(std::move(document), base_directory, overrides, plugin_sections);
 }
 
+namespace {
+
+bool is_gltf_path(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension == ".gltf" || extension == ".glb";
+}
+
+// A glTF file as a scene (io/gltf_scene.h): its document loaded as a scene file's, the overrides
+// applied to it but for gltf.scene (which scene of the file), which chooses what is translated.
+std::unique_ptr<Scene> read_gltf_scene_file(const std::string& path,
+                                            const std::vector<std::string>& overrides,
+                                            std::span<const SettingsSection> plugin_sections,
+                                            const std::string& directory) {
+  int scene = -1;
+  std::vector<std::string> rest;
+  for (const std::string& assignment : overrides) {
+    if (assignment.rfind("gltf.", 0) != 0) {
+      rest.push_back(assignment);
+      continue;
+    }
+    const std::size_t equals = assignment.find('=');
+    const std::string key = assignment.substr(0, equals);
+    const SourceLocation at{"--set " + assignment, 0, 0, key};
+    if (key != "gltf.scene") throw InputError(at, "unknown key (a glTF file takes gltf.scene)");
+    const std::string value = equals == std::string::npos ? "" : assignment.substr(equals + 1);
+    if (value.empty() || value.size() > 9 || value.find_first_not_of("0123456789") != std::string::npos)
+      throw InputError(at, "expected the number of one of the file's scenes (0, 1, ...)");
+    scene = std::stoi(value);
+  }
+  GltfSceneDocument translated = gltf_scene_document(path, scene, SourceLocation{path, 0, 0, {}});
+  std::unique_ptr<Scene> loaded =
+      read_scene_text(translated.document.dump(2), path, directory, rest, plugin_sections);
+  loaded->warnings.insert(loaded->warnings.begin(), translated.warnings.begin(), translated.warnings.end());
+  return loaded;
+}
+
+}  // namespace
+
 std::unique_ptr<Scene> read_scene_file(const std::string& path, const std::vector<std::string>& overrides,
                                        std::span<const SettingsSection> plugin_sections) {
+  std::string directory = std::filesystem::path(path).parent_path().string();
+  if (directory.empty()) directory = ".";
+  if (is_gltf_path(path)) return read_gltf_scene_file(path, overrides, plugin_sections, directory);
   // A regular file of bounded size only (a FIFO blocked, /dev/zero exhausted memory).
   const std::string text = read_input_file(path, "the scene file");
-  const std::string directory = std::filesystem::path(path).parent_path().string();
-  return read_scene_text(text, path, directory.empty() ? "." : directory, overrides, plugin_sections);
+  return read_scene_text(text, path, directory, overrides, plugin_sections);
 }
 
 std::vector<LightSetup> load_light_setups(const std::string& path) {

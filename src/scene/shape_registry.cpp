@@ -156,6 +156,10 @@ ShapeBuild make_mesh(const JsonNode& node, const Transform& transform, LoadConte
   const std::string path = context.resolve(file.as_string()).string();
   const std::string normals = node.choice("normals", "flat", {"flat", "smooth", "file"});
   const double crease = node.number("crease_angle", 180.0, {0, 180, false, false});
+  // glTF only: the scene of the file to read (default its own), and the scene materials its
+  // materials stand for, by their index in the file (null: the entry's material).
+  const int gltf_scene = node.integer("scene", -1, {0, 1e9, false, false});
+  const std::optional<JsonNode> file_materials = node.get("file_materials");
   // The reader by file extension (any case); all three return the same ObjImport result.
   std::string extension = std::filesystem::path(path).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
@@ -166,10 +170,20 @@ ShapeBuild make_mesh(const JsonNode& node, const Transform& transform, LoadConte
   } else if (extension == ".ply") {
     imported = import_ply(path, file.location());
   } else if (extension == ".gltf" || extension == ".glb") {
-    imported = import_gltf(path, file.location());
+    imported = import_gltf(path, file.location(), gltf_scene);
   } else {
     file.fail(fmt::format("'{}': unknown mesh file extension '{}' (expected .obj, .ply, .gltf or .glb)", path,
                           extension));
+  }
+  if (extension != ".gltf" && extension != ".glb")
+    for (const char* key : {"scene", "file_materials"})
+      if (node.has(key)) node.at(key).fail("is for glTF files (their scenes and numbered materials)");
+  std::vector<int> by_file_index;  // file_materials: the scene material of each of the file's
+  if (file_materials) {
+    for (std::size_t k = 0; k < file_materials->size(); ++k) {
+      const JsonNode name = file_materials->element(k);
+      by_file_index.push_back(name.json().is_null() ? -1 : static_cast<int>(context.named_material(name)));
+    }
   }
   for (const auto& warning : imported.warnings) context.warnings->push_back(warning);
   if (normals == "flat") {
@@ -212,6 +226,14 @@ ShapeBuild make_mesh(const JsonNode& node, const Transform& transform, LoadConte
   build.transform_applied = true;
   for (const auto& shape : build.shapes) {
     const auto& triangle = static_cast<const MeshTriangle&>(*shape);
+    if (file_materials) {
+      const int in_file = imported.triangle_file_material[triangle.triangle_index()];
+      if (in_file >= static_cast<int>(by_file_index.size()))
+        file_materials->fail(fmt::format("names {} material(s), but the file's triangles use material {}",
+                                         by_file_index.size(), in_file));
+      build.materials.push_back(in_file >= 0 ? by_file_index[std::size_t(in_file)] : -1);
+      continue;
+    }
     const int source = imported.triangle_material[triangle.triangle_index()];
     build.materials.push_back(source >= 0 ? material_index[source] : -1);
   }
