@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -311,6 +312,56 @@ TEST_F(GltfScene, AMeshEntryNamesTheFilesMaterialsByIndex) {
           R"({"format": "candela/1", "camera": {}, "shapes": [{"type": "mesh", "file": "floor.gltf", "file_materials": ["blue"]}]})")
           .find("unknown material \"blue\""),
       std::string::npos);
+}
+
+TEST_F(GltfScene, AJsonSceneIncludesAGltfFileAndOverridesWhatItLacks) {
+  // models/floor.gltf: the floor with 100 cd at 2 m; included a metre up, so the light is at y = 3.
+  std::filesystem::create_directories(directory_.path() / "models");
+  write(with_light({{"type", "point"}, {"intensity", 100}}, {0, 2, 0}), "models/floor.gltf");
+  const auto scene_with = [&](const std::string& include, const std::string& rest) {
+    return load_scene_text(R"({"format": "candela/1", "include": )" + include + rest + "}", "room.json",
+                           directory_.path().string());
+  };
+  const std::string moved = R"({"file": "models/floor.gltf", "transform": {"translate": [0, 1, 0]}})";
+  const auto scene = scene_with(moved, R"(, "materials": {"floor": {"kd": [0.8, 0.1, 0.1]}})");
+  // The including file's material of the same name wins; the floor and its light moved up.
+  EXPECT_EQ(scene->materials[scene->primitives[0].material].kd->evaluate({}), Color(0.8, 0.1, 0.1));
+  EXPECT_NEAR(scene->bounds().lower.y, 1, 1e-12);
+  std::vector<ProbePoint> at_floor{{{0, 1, 0}, {0, 1, 0}}};
+  ProbeSettings local;
+  local.method = "local";
+  EXPECT_NEAR(kLuminousEfficacy * luminance(probe(*scene, at_floor, local)[0].irradiance), 25, 1e-9);
+  // Its own lights join the file's; "lights": false leaves the file's out.
+  const std::string own_light =
+      R"(, "lights": [{"type": "point", "position": [0, 3, 0], "luminous_intensity": 50}])";
+  EXPECT_NEAR(
+      kLuminousEfficacy * luminance(probe(*scene_with(moved, own_light), at_floor, local)[0].irradiance),
+      37.5, 1e-9);
+  const std::string without =
+      R"({"file": "models/floor.gltf", "transform": {"translate": [0, 1, 0]}, "lights": false})";
+  EXPECT_NEAR(
+      kLuminousEfficacy * luminance(probe(*scene_with(without, own_light), at_floor, local)[0].irradiance),
+      12.5, 1e-9);
+  // The file has no camera: the including file's is used where it has one, else a framed view.
+  EXPECT_NE(scene->warnings.front().find("has no camera"), std::string::npos);
+  const auto with_camera = scene_with(moved, R"(, "camera": {"eye": [0, 5, 5], "width": 32, "height": 32})");
+  EXPECT_EQ(with_camera->camera->width(), 32);
+  for (const std::string& warning : with_camera->warnings)
+    EXPECT_EQ(warning.find("has no camera"), std::string::npos);
+  // Errors at the include: a missing file, a file that is not glTF, an unknown key.
+  const auto error = [&](const std::string& include) {
+    try {
+      scene_with(include, "");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error(R"("models/none.gltf")").find("room.json:1:36: include: cannot read glTF file"), std::string::npos)
+      << error(R"("models/none.gltf")");
+  EXPECT_NE(error(R"("models/floor.obj")").find("an include is a glTF file"), std::string::npos);
+  EXPECT_NE(error(R"({"file": "models/floor.gltf", "zoom": 2})").find("unknown key \"zoom\""),
+            std::string::npos);
 }
 
 TEST(PerspectiveCamera, VerticalFieldOfViewGivesTheHorizontalOneOfTheImage) {

@@ -47,18 +47,21 @@ Json array_of(const Color& c) {
 // Reads the file's JSON where the scene needs it, each value checked and located by its JSON path.
 class SceneTranslator {
  public:
-  explicit SceneTranslator(const GltfFile& file) : file_(file), json_(file.json) {}
+  SceneTranslator(const GltfFile& file, const GltfPlacement& placement)
+      : file_(file), json_(file.json), placement_(placement) {}
 
   GltfSceneDocument translate(int requested_scene) {
     check_extensions();
     const int scene = gltf_scene_index(file_, requested_scene);
-    const std::vector<GltfNodePlacement> nodes = gltf_scene_nodes(file_, scene);
+    std::vector<GltfNodePlacement> nodes = gltf_scene_nodes(file_, scene);
+    // The includer's placement moves cameras and lights (the mesh entry carries its own transform).
+    for (GltfNodePlacement& placed : nodes) placed.world = placement_.matrix * placed.world;
     document_ = {{"format", "candela/1"}};
     read_materials();
     add_meshes(nodes, scene);
     add_cameras(nodes);
     add_lights(nodes);
-    return {std::move(document_), std::move(warnings_)};
+    return {std::move(document_), std::move(warnings_), framed_camera_};
   }
 
  private:
@@ -180,8 +183,10 @@ class SceneTranslator {
     if (!std::filesystem::is_regular_file(folder / file, error))
       fail(fmt::format("images[{}].uri", image),
            fmt::format("'{}' is not a file (relative to the glTF file)", file));
-    Json out = {
-        {"type", "image"}, {"file", file}, {"encoding", "srgb"}, {"multiplier", array_of(multiplier)}};
+    Json out = {{"type", "image"},
+                {"file", placement_.file_prefix + file},
+                {"encoding", "srgb"},
+                {"multiplier", array_of(multiplier)}};
     // The sampler's wrap mode (S; T alike in every exporter we know).
     const int sampler = index(texture_object, "sampler", count("samplers"), texture_path);
     if (sampler >= 0) {
@@ -312,7 +317,7 @@ class SceneTranslator {
     }
     Json shape = {{"type", "mesh"},
                   {"name", std::filesystem::path(file_.path).stem().string()},
-                  {"file", std::filesystem::path(file_.path).filename().string()},
+                  {"file", placement_.file_prefix + std::filesystem::path(file_.path).filename().string()},
                   {"normals", every_normal ? "file" : "flat"},
                   {"file_materials", material_names_}};
     if (scene >= 0) shape["scene"] = scene;
@@ -437,7 +442,7 @@ class SceneTranslator {
                            {"vertical_fov", kVerticalFov},
                            {"width", kImageWidth},
                            {"height", kImageWidth * 3 / 4}};
-    warn("has no camera: the scene is seen whole from the front, above and to the right");
+    framed_camera_ = true;
   }
 
   // --- lights ---------------------------------------------------------------------------------
@@ -541,7 +546,7 @@ class SceneTranslator {
     const double multiplier = number(use, "multiplier", 1, use_path, 0, 1e16) * luminance(color);
     if (multiplier == 0) return nullptr;
     return {{"type", "luminaire"},
-            {"file", file},
+            {"file", placement_.file_prefix + file},
             {"position", array_of(position)},
             {"target", array_of(position + normalize(aim))},
             {"c0", array_of(normalize(c0))},
@@ -551,19 +556,21 @@ class SceneTranslator {
 
   const GltfFile& file_;
   const Json& json_;
+  const GltfPlacement& placement_;
   Json document_;
   std::vector<std::string> warnings_;
   std::vector<std::string> material_names_;
   std::set<std::string> camera_names_;
   int first_height_ = 0;
+  bool framed_camera_ = false;
 };
 
 }  // namespace
 
 GltfSceneDocument gltf_scene_document(const std::string& path, int scene,
-                                      const SourceLocation& referenced_from) {
+                                      const SourceLocation& referenced_from, const GltfPlacement& placement) {
   const GltfFile file = read_gltf_file(path, referenced_from);
-  GltfSceneDocument out = SceneTranslator(file).translate(scene);
+  GltfSceneDocument out = SceneTranslator(file, placement).translate(scene);
   // tinygltf's own warnings come with the mesh entry's reading of the file, where it has one.
   if (!out.document.contains("shapes"))
     out.warnings.insert(out.warnings.begin(), file.warnings.begin(), file.warnings.end());

@@ -25,6 +25,7 @@
 // file that is missing.
 #pragma once
 
+#include <Eigen/Dense>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -36,15 +37,27 @@ namespace candela {
 struct GltfSceneDocument {
   nlohmann::json document;  // candela/1
   std::vector<std::string> warnings;
+  // The file has no camera: the document's "camera" sees the whole scene from the front, above
+  // and to the right (the bounds of its POSITION accessors), as a viewer's "frame all" does.
+  bool framed_camera = false;
 };
 
 // The extensions a glTF scene may require (extensionsRequired), in the order docs/import.md
 // lists them.
 const std::vector<std::string>& supported_gltf_extensions();
 
-// The document of scene `scene` of the file at path (-1: its default scene). Relative files in
-// the document (the glTF itself, images, IES profiles) are relative to the file's folder.
+// Where the scene stands in the document's world and how its files are named (a JSON scene's
+// "include"): placement moves its cameras and lights (its mesh entry is given the same transform
+// by the includer); file_prefix goes before every file the document names (the glTF itself,
+// images, IES profiles), which are otherwise relative to the glTF file's folder.
+struct GltfPlacement {
+  Eigen::Matrix4d matrix = Eigen::Matrix4d::Identity();
+  std::string file_prefix;
+};
+
+// The document of scene `scene` of the file at path (-1: its default scene).
 GltfSceneDocument gltf_scene_document(const std::string& path, int scene,
-                                      const SourceLocation& referenced_from);
+                                      const SourceLocation& referenced_from,
+                                      const GltfPlacement& placement = {});
 
 }  // namespace candela

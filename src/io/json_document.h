@@ -23,6 +23,9 @@ class JsonDocument {
   void apply_override(const std::string& assignment);
 
   const nlohmann::json& root() const { return root_; }
+  // The root to add to (a scene's "include"): what the text located keeps its position, so
+  // additions go after what was parsed (new keys, array elements appended), never before it.
+  nlohmann::json& root_to_extend() { return root_; }
   const std::string& file() const { return file_; }
   // The location of the value at json_path ("shapes[3].radius"); file only when unknown.
   SourceLocation locate(const std::string& json_path) const;

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "accel/accelerator_registry.h"
@@ -341,13 +342,122 @@ class SceneReader {
   std::map<std::string, uint32_t> named_materials_;
 };
 
+bool is_gltf_path(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension == ".gltf" || extension == ".glb";
+}
+
+std::string no_camera_warning(const std::string& path) {
+  return path + ": has no camera: the scene is seen whole from the front, above and to the right";
+}
+
+// One glTF file a scene includes, as its "include" names it.
+struct Inclusion {
+  std::string path;          // resolved against the including file's folder
+  std::string file_prefix;   // the folder of "file" as written, for the files the glTF names
+  SourceLocation location;   // the include's "file"
+  nlohmann::json transform;  // as written (the mesh entry's); null: none
+  Eigen::Matrix4d matrix = Eigen::Matrix4d::Identity();
+  int scene = -1;
+  bool lights = true, cameras = true;
+};
+
+std::vector<Inclusion> read_includes(const JsonDocument& document, const std::string& base_directory) {
+  std::vector<Inclusion> out;
+  const JsonNode root(document, document.root(), "");
+  const auto include = root.get("include");
+  if (!include) return out;
+  std::vector<JsonNode> entries;
+  if (include->json().is_array()) {
+    for (std::size_t i = 0; i < include->size(); ++i) entries.push_back(include->element(i));
+  } else {
+    entries.push_back(*include);
+  }
+  for (const JsonNode& entry : entries) {
+    Inclusion inclusion;
+    const bool short_form = entry.json().is_string();
+    const JsonNode file = short_form ? entry : entry.at("file");
+    const std::string written = file.as_string();
+    if (!is_gltf_path(written)) file.fail("an include is a glTF file (.gltf or .glb): '" + written + "'");
+    const std::filesystem::path as_written(written);
+    inclusion.path =
+        (as_written.is_absolute() ? as_written : std::filesystem::path(base_directory) / as_written).string();
+    const std::filesystem::path folder = as_written.parent_path();
+    inclusion.file_prefix = folder.empty() ? "" : (folder / "").string();
+    inclusion.location = file.location();
+    if (!short_form) {
+      entry.expect_object();
+      if (const auto transform = entry.get("transform")) {
+        inclusion.transform = transform->json();
+        inclusion.matrix = read_transform(*transform).matrix();
+      }
+      inclusion.scene = entry.integer("scene", -1, {0, 1e9, false, false});
+      inclusion.lights = entry.boolean("lights", true);
+      inclusion.cameras = entry.boolean("cameras", true);
+      entry.finish();
+    }
+    out.push_back(std::move(inclusion));
+  }
+  return out;
+}
+
+// "include": glTF files whose scenes join this one (io/gltf_scene.h), each a file name or
+// {"file", "transform", "scene", "lights", "cameras"}, or a list of them. What the including file
+// gives wins: its materials by name and its "camera"; the included meshes, lights and named
+// cameras come after its own (which keep their located positions). Returns the glTF files'
+// warnings.
+std::vector<std::string> expand_includes(JsonDocument& document, const std::string& base_directory) {
+  std::vector<std::string> warnings;
+  const std::vector<Inclusion> inclusions = read_includes(document, base_directory);
+  if (inclusions.empty()) return warnings;
+  nlohmann::json& root = document.root_to_extend();
+  root.erase("include");
+  std::set<std::string> camera_names;
+  if (root.contains("cameras") && root["cameras"].is_array())
+    for (const auto& camera : root["cameras"])
+      if (camera.is_object() && camera.contains("name") && camera["name"].is_string())
+        camera_names.insert(camera["name"].get<std::string>());
+  for (const Inclusion& inclusion : inclusions) {
+    GltfSceneDocument included = gltf_scene_document(inclusion.path, inclusion.scene, inclusion.location,
+                                                     {inclusion.matrix, inclusion.file_prefix});
+    warnings.insert(warnings.end(), included.warnings.begin(), included.warnings.end());
+    nlohmann::json& scene = included.document;
+    if (scene.contains("materials"))
+      for (const auto& [name, material] : scene["materials"].items())
+        if (!root["materials"].contains(name)) root["materials"][name] = material;
+    if (scene.contains("shapes"))
+      for (nlohmann::json shape : scene["shapes"]) {
+        if (!inclusion.transform.is_null()) shape["transform"] = inclusion.transform;
+        root["shapes"].push_back(std::move(shape));
+      }
+    if (inclusion.lights && scene.contains("lights"))
+      for (const auto& light : scene["lights"]) root["lights"].push_back(light);
+    if (!inclusion.cameras) continue;
+    // The glTF's cameras, unless the including file has its own "camera" (then they are named
+    // views beside it); a name the including file uses already stays its.
+    const bool had_camera = root.contains("camera");
+    if (!had_camera && scene.contains("camera")) {
+      root["camera"] = scene["camera"];
+      if (included.framed_camera) warnings.push_back(no_camera_warning(inclusion.path));
+    }
+    if (scene.contains("cameras"))
+      for (const auto& camera : scene["cameras"])
+        if (camera_names.insert(camera["name"].get<std::string>()).second) root["cameras"].push_back(camera);
+  }
+  return warnings;
+}
+
 std::unique_ptr<Scene> load_document(std::shared_ptr<JsonDocument> document,
                                      const std::string& base_directory,
                                      const std::vector<std::string>& overrides,
                                      std::span<const SettingsSection> plugin_sections) {
+  const std::vector<std::string> included_warnings = expand_includes(*document, base_directory);
   for (const auto& assignment : overrides) document->apply_override(assignment);
   SceneReader reader(*document, base_directory, plugin_sections);
   auto scene = reader.read();
+  scene->warnings.insert(scene->warnings.begin(), included_warnings.begin(), included_warnings.end());
   scene->source = document->file();
   scene->plugin_settings = PluginSettings(std::move(document));
   return scene;
@@ -364,13 +474,6 @@ std::unique_ptr<Scene> read_scene_text(const std::string& text, const std::strin
 }
 
 namespace {
-
-bool is_gltf_path(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension == ".gltf" || extension == ".glb";
-}
 
 // A glTF file as a scene (io/gltf_scene.h): its document loaded as a scene file's, the overrides
 // applied to it but for gltf.scene (which scene of the file), which chooses what is translated.
@@ -395,6 +498,7 @@ std::unique_ptr<Scene> read_gltf_scene_file(const std::string& path,
     scene = std::stoi(value);
   }
   GltfSceneDocument translated = gltf_scene_document(path, scene, SourceLocation{path, 0, 0, {}});
+  if (translated.framed_camera) translated.warnings.push_back(no_camera_warning(path));
   std::unique_ptr<Scene> loaded =
       read_scene_text(translated.document.dump(2), path, directory, rest, plugin_sections);
   loaded->warnings.insert(loaded->warnings.begin(), translated.warnings.begin(), translated.warnings.end());
