@@ -357,7 +357,8 @@ TEST_F(GltfScene, AJsonSceneIncludesAGltfFileAndOverridesWhatItLacks) {
     }
     return std::string("no error");
   };
-  EXPECT_NE(error(R"("models/none.gltf")").find("room.json:1:36: include: cannot read glTF file"), std::string::npos)
+  EXPECT_NE(error(R"("models/none.gltf")").find("room.json:1:36: include: cannot read glTF file"),
+            std::string::npos)
       << error(R"("models/none.gltf")");
   EXPECT_NE(error(R"("models/floor.obj")").find("an include is a glTF file"), std::string::npos);
   EXPECT_NE(error(R"({"file": "models/floor.gltf", "zoom": 2})").find("unknown key \"zoom\""),
