@@ -229,12 +229,21 @@ class SceneTranslator {
                               extensions_path + ".KHR_materials_ior", 1, 10);
     const double dielectric_f0 = (ior - 1) * (ior - 1) / ((ior + 1) * (ior + 1));
     const double diffuse_share = (1 - metallic) * (1 - transmission);
+    const double transmitted = (1 - metallic) * transmission;
+    // Candela divides every lobe by kd + ks + kt where that exceeds 1 (docs/materials.md, energy
+    // conservation), so the reflection lobe takes the weight the diffuse and transmitted light
+    // leave, and F0 is divided by it: ks·F is glTF's F at normal incidence, and at most ks towards
+    // grazing (glTF's dielectric reaches 1 there).
+    const Color diffuse = base * diffuse_share;
+    const double specular_weight =
+        std::max(0.0, 1 - std::max({diffuse.r, diffuse.g, diffuse.b}) - transmitted);
+    const Color f0 = Color(dielectric_f0 * (1 - metallic)) + base * metallic;
+    const bool has_specular = specular_weight > 1e-6;
     Json out = {{"type", "cook-torrance"},
                 {"microfacet", "ggx"},
                 {"roughness", std::max(roughness * roughness, kLeastRoughness)},
-                {"ks", 1 - (1 - metallic) * transmission},
-                {"fresnel_f0",
-                 array_of(min(Color(dielectric_f0 * (1 - metallic)) + base * metallic, Color(kGreatestF0)))}};
+                {"ks", has_specular ? specular_weight : 0.0},
+                {"fresnel_f0", array_of(min(has_specular ? f0 / specular_weight : f0, Color(kGreatestF0)))}};
     out["kd"] = array_of(base * diffuse_share);
     if (const Json* texture = find(pbr, "baseColorTexture"); texture && diffuse_share > 0) {
       Json image = image_texture(*texture, pbr_path + ".baseColorTexture", base * diffuse_share);
@@ -244,8 +253,8 @@ class SceneTranslator {
       warn(pbr_path +
            ".metallicRoughnessTexture: not supported yet: metallicFactor and roughnessFactor are used");
     if (find(material, "normalTexture")) warn(path + ".normalTexture: normal maps are not supported yet");
-    if (transmission > 0 && metallic < 1) {
-      out["kt"] = (1 - metallic) * transmission;
+    if (transmitted > 0) {
+      out["kt"] = transmitted;
       out["ior"] = ior;
       const Json& volume = object_at(extensions, "KHR_materials_volume", extensions_path);
       const std::string volume_path = extensions_path + ".KHR_materials_volume";

@@ -6,10 +6,11 @@
 // JSON scene may include it and add or override what the file lacks.
 //
 // Materials (glTF's metallic-roughness model, Khronos's BRDF): a Cook-Torrance material with GGX
-// facets (the path tracer's microfacet lobe), roughness α = roughnessFactor² (at least 1e-3), F0 =
-// mix(((ior − 1)/(ior + 1))², baseColor, metallic) (Schlick), ks = 1 − (1 − metallic)·transmission,
-// kd = baseColor·(1 − metallic)·(1 − transmission) (factor × the baseColorTexture, sRGB, over
-// TEXCOORD_0 with KHR_texture_transform's offset and scale), kt = (1 − metallic)·transmission of
+// facets (the path tracer's microfacet lobe), roughness α = roughnessFactor² (at least 1e-3),
+// kd = baseColor·(1 − metallic)·(1 − transmission) (the factor × the baseColorTexture, sRGB,
+// over TEXCOORD_0 with KHR_texture_transform's offset and scale), ks = 1 − max kd − kt (the
+// weight Candela's energy rule leaves), Schlick F0 = mix(((ior − 1)/(ior + 1))², baseColor,
+// metallic) / ks, kt = (1 − metallic)·transmission of
 // index KHR_materials_ior (1.5), a thin sheet unless KHR_materials_volume gives a thickness (then
 // Beer's law absorption −ln(attenuationColor)/attenuationDistance), emission of luminance
 // emissiveFactor × KHR_materials_emissive_strength in cd/m², alphaMode BLEND a constant
