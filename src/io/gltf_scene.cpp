@@ -230,21 +230,15 @@ class SceneTranslator {
     const double dielectric_f0 = (ior - 1) * (ior - 1) / ((ior + 1) * (ior + 1));
     const double diffuse_share = (1 - metallic) * (1 - transmission);
     const double transmitted = (1 - metallic) * transmission;
-    // Candela divides every lobe by kd + ks + kt where that exceeds 1 (docs/materials.md, energy
-    // conservation), so the reflection lobe takes the weight the diffuse and transmitted light
-    // leave, and F0 is divided by it: ks·F is glTF's F at normal incidence, and at most ks towards
-    // grazing (glTF's dielectric reaches 1 there).
+    // glTF's BRDF: the diffuse beneath the facets' Fresnel reflection ("layered": the path tracer
+    // gives the diffuse 1 − F(N·V) and leaves the facets out of its energy rule); the transmitted
+    // part's reflection is its dielectric lobe's, so the facets cover what is not transmitted.
     const Color diffuse = base * diffuse_share;
-    const double specular_weight =
-        std::max(0.0, 1 - std::max({diffuse.r, diffuse.g, diffuse.b}) - transmitted);
     const Color f0 = Color(dielectric_f0 * (1 - metallic)) + base * metallic;
-    const bool has_specular = specular_weight > 1e-6;
-    Json out = {{"type", "cook-torrance"},
-                {"microfacet", "ggx"},
-                {"roughness", std::max(roughness * roughness, kLeastRoughness)},
-                {"ks", has_specular ? specular_weight : 0.0},
-                {"fresnel_f0", array_of(min(has_specular ? f0 / specular_weight : f0, Color(kGreatestF0)))}};
-    out["kd"] = array_of(base * diffuse_share);
+    Json out = {{"type", "cook-torrance"}, {"microfacet", "ggx"},
+                {"layered", true},         {"roughness", std::max(roughness * roughness, kLeastRoughness)},
+                {"ks", 1 - transmitted},   {"fresnel_f0", array_of(min(f0, Color(kGreatestF0)))}};
+    out["kd"] = array_of(diffuse);
     if (const Json* texture = find(pbr, "baseColorTexture"); texture && diffuse_share > 0) {
       Json image = image_texture(*texture, pbr_path + ".baseColorTexture", base * diffuse_share);
       if (!image.is_null()) out["kd"] = std::move(image);

@@ -5,17 +5,17 @@
 // The document is loaded like any scene file, so --set, the ranges and every method apply; a
 // JSON scene may include it and add or override what the file lacks.
 //
-// Materials (glTF's metallic-roughness model, Khronos's BRDF): a Cook-Torrance material with GGX
-// facets (the path tracer's microfacet lobe), roughness α = roughnessFactor² (at least 1e-3),
-// kd = baseColor·(1 − metallic)·(1 − transmission) (the factor × the baseColorTexture, sRGB,
-// over TEXCOORD_0 with KHR_texture_transform's offset and scale), ks = 1 − max kd − kt (the
-// weight Candela's energy rule leaves), Schlick F0 = mix(((ior − 1)/(ior + 1))², baseColor,
-// metallic) / ks, kt = (1 − metallic)·transmission of
-// index KHR_materials_ior (1.5), a thin sheet unless KHR_materials_volume gives a thickness (then
-// Beer's law absorption −ln(attenuationColor)/attenuationDistance), emission of luminance
-// emissiveFactor × KHR_materials_emissive_strength in cd/m², alphaMode BLEND a constant
-// transparency 1 − alpha. The local model, Whitted and the rasterizer read the same Cook-Torrance
-// parameters (Beckmann facets of the same roughness); radiosity and meshless the diffuse kd.
+// Materials (glTF's metallic-roughness model, Khronos's BRDF): a layered Cook-Torrance material
+// (docs/materials.md: the diffuse beneath the facets gets 1 − F at the viewing angle in the path
+// tracer) with GGX facets, roughness α = roughnessFactor² (at least 1e-3), kd = baseColor ·
+// (1 − metallic)·(1 − transmission) (the factor × the baseColorTexture, sRGB, over TEXCOORD_0 with
+// KHR_texture_transform's offset and scale), ks = 1 − kt, Schlick F0 = mix(((ior − 1)/(ior + 1))²,
+// baseColor, metallic), kt = (1 − metallic)·transmission of index KHR_materials_ior (1.5), a thin
+// sheet unless KHR_materials_volume gives a thickness (then Beer's law absorption
+// −ln(attenuationColor)/attenuationDistance), emission of luminance emissiveFactor ×
+// KHR_materials_emissive_strength in cd/m², alphaMode BLEND a constant transparency 1 − alpha.
+// The local model, Whitted and the rasterizer read the same Cook-Torrance parameters (Beckmann
+// facets of the same roughness); radiosity and meshless the diffuse kd.
 //
 // Warnings (each prefixed with the file) for what is read but not rendered: an extension of
 // extensionsUsed Candela does not support, normal, metallic-roughness and emissive textures,

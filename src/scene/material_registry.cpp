@@ -86,9 +86,12 @@ Material read_classic(const JsonNode& node, const LoadContext& context, Specular
     material.microfacet = node.choice("microfacet", "beckmann", {"beckmann", "ggx"}) == "ggx"
                               ? MicrofacetDistribution::ggx
                               : MicrofacetDistribution::beckmann;
+    material.layered = node.boolean("layered", false);
   } else if (const auto n = node.get("n")) {
     material.shininess = read_scalar_texture(*n, context, Range::non_negative());
   }
+  if (node.has("layered") && material.specular_model != SpecularModel::cook_torrance)
+    node.at("layered").fail("is for cook-torrance materials (a diffuse under a microfacet reflection)");
   if (const auto kr = node.get("kr")) material.kr = read_scalar_texture(*kr, context, Range::unit());
   if (const auto kt = node.get("kt")) material.kt = read_scalar_texture(*kt, context, Range::unit());
   // Each level of the ray tree must carry less than its parent, or it never shrinks; textured

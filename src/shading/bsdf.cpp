@@ -84,8 +84,16 @@ double smith_lambda(const BsdfLobe& lobe, const Vec3& w) {
 
 Color lobe_f(const BsdfLobe& lobe, const Vec3& wo, const Vec3& wi) {
   switch (lobe.type) {
-    case LobeType::lambert:
-      return lobe.weight * kInvPi;
+    case LobeType::lambert: {
+      if (!lobe.beneath_facets) return lobe.weight * kInvPi;
+      // glTF 2.0's fresnel_mix: the diffuse beneath gets what the facet h between wo and wi does not
+      // reflect, 1 − F(wo·h).
+      const Vec3 sum = wo + wi;
+      const double sum_length = length(sum);
+      if (!(sum_length > 0)) return {};
+      const double cos_h = std::fabs(dot(wo, sum / sum_length));
+      return lobe.weight * max(Color(1) - lobe.fresnel.reflectance(cos_h), Color(0)) * kInvPi;
+    }
     case LobeType::phong: {
       const double cos_alpha = dot(wi, mirror_local(wo));
       if (!(cos_alpha > 0)) return {};

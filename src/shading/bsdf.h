@@ -42,7 +42,11 @@ struct BsdfLobe {
   double exponent = 1;  // phong: n of cos^n α, α the angle between wi and the mirror of wo
   double alpha = 0.3;   // microfacet roughness (Beckmann: rms slope m)
   MicrofacetDistribution distribution = MicrofacetDistribution::beckmann;
-  Fresnel fresnel;   // microfacet: F per channel (dielectric, conductor or Schlick)
+  Fresnel fresnel;  // microfacet: F per channel (dielectric, conductor or Schlick); lambert
+                    // beneath_facets: the facets' F above it
+  // lambert: the diffuse lies beneath microfacets of Fresnel factor `fresnel` (glTF's
+  // metallic-roughness BRDF): f = ρ (1 − F(wo·h)) / π, h the half vector of wo and wi.
+  bool beneath_facets = false;
   double ior = 1.5;  // dielectric, thin_dielectric: index inside relative to outside
 };
 

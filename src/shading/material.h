@@ -75,6 +75,11 @@ struct Material {
   // in Whitted ray tracing and the shadow rays. The radiosity methods take every surface as opaque
   // (docs/materials.md).
   bool thin = false;
+  // `"layered": true` (cook-torrance): the diffuse lies under the specular reflection, as in glTF's
+  // metallic-roughness BRDF: for the path tracer the diffuse is kd (1 − F(wo·h)) / π, the light
+  // the facet h does not reflect, and the microfacet lobe keeps its weight ks outside the energy
+  // rule, its Fresnel factor bounding it (shading/material_bsdf.h).
+  bool layered = false;
   Color absorption;  // per unit length inside: exp(-a·d) on shadow rays
   // Emitted exitance E per channel (≥ 0): the self-luminous surfaces of classic radiosity
   // (000 eq. 6-7's E_i); the local model adds it as seen, independent of the lights.

@@ -8,7 +8,10 @@
 //   kt > 0                          → smooth dielectric, weight kt, index ior (a thin sheet's
 //                                     lobe when the material is thin)
 // and finally Bsdf::conserve_energy(): where kd + ks + kr + kt exceeds 1 in a channel, every
-// lobe's weight in that channel shrinks in proportion.
+// lobe's weight in that channel shrinks in proportion. A layered material (Material::layered, glTF's
+// metallic-roughness BRDF) keeps its microfacet lobe out of that sum, and its lambert lobe lies
+// beneath the facets: ρ (1 − F(wo·h)) / π, the light the facet h between wo and wi does not
+// reflect (BsdfLobe::beneath_facets).
 #pragma once
 
 #include "geometry/surface_hit.h"
