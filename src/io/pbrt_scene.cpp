@@ -328,7 +328,7 @@ class Translator {
   void read_file(const std::string& path, const std::string& prefix, const std::filesystem::path& folder,
                  const SourceLocation& named_at, std::vector<std::string>& chain) {
     const std::string problem = input_file_problem(path, "the pbrt file");
-    if (!problem.empty()) throw InputError(named_at, problem);
+    if (!problem.empty()) throw InputError(named_at, fmt::format("'{}': {}", path, problem));
     read_text(read_input_file(path, "the pbrt file"), path, prefix, folder, chain);
   }
 
