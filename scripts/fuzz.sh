@@ -16,7 +16,7 @@ shift || true
 build="${CANDELA_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-  targets=(scene_loader_fuzzer obj_fuzzer image_fuzzer ply_fuzzer gltf_fuzzer gltf_scene_fuzzer ies_fuzzer eulumdat_fuzzer)
+  targets=(scene_loader_fuzzer obj_fuzzer image_fuzzer ply_fuzzer gltf_fuzzer gltf_scene_fuzzer ies_fuzzer eulumdat_fuzzer pbrt_fuzzer)
 fi
 # Only the harnesses that exist in this checkout.
 present=()

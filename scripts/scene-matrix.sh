@@ -8,14 +8,15 @@ every_method=(local whitted raster radiosity meshless path)
 
 # Every scene file of scenes/, sorted.
 every_scene() {
-  find scenes -name '*.json' | sort
+  find scenes \( -name '*.json' -o -name '*.pbrt' \) | sort
 }
 
 # The name of a scene's outputs: its path under scenes/ without .json, '/' made '_'.
 scene_stem() {
   local stem
   stem=$(echo "${1#scenes/}" | tr '/' '_')
-  echo "${stem%.json}"
+  stem=${stem%.json}
+  echo "${stem%.pbrt}"
 }
 
 # record_render CANDELA OUT_DIR NAME SCENE OPTIONS...: `CANDELA render SCENE -o OUT_DIR/NAME.pfm

@@ -399,7 +399,7 @@ TEST(SceneLoader, BadNamedCamerasAreLocatedErrors) {
   ]
 })",
                "cameras[0].zoom", 5, 27,
-               "unknown key \"zoom\" (expected one of: eye, fov, height, name, target, type, up, "
+               "unknown key \"zoom\" (expected one of: eye, fov, height, mirrored, name, target, type, up, "
                "vertical_fov, width)");
   expect_error(header + R"(  "cameras": [
     {"name": "b", "type": "fisheye"}

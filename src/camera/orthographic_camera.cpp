@@ -9,7 +9,8 @@
 namespace candela {
 
 OrthographicCamera::OrthographicCamera(const Vec3& eye, const Vec3& target, const Vec3& up, double left,
-                                       double right, double bottom, double top, int width, int height)
+                                       double right, double bottom, double top, int width, int height,
+                                       bool mirrored)
     : Camera(width, height), eye_(eye), left_(left), right_(right), bottom_(bottom), top_(top) {
   const Vec3 gaze = target - eye;
   const std::optional<Vec3> gaze_unit = direction_of(gaze);
@@ -20,6 +21,7 @@ OrthographicCamera::OrthographicCamera(const Vec3& eye, const Vec3& target, cons
     throw std::invalid_argument("up is parallel to the view direction");
   x_unit_ = normalize(x_axis);
   y_unit_ = cross(x_unit_, gaze_);
+  if (mirrored) x_unit_ = -x_unit_;
   if (!(right > left) || !(top > bottom))
     throw std::invalid_argument("window must have right > left and top > bottom");
 }

@@ -5,11 +5,12 @@
 namespace candela {
 
 // 001: rays perpendicular to the image window (l, r, b, t) in the view plane through the
-// eye: u = l + (r − l)(i + 0.5)/Nx, v = b + (t − b)(j + 0.5)/Ny, direction G.
+// eye: u = l + (r − l)(i + 0.5)/Nx, v = b + (t − b)(j + 0.5)/Ny, direction G. `mirrored` turns
+// the view plane's x axis the other way (U × G instead of G × U), as PerspectiveCamera's.
 class OrthographicCamera final : public Camera {
  public:
   OrthographicCamera(const Vec3& eye, const Vec3& target, const Vec3& up, double left, double right,
-                     double bottom, double top, int width, int height);
+                     double bottom, double top, int width, int height, bool mirrored = false);
   Ray generate_ray(double x, double y) const override;
   std::string_view type_name() const override { return "orthographic"; }
   // The window (l, r, b, t) onto ndc [−1, 1]²; depth from the eye plane along the gaze.

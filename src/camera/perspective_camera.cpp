@@ -10,7 +10,7 @@
 namespace candela {
 
 PerspectiveCamera::PerspectiveCamera(const Vec3& eye, const Vec3& target, const Vec3& up,
-                                     double horizontal_fov_degrees, int width, int height)
+                                     double horizontal_fov_degrees, int width, int height, bool mirrored)
     : Camera(width, height), eye_(eye) {
   const Vec3 gaze = target - eye;
   const std::optional<Vec3> gaze_unit = direction_of(gaze);
@@ -20,10 +20,10 @@ PerspectiveCamera::PerspectiveCamera(const Vec3& eye, const Vec3& target, const 
   if (!(length(x_axis) > 1e-12 * length(up)))
     throw std::invalid_argument("up is parallel to the view direction");
   const Vec3 x_unit = normalize(x_axis);
-  const Vec3 y_unit = cross(x_unit, gaze_);  // Y = X × G
+  const Vec3 y_unit = cross(x_unit, gaze_);  // Y = X × G, the same either way
   const double tan_theta = std::tan(degrees_to_radians(horizontal_fov_degrees) / 2);
   const double tan_phi = tan_theta * height / width;
-  half_width_ = x_unit * tan_theta;
+  half_width_ = x_unit * (mirrored ? -tan_theta : tan_theta);
   half_height_ = y_unit * tan_phi;
 }
 

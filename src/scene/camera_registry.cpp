@@ -36,8 +36,10 @@ std::unique_ptr<Camera> make_perspective(const JsonNode& node, int width, int he
     const double vertical = node.number("vertical_fov", {0, 180, true, true});
     fov = 2 * std::atan(std::tan(vertical * kPi / 360) * width / height) * 180 / kPi;
   }
-  return checked(node,
-                 [&] { return std::make_unique<PerspectiveCamera>(eye, target, up, fov, width, height); });
+  const bool mirrored = node.boolean("mirrored", false);
+  return checked(node, [&] {
+    return std::make_unique<PerspectiveCamera>(eye, target, up, fov, width, height, mirrored);
+  });
 }
 
 std::unique_ptr<Camera> make_orthographic(const JsonNode& node, int width, int height) {
@@ -59,8 +61,10 @@ std::unique_ptr<Camera> make_orthographic(const JsonNode& node, int width, int h
     right = top * width / height;
     left = -right;
   }
+  const bool mirrored = node.boolean("mirrored", false);
   return checked(node, [&] {
-    return std::make_unique<OrthographicCamera>(eye, target, up, left, right, bottom, top, width, height);
+    return std::make_unique<OrthographicCamera>(eye, target, up, left, right, bottom, top, width, height,
+                                                mirrored);
   });
 }
 

@@ -18,6 +18,7 @@
 #include "geometry/transformed_shape.h"
 #include "io/gltf_scene.h"
 #include "io/json_node.h"
+#include "io/pbrt_scene.h"
 #include "scene/camera_registry.h"
 #include "scene/environment_registry.h"
 #include "scene/json_transform.h"
@@ -342,11 +343,20 @@ class SceneReader {
   std::map<std::string, uint32_t> named_materials_;
 };
 
-bool is_gltf_path(const std::string& path) {
+std::string lowercase_extension(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+bool is_gltf_path(const std::string& path) {
+  const std::string extension = lowercase_extension(path);
   return extension == ".gltf" || extension == ".glb";
+}
+
+bool is_pbrt_path(const std::string& path) {
+  return lowercase_extension(path) == ".pbrt";
 }
 
 std::string no_camera_warning(const std::string& path) {
@@ -505,6 +515,19 @@ std::unique_ptr<Scene> read_gltf_scene_file(const std::string& path,
   return loaded;
 }
 
+// A pbrt-v4 file as a scene (io/pbrt_scene.h): its document loaded as a scene file's, with every
+// override; the translation's warnings come first.
+std::unique_ptr<Scene> read_pbrt_scene_file(const std::string& path,
+                                            const std::vector<std::string>& overrides,
+                                            std::span<const SettingsSection> plugin_sections,
+                                            const std::string& directory) {
+  PbrtSceneDocument translated = pbrt_scene_document(path);
+  std::unique_ptr<Scene> loaded =
+      read_scene_text(translated.document.dump(2), path, directory, overrides, plugin_sections);
+  loaded->warnings.insert(loaded->warnings.begin(), translated.warnings.begin(), translated.warnings.end());
+  return loaded;
+}
+
 }  // namespace
 
 std::unique_ptr<Scene> read_scene_file(const std::string& path, const std::vector<std::string>& overrides,
@@ -512,6 +535,7 @@ std::unique_ptr<Scene> read_scene_file(const std::string& path, const std::vecto
   std::string directory = std::filesystem::path(path).parent_path().string();
   if (directory.empty()) directory = ".";
   if (is_gltf_path(path)) return read_gltf_scene_file(path, overrides, plugin_sections, directory);
+  if (is_pbrt_path(path)) return read_pbrt_scene_file(path, overrides, plugin_sections, directory);
   // A regular file of bounded size only (a FIFO blocked, /dev/zero exhausted memory).
   const std::string text = read_input_file(path, "the scene file");
   return read_scene_text(text, path, directory, overrides, plugin_sections);
