@@ -9,12 +9,16 @@
 # seconds (the render call: scene sync, BVH and sampling, as Candela's "render" line counts them).
 import json
 import math
+import os
 import re
 import sys
 import time
 
 import bpy
 from mathutils import Vector
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cycles_settings import configure_cycles  # noqa: E402
 
 arguments = sys.argv[sys.argv.index("--") + 1:]
 scene_path, size, spp, threads, output = arguments[0], int(arguments[1]), int(arguments[2]), int(arguments[3]), arguments[4]
@@ -24,32 +28,7 @@ description = json.loads(text)
 
 bpy.ops.wm.read_factory_settings(use_empty=True)
 scene = bpy.context.scene
-scene.render.engine = "CYCLES"
-cycles = scene.cycles
-cycles.device = "CPU"
-cycles.samples = spp
-cycles.use_adaptive_sampling = False
-cycles.use_denoising = False
-cycles.seed = 1
-cycles.max_bounces = cycles.diffuse_bounces = cycles.glossy_bounces = 64
-cycles.transmission_bounces = cycles.volume_bounces = cycles.transparent_max_bounces = 64
-cycles.sample_clamp_direct = cycles.sample_clamp_indirect = 0
-cycles.blur_glossy = 0
-cycles.caustics_reflective = cycles.caustics_refractive = True
-cycles.pixel_filter_type = "BOX"
-cycles.filter_width = 1.0
-scene.render.threads_mode = "FIXED"
-scene.render.threads = threads
-scene.render.resolution_x = scene.render.resolution_y = size
-scene.render.resolution_percentage = 100
-scene.render.film_transparent = False
-scene.world = bpy.data.worlds.new("black")
-scene.world.use_nodes = True
-scene.world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0
-scene.render.image_settings.file_format = "OPEN_EXR"
-scene.render.image_settings.color_depth = "32"
-scene.render.image_settings.exr_codec = "NONE"
-scene.view_settings.view_transform = "Standard"
+configure_cycles(scene, spp, threads, size, size)
 
 
 def material_of(name, description):
