@@ -8,15 +8,17 @@ every_method=(local whitted raster radiosity meshless path)
 
 # Every scene file of scenes/, sorted.
 every_scene() {
-  find scenes \( -name '*.json' -o -name '*.pbrt' \) | sort
+  find scenes \( -name '*.json' -o -name '*.pbrt' -o -name '*.gltf' -o -name '*.glb' \) | sort
 }
 
-# The name of a scene's outputs: its path under scenes/ without .json, '/' made '_'.
+# The name of a scene's outputs: its path under scenes/ without its extension, '/' made '_'.
 scene_stem() {
   local stem
   stem=$(echo "${1#scenes/}" | tr '/' '_')
   stem=${stem%.json}
-  echo "${stem%.pbrt}"
+  stem=${stem%.pbrt}
+  stem=${stem%.gltf}
+  echo "${stem%.glb}"
 }
 
 # record_render CANDELA OUT_DIR NAME SCENE OPTIONS...: `CANDELA render SCENE -o OUT_DIR/NAME.pfm
