@@ -16,6 +16,7 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -169,6 +170,14 @@ bool is_scene_file(const std::string& path) {
   return path.size() > 5 && path.compare(path.size() - 5, 5, ".json") == 0;
 }
 
+// What --solve loads: a scene file, or a glTF or pbrt-v4 file read as a scene (docs/import.md).
+bool is_any_scene_file(const std::string& path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension == ".json" || extension == ".gltf" || extension == ".glb" || extension == ".pbrt";
+}
+
 // The meshes of --raster: the files given, the generated ones, else every .obj of the models
 // directory in name order.
 std::vector<BenchMesh> raster_meshes(const BenchCommandOptions& options) {
@@ -291,8 +300,8 @@ int run_solve_bench_command(const BenchCommandOptions& options) {
     throw BadArgument("--solve takes METHOD, SCENE, --set, --threads, --json and --quiet only");
   if (options.inputs.size() > 1) throw BadArgument("--solve takes at most one SCENE");
   const std::string scene_path = options.inputs.empty() ? std::string() : options.inputs.front();
-  if (!scene_path.empty() && !is_scene_file(scene_path))
-    throw BadArgument("--solve measures a scene file (.json), not " + scene_path);
+  if (!scene_path.empty() && !is_any_scene_file(scene_path))
+    throw BadArgument("--solve measures a scene (.json, .gltf, .glb or .pbrt), not " + scene_path);
   std::vector<int> thread_counts;
   for (const int threads : options.threads) {
     if (threads < 1 || threads > 1024) throw BadArgument("--threads values must lie in [1, 1024]");

@@ -590,6 +590,18 @@ TEST_F(Cli, BenchRadiositySolvesASceneAndReportsItsFacts) {
   // The ray-set options do not apply; a ray bench's --set names an accelerator's setting.
   EXPECT_EQ(run("bench --solve radiosity --accel bvh -q", output), 2) << output;
   EXPECT_EQ(run("bench --solve radiosity --raster -q", output), 2) << output;
+  // A pbrt-v4 or glTF file is a scene too.
+  EXPECT_EQ(
+      run("bench --solve radiosity '" CANDELA_SOURCE_DIR "/scenes/pbrt/cornell-box.pbrt' --set "
+          "radiosity.patch_size=5 --set radiosity.element_size=5 --set radiosity.hemicube_resolution=20 "
+          "--threads 1 -q",
+          output),
+      0)
+      << output;
+  EXPECT_EQ(run("bench --solve radiosity cube.obj -q", output), 2) << output;
+  EXPECT_NE(output.find("--solve measures a scene (.json, .gltf, .glb or .pbrt), not cube.obj"),
+            std::string::npos)
+      << output;
   // Only a method with a view-independent solution is solved alone.
   EXPECT_EQ(run("bench --solve whitted -q", output), 2) << output;
   EXPECT_NE(output.find("'whitted' has no view-independent solution to measure (expected one of radiosity, "
