@@ -35,6 +35,7 @@
 #include "output_paths.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
+#include "util/file_extension.h"
 #include "util/statistics.h"
 
 namespace candela::cli {
@@ -172,9 +173,7 @@ bool is_scene_file(const std::string& path) {
 
 // What --solve loads: a scene file, or a glTF or pbrt-v4 file read as a scene (docs/import.md).
 bool is_any_scene_file(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = lower_case_extension(path);
   return extension == ".json" || extension == ".gltf" || extension == ".glb" || extension == ".pbrt";
 }
 
@@ -277,15 +276,11 @@ std::unique_ptr<Method> solving_method(const std::string& name, const Scene& sce
   return create_method(*entry, scene);
 }
 
-// The table of --solve: the thread count, the method's columns and the peak memory, each as wide
-// as its heading or its first value.
-std::string solve_table_line(const std::vector<std::pair<std::string, std::string>>& cells,
-                             std::vector<std::size_t>& widths) {
-  if (widths.empty())
-    for (const auto& [heading, value] : cells) widths.push_back(std::max(heading.size(), value.size()));
+// A line of --solve's table: each cell right-aligned in its column's width.
+std::string solve_table_line(const std::vector<std::string>& cells, const std::vector<std::size_t>& widths) {
   std::string line;
   for (std::size_t i = 0; i < cells.size(); ++i)
-    line += fmt::format("{}{:>{}}", i == 0 ? "" : " ", cells[i].second, widths[i]);
+    line += fmt::format("{}{:>{}}", i == 0 ? "" : " ", cells[i], widths[i]);
   return line;
 }
 
@@ -335,13 +330,19 @@ int run_solve_bench_command(const BenchCommandOptions& options) {
     std::vector<std::pair<std::string, std::string>> cells{{"threads", std::to_string(threads)}};
     cells.insert(cells.end(), solution.columns.begin(), solution.columns.end());
     cells.emplace_back("peak MiB", fmt::format("{:.1f}", peak_mib));
+    // The table: the thread count, the method's columns and the peak memory, each column as wide
+    // as its heading or its first value.
+    std::vector<std::string> headings, values;
+    for (const auto& [heading, value] : cells) {
+      headings.push_back(heading);
+      values.push_back(value);
+    }
     if (widths.empty()) {
-      std::vector<std::pair<std::string, std::string>> headings;
-      for (const auto& [heading, value] : cells) headings.emplace_back(heading, heading);
-      solve_table_line(cells, widths);
+      for (std::size_t i = 0; i < cells.size(); ++i)
+        widths.push_back(std::max(headings[i].size(), values[i].size()));
       std::cout << solve_table_line(headings, widths) << "\n";
     }
-    std::cout << solve_table_line(cells, widths) << "\n";
+    std::cout << solve_table_line(values, widths) << "\n";
     runs.push_back(std::move(facts));
   }
   return write_json({{name,

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "math/constants.h"
+#include "util/file_extension.h"
 #include "util/input_file.h"
 
 namespace candela {
@@ -133,9 +134,7 @@ void GltfFile::fail(const std::string& message) const {
 }
 
 GltfFile read_gltf_file(const std::string& path, const SourceLocation& referenced_from) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = lower_case_extension(path);
 
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(ignore_image, nullptr);

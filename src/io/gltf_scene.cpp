@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -125,6 +126,18 @@ class SceneTranslator {
     return value && value->is_array() ? value->size() : 0;
   }
 
+  // The file an image or IES profile object names by its "uri", which must exist beside the glTF
+  // file (fails at PATH.uri); none when it is embedded (a data URI or a bufferView).
+  std::optional<std::string> external_file(const Json& object, const std::string& path) const {
+    const Json* uri = find(object, "uri");
+    if (!uri || !uri->is_string() || uri->get<std::string>().rfind("data:", 0) == 0) return std::nullopt;
+    const std::string file = uri->get<std::string>();
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(std::filesystem::path(file_.path).parent_path() / file, error))
+      fail(path + ".uri", fmt::format("'{}' is not a file (relative to the glTF file)", file));
+    return file;
+  }
+
   // --- extensions -----------------------------------------------------------------------------
 
   void check_extensions() {
@@ -171,20 +184,14 @@ class SceneTranslator {
     const int image = index(texture_object, "source", count("images"), texture_path);
     if (image < 0) return nullptr;
     const Json& image_object = element("images", std::size_t(image));
-    const Json* uri = find(image_object, "uri");
-    if (!uri || !uri->is_string() || uri->get<std::string>().rfind("data:", 0) == 0) {
+    const std::optional<std::string> file = external_file(image_object, fmt::format("images[{}]", image));
+    if (!file) {
       warn(fmt::format("{}: image {} is embedded in the file (not supported yet): the factor alone is used",
                        path, image));
       return nullptr;
     }
-    const std::string file = uri->get<std::string>();
-    const std::filesystem::path folder = std::filesystem::path(file_.path).parent_path();
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(folder / file, error))
-      fail(fmt::format("images[{}].uri", image),
-           fmt::format("'{}' is not a file (relative to the glTF file)", file));
     Json out = {{"type", "image"},
-                {"file", placement_.file_prefix + file},
+                {"file", placement_.file_prefix + *file},
                 {"encoding", "srgb"},
                 {"multiplier", array_of(multiplier)}};
     // The sampler's wrap mode (S; T alike in every exporter we know).
@@ -534,22 +541,17 @@ class SceneTranslator {
   // node's X/Z plane (C0 along +X), the candela values × multiplier × the colour's luminance.
   Json ies_light(const Json& use, const Json& profile, const std::string& use_path, const std::string& path,
                  const Vec3& position, const Vec3& aim, const Vec3& c0) {
-    const Json* uri = find(profile, "uri");
-    if (!uri || !uri->is_string() || uri->get<std::string>().rfind("data:", 0) == 0) {
+    const std::optional<std::string> file = external_file(profile, path);
+    if (!file) {
       warn(path + ": a profile embedded in the file is not supported yet: the light is left out");
       return nullptr;
     }
-    const std::string file = uri->get<std::string>();
-    const std::filesystem::path folder = std::filesystem::path(file_.path).parent_path();
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(folder / file, error))
-      fail(path + ".uri", fmt::format("'{}' is not a file (relative to the glTF file)", file));
     const auto rgb = numbers(use, "color", {1, 1, 1}, use_path, 0, 1);
     const Color color(rgb[0], rgb[1], rgb[2]);
     const double multiplier = number(use, "multiplier", 1, use_path, 0, 1e16) * luminance(color);
     if (multiplier == 0) return nullptr;
     return {{"type", "luminaire"},
-            {"file", placement_.file_prefix + file},
+            {"file", placement_.file_prefix + *file},
             {"position", array_of(position)},
             {"target", array_of(position + normalize(aim))},
             {"c0", array_of(normalize(c0))},

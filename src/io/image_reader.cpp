@@ -20,6 +20,7 @@
 #include <string_view>
 
 #include "math/srgb.h"
+#include "util/file_extension.h"
 #include "util/input_file.h"
 
 // The one translation unit with stb_image's implementation (image_writer.cpp holds
@@ -142,11 +143,10 @@ void check_plausible_size(const std::filesystem::path& path, long long width, lo
                    " bytes (corrupt or truncated)");
 }
 
-std::string lower_case_extension(const std::filesystem::path& path) {
-  std::string extension = path.extension().string();
-  if (!extension.empty()) extension.erase(0, 1);  // the dot
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+// The extension without its dot ("png"), as kStbExtensions lists them.
+std::string extension_name(const std::filesystem::path& path) {
+  std::string extension = lower_case_extension(path);
+  if (!extension.empty()) extension.erase(0, 1);
   return extension;
 }
 
@@ -535,7 +535,7 @@ RgbImage read_image(const std::filesystem::path& path, ColorEncoding encoding, d
   // A regular file only (a FIFO blocked, a device was read without end), at most 4 GiB.
   const std::string problem = input_file_problem(path.string(), "it", kLargeInputLimit);
   if (!problem.empty()) fail(path, problem);
-  const std::string extension = lower_case_extension(path);
+  const std::string extension = extension_name(path);
   if (extension == "exr") return checked_values(path, load_exr(path, encoding), max_magnitude);
   if (extension == "pfm") return checked_values(path, load_pfm(path, encoding), max_magnitude);
   if (std::find(kStbExtensions.begin(), kStbExtensions.end(), extension) != kStbExtensions.end())

@@ -11,6 +11,7 @@
 
 #include "radiosity/vertex_radiosity.h"
 #include "util/atomic_file.h"
+#include "util/file_extension.h"
 
 namespace candela {
 
@@ -28,9 +29,7 @@ void require_consistent(const RadiositySolveResult& solution) {
 }  // namespace
 
 bool solution_format_for_path(const std::string& path, SolutionFormat& format) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = lower_case_extension(path);
   if (extension == ".csv")
     format = SolutionFormat::csv;
   else if (extension == ".ply")

@@ -28,6 +28,7 @@
 #include "scene/shape_registry.h"
 #include "shading/environment.h"
 #include "shading/photometric_units.h"
+#include "util/file_extension.h"
 #include "util/input_file.h"
 #include "util/registry.h"
 
@@ -343,20 +344,13 @@ class SceneReader {
   std::map<std::string, uint32_t> named_materials_;
 };
 
-std::string lowercase_extension(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
-}
-
 bool is_gltf_path(const std::string& path) {
-  const std::string extension = lowercase_extension(path);
+  const std::string extension = lower_case_extension(path);
   return extension == ".gltf" || extension == ".glb";
 }
 
 bool is_pbrt_path(const std::string& path) {
-  return lowercase_extension(path) == ".pbrt";
+  return lower_case_extension(path) == ".pbrt";
 }
 
 std::string no_camera_warning(const std::string& path) {

@@ -21,6 +21,7 @@
 #include "io/obj_import.h"
 #include "io/ply_import.h"
 #include "shading/image_texture.h"
+#include "util/file_extension.h"
 #include "util/registry.h"
 
 namespace candela {
@@ -161,9 +162,7 @@ ShapeBuild make_mesh(const JsonNode& node, const Transform& transform, LoadConte
   const int gltf_scene = node.integer("scene", -1, {0, 1e9, false, false});
   const std::optional<JsonNode> file_materials = node.get("file_materials");
   // The reader by file extension (any case); all three return the same ObjImport result.
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = lower_case_extension(path);
   ObjImport imported;
   if (extension == ".obj") {
     imported = import_obj(path, file.location());

@@ -15,32 +15,34 @@ Bsdf make_bsdf(const Material& material, const SurfaceProperties& at, const Surf
   // direction is on, and rays leave from SurfaceHit::lifted_toward.
   Bsdf bsdf(ShadingFrame::from_normal(normal), geometric, hit.interpolated_normal);
 
-  const bool layered = material.layered && material.specular_model == SpecularModel::cook_torrance;
+  // glTF 2.0's metallic-roughness BRDF, fresnel_mix(diffuse, specular): the diffuse beneath the
+  // facets has 1 − F (BsdfLobe::beneath_facets), and the facets' own F bounds them, so they are
+  // added after the energy rule.
+  const bool layered =
+      material.layered && material.specular_model == SpecularModel::cook_torrance && at.ks > 0;
   BsdfLobe diffuse;
   diffuse.type = LobeType::lambert;
   diffuse.weight = at.diffuse_albedo();
-  if (layered && at.ks > 0) {
+  if (layered) {
     diffuse.beneath_facets = true;
     diffuse.fresnel = material.fresnel;
   }
   bsdf.add(diffuse);
 
-  if (at.ks > 0 && !layered) {
-    BsdfLobe specular;
-    specular.weight = Color(at.ks);
-    if (material.specular_model == SpecularModel::cook_torrance) {
-      specular.type = LobeType::microfacet;
-      specular.alpha = at.roughness;
-      specular.distribution = material.microfacet;
-      specular.fresnel = material.fresnel;
-    } else {
-      // Phong and Blinn-Phong both become the normalized Phong lobe about the mirror
-      // direction, with the material's exponent as given.
-      specular.type = LobeType::phong;
-      specular.exponent = at.shininess;
-    }
-    bsdf.add(specular);
+  BsdfLobe specular;
+  specular.weight = Color(at.ks);
+  if (material.specular_model == SpecularModel::cook_torrance) {
+    specular.type = LobeType::microfacet;
+    specular.alpha = at.roughness;
+    specular.distribution = material.microfacet;
+    specular.fresnel = material.fresnel;
+  } else {
+    // Phong and Blinn-Phong both become the normalized Phong lobe about the mirror
+    // direction, with the material's exponent as given.
+    specular.type = LobeType::phong;
+    specular.exponent = at.shininess;
   }
+  if (at.ks > 0 && !layered) bsdf.add(specular);
   if (at.kr > 0) {
     BsdfLobe mirror;
     mirror.type = LobeType::mirror;
@@ -55,17 +57,7 @@ Bsdf make_bsdf(const Material& material, const SurfaceProperties& at, const Surf
     bsdf.add(glass);
   }
   bsdf.conserve_energy();
-  if (layered && at.ks > 0) {
-    // glTF 2.0's metallic-roughness BRDF, fresnel_mix(diffuse, specular): the facets' own F bounds
-    // them, so they stay outside the energy rule; the diffuse beneath has 1 − F (BsdfLobe).
-    BsdfLobe specular;
-    specular.weight = Color(at.ks);
-    specular.type = LobeType::microfacet;
-    specular.alpha = at.roughness;
-    specular.distribution = material.microfacet;
-    specular.fresnel = material.fresnel;
-    bsdf.add(specular);
-  }
+  if (layered) bsdf.add(specular);
   return bsdf;
 }
 

@@ -11,6 +11,7 @@
 
 #include "io/image_reader.h"
 #include "math/constants.h"
+#include "util/file_extension.h"
 
 namespace candela {
 
@@ -145,9 +146,7 @@ std::vector<double> difference_values(const Film& image, const Film& reference, 
 
 LinearImage read_linear_image(const std::string& path) {
   const RgbImage texture = read_image(path, ColorEncoding::automatic);
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = lower_case_extension(path);
   LinearImage result;
   result.srgb_decoded =
       extension != ".exr" && extension != ".pfm" && extension != ".hdr" && extension != ".pic";
